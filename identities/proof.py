@@ -1,0 +1,325 @@
+"""The proof procedure: named reduction strategies, negative controls, honest labels.
+
+A check function receives a :class:`Derivation` and records what it shows:
+
+- :meth:`Derivation.prove_equal` reduces ``lhs - rhs`` to zero with one named,
+  cheap strategy (``expand``, ``cancel``, ``trigsimp``, ``together``,
+  ``expand_trig``; ``simplify`` only as a last resort).  Label ``proved``.
+- :meth:`Derivation.reject` is the negative control: the *same* strategy must
+  fail on a deliberately wrong variant, and an exact rational point must show
+  the variant false (so a checker that accepts everything is caught).
+- :meth:`Derivation.refute` shows a printed (book) statement false at an exact
+  point: the first half of an erratum.
+- :meth:`Derivation.witness_unequal` proves a "≠" by an exact counterexample.
+- :meth:`Derivation.probable_equal` evaluates at random exact rational points:
+  label ``probabilistic``, never ``proved``.
+- :meth:`Derivation.numeric_close` compares floats within a named tolerance:
+  label ``numeric``.
+- :meth:`Derivation.confirm` records an independent route (numeric through
+  ``mechanics``, a limit, a second derivation) for a derived result.
+
+A failed step raises :class:`CheckFailure`.  The label of a check is the weakest
+label among its claims: proved > probabilistic > numeric.
+"""
+
+from __future__ import annotations
+
+import random
+import time
+from dataclasses import dataclass, field
+from fractions import Fraction
+from typing import Any
+
+import sympy as sp
+
+__all__ = ["LABELS", "STRATEGIES", "CheckFailure", "Derivation", "Step", "is_zero"]
+
+def _tan_half(expr):
+    """Rewrite sin x, cos x as rational functions of T = tan(x/2), then cancel.
+
+    An identity between rational functions of T holds for every x except odd
+    multiples of π (T infinite), hence for all x by continuity: a proof.
+    """
+    expr = sp.expand_trig(sp.sympify(expr))
+    args = {a.args[0] for a in expr.atoms(sp.sin, sp.cos)}
+    reps = {}
+    for i, x in enumerate(sorted(args, key=str)):
+        T = sp.Symbol(f"_T{i}", real=True)
+        reps[sp.sin(x)] = 2 * T / (1 + T**2)
+        reps[sp.cos(x)] = (1 - T**2) / (1 + T**2)
+    return sp.cancel(expr.xreplace(reps))
+
+
+#: Reduction strategies by cost, cheapest first.  Each maps an expression to an
+#: equivalent one; a difference is proved zero when the result is exactly 0.
+STRATEGIES = {
+    "expand": sp.expand,
+    "cancel": sp.cancel,
+    "together": lambda e: sp.cancel(sp.together(e)),
+    "trigsimp": lambda e: sp.trigsimp(sp.expand(e)),
+    "expand_trig": lambda e: sp.expand(sp.expand_trig(e)),
+    "tan_half": _tan_half,
+    "simplify": sp.simplify,
+}
+
+#: Labels, strongest first.
+LABELS = ("proved", "probabilistic", "numeric")
+
+
+class CheckFailure(AssertionError):
+    """A claim of a check did not hold (or a negative control was accepted)."""
+
+
+@dataclass
+class Step:
+    """One recorded step: prose, an optional expression, and what kind of step."""
+
+    text: str
+    expr: Any = None
+    kind: str = (
+        "note"  # note | proved | rejected | refuted | witness | probabilistic | numeric | confirmed
+    )
+    seconds: float = 0.0
+
+
+def _entries(expr) -> list:
+    if isinstance(expr, sp.MatrixBase):
+        return list(expr)
+    if isinstance(expr, list | tuple):
+        return [e for x in expr for e in _entries(x)]
+    return [sp.sympify(expr)]
+
+
+def is_zero(expr, strategy: str) -> bool:
+    """True when the named strategy reduces every entry of ``expr`` to exactly 0."""
+    try:
+        reduce = STRATEGIES[strategy]
+    except KeyError:
+        raise ValueError(f"unknown strategy {strategy!r}; choose from {list(STRATEGIES)}") from None
+    return all(reduce(e) == 0 for e in _entries(expr))
+
+
+def _difference(lhs, rhs):
+    if isinstance(lhs, sp.MatrixBase) or isinstance(rhs, sp.MatrixBase):
+        L, R = sp.Matrix(lhs), sp.Matrix(rhs)
+        if L.shape != R.shape:
+            raise CheckFailure(f"shapes differ: {L.shape} vs {R.shape}")
+        return L - R
+    return sp.sympify(lhs) - sp.sympify(rhs)
+
+
+def _rational_point(symbols, rng: random.Random) -> dict:
+    point = {}
+    for s in symbols:
+        q = Fraction(rng.randint(-97, 97), rng.randint(1, 13))
+        if s.is_positive or s.is_nonnegative:
+            q = abs(q) + Fraction(1, rng.randint(2, 11))
+        point[s] = sp.Rational(q.numerator, q.denominator)
+    return point
+
+
+def _functions_to_symbols(expr):
+    """Replace applied undefined functions f(t) and their derivatives by plain symbols."""
+    derivs = sorted(expr.atoms(sp.Derivative), key=lambda d: -sp.count_ops(d))
+    reps = {d: sp.Symbol(f"_d{i}", real=True) for i, d in enumerate(derivs)}
+    expr = expr.xreplace(reps)
+    funcs = [
+        f for f in expr.atoms(sp.Function) if isinstance(f.func, sp.core.function.UndefinedFunction)
+    ]
+    reps2 = {f: sp.Symbol(f"_f{i}", real=True) for i, f in enumerate(funcs)}
+    return expr.xreplace(reps2)
+
+
+def _evaluate_nonzero(diff, rng: random.Random, tries: int = 8) -> dict | None:
+    """An exact point where some entry of ``diff`` is non-zero, or None."""
+    entries = [_functions_to_symbols(e) for e in _entries(diff)]
+    symbols = sorted(set().union(*(e.free_symbols for e in entries)), key=str)
+    for _ in range(tries):
+        point = _rational_point(symbols, rng)
+        for e in entries:
+            try:
+                val = e.xreplace(point)
+                val = sp.nsimplify(val) if val.has(sp.Float) else val
+                val = sp.N(val, 50)
+            except (ZeroDivisionError, ValueError):
+                continue
+            if val.is_number and val.is_finite is not False and abs(val) > sp.Rational(1, 10**30):
+                return point
+    return None
+
+
+@dataclass
+class Derivation:
+    """Collects the steps, claims and quantities of one check."""
+
+    seed: int = 20261122
+    steps: list[Step] = field(default_factory=list)
+    quantities: dict[str, Any] = field(default_factory=dict)
+    labels: set[str] = field(default_factory=set)
+    strategies: set[str] = field(default_factory=set)
+    n_proved: int = 0
+    n_rejected: int = 0
+    n_refuted: int = 0
+    n_confirmed: int = 0
+
+    def __post_init__(self) -> None:
+        self._rng = random.Random(self.seed)
+
+    # -- prose and results ---------------------------------------------------
+    def note(self, text: str, expr: Any = None) -> None:
+        """Record a step of the derivation (no claim)."""
+        self.steps.append(Step(text, expr))
+
+    def quantity(self, name: str, expr) -> Any:
+        """Record a derived quantity, in the book's symbols, for ``explain --json``."""
+        expr = sp.sympify(expr) if not isinstance(expr, sp.MatrixBase) else sp.ImmutableMatrix(expr)
+        self.quantities[name] = expr
+        self.steps.append(Step(f"{name} =", expr))
+        return expr
+
+    # -- claims --------------------------------------------------------------
+    def prove_equal(self, lhs, rhs, *, strategy: str = "expand", claim: str) -> None:
+        """Prove lhs = rhs by reducing the difference to 0 with ``strategy``."""
+        t0 = time.perf_counter()
+        ok = is_zero(_difference(lhs, rhs), strategy)
+        dt = time.perf_counter() - t0
+        if not ok:
+            raise CheckFailure(f"not proved by {strategy}: {claim}")
+        self.steps.append(Step(f"proved ({strategy}, {dt:.2f} s): {claim}", None, "proved", dt))
+        self.labels.add("proved")
+        self.strategies.add(strategy)
+        self.n_proved += 1
+
+    def prove_zero(self, expr, *, strategy: str = "expand", claim: str) -> None:
+        """Prove ``expr`` = 0 (entrywise for matrices)."""
+        self.prove_equal(
+            expr,
+            sp.zeros(*expr.shape) if isinstance(expr, sp.MatrixBase) else 0,
+            strategy=strategy,
+            claim=claim,
+        )
+
+    def reject(self, lhs, rhs, *, strategy: str = "expand", claim: str) -> None:
+        """Negative control: the wrong statement lhs = rhs must not be proved.
+
+        The same strategy must fail, *and* an exact rational point must show the
+        two sides differ (so the rejection is not a weakness of the strategy).
+        """
+        diff = _difference(lhs, rhs)
+        if is_zero(diff, strategy):
+            raise CheckFailure(f"negative control accepted by {strategy}: {claim}")
+        point = _evaluate_nonzero(diff, self._rng)
+        if point is None:
+            raise CheckFailure(f"negative control not shown false at any exact point: {claim}")
+        self.steps.append(
+            Step(
+                f"rejected wrong variant ({strategy}; false at an exact point): {claim}",
+                None,
+                "rejected",
+            )
+        )
+        self.n_rejected += 1
+
+    def refute(self, lhs, rhs, *, claim: str) -> None:
+        """Show the printed statement lhs = rhs false (exactly): half of an erratum."""
+        diff = _difference(lhs, rhs)
+        point = _evaluate_nonzero(diff, self._rng)
+        if point is None:
+            raise CheckFailure(f"printed statement not refuted: {claim}")
+        self.steps.append(Step(f"printed form is false: {claim}", diff, "refuted"))
+        self.n_refuted += 1
+
+    def witness_unequal(self, lhs, rhs, subs: dict, *, claim: str) -> None:
+        """Prove lhs ≠ rhs by one exact point where they differ."""
+        diff = _difference(lhs, rhs)
+        vals = [sp.nsimplify(sp.simplify(e.subs(subs))) for e in _entries(diff)]
+        if all(v == 0 for v in vals):
+            raise CheckFailure(f"no witness at {subs}: {claim}")
+        self.steps.append(Step(f"proved by witness {subs}: {claim}", diff.subs(subs), "witness"))
+        self.labels.add("proved")
+        self.n_proved += 1
+
+    def reject_witness(self, lhs, rhs, subs: dict, *, claim: str) -> None:
+        """Negative control for :meth:`witness_unequal`: on an equal pair it finds no witness."""
+        try:
+            self.witness_unequal(lhs, rhs, subs, claim=claim)
+        except CheckFailure:
+            self.steps.append(Step(f"rejected: no witness for the equal pair {claim}", None, "rejected"))
+            self.n_rejected += 1
+            return
+        raise CheckFailure(f"witness procedure claims an equal pair differs: {claim}")
+
+    def probable_equal(self, lhs, rhs, *, points: int = 12, claim: str) -> None:
+        """Support lhs = rhs by exact evaluation at random rational points."""
+        diff = _difference(lhs, rhs)
+        entries = [_functions_to_symbols(e) for e in _entries(diff)]
+        symbols = sorted(set().union(*(e.free_symbols for e in entries)), key=str)
+        for _ in range(points):
+            pt = _rational_point(symbols, self._rng)
+            for e in entries:
+                if sp.simplify(e.xreplace(pt)) != 0:
+                    raise CheckFailure(f"fails at {pt}: {claim}")
+        self.steps.append(
+            Step(f"holds at {points} random exact rational points: {claim}", None, "probabilistic")
+        )
+        self.labels.add("probabilistic")
+        self.n_proved += 1
+
+    @staticmethod
+    def _max_error(actual, expected, what: str) -> tuple[float, float]:
+        import numpy as np
+
+        a = np.asarray(actual, dtype=float)
+        e = np.asarray(expected, dtype=float)
+        if a.shape != e.shape:
+            raise CheckFailure(f"{what}: shapes differ, {a.shape} vs {e.shape}")
+        err = float(np.max(np.abs(a - e))) if a.size else 0.0
+        return err, float(np.max(np.abs(e))) if e.size else 0.0
+
+    def numeric_close(self, actual, expected, *, atol: float, claim: str) -> None:
+        """A float comparison within a named absolute tolerance (label ``numeric``)."""
+        err, _ = self._max_error(actual, expected, claim)
+        if not err <= atol:
+            raise CheckFailure(f"{claim}: max error {err:.3g} > atol {atol:.3g}")
+        self.steps.append(
+            Step(f"numeric: {claim} (max error {err:.2g} <= {atol:.2g})", None, "numeric")
+        )
+        self.labels.add("numeric")
+        self.n_proved += 1
+
+    def confirm(self, actual, expected, *, atol: float, route: str) -> None:
+        """An independent numeric route agrees with a derived quantity.
+
+        A confirmation supports a derivation; it is not itself a claim, so it
+        does not weaken the check's label.
+        """
+        err, _ = self._max_error(actual, expected, route)
+        if not err <= atol:
+            raise CheckFailure(
+                f"independent route disagrees: {route}: max error {err:.3g} > atol {atol:.3g}"
+            )
+        self.steps.append(
+            Step(
+                f"confirmed by an independent route: {route} (max error {err:.2g} <= {atol:.2g})",
+                None,
+                "confirmed",
+            )
+        )
+        self.n_confirmed += 1
+
+    def confirm_exact(self, actual, expected, *, route: str, strategy: str = "expand") -> None:
+        """An independent symbolic route gives the same quantity."""
+        if not is_zero(_difference(actual, expected), strategy):
+            raise CheckFailure(f"independent route disagrees: {route}")
+        self.steps.append(
+            Step(f"confirmed by an independent route ({strategy}): {route}", None, "confirmed")
+        )
+        self.n_confirmed += 1
+
+    @property
+    def label(self) -> str:
+        """The weakest label among the claims, or '' when no claim was made."""
+        for lab in reversed(LABELS):
+            if lab in self.labels:
+                return lab
+        return ""

@@ -1,0 +1,298 @@
+"""Angular velocity and the velocities of the points of a rigid body.
+
+Conventions (Essén 1996, ch. 2.5–2.6)
+-------------------------------------
+- ``R_A_O`` is the book's passive matrix ^A R^O (see :mod:`mechanics.rotation`);
+  ``Rdot_A_O`` is its time derivative as seen from O.
+- The angular-velocity matrix is ^O Ω^A = (d/dt ^A R^O) ^O R^A (2.46), which is
+  antisymmetric (2.51) and holds the components of ω in the body basis A as
+  Ω = [[0, ω3, −ω2], [−ω3, 0, ω1], [ω2, −ω1, 0]] (2.52).  Note the sign: this is
+  minus the usual "hat" matrix, because the book's matrices act on bases.
+- ``w_A`` are components of ω in the body basis A, ``w_O`` in the observer basis O;
+  w_O = (^A R^O)ᵀ w_A.
+- Euler angles are z-x-z, ^A R^O = R3(φ) R1(θ) R3(ψ); Euler's kinematic equations
+  (2.69) give w_A from (ψ̇, θ̇, φ̇).
+- Vectors are ``(..., 3)`` and all functions broadcast over leading axes.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._validate import as_float_array
+from .errors import (
+    CollinearPointsError,
+    GimbalLockError,
+    ShapeError,
+    ZeroAngularVelocityError,
+)
+from .rotation import EPS, check_rotation
+
+__all__ = [
+    "angular_velocity_from_euler_rates",
+    "angular_velocity_from_matrix_rate",
+    "euler_rates_from_angular_velocity",
+    "instantaneous_axis",
+    "instantaneous_centre_plane",
+    "omega_matrix_from_vector",
+    "point_velocity",
+    "rigid_velocity_from_points",
+    "vector_from_omega_matrix",
+]
+
+#: Points whose spread matrix Σ(|d|² 1 − d dᵀ) has smallest/largest eigenvalue
+#: below this are treated as collinear.  For N points with coordinates of relative
+#: accuracy eps the eigenvalue of an exactly collinear set comes out at most a
+#: few hundred eps times the largest (measured up to N = 10^4); 1e4 eps leaves
+#: room for that and still accepts points a relative 1e-6 off a line.
+COLLINEAR_RTOL = 1e4 * EPS
+
+
+#: |sin θ| at or below this is gimbal lock to rounding: θ is within rounding of 0
+#: or π (sin(fl(π)) = 1.2e-16 = 0.55 eps), where (2.69) cannot be inverted.
+GIMBAL_LOCK_ATOL = 4 * EPS
+
+
+def omega_matrix_from_vector(w_A) -> np.ndarray:
+    """The angular-velocity matrix (2.52) of the body components ``w_A``."""
+    w = as_float_array(w_A, "w_A", (3,))
+    w1, w2, w3 = np.moveaxis(w, -1, 0)
+    z = np.zeros_like(w1)
+    return np.stack(
+        [np.stack(r, axis=-1) for r in ((z, w3, -w2), (-w3, z, w1), (w2, -w1, z))], axis=-2
+    )
+
+
+def vector_from_omega_matrix(Omega) -> np.ndarray:
+    """Body components of ω from the angular-velocity matrix (2.52).
+
+    Reads the antisymmetric part, (Ω − Ωᵀ)/2, so that a rounding-level symmetric
+    part is ignored rather than folded into ω.
+    """
+    M = as_float_array(Omega, "Omega", (3, 3))
+    return 0.5 * np.stack(
+        [M[..., 1, 2] - M[..., 2, 1], M[..., 2, 0] - M[..., 0, 2], M[..., 0, 1] - M[..., 1, 0]],
+        axis=-1,
+    )
+
+
+def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> np.ndarray:
+    """ω of the body A relative to O from ^A R^O and its rate, (2.45)–(2.52).
+
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's rotation matrix ^A R^O.
+    Rdot_A_O : array_like, shape (..., 3, 3)
+        Its time derivative as seen from O.
+    basis : {"A", "O"}
+        Return components in the body basis A (as the book's (2.52)) or in O.
+
+    Examples
+    --------
+    Example 2.2: R3(ψ(t)) turns with ω = ψ̇ e3.
+
+    >>> from mechanics.rotation import R3
+    >>> psi, psidot = 0.4, 2.0
+    >>> Rdot = psidot * np.array([[-np.sin(psi), np.cos(psi), 0],
+    ...                           [-np.cos(psi), -np.sin(psi), 0], [0, 0, 0]])
+    >>> angular_velocity_from_matrix_rate(R3(psi), Rdot).round(12).tolist()
+    [0.0, 0.0, 2.0]
+    """
+    R = check_rotation(R_A_O)
+    Rdot = as_float_array(Rdot_A_O, "Rdot_A_O", (3, 3))
+    w_A = vector_from_omega_matrix(Rdot @ np.swapaxes(R, -1, -2))
+    return _in_basis(w_A, R, basis)
+
+
+def _in_basis(w_A: np.ndarray, R: np.ndarray, basis: str) -> np.ndarray:
+    if basis == "A":
+        return w_A
+    if basis == "O":
+        return np.einsum("...ji,...j->...i", R, w_A)
+    raise ValueError(f"basis must be 'A' or 'O'; got {basis!r}")
+
+
+def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot) -> np.ndarray:
+    """Body components of ω from Euler angles and rates: Euler's kinematic equations (2.69).
+
+    Examples
+    --------
+    A pure spin φ̇ about the body axis e^A_3:
+
+    >>> angular_velocity_from_euler_rates(0.1, 0.2, 0.3, 0.0, 0.0, 5.0).tolist()
+    [0.0, 0.0, 5.0]
+    """
+    names = ("psi", "theta", "phi", "psidot", "thetadot", "phidot")
+    args = [
+        as_float_array(v, n)
+        for v, n in zip((psi, theta, phi, psidot, thetadot, phidot), names, strict=True)
+    ]
+    _, th, ph, psd, thd, phd = np.broadcast_arrays(*args)
+    sth, cth, sph, cph = np.sin(th), np.cos(th), np.sin(ph), np.cos(ph)
+    return np.stack(
+        [psd * sth * sph + thd * cph, psd * sth * cph - thd * sph, psd * cth + phd], axis=-1
+    )
+
+
+def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
+    """(ψ̇, θ̇, φ̇) from the body components of ω: (2.69) inverted.
+
+    Raises :class:`~mechanics.errors.GimbalLockError` where sin θ = 0, where the
+    rates are not determined (only ψ̇ + φ̇ or ψ̇ − φ̇ is).  Close to it the rates
+    grow like 1/sin θ; :func:`mechanics.rotation.euler_near_gimbal_lock` tells.
+    """
+    th = as_float_array(theta, "theta")
+    ph = as_float_array(phi, "phi")
+    w = as_float_array(w_A, "w_A", (3,))
+    sth = np.sin(th)
+    locked = np.abs(sth) <= GIMBAL_LOCK_ATOL
+    if locked.any():
+        bad = float(np.broadcast_to(th, locked.shape)[locked].flat[0])
+        raise GimbalLockError(
+            f"theta = {bad!r} gives |sin(theta)| <= {GIMBAL_LOCK_ATOL:.3g}: Euler-angle rates "
+            "are undefined at gimbal lock (only psidot + phidot or psidot - phidot is determined)"
+        )
+    w1, w2, w3 = np.moveaxis(w, -1, 0)
+    sph, cph = np.sin(ph), np.cos(ph)
+    psidot = (w1 * sph + w2 * cph) / sth
+    thetadot = w1 * cph - w2 * sph
+    phidot = w3 - psidot * np.cos(th)
+    return np.stack(np.broadcast_arrays(psidot, thetadot, phidot), axis=-1)
+
+
+def point_velocity(v_A, omega, r_AB) -> np.ndarray:
+    """Velocity of the body point B: v_B = v_A + ω × AB, the connection formula (2.73).
+
+    Examples
+    --------
+    >>> point_velocity([1, 0, 0], [0, 0, 2], [0, 1, 0]).tolist()
+    [-1.0, 0.0, 0.0]
+    """
+    v = as_float_array(v_A, "v_A", (3,))
+    w = as_float_array(omega, "omega", (3,))
+    r = as_float_array(r_AB, "r_AB", (3,))
+    return v + np.cross(w, r)
+
+
+def _omega_squared(w: np.ndarray) -> np.ndarray:
+    w2 = np.einsum("...i,...i->...", w, w)
+    if (w2 == 0).any():
+        raise ZeroAngularVelocityError(
+            f"omega = {w.reshape(-1, 3)[np.argmin(w2.reshape(-1))].tolist()} is zero: "
+            "a translating body has no instantaneous axis or centre"
+        )
+    return w2
+
+
+def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
+    """The instantaneous axis of rotation (2.77).
+
+    Returns
+    -------
+    r_AC : ndarray, shape (..., 3)
+        AC = (ω × v_A)/ω², the point C of the axis in the plane through A normal to ω.
+    v_C : ndarray, shape (..., 3)
+        The velocity of the axis points, v_C = (v_A · e_ω) e_ω, parallel to ω (2.80).
+    """
+    v = as_float_array(v_A, "v_A", (3,))
+    w = as_float_array(omega, "omega", (3,))
+    w2 = _omega_squared(w)
+    r_AC = np.cross(w, v) / w2[..., None]
+    v_C = (np.einsum("...i,...i->...", v, w) / w2)[..., None] * w
+    return r_AC, v_C
+
+
+def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
+    """Instantaneous centre of zero velocity in plane motion (2.95).
+
+    x_C = x_A − ẏ_A/ω, y_C = y_A + ẋ_A/ω, for ω = ω e_z (the text's dots on
+    ẋ_A, ẏ_A are lost in the extraction; (2.77) fixes them).
+
+    Parameters
+    ----------
+    r_A, v_A : array_like, shape (..., 2)
+        Position and velocity of a body point A in the plane.
+    omega_z : array_like, shape (...)
+        The angular velocity about e_z; must be non-zero.
+    """
+    r = as_float_array(r_A, "r_A", (2,))
+    v = as_float_array(v_A, "v_A", (2,))
+    w = as_float_array(omega_z, "omega_z")
+    if (w == 0).any():
+        raise ZeroAngularVelocityError(
+            "omega_z = 0: a translating body has no instantaneous centre"
+        )
+    return np.stack([r[..., 0] - v[..., 1] / w, r[..., 1] + v[..., 0] / w], axis=-1)
+
+
+def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """ω and the velocity of the centroid from positions and velocities of N ≥ 3 points.
+
+    Solves v_i = u + ω × (r_i − c) in the least-squares sense, c the centroid,
+    from the connection formula (2.74).
+
+    Parameters
+    ----------
+    r, v : array_like, shape (..., N, 3)
+        Positions and velocities of the points.
+
+    Returns
+    -------
+    omega : ndarray, shape (..., 3)
+    v_c : ndarray, shape (..., 3)
+        Velocity of the body point at the centroid c; v_P = v_c + ω × (r_P − c).
+    residual : ndarray, shape (...)
+        Rigidity residual max_i |v_i − v_c − ω × (r_i − c)|: zero for exact rigid
+        data; a large value means the data are not a rigid motion.
+
+    Raises
+    ------
+    CollinearPointsError
+        When fewer than three points, or (nearly) collinear ones, leave the
+        rotation about their common line undetermined.
+
+    Notes
+    -----
+    With d_i = r_i − c one has Σ d_i = 0, so u = mean(v) and
+    ω = J⁻¹ Σ d_i × (v_i − u), J = Σ (|d_i|² 1 − d_i d_iᵀ), the "inertia tensor"
+    of unit masses; J is singular exactly when the points are collinear.
+
+    Examples
+    --------
+    Example 2.3 of the book (ℓ = v = 1): ω = (1, 0, −1).
+
+    >>> r = [[0, 0, 1], [0, 2, 0], [1, 0, 1]]
+    >>> v = [[1, 1, -3], [3, 2, -1], [1, 0, -3]]
+    >>> omega, v_c, res = rigid_velocity_from_points(r, v)
+    >>> omega.round(12).tolist(), float(res) < 1e-14
+    ([1.0, 0.0, -1.0], True)
+    """
+    R = as_float_array(r, "r", (3,))
+    V = as_float_array(v, "v", (3,))
+    if R.ndim < 2 or V.shape != R.shape:
+        raise ShapeError(f"r and v must both have shape (..., N, 3); got {R.shape} and {V.shape}")
+    n = R.shape[-2]
+    if n < 3:
+        raise CollinearPointsError(
+            f"{n} point(s) given; at least 3 non-collinear points are needed"
+        )
+    c = R.mean(axis=-2, keepdims=True)
+    d = R - c
+    u = V.mean(axis=-2)
+    dd = np.einsum("...ni,...ni->...", d, d)
+    J = dd[..., None, None] * np.eye(3) - np.einsum("...ni,...nj->...ij", d, d)
+    lam = np.linalg.eigvalsh(J)
+    ratio = lam[..., 0] / np.where(lam[..., 2] > 0, lam[..., 2], 1.0)
+    if (ratio <= COLLINEAR_RTOL).any():
+        worst = float(np.min(ratio))
+        raise CollinearPointsError(
+            f"the points are collinear (or coincide): smallest/largest eigenvalue of their "
+            f"spread matrix is {worst:.3g} <= {COLLINEAR_RTOL:.3g}; the rotation about their "
+            "line is undetermined"
+        )
+    b = np.einsum("...ni->...i", np.cross(d, V - u[..., None, :]))
+    omega = np.linalg.solve(J, b[..., None])[..., 0]
+    fit = u[..., None, :] + np.cross(omega[..., None, :], d)
+    residual = np.sqrt(np.einsum("...ni,...ni->...n", V - fit, V - fit)).max(axis=-1)
+    return omega, u, residual
