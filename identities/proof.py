@@ -56,6 +56,9 @@ STRATEGIES = {
     "expand": sp.expand,
     "cancel": sp.cancel,
     "together": lambda e: sp.cancel(sp.together(e)),
+    # Over a common denominator that cannot vanish (here: sums of squares of a
+    # non-zero quaternion), the expression is zero iff its expanded numerator is.
+    "numerator": lambda e: sp.expand(sp.numer(sp.together(e))),
     "trigsimp": lambda e: sp.trigsimp(sp.expand(e)),
     "expand_trig": lambda e: sp.expand(sp.expand_trig(e)),
     "tan_half": _tan_half,
@@ -96,7 +99,11 @@ def is_zero(expr, strategy: str) -> bool:
         reduce = STRATEGIES[strategy]
     except KeyError:
         raise ValueError(f"unknown strategy {strategy!r}; choose from {list(STRATEGIES)}") from None
-    return all(reduce(e) == 0 for e in _entries(expr))
+    # f(t) and its derivatives become independent symbols: after differentiation
+    # the expression is algebraic in them, and it vanishes identically as a
+    # function of t iff it vanishes for all independent values (at any t the
+    # values f(t), f'(t), ... can be chosen freely).  This keeps cancel fast.
+    return all(reduce(_functions_to_symbols(e)) == 0 for e in _entries(expr))
 
 
 def _difference(lhs, rhs):

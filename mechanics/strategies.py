@@ -1,0 +1,356 @@
+"""Hypothesis strategies for rotations, valid by construction, with the hard regimes.
+
+Conventions
+-----------
+- The objects are those of :mod:`mechanics.rotation`: unit vectors ``(3,)``,
+  rotation angles in [0, π], rotation vectors φ e_a ``(3,)``, Euler angles
+  (ψ, θ, φ) z-x-z, unit quaternions ``(4,)`` scalar first (w, x, y, z), and the
+  book's passive matrices ^A R^O ``(3, 3)``.  Everything is float64.
+- **Valid by construction.**  No strategy filters: a unit vector is built from a
+  height and an azimuth, an angle near π is π minus a drawn offset, a matrix is
+  the image of drawn parameters under :mod:`mechanics.rotation`.
+- **Hard regimes are explicit branches.**  Each strategy first draws the name of
+  a regime with ``st.sampled_from`` (the first regime is the simple one, so
+  failing examples shrink toward the identity and zero), then draws inside it.
+  The regimes are listed per strategy below and in the module constants
+  ``*_REGIMES``; ``tests/theorems/test_strategy_quality.py`` proves every one is
+  reached.
+- **Which regime was drawn** is recorded with :func:`hypothesis.event` as
+  ``"<strategy>: <regime>"``; ``pytest --hypothesis-show-statistics`` prints
+  how often each was taken.
+- Bounds are keyword-only; bad arguments raise
+  :class:`hypothesis.errors.InvalidArgument` quoting the value.
+
+Importing this module imports hypothesis; ``import mechanics`` does not.
+
+Examples
+--------
+>>> from hypothesis import given
+>>> from mechanics.rotation import matrix_from_rotvec, is_rotation
+>>> @given(rotvecs())
+... def test_rotvec_gives_rotation(v):
+...     assert is_rotation(matrix_from_rotvec(v))
+>>> test_rotvec_gives_rotation()
+"""
+
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+import numpy as np
+from hypothesis import event
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+from . import rotation as _rot
+
+__all__ = [
+    "ANGLE_REGIMES",
+    "EULER_REGIMES",
+    "MATRIX_REGIMES",
+    "NEAR_PI_WIDTH",
+    "QUATERNION_REGIMES",
+    "TINY_ANGLE_RANGE",
+    "UNIT_VECTOR_REGIMES",
+    "euler_angles",
+    "quaternions",
+    "rotation_angles",
+    "rotation_matrices",
+    "rotvecs",
+    "unit_vectors",
+]
+
+#: Regimes of :func:`unit_vectors`: a signed coordinate axis; a general direction
+#: (height uniform in [−1, 1], azimuth uniform); a direction within 1e-12 … 1e-3
+#: of a coordinate axis (components down to 1e-12 of the others).
+UNIT_VECTOR_REGIMES = ("axis", "general", "near-axis")
+
+#: Regimes of :func:`rotation_angles`: exactly 0; generic (any float in the
+#: bounds, hypothesis' nasty floats included); tiny, log-uniform in
+#: :data:`TINY_ANGLE_RANGE`; within :data:`NEAR_PI_WIDTH` below π; exactly
+#: ``math.pi``.
+ANGLE_REGIMES = ("zero", "generic", "tiny", "near-pi", "pi")
+
+#: Tiny rotation angles, drawn log-uniformly: from where float64 still holds the
+#: products of the angle with axis components as normal numbers (1e-300) up to
+#: 1e-6, where the φ² terms are below 1e-12 of the matrix, so that formulas which
+#: cancel (1 − cos φ, arccos of the trace) lose at least half of their digits.
+TINY_ANGLE_RANGE = (1e-300, 1e-6)
+
+#: Width of the band below π for the "near-pi" regimes: π − δ with δ log-uniform
+#: from one ulp of π up to this width.  sin φ ≈ δ, so the antisymmetric part of
+#: the matrix, which carries the sense of the axis, is of size δ there.
+NEAR_PI_WIDTH = 1e-8
+
+_PI_ULP = math.ulp(math.pi)  # 4.4e-16: the smallest δ with fl(π − δ) < π
+
+#: Regimes of :func:`euler_angles`: all zero; generic (ψ, φ in [−π, π], θ in
+#: [0, π]); gimbal lock θ = 0 and θ = π exactly; θ within 1e-12 … 1e-6 of 0 and
+#: of π (log-uniform).  In the four gimbal regimes ψ and φ are non-zero
+#: (magnitude in [1e-3, π], either sign), so that ψ + φ and ψ − φ differ.
+EULER_REGIMES = ("zero", "generic", "theta-zero", "theta-pi", "theta-near-zero", "theta-near-pi")
+
+_GIMBAL_BAND = (1e-12, 1e-6)
+_OUTER_MIN = 1e-3
+
+#: Regimes of :func:`quaternions`: the identity (1, 0, 0, 0); a half turn
+#: (0, e_a) about a drawn axis, w = 0 exactly (the quaternion of π e_a computed
+#: in float64 has w = cos(fl(π)/2) = 6e-17, never 0); the quaternion of a drawn
+#: rotation vector (all regimes of :func:`rotvecs`).  Each is negated half of the
+#: time (q ≡ −q).
+QUATERNION_REGIMES = ("identity", "half-turn", "from-rotvec")
+
+#: Regimes of :func:`rotation_matrices`: the identity; a signed permutation
+#: matrix (a turn by a multiple of π/2 about coordinate axes, exact in float64);
+#: the image of :func:`rotvecs`, of :func:`euler_angles` (gimbal lock included)
+#: and of :func:`quaternions` under :mod:`mechanics.rotation`.
+MATRIX_REGIMES = ("identity", "signed-permutation", "rotvec", "euler", "quaternion")
+
+
+# ------------------------------------------------------------------ validation
+
+
+def _check_real(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise InvalidArgument(f"{name}={value!r} must be a real number")
+    v = float(value)
+    if not math.isfinite(v):
+        raise InvalidArgument(f"{name}={value!r} must be finite")
+    return v
+
+
+def _check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ...]:
+    if regimes is None:
+        return allowed
+    if isinstance(regimes, str):
+        raise InvalidArgument(f"regimes={regimes!r} must be a collection of names, not a string")
+    chosen = tuple(regimes)
+    unknown = [r for r in chosen if r not in allowed]
+    if unknown:
+        raise InvalidArgument(f"regimes={regimes!r}: unknown {unknown}; {name} has {allowed}")
+    if not chosen:
+        raise InvalidArgument(f"regimes={regimes!r} is empty; choose from {allowed}")
+    # Keep the documented order, so the first (simplest) regime stays first.
+    return tuple(r for r in allowed if r in chosen)
+
+
+def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
+    """Floats in [lo, hi] (0 < lo <= hi), log-uniform, shrinking toward ``hi``."""
+    a, b = math.log10(lo), math.log10(hi)
+    return st.floats(0.0, 1.0).map(lambda t: min(hi, max(lo, 10.0 ** (b - (b - a) * t))))
+
+
+# --------------------------------------------------------------------- vectors
+
+
+def unit_vectors() -> st.SearchStrategy[np.ndarray]:
+    """Unit vectors, shape ``(3,)``, in all directions.
+
+    Regimes (:data:`UNIT_VECTOR_REGIMES`): ``axis`` (±e1, ±e2, ±e3, shrinking to
+    e1), ``general`` (height z uniform in [−1, 1], azimuth uniform in [−π, π]:
+    uniform on the sphere), ``near-axis`` (a coordinate axis tilted by 1e-12 …
+    1e-3, so that two components are tiny).  The norm is 1 within one ulp.
+    """
+
+    @st.composite
+    def draw_unit_vector(draw) -> np.ndarray:
+        regime = draw(st.sampled_from(UNIT_VECTOR_REGIMES))
+        event(f"unit_vectors: {regime}")
+        if regime == "axis":
+            u = np.zeros(3)
+            u[draw(st.integers(0, 2))] = draw(st.sampled_from((1.0, -1.0)))
+            return u
+        if regime == "general":
+            z = draw(st.floats(-1.0, 1.0))
+            rho = math.sqrt((1.0 - z) * (1.0 + z))
+        else:  # sin of the tilt, not sqrt(1 - z²): cos(1e-12) rounds to 1
+            tilt = draw(_log_uniform(1e-12, 1e-3))
+            z = math.cos(tilt) * draw(st.sampled_from((1.0, -1.0)))
+            rho = math.sin(tilt)
+        azimuth = draw(st.floats(-math.pi, math.pi))
+        u = np.array([rho * math.cos(azimuth), rho * math.sin(azimuth), z])
+        if regime == "near-axis":
+            u = np.roll(u, draw(st.integers(0, 2)))  # tilt off e3, e1 or e2
+        return u / math.hypot(math.hypot(u[0], u[1]), u[2])
+
+    return draw_unit_vector()
+
+
+# ---------------------------------------------------------------------- angles
+
+
+def rotation_angles(
+    *, min_value: float = 0.0, max_value: float = math.pi, regimes=None
+) -> st.SearchStrategy[float]:
+    """Rotation angles φ in [``min_value``, ``max_value``] ⊆ [0, π].
+
+    Regimes (:data:`ANGLE_REGIMES`), each used when it meets the bounds:
+    ``zero`` (exactly 0), ``generic`` (``st.floats`` in the bounds, subnormals
+    excluded), ``tiny`` (log-uniform in :data:`TINY_ANGLE_RANGE`), ``near-pi``
+    (π − δ, δ log-uniform from one ulp of π to :data:`NEAR_PI_WIDTH`) and ``pi``
+    (exactly ``math.pi``).  ``regimes`` restricts the draw to some of them.
+    Shrinks toward 0 (the identity), or the lower bound.
+    """
+    lo = _check_real(min_value, "min_value")
+    hi = _check_real(max_value, "max_value")
+    if lo < 0:
+        raise InvalidArgument(f"min_value={min_value!r} must be >= 0")
+    if hi > math.pi:
+        raise InvalidArgument(f"max_value={max_value!r} must be <= math.pi")
+    if lo > hi:
+        raise InvalidArgument(f"min_value={min_value!r} exceeds max_value={max_value!r}")
+    wanted = _check_regimes(regimes, ANGLE_REGIMES, "rotation_angles")
+
+    tiny = (max(lo, TINY_ANGLE_RANGE[0]), min(hi, TINY_ANGLE_RANGE[1]))
+    below_pi = math.nextafter(math.pi, 0.0)
+    near = (max(lo, math.pi - NEAR_PI_WIDTH), min(hi, below_pi))
+    branches: dict[str, st.SearchStrategy[float]] = {}
+    if lo == 0.0:
+        branches["zero"] = st.just(0.0)
+    branches["generic"] = st.floats(lo, hi, allow_subnormal=False)
+    if tiny[0] <= tiny[1]:
+        branches["tiny"] = _log_uniform(*tiny)
+    if near[0] <= near[1]:
+        d_hi = math.pi - near[0]
+        d_lo = max(_PI_ULP, math.pi - near[1])
+        branches["near-pi"] = _log_uniform(d_lo, d_hi).map(
+            lambda d: min(near[1], max(near[0], math.pi - d))
+        )
+    if lo <= math.pi <= hi:
+        branches["pi"] = st.just(math.pi)
+    names = tuple(r for r in wanted if r in branches)
+    if not names:
+        raise InvalidArgument(
+            f"regimes={regimes!r}: none reachable in [{min_value!r}, {max_value!r}]"
+        )
+
+    @st.composite
+    def draw_angle(draw) -> float:
+        regime = draw(st.sampled_from(names))
+        event(f"rotation_angles: {regime}")
+        return draw(branches[regime])
+
+    return draw_angle()
+
+
+def rotvecs(*, axes=None, angles=None) -> st.SearchStrategy[np.ndarray]:
+    """Rotation vectors φ e_a, shape ``(3,)``: an axis times an angle.
+
+    ``axes`` defaults to :func:`unit_vectors` and ``angles`` to
+    :func:`rotation_angles`, so the regimes are theirs: general and near-axis
+    directions times zero, tiny, generic, near-π and exactly-π angles.  The norm
+    of the result is the angle within an ulp or two.
+    """
+    axes = unit_vectors() if axes is None else axes
+    angles = rotation_angles() if angles is None else angles
+    for name, s in (("axes", axes), ("angles", angles)):
+        if not isinstance(s, st.SearchStrategy):
+            raise InvalidArgument(f"{name}={s!r} must be a hypothesis strategy")
+    return st.tuples(angles, axes).map(lambda t: t[1] * t[0])
+
+
+def euler_angles(*, regimes=None) -> st.SearchStrategy[tuple[float, float, float]]:
+    """Euler angles (ψ, θ, φ), z-x-z, as a tuple of floats.
+
+    Regimes (:data:`EULER_REGIMES`): ``zero``; ``generic`` (ψ, φ in [−π, π], θ
+    in [0, π]); ``theta-zero`` and ``theta-pi`` (θ exactly 0 or ``math.pi``);
+    ``theta-near-zero`` and ``theta-near-pi`` (θ or π − θ log-uniform in
+    1e-12 … 1e-6).  In the gimbal regimes the outer angles ψ, φ are non-zero
+    (magnitude in [1e-3, π], either sign): at gimbal lock only ψ + φ (θ = 0) or
+    ψ − φ (θ = π) is defined, and zero outer angles would hide a wrong split.
+    ``regimes`` restricts the draw to some of them.  Shrinks toward (0, 0, 0).
+    """
+    names = _check_regimes(regimes, EULER_REGIMES, "euler_angles")
+    outer = st.tuples(st.floats(_OUTER_MIN, math.pi), st.sampled_from((1.0, -1.0))).map(
+        lambda t: t[0] * t[1]
+    )
+    band = _log_uniform(*_GIMBAL_BAND)
+    thetas = {
+        "theta-zero": st.just(0.0),
+        "theta-pi": st.just(math.pi),
+        "theta-near-zero": band,
+        "theta-near-pi": band.map(lambda d: math.pi - d),
+    }
+
+    @st.composite
+    def draw_euler(draw) -> tuple[float, float, float]:
+        regime = draw(st.sampled_from(names))
+        event(f"euler_angles: {regime}")
+        if regime == "zero":
+            return (0.0, 0.0, 0.0)
+        if regime == "generic":
+            psi = draw(st.floats(-math.pi, math.pi))
+            theta = draw(st.floats(0.0, math.pi))
+            phi = draw(st.floats(-math.pi, math.pi))
+            return (psi, theta, phi)
+        psi, phi = draw(outer), draw(outer)
+        return (psi, draw(thetas[regime]), phi)
+
+    return draw_euler()
+
+
+# ---------------------------------------------------------- quaternions, matrices
+
+
+def quaternions() -> st.SearchStrategy[np.ndarray]:
+    """Unit quaternions (w, x, y, z), scalar first, shape ``(4,)``.
+
+    Regimes (:data:`QUATERNION_REGIMES`): ``identity`` (1, 0, 0, 0);
+    ``half-turn`` (0, e_a), w = 0 exactly, about a drawn :func:`unit_vectors`;
+    ``from-rotvec``: :func:`mechanics.rotation.quat_from_rotvec` of a drawn
+    :func:`rotvecs` (tiny angles, w near 0).  Each is negated half of the time,
+    since q and −q are the same rotation.  The norm is 1 within a few ulps.
+    Shrinks toward the identity.
+    """
+    signs = st.sampled_from((1.0, -1.0))
+
+    @st.composite
+    def draw_quaternion(draw) -> np.ndarray:
+        regime = draw(st.sampled_from(QUATERNION_REGIMES))
+        event(f"quaternions: {regime}")
+        if regime == "identity":
+            q = np.array([1.0, 0.0, 0.0, 0.0])
+        elif regime == "half-turn":
+            q = np.concatenate([[0.0], draw(unit_vectors())])
+        else:
+            q = _rot.quat_from_rotvec(draw(rotvecs()))
+        return draw(signs) * q
+
+    return draw_quaternion()
+
+
+def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
+    """The book's passive rotation matrices ^A R^O, shape ``(3, 3)``.
+
+    Regimes (:data:`MATRIX_REGIMES`): ``identity``; ``signed-permutation`` (an
+    exact turn by a multiple of π/2: a permutation matrix with signs and
+    determinant +1); ``rotvec``, ``euler`` and ``quaternion``: the matrix of a
+    drawn :func:`rotvecs`, :func:`euler_angles` or :func:`quaternions` by
+    :func:`~mechanics.rotation.matrix_from_rotvec`,
+    :func:`~mechanics.rotation.matrix_from_euler` or
+    :func:`~mechanics.rotation.matrix_from_quat`, so every hard regime of those
+    strategies reaches the matrices.  Shrinks toward the identity.
+    """
+    perms = st.permutations([0, 1, 2])
+    signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 2)
+
+    @st.composite
+    def draw_matrix(draw) -> np.ndarray:
+        regime = draw(st.sampled_from(MATRIX_REGIMES))
+        event(f"rotation_matrices: {regime}")
+        if regime == "identity":
+            return np.eye(3)
+        if regime == "signed-permutation":
+            P = np.eye(3)[draw(perms)]
+            s1, s2 = draw(signs)
+            # The third sign makes det = +1: valid by construction.
+            s3 = s1 * s2 * float(np.linalg.det(P))
+            return np.diag([s1, s2, s3]) @ P
+        if regime == "rotvec":
+            return _rot.matrix_from_rotvec(draw(rotvecs()))
+        if regime == "euler":
+            return _rot.matrix_from_euler(*draw(euler_angles()))
+        return _rot.matrix_from_quat(draw(quaternions()))
+
+    return draw_matrix()

@@ -1,0 +1,217 @@
+"""Test assertions that know the symmetries of rotations, with tolerances in eps.
+
+Conventions
+-----------
+- Rotations are compared **as matrices** (the book's passive ^A R^O, or any
+  3 × 3 arrays): parameters are not unique (ψ and φ at gimbal lock, ±π e_a),
+  matrices are.  Quaternions are compared **up to sign**: q and −q are the
+  same rotation.
+- Errors are reported in units of float64 ``EPS`` (2.2e-16), with the index of
+  the worst entry, so a failure reads "5.3 eps at index (1, 2)", not
+  "arrays not equal".
+- NaN or an infinity in either argument fails the assertion, naming where it
+  is: a NaN must never pass a closeness test by accident.
+- Tolerances are named multiples of ``EPS`` with their reason; pass a larger
+  multiple explicitly where an algorithm documents a larger error.
+- Arguments broadcast against each other like numpy's; the reported index is
+  in the broadcast shape.
+
+Examples
+--------
+>>> import numpy as np
+>>> from mechanics.rotation import matrix_from_quat, quat_from_rotvec
+>>> q = quat_from_rotvec([0.3, -1.0, 2.0])
+>>> assert_quaternions_close(q, -q)
+>>> assert_rotations_close(matrix_from_quat(q), matrix_from_quat(-q))
+>>> assert_allclose_eps(np.float64(1.0) + EPS, 1.0)
+>>> assert_allclose_eps(1.0 + 8 * EPS, 1.0)  # doctest: +ELLIPSIS
+Traceback (most recent call last):
+...
+AssertionError: not close: relative error 8 eps at index () exceeds 4 eps (actual ...)
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .rotation import EPS, ROUNDTRIP_ATOL
+
+__all__ = [
+    "ALLCLOSE_EPS_MULTIPLE",
+    "EPS",
+    "QUATERNIONS_CLOSE_ATOL",
+    "ROTATIONS_CLOSE_ATOL",
+    "assert_allclose_eps",
+    "assert_quaternions_close",
+    "assert_rotations_close",
+]
+
+#: Default for :func:`assert_rotations_close`: the round-trip accuracy promised
+#: by :mod:`mechanics.rotation` (``ROUNDTRIP_ATOL`` = 4 eps, max-abs): each
+#: matrix entry is a sum of at most three products of numbers within an ulp.
+ROTATIONS_CLOSE_ATOL = ROUNDTRIP_ATOL
+
+#: Default for :func:`assert_quaternions_close`: 4 eps, max-abs.  A unit
+#: quaternion's components are at most 1, each within an ulp or so after a
+#: conversion (measured worst against the exact quaternion: 0.6 eps for
+#: quat_from_rotvec, 1.0 eps for quat_from_matrix of matrix_from_rotvec); 4 eps
+#: allows a round trip through two or three conversions.
+QUATERNIONS_CLOSE_ATOL = 4 * EPS
+
+#: Default for :func:`assert_allclose_eps`: a handful of roundings, each at most
+#: half an ulp relative, that is 4 eps of relative error.
+ALLCLOSE_EPS_MULTIPLE = 4.0
+
+
+def _as_finite(x, name: str) -> np.ndarray:
+    a = np.asarray(x)
+    if a.dtype.kind not in "biuf":
+        raise AssertionError(f"{name} has dtype {a.dtype}; real numbers are required")
+    a = a.astype(np.float64, copy=False)
+    bad = ~np.isfinite(a)
+    if bad.any():
+        idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise AssertionError(f"{name} holds {float(a[idx])!r} at index {idx}; it must be finite")
+    return a
+
+
+def _broadcast(actual, desired, tail: tuple[int, ...], names=("actual", "desired")):
+    a = _as_finite(actual, names[0])
+    d = _as_finite(desired, names[1])
+    for arr, name in ((a, names[0]), (d, names[1])):
+        if tail and (arr.ndim < len(tail) or arr.shape[arr.ndim - len(tail) :] != tail):
+            want = "(..., " + ", ".join(map(str, tail)) + ")"
+            raise AssertionError(f"{name} has shape {arr.shape}; expected {want}")
+    try:
+        return np.broadcast_arrays(a, d)
+    except ValueError:
+        raise AssertionError(
+            f"shapes {a.shape} and {d.shape} do not broadcast against each other"
+        ) from None
+
+
+def _check_tolerance(value: float, name: str) -> float:
+    v = float(value)
+    if not np.isfinite(v) or v < 0:
+        raise ValueError(f"{name}={value!r} must be a finite number >= 0")
+    return v
+
+
+def _worst(err: np.ndarray) -> tuple[int, ...]:
+    return tuple(int(i) for i in np.unravel_index(int(np.argmax(err)), err.shape))
+
+
+def assert_rotations_close(R1, R2, *, atol: float = ROTATIONS_CLOSE_ATOL, err_msg: str = ""):
+    """Assert two rotation matrices (..., 3, 3) agree entrywise within ``atol``.
+
+    Compares matrices, not parameters, so it holds across the ambiguities of
+    Euler angles at gimbal lock and of ±π rotation vectors.  The message names
+    the worst entry and its error in eps.
+
+    Examples
+    --------
+    >>> from mechanics.rotation import matrix_from_euler
+    >>> assert_rotations_close(matrix_from_euler(0.3, 0.0, 0.5),
+    ...                        matrix_from_euler(0.8, 0.0, 0.0))
+    """
+    tol = _check_tolerance(atol, "atol")
+    a, b = _broadcast(R1, R2, (3, 3), ("R1", "R2"))
+    err = np.abs(a - b)
+    if err.size == 0 or not err.max() > tol:
+        return
+    idx = _worst(err)
+    prefix = f"{err_msg}: " if err_msg else ""
+    raise AssertionError(
+        f"{prefix}rotations differ by {err[idx] / EPS:.3g} eps at entry {idx}, "
+        f"more than atol = {tol / EPS:.3g} eps (R1 {float(a[idx])!r}, R2 {float(b[idx])!r})"
+    )
+
+
+def assert_quaternions_close(
+    q1, q2, *, atol: float = QUATERNIONS_CLOSE_ATOL, err_msg: str = ""
+) -> None:
+    """Assert two quaternions (..., 4) describe the same rotation within ``atol``.
+
+    For each quaternion the distance is min(max |q1 − q2|, max |q1 + q2|): q and
+    −q are the same rotation.  The message names the worst quaternion, its
+    distance in eps and the sign that was closer.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> assert_quaternions_close([0.0, 1.0, 0.0, 0.0], [0.0, -1.0, 0.0, 0.0])
+    >>> assert_quaternions_close([1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0])
+    ... # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    AssertionError: quaternions differ by 4.5e+15 eps (up to sign, closer with q2) at index ()...
+    """
+    tol = _check_tolerance(atol, "atol")
+    a, b = _broadcast(q1, q2, (4,), ("q1", "q2"))
+    plus = np.abs(a - b).max(axis=-1)
+    minus = np.abs(a + b).max(axis=-1)
+    err = np.minimum(plus, minus)
+    if err.size == 0 or not err.max() > tol:
+        return
+    idx = _worst(err)
+    sign = "q2" if plus[idx] <= minus[idx] else "-q2"
+    prefix = f"{err_msg}: " if err_msg else ""
+    raise AssertionError(
+        f"{prefix}quaternions differ by {err[idx] / EPS:.3g} eps (up to sign, closer with "
+        f"{sign}) at index {idx}, more than atol = {tol / EPS:.3g} eps "
+        f"(q1 {a[idx].tolist()}, q2 {b[idx].tolist()})"
+    )
+
+
+def assert_allclose_eps(
+    actual,
+    desired,
+    *,
+    eps_multiple: float = ALLCLOSE_EPS_MULTIPLE,
+    scale=None,
+    err_msg: str = "",
+) -> None:
+    """Assert |actual − desired| ≤ eps_multiple · eps · scale, entrywise.
+
+    Parameters
+    ----------
+    actual, desired : array_like
+        Broadcast against each other.
+    eps_multiple : float
+        The allowed error in units of eps (default
+        :data:`ALLCLOSE_EPS_MULTIPLE`).
+    scale : array_like, optional
+        The size the error is measured against.  Default: ``|desired|``
+        entrywise, a relative test (a zero ``desired`` then needs an exact
+        zero).  Pass ``scale=1`` for an absolute test in units of eps.
+    err_msg : str
+        Prepended to the failure message.
+
+    Raises
+    ------
+    AssertionError
+        Naming the worst entry, its error in eps (relative or scaled), and the
+        two values.
+    """
+    k = _check_tolerance(eps_multiple, "eps_multiple")
+    a, d = _broadcast(actual, desired, ())
+    if scale is None:
+        s, kind = np.abs(d), "relative error"
+    else:
+        s = np.broadcast_to(_as_finite(scale, "scale"), a.shape)
+        if (s < 0).any():
+            raise ValueError(f"scale must be >= 0; got {scale!r}")
+        kind = "error"
+    diff = np.abs(a - d)
+    # In units of eps·scale; a zero scale allows only an exact match.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        units = np.where(diff == 0, 0.0, np.where(s > 0, diff / (EPS * s), np.inf))
+    if units.size == 0 or not units.max() > k:
+        return
+    idx = _worst(units)
+    what = f"{units[idx]:.3g} eps" if np.isfinite(units[idx]) else f"{float(diff[idx])!r} (scale 0)"
+    prefix = f"{err_msg}: " if err_msg else ""
+    raise AssertionError(
+        f"{prefix}not close: {kind} {what} at index {idx} exceeds {k:.3g} eps "
+        f"(actual {float(a[idx])!r}, desired {float(d[idx])!r})"
+    )
