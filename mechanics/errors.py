@@ -12,7 +12,9 @@ __all__ = [
     "MechanicsValueError",
     "NonFiniteError",
     "NotARotationError",
+    "ResultOverflowError",
     "ShapeError",
+    "UnknownOptionError",
     "ZeroAngularVelocityError",
     "ZeroAxisError",
 ]
@@ -48,3 +50,11 @@ class ZeroAngularVelocityError(MechanicsValueError):
 
 class CollinearPointsError(MechanicsValueError):
     """Points that are (nearly) collinear cannot fix a rigid body's angular velocity."""
+
+
+class UnknownOptionError(MechanicsValueError):
+    """A keyword option (such as ``basis=``) is not one of its documented values."""
+
+
+class ResultOverflowError(MechanicsValueError):
+    """The exact result is too large for float64 (finite input, beyond ~1.8e308)."""

@@ -23,7 +23,9 @@ from ._validate import as_float_array
 from .errors import (
     CollinearPointsError,
     GimbalLockError,
+    ResultOverflowError,
     ShapeError,
+    UnknownOptionError,
     ZeroAngularVelocityError,
 )
 from .rotation import EPS, check_rotation
@@ -99,18 +101,14 @@ def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> n
     >>> angular_velocity_from_matrix_rate(R3(psi), Rdot).round(12).tolist()
     [0.0, 0.0, 2.0]
     """
+    if basis not in ("A", "O"):
+        raise UnknownOptionError(f"basis must be 'A' or 'O'; got {basis!r}")
     R = check_rotation(R_A_O)
     Rdot = as_float_array(Rdot_A_O, "Rdot_A_O", (3, 3))
     w_A = vector_from_omega_matrix(Rdot @ np.swapaxes(R, -1, -2))
-    return _in_basis(w_A, R, basis)
-
-
-def _in_basis(w_A: np.ndarray, R: np.ndarray, basis: str) -> np.ndarray:
-    if basis == "A":
-        return w_A
     if basis == "O":
         return np.einsum("...ji,...j->...i", R, w_A)
-    raise ValueError(f"basis must be 'A' or 'O'; got {basis!r}")
+    return w_A
 
 
 def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot) -> np.ndarray:
@@ -175,14 +173,13 @@ def point_velocity(v_A, omega, r_AB) -> np.ndarray:
     return v + np.cross(w, r)
 
 
-def _omega_squared(w: np.ndarray) -> np.ndarray:
-    w2 = np.einsum("...i,...i->...", w, w)
-    if (w2 == 0).any():
-        raise ZeroAngularVelocityError(
-            f"omega = {w.reshape(-1, 3)[np.argmin(w2.reshape(-1))].tolist()} is zero: "
-            "a translating body has no instantaneous axis or centre"
-        )
-    return w2
+def _exponent(a: np.ndarray, axis) -> np.ndarray:
+    """k with max |a| over ``axis`` in [2**(k−1), 2**k) (k = 0 where all are 0); keepdims."""
+    return np.frexp(np.max(np.abs(a), axis=axis, keepdims=True))[1]
+
+
+def _first_index(mask: np.ndarray) -> tuple[int, ...]:
+    return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
 
 
 def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
@@ -194,13 +191,62 @@ def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
         AC = (ω × v_A)/ω², the point C of the axis in the plane through A normal to ω.
     v_C : ndarray, shape (..., 3)
         The velocity of the axis points, v_C = (v_A · e_ω) e_ω, parallel to ω (2.80).
+
+    Raises
+    ------
+    ZeroAngularVelocityError
+        Where every component of ω is 0 (a translation has no axis).
+    ResultOverflowError
+        Where |AC| = |v_A⊥|/|ω| is beyond float64 (a finite but extremely slow spin).
+
+    Notes
+    -----
+    ω and v_A are first divided by powers of two, ω = u 2**k and v_A = s 2**j, with
+    the largest component of u and of s in [1/2, 1) (exact).  Then u·u ∈ [1/4, 3)
+    cannot overflow or underflow, as ω² does for |ω| beyond 1e154 or below 1e-154,
+    and AC = (u × s)/(u·u) 2**(j−k), v_C = ((s·u)/(u·u)) u 2**j round as (2.77)
+    and (2.80) would in the normal range, at any scale.
     """
     v = as_float_array(v_A, "v_A", (3,))
     w = as_float_array(omega, "omega", (3,))
-    w2 = _omega_squared(w)
-    r_AC = np.cross(w, v) / w2[..., None]
-    v_C = (np.einsum("...i,...i->...", v, w) / w2)[..., None] * w
+    zero = ~w.any(axis=-1)
+    if zero.any():
+        raise ZeroAngularVelocityError(
+            f"omega = {w[_first_index(zero)].tolist()} is zero: "
+            "a translating body has no instantaneous axis or centre"
+        )
+    k, j = _exponent(w, -1), _exponent(v, -1)
+    u, s = np.ldexp(w, -k), np.ldexp(v, -j)
+    uu = np.einsum("...i,...i->...", u, u)[..., None]
+    with np.errstate(over="ignore"):  # checked below
+        r_AC = np.ldexp(np.cross(u, s) / uu, j - k)
+        v_C = np.ldexp(np.einsum("...i,...i->...", s, u)[..., None] / uu * u, j)
+    bad = ~(np.isfinite(r_AC).all(axis=-1) & np.isfinite(v_C).all(axis=-1))
+    if bad.any():
+        idx = _first_index(bad)
+        vb, wb = np.broadcast_arrays(v, w)
+        raise ResultOverflowError(
+            f"the instantaneous axis of v_A = {vb[idx].tolist()}, omega = {wb[idx].tolist()} "
+            f"(index {idx}) is beyond float64: |AC| = |v_A x omega|/omega^2 exceeds 1.8e308"
+        )
     return r_AC, v_C
+
+
+def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """a − b/c, inf only where the exact value is beyond float64 (c ≠ 0).
+
+    b/c alone overflows for |b/c| > 1.8e308 even where a cancels most of it, and
+    underflows where it is tiny.  So b/c = q 2**m with q = mant(b)/mant(c) in
+    (1/2, 2), and both terms are brought to a common exponent e that leaves them
+    below 1 (exact, save for parts below 2**−1074 of the larger term).  In the
+    normal range this rounds exactly as a − b/c.
+    """
+    mb, kb = np.frexp(b)
+    mc, kc = np.frexp(c)
+    q, m = mb / mc, kb - kc
+    e = np.maximum(np.frexp(a)[1], m) + 1
+    with np.errstate(over="ignore"):  # the caller checks
+        return np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
 
 
 def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
@@ -215,6 +261,14 @@ def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
         Position and velocity of a body point A in the plane.
     omega_z : array_like, shape (...)
         The angular velocity about e_z; must be non-zero.
+
+    Raises
+    ------
+    ZeroAngularVelocityError
+        Where ω = 0.
+    ResultOverflowError
+        Where a coordinate of C is beyond float64; the quotients v/ω are formed
+        so that they do not overflow on their own where x_A cancels them.
     """
     r = as_float_array(r_A, "r_A", (2,))
     v = as_float_array(v_A, "v_A", (2,))
@@ -223,7 +277,37 @@ def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
         raise ZeroAngularVelocityError(
             "omega_z = 0: a translating body has no instantaneous centre"
         )
-    return np.stack([r[..., 0] - v[..., 1] / w, r[..., 1] + v[..., 0] / w], axis=-1)
+    r_C = np.stack(
+        [_minus_ratio(r[..., 0], v[..., 1], w), _minus_ratio(r[..., 1], -v[..., 0], w)], axis=-1
+    )
+    bad = ~np.isfinite(r_C).all(axis=-1)
+    if bad.any():
+        idx = _first_index(bad)
+        rb, vb, wb = np.broadcast_arrays(r, v, w[..., None])
+        raise ResultOverflowError(
+            f"the instantaneous centre of r_A = {rb[idx].tolist()}, v_A = {vb[idx].tolist()}, "
+            f"omega_z = {float(wb[idx][0])!r} (index {idx}) is beyond float64: "
+            "|r_A + e_z x v_A/omega_z| exceeds 1.8e308"
+        )
+    return r_C
+
+
+def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(mean, D, k) of points X (..., N, 3): X − mean = D 2**k, max |D| in [1/2, 1).
+
+    Scale-free at any magnitude.  A sum of N numbers below 2**(1023 − g), g =
+    ceil(log2 N) + 1, cannot overflow, so only point sets with a larger entry are
+    divided by 2**g before averaging (exact, save for parts below 2**−1074 of
+    the largest entry); the offsets are then scaled to order 1, so that their
+    squares neither underflow (1e-170) nor overflow (1e160).
+    """
+    g = int(np.ceil(np.log2(X.shape[-2]))) + 1
+    shift = np.where(_exponent(X, (-2, -1)) > 1023 - g, g, 0)
+    Xs = np.ldexp(X, -shift)
+    mean = Xs.mean(axis=-2, keepdims=True)
+    offsets = Xs - mean
+    k = _exponent(offsets, (-2, -1))
+    return np.ldexp(mean, shift)[..., 0, :], np.ldexp(offsets, -k), k + shift
 
 
 def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -251,12 +335,17 @@ def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray
     CollinearPointsError
         When fewer than three points, or (nearly) collinear ones, leave the
         rotation about their common line undetermined.
+    ResultOverflowError
+        When ω is beyond float64 (velocity spread / position spread > 1.8e308).
 
     Notes
     -----
     With d_i = r_i − c one has Σ d_i = 0, so u = mean(v) and
     ω = J⁻¹ Σ d_i × (v_i − u), J = Σ (|d_i|² 1 − d_i d_iᵀ), the "inertia tensor"
-    of unit masses; J is singular exactly when the points are collinear.
+    of unit masses; J is singular exactly when the points are collinear.  The
+    offsets and relative velocities are scaled to order 1 by powers of two
+    first, so the result is scale invariant: J neither underflows (a false
+    "collinear" at 1e-170) nor overflows (1e160).
 
     Examples
     --------
@@ -277,9 +366,11 @@ def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray
         raise CollinearPointsError(
             f"{n} point(s) given; at least 3 non-collinear points are needed"
         )
-    c = R.mean(axis=-2, keepdims=True)
-    d = R - c
-    u = V.mean(axis=-2)
+    # Offsets d_i = d'_i 2**k and velocities v_i − u = w'_i 2**m, each scaled to
+    # order 1 (see _centred): J' = J 2**−2k, b' = b 2**−(k+m) and the eigenvalue
+    # ratio are scale-free, and ω = J'⁻¹ b' 2**(m−k).
+    _, d, k = _centred(R)
+    u, w, m = _centred(V)
     dd = np.einsum("...ni,...ni->...", d, d)
     J = dd[..., None, None] * np.eye(3) - np.einsum("...ni,...nj->...ij", d, d)
     lam = np.linalg.eigvalsh(J)
@@ -291,8 +382,19 @@ def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray
             f"spread matrix is {worst:.3g} <= {COLLINEAR_RTOL:.3g}; the rotation about their "
             "line is undetermined"
         )
-    b = np.einsum("...ni->...i", np.cross(d, V - u[..., None, :]))
+    b = np.einsum("...ni->...i", np.cross(d, w))
     omega = np.linalg.solve(J, b[..., None])[..., 0]
-    fit = u[..., None, :] + np.cross(omega[..., None, :], d)
-    residual = np.sqrt(np.einsum("...ni,...ni->...n", V - fit, V - fit)).max(axis=-1)
+    misfit = w - np.cross(omega[..., None, :], d)
+    residual = np.sqrt(np.einsum("...ni,...ni->...n", misfit, misfit)).max(axis=-1)
+    with np.errstate(over="ignore"):  # checked below
+        omega = np.ldexp(omega, (m - k)[..., 0])
+        residual = np.ldexp(residual, m[..., 0, 0])
+    bad = ~(np.isfinite(omega).all(axis=-1) & np.isfinite(residual))
+    if bad.any():
+        idx = _first_index(bad)
+        raise ResultOverflowError(
+            f"the angular velocity of the point set at index {idx} is beyond float64: "
+            f"velocity spread 2**{int(m[idx][0, 0])} over position spread "
+            f"2**{int(k[idx][0, 0])} exceeds 1.8e308"
+        )
     return omega, u, residual

@@ -1,0 +1,82 @@
+"""The ``bodycheck`` command: options, exit codes, output formats."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from identities.cli import main
+
+
+def test_check_one_chapter_item_prints_a_summary(capsys) -> None:
+    assert main(["check", "--id", "eq2.37", "E2.1"]) == 0
+    out, err = capsys.readouterr()
+    assert "eq2.37" in out and "E2.1" in out
+    assert "all" in out and "wall" in out
+    assert "2/2" in err, "progress bar on stderr"
+
+
+def test_check_accepts_a_book_item_covered_by_another_check(capsys) -> None:
+    assert main(["check", "--id", "eq2.12", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert [c["id"] for c in result["checks"]] == ["eq2.16"]
+    assert result["failed"] == 0
+
+
+def test_check_by_kind_and_chapter_in_json(capsys) -> None:
+    assert main(["check", "--chapter", "2", "--kind", "derivation", "--json", "-j", "2"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    ids = {c["id"] for c in result["checks"]}
+    assert ids == {"E2.1", "E2.2", "E2.3", *(f"P2.{n}" for n in range(1, 8))}
+    assert {c["status"] for c in result["checks"] if c["id"] == "E2.3"} == {"erratum"}
+
+
+@pytest.mark.parametrize(
+    ("argv", "message"),
+    [
+        (["check", "--id", "eq9.1"], "unknown id 'eq9.1'"),
+        (["check", "--id", "eq4.1"], "without a check yet"),
+        (["check", "--chapter", "12"], "invalid choice"),
+        (["check", "--kind", "lemma"], "invalid choice"),
+        (["check", "-j", "0"], "-j must be at least 1"),
+        (["check", "--chapter", "4"], "no check matches"),
+        (["explain", "nonsense"], "unknown id"),
+        (["frobnicate"], "invalid choice"),
+    ],
+)
+def test_bad_usage_is_one_line_and_exit_code_2(argv, message: str, capsys) -> None:
+    assert main(argv) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert err.count("\n") == 1 and message in err
+
+
+def test_explain_prints_statement_reference_and_steps(capsys) -> None:
+    assert main(["explain", "eq2.36"]) == 0
+    out = capsys.readouterr().out
+    assert "section 2.4, page 28" in out or "section 2.4" in out
+    assert "proved (expand" in out
+    assert "rejected wrong variant" in out
+    assert "cos(φ)" in out or "cos(phi)" in out  # pretty-printed matrix
+
+
+def test_explain_json_gives_quantities_as_srepr(capsys) -> None:
+    assert main(["explain", "P2.6", "--json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert result["id"] == "P2.6" and result["status"] == "verified"
+    assert set(result["quantities"]) == {"zeta", "omega", "v3"}
+    assert result["quantities"]["zeta"] == "Integer(-12)"
+    assert result["quantities"]["v3"].startswith("ImmutableDenseMatrix(")
+
+
+def test_explain_an_erratum_shows_both_forms(capsys) -> None:
+    assert main(["explain", "eq2.92"]) == 0
+    out = capsys.readouterr().out
+    assert "status: erratum" in out
+    assert "printed (false)" in out and "corrected" in out
+
+
+def test_explain_a_pending_item_says_so(capsys) -> None:
+    assert main(["explain", "eq5.3", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out) == {"id": "eq5.3", "status": "pending", "quantities": {}}
