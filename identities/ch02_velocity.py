@@ -21,7 +21,16 @@ from mechanics import rotation as rot
 
 from .catalogue import check
 from .proof import Derivation
-from .symbolic import cross, euler_matrix, functions_of_time, general_rotation, omega_matrix, omega_vector, t, vec
+from .symbolic import (
+    cross,
+    euler_matrix,
+    functions_of_time,
+    general_rotation,
+    omega_matrix,
+    omega_vector,
+    t,
+    vec,
+)
 
 EPS = float(np.finfo(float).eps)
 #: mechanics against a float evaluation of the same closed form (a few products
@@ -61,17 +70,32 @@ def _omega_A(R: sp.Matrix) -> sp.Matrix:
 def omega_antisymmetric(d: Derivation) -> None:
     R = _rotation_of_time("a", "b", "c", "d")
     Rdot = sp.diff(R, t)
-    d.prove_equal(sp.diff(R * R.T, t), sp.zeros(3), strategy="cancel", claim="d/dt (R R^T) = 0 (2.47)")
+    d.prove_equal(
+        sp.diff(R * R.T, t), sp.zeros(3), strategy="cancel", claim="d/dt (R R^T) = 0 (2.47)"
+    )
     Omega = Rdot * R.T
-    d.prove_equal(Omega, -(R * Rdot.T), strategy="cancel", claim="(dR/dt) R^T = -R (dR^T/dt) (2.48)-(2.49)")
-    d.prove_equal(Omega + Omega.T, sp.zeros(3), strategy="cancel", claim="Ω + Ω^T = 0 (2.50)-(2.51)")
+    d.prove_equal(
+        Omega, -(R * Rdot.T), strategy="cancel", claim="(dR/dt) R^T = -R (dR^T/dt) (2.48)-(2.49)"
+    )
+    d.prove_equal(
+        Omega + Omega.T, sp.zeros(3), strategy="cancel", claim="Ω + Ω^T = 0 (2.50)-(2.51)"
+    )
     wrong = Rdot * R
-    d.reject(wrong + wrong.T, sp.zeros(3), strategy="cancel", claim="(dR/dt) R (no transpose) is antisymmetric")
+    d.reject(
+        wrong + wrong.T,
+        sp.zeros(3),
+        strategy="cancel",
+        claim="(dR/dt) R (no transpose) is antisymmetric",
+    )
     R0 = rot.matrix_from_euler(0.3, 1.0, -0.4)
     w = np.array([0.5, -1.0, 2.0])
     Rdot0 = kin.omega_matrix_from_vector(w) @ R0
-    d.confirm(kin.angular_velocity_from_matrix_rate(R0, Rdot0), w, atol=CODE_ATOL,
-              route="mechanics.angular_velocity_from_matrix_rate inverts dR/dt = Ω R")
+    d.confirm(
+        kin.angular_velocity_from_matrix_rate(R0, Rdot0),
+        w,
+        atol=CODE_ATOL,
+        route="mechanics.angular_velocity_from_matrix_rate inverts dR/dt = Ω R",
+    )
 
 
 @check(
@@ -89,16 +113,24 @@ def basis_turns_with_omega(d: Derivation) -> None:
     w_O = R.T * _omega_of(R, Rdot)  # ω in O components
     lhs = sp.Matrix.hstack(*[Rdot[i, :].T for i in range(3)])
     rhs = sp.Matrix.hstack(*[cross(w_O, R[i, :].T) for i in range(3)])
-    d.prove_equal(lhs, rhs, strategy="cancel", claim="d e^A_i/dt = ω × e^A_i (2.53), components in O")
+    d.prove_equal(
+        lhs, rhs, strategy="cancel", claim="d e^A_i/dt = ω × e^A_i (2.53), components in O"
+    )
     rhs_wrong = sp.Matrix.hstack(*[cross(R[i, :].T, w_O) for i in range(3)])
     d.reject(lhs, rhs_wrong, strategy="cancel", claim="d e^A_i/dt = e^A_i × ω")
-    d.note("(2.54): the first-order change of E^A in dt is (Ω dt) E^A, the matrix (2.39) of δφ = ω dt")
+    d.note(
+        "(2.54): the first-order change of E^A in dt is (Ω dt) E^A, the matrix (2.39) of δφ = ω dt"
+    )
     w = np.array([0.2, 0.7, -1.3])
     R0 = rot.matrix_from_euler(1.0, 0.5, 2.0)
     h = 1e-6
     R1 = rot.matrix_from_rotvec(h * w) @ R0
-    d.confirm((R1 - R0) / h, kin.omega_matrix_from_vector(w) @ R0, atol=4 * h,
-              route="mechanics: a turn by δφ = ω dt (body components) advances E^A by Ω E^A dt")
+    d.confirm(
+        (R1 - R0) / h,
+        kin.omega_matrix_from_vector(w) @ R0,
+        atol=4 * h,
+        route="mechanics: a turn by δφ = ω dt (body components) advances E^A by Ω E^A dt",
+    )
 
 
 @check(
@@ -116,13 +148,20 @@ def rotating_frame_derivative(d: Derivation) -> None:
     lhs = Rdot.T * rA + R.T * rA_dot  # d/dt of r^O = R^T r^A (2.60)
     w = _omega_of(R, Rdot)
     rhs = R.T * (rA_dot + cross(w, rA))
-    d.prove_equal(lhs, rhs, strategy="cancel", claim="^O d/dt r = ^A d/dt r + ω × r (2.61), in O components")
-    d.reject(lhs, R.T * (rA_dot - cross(w, rA)), strategy="cancel",
-             claim="^O d/dt r = ^A d/dt r - ω × r")
+    d.prove_equal(
+        lhs, rhs, strategy="cancel", claim="^O d/dt r = ^A d/dt r + ω × r (2.61), in O components"
+    )
+    d.reject(
+        lhs, R.T * (rA_dot - cross(w, rA)), strategy="cancel", claim="^O d/dt r = ^A d/dt r - ω × r"
+    )
     w = np.array([0.0, 0.0, 2.0])
     r = np.array([1.0, 0.0, 0.0])
-    d.confirm(kin.point_velocity(np.zeros(3), w, r), [0.0, 2.0, 0.0], atol=CODE_ATOL,
-              route="mechanics.point_velocity: a body point at e1 turning about e3 moves along e2")
+    d.confirm(
+        kin.point_velocity(np.zeros(3), w, r),
+        [0.0, 2.0, 0.0],
+        atol=CODE_ATOL,
+        route="mechanics.point_velocity: a body point at e1 turning about e3 moves along e2",
+    )
 
 
 @check(
@@ -135,10 +174,18 @@ def rotating_frame_derivative(d: Derivation) -> None:
 def velocities_add(d: Derivation) -> None:
     rB = sp.Matrix(functions_of_time("X1", "X2", "X3"))
     rBA = sp.Matrix(functions_of_time("y1", "y2", "y3"))
-    d.prove_equal(sp.diff(rB + rBA, t), sp.diff(rB, t) + sp.diff(rBA, t), strategy="expand",
-                  claim="d/dt (OB + BA) = ^O v^B + ^B v^A (2.62)")
-    d.reject(sp.diff(rB + rBA, t), sp.diff(rB, t) - sp.diff(rBA, t), strategy="expand",
-             claim="^O v^A = ^O v^B - ^B v^A")
+    d.prove_equal(
+        sp.diff(rB + rBA, t),
+        sp.diff(rB, t) + sp.diff(rBA, t),
+        strategy="expand",
+        claim="d/dt (OB + BA) = ^O v^B + ^B v^A (2.62)",
+    )
+    d.reject(
+        sp.diff(rB + rBA, t),
+        sp.diff(rB, t) - sp.diff(rBA, t),
+        strategy="expand",
+        claim="^O v^A = ^O v^B - ^B v^A",
+    )
 
 
 @check(
@@ -157,10 +204,18 @@ def angular_velocities_add(d: Derivation) -> None:
     w_OA = _omega_of(R_AO, Rdot_AO)  # A components
     w_OB = _omega_of(R_BO, Rdot_BO)  # B components
     w_BA = _omega_of(R_AB, Rdot_AB)  # A components
-    d.prove_equal(w_OA, R_AB * w_OB + w_BA, strategy="numerator",
-                  claim="^O ω^A = ^O ω^B + ^B ω^A (2.63), all in A components")
-    d.reject(w_OA, w_OB + w_BA, strategy="numerator",
-             claim="adding the components without turning ^O ω^B into the basis A")
+    d.prove_equal(
+        w_OA,
+        R_AB * w_OB + w_BA,
+        strategy="numerator",
+        claim="^O ω^A = ^O ω^B + ^B ω^A (2.63), all in A components",
+    )
+    d.reject(
+        w_OA,
+        w_OB + w_BA,
+        strategy="numerator",
+        claim="adding the components without turning ^O ω^B into the basis A",
+    )
     d.note("(2.64) follows by applying (2.63) twice; the Euler-angle case is checked in eq2.69")
 
 
@@ -175,21 +230,40 @@ def euler_kinematic(d: Derivation) -> None:
     psi, theta, phi = functions_of_time("psi", "theta", "phi")
     R = euler_matrix(psi, theta, phi)
     pd, td, fd = (sp.diff(x, t) for x in (psi, theta, phi))
-    printed = vec(pd * sp.sin(theta) * sp.sin(phi) + td * sp.cos(phi),
-                  pd * sp.sin(theta) * sp.cos(phi) - td * sp.sin(phi),
-                  pd * sp.cos(theta) + fd)
+    printed = vec(
+        pd * sp.sin(theta) * sp.sin(phi) + td * sp.cos(phi),
+        pd * sp.sin(theta) * sp.cos(phi) - td * sp.sin(phi),
+        pd * sp.cos(theta) + fd,
+    )
     d.quantity("omega_A", printed)
     from .symbolic import R1, R3
 
     eC3 = (R3(phi) * R1(theta))[:, 2]  # e^C_3 in A components: third column of ^A R^C
     eB1 = R3(phi)[:, 0]  # e^B_1 in A components
-    d.prove_equal(eC3, vec(sp.sin(theta) * sp.sin(phi), sp.sin(theta) * sp.cos(phi), sp.cos(theta)),
-                  strategy="expand", claim="(2.66): e^C_3 in the basis A")
-    d.prove_equal(eB1, vec(sp.cos(phi), -sp.sin(phi), 0), strategy="expand", claim="(2.67): e^B_1 in the basis A")
-    d.prove_equal(pd * eC3 + td * eB1 + fd * vec(0, 0, 1), printed, strategy="expand",
-                  claim="(2.65) with (2.66)-(2.67) gives (2.68)-(2.69)")
-    d.prove_equal(_omega_A(R), printed, strategy="trigsimp",
-                  claim="(2.69) equals ω read from (d/dt ^A R^O) ^O R^A: an independent route via (2.46)")
+    d.prove_equal(
+        eC3,
+        vec(sp.sin(theta) * sp.sin(phi), sp.sin(theta) * sp.cos(phi), sp.cos(theta)),
+        strategy="expand",
+        claim="(2.66): e^C_3 in the basis A",
+    )
+    d.prove_equal(
+        eB1,
+        vec(sp.cos(phi), -sp.sin(phi), 0),
+        strategy="expand",
+        claim="(2.67): e^B_1 in the basis A",
+    )
+    d.prove_equal(
+        pd * eC3 + td * eB1 + fd * vec(0, 0, 1),
+        printed,
+        strategy="expand",
+        claim="(2.65) with (2.66)-(2.67) gives (2.68)-(2.69)",
+    )
+    d.prove_equal(
+        _omega_A(R),
+        printed,
+        strategy="trigsimp",
+        claim="(2.69) equals ω read from (d/dt ^A R^O) ^O R^A: an independent route via (2.46)",
+    )
     wrong = vec(pd * sp.sin(theta) * sp.cos(phi) + td * sp.cos(phi), printed[1], printed[2])
     d.reject(_omega_A(R), wrong, strategy="trigsimp", claim="ω1 with cos φ in place of sin φ")
     # mechanics: Euler rates -> ω against ω from the exact matrix rate
@@ -198,9 +272,12 @@ def euler_kinematic(d: Derivation) -> None:
     pt = dict(zip((psi, theta, phi), ang, strict=True))
     ptd = dict(zip((pd, td, fd), rates, strict=True))
     Rdot_num = np.array(sp.diff(R, t).subs(ptd).subs(pt).evalf(30).tolist(), dtype=float)
-    d.confirm(kin.angular_velocity_from_euler_rates(*ang, *rates),
-              kin.angular_velocity_from_matrix_rate(rot.matrix_from_euler(*ang), Rdot_num), atol=CODE_ATOL,
-              route="mechanics: (2.69) rates against Ω = dR/dt R^T from the exact matrix rate")
+    d.confirm(
+        kin.angular_velocity_from_euler_rates(*ang, *rates),
+        kin.angular_velocity_from_matrix_rate(rot.matrix_from_euler(*ang), Rdot_num),
+        atol=CODE_ATOL,
+        route="mechanics: (2.69) rates against Ω = dR/dt R^T from the exact matrix rate",
+    )
 
 
 @check(
@@ -218,11 +295,19 @@ def connection_formula(d: Derivation) -> None:
     v_i = vA + Rdot.T * aA  # d/dt of (2.71), r_i = r_A + (^A R^O)^T a^A, in O components
     w_O = R.T * _omega_of(R, Rdot)
     AB = R.T * aA
-    d.prove_equal(v_i, vA + cross(w_O, AB), strategy="cancel", claim="(2.72)-(2.73): v_B = v_A + ω × AB")
-    d.prove_equal(cross(w_O, AB), cross(-AB, w_O), strategy="expand", claim="(2.74): ω × AB = BA × ω")
+    d.prove_equal(
+        v_i, vA + cross(w_O, AB), strategy="cancel", claim="(2.72)-(2.73): v_B = v_A + ω × AB"
+    )
+    d.prove_equal(
+        cross(w_O, AB), cross(-AB, w_O), strategy="expand", claim="(2.74): ω × AB = BA × ω"
+    )
     d.reject(v_i, vA + cross(AB, w_O), strategy="cancel", claim="v_B = v_A + AB × ω")
-    d.confirm(kin.point_velocity([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]), [1.0, 3.0, 3.0],
-              atol=CODE_ATOL, route="mechanics.point_velocity by hand: v_A + e3 × e1 = v_A + e2")
+    d.confirm(
+        kin.point_velocity([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
+        [1.0, 3.0, 3.0],
+        atol=CODE_ATOL,
+        route="mechanics.point_velocity by hand: v_A + e3 × e1 = v_A + e2",
+    )
 
 
 @check(
@@ -239,15 +324,29 @@ def instantaneous_axis(d: Derivation) -> None:
     w2 = w.dot(w)
     AC = cross(w, vA) / w2
     vC = vA + cross(-AC, w)
-    d.prove_equal(vC, vA.dot(w) * w / w2, strategy="cancel", claim="v_C = (v_A·ω) ω/ω² = v_A∥ (2.78)-(2.80)")
+    d.prove_equal(
+        vC, vA.dot(w) * w / w2, strategy="cancel", claim="v_C = (v_A·ω) ω/ω² = v_A∥ (2.78)-(2.80)"
+    )
     AC_wrong = cross(vA, w) / w2
-    d.reject(vA + cross(-AC_wrong, w), vA.dot(w) * w / w2, strategy="cancel",
-             claim="AC = (v_A × ω)/ω² (the cross product reversed)")
+    d.reject(
+        vA + cross(-AC_wrong, w),
+        vA.dot(w) * w / w2,
+        strategy="cancel",
+        claim="AC = (v_A × ω)/ω² (the cross product reversed)",
+    )
     r_AC, v_C = kin.instantaneous_axis([1.0, 1.0, -3.0], [1.0, 0.0, -1.0])
-    d.confirm(np.cross(v_C, [1.0, 0.0, -1.0]), np.zeros(3), atol=CODE_ATOL,
-              route="mechanics.instantaneous_axis: v_C parallel to ω")
-    d.confirm(kin.point_velocity([1.0, 1.0, -3.0], [1.0, 0.0, -1.0], r_AC), v_C, atol=CODE_ATOL,
-              route="mechanics.point_velocity at A + AC equals v_C")
+    d.confirm(
+        np.cross(v_C, [1.0, 0.0, -1.0]),
+        np.zeros(3),
+        atol=CODE_ATOL,
+        route="mechanics.instantaneous_axis: v_C parallel to ω",
+    )
+    d.confirm(
+        kin.point_velocity([1.0, 1.0, -3.0], [1.0, 0.0, -1.0], r_AC),
+        v_C,
+        atol=CODE_ATOL,
+        route="mechanics.point_velocity at A + AC equals v_C",
+    )
 
 
 @check(
@@ -266,13 +365,27 @@ def instantaneous_centre(d: Derivation) -> None:
     A = vec(xA, yA, 0)
     vA = vec(xd, yd, 0)
     W = vec(0, 0, w)
-    d.prove_equal(C - A, cross(W, vA) / w**2, strategy="cancel", claim="(2.94): AC = ω e_z × v_A / ω²")
-    d.prove_equal(vA + cross(A - C, W), sp.zeros(3, 1), strategy="cancel",
-                  claim="the body point at C has zero velocity (2.95)")
+    d.prove_equal(
+        C - A, cross(W, vA) / w**2, strategy="cancel", claim="(2.94): AC = ω e_z × v_A / ω²"
+    )
+    d.prove_equal(
+        vA + cross(A - C, W),
+        sp.zeros(3, 1),
+        strategy="cancel",
+        claim="the body point at C has zero velocity (2.95)",
+    )
     d.prove_equal(vA, cross(C - A, W), strategy="cancel", claim="(2.96): v_A = AC × ω")
     C_wrong = vec(xA + yd / w, yA + xd / w, 0)
-    d.reject(vA + cross(A - C_wrong, W), sp.zeros(3, 1), strategy="cancel",
-             claim="x_C = x_A + ẏ_A/ω (sign of the first component flipped)")
+    d.reject(
+        vA + cross(A - C_wrong, W),
+        sp.zeros(3, 1),
+        strategy="cancel",
+        claim="x_C = x_A + ẏ_A/ω (sign of the first component flipped)",
+    )
     c = kin.instantaneous_centre_plane([1.0, 2.0], [3.0, -1.0], 2.0)
-    d.confirm(kin.point_velocity([3.0, -1.0, 0.0], [0.0, 0.0, 2.0], [c[0] - 1.0, c[1] - 2.0, 0.0]),
-              np.zeros(3), atol=CODE_ATOL, route="mechanics.instantaneous_centre_plane has zero velocity")
+    d.confirm(
+        kin.point_velocity([3.0, -1.0, 0.0], [0.0, 0.0, 2.0], [c[0] - 1.0, c[1] - 2.0, 0.0]),
+        np.zeros(3),
+        atol=CODE_ATOL,
+        route="mechanics.instantaneous_centre_plane has zero velocity",
+    )

@@ -36,11 +36,21 @@ def _parser() -> argparse.ArgumentParser:
     p = _Parser(prog="bodycheck", description="Essén, Dynamics of Bodies: executable and checked.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
     c = sub.add_parser("check", help="run catalogue checks")
-    c.add_argument("--chapter", type=int, choices=range(1, 9), metavar="N", help="only chapter N (1-8)")
-    c.add_argument("--id", dest="ids", nargs="+", metavar="ID", help="check ids or book items (eq2.36, E2.3, P2.4)")
+    c.add_argument(
+        "--chapter", type=int, choices=range(1, 9), metavar="N", help="only chapter N (1-8)"
+    )
+    c.add_argument(
+        "--id",
+        dest="ids",
+        nargs="+",
+        metavar="ID",
+        help="check ids or book items (eq2.36, E2.3, P2.4)",
+    )
     c.add_argument("--kind", choices=KINDS, help="only checks of this kind")
     c.add_argument("--json", action="store_true", help="print the results as JSON")
-    c.add_argument("-j", "--jobs", type=int, default=1, metavar="N", help="run N checks in parallel")
+    c.add_argument(
+        "-j", "--jobs", type=int, default=1, metavar="N", help="run N checks in parallel"
+    )
     e = sub.add_parser("explain", help="show a check's statement and its proof step by step")
     e.add_argument("id", metavar="ID")
     e.add_argument("--json", action="store_true", help="print id, status and quantities (srepr)")
@@ -62,7 +72,9 @@ def _resolve(ids: list[str]) -> list[str]:
             if not found:
                 raise UsageError(f"{i} is a book item without a check yet (pending)")
         else:
-            raise UsageError(f"unknown id {i!r}: expected a check id or a book item such as eq2.36, E2.3, P2.4")
+            raise UsageError(
+                f"unknown id {i!r}: expected a check id or a book item such as eq2.36, E2.3, P2.4"
+            )
         out += [f for f in found if f not in out]
     return out
 
@@ -70,9 +82,10 @@ def _resolve(ids: list[str]) -> list[str]:
 class _Progress:
     """A progress bar on stderr: redrawn in place on a terminal, every 10% otherwise."""
 
-    def __init__(self, total: int, stream=sys.stderr) -> None:
-        self.total, self.done, self.stream = total, 0, stream
-        self.tty = stream.isatty()
+    def __init__(self, total: int, stream=None) -> None:
+        self.total, self.done = total, 0
+        self.stream = stream if stream is not None else sys.stderr
+        self.tty = self.stream.isatty()
         self._last_decile = -1
 
     def step(self, label: str) -> None:
@@ -146,17 +159,35 @@ def _cmd_check(args) -> int:
     wall = time.perf_counter() - t0
     failed = [o for o in outcomes if not o.passed]
     if args.json:
-        print(json.dumps({
-            "passed": len(outcomes) - len(failed), "failed": len(failed), "wall_seconds": round(wall, 3),
-            "checks": [{"id": o.id, "passed": o.passed, "label": o.label, "status": o.status,
-                        "chapter": o.chapter, "seconds": round(o.seconds, 4), "message": o.message}
-                       for o in outcomes],
-        }, indent=1))
+        print(
+            json.dumps(
+                {
+                    "passed": len(outcomes) - len(failed),
+                    "failed": len(failed),
+                    "wall_seconds": round(wall, 3),
+                    "checks": [
+                        {
+                            "id": o.id,
+                            "passed": o.passed,
+                            "label": o.label,
+                            "status": o.status,
+                            "chapter": o.chapter,
+                            "seconds": round(o.seconds, 4),
+                            "message": o.message,
+                        }
+                        for o in outcomes
+                    ],
+                },
+                indent=1,
+            )
+        )
     else:
         for o in outcomes:
             mark = "ok  " if o.passed else "FAIL"
-            print(f"{mark} {o.id:<34} {o.label or '-':<14} {o.status:<9} {o.seconds:7.2f}s"
-                  + (f"  {o.message}" if o.message else ""))
+            print(
+                f"{mark} {o.id:<34} {o.label or '-':<14} {o.status:<9} {o.seconds:7.2f}s"
+                + (f"  {o.message}" if o.message else "")
+            )
         print()
         print(_summary_table(outcomes, wall))
     return 1 if failed else 0
@@ -178,24 +209,42 @@ def _cmd_explain(args) -> int:
         if args.json:
             print(json.dumps({"id": args.id, "status": "pending", "quantities": {}}))
         else:
-            print(f"{args.id}: chapter {item.chapter}, section {item.section}, page {item.page}: pending (no check yet)")
+            print(
+                f"{args.id}: chapter {item.chapter}, section {item.section}, page {item.page}: pending (no check yet)"
+            )
         return 0
     check_id = _resolve([args.id])[0]
     c = reg[check_id]
     outcome, d = catalogue.run_check(c)
     status = next((r.status for r in catalogue.item_rows() if r.item.id == args.id), c.status)
     if args.json:
-        print(json.dumps({"id": args.id, "check": c.id, "status": status, "label": outcome.label,
-                          "passed": outcome.passed,
-                          "quantities": {k: sp.srepr(v) for k, v in d.quantities.items()}}, indent=1))
+        print(
+            json.dumps(
+                {
+                    "id": args.id,
+                    "check": c.id,
+                    "status": status,
+                    "label": outcome.label,
+                    "passed": outcome.passed,
+                    "quantities": {k: sp.srepr(v) for k, v in d.quantities.items()},
+                },
+                indent=1,
+            )
+        )
         return 0 if outcome.passed else 1
     item = c.item
-    ref = f"chapter {item.chapter}, section {item.section}, page {item.page}" if item else "named result"
+    ref = (
+        f"chapter {item.chapter}, section {item.section}, page {item.page}"
+        if item
+        else "named result"
+    )
     print(f"{c.id}: {c.title}")
     if check_id != args.id:
         print(f"({args.id} is covered by check {c.id})")
-    print(f"book: Essén (1996), {ref}; covers {', '.join(c.covers) or '-'}"
-          + (f"; uses definitions {', '.join(c.defines)}" if c.defines else ""))
+    print(
+        f"book: Essén (1996), {ref}; covers {', '.join(c.covers) or '-'}"
+        + (f"; uses definitions {', '.join(c.defines)}" if c.defines else "")
+    )
     print(f"kind: {c.kind}; status: {status}; label: {outcome.label or '-'}; where: {c.where}")
     if c.statement:
         print(f"statement: {c.statement}")
@@ -233,7 +282,9 @@ def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bodycheck`` console script."""
     try:
         args = _parser().parse_args(argv)
-        handler = {"check": _cmd_check, "explain": _cmd_explain, "catalogue": _cmd_catalogue}[args.command]
+        handler = {"check": _cmd_check, "explain": _cmd_explain, "catalogue": _cmd_catalogue}[
+            args.command
+        ]
         return handler(args)
     except UsageError as exc:
         print(f"bodycheck: error: {exc}", file=sys.stderr)

@@ -34,6 +34,7 @@ import sympy as sp
 
 __all__ = ["LABELS", "STRATEGIES", "CheckFailure", "Derivation", "Step", "is_zero"]
 
+
 def _tan_half(expr):
     """Rewrite sin x, cos x as rational functions of T = tan(x/2), then cancel.
 
@@ -251,7 +252,9 @@ class Derivation:
         try:
             self.witness_unequal(lhs, rhs, subs, claim=claim)
         except CheckFailure:
-            self.steps.append(Step(f"rejected: no witness for the equal pair {claim}", None, "rejected"))
+            self.steps.append(
+                Step(f"rejected: no witness for the equal pair {claim}", None, "rejected")
+            )
             self.n_rejected += 1
             return
         raise CheckFailure(f"witness procedure claims an equal pair differs: {claim}")

@@ -12,14 +12,26 @@ __all__ = ["NOTATION", "render_checks_md"]
 NOTATION = (
     ("^A R^O (2.9)", "`R_A_O`", "passive basis matrix, rows e^A_i in O components"),
     ("R1, R2, R3 (2.30)", "`rotation.R1/R2/R3`", "basis turned by +α about axis i"),
-    ("^A R^O(ψ, θ, φ) (2.35)", "`rotation.matrix_from_euler(psi, theta, phi)`", "z-x-z Euler angles"),
+    (
+        "^A R^O(ψ, θ, φ) (2.35)",
+        "`rotation.matrix_from_euler(psi, theta, phi)`",
+        "z-x-z Euler angles",
+    ),
     ("φ = φ e_a (2.4)", "`rotvec`, `rotation.matrix_from_rotvec`", "rotation vector"),
-    ("R_{O→A} (2.21)", "`rotation.active_from_passive`, `rotation.rotate_vector`", "active operator = transpose"),
+    (
+        "R_{O→A} (2.21)",
+        "`rotation.active_from_passive`, `rotation.rotate_vector`",
+        "active operator = transpose",
+    ),
     ("r^A = r^O ^O R^A (2.20)", "`rotation.components_A_from_O`", "components in another basis"),
     ("^O Ω^A (2.46), (2.52)", "`kinematics.omega_matrix_from_vector`", "angular-velocity matrix"),
     ("^O ω^A", "`w_A` (body basis), `w_O` (observer basis)", "angular velocity"),
     ("ψ̇, θ̇, φ̇ (2.69)", "`psidot, thetadot, phidot`", "Euler-angle rates"),
-    ("v_B = v_A + ω × AB (2.73)", "`kinematics.point_velocity(v_A, omega, r_AB)`", "connection formula"),
+    (
+        "v_B = v_A + ω × AB (2.73)",
+        "`kinematics.point_velocity(v_A, omega, r_AB)`",
+        "connection formula",
+    ),
     ("AC = ω × v_A/ω² (2.77)", "`kinematics.instantaneous_axis`", "instantaneous axis"),
     ("C (2.95)", "`kinematics.instantaneous_centre_plane`", "instantaneous centre, plane motion"),
     ("ℓ, ω, θ̇", "`ell`, `omega`, `thetadot`", "symbols in identities/ (README of the book)"),
@@ -66,7 +78,9 @@ def render_checks_md() -> str:
         errata = sum(r.status == "erratum" for r in rs)
         pending = sum(r.status == "pending" for r in rs)
         mark = " (done)" if ch in DONE_CHAPTERS else ""
-        out.append(f"| {ch}{mark} | {frac('equation')} | {frac('example')} | {frac('problem')} | {errata} | {pending} |")
+        out.append(
+            f"| {ch}{mark} | {frac('equation')} | {frac('example')} | {frac('problem')} | {errata} | {pending} |"
+        )
     status_counts = Counter(r.status for r in rows)
     kind_counts = Counter(c.kind for c in regs)
     out += [
@@ -75,7 +89,10 @@ def render_checks_md() -> str:
         "",
         "| book items by status | count |",
         "|---|---|",
-        *(f"| {s} | {status_counts.get(s, 0)} |" for s in ("verified", "erratum", "definition", "pending")),
+        *(
+            f"| {s} | {status_counts.get(s, 0)} |"
+            for s in ("verified", "erratum", "definition", "pending")
+        ),
         f"| **all items** | {len(rows)} |",
         "",
         "| checks by kind | count |",
@@ -90,7 +107,9 @@ def render_checks_md() -> str:
     ]
     for c in regs:
         if c.errata:
-            out.append(f"| {', '.join(c.errata)} | `{c.id}` | {_md(c.printed)} | {_md(c.corrected)} |")
+            out.append(
+                f"| {', '.join(c.errata)} | `{c.id}` | {_md(c.printed)} | {_md(c.corrected)} |"
+            )
     out += ["", "## Readings of the lossy text", "", "| check | reading |", "|---|---|"]
     for c in regs:
         if c.reading:
@@ -103,14 +122,20 @@ def render_checks_md() -> str:
             out.append(f"| `{c.id}` | {c.kind} | {_md(c.title)} | `{c.where}` |")
     out += ["", "## Items", ""]
     for ch in sorted(by_ch):
-        out += [f"### Chapter {ch}", "", "| item | page | section | status | kind | check | where |",
-                "|---|---|---|---|---|---|---|"]
+        out += [
+            f"### Chapter {ch}",
+            "",
+            "| item | page | section | status | kind | check | where |",
+            "|---|---|---|---|---|---|---|",
+        ]
         for r in by_ch[ch]:
             if r.checks:
                 c = r.checks[0]
                 more = f" (+{len(r.checks) - 1})" if len(r.checks) > 1 else ""
-                out.append(f"| {r.item.id} | {r.item.page} | {r.item.section} | {r.status} | {c.kind} | "
-                           f"`{c.id}`{more} {_md(c.title)} | `{c.where}` |")
+                out.append(
+                    f"| {r.item.id} | {r.item.page} | {r.item.section} | {r.status} | {c.kind} | "
+                    f"`{c.id}`{more} {_md(c.title)} | `{c.where}` |"
+                )
             else:
                 out.append(f"| {r.item.id} | {r.item.page} | {r.item.section} | pending | | | |")
         out.append("")

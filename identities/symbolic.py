@@ -67,7 +67,11 @@ def rotvec_matrix(phi, c) -> sp.Matrix:
     """(2.29): cos φ 1 + sin φ [antisymmetric] + (1 − cos φ) c cᵀ, c = direction cosines."""
     c1, c2, c3 = c
     anti = sp.Matrix([[0, c3, -c2], [-c3, 0, c1], [c2, -c1, 0]])
-    return sp.cos(phi) * sp.eye(3) + sp.sin(phi) * anti + (1 - sp.cos(phi)) * sp.Matrix(c) * sp.Matrix(c).T
+    return (
+        sp.cos(phi) * sp.eye(3)
+        + sp.sin(phi) * anti
+        + (1 - sp.cos(phi)) * sp.Matrix(c) * sp.Matrix(c).T
+    )
 
 
 def rotvec_matrix_explicit(phi, c) -> sp.Matrix:

@@ -12,7 +12,15 @@ import pytest
 import sympy as sp
 
 from identities import catalogue
-from identities.catalogue import DONE_CHAPTERS, Check, check, inventory, item_rows, load_all, run_check
+from identities.catalogue import (
+    DONE_CHAPTERS,
+    Check,
+    check,
+    inventory,
+    item_rows,
+    load_all,
+    run_check,
+)
 from identities.proof import CheckFailure, Derivation, is_zero
 from identities.render import render_checks_md
 
@@ -37,7 +45,9 @@ def test_catalogue_entry_passes(check_id: str) -> None:
 
 def test_inventory_knows_every_numbered_item_of_the_book() -> None:
     inv = inventory()
-    kinds = Counter((i.id[:2] if i.id.startswith("eq") else i.id[0], i.chapter) for i in inv.values())
+    kinds = Counter(
+        (i.id[:2] if i.id.startswith("eq") else i.id[0], i.chapter) for i in inv.values()
+    )
     assert {ch: kinds["eq", ch] for ch in EQUATIONS} == EQUATIONS
     assert {ch: kinds["E", ch] for ch in EXAMPLES} == EXAMPLES
     assert {ch: kinds["P", ch] for ch in PROBLEMS} == PROBLEMS
@@ -46,7 +56,9 @@ def test_inventory_knows_every_numbered_item_of_the_book() -> None:
         assert all(f"eq{ch}.{k}" in inv for k in range(1, n + 1))
 
 
-@pytest.mark.skipif(not BOOK.exists(), reason="the book text lives outside this repository (../shared)")
+@pytest.mark.skipif(
+    not BOOK.exists(), reason="the book text lives outside this repository (../shared)"
+)
 def test_inventory_matches_the_book_text() -> None:
     text = BOOK.read_text(encoding="utf-8")
     numbers = {f"eq{c}.{n}" for c, n in re.findall(r"\((\d)\.(\d{1,3})\)", text)}
@@ -54,7 +66,9 @@ def test_inventory_matches_the_book_text() -> None:
 
 
 def test_done_chapters_have_no_pending_item() -> None:
-    pending = [r.item.id for r in item_rows() if r.item.chapter in DONE_CHAPTERS and r.status == "pending"]
+    pending = [
+        r.item.id for r in item_rows() if r.item.chapter in DONE_CHAPTERS and r.status == "pending"
+    ]
     assert pending == []
 
 
@@ -114,7 +128,9 @@ def test_a_negative_control_that_is_true_is_caught() -> None:
 
 def test_a_false_statement_is_not_proved() -> None:
     with pytest.raises(CheckFailure, match="not proved"):
-        Derivation().prove_equal((x + y) ** 2, x**2 + y**2, strategy="expand", claim="freshman's dream")
+        Derivation().prove_equal(
+            (x + y) ** 2, x**2 + y**2, strategy="expand", claim="freshman's dream"
+        )
 
 
 def test_an_erratum_must_refute_the_printed_form() -> None:
@@ -169,7 +185,7 @@ def test_strategies_reduce_exactly_the_zero_expressions(expr, strategy: str, zer
 def test_registration_rejects_unknown_items_and_bad_ids() -> None:
     with pytest.raises(ValueError, match="unknown book items"):
         check("thm.nope", "x", kind="proof", covers=("eq2.97",))(lambda d: None)
-    with pytest.raises(ValueError, match="is not eqN.M"):
+    with pytest.raises(ValueError, match=r"is not eqN\.M"):
         check("eq2-1", "x", kind="proof")(lambda d: None)
     with pytest.raises(ValueError, match="kind"):
         check("thm.nope", "x", kind="lemma")(lambda d: None)

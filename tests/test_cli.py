@@ -12,8 +12,10 @@ from identities.cli import main
 def test_check_one_chapter_item_prints_a_summary(capsys) -> None:
     assert main(["check", "--id", "eq2.37", "E2.1"]) == 0
     out, err = capsys.readouterr()
-    assert "eq2.37" in out and "E2.1" in out
-    assert "all" in out and "wall" in out
+    assert "eq2.37" in out
+    assert "E2.1" in out
+    assert "all" in out
+    assert "wall" in out
     assert "2/2" in err, "progress bar on stderr"
 
 
@@ -49,7 +51,8 @@ def test_bad_usage_is_one_line_and_exit_code_2(argv, message: str, capsys) -> No
     assert main(argv) == 2
     out, err = capsys.readouterr()
     assert out == ""
-    assert err.count("\n") == 1 and message in err
+    assert err.count("\n") == 1
+    assert message in err
 
 
 def test_explain_prints_statement_reference_and_steps(capsys) -> None:
@@ -64,7 +67,8 @@ def test_explain_prints_statement_reference_and_steps(capsys) -> None:
 def test_explain_json_gives_quantities_as_srepr(capsys) -> None:
     assert main(["explain", "P2.6", "--json"]) == 0
     result = json.loads(capsys.readouterr().out)
-    assert result["id"] == "P2.6" and result["status"] == "verified"
+    assert result["id"] == "P2.6"
+    assert result["status"] == "verified"
     assert set(result["quantities"]) == {"zeta", "omega", "v3"}
     assert result["quantities"]["zeta"] == "Integer(-12)"
     assert result["quantities"]["v3"].startswith("ImmutableDenseMatrix(")
@@ -74,9 +78,14 @@ def test_explain_an_erratum_shows_both_forms(capsys) -> None:
     assert main(["explain", "eq2.92"]) == 0
     out = capsys.readouterr().out
     assert "status: erratum" in out
-    assert "printed (false)" in out and "corrected" in out
+    assert "printed (false)" in out
+    assert "corrected" in out
 
 
 def test_explain_a_pending_item_says_so(capsys) -> None:
     assert main(["explain", "eq5.3", "--json"]) == 0
-    assert json.loads(capsys.readouterr().out) == {"id": "eq5.3", "status": "pending", "quantities": {}}
+    assert json.loads(capsys.readouterr().out) == {
+        "id": "eq5.3",
+        "status": "pending",
+        "quantities": {},
+    }
