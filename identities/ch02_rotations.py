@@ -406,7 +406,8 @@ def infinitesimal_rotation(d: Derivation) -> None:
     d.confirm(
         (rot.matrix_from_rotvec(h * ax) - np.eye(3)) / h,
         np.array([[0, 0.8, -0.6], [-0.8, 0, 0], [0.6, 0, 0]]),
-        atol=4 * h,
+        # truncation: the second-order term, ≤ h/2; rounding: O(1) entries to eps, over h
+        atol=h + 4 * EPS / h,
         route="mechanics.matrix_from_rotvec(δφ) - 1 ≈ antisym(δφ), error O(δφ)",
     )
 
@@ -451,7 +452,9 @@ def infinitesimal_commute(d: Derivation) -> None:
     d.confirm(
         np.abs(P @ Q - Q @ P).max() / small**2,
         1.0,
-        atol=1e-4,
+        # the largest entry is sin²δφ = δφ²(1 - δφ²/3 + ...); products of O(1) entries
+        # carry a few eps of rounding, which the division by δφ² amplifies
+        atol=small**2 + 8 * EPS / small**2,
         route="mechanics: |[R(δφ1), R(δφ2)]| / δφ^2 -> 1 for perpendicular axes",
     )
 
@@ -477,6 +480,7 @@ def basis_change_cross(d: Derivation) -> None:
     d.confirm(
         rot.matrix_from_rotvec(dp) - np.eye(3),
         np.cross(dp, np.eye(3)),
-        atol=1e-15,
+        # the neglected second-order term is ≤ |δφ|²/2; 1 - (...) rounds to ≤ 2 eps
+        atol=float(dp @ dp) + 2 * EPS,
         route="mechanics.matrix_from_rotvec(δφ) - 1 = rows δφ × e_i to O(δφ^2)",
     )
