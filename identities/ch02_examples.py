@@ -15,7 +15,7 @@ from .catalogue import check
 from .proof import Derivation
 from .symbolic import R3, cross, functions_of_time, omega_vector, t, vec
 
-EPS = float(np.finfo(float).eps)
+EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products of O(1) numbers (exact data): 16 eps.
 CODE_ATOL = 16 * EPS
 

@@ -15,7 +15,7 @@ from .catalogue import check
 from .proof import Derivation
 from .symbolic import R3, cross, euler_matrix, functions_of_time, t, vec
 
-EPS = float(np.finfo(float).eps)
+EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: numeric routes evaluate a few products and sums of O(1) numbers: 64 eps.
 NUM_ATOL = 64 * EPS
 ez = vec(0, 0, 1)

@@ -28,7 +28,7 @@ from .symbolic import (
     vec,
 )
 
-EPS = float(np.finfo(float).eps)
+EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same closed form: both sides are
 #: sums of ≤ 3 products of correctly rounded trig values, so ≤ 8 eps apart.
 CODE_ATOL = 8 * EPS

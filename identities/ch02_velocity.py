@@ -32,7 +32,7 @@ from .symbolic import (
     vec,
 )
 
-EPS = float(np.finfo(float).eps)
+EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same closed form (a few products
 #: and sums of O(1) numbers): well within 16 eps.
 CODE_ATOL = 16 * EPS
