@@ -85,14 +85,14 @@ def distances_preserved(d_: Derivation) -> None:
 )
 def orthogonality(d: Derivation) -> None:
     E = euler_matrix(psi, theta, phi)
-    d.prove_equal(E * E.T, sp.eye(3), strategy="trigsimp", claim="Euler matrix: R R^T = 1 (2.16)")
+    d.prove_equal(E * E.T, sp.eye(3), strategy="tan_half", claim="Euler matrix: R R^T = 1 (2.16)")
     d.prove_equal(
         E.T * E,
         sp.eye(3),
-        strategy="trigsimp",
+        strategy="tan_half",
         claim="Euler matrix: R^T R = 1, so R^-1 = R^T (2.14)-(2.15)",
     )
-    d.prove_equal(E.det(), 1, strategy="trigsimp", claim="Euler matrix: det R = 1")
+    d.prove_equal(E.det(), 1, strategy="tan_half", claim="Euler matrix: det R = 1")
     P = rotvec_matrix(alpha, unit_vector(u, v))
     d.prove_equal(P * P.T, sp.eye(3), strategy="tan_half", claim="(2.29), any unit axis: R R^T = 1")
     d.prove_equal(P.det(), 1, strategy="tan_half", claim="(2.29): det R = 1")
@@ -107,7 +107,7 @@ def orthogonality(d: Derivation) -> None:
     d.reject(
         wrong * wrong.T,
         sp.eye(3),
-        strategy="trigsimp",
+        strategy="tan_half",
         claim="Euler matrix with the sign of R12 flipped is orthogonal",
     )
     M = rot.matrix_from_euler(0.3, 1.2, -2.1)

@@ -71,20 +71,20 @@ def omega_antisymmetric(d: Derivation) -> None:
     R = _rotation_of_time("a", "b", "c", "d")
     Rdot = sp.diff(R, t)
     d.prove_equal(
-        sp.diff(R * R.T, t), sp.zeros(3), strategy="cancel", claim="d/dt (R R^T) = 0 (2.47)"
+        sp.diff(R * R.T, t), sp.zeros(3), strategy="numerator", claim="d/dt (R R^T) = 0 (2.47)"
     )
     Omega = Rdot * R.T
     d.prove_equal(
-        Omega, -(R * Rdot.T), strategy="cancel", claim="(dR/dt) R^T = -R (dR^T/dt) (2.48)-(2.49)"
+        Omega, -(R * Rdot.T), strategy="numerator", claim="(dR/dt) R^T = -R (dR^T/dt) (2.48)-(2.49)"
     )
     d.prove_equal(
-        Omega + Omega.T, sp.zeros(3), strategy="cancel", claim="Ω + Ω^T = 0 (2.50)-(2.51)"
+        Omega + Omega.T, sp.zeros(3), strategy="numerator", claim="Ω + Ω^T = 0 (2.50)-(2.51)"
     )
     wrong = Rdot * R
     d.reject(
         wrong + wrong.T,
         sp.zeros(3),
-        strategy="cancel",
+        strategy="numerator",
         claim="(dR/dt) R (no transpose) is antisymmetric",
     )
     R0 = rot.matrix_from_euler(0.3, 1.0, -0.4)
@@ -109,15 +109,15 @@ def omega_antisymmetric(d: Derivation) -> None:
 )
 def basis_turns_with_omega(d: Derivation) -> None:
     R, Rdot = _motion("A")
-    d.prove_equal(Rdot, (Rdot * R.T) * R, strategy="cancel", claim="d/dt E^A = Ω E^A (2.45)")
+    d.prove_equal(Rdot, (Rdot * R.T) * R, strategy="numerator", claim="d/dt E^A = Ω E^A (2.45)")
     w_O = R.T * _omega_of(R, Rdot)  # ω in O components
     lhs = sp.Matrix.hstack(*[Rdot[i, :].T for i in range(3)])
     rhs = sp.Matrix.hstack(*[cross(w_O, R[i, :].T) for i in range(3)])
     d.prove_equal(
-        lhs, rhs, strategy="cancel", claim="d e^A_i/dt = ω × e^A_i (2.53), components in O"
+        lhs, rhs, strategy="numerator", claim="d e^A_i/dt = ω × e^A_i (2.53), components in O"
     )
     rhs_wrong = sp.Matrix.hstack(*[cross(R[i, :].T, w_O) for i in range(3)])
-    d.reject(lhs, rhs_wrong, strategy="cancel", claim="d e^A_i/dt = e^A_i × ω")
+    d.reject(lhs, rhs_wrong, strategy="numerator", claim="d e^A_i/dt = e^A_i × ω")
     d.note(
         "(2.54): the first-order change of E^A in dt is (Ω dt) E^A, the matrix (2.39) of δφ = ω dt"
     )
@@ -149,10 +149,16 @@ def rotating_frame_derivative(d: Derivation) -> None:
     w = _omega_of(R, Rdot)
     rhs = R.T * (rA_dot + cross(w, rA))
     d.prove_equal(
-        lhs, rhs, strategy="cancel", claim="^O d/dt r = ^A d/dt r + ω × r (2.61), in O components"
+        lhs,
+        rhs,
+        strategy="numerator",
+        claim="^O d/dt r = ^A d/dt r + ω × r (2.61), in O components",
     )
     d.reject(
-        lhs, R.T * (rA_dot - cross(w, rA)), strategy="cancel", claim="^O d/dt r = ^A d/dt r - ω × r"
+        lhs,
+        R.T * (rA_dot - cross(w, rA)),
+        strategy="numerator",
+        claim="^O d/dt r = ^A d/dt r - ω × r",
     )
     w = np.array([0.0, 0.0, 2.0])
     r = np.array([1.0, 0.0, 0.0])
@@ -296,12 +302,12 @@ def connection_formula(d: Derivation) -> None:
     w_O = R.T * _omega_of(R, Rdot)
     AB = R.T * aA
     d.prove_equal(
-        v_i, vA + cross(w_O, AB), strategy="cancel", claim="(2.72)-(2.73): v_B = v_A + ω × AB"
+        v_i, vA + cross(w_O, AB), strategy="numerator", claim="(2.72)-(2.73): v_B = v_A + ω × AB"
     )
     d.prove_equal(
         cross(w_O, AB), cross(-AB, w_O), strategy="expand", claim="(2.74): ω × AB = BA × ω"
     )
-    d.reject(v_i, vA + cross(AB, w_O), strategy="cancel", claim="v_B = v_A + AB × ω")
+    d.reject(v_i, vA + cross(AB, w_O), strategy="numerator", claim="v_B = v_A + AB × ω")
     d.confirm(
         kin.point_velocity([1.0, 2.0, 3.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]),
         [1.0, 3.0, 3.0],
