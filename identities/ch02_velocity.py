@@ -54,6 +54,11 @@ def _omega_of(R: sp.Matrix, Rdot: sp.Matrix) -> sp.Matrix:
     return omega_vector(Rdot * R.T)
 
 
+def _book_omega(w) -> np.ndarray:
+    """The book's matrix (2.52) of numeric components, from the symbolic definition."""
+    return np.array(omega_matrix(sp.Matrix(w)).tolist(), dtype=float)
+
+
 def _omega_A(R: sp.Matrix) -> sp.Matrix:
     """Body components of ω of a motion R(t), (2.46) and (2.52)."""
     return omega_vector(sp.diff(R, t) * R.T)
@@ -89,7 +94,7 @@ def omega_antisymmetric(d: Derivation) -> None:
     )
     R0 = rot.matrix_from_euler(0.3, 1.0, -0.4)
     w = np.array([0.5, -1.0, 2.0])
-    Rdot0 = kin.omega_matrix_from_vector(w) @ R0
+    Rdot0 = _book_omega(w) @ R0  # (2.45) with the book's (2.52), not the code's
     d.confirm(
         kin.angular_velocity_from_matrix_rate(R0, Rdot0),
         w,
@@ -127,7 +132,7 @@ def basis_turns_with_omega(d: Derivation) -> None:
     R1 = rot.matrix_from_rotvec(h * w) @ R0
     d.confirm(
         (R1 - R0) / h,
-        kin.omega_matrix_from_vector(w) @ R0,
+        _book_omega(w) @ R0,
         atol=4 * h,
         route="mechanics: a turn by δφ = ω dt (body components) advances E^A by Ω E^A dt",
     )

@@ -22,6 +22,7 @@ from mechanics.errors import (
     MechanicsValueError,
     NonFiniteError,
     NotARotationError,
+    ResultOverflowError,
     ShapeError,
     ZeroAngularVelocityError,
 )
@@ -651,3 +652,20 @@ def test_bad_input_raises_the_specific_error_naming_the_condition(func, args, er
     with pytest.raises(error, match=match) as info:
         func(*args)
     assert isinstance(info.value, MechanicsValueError)
+
+
+def test_instantaneous_centre_plane_avoids_intermediate_overflow():
+    # x_C = x_A - ydot_A/ω = 1.5e308 - 2e308 = -5e307: representable although
+    # ydot_A/ω alone is not.
+    assert_allclose(
+        kin.instantaneous_centre_plane([1.5e308, 0.0], [0.0, 1e308], 0.5),
+        [-5e307, 0.0],
+        rtol=4 * EPS,
+        atol=0,
+    )
+
+
+def test_instantaneous_centre_plane_beyond_float64_raises_naming_the_inputs():
+    # y_C = xdot_A/ω = 1e500: not representable, so an error, never inf.
+    with pytest.raises(ResultOverflowError, match="1e-200"):
+        kin.instantaneous_centre_plane([0.0, 0.0], [1e300, 0.0], 1e-200)
