@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 import time
 from collections import defaultdict
@@ -232,7 +233,7 @@ def _cmd_explain(args) -> int:
             )
         )
         return 0 if outcome.passed else 1
-    item = c.item
+    item = inv.get(args.id) or c.item
     ref = (
         f"chapter {item.chapter}, section {item.section}, page {item.page}"
         if item
@@ -291,6 +292,10 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     except KeyboardInterrupt:
         return 130
+    except BrokenPipeError:  # e.g. `bodycheck explain ID | head`: stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
 
 
 if __name__ == "__main__":

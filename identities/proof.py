@@ -234,7 +234,9 @@ class Derivation:
         point = _evaluate_nonzero(diff, self._rng)
         if point is None:
             raise CheckFailure(f"printed statement not refuted: {claim}")
-        self.steps.append(Step(f"printed form is false: {claim}", diff, "refuted"))
+        self.steps.append(
+            Step(f"printed form is false: {claim}; derived − printed =", diff, "refuted")
+        )
         self.n_refuted += 1
 
     def witness_unequal(self, lhs, rhs, subs: dict, *, claim: str) -> None:
