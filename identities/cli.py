@@ -127,7 +127,7 @@ def _run(ids: list[str], jobs: int) -> list[Outcome]:
 def _summary_table(outcomes: list[Outcome], wall: float) -> str:
     by_ch: dict[str, list[Outcome]] = defaultdict(list)
     for o in outcomes:
-        by_ch[str(o.chapter) if o.chapter else "-"].append(o)
+        by_ch[str(o.chapter) if o.chapter else "named"].append(o)
     lines = [
         f"{'chapter':>7}  {'checks':>6}  {'passed':>6}  {'failed':>6}  {'erratum':>7}  {'time':>8}",
         "-" * 50,

@@ -247,8 +247,9 @@ def test_euler_rates_close_to_gimbal_lock_are_large_but_finite():
     w = kin.angular_velocity_from_euler_rates(0.0, theta, 0.3, 1.0, 0.0, 0.0)
     rates = kin.euler_rates_from_angular_velocity(theta, 0.3, w)
     assert np.isfinite(rates).all()
-    # ψ̇ = (w1 sin φ + w2 cos φ)/sin θ; here w1, w2 are O(1e-10) so ψ̇ comes back O(1).
-    assert_allclose(rates[0], 1.0, rtol=1e-6)
+    # ψ̇ = (w1 sin φ + w2 cos φ)/sin θ; here w1, w2 are O(1e-10) but carry their
+    # ψ̇ sin θ factor with relative accuracy, so ψ̇ comes back to a few roundings.
+    assert_allclose(rates[0], 1.0, rtol=8 * EPS)
 
 
 @pytest.mark.parametrize(
