@@ -13,7 +13,7 @@ from mechanics import rotation as rot
 
 from .catalogue import check
 from .proof import Derivation
-from .symbolic import R3, cross, functions_of_time, omega_vector, t, vec
+from .symbolic import R3, cross, floats, functions_of_time, omega_vector, t, vec
 
 EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products of O(1) numbers (exact data): 16 eps.
@@ -43,7 +43,7 @@ def example_2_1(d: Derivation) -> None:
     )
     d.confirm(
         rot.R3(0.8),
-        np.array(printed.subs(psi, sp.Rational(4, 5)).evalf(30).tolist(), dtype=float),
+        floats(printed, {psi: sp.Rational(4, 5)}),
         atol=CODE_ATOL,
         route="mechanics.R3(0.8) against (2.11)",
     )

@@ -13,7 +13,7 @@ from mechanics import rotation as rot
 
 from .catalogue import check
 from .proof import Derivation
-from .symbolic import R3, cross, euler_matrix, functions_of_time, t, vec
+from .symbolic import R3, cross, euler_matrix, floats, functions_of_time, t, vec
 
 EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: numeric routes evaluate a few products and sums of O(1) numbers: 64 eps.
@@ -22,7 +22,7 @@ ez = vec(0, 0, 1)
 
 
 def _f(x) -> np.ndarray:
-    return np.array(sp.Matrix(x).evalf(30).tolist(), dtype=float).reshape(-1)
+    return floats(x).reshape(-1)
 
 
 @check(
@@ -68,7 +68,7 @@ def problem_2_1(d: Derivation) -> None:
         **dict(zip((pd, td, fd), rates, strict=True)),
         **dict(zip((psi, theta, phi), ang, strict=True)),
     }
-    Rdot = np.array(sp.diff(R, t).subs(pt).evalf(30).tolist(), dtype=float)
+    Rdot = floats(sp.diff(R, t), pt)
     d.confirm(
         kin.angular_velocity_from_matrix_rate(rot.matrix_from_euler(*ang), Rdot, basis="O"),
         _f(answer.subs(pt)),

@@ -21,7 +21,9 @@ from .symbolic import (
     R3,
     cross,
     euler_matrix,
+    floats,
     general_rotation,
+    omega_matrix,
     rotvec_matrix,
     rotvec_matrix_explicit,
     unit_vector,
@@ -38,10 +40,6 @@ u, v = sp.symbols("u v", real=True)
 psi, theta, phi, alpha = sp.symbols("psi theta phi alpha", real=True)
 x1, x2, x3 = sp.symbols("x1 x2 x3", real=True)
 G = general_rotation(a, b, c, d)
-
-
-def _num(M: sp.Matrix, subs: dict) -> np.ndarray:
-    return np.array(M.subs(subs).evalf(30).tolist(), dtype=float)
 
 
 @check(
@@ -217,7 +215,7 @@ def rotvec_matrix_forms(d: Derivation) -> None:
         claim="(2.28) with +sin φ cos α_3 in entry (2,1)",
     )
     ax = np.array([2.0, -1.0, 2.0]) / 3.0
-    P = _num(
+    P = floats(
         rotvec_matrix(alpha, sp.Matrix([sp.Rational(2, 3), -sp.Rational(1, 3), sp.Rational(2, 3)])),
         {alpha: sp.Rational(7, 10)},
     )
@@ -263,7 +261,7 @@ def basic_rotations(d: Derivation) -> None:
     for Ri, fn in ((R1, rot.R1), (R2, rot.R2), (R3, rot.R3)):
         d.confirm(
             fn(0.9),
-            _num(Ri(alpha), {alpha: sp.Rational(9, 10)}),
+            floats(Ri(alpha), {alpha: sp.Rational(9, 10)}),
             atol=CODE_ATOL,
             route=f"mechanics.{fn.__name__}(0.9) against (2.30)",
         )
@@ -306,7 +304,7 @@ def euler_explicit(d: Derivation) -> None:
     pt = {psi: sp.Rational(3, 10), theta: sp.Rational(6, 5), phi: -sp.Rational(21, 10)}
     d.confirm(
         rot.matrix_from_euler(0.3, 1.2, -2.1),
-        _num(printed, pt),
+        floats(printed, pt),
         atol=CODE_ATOL,
         route="mechanics.matrix_from_euler against (2.36)",
     )
@@ -372,11 +370,6 @@ def _small(k, uu, vv) -> sp.Matrix:
     return rotvec_matrix(eps_ * k, unit_vector(uu, vv))
 
 
-def _antisym(w) -> sp.Matrix:
-    w1, w2, w3 = w
-    return sp.Matrix([[0, w3, -w2], [-w3, 0, w1], [w2, -w1, 0]])
-
-
 @check(
     "eq2.39",
     "Small rotations: 1 plus an antisymmetric matrix, to first order",
@@ -391,13 +384,13 @@ def infinitesimal_rotation(d: Derivation) -> None:
     d.prove_equal(R.subs(eps_, 0), sp.eye(3), strategy="expand", claim="R(0) = 1")
     d.prove_equal(
         sp.diff(R, eps_).subs(eps_, 0),
-        _antisym(k1 * e),
+        omega_matrix(k1 * e),
         strategy="cancel",
         claim="dR/dε at 0 is the antisymmetric matrix of δφ/ε = k e_a (2.39)",
     )
     d.reject(
         sp.diff(R, eps_).subs(eps_, 0),
-        _antisym(k1 * e).T,
+        omega_matrix(k1 * e).T,
         strategy="cancel",
         claim="the first-order term with the opposite sign (the transpose)",
     )
@@ -436,7 +429,7 @@ def infinitesimal_commute(d: Derivation) -> None:
     sum_vec = k1 * unit_vector(u, v) + k2 * unit_vector(u2, v2)
     d.prove_equal(
         first,
-        _antisym(sum_vec),
+        omega_matrix(sum_vec),
         strategy="cancel",
         claim="first-order term of R(δφ1)R(δφ2) is that of δφ1 + δφ2 (2.41)",
     )
@@ -469,7 +462,7 @@ def infinitesimal_commute(d: Derivation) -> None:
 def basis_change_cross(d: Derivation) -> None:
     w = sp.Matrix(sp.symbols("dphi1 dphi2 dphi3", real=True))
     basis = [sp.Matrix([1, 0, 0]), sp.Matrix([0, 1, 0]), sp.Matrix([0, 0, 1])]
-    A = _antisym(w)
+    A = omega_matrix(w)
     rows = sp.Matrix.hstack(*[cross(w, e) for e in basis]).T
     d.prove_equal(
         A, rows, strategy="expand", claim="row i of the antisymmetric matrix = δφ × e_i (2.43)"

@@ -24,6 +24,7 @@ from .proof import Derivation
 from .symbolic import (
     cross,
     euler_matrix,
+    floats,
     functions_of_time,
     general_rotation,
     omega_matrix,
@@ -56,12 +57,12 @@ def _omega_of(R: sp.Matrix, Rdot: sp.Matrix) -> sp.Matrix:
 
 def _book_omega(w) -> np.ndarray:
     """The book's matrix (2.52) of numeric components, from the symbolic definition."""
-    return np.array(omega_matrix(sp.Matrix(w)).tolist(), dtype=float)
+    return floats(omega_matrix(sp.Matrix(w)))
 
 
 def _omega_A(R: sp.Matrix) -> sp.Matrix:
     """Body components of ω of a motion R(t), (2.46) and (2.52)."""
-    return omega_vector(sp.diff(R, t) * R.T)
+    return _omega_of(R, sp.diff(R, t))
 
 
 @check(
@@ -282,7 +283,7 @@ def euler_kinematic(d: Derivation) -> None:
     rates = (0.4, -1.2, 2.5)
     pt = dict(zip((psi, theta, phi), ang, strict=True))
     ptd = dict(zip((pd, td, fd), rates, strict=True))
-    Rdot_num = np.array(sp.diff(R, t).subs(ptd).subs(pt).evalf(30).tolist(), dtype=float)
+    Rdot_num = floats(sp.diff(R, t).subs(ptd), pt)
     d.confirm(
         kin.angular_velocity_from_euler_rates(*ang, *rates),
         kin.angular_velocity_from_matrix_rate(rot.matrix_from_euler(*ang), Rdot_num),

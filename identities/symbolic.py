@@ -25,6 +25,7 @@ __all__ = [
     "R3",
     "cross",
     "euler_matrix",
+    "floats",
     "general_rotation",
     "omega_matrix",
     "omega_vector",
@@ -119,6 +120,16 @@ def omega_matrix(w) -> sp.Matrix:
 def omega_vector(Omega: sp.Matrix) -> sp.Matrix:
     """Components read off an antisymmetric matrix of the form (2.52)."""
     return sp.Matrix([Omega[1, 2], Omega[2, 0], Omega[0, 1]])
+
+
+def floats(M, subs: dict | None = None):
+    """A sympy matrix (or vector) at a point, evaluated to 30 digits, as a float64 array."""
+    import numpy as np
+
+    M = sp.Matrix(M)
+    if subs:
+        M = M.subs(subs)
+    return np.array(M.evalf(30).tolist(), dtype=float)
 
 
 def functions_of_time(*names: str):
