@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import importlib
 import json
+import pkgutil
 import re
 import time
 import traceback
@@ -26,6 +27,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
+from pathlib import Path
 
 from .proof import CheckFailure, Derivation
 
@@ -48,13 +50,13 @@ __all__ = [
 KINDS = ("proof", "derivation", "property", "stability", "scene", "benchmark")
 ID_PATTERN = re.compile(r"^(eq[1-8]\.\d{1,3}|[EP][1-8]\.\d{1,2}|thm\.[a-z0-9][a-z0-9-]*)$")
 
-#: Modules that register checks, imported by :func:`load_all`.
-CHAPTER_MODULES = (
-    "identities.ch02_rotations",
-    "identities.ch02_velocity",
-    "identities.ch02_examples",
-    "identities.ch02_problems",
-    "identities.stability",
+#: Modules that register checks, imported by :func:`load_all`: every
+#: ``identities/chNN_*.py`` (one per book topic) and ``identities/stability*.py``,
+#: found on disk and imported in sorted order so the registry order is reproducible.
+CHAPTER_MODULES = tuple(
+    f"identities.{m.name}"
+    for m in sorted(pkgutil.iter_modules([str(Path(__file__).parent)]), key=lambda m: m.name)
+    if re.match(r"^(ch\d\d_|stability)", m.name)
 )
 
 #: Chapters whose every item must be covered (a test enforces it).

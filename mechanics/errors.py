@@ -10,13 +10,20 @@ __all__ = [
     "CollinearPointsError",
     "GimbalLockError",
     "MechanicsValueError",
+    "NegativeMassError",
     "NonFiniteError",
+    "NonPhysicalInertiaError",
+    "NonPositiveParameterError",
     "NotARotationError",
+    "OutOfDomainError",
+    "RestitutionRangeError",
     "ResultOverflowError",
+    "SeparatingContactError",
     "ShapeError",
     "UnknownOptionError",
     "ZeroAngularVelocityError",
     "ZeroAxisError",
+    "ZeroTotalMassError",
 ]
 
 
@@ -58,3 +65,32 @@ class UnknownOptionError(MechanicsValueError):
 
 class ResultOverflowError(MechanicsValueError):
     """The exact result is too large for float64 (finite input, beyond ~1.8e308)."""
+
+
+class NegativeMassError(MechanicsValueError):
+    """A mass (or density) is negative."""
+
+
+class ZeroTotalMassError(MechanicsValueError):
+    """A centre of mass (or anything divided by the total mass) of a massless system."""
+
+
+class NonPositiveParameterError(MechanicsValueError):
+    """A parameter that must be > 0 (a length, radius, period, step size) is not."""
+
+
+class OutOfDomainError(MechanicsValueError):
+    """A parameter lies outside the domain where the stated formula holds."""
+
+
+class NonPhysicalInertiaError(MechanicsValueError):
+    """An inertia tensor is not symmetric, not positive definite, or breaks the
+    triangle inequality J1 + J2 ≥ J3; the message names the condition and by how much."""
+
+
+class RestitutionRangeError(MechanicsValueError):
+    """A coefficient of restitution lies outside [0, 1]."""
+
+
+class SeparatingContactError(MechanicsValueError):
+    """An impact was asked for bodies whose contact points already separate."""
