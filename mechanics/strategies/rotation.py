@@ -43,7 +43,7 @@ from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from . import rotation as _rot
+from .. import rotation as _rot
 
 __all__ = [
     "ANGLE_REGIMES",
