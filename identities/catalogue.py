@@ -216,6 +216,9 @@ class Outcome:
     seconds: float
     message: str = ""
     chapter: int | None = None
+    #: the reduction strategies its proofs used, and its slowest proof step (text, seconds)
+    strategies: tuple[str, ...] = ()
+    slowest_step: tuple[str, float] = ("", 0.0)
 
 
 def _structure_problems(c: Check, d: Derivation) -> list[str]:
@@ -247,7 +250,20 @@ def run_check(c: Check) -> tuple[Outcome, Derivation]:
         passed = False
         message = f"{type(exc).__name__}: {exc} ({tb.filename.rsplit('/', 1)[-1]}:{tb.lineno})"
     seconds = time.perf_counter() - t0
-    return Outcome(c.id, passed, d.label, c.status, seconds, message, c.chapter), d
+    timed = [s for s in d.steps if s.seconds > 0]
+    slowest = max(timed, key=lambda s: s.seconds) if timed else None
+    outcome = Outcome(
+        c.id,
+        passed,
+        d.label,
+        c.status,
+        seconds,
+        message,
+        c.chapter,
+        tuple(sorted(d.strategies)),
+        (slowest.text, slowest.seconds) if slowest else ("", 0.0),
+    )
+    return outcome, d
 
 
 def run_by_id(check_id: str) -> Outcome:

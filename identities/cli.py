@@ -1,6 +1,6 @@
 """The ``bodycheck`` command.
 
-    bodycheck check [--chapter N] [--id ID ...] [--kind KIND] [--json] [-j N]
+    bodycheck check [--chapter N] [--id ID ...] [--kind KIND] [--json] [-j N] [--timings N]
     bodycheck explain ID [--json]
     bodycheck catalogue [--write PATH]
 
@@ -51,6 +51,15 @@ def _parser() -> argparse.ArgumentParser:
     c.add_argument("--json", action="store_true", help="print the results as JSON")
     c.add_argument(
         "-j", "--jobs", type=int, default=1, metavar="N", help="run N checks in parallel"
+    )
+    c.add_argument(
+        "--timings",
+        type=int,
+        nargs="?",
+        const=15,
+        default=0,
+        metavar="N",
+        help="after the table, list the N slowest checks (default 15) with their strategies",
     )
     e = sub.add_parser("explain", help="show a check's statement and its proof step by step")
     e.add_argument("id", metavar="ID")
@@ -175,6 +184,7 @@ def _cmd_check(args) -> int:
                             "chapter": o.chapter,
                             "seconds": round(o.seconds, 4),
                             "message": o.message,
+                            "strategies": list(o.strategies),
                         }
                         for o in outcomes
                     ],
@@ -191,7 +201,28 @@ def _cmd_check(args) -> int:
             )
         print()
         print(_summary_table(outcomes, wall))
+        if args.timings:
+            print()
+            print(_timings_table(outcomes, args.timings))
     return 1 if failed else 0
+
+
+def _timings_table(outcomes: list[Outcome], n: int) -> str:
+    """The ``n`` slowest checks: time, the strategies used, the slowest proof step."""
+    total = sum(o.seconds for o in outcomes)
+    lines = [
+        f"slowest {min(n, len(outcomes))} of {len(outcomes)} checks "
+        f"(all checks: {total:.2f} s of proving time)",
+        f"{'check':<26} {'time':>8} {'share':>6}  {'strategies':<28} slowest step",
+    ]
+    for o in sorted(outcomes, key=lambda o: -o.seconds)[:n]:
+        text, sec = o.slowest_step
+        step = f"{sec:.2f} s: {text[:70]}" if text else "-"
+        lines.append(
+            f"{o.id:<26} {o.seconds:>7.2f}s {o.seconds / max(total, 1e-12):>6.1%}  "
+            f"{', '.join(o.strategies) or '-':<28} {step}"
+        )
+    return "\n".join(lines)
 
 
 def _pretty(expr) -> str:

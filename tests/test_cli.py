@@ -89,3 +89,13 @@ def test_explain_a_pending_item_says_so(capsys) -> None:
         "status": "pending",
         "quantities": {},
     }
+
+
+def test_timings_lists_the_slowest_checks_with_their_strategies(capsys) -> None:
+    assert main(["check", "--id", "eq8.6", "eq8.8", "E8.1", "--timings", "2"]) == 0
+    out = capsys.readouterr().out
+    table = out[out.index("slowest 2 of 3 checks") :].splitlines()
+    assert len(table) == 2 + 2  # title, header, two rows
+    rows = {line.split()[0]: line for line in table[2:]}
+    assert set(rows) < {"eq8.6", "eq8.8", "E8.1"}
+    assert all("expand" in line and "proved (expand" in line for line in rows.values())
