@@ -1,0 +1,758 @@
+"""Open systems: the momentum principle with mass flows, rockets, jets, carousels.
+
+Conventions (Essén 1996, ch. 7)
+-------------------------------
+- **Mass flows are non-negative.**  ``q_out`` (the book's q⁻) is the mass per unit
+  time that *leaves* the open system, ``q_in`` (q⁺) the mass per unit time that
+  *enters* it; both are ≥ 0 (the book's q ≥ 0).  Direction is given by the name,
+  never by a sign.  A negative flow raises :class:`~mechanics.errors.NegativeMassError`.
+- **Velocities of the flows.**  ``v_out``, ``v_in`` are *absolute* velocities
+  (relative to an inertial frame O), as in (7.19) and (7.35); ``u_out``, ``u_in``
+  are velocities *relative to the open system*, u = v − v_o, as in (7.25).
+- **Shapes.**  Vectors are ``(..., 3)``.  Several flows are given as ``q`` of
+  shape ``(..., n)`` with velocities (and positions) of shape ``(..., n, 3)``; one
+  flow may be given as a scalar ``q`` with a ``(3,)`` vector.  Everything
+  broadcasts over leading axes.
+- **Point.**  Angular momenta and moments are taken about a fixed point ``about``
+  (a required keyword, never a silent origin); the book uses the origin (7.31).
+- **The rocket** (Example 7.2) rises vertically along +e_z from rest at t = 0;
+  ``q`` > 0 is its constant burn rate, ``u`` > 0 the exhaust speed *relative to
+  the rocket* (the exhaust moves at −u e_z relative to it), ``g`` ≥ 0 the
+  magnitude of gravity (g = −g e_z; ``g=0`` is free space), ``m_0`` the initial
+  mass and ``m_f`` < ``m_0`` the fuel mass, burnt out at T = m_f/q.  Mass ratio
+  m/m_0 = 1 − x with the burnt fraction x = q t/m_0.
+- **Lift-off.**  With g > 0 the rocket lifts off at t = 0 iff q u ≥ m_0 g (at
+  equality the acceleration is 0 at t = 0 and positive after, so the velocity
+  (7.30) is ≥ 0).  If q u < m_0 g the rocket stands on the pad and (7.30) would
+  give negative velocities: the rocket functions raise
+  :class:`~mechanics.errors.OutOfDomainError` naming q u and m_0 g.
+- **Burn-out.**  For t > T the rocket functions raise
+  :class:`~mechanics.errors.OutOfDomainError` by default
+  (``after_burn_out="raise"``); with ``after_burn_out="coast"`` they continue with
+  free ballistic flight at constant mass m_0 − m_f (no ground: the height may
+  become negative on the way down).  t < 0 always raises.
+- **The carousel** (Example 7.3) turns about e_z; bullets (mass flow ``q`` ≥ 0,
+  speed ``v``) travel along a line at signed perpendicular distance ``r`` from the
+  axis, oriented as in the book's figure 7.3 so that their angular momentum flux
+  is −r q v e_z, and stick at radius ``R`` (|r| ≤ R).
+
+Accuracy
+--------
+Stated per function and enforced by ``tests/stability/test_open_systems_stability.py``
+against mpmath at 50 digits.  The rocket formulas never form log(m_0/m) or
+1 − (1 − x): the velocity uses ``log1p`` and the height a cancellation-free form
+of φ(x) = (1/x)∫₀ˣ −log(1 − y) dy (a series in s = x/(2 − x), see
+:func:`rocket_height`).  With gravity the result is a difference u L − g t whose
+terms nearly cancel close to the lift-off threshold; the error is then stated
+relative to the size of the terms (u L + g t), which is the conditioning of the
+problem (a relative change of eps in g moves the result by eps g t).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._validate import as_float_array
+from .errors import (
+    NegativeMassError,
+    NonPositiveParameterError,
+    OutOfDomainError,
+    ShapeError,
+    UnknownOptionError,
+)
+
+__all__ = [
+    "EPS",
+    "G_STANDARD",
+    "ROCKET_RTOL",
+    "angular_momentum_rate",
+    "burn_out_time",
+    "carousel_angular_acceleration",
+    "carousel_angular_velocity",
+    "carousel_limit_angular_velocity",
+    "falling_chain_table_force",
+    "jet_velocity",
+    "mass_rate",
+    "momentum_rate",
+    "open_system_acceleration",
+    "pipe_bend_force",
+    "pipe_bend_force_magnitude",
+    "rim_rocket_angular_velocity",
+    "rim_rocket_spin_up_time",
+    "rocket_height",
+    "rocket_mass",
+    "rocket_velocity",
+    "thrust",
+]
+
+EPS = float(np.finfo(np.float64).eps)
+
+#: Standard gravity (m/s²), CGPM 1901; offered for convenience, never a default.
+G_STANDARD = 9.80665
+
+#: Promised accuracy of :func:`rocket_velocity` and :func:`rocket_height` for
+#: burnt fractions x ≤ 1/2, relative to the size of the terms u L + g t
+#: (velocity) or u t φ + g t²/2 (height), i.e. relative for g = 0.  A few
+#: roundings of O(1) factors (log1p within an ulp, the series in s within 2 ulps);
+#: measured worst 1.32 eps (velocity) and 2.10 eps (height), tests/stability.
+ROCKET_RTOL = 4 * EPS
+
+#: Series in s = x/(2 − x) for φ(x) up to s = 1/2 (x = 2/3): the terms of
+#: A(s) = Σ_{j≥1} s^{2j}/(2j + 1) fall by s² ≤ 1/4, so 28 terms leave a tail below
+#: 4^-27 · 3/57 ≈ 3e-18 of the first; above, the direct form 1 + (1 − x) log1p(−x)/x
+#: loses at most a factor 1.2 to cancellation (at x = 2/3).
+_PHI_SERIES_S_MAX = 0.5
+_PHI_SERIES_TERMS = 28
+
+_AFTER_BURN_OUT = ("raise", "coast")
+
+
+# ---------------------------------------------------------------- validation
+
+
+def _nonnegative(x, name: str) -> np.ndarray:
+    a = as_float_array(x, name)
+    if (a < 0).any():
+        bad = a[a < 0].flat[0]
+        raise NegativeMassError(f"{name} must be ≥ 0 (mass flows are non-negative); got {bad!r}")
+    return a
+
+
+def _positive(x, name: str) -> np.ndarray:
+    a = as_float_array(x, name)
+    if (a <= 0).any():
+        bad = a[a <= 0].flat[0]
+        raise NonPositiveParameterError(f"{name} must be > 0; got {bad!r}")
+    return a
+
+
+def _flows(q, w, qname: str, wname: str) -> tuple[np.ndarray, np.ndarray]:
+    """Validated flows q (..., n) and vectors w (..., n, 3); one flow may be (), (3,)."""
+    qa = _nonnegative(q, qname)
+    wa = as_float_array(w, wname, (3,))
+    if wa.ndim == 1:
+        wa = wa[None, :]
+        qa = qa[..., None]
+    if qa.ndim == 0:
+        qa = qa[None]
+    try:
+        np.broadcast_shapes(qa.shape, wa.shape[:-1])
+    except ValueError:
+        raise ShapeError(
+            f"{qname} has shape {qa.shape} and {wname} {wa.shape}; "
+            "expected (..., n) and (..., n, 3)"
+        ) from None
+    return qa, wa
+
+
+def _flux(q, w, qname: str, wname: str) -> np.ndarray:
+    """Σ_a q_a w_a over the flows (zero for no flows)."""
+    if q is None and w is None:
+        return np.zeros(3)
+    if q is None or w is None:
+        raise ShapeError(f"{qname} and {wname} must be given together")
+    qa, wa = _flows(q, w, qname, wname)
+    return np.sum(qa[..., None] * wa, axis=-2)
+
+
+def _option(after_burn_out: str) -> str:
+    if after_burn_out not in _AFTER_BURN_OUT:
+        raise UnknownOptionError(
+            f"after_burn_out must be one of {_AFTER_BURN_OUT}; got {after_burn_out!r}"
+        )
+    return after_burn_out
+
+
+# ------------------------------------------------------- the momentum principle
+
+
+def thrust(q, u_rel) -> np.ndarray:
+    """Force on an open system from an outflow q with relative velocity u_rel: −q u.
+
+    Parameters
+    ----------
+    q : array_like, shape (...)
+        Mass flow leaving the system (≥ 0).
+    u_rel : array_like, shape (..., 3)
+        Velocity of the leaving matter relative to the system.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        −q u_rel, the outflow term of (7.25).
+
+    Examples
+    --------
+    A rocket ejecting 2 kg/s at 3000 m/s backwards (−e_z) is pushed up with 6 kN:
+
+    >>> thrust(2.0, [0.0, 0.0, -3000.0]).tolist()
+    [-0.0, -0.0, 6000.0]
+    """
+    qa = _nonnegative(q, "q")
+    ua = as_float_array(u_rel, "u_rel", (3,))
+    return -qa[..., None] * ua
+
+
+def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.ndarray:
+    """dp_o/dt of an open system, the momentum principle (7.19).
+
+    dp_o/dt = F_e − Σ_a q⁻_a v⁻_a + Σ_b q⁺_b v⁺_b, velocities absolute (inertial).
+
+    Parameters
+    ----------
+    F_e : array_like, shape (..., 3)
+        Total external force.
+    q_out, v_out : array_like, shapes (..., n) and (..., n, 3), optional
+        Outflows and their absolute velocities (omit both for none).
+    q_in, v_in : array_like, shapes (..., k) and (..., k, 3), optional
+        Inflows and their absolute velocities.
+
+    Examples
+    --------
+    The pipe bend of Example 7.1 at rest: water enters along e_y, leaves along
+    −e_x, q = 1 kg/s, v = 1 m/s; the holding force F = (−1, −1, 0) N balances it:
+
+    >>> momentum_rate([-1.0, -1.0, 0.0], q_out=1.0, v_out=[-1.0, 0.0, 0.0],
+    ...               q_in=1.0, v_in=[0.0, 1.0, 0.0]).tolist()
+    [0.0, 0.0, 0.0]
+    """
+    F = as_float_array(F_e, "F_e", (3,))
+    return F - _flux(q_out, v_out, "q_out", "v_out") + _flux(q_in, v_in, "q_in", "v_in")
+
+
+def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
+    """dm/dt = Σ q⁺ − Σ q⁻ (7.21).  ``q_out``, ``q_in`` of shape (..., n); None for none.
+
+    Examples
+    --------
+    >>> float(mass_rate(q_out=[1.0, 0.5], q_in=2.0))
+    0.5
+    """
+    total = np.float64(0.0)
+    for q, name, sign in ((q_in, "q_in", 1.0), (q_out, "q_out", -1.0)):
+        if q is not None:
+            qa = _nonnegative(q, name)
+            total = total + sign * (np.sum(qa, axis=-1) if qa.ndim else qa)
+    return np.asarray(total)
+
+
+def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=None):
+    """a_o = (F_e − Σ q⁻ u⁻ + Σ q⁺ u⁺)/m, (7.25), velocities relative to the system.
+
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Current mass of the open system (> 0).
+    F_e : array_like, shape (..., 3)
+        Total external force.
+    q_out, u_out, q_in, u_in : array_like, optional
+        Flows (≥ 0) and velocities relative to the system, u = v − v_o.
+
+    Examples
+    --------
+    Example 7.2 at t = 0: m_0 = 1000 kg, q = 10 kg/s, u = 2000 m/s, g = 9.81 m/s²:
+
+    >>> a = open_system_acceleration(1000.0, [0, 0, -1000.0 * 9.81],
+    ...                              q_out=10.0, u_out=[0, 0, -2000.0])
+    >>> round(float(a[2]), 12)
+    10.19
+    """
+    ma = _positive(m, "m")
+    F = as_float_array(F_e, "F_e", (3,))
+    rate = F - _flux(q_out, u_out, "q_out", "u_out") + _flux(q_in, u_in, "q_in", "u_in")
+    return rate / ma[..., None]
+
+
+def angular_momentum_rate(
+    M_e, *, about, q_out=None, r_out=None, v_out=None, q_in=None, r_in=None, v_in=None
+) -> np.ndarray:
+    """dL_o/dt about a fixed point A of an open system, (7.35).
+
+    dL_o/dt = M_e − Σ_a (r⁻_a − A) × q⁻_a v⁻_a + Σ_b (r⁺_b − A) × q⁺_b v⁺_b.
+
+    Parameters
+    ----------
+    M_e : array_like, shape (..., 3)
+        Total moment of the external forces about ``about``.
+    about : array_like, shape (..., 3)
+        The fixed point A (required; the book uses the origin).
+    q_out, r_out, v_out : array_like, shapes (..., n), (..., n, 3), (..., n, 3), optional
+        Outflows, the positions where they cross the boundary, their absolute velocities.
+    q_in, r_in, v_in : array_like, optional
+        The same for inflows.
+
+    Examples
+    --------
+    Example 7.3: bullets along +e_x at height y = r = 0.5 m, q = 0.1 kg/s, v = 400 m/s,
+    give the carousel −r q v e_z = −20 N m e_z about its centre:
+
+    >>> angular_momentum_rate([0, 0, 0], about=[0, 0, 0], q_in=0.1,
+    ...                       r_in=[-2.0, 0.5, 0.0], v_in=[400.0, 0, 0]).tolist()
+    [0.0, 0.0, -20.0]
+    """
+    M = as_float_array(M_e, "M_e", (3,))
+    A = as_float_array(about, "about", (3,))
+    total = M
+    for q, r, v, names, sign in (
+        (q_out, r_out, v_out, ("q_out", "r_out", "v_out"), -1.0),
+        (q_in, r_in, v_in, ("q_in", "r_in", "v_in"), 1.0),
+    ):
+        given = [x is not None for x in (q, r, v)]
+        if not any(given):
+            continue
+        if not all(given):
+            raise ShapeError(f"{', '.join(names)} must be given together")
+        qa, va = _flows(q, v, names[0], names[2])
+        ra = as_float_array(r, names[1], (3,))
+        if ra.ndim == 1:
+            ra = ra[None, :]
+        arm = ra - A[..., None, :]
+        total = total + sign * np.sum(np.cross(arm, qa[..., None] * va), axis=-2)
+    return total
+
+
+# ------------------------------------------------------------------- the rocket
+
+
+def _phi(x: np.ndarray) -> np.ndarray:
+    """φ(x) = (1/x) ∫₀ˣ −log(1 − y) dy = 1 + (1 − x) log(1 − x)/x, 0 ≤ x < 1, φ(0) = 0.
+
+    With s = x/(2 − x) (so 1 − x = (1 − s)/(1 + s), −log(1 − x) = 2 atanh s),
+    φ = s − (1 − s) A(s), A(s) = atanh(s)/s − 1 = Σ_{j≥1} s^{2j}/(2j + 1): positive
+    terms, s dominating (A ≤ s²/2.6 for s ≤ 1/2), no cancellation.
+    """
+    x = np.asarray(x, dtype=float)
+    s = x / (2.0 - x)
+    small = s <= _PHI_SERIES_S_MAX
+    s2 = np.where(small, s, 0.0) ** 2
+    A = np.zeros_like(s2)
+    for j in range(_PHI_SERIES_TERMS, 0, -1):  # Horner in s²
+        A = (A + 1.0 / (2 * j + 1)) * s2
+    series = s - (1.0 - s) * A
+    with np.errstate(divide="ignore", invalid="ignore"):
+        direct = 1.0 + (1.0 - x) * np.log1p(-x) / x
+    return np.where(small, series, direct)
+
+
+def burn_out_time(*, m_f, q) -> np.ndarray:
+    """T = m_f/q, the time at which the fuel m_f = q T is gone (Example 7.2).
+
+    Examples
+    --------
+    >>> float(burn_out_time(m_f=600.0, q=4.0))
+    150.0
+    """
+    return _nonnegative(m_f, "m_f") / _positive(q, "q")
+
+
+def _first(values, mask) -> float:
+    """The first entry of ``values`` where ``mask`` holds (both broadcast)."""
+    v, m = np.broadcast_arrays(values, mask)
+    return float(v[m].flat[0])
+
+
+def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
+    """Validate the rocket's inputs; return them as float arrays and T = m_f/q."""
+    _option(after_burn_out)
+    ta = as_float_array(t, "t")
+    m0 = _positive(m_0, "m_0")
+    qa = _positive(q, "q")
+    mf = _nonnegative(m_f, "m_f")
+    if (mf >= m0).any():
+        raise OutOfDomainError(
+            "the fuel mass m_f must be < m_0 (the rocket has a structure); "
+            f"got m_f = {_first(mf, mf >= m0)!r} with m_0 = {_first(m0, mf >= m0)!r}"
+        )
+    if (ta < 0).any():
+        raise OutOfDomainError(
+            f"t must be ≥ 0 (the burn starts at t = 0); got {_first(ta, ta < 0)!r}"
+        )
+    ua = None if u is None else _positive(u, "u")
+    ga = None if g is None else as_float_array(g, "g")
+    if ga is not None and (ga < 0).any():
+        raise OutOfDomainError(
+            "g is the magnitude of gravity (g = −g e_z) and must be ≥ 0; "
+            f"got {_first(ga, ga < 0)!r}"
+        )
+    if ua is not None and ga is not None:
+        lift, weight = qa * ua, m0 * ga
+        grounded = lift < weight
+        if grounded.any():
+            raise OutOfDomainError(
+                f"no lift-off: the thrust q u = {_first(lift, grounded)!r} is less than the "
+                f"weight m_0 g = {_first(weight, grounded)!r} (the rocket stands on the pad; "
+                "(7.30) would give v < 0)"
+            )
+    T = mf / qa
+    beyond = ta > T
+    if after_burn_out == "raise" and beyond.any():
+        raise OutOfDomainError(
+            f"t = {_first(ta, beyond)!r} is beyond burn-out T = m_f/q = {_first(T, beyond)!r}; "
+            "pass after_burn_out='coast' for free flight after burn-out"
+        )
+    return ta, m0, qa, ua, mf, ga, T
+
+
+def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
+    """m(t) = m_0 − q t (7.27) up to burn-out, m_0 − m_f after (with ``"coast"``).
+
+    Examples
+    --------
+    >>> float(rocket_mass(10.0, m_0=1000.0, q=5.0, m_f=600.0))
+    950.0
+    >>> float(rocket_mass(500.0, m_0=1000.0, q=5.0, m_f=600.0, after_burn_out="coast"))
+    400.0
+    """
+    ta, m0, qa, _, mf, _, T = _rocket_inputs(t, m_0, q, None, m_f, None, after_burn_out)
+    return np.where(ta > T, m0 - mf, m0 - qa * np.minimum(ta, T))
+
+
+def _burn_velocity(t, m0, q, u, g):
+    """u L(x) − g t, L = −log1p(−x), x = q t/m_0: (7.30)."""
+    return u * -np.log1p(-(q * t / m0)) - g * t
+
+
+def _burn_height(t, m0, q, u, g):
+    """u t φ(x) − g t²/2: the integral of (7.30) from 0 to t."""
+    return u * t * _phi(q * t / m0) - 0.5 * g * t * t
+
+
+def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
+    """Vertical velocity of the rocket of Example 7.2, (7.30).
+
+    v(t) = −g t − u log(1 − q t/m_0), computed as u·(−log1p(−q t/m_0)) − g t.
+
+    Parameters
+    ----------
+    t : array_like
+        Time since ignition, ≥ 0.
+    m_0, q, u : array_like
+        Initial mass, burn rate, exhaust speed relative to the rocket (all > 0).
+    m_f : array_like
+        Fuel mass, 0 ≤ m_f < m_0; burn-out at T = m_f/q.
+    g : array_like
+        Magnitude of gravity, ≥ 0 (0 in free space).  Required: q u ≥ m_0 g.
+    after_burn_out : {"raise", "coast"}
+        t > T raises :class:`OutOfDomainError`, or continues as free flight
+        v(T) − g (t − T).
+
+    Returns
+    -------
+    ndarray
+        v(t), broadcast over the inputs.
+
+    Notes
+    -----
+    Accuracy: ``ROCKET_RTOL`` (4 eps) relative to u L + g t for burnt fractions
+    x ≤ 1/2, measured against mpmath for x from 1e-15 to 1e-3 and beyond.  For
+    x → 1 the problem itself is ill-conditioned in t (dL/dx = 1/(1 − x)).
+
+    References
+    ----------
+    Essén (1996), Example 7.2, eqs. (7.26)–(7.30).
+
+    Examples
+    --------
+    Without gravity the velocity is u log(m_0/m); burning half the mass gives u ln 2:
+
+    >>> v = rocket_velocity(50.0, m_0=1000.0, q=10.0, u=3000.0, m_f=800.0, g=0.0)
+    >>> bool(abs(v - 3000.0 * np.log(2.0)) < 1e-12)
+    True
+
+    A mass ratio of 1 − 1e-12: log1p keeps every digit (log(m_0/m) would keep four):
+
+    >>> float(rocket_velocity(1e-12, m_0=1.0, q=1.0, u=1.0, m_f=0.5, g=0.0))
+    1.0000000000005e-12
+    """
+    ta, m0, qa, ua, _, ga, T = _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out)
+    tb = np.minimum(ta, T)
+    v = _burn_velocity(tb, m0, qa, ua, ga)
+    if after_burn_out == "coast":
+        v = np.where(ta > T, v - ga * (ta - T), v)
+    return v
+
+
+def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
+    """Height z(t) of the rocket of Example 7.2: the integral of (7.30), z(0) = 0.
+
+    z(t) = u t φ(x) − g t²/2,  x = q t/m_0,
+    φ(x) = (1/x)∫₀ˣ −log(1 − y) dy = 1 + (1 − x) log(1 − x)/x = x/2 + x²/6 + x³/12 + …
+
+    Parameters
+    ----------
+    As :func:`rocket_velocity`.
+
+    Notes
+    -----
+    The direct form of φ cancels catastrophically for small x (1 − (1 − x)(1 + x/2 +
+    …) loses −log10(x) digits).  Here φ is evaluated, for x ≤ 2/3, as
+    φ = s − (1 − s) A(s), s = x/(2 − x), A(s) = Σ_{j≥1} s^{2j}/(2j + 1) (28 terms,
+    Horner), which has no cancellation; above 2/3 by the direct form (a factor ≤
+    1.2 lost).  Accuracy: ``ROCKET_RTOL`` relative to u t φ + g t²/2.  After
+    burn-out (``"coast"``): z(T) + v(T)(t − T) − g (t − T)²/2.
+
+    Examples
+    --------
+    Free space, tiny burn: z = u t (x/2 + x²/6 + x³/12 + …), every digit kept
+    (the direct form 1 + (1 − x) log1p(−x)/x keeps only ten here):
+
+    >>> z = rocket_height(1e-6, m_0=1.0, q=1.0, u=1.0, m_f=0.5, g=0.0)
+    >>> bool(abs(z / (0.5e-12 + 1e-18 / 6 + 1e-24 / 12) - 1) < 4 * EPS)
+    True
+    """
+    ta, m0, qa, ua, _, ga, T = _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out)
+    tb = np.minimum(ta, T)
+    z = _burn_height(tb, m0, qa, ua, ga)
+    if after_burn_out == "coast":
+        vT = _burn_velocity(T, m0, qa, ua, ga)
+        zT = _burn_height(T, m0, qa, ua, ga)
+        dt = np.maximum(ta - T, 0.0)
+        z = np.where(ta > T, zT + vT * dt - 0.5 * ga * dt * dt, z)
+    return z
+
+
+# ---------------------------------------------------------- jets, bends, chains
+
+
+def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
+    """Speed of a jet plane taking in still air at q and expelling it at w relative.
+
+    From (7.19) with inflow velocity 0 and outflow velocity v − w (Problem 7.1):
+    m dv/dt = q (w − v), so v(t) = w + (v_0 − w) e^{−q t/m}, evaluated as
+    v_0 e^{−k} − w expm1(−k), k = q t/m (no cancellation for v_0, w ≥ 0).
+
+    Parameters
+    ----------
+    t : array_like
+        Time, ≥ 0.
+    m, q : array_like
+        Mass of the plane and air flow through the engine (> 0).
+    w : array_like
+        Exhaust speed relative to the engine (> 0).
+    v_0 : array_like
+        Speed at t = 0.
+
+    Examples
+    --------
+    >>> round(float(jet_velocity(1e9, m=1e4, q=100.0, w=600.0, v_0=50.0)), 9)
+    600.0
+    """
+    ta = as_float_array(t, "t")
+    if (ta < 0).any():
+        raise OutOfDomainError(f"t must be ≥ 0; got {ta[ta < 0].flat[0]!r}")
+    k = _positive(q, "q") * ta / _positive(m, "m")
+    v0 = as_float_array(v_0, "v_0")
+    return v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
+
+
+def pipe_bend_force(q, v, angle) -> np.ndarray:
+    """Force that holds a pipe bend at rest: F = q (v_out − v_in), from (7.19).
+
+    Parameters
+    ----------
+    q : array_like
+        Mass flow through the pipe (≥ 0).
+    v : array_like
+        Flow speed (constant cross-section: the same in and out).
+    angle : array_like
+        Turning angle α of the flow (radians, positive to the left).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        Components in the inflow frame: e_1 along the incoming flow, e_2 to its left
+        (the side the flow turns to for α > 0), e_3 = e_1 × e_2:
+        F = q v (cos α − 1, sin α, 0), with cos α − 1 computed as −2 sin²(α/2).
+
+    Notes
+    -----
+    |F| = 2 q v |sin(α/2)| (:func:`pipe_bend_force_magnitude`); 90° gives √2 q v.
+
+    Examples
+    --------
+    Example 7.1 (inflow along e_y, turning left to −e_x, so e_1 = e_y, e_2 = −e_x):
+    F_y = F_1 = −q v, F_x = −F_2 = −q v:
+
+    >>> pipe_bend_force(1.0, 1.0, np.pi / 2).round(15).tolist()
+    [-1.0, 1.0, 0.0]
+    """
+    qa = _nonnegative(q, "q")
+    va = as_float_array(v, "v")
+    a = as_float_array(angle, "angle")
+    qv = qa * va
+    F1 = -2.0 * qv * np.sin(0.5 * a) ** 2
+    F2 = qv * np.sin(a)
+    F1, F2 = np.broadcast_arrays(F1, F2)
+    return np.stack([F1, F2, np.zeros_like(F1)], axis=-1)
+
+
+def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
+    """|F| = 2 q |v| |sin(α/2)| for the pipe bend of :func:`pipe_bend_force`.
+
+    Examples
+    --------
+    >>> bool(np.isclose(pipe_bend_force_magnitude(1.0, 1.0, np.pi / 2), np.sqrt(2.0)))
+    True
+    """
+    qa = _nonnegative(q, "q")
+    va = as_float_array(v, "v")
+    a = as_float_array(angle, "angle")
+    return 2.0 * qa * np.abs(va) * np.abs(np.sin(0.5 * a))
+
+
+def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
+    """Force from a falling chain on a table when a length x has landed (Problem 7.4).
+
+    A uniform chain (λ per length, length ℓ) hangs with its lower end at height h
+    and is released from rest.  The hanging part falls freely; when x has landed
+    it moves at v² = 2 g (h + x).  The chain on the table (an open system at rest,
+    mass λ x, gaining mass λ v at velocity −v e_z) needs, by (7.19),
+    F = λ g x + λ v² = λ g (3 x + 2 h) for 0 < x ≤ ℓ (and λ g ℓ once all has landed).
+
+    Parameters
+    ----------
+    x : array_like
+        Landed length, 0 ≤ x ≤ ℓ.
+    lam, g, ell : array_like
+        Mass per length, gravity, chain length (> 0).
+    h : array_like
+        Initial height of the lower end (≥ 0).
+
+    Examples
+    --------
+    >>> float(falling_chain_table_force(0.5, lam=2.0, h=0.25, g=10.0, ell=1.0))
+    40.0
+    """
+    xa = as_float_array(x, "x")
+    L = _positive(ell, "ell")
+    if ((xa < 0) | (xa > L)).any():
+        raise OutOfDomainError(f"x must lie in [0, ell]; got {xa[(xa < 0) | (xa > L)].flat[0]!r}")
+    ha = as_float_array(h, "h")
+    if (ha < 0).any():
+        raise OutOfDomainError(f"h must be ≥ 0; got {ha[ha < 0].flat[0]!r}")
+    return _positive(lam, "lam") * _positive(g, "g") * (3.0 * xa + 2.0 * ha)
+
+
+# ------------------------------------------------------------ rotating systems
+
+
+def _carousel_inputs(t, J_0, q, v, r, R):
+    ta = as_float_array(t, "t")
+    if (ta < 0).any():
+        raise OutOfDomainError(
+            f"t must be ≥ 0 (shooting starts at t = 0); got {ta[ta < 0].flat[0]!r}"
+        )
+    J0 = _positive(J_0, "J_0")
+    qa = _nonnegative(q, "q")
+    va = as_float_array(v, "v")
+    ra = as_float_array(r, "r")
+    Ra = _positive(R, "R")
+    if (np.abs(ra) > Ra).any():
+        raise OutOfDomainError("the bullets miss: |r| must be ≤ R")
+    return ta, J0, qa, va, ra, Ra
+
+
+def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
+    """φ̇(t) of the carousel under fire, Example 7.3: the solution of (7.39).
+
+    d/dt (J φ̇) = −r q v with J(t) = J_0 + q R² t (7.36)–(7.38) integrates to
+    φ̇(t) = (J_0 φ̇_0 − r q v t)/(J_0 + q R² t) → −r v/R² (7.40) as t → ∞.
+
+    Parameters
+    ----------
+    t : array_like
+        Time since the shooting started, ≥ 0.
+    J_0 : array_like
+        Moment of inertia about the axis at t = 0 (> 0).
+    q, v : array_like
+        Mass flow (≥ 0) and speed of the bullets.
+    r, R : array_like
+        Signed perpendicular distance of the bullet line (|r| ≤ R), carousel radius.
+    phidot_0 : array_like
+        φ̇(0) (default 0, as in the book).
+
+    Examples
+    --------
+    The limit (7.40) is approached as t grows:
+
+    >>> w = carousel_angular_velocity(1e12, J_0=500.0, q=0.1, v=400.0, r=1.5, R=2.0)
+    >>> bool(abs(w - (-1.5 * 400.0 / 4.0)) < 1e-6)
+    True
+    """
+    ta, J0, qa, va, ra, Ra = _carousel_inputs(t, J_0, q, v, r, R)
+    w0 = as_float_array(phidot_0, "phidot_0")
+    return (J0 * w0 - ra * qa * va * ta) / (J0 + qa * Ra**2 * ta)
+
+
+def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
+    """φ̈(t) from (7.39): (−r q v − q R² φ̇)/(J_0 + q R² t), φ̇ from the solution.
+
+    Equals −q (r v + R² φ̇_0) J_0/J(t)²; negative at t = 0 for φ̇_0 = 0.
+
+    Examples
+    --------
+    >>> float(carousel_angular_acceleration(0.0, J_0=500.0, q=0.1, v=400.0, r=1.5, R=2.0))
+    -0.12
+    """
+    ta, J0, qa, va, ra, Ra = _carousel_inputs(t, J_0, q, v, r, R)
+    w0 = as_float_array(phidot_0, "phidot_0")
+    J = J0 + qa * Ra**2 * ta
+    return -qa * (ra * va + Ra**2 * w0) * J0 / J**2
+
+
+def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
+    """φ̇_lim = −r v/R² (7.40): the bullets then arrive with the rim's angular velocity.
+
+    Examples
+    --------
+    >>> float(carousel_limit_angular_velocity(v=400.0, r=1.5, R=2.0))
+    -150.0
+    """
+    ra, Ra = as_float_array(r, "r"), _positive(R, "R")
+    if (np.abs(ra) > Ra).any():
+        raise OutOfDomainError("the bullets miss: |r| must be ≤ R")
+    return -ra * as_float_array(v, "v") / Ra**2
+
+
+def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
+    """Spin-up of a wheel by rockets on its rim that eject mass tangentially.
+
+    The expelled mass (total flow q, exhaust speed u relative to the rocket) sits at
+    radius r, so J(t) = J_0 − q r² t, and (7.35) gives J dω/dt = q r u (Problem
+    7.3), ω(0) = 0:  ω(t) = −(u/r) log1p(−q r² t/J_0), for q r² t < J_0.
+
+    Examples
+    --------
+    >>> w = rim_rocket_angular_velocity(10.0, J_0=1e6, q=2.0, u=3000.0, r=50.0)
+    >>> bool(abs(w - 60.0 * np.log(1e6 / (1e6 - 5e4))) < 1e-12)
+    True
+    """
+    ta = as_float_array(t, "t")
+    if (ta < 0).any():
+        raise OutOfDomainError(f"t must be ≥ 0; got {ta[ta < 0].flat[0]!r}")
+    x = _positive(q, "q") * _positive(r, "r") ** 2 * ta / _positive(J_0, "J_0")
+    if (x >= 1).any():
+        raise OutOfDomainError("q r² t must be < J_0 (the wheel cannot expel all its inertia)")
+    return -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)
+
+
+def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
+    """Time for the rim rockets of :func:`rim_rocket_angular_velocity` to reach ω.
+
+    t = −J_0 expm1(−r ω/u)/(q r²) (the inverse; expm1 keeps small r ω/u accurate).
+
+    Examples
+    --------
+    >>> t = rim_rocket_spin_up_time(0.2, J_0=1e6, q=2.0, u=3000.0, r=50.0)
+    >>> bool(abs(rim_rocket_angular_velocity(t, J_0=1e6, q=2.0, u=3000.0, r=50.0) - 0.2) < 1e-15)
+    True
+    """
+    w = as_float_array(omega, "omega")
+    if (w < 0).any():
+        raise OutOfDomainError(
+            f"omega must be ≥ 0 (the rockets push forward); got {w[w < 0].flat[0]!r}"
+        )
+    ra = _positive(r, "r")
+    return (
+        -_positive(J_0, "J_0") * np.expm1(-ra * w / _positive(u, "u")) / (_positive(q, "q") * ra**2)
+    )
