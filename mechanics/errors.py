@@ -20,9 +20,11 @@ __all__ = [
     "ResultOverflowError",
     "SeparatingContactError",
     "ShapeError",
+    "StepSizeError",
     "UnknownOptionError",
     "ZeroAngularVelocityError",
     "ZeroAxisError",
+    "ZeroNormalError",
     "ZeroTotalMassError",
 ]
 
@@ -94,3 +96,12 @@ class RestitutionRangeError(MechanicsValueError):
 
 class SeparatingContactError(MechanicsValueError):
     """An impact was asked for bodies whose contact points already separate."""
+
+
+class ZeroNormalError(MechanicsValueError):
+    """A contact normal (or a fixed axis of a hinged body) of zero length was given."""
+
+
+class StepSizeError(MechanicsValueError):
+    """An adaptive integrator cannot go on: its step fell below the rounding of t (the
+    tolerance cannot be met there) or it needed more than the allowed number of steps."""

@@ -1,0 +1,375 @@
+"""API, validation and edge cases of :mod:`mechanics.dynamics`.
+
+Each result is checked by a route independent of the code under test: the
+particle sums behind L = J ω, the vector form (4.46) behind Euler's component
+equations (4.47), the momentum principle behind the reactions, a numerical
+integration (scipy DOP853) behind the exact pendulum motion, and the book's
+worked Examples 4.3 and 4.4 with their printed results.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from mechanics import dynamics as D
+from mechanics import inertia as I
+from mechanics.errors import (
+    NegativeMassError,
+    NonFiniteError,
+    NonPhysicalInertiaError,
+    NonPositiveParameterError,
+    OutOfDomainError,
+    ShapeError,
+    UnknownOptionError,
+)
+from mechanics.rotation import EPS, matrix_from_rotvec
+
+#: A short sum of rounded products (J ω, Euler's right-hand side): 8 eps of
+#: the largest term.
+SUM_ATOL = 8 * EPS
+
+#: DOP853 at rtol = atol = 1e-13 over two periods: the global error of the
+#: integrated pendulum angle, amplified near the separatrix (θ0 = 3.1: measured
+#: 1.1e-9; θ0 ≤ 2: below 1e-11).  The exact motion itself is within a few eps
+#: of mpmath (tests/stability); this bounds the integrator.
+ODE_ATOL = 1e-8
+
+G_EARTH = 9.81
+
+
+# ------------------------------------------------------------ angular momentum
+
+
+def test_angular_momentum_rigid_equals_the_particle_sum_4_1():
+    rng = np.random.default_rng(4)
+    m = rng.uniform(0.5, 2.0, 6)
+    r = rng.normal(size=(6, 3))
+    w = rng.normal(size=3)
+    J = I.inertia_tensor(m, r, about=np.zeros(3))
+    L_sum = np.sum(m[:, None] * np.cross(r, np.cross(w, r)), axis=0)
+    L = D.angular_momentum_rigid(J, w)
+    np.testing.assert_allclose(L, L_sum, rtol=0, atol=64 * EPS * np.abs(L_sum).max())
+
+
+def test_angular_momentum_rigid_of_a_rod_about_its_axis_is_zero():
+    L = D.angular_momentum_rigid(I.rod(1.0, 2.0), [0.0, 0.0, 5.0])
+    assert L.tolist() == [0.0, 0.0, 0.0]
+
+
+def test_angular_momentum_rigid_broadcasts_and_validates():
+    J = np.broadcast_to(np.eye(3), (4, 3, 3))
+    assert D.angular_momentum_rigid(J, np.ones(3)).shape == (4, 3)
+    with pytest.raises(NonPhysicalInertiaError):
+        D.angular_momentum_rigid(np.diag([1.0, 1.0, 3.0]), np.ones(3))
+    with pytest.raises(ShapeError):
+        D.angular_momentum_rigid(np.eye(3), np.ones(2))
+    with pytest.raises(NonFiniteError):
+        D.angular_momentum_rigid(np.eye(3), [np.nan, 0, 0])
+
+
+def test_rotational_kinetic_energy_is_half_omega_dot_L():
+    J = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec([0.4, 0.2, -1.0]))
+    w = np.array([0.3, -1.1, 0.8])
+    T = D.rotational_kinetic_energy(J, w)
+    assert pytest.approx(0.5 * w @ D.angular_momentum_rigid(J, w), rel=SUM_ATOL) == T
+
+
+# ------------------------------------------------------------ Euler's equations
+
+
+def test_euler_equations_match_the_vector_form_4_46():
+    # In the body basis, dL/dt = J ω̇ + ω × J ω = M (4.44)-(4.46).
+    rng = np.random.default_rng(5)
+    J = np.array([1.0, 2.0, 2.5])
+    w = rng.normal(size=(20, 3))
+    M = rng.normal(size=(20, 3))
+    wdot = D.euler_equations_rhs(J, w, M)
+    residual = J * wdot + np.cross(w, J * w) - M
+    assert np.abs(residual).max() <= 16 * EPS * (np.abs(M).max() + 2.5 * np.abs(w).max() ** 2)
+
+
+def test_euler_equations_of_a_spherical_top_give_omega_dot_M_over_J():
+    wdot = D.euler_equations_rhs([2.0, 2.0, 2.0], [1.0, -3.0, 0.5], [0.2, 0.4, 0.6])
+    np.testing.assert_array_equal(wdot, [0.1, 0.2, 0.3])
+
+
+def test_euler_equations_steady_rotation_about_a_principal_axis():
+    assert D.euler_equations_rhs([1.0, 2.0, 2.5], [0.0, 3.0, 0.0], np.zeros(3)).tolist() == [
+        0.0,
+        0.0,
+        0.0,
+    ]
+
+
+@pytest.mark.parametrize(
+    ("J", "error", "text"),
+    [
+        pytest.param([0.0, 1.0, 1.0], NonPositiveParameterError, "> 0", id="rod"),
+        pytest.param([-1.0, 1.0, 1.0], NonPositiveParameterError, "> 0", id="negative"),
+        pytest.param([1.0, 1.0, 3.0], NonPhysicalInertiaError, "triangle", id="triangle"),
+        pytest.param([1.0, 1.0], ShapeError, "shape", id="shape"),
+    ],
+)
+def test_euler_equations_reject_bad_moments(J, error, text):
+    with pytest.raises(error, match=text):
+        D.euler_equations_rhs(J, np.ones(3), np.zeros(3))
+
+
+def test_fixed_axis_angular_acceleration():
+    assert D.fixed_axis_angular_acceleration(4.0, 2.0) == 0.5
+    with pytest.raises(NonPositiveParameterError):
+        D.fixed_axis_angular_acceleration(0.0, 1.0)
+
+
+# ----------------------------------------------------------------- the pendulum
+
+
+def test_example_4_3_rod_about_its_end():
+    # a) T = 2π √(2l/(3g)) (4.53); b) the simple pendulum of length 2l/3.
+    m, l = 1.7, 0.9
+    # The rod lies along e3; it swings about the e1 axis through its end.
+    J = I.parallel_axis(I.rod(m, l), m, [0.0, 0.0, l / 2], allow_singular=True)[0, 0]
+    assert pytest.approx(m * l**2 / 3, rel=2 * EPS) == J
+    T = D.pendulum_small_period(J, m, G_EARTH, l / 2)
+    assert pytest.approx(2 * math.pi * math.sqrt(2 * l / (3 * G_EARTH)), rel=4 * EPS) == T
+    assert D.reduced_length(J, m, l / 2) == pytest.approx(2 * l / 3, rel=4 * EPS)
+    # A point mass at the reduced length has the same period (4.49)-(4.50).
+    ell = 2 * l / 3
+    assert D.pendulum_small_period(m * ell**2, m, G_EARTH, ell) == pytest.approx(T, rel=4 * EPS)
+
+
+def test_small_period_is_least_when_h_is_the_radius_of_gyration_4_56():
+    m, d_G = 2.0, 0.3
+    h = np.linspace(0.05, 1.0, 1901)
+    T = D.pendulum_small_period(m * d_G**2 + m * h**2, m, G_EARTH, h)  # (4.54)-(4.55)
+    h_min = h[np.argmin(T)]
+    assert abs(h_min - d_G) <= 0.5e-3
+    T_min = D.pendulum_small_period(2 * m * d_G**2, m, G_EARTH, d_G)
+    assert T_min == pytest.approx(2 * math.pi * math.sqrt(2 * d_G / G_EARTH), rel=4 * EPS)
+
+
+def test_example_4_4_angular_velocity_of_the_falling_rod():
+    m, l = 1.3, 0.8
+    w = D.pendulum_angular_velocity_at(0.0, m * l**2 / 3, m, G_EARTH, l / 2, math.pi / 2)
+    assert w == pytest.approx(math.sqrt(3 * G_EARTH / l), rel=4 * EPS)  # (4.59)
+
+
+def test_angular_velocity_at_agrees_with_energy_4_57():
+    J, m, h, t0 = 0.7, 1.1, 0.4, 2.5
+    th = np.linspace(-t0, t0, 41)
+    w = D.pendulum_angular_velocity_at(th, J, m, G_EARTH, h, t0)
+    E = 0.5 * J * w**2 - m * G_EARTH * h * np.cos(th)
+    np.testing.assert_allclose(E, -m * G_EARTH * h * math.cos(t0), rtol=0, atol=1e-14 * m * h * 10)
+    assert w[0] == 0.0
+    assert w[-1] == 0.0
+
+
+def test_angular_velocity_beyond_the_amplitude_is_out_of_domain():
+    with pytest.raises(OutOfDomainError, match="beyond the amplitude"):
+        D.pendulum_angular_velocity_at(1.0, 1.0, 1.0, 1.0, 1.0, 0.5)
+
+
+def test_period_small_amplitude_series():
+    # T = T0 (1 + θ0²/16 + 11 θ0⁴/3072 + ...), from K(m) = π/2 (1 + m/4 + 9m²/64 + ...).
+    T0 = D.pendulum_small_period(1.0, 1.0, 1.0, 1.0)
+    for t0 in (1e-3, 1e-2, 0.05):
+        T = D.pendulum_period(1.0, 1.0, 1.0, 1.0, t0)
+        series = T0 * (1 + t0**2 / 16 + 11 * t0**4 / 3072)
+        assert pytest.approx(series, rel=t0**6 / 50 + 4 * EPS) == T
+    assert D.pendulum_period(1.0, 1.0, 1.0, 1.0, 0.0) == pytest.approx(T0, rel=EPS)
+
+
+def test_period_near_pi_follows_the_logarithm():
+    # K(m) = ln(4/k') + O(k'² ln k'), k' = cos(θ0/2) ≈ (π − θ0)/2.
+    for delta in (1e-6, 1e-10, 1e-14):
+        T = D.pendulum_period(1.0, 1.0, 1.0, 1.0, math.pi - delta)
+        d = math.pi - (math.pi - delta) + 1.2246467991473532e-16  # the float's π − θ0
+        assert pytest.approx(4 * math.log(8 / d), rel=1e-10) == T
+
+
+def test_period_is_even_finite_at_float_pi_and_out_of_domain_beyond():
+    assert D.pendulum_period(1, 1, 1, 1, -2.0) == D.pendulum_period(1, 1, 1, 1, 2.0)
+    assert math.isfinite(D.pendulum_period(1, 1, 1, 1, math.pi))
+    with pytest.raises(OutOfDomainError, match="beyond pi"):
+        D.pendulum_period(1, 1, 1, 1, 3.2)
+
+
+@pytest.mark.parametrize(
+    ("args", "error"),
+    [
+        pytest.param((0.0, 1.0, 1.0, 1.0), NonPositiveParameterError, id="J"),
+        pytest.param((1.0, -1.0, 1.0, 1.0), NonPositiveParameterError, id="m"),
+        pytest.param((1.0, 1.0, 0.0, 1.0), NonPositiveParameterError, id="g"),
+        pytest.param((1.0, 1.0, 1.0, 0.0), NonPositiveParameterError, id="h"),
+        pytest.param((1.0, 1.0, np.nan, 1.0), NonFiniteError, id="nan"),
+    ],
+)
+def test_pendulum_parameters_are_validated(args, error):
+    with pytest.raises(error):
+        D.pendulum_small_period(*args)
+    with pytest.raises(error):
+        D.pendulum_period(*args, 1.0)
+    with pytest.raises(error):
+        D.pendulum_motion(0.5, *args, 1.0)
+
+
+def _integrated(t_end, J, m, h, t0):
+    w0 = m * G_EARTH * h / J
+    sol = solve_ivp(
+        lambda t, y: [y[1], -w0 * math.sin(y[0])],  # (4.48)
+        (0.0, t_end),
+        [t0, 0.0],
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-13,
+        dense_output=True,
+    )
+    return sol.sol
+
+
+@pytest.mark.parametrize("theta_0", [0.3, 2.0, 3.1])
+def test_pendulum_motion_agrees_with_numerical_integration(theta_0):
+    J, m, h = 0.7, 1.1, 0.4
+    T = D.pendulum_period(J, m, G_EARTH, h, theta_0)
+    t = np.linspace(0.0, 2.0 * T, 101)
+    exact = D.pendulum_motion(t, J, m, G_EARTH, h, theta_0)
+    numeric = _integrated(2.0 * T, J, m, h, theta_0)(t)[0]
+    np.testing.assert_allclose(exact, numeric, rtol=0, atol=ODE_ATOL)
+
+
+def test_pendulum_motion_turns_at_plus_and_minus_the_amplitude():
+    t0 = 2.9
+    T = D.pendulum_period(1.0, 1.0, 1.0, 1.0, t0)
+    phi = D.pendulum_motion(np.array([0.0, 0.5, 1.0, -0.5]) * T, 1.0, 1.0, 1.0, 1.0, t0)
+    np.testing.assert_allclose(phi, [t0, -t0, t0, -t0], rtol=0, atol=64 * EPS * T)
+
+
+def test_pendulum_motion_mirrors_a_negative_amplitude_and_rests_at_zero():
+    t = np.linspace(0, 5, 7)
+    np.testing.assert_array_equal(
+        D.pendulum_motion(t, 1, 1, 1, 1, -1.0), -D.pendulum_motion(t, 1, 1, 1, 1, 1.0)
+    )
+    np.testing.assert_array_equal(D.pendulum_motion(t, 1, 1, 1, 1, 0.0), np.zeros(7))
+
+
+# -------------------------------------------------------------------- reactions
+
+
+def test_axis_reaction_formula_4_76_agrees_with_the_momentum_principle_4_71():
+    J, m, h, t0 = 0.7, 1.1, 0.4, 2.2
+    E = m * G_EARTH * h * (1 - math.cos(t0))  # (4.74), released from rest at t0
+    phi = np.linspace(-t0, t0, 31)
+    phidot = D.pendulum_angular_velocity_at(phi, J, m, G_EARTH, h, t0)
+    phiddot = -m * G_EARTH * h / J * np.sin(phi)  # (4.73)
+    F_rho, F_phi = m * G_EARTH * np.cos(phi), -m * G_EARTH * np.sin(phi)  # (4.72)
+    generic = D.axis_reaction(m, h, phidot, phiddot, F_a_rho=F_rho, F_a_phi=F_phi)
+    book = D.pendulum_axis_reaction(phi, J, m, G_EARTH, h, E=E)
+    np.testing.assert_allclose(book, generic, rtol=0, atol=64 * EPS * m * G_EARTH * 4)
+
+
+def test_axis_reaction_of_a_body_balanced_on_its_axis_is_minus_the_applied_force():
+    R = D.axis_reaction(2.0, 0.0, 7.0, 3.0, F_a_rho=1.5, F_a_phi=-0.5)
+    assert R.tolist() == [-1.5, 0.5]
+
+
+def test_pendulum_axis_reaction_rejects_an_unreachable_angle():
+    with pytest.raises(OutOfDomainError):
+        D.pendulum_axis_reaction(1.0, 1.0, 1.0, 1.0, 1.0, E=0.1)
+
+
+def _newton_euler_residual(J_O, m, r_G, w, a, z_A, F, M, R1, R2):
+    """m a_G − (F + R1 + R2) and the x, y parts of dL_O/dt − (M + r_A × R1)."""
+    omega = np.array([0.0, 0.0, w])
+    alpha = np.array([0.0, 0.0, a])
+    a_G = np.cross(alpha, r_G) + np.cross(omega, np.cross(omega, r_G))
+    Ldot = J_O @ alpha + np.cross(omega, J_O @ omega)  # (4.44) in the body basis
+    moment = M + np.cross([0.0, 0.0, z_A], R1)
+    return m * a_G - (F + R1 + R2), (Ldot - moment)[:2]
+
+
+@pytest.mark.parametrize("axial_at", ["O", "A"])
+def test_bearing_reactions_satisfy_both_momentum_principles(axial_at):
+    rng = np.random.default_rng(6)
+    for _ in range(20):
+        J_G = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec(rng.normal(size=3)))
+        m = rng.uniform(0.5, 2)
+        r_G = rng.normal(size=3)
+        J_O = I.parallel_axis(J_G, m, -r_G)  # O is at −r_G from G
+        w, a, z_A = rng.normal(), rng.normal(), rng.uniform(0.5, 2)
+        F, M = rng.normal(size=3), rng.normal(size=3)
+        R1, R2 = D.bearing_reactions(J_O, m, r_G, w, a, z_A, F_a=F, M_a=M, axial_at=axial_at)
+        force, moment = _newton_euler_residual(J_O, m, r_G, w, a, z_A, F, M, R1, R2)
+        assert np.abs(force).max() <= 1e-13
+        assert np.abs(moment).max() <= 1e-13
+        assert (R1[2] if axial_at == "O" else R2[2]) == 0.0
+
+
+def test_bearing_reactions_of_the_book_geometry_4_84_4_85():
+    # r_G = (h, 0, z_G): (4.78) with the book's D_xz, D_yz.
+    m, h, Dxz, Dyz, w, a, zA = 2.0, 0.3, 0.05, -0.02, 4.0, 1.5, 0.8
+    J_O = np.array([[1.0, 0.0, -Dxz], [0.0, 1.2, -Dyz], [-Dxz, -Dyz, 0.9]])
+    R1, R2 = D.bearing_reactions(
+        J_O, m, [h, 0.0, 0.2], w, a, zA, F_a=[0.0, 0.0, 0.0], M_a=[0.0, 0.0, 0.0]
+    )
+    assert R1[1] == pytest.approx((Dxz * a - Dyz * w**2) / zA, rel=4 * EPS)
+    assert R1[0] == pytest.approx(-(Dyz * a + Dxz * w**2) / zA, rel=4 * EPS)
+    assert R1[0] + R2[0] == pytest.approx(-m * h * w**2, rel=4 * EPS)
+    assert R1[1] + R2[1] == pytest.approx(m * h * a, rel=4 * EPS)
+
+
+def test_bearing_reactions_validate():
+    args = (np.eye(3), 1.0, [0, 0, 0], 1.0, 0.0)
+    kw = {"F_a": [0, 0, 0], "M_a": [0, 0, 0]}
+    with pytest.raises(UnknownOptionError):
+        D.bearing_reactions(*args, 1.0, axial_at="B", **kw)
+    with pytest.raises(NonPositiveParameterError, match="coincide"):
+        D.bearing_reactions(*args, 0.0, **kw)
+    with pytest.raises(NonPhysicalInertiaError):
+        D.bearing_reactions(np.diag([1.0, 1.0, 3.0]), *args[1:], 1.0, **kw)
+    with pytest.raises(NonPositiveParameterError):
+        D.bearing_reactions(np.eye(3), -1.0, *args[2:], 1.0, **kw)
+
+
+def test_masses_must_not_be_negative_for_the_body_helpers():
+    with pytest.raises(NegativeMassError):
+        I.disc(-1.0, 1.0)
+
+
+def test_fixed_axis_angular_momentum_has_the_components_4_79():
+    # ω = φ̇ e_z: L = (−D_xz φ̇, −D_yz φ̇, J_z φ̇) with D the products of inertia.
+    rng = np.random.default_rng(7)
+    m, r = rng.uniform(0.5, 2, 5), rng.normal(size=(5, 3))
+    J_O = I.inertia_tensor(m, r, about=np.zeros(3))
+    Dxz, Dyz = (m * r[:, 0] * r[:, 2]).sum(), (m * r[:, 1] * r[:, 2]).sum()
+    Jz = (m * (r[:, 0] ** 2 + r[:, 1] ** 2)).sum()
+    phidot = 1.7
+    L = D.angular_momentum_rigid(J_O, [0.0, 0.0, phidot])
+    np.testing.assert_allclose(L, [-Dxz * phidot, -Dyz * phidot, Jz * phidot], rtol=1e-14)
+
+
+def test_example_1_1_skew_rod_is_statically_but_not_dynamically_balanced():
+    # Two balls m at ±R(sin ϑ, 0, cos ϑ) turning at constant ω about e_z: the
+    # axis must supply M = 2 m R² ω² sin ϑ cos ϑ (sin ωt, −cos ωt, 0) (1.38), here
+    # at t = 0 in the body axes, as a couple of the two bearing forces.
+    m, R, theta, omega, z_A = 0.3, 0.8, 0.4, 5.0, 1.5
+    r1 = R * np.array([math.sin(theta), 0.0, math.cos(theta)])
+    J_O = I.inertia_tensor([m, m], [r1, -r1], about=np.zeros(3))
+    zero = np.zeros(3)
+    R1, R2 = D.bearing_reactions(J_O, 2 * m, zero, omega, 0.0, z_A, F_a=zero, M_a=zero)
+    M_book = 2 * m * R**2 * omega**2 * math.sin(theta) * math.cos(theta) * np.array([0, -1, 0])
+    np.testing.assert_allclose(np.cross([0.0, 0.0, z_A], R1), M_book, rtol=1e-14, atol=1e-15)
+    np.testing.assert_allclose(R1 + R2, zero, atol=1e-15)  # p = 0 (1.36)
+    assert np.abs(R1).max() > 0.1  # not dynamically balanced: D_xz ≠ 0
+
+
+def test_overflow_is_reported_not_returned_as_inf():
+    from mechanics.errors import ResultOverflowError
+
+    with pytest.raises(ResultOverflowError):
+        D.euler_equations_rhs([1.0, 2.0, 2.5], [1e200, 1e200, 0.0], np.zeros(3))
+    with pytest.raises(ResultOverflowError):
+        D.rotational_kinetic_energy(np.eye(3), [1e200, 0.0, 0.0])

@@ -1,0 +1,226 @@
+"""API, validation and identities of :mod:`mechanics.elliptic`.
+
+The mpmath comparisons over the hard parameter ranges are in
+``tests/stability/test_elliptic_stability.py``; here: shapes, validation, the
+special values (m = 0: trigonometric, m = 1: hyperbolic), the algebraic
+identities sn² + cn² = 1 and dn² + m sn² = 1, the addition of a period, the
+transformations m ↔ 1/m and m ↔ −m/(1 − m) checked against scipy at ordinary
+parameters, the derivative sn' = cn dn by a complex-free finite difference, and
+F as the inverse of am.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import scipy.special as sc
+
+from mechanics import elliptic as el
+from mechanics.errors import NonFiniteError, OutOfDomainError, ShapeError
+
+EPS = np.finfo(float).eps
+
+# An identity such as sn² + cn² − 1 formed from values each within a few ulps:
+# two squares and a sum, each rounded, of numbers of size ≤ 1.
+IDENTITY_ATOL = 8 * EPS
+
+# scipy's ellipj at ordinary parameters (0.1 ≤ m ≤ 0.9, |u| ≤ 10) is accurate to a
+# few tens of eps (measured ≤ 20 eps), ours to a few: their difference.
+SCIPY_ORDINARY_ATOL = 64 * EPS
+
+# A fourth-order central difference with step h = 1e-3: truncation h⁴/30 |f⁽⁵⁾| ≈ 3e-14
+# for |f⁽⁵⁾| ≲ 10 and rounding eps/h ≈ 2e-13.
+FD_ATOL = 1e-12
+FD_STEP = 1e-3
+
+SEED = 20261122
+
+
+def _close(actual, desired, atol, what=""):
+    """|actual − desired| ≤ atol elementwise (atol may be an array); report in eps."""
+    a, d = np.broadcast_arrays(np.asarray(actual, float), np.asarray(desired, float))
+    tol = np.broadcast_to(np.asarray(atol, float), a.shape)
+    err = np.abs(a - d)
+    bad = ~(err <= tol)
+    if bad.any():
+        i = np.unravel_index(np.argmax(np.where(bad, err / tol, 0)), a.shape)
+        raise AssertionError(
+            f"{what}: |{a[i]!r} − {d[i]!r}| = {err[i] / EPS:.3g} eps > {tol[i] / EPS:.3g} eps at {i}"
+        )
+
+
+def test_ellipj_returns_four_arrays_of_the_broadcast_shape():
+    u = np.linspace(-3, 3, 12).reshape(3, 4)
+    out = el.ellipj(u, np.array([0.2, 0.5, 0.9, 1.5]))
+    assert len(out) == 4
+    assert all(a.shape == (3, 4) for a in out)
+
+
+def test_ellipj_at_m_zero_is_trigonometric():
+    u = np.linspace(-20, 20, 101)
+    sn, cn, dn, am = el.ellipj(u, 0.0)
+    _close(sn, np.sin(u), 8 * EPS * (1 + np.abs(u)))
+    _close(cn, np.cos(u), 8 * EPS * (1 + np.abs(u)))
+    np.testing.assert_array_equal(dn, 1.0)
+    np.testing.assert_allclose(am, u, rtol=4 * EPS)
+
+
+def test_ellipj_at_m_one_is_hyperbolic_for_large_arguments_without_nan():
+    u = np.array([-800.0, -20.0, -1.0, 0.0, 0.5, 3.0, 30.0, 800.0])
+    sn, cn, dn, am = el.ellipj(u, 1.0)
+    np.testing.assert_allclose(sn, np.tanh(u), rtol=4 * EPS)
+    with np.errstate(over="ignore"):
+        sech = 1 / np.cosh(u)
+    _close(cn, sech, 8 * EPS * (1 + np.abs(u)) * sech, "cn")
+    np.testing.assert_array_equal(dn, cn)
+    np.testing.assert_allclose(am, np.arctan(np.sinh(np.clip(u, -700, 700))), rtol=4 * EPS)
+    assert np.isfinite(np.stack([sn, cn, dn, am])).all()
+
+
+@pytest.mark.parametrize("m", [-50.0, -1.0, 0.3, 0.7, 1 - 1e-9, 1.0, 1.2, 30.0])
+def test_ellipj_satisfies_the_quadratic_identities(m):
+    u = np.random.default_rng(SEED).uniform(-40, 40, 200)
+    sn, cn, dn, _ = el.ellipj(u, m)
+    _close(sn**2 + cn**2, 1.0, IDENTITY_ATOL * max(1, abs(m)))
+    _close(dn**2 + m * sn**2, 1.0, IDENTITY_ATOL * max(1, abs(m)))
+
+
+@pytest.mark.parametrize("m", [0.1, 0.5, 0.9])
+def test_ellipj_agrees_with_scipy_at_ordinary_parameters(m):
+    u = np.random.default_rng(SEED + 1).uniform(-10, 10, 300)
+    ours = el.ellipj(u, m)
+    theirs = sc.ellipj(u, m)
+    for a, b in zip(ours, theirs, strict=True):
+        _close(a, b, SCIPY_ORDINARY_ATOL * (1 + np.abs(u)))
+
+
+@pytest.mark.parametrize("m", [0.2, 0.8, 1 - 1e-12])
+def test_adding_the_period_four_K_changes_nothing_and_two_K_flips_sn_and_cn(m):
+    K = float(el.ellipk(m))
+    u = np.linspace(-1.3, 1.3, 9)
+    sn, cn, dn, am = el.ellipj(u, m)
+    sn2, cn2, dn2, am2 = el.ellipj(u + 2 * K, m)
+    tol = 16 * EPS * (1 + 2 * K)
+    _close(sn2, -sn, tol)
+    _close(cn2, -cn, tol)
+    _close(dn2, dn, tol)
+    _close(am2, am + np.pi, tol)
+
+
+@pytest.mark.parametrize("m", [1.5, 4.0, 100.0])
+def test_reciprocal_parameter_transformation_matches_scipy_on_the_other_side(m):
+    u = np.linspace(-5, 5, 41)
+    sn, cn, dn, _ = el.ellipj(u, m)
+    k = np.sqrt(m)
+    ssn, scn, sdn, _ = sc.ellipj(k * u, 1 / m)
+    tol = SCIPY_ORDINARY_ATOL * (1 + k * np.abs(u))
+    _close(sn, ssn / k, tol)
+    _close(cn, sdn, tol)
+    _close(dn, scn, tol)
+
+
+@pytest.mark.parametrize("m", [-0.5, -3.0, -200.0])
+def test_negative_parameter_transformation_matches_scipy_on_the_other_side(m):
+    u = np.linspace(-4, 4, 33)
+    sn, cn, dn, _ = el.ellipj(u, m)
+    mu = -m / (1 - m)
+    v = np.sqrt(1 - m) * u
+    ssn, scn, sdn, _ = sc.ellipj(v, mu)
+    tol = SCIPY_ORDINARY_ATOL * (1 + np.abs(v)) * np.sqrt(1 - m) / sdn**2
+    _close(sn, ssn / (sdn * np.sqrt(1 - m)), tol)
+    _close(cn, scn / sdn, tol)
+    _close(dn, 1 / sdn, tol)
+
+
+@pytest.mark.parametrize("m", [-2.0, 0.3, 0.999, 1.0, 3.0])
+def test_derivatives_are_cn_dn_and_minus_sn_dn_and_minus_m_sn_cn(m):
+    u = np.linspace(-2.1, 2.3, 23)
+    h = FD_STEP
+
+    def d(i):
+        f = [el.ellipj(u + k * h, m)[i] for k in (-2, -1, 1, 2)]
+        return (f[0] - 8 * f[1] + 8 * f[2] - f[3]) / (12 * h)
+
+    sn, cn, dn, _ = el.ellipj(u, m)
+    _close(d(0), cn * dn, FD_ATOL * (1 + abs(m)) ** 3)
+    _close(d(1), -sn * dn, FD_ATOL * (1 + abs(m)) ** 3)
+    _close(d(2), -m * sn * cn, FD_ATOL * (1 + abs(m)) ** 3)
+    if m <= 1:
+        _close(d(3), dn, FD_ATOL * (1 + abs(m)) ** 3)
+
+
+@pytest.mark.parametrize("m", [-3.0, 0.0, 0.5, 0.99, 1 - 1e-14])
+def test_ellipf_inverts_the_amplitude(m):
+    u = np.linspace(-7, 7, 29)
+    am = el.ellipj(u, m)[3]
+    _close(el.ellipf(am, m), u, 32 * EPS * (1 + np.abs(u)))
+
+
+def test_ellipk_and_ellipe_agree_with_scipy_and_take_m1():
+    m = np.array([-5.0, 0.0, 0.3, 0.9])
+    np.testing.assert_allclose(el.ellipk(m), sc.ellipk(m), rtol=4 * EPS)
+    np.testing.assert_allclose(el.ellipe(m), sc.ellipe(m), rtol=8 * EPS)
+    # with m1 = 1e-200, K = ln(4/√m1) + O(m1 ln m1)
+    assert abs(el.ellipk(1.0, m1=1e-200) - np.log(4.0) - 100 * np.log(10.0)) < 1e-12
+    assert el.ellipk(1.0) == np.inf
+    assert el.ellipe(1.0) == 1.0
+
+
+def test_ellippi_at_n_zero_is_ellipf_and_jacobi_form_agrees_with_legendre_form():
+    phi = np.array([-5.0, -0.4, 0.9, 1.5, 3.0, 8.0])
+    np.testing.assert_allclose(el.ellippi(0.0, phi, 0.6), el.ellipf(phi, 0.6), rtol=0, atol=0)
+    u = np.linspace(-9, 9, 19)
+    for n in (-4.0, 0.3):
+        am = el.ellipj(u, 0.6)[3]
+        _close(el.ellippi_jacobi(u, n, 0.6), el.ellippi(n, am, 0.6), 64 * EPS * (1 + abs(u)))
+
+
+def test_ellippi_jacobi_on_the_separatrix_is_the_elementary_closed_form():
+    u = np.array([0.0, 0.5, 5.0, 50.0, 900.0])
+    n = -2.0
+    want = (u + np.sqrt(2.0) * np.arctan(np.sqrt(2.0) * np.tanh(u))) / 3.0
+    np.testing.assert_allclose(el.ellippi_jacobi(u, n, 1.0), want, rtol=8 * EPS)
+    # and just off it, continuity
+    off = el.ellippi_jacobi(u[:4], n, 1.0, m1=1e-300)
+    np.testing.assert_allclose(off, want[:4], rtol=64 * EPS)
+
+
+@pytest.mark.parametrize(
+    ("call", "err"),
+    [
+        (lambda: el.ellipj(np.nan, 0.5), NonFiniteError),
+        (lambda: el.ellipj(1.0, np.inf), NonFiniteError),
+        (lambda: el.ellipj(1.0, 0.5, m1=np.nan), NonFiniteError),
+        (lambda: el.ellipj(1.0, 0.5, m1=0.4), OutOfDomainError),
+        (lambda: el.ellipj(1.0 + 0j, 0.5), ShapeError),
+        (lambda: el.ellipk(1.5), OutOfDomainError),
+        (lambda: el.ellipe(2.0), OutOfDomainError),
+        (lambda: el.ellipf(1.4, 2.0), OutOfDomainError),
+        (lambda: el.ellipf(np.nan, 0.3), NonFiniteError),
+        (lambda: el.ellippi(2.0, 1.0, 0.3), OutOfDomainError),
+        (lambda: el.ellippi(0.5, 4.0, 0.3, m1=0.7), None),
+        (lambda: el.ellippi_jacobi(1.0, 1.5, 0.3), OutOfDomainError),
+        (lambda: el.ellippi_jacobi(1.0, 0.5, 1.3), OutOfDomainError),
+    ],
+)
+def test_bad_input_raises_a_specific_error(call, err):
+    if err is None:
+        assert np.isfinite(call())
+        return
+    with pytest.raises(err):
+        call()
+
+
+def test_m1_mismatch_message_names_both_values():
+    with pytest.raises(OutOfDomainError, match=r"m = 0\.5, m1 = 0\.4"):
+        el.ellipj(1.0, 0.5, m1=0.4)
+
+
+def test_huge_arguments_stay_finite_or_raise_a_specific_error():
+    u = np.array([0.0, 1e10, 1e200, 1e300, -1e300])
+    for m in (0.0, 0.7, 1.0):
+        assert all(np.isfinite(a).all() for a in el.ellipj(u, m))
+    with pytest.raises(OutOfDomainError, match=r"1\.8e308"):
+        el.ellipj(1e300, -1e300)
+    with pytest.raises(OutOfDomainError, match=r"1\.8e308"):
+        el.ellipj(1e300, 1e300)

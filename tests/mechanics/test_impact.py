@@ -1,0 +1,461 @@
+"""API, conventions, validation and edge cases of :mod:`mechanics.impact`.
+
+Expected values are worked out by hand from the book's equations (written next
+to each), never copied from the code under test.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from mechanics import impact as im
+from mechanics.errors import (
+    NegativeMassError,
+    NonFiniteError,
+    NonPhysicalInertiaError,
+    NonPositiveParameterError,
+    OutOfDomainError,
+    RestitutionRangeError,
+    ResultOverflowError,
+    SeparatingContactError,
+    ShapeError,
+    UnknownOptionError,
+    ZeroNormalError,
+    ZeroTotalMassError,
+)
+
+EPS = float(np.finfo(float).eps)
+
+#: Hand-computed values with a handful of roundings in the code under test.
+HAND_RTOL = 8 * EPS
+
+#: Rigid-body results go through a 3 × 3 solve with well-conditioned tensors
+#: (condition number ≤ 100 here): a few hundred eps covers κ times the roundings.
+RIGID_RTOL = 256 * EPS
+
+
+def _sphere(m, r_G, v_G=(0, 0, 0), omega=(0, 0, 0), radius=1.0):
+    """A homogeneous ball: J_G = (2/5) m R² 1."""
+    return im.RigidBody(m, 0.4 * m * radius**2 * np.eye(3), np.array(r_G, float), v_G, omega)
+
+
+# ------------------------------------------------------------ conventions
+
+
+def test_direct_impact_hand_example_body_1_behind_body_2():
+    # m1 = 1, m2 = 3, ẋ1 = 5, ẋ2 = −3, e = ½: μ = ¾, Δẋ = −8,
+    # S_12 = (1 + e) μ Δẋ = −9, ẋ1f = 5 − 9 = −4, ẋ2f = −3 + 9/3 = 0.
+    v1f, v2f = im.direct_impact(1.0, 3.0, 5.0, -3.0, 0.5)
+    assert (float(v1f), float(v2f)) == (-4.0, 0.0)
+    assert float(im.impulse_direct(1.0, 3.0, 5.0, -3.0, 0.5)) == -9.0
+    # Q = ½ μ (1 − e²) Δẋ² = ½ · ¾ · ¾ · 64 = 18.
+    assert float(im.energy_loss_direct(1.0, 3.0, 5.0, -3.0, 0.5)) == 18.0
+
+
+def test_equal_masses_elastic_swap_velocities():
+    v1f, v2f = im.direct_impact(2.0, 2.0, 3.0, -1.25, 1.0)
+    assert (float(v1f), float(v2f)) == (-1.25, 3.0)
+    assert float(im.energy_loss_direct(2.0, 2.0, 3.0, -1.25, 1.0)) == 0.0
+
+
+def test_plastic_impact_moves_both_with_the_centre_of_mass():
+    # e = 0: both end at ẋ_G = (1·4 + 3·0)/4 = 1.
+    v1f, v2f = im.direct_impact(1.0, 3.0, 4.0, 0.0, 0.0)
+    assert (float(v1f), float(v2f)) == (1.0, 1.0)
+    # Q = ½ μ Δẋ² = ½ · ¾ · 16 = 6 = T_i − T_f = 8 − 2.
+    assert float(im.energy_loss_direct(1.0, 3.0, 4.0, 0.0, 0.0)) == 6.0
+
+
+def test_a_massless_body_rebounds_off_the_other_with_minus_e_relative_velocity():
+    # m1 = 0: the mass fraction m2/(m1 + m2) is exactly 1, body 2 does not move.
+    v1f, v2f = im.direct_impact(0.0, 5.0, 12.0, 0.0, 10 / 12)
+    assert float(v2f) == 0.0
+    assert math.isclose(float(v1f), -10.0, rel_tol=HAND_RTOL)
+    assert float(im.energy_loss_direct(0.0, 5.0, 12.0, 0.0, 0.5)) == 0.0
+
+
+def test_example_6_1_ball_on_the_floor_restitution():
+    # A ball at 12 m/s bounces off the floor at 10 m/s: e = 10/12.  With the
+    # floor as a body 1e30 times heavier the ball's rebound is −e times 12.
+    e = 10.0 / 12.0
+    floor, ball = im.direct_impact(1e30, 0.5, 0.0, -12.0, e)
+    assert math.isclose(float(ball), 10.0, rel_tol=1e-12)
+    assert abs(float(floor)) <= 1e-28
+
+
+def test_compression_and_restitution_split_example_6_3():
+    # m1 = 1, m2 = 3, ẋ = (5, −3): ẋ_G = −1; S_1 = m1 (ẋ_G − ẋ1) = −6; S_2 = e S_1.
+    S1, S2 = im.compression_restitution_impulses(1.0, 3.0, 5.0, -3.0, 0.25)
+    assert (float(S1), float(S2)) == (-6.0, -1.5)
+
+
+def test_direct_functions_broadcast_over_leading_axes():
+    m1 = np.full((4, 1), 2.0)
+    v2 = -np.arange(5.0)
+    v1f, v2f = im.direct_impact(m1, 3.0, 1.0, v2, 0.5)
+    assert v1f.shape == v2f.shape == (4, 5)
+    for name in ("impulse_direct", "energy_loss_direct"):
+        assert getattr(im, name)(m1, 3.0, 1.0, v2, 0.5).shape == (4, 5)
+    S1, S2 = im.compression_restitution_impulses(m1, 3.0, 1.0, v2, 0.5)
+    assert S1.shape == S2.shape == (4, 5)
+    v1, _ = im.direct_impact(2.0, 3.0, 1.0, -2.0, 0.5)
+    assert np.ndim(v1) == 0
+
+
+# ---------------------------------------------------- extreme magnitudes
+
+
+def test_energy_loss_does_not_overflow_for_huge_masses():
+    # m1 m2 = 1e600 overflows; μ = 5e299 does not: Q = ½ · 5e299 · 1 · 4 = 1e300.
+    Q = im.energy_loss_direct(1e300, 1e300, 1.0, -1.0, 0.0)
+    assert math.isclose(float(Q), 1e300, rel_tol=HAND_RTOL)
+
+
+def test_energy_loss_does_not_underflow_for_tiny_masses():
+    # m1 m2 = 1e-600 underflows; μ = 5e-301: Q = ½ · 5e-301 · 4 = 1e-300.
+    Q = im.energy_loss_direct(1e-300, 1e-300, 1.0, -1.0, 0.0)
+    assert math.isclose(float(Q), 1e-300, rel_tol=HAND_RTOL)
+
+
+def test_huge_velocities_are_scaled_not_overflowed():
+    # Δẋ = −2e300; Δẋ² alone would overflow, Q = ½ · ½ · 4e600 does too, but
+    # the velocities after are fine: equal masses, elastic: a swap.
+    v1f, v2f = im.direct_impact(1.0, 1.0, 1e300, -1e300, 1.0)
+    assert (float(v1f), float(v2f)) == (-1e300, 1e300)
+    with pytest.raises(ResultOverflowError, match="energy loss"):
+        im.energy_loss_direct(1.0, 1.0, 1e300, -1e300, 0.0)
+
+
+def test_velocities_beyond_float64_raise_overflow():
+    # ẋ1f = ẋ1 + 2 Δẋ ≈ 1.5e308 − 6e308 for a very light body 1.
+    with pytest.raises(ResultOverflowError, match="v_1f"):
+        im.direct_impact(1e-10, 1.0, 1.5e308, -1.5e308, 1.0)
+
+
+def test_one_minus_e_is_exact_near_one():
+    # e = 1 − 2^-40: 1 − e² = 2^-40 (2 − 2^-40) exactly representable; Q for
+    # μ = ½, Δẋ = −2: ½ · ½ · 4 · 2^-40 (2 − 2^-40).
+    e = 1.0 - 2.0**-40
+    expected = 2.0**-40 * (2.0 - 2.0**-40)
+    assert float(im.energy_loss_direct(1.0, 1.0, 1.0, -1.0, e)) == expected
+
+
+# ------------------------------------------------------- direct validation
+
+
+@pytest.mark.parametrize("e", [-0.1, 1.0 + 2 * EPS, 7.0])
+def test_restitution_outside_zero_one_raises_naming_it(e):
+    with pytest.raises(RestitutionRangeError, match=repr(e)):
+        im.direct_impact(1.0, 1.0, 1.0, -1.0, e)
+
+
+def test_negative_mass_raises_naming_it():
+    with pytest.raises(NegativeMassError, match=r"m_2 must be >= 0; found -2\.0"):
+        im.direct_impact(1.0, -2.0, 1.0, -1.0, 0.5)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf])
+def test_non_finite_input_raises(bad):
+    with pytest.raises(NonFiniteError, match="v_1"):
+        im.direct_impact(1.0, 1.0, bad, -1.0, 0.5)
+    with pytest.raises(NonFiniteError, match="m_1"):
+        im.energy_loss_direct(bad, 1.0, 1.0, -1.0, 0.5)
+
+
+def test_two_massless_bodies_raise():
+    with pytest.raises(ZeroTotalMassError, match="both masses are 0"):
+        im.impulse_direct(0.0, 0.0, 1.0, -1.0, 0.5)
+
+
+def test_separating_bodies_raise_by_default_naming_the_velocity():
+    with pytest.raises(SeparatingContactError, match=re.escape("v_n = 2.0 > 0")):
+        im.direct_impact(1.0, 1.0, -1.0, 1.0, 0.5)
+    with pytest.raises(SeparatingContactError, match=r"index \(1,\)"):
+        im.energy_loss_direct(1.0, 1.0, [2.0, -1.0], [1.0, 1.0], 0.5)
+
+
+def test_separating_ignore_is_a_no_op_for_those_contacts_only():
+    v1 = np.array([2.0, -1.0])
+    v2 = np.array([1.0, 1.0])  # the first approaches, the second separates
+    v1f, v2f = im.direct_impact(1.0, 1.0, v1, v2, 1.0, separating="ignore")
+    assert v1f.tolist() == [1.0, -1.0]
+    assert v2f.tolist() == [2.0, 1.0]
+    assert im.impulse_direct(1.0, 1.0, v1, v2, 1.0, separating="ignore").tolist() == [-1.0, 0.0]
+    Q = im.energy_loss_direct(1.0, 1.0, v1, v2, 0.0, separating="ignore")
+    assert Q.tolist() == [0.25, 0.0]
+    S1, S2 = im.compression_restitution_impulses(1.0, 1.0, v1, v2, 0.5, separating="ignore")
+    assert S1.tolist() == [-0.5, 0.0]
+    assert S2.tolist() == [-0.25, 0.0]
+
+
+def test_grazing_contact_gives_zero_impulse_without_error():
+    v1f, v2f = im.direct_impact(1.0, 2.0, 3.0, 3.0, 0.5)
+    assert (float(v1f), float(v2f)) == (3.0, 3.0)
+    assert float(im.energy_loss_direct(1.0, 2.0, 3.0, 3.0, 0.5)) == 0.0
+
+
+def test_unknown_separating_option_raises():
+    with pytest.raises(UnknownOptionError, match="'skip'"):
+        im.direct_impact(1.0, 1.0, 1.0, -1.0, 0.5, separating="skip")
+
+
+def test_complex_input_raises_shape_error():
+    with pytest.raises(ShapeError, match="complex"):
+        im.direct_impact(1.0, 1.0, 1.0 + 0j, -1.0, 0.5)
+
+
+# ------------------------------------------------------------ rigid bodies
+
+
+def test_central_impact_of_two_spheres_is_the_direct_impact():
+    # Centres on the normal: no rotation, and the X-axis result (6.36)–(6.38).
+    # Body 1 behind (−X side), n = −e_x points into body 1.
+    b1 = _sphere(2.0, [-1.0, 0, 0], v_G=[3.0, 0, 0])
+    b2 = _sphere(5.0, [1.0, 0, 0], v_G=[-1.0, 0, 0])
+    out = im.rigid_impact(b1, b2, r_S=[0.0, 0, 0], n=[-1.0, 0, 0], e=0.6)
+    v1f, v2f = im.direct_impact(2.0, 5.0, 3.0, -1.0, 0.6)
+    np.testing.assert_allclose(out.body_1.v_G, [v1f, 0, 0], rtol=0, atol=RIGID_RTOL * 3)
+    np.testing.assert_allclose(out.body_2.v_G, [v2f, 0, 0], rtol=0, atol=RIGID_RTOL * 3)
+    assert np.abs(out.body_1.omega).max() == 0.0 == np.abs(out.body_2.omega).max()
+    # S = |S_12| and the loss agree with the direct functions; μ is the reduced mass.
+    assert math.isclose(out.S, -float(im.impulse_direct(2.0, 5.0, 3.0, -1.0, 0.6)), rel_tol=1e-14)
+    assert math.isclose(out.mu, 10 / 7, rel_tol=1e-15)
+    assert math.isclose(
+        out.Q, float(im.energy_loss_direct(2.0, 5.0, 3.0, -1.0, 0.6)), rel_tol=1e-14
+    )
+
+
+@pytest.mark.parametrize("x_over_ell", [0.0, 0.2, 1 / 3, 0.5, 0.8, 1.0])
+def test_example_6_2_bat_velocities_energy_and_point_at_rest(x_over_ell):
+    # A free rod of mass m, length ℓ along X (ends at 0 and ℓ, G at ℓ/2), at
+    # rest, struck perpendicular at x.  Whatever S the contact delivers:
+    # v_G = S/m e_y (6.23), φ̇ = 12 S (x − ℓ/2)/(m ℓ²) (6.24),
+    # T = S²/(2m) [1 + 12 (x/ℓ − ½)²] (6.26), x_C = (ℓ/3)(3x − 2ℓ)/(2x − ℓ) (6.28).
+    m, ell = 3.0, 2.0
+    x = x_over_ell * ell
+    J_G = np.diag([1e-3 * m * ell**2, m * ell**2 / 12, m * ell**2 / 12])
+    rod = im.RigidBody(m, J_G, np.array([ell / 2, 0, 0]), np.zeros(3), np.zeros(3))
+    ball = _sphere(0.2, [x, -0.1, 0], v_G=[0, 4.0, 0], radius=0.1)
+    out = im.rigid_impact(rod, ball, r_S=[x, 0, 0], n=[0, 1, 0], e=0.7)
+    S = out.S
+    after = out.body_1
+    np.testing.assert_allclose(after.v_G, [0, S / m, 0], atol=RIGID_RTOL * S / m)
+    phidot = 12 * S * (x - ell / 2) / (m * ell**2)
+    np.testing.assert_allclose(after.omega, [0, 0, phidot], atol=RIGID_RTOL * 6 * S / (m * ell))
+    T = 0.5 * m * after.v_G @ after.v_G + 0.5 * after.omega @ J_G @ after.omega
+    T_book = S**2 / (2 * m) * (1 + 12 * (x / ell - 0.5) ** 2)
+    assert math.isclose(T, T_book, rel_tol=RIGID_RTOL)
+    if x_over_ell != 0.5:  # (6.31): x_C = ±∞ at the middle
+        x_C = ell / 2 - after.v_G[1] / after.omega[2]
+        x_C_book = ell / 3 * (3 * x - 2 * ell) / (2 * x - ell)
+        assert math.isclose(x_C, x_C_book, rel_tol=RIGID_RTOL)
+
+
+def test_planar_input_gives_planar_output():
+    J = np.array([[2.0, 0.3, 0], [0.3, 1.0, 0], [0, 0, 2.5]])
+    b1 = im.RigidBody(1.0, J, [0.0, 0, 0], [0.5, -1.0, 0], [0, 0, 0.3])
+    b2 = im.RigidBody(2.0, 1.3 * J, [0.0, -2, 0], [0.0, 1.0, 0], [0, 0, -0.2])
+    out = im.rigid_impact(b1, b2, r_S=[0.4, -1.0, 0], n=[0.1, 1.0, 0], e=0.5)
+    for b in (out.body_1, out.body_2):
+        assert b.v_G[2] == 0.0
+        assert b.omega[0] == 0.0
+        assert b.omega[1] == 0.0
+
+
+def test_impact_against_a_fixed_body_reverses_the_normal_velocity():
+    # A ball falling onto the floor with spin: the floor (body 2) is fixed.
+    ball = _sphere(1.0, [0, 0, 1.0], v_G=[1.0, 0, -3.0], omega=[0, 2.0, 0])
+    out = im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 2.0], e=0.5)
+    assert out.body_2 is None
+    # Contact at the bottom: arm r = −e_z is parallel to n, so μ = m and S = 1.5 · 3.
+    assert math.isclose(out.S, 4.5, rel_tol=HAND_RTOL)
+    np.testing.assert_allclose(out.body_1.v_G, [1.0, 0, 1.5], atol=4 * EPS)
+    np.testing.assert_array_equal(out.body_1.omega, [0, 2.0, 0])  # smooth: no friction
+
+
+def test_rigid_impact_broadcasts_over_contacts():
+    n = np.array([[0, 0, 1.0], [0, 0.6, 0.8], [1.0, 0, 0]])
+    ball = _sphere(1.0, [0, 0, 1.0], v_G=[0.0, 0, -3.0])
+    wall_v = np.array([[0, 0, 0], [0, 0, 0], [5.0, 0, 0]])
+    wall = im.RigidBody(1e3, 1e3 * np.eye(3), [0, 0, -1.0], wall_v, np.zeros(3))
+    out = im.rigid_impact(ball, wall, r_S=[0, 0, 0.0], n=n, e=[0.5, 0.5, 1.0])
+    assert out.S.shape == (3,)
+    assert out.body_1.v_G.shape == (3, 3)
+    assert out.body_2.omega.shape == (3, 3)
+
+
+def test_rigid_separating_contact_raises_or_is_ignored():
+    ball = _sphere(1.0, [0, 0, 1.0], v_G=[0.0, 0, 3.0])
+    with pytest.raises(SeparatingContactError, match=re.escape("v_n = 3.0")):
+        im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
+    out = im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 1], e=0.5, separating="ignore")
+    assert out.S == 0.0
+    assert out.Q == 0.0
+    np.testing.assert_array_equal(out.body_1.v_G, ball.v_G)
+
+
+@pytest.mark.parametrize(
+    ("J", "match"),
+    [
+        pytest.param(np.diag([1.0, 1.0, 3.0]), "triangle inequality", id="triangle"),
+        pytest.param(np.diag([1.0, -1.0, 1.0]), "not positive definite", id="indefinite"),
+        pytest.param(np.diag([1.0, 1.0, 0.0]), "not positive definite", id="rod-axis"),
+        pytest.param(np.array([[1, 0.5, 0], [0, 1, 0], [0, 0, 1.0]]), "not symmetric", id="asym"),
+    ],
+)
+def test_non_physical_inertia_tensor_raises_naming_the_condition(J, match):
+    body = im.RigidBody(1.0, J, np.zeros(3), np.zeros(3), np.zeros(3))
+    with pytest.raises(NonPhysicalInertiaError, match=match):
+        im.rigid_impact(body, None, r_S=[0, 0, -1.0], n=[0, 0, 1], e=0.5)
+    with pytest.raises(NonPhysicalInertiaError, match="J_1"):
+        im.effective_mass(1.0, J, [0, 0, 1.0], [1, 0, 0])
+
+
+def test_a_lamina_tensor_on_the_triangle_edge_is_accepted():
+    R = np.array([[0.6, 0.8, 0], [-0.8, 0.6, 0], [0, 0, 1.0]]) @ np.array(
+        [[1, 0, 0], [0, 0.28, 0.96], [0, -0.96, 0.28]]
+    )
+    J = R.T @ np.diag([1.0, 2.0, 3.0]) @ R
+    assert im.effective_mass(1.0, 0.5 * (J + J.T), [0, 0, 1.0], [1, 0, 0]) > 0
+
+
+def test_zero_normal_and_zero_mass_raise():
+    ball = _sphere(1.0, [0, 0, 1.0], v_G=[0.0, 0, -3.0])
+    with pytest.raises(ZeroNormalError, match=r"n must be a non-zero vector; found \[0.0, 0.0"):
+        im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 0], e=0.5)
+    massless = ball._replace(m=0.0)
+    with pytest.raises(NonPositiveParameterError, match=re.escape("body_1.m must be > 0")):
+        im.rigid_impact(massless, None, r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
+    with pytest.raises(NegativeMassError, match=re.escape("body_2.m")):
+        im.rigid_impact(ball, ball._replace(m=-1.0), r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
+    with pytest.raises(RestitutionRangeError):
+        im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 1], e=1.5)
+
+
+def test_a_body_that_is_not_a_rigid_body_record_raises():
+    with pytest.raises(OutOfDomainError, match="RigidBody"):
+        im.rigid_impact((1.0, np.eye(3)), None, r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
+
+
+def test_effective_mass_needs_all_of_body_2_or_none():
+    with pytest.raises(OutOfDomainError, match="m_2, J_2 and r_2"):
+        im.effective_mass(1.0, np.eye(3), [0, 0, 0], [1, 0, 0], m_2=2.0)
+
+
+def test_effective_mass_of_an_eccentric_contact_on_a_sphere():
+    # Solid ball m, radius R, hit tangentially at the equator: u = r × n has
+    # |u| = R, 1/μ = 1/m + R²/(⅖ m R²) = 7/(2m).
+    m, R = 2.0, 0.5
+    mu = im.effective_mass(m, 0.4 * m * R**2 * np.eye(3), [R, 0, 0], [0, 1, 0])
+    assert math.isclose(float(mu), 2 * m / 7, rel_tol=HAND_RTOL)
+
+
+# ------------------------------------------------------------ hinged bodies
+
+
+def _rod_on_axis(m=3.0, ell=2.0):
+    """A rod along X hinged at the origin about e_z: J_A = m ℓ²/3 about e_z."""
+    J_A = np.diag([1e-3 * m * ell**2, m * ell**2 / 3, m * ell**2 / 3])
+    return m, J_A, np.array([ell / 2, 0, 0])
+
+
+def test_hinged_rod_struck_at_x_turns_with_x_S_over_J():
+    # Δω = x S/J_A; the axis reacts with m Δω ℓ/2 − S along e_y (momentum).
+    m, J_A, r_G = _rod_on_axis()
+    out = im.hinged_impact(
+        m, J_A, r_G, axis_point=[0, 0, 0], axis=[0, 0, 1], omega=1.0, r_P=[0.5, 0, 0], S_P=[0, 2, 0]
+    )
+    dw = 0.5 * 2 / 4.0
+    assert math.isclose(float(out.omega), 1.0 + dw, rel_tol=HAND_RTOL)
+    np.testing.assert_allclose(out.S_axis, [0, m * dw * 1.0 - 2.0, 0], atol=4 * EPS)
+    np.testing.assert_allclose(out.M_axis, 0.0, atol=4 * EPS)
+    assert out.S_bearings is None
+
+
+def test_hinged_rod_centre_of_percussion_at_two_thirds():
+    m, J_A, r_G = _rod_on_axis(ell=3.0)
+    P, b = im.centre_of_percussion(m, J_A, r_G, axis_point=[0, 0, 0], axis=[0, 0, 1])
+    np.testing.assert_allclose(P, [2.0, 0, 0], atol=4 * EPS)
+    np.testing.assert_array_equal(b, [0, 1.0, 0])
+
+
+def test_centre_of_percussion_of_a_mass_on_the_axis_raises():
+    with pytest.raises(OutOfDomainError, match="lies on the axis"):
+        im.centre_of_percussion(1.0, np.eye(3), [0, 0, 2.0], axis_point=[0, 0, 0], axis=[0, 0, 1])
+
+
+def test_door_bearings_share_the_reaction_problem_6_5_setting():
+    # A door leaf in the XZ plane: width along X (0..b), height along the axis
+    # e_z (0..h), hinges 0.25 from the edges, mass m.  Struck at the lower edge
+    # at distance y from the axis so that it stops: S_C = J_a ω/y along −e_y.
+    m, b, h = 10.0, 0.8, 2.0
+    J_G = m / 12 * np.diag([h**2, b**2 + h**2, b**2])
+    d = np.array([b / 2, 0, h / 2])
+    J_A = J_G + m * (d @ d * np.eye(3) - np.outer(d, d))
+    J_aa = J_A[2, 2]  # m b²/3
+    assert math.isclose(J_aa, m * b**2 / 3, rel_tol=HAND_RTOL)
+    omega, y = 2.0, 0.6
+    S_C = J_aa * omega / y  # along −e_y at (y, 0, 0)
+    out = im.hinged_impact(
+        m,
+        J_A,
+        d,
+        axis_point=[0, 0, 0],
+        axis=[0, 0, 1],
+        omega=omega,
+        r_P=[y, 0, 0],
+        S_P=[0, -S_C, 0],
+        bearings=(0.25, h - 0.25),
+    )
+    assert abs(float(out.omega)) <= 16 * EPS * omega
+    S_A, S_B = out.S_bearings
+    # Bearings carry all of the reaction: the sums by (6.19) and (6.21).
+    np.testing.assert_allclose(S_A + S_B, out.S_axis, atol=16 * EPS * S_C)
+    moment = np.cross([0, 0, 0.25], S_A) + np.cross([0, 0, h - 0.25], S_B)
+    np.testing.assert_allclose(moment, out.M_axis, atol=16 * EPS * S_C * h)
+    # Hand value: m Δv_G = −m ω b/2 e_y = −S_C e_y + S_axis.
+    total = -m * omega * b / 2 + S_C
+    assert math.isclose(float(out.S_axis[1]), total, rel_tol=1e-13)
+
+
+def test_bearings_at_the_same_place_raise():
+    m, J_A, r_G = _rod_on_axis()
+    with pytest.raises(OutOfDomainError, match="different axial positions"):
+        im.hinged_impact(
+            m,
+            J_A,
+            r_G,
+            axis_point=[0, 0, 0],
+            axis=[0, 0, 1],
+            omega=0.0,
+            r_P=[1, 0, 0],
+            S_P=[0, 1, 0],
+            bearings=(1.0, 1.0),
+        )
+
+
+def test_hinged_zero_axis_raises():
+    m, J_A, r_G = _rod_on_axis()
+    with pytest.raises(ZeroNormalError, match="axis"):
+        im.hinged_impact(
+            m,
+            J_A,
+            r_G,
+            axis_point=[0, 0, 0],
+            axis=[0, 0, 0],
+            omega=0.0,
+            r_P=[1, 0, 0],
+            S_P=[0, 1, 0],
+        )
+
+
+def test_hinged_effective_mass_is_infinite_for_a_blow_through_the_axis():
+    _, J_A, _ = _rod_on_axis()
+    mu = im.hinged_effective_mass(
+        J_A, [1.0, 0, 0], [1.0, 0, 0], axis_point=[0, 0, 0], axis=[0, 0, 1]
+    )
+    assert mu == math.inf

@@ -1,0 +1,491 @@
+"""API, validation and edge cases of :mod:`mechanics.inertia`.
+
+The catalogue of homogeneous bodies is checked against an independent route:
+the body's mass distribution is replaced by Gauss–Legendre quadrature nodes
+(as particles), whose inertia tensor :func:`inertia_tensor` sums.  The
+quadrature is exact for the polynomial integrands, so the two routes agree to
+rounding.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+
+import numpy as np
+import pytest
+
+from mechanics import inertia as I
+from mechanics.errors import (
+    NegativeMassError,
+    NonFiniteError,
+    NonPhysicalInertiaError,
+    NonPositiveParameterError,
+    NotARotationError,
+    ShapeError,
+    ZeroTotalMassError,
+)
+from mechanics.rotation import EPS, R3, matrix_from_rotvec
+
+#: Quadrature sums of a few hundred nodes against a closed form: each node's
+#: contribution is rounded once or twice and the sum accumulates about √N
+#: roundings; 64 eps of the largest moment bounds it.
+QUADRATURE_ATOL = 64 * EPS
+
+#: A rotated or shifted tensor: every entry is a short sum of rounded products.
+ENTRY_ATOL = 8 * EPS
+
+ORIGIN = np.zeros(3)
+
+
+def _gl(n: int, a: float, b: float) -> tuple[np.ndarray, np.ndarray]:
+    x, w = np.polynomial.legendre.leggauss(n)
+    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
+
+
+def _ring_nodes(n: int) -> np.ndarray:
+    """Angles of the n-point trapezoid rule on the circle: exact for degree < n."""
+    return 2 * np.pi * (np.arange(n) + 0.5) / n
+
+
+def _grid(*axes):
+    """Tensor-product nodes and weights from (nodes, weights) pairs."""
+    nodes = np.meshgrid(*(a[0] for a in axes), indexing="ij")
+    weights = np.prod(np.meshgrid(*(a[1] for a in axes), indexing="ij"), axis=0)
+    return [n.ravel() for n in nodes], weights.ravel()
+
+
+def _particles_of(body: str, m: float, *dims: float) -> tuple[np.ndarray, np.ndarray]:
+    """Masses and positions (G at the origin) of a quadrature of the body."""
+    n = 8
+    if body == "rod":
+        (z,), w = _grid(_gl(n, -dims[0] / 2, dims[0] / 2))
+        r = np.stack([0 * z, 0 * z, z], -1)
+    elif body == "ring":
+        t = _ring_nodes(n)
+        w = np.full(n, 1.0)
+        r = dims[0] * np.stack([np.cos(t), np.sin(t), 0 * t], -1)
+    elif body == "disc":
+        (rho, t), w = _grid(_gl(n, 0, dims[0]), (_ring_nodes(n), np.ones(n)))
+        w = w * rho
+        r = np.stack([rho * np.cos(t), rho * np.sin(t), 0 * t], -1)
+    elif body == "cylinder":
+        R, h = dims
+        (rho, t, z), w = _grid(_gl(n, 0, R), (_ring_nodes(n), np.ones(n)), _gl(n, -h / 2, h / 2))
+        w = w * rho
+        r = np.stack([rho * np.cos(t), rho * np.sin(t), z], -1)
+    elif body == "cylindrical_shell":
+        R, h = dims
+        (t, z), w = _grid((_ring_nodes(n), np.ones(n)), _gl(n, -h / 2, h / 2))
+        r = np.stack([R * np.cos(t), R * np.sin(t), z], -1)
+    elif body in ("solid_sphere", "hollow_sphere"):
+        R = dims[0]
+        radial = _gl(n, 0, R) if body == "solid_sphere" else (np.array([R]), np.ones(1))
+        (rho, c, t), w = _grid(radial, _gl(n, -1, 1), (_ring_nodes(n), np.ones(n)))
+        w = w * rho**2
+        s = np.sqrt((1 - c) * (1 + c))
+        r = np.stack([rho * s * np.cos(t), rho * s * np.sin(t), rho * c], -1)
+    elif body == "rectangular_plate":
+        a, b = dims
+        (x, y), w = _grid(_gl(n, -a / 2, a / 2), _gl(n, -b / 2, b / 2))
+        r = np.stack([x, y, 0 * x], -1)
+    elif body == "box":
+        a, b, c = dims
+        (x, y, z), w = _grid(_gl(n, -a / 2, a / 2), _gl(n, -b / 2, b / 2), _gl(n, -c / 2, c / 2))
+        r = np.stack([x, y, z], -1)
+    elif body == "solid_cone":
+        R, h = dims  # apex at z = 3h/4 above G, base at z = −h/4
+        (u, rho_frac, t), w = _grid(_gl(n, 0, 1), _gl(n, 0, 1), (_ring_nodes(n), np.ones(n)))
+        radius = R * u  # u = distance from the apex / h
+        rho = rho_frac * radius
+        w = w * rho * radius  # area element ρ dρ dθ, dρ = radius d(rho_frac)
+        z = 0.75 * h - u * h
+        r = np.stack([rho * np.cos(t), rho * np.sin(t), z], -1)
+    else:  # pragma: no cover
+        raise AssertionError(body)
+    return m * w / w.sum(), r
+
+
+BODIES = [
+    ("rod", (1.7,)),
+    ("ring", (0.9,)),
+    ("disc", (1.3,)),
+    ("cylinder", (0.7, 2.1)),
+    ("cylindrical_shell", (0.7, 2.1)),
+    ("solid_sphere", (1.1,)),
+    ("hollow_sphere", (1.1,)),
+    ("rectangular_plate", (0.6, 1.9)),
+    ("box", (0.6, 1.9, 1.2)),
+    ("solid_cone", (0.8, 1.5)),
+]
+
+
+@pytest.mark.parametrize(("body", "dims"), BODIES, ids=[b for b, _ in BODIES])
+def test_body_formula_matches_quadrature_of_its_mass_distribution(body, dims):
+    m = 2.3
+    J = getattr(I, body)(m, *dims)
+    masses, r = _particles_of(body, m, *dims)
+    J_quad = I.inertia_tensor(masses, r, about=ORIGIN)
+    scale = np.trace(J_quad)
+    np.testing.assert_allclose(J, J_quad, rtol=0, atol=QUADRATURE_ATOL * scale)
+
+
+@pytest.mark.parametrize(("body", "dims"), BODIES, ids=[b for b, _ in BODIES])
+def test_body_quadrature_has_its_centre_of_mass_at_the_origin(body, dims):
+    masses, r = _particles_of(body, 1.0, *dims)
+    G = masses @ r
+    assert np.abs(G).max() <= QUADRATURE_ATOL * max(dims)
+
+
+@pytest.mark.parametrize(("body", "dims"), BODIES, ids=[b for b, _ in BODIES])
+def test_body_tensors_are_physical_and_broadcast(body, dims):
+    f = getattr(I, body)
+    J = f(np.array([1.0, 2.0]), *dims)
+    assert J.shape == (2, 3, 3)
+    np.testing.assert_array_equal(J[1], 2 * J[0])
+    assert I.is_physical_inertia(J, allow_singular=True).all()
+
+
+@pytest.mark.parametrize(("body", "dims"), BODIES, ids=[b for b, _ in BODIES])
+def test_body_rejects_negative_mass_and_non_positive_lengths(body, dims):
+    f = getattr(I, body)
+    with pytest.raises(NegativeMassError, match=r"-1\.0"):
+        f(-1.0, *dims)
+    with pytest.raises(NonPositiveParameterError, match="must be > 0"):
+        f(1.0, *((0.0, *dims[1:])))
+    with pytest.raises(NonFiniteError):
+        f(float("nan"), *dims)
+
+
+def test_the_book_moments_of_the_standard_bodies():
+    # Values the book uses: rod about G m l²/12 (Example 4.3 via 4.54), disc
+    # about its axis mR²/2 (Example 3.5), cylinder mr²/2 (Example 4.5), cube of
+    # side 2a: (2/3) m a² (Problem 4.4), spherical shell (2/3) m r² (Problem 6.4).
+    m, l, R, a = 3.0, 2.0, 0.5, 0.25
+    assert I.rod(m, l)[0, 0] == pytest.approx(m * l**2 / 12, rel=EPS)
+    assert I.disc(m, R)[2, 2] == pytest.approx(m * R**2 / 2, rel=EPS)
+    assert I.cylinder(m, R, 1.0)[2, 2] == pytest.approx(m * R**2 / 2, rel=EPS)
+    np.testing.assert_allclose(I.box(m, 2 * a, 2 * a, 2 * a), np.eye(3) * 2 / 3 * m * a**2)
+    np.testing.assert_allclose(I.hollow_sphere(m, R), np.eye(3) * 2 / 3 * m * R**2)
+
+
+# ---------------------------------------------------------------- check_inertia
+
+
+def test_check_inertia_returns_the_input_unchanged_as_float64():
+    J = np.array([[2, 0, 0], [0, 3, 0], [0, 0, 4]])
+    out = I.check_inertia(J)
+    assert out.dtype == np.float64
+    np.testing.assert_array_equal(out, J)
+    # A rounding-level asymmetry is accepted and *not* repaired.
+    Jb = np.diag([2.0, 3.0, 4.0])
+    Jb[0, 1] = 1e-16
+    np.testing.assert_array_equal(I.check_inertia(Jb), Jb)
+
+
+@pytest.mark.parametrize(
+    ("J", "condition", "amount"),
+    [
+        pytest.param(
+            [[2.0, 0.1, 0.0], [0.0, 3.0, 0.0], [0.0, 0.0, 4.0]],
+            "not symmetric",
+            "0.1",
+            id="asymmetric",
+        ),
+        pytest.param(np.diag([-1.0, 3.0, 3.5]), "not positive semidefinite", "-1", id="negative"),
+        pytest.param(np.diag([1.0, 1.0, 2.5]), "triangle inequality", "-0.5", id="triangle"),
+        pytest.param(np.diag([0.0, 1.0, 1.0]), "not positive definite", "allow_singular", id="rod"),
+    ],
+)
+def test_check_inertia_names_the_violated_condition_and_the_amount(J, condition, amount):
+    with pytest.raises(NonPhysicalInertiaError, match=re.escape(condition)) as info:
+        I.check_inertia(J)
+    assert amount in str(info.value)
+
+
+def test_check_inertia_accepts_a_line_mass_only_when_asked():
+    J = I.rod(1.0, 1.0)
+    with pytest.raises(NonPhysicalInertiaError):
+        I.check_inertia(J)
+    I.check_inertia(J, allow_singular=True)
+    I.check_inertia(np.zeros((3, 3)), allow_singular=True)  # a point mass about itself
+
+
+def test_check_inertia_accepts_a_flat_body_rotated_in_float64():
+    J = I.rotate_inertia(I.rectangular_plate(1.0, 1.0, 3.0), matrix_from_rotvec([0.3, 1.0, -2]))
+    I.check_inertia(J)
+
+
+def test_check_inertia_names_the_index_in_a_batch_and_the_point():
+    J = np.stack([np.eye(3), np.diag([1.0, 1.0, 3.0])])
+    with pytest.raises(NonPhysicalInertiaError, match=r"about G.*index \(1,\)"):
+        I.check_inertia(J)
+    with pytest.raises(NonPhysicalInertiaError, match="about the given point"):
+        I.check_inertia(J, about_centre_of_mass=False)
+
+
+@pytest.mark.parametrize(
+    ("J", "error"),
+    [
+        pytest.param(np.eye(2), ShapeError, id="shape"),
+        pytest.param([[1, 0, 0], [0, np.nan, 0], [0, 0, 1]], NonFiniteError, id="nan"),
+        pytest.param(np.eye(3) * 1j, ShapeError, id="complex"),
+    ],
+)
+def test_check_inertia_rejects_bad_arrays(J, error):
+    with pytest.raises(error):
+        I.check_inertia(J)
+
+
+def test_is_physical_inertia_is_elementwise():
+    J = np.stack([np.eye(3), np.diag([1.0, 1.0, 3.0]), I.rod(1.0, 1.0)])
+    assert I.is_physical_inertia(J).tolist() == [True, False, False]
+    assert I.is_physical_inertia(J, allow_singular=True).tolist() == [True, False, True]
+
+
+# ---------------------------------------------------------------- inertia_tensor
+
+
+def test_inertia_tensor_requires_the_point():
+    with pytest.raises(TypeError):
+        I.inertia_tensor([1.0], [[0.0, 0.0, 0.0]])  # type: ignore[call-arg]
+
+
+def test_inertia_tensor_of_one_particle_is_its_point_mass_tensor():
+    r = np.array([1.0, 2.0, 3.0])
+    J = I.inertia_tensor([2.0], [r], about=ORIGIN)
+    expected = 2.0 * (r @ r * np.eye(3) - np.outer(r, r))
+    np.testing.assert_array_equal(J, expected)
+
+
+def test_inertia_tensor_is_exact_for_a_compact_system_far_from_the_origin():
+    # Two unit masses 1 apart at 1e8 from the origin: about G, J = diag(0, ½, ½)
+    # (each at 1/2 from G).  A naïve Σ m (|r|² 1 − r rᵀ) − M(|G|² 1 − G Gᵀ) would
+    # cancel 1e16 against 1e16 and return noise.
+    far = np.array([1e8, -3e7, 2e8])
+    r = far + np.array([[0.5, 0.0, 0.0], [-0.5, 0.0, 0.0]])
+    J = I.inertia_tensor([1.0, 1.0], r, about=far)
+    np.testing.assert_array_equal(J, np.diag([0.0, 0.5, 0.5]))
+
+
+@pytest.mark.parametrize(
+    ("m", "r", "error"),
+    [
+        pytest.param([1.0, -1.0], [[0, 0, 0], [1, 0, 0]], NegativeMassError, id="negative"),
+        pytest.param([0.0, 0.0], [[0, 0, 0], [1, 0, 0]], ZeroTotalMassError, id="zero-total"),
+        pytest.param([1.0], [[0, 0, 0], [1, 0, 0]], ShapeError, id="mismatch"),
+        pytest.param([1.0, 1.0], [[0, 0, np.inf], [1, 0, 0]], NonFiniteError, id="inf"),
+        pytest.param(np.ones(0), np.zeros((0, 3)), ZeroTotalMassError, id="empty"),
+    ],
+)
+def test_inertia_tensor_rejects_bad_input(m, r, error):
+    with pytest.raises(error):
+        I.inertia_tensor(m, r, about=ORIGIN)
+
+
+# ---------------------------------------------------------------- parallel_axis
+
+
+def test_parallel_axis_diagonal_is_steiners_theorem_4_40():
+    J_G = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec([0.2, -0.4, 0.9]))
+    m, d = 1.5, np.array([0.3, -1.2, 0.7])
+    J_C = I.parallel_axis(J_G, m, d)
+    for i in range(3):
+        j, k = (i + 1) % 3, (i + 2) % 3
+        assert J_C[i, i] == pytest.approx(J_G[i, i] + m * (d[j] ** 2 + d[k] ** 2), rel=2 * EPS)
+
+
+def test_parallel_axis_adds_the_tensor_of_a_point_mass_at_d():
+    J_G = np.diag([1.0, 2.0, 2.5])
+    m, d = 1.5, np.array([0.3, -1.2, 0.7])
+    point = I.inertia_tensor([m], [d], about=ORIGIN)
+    np.testing.assert_allclose(I.parallel_axis(J_G, m, d), J_G + point, rtol=0, atol=ENTRY_ATOL * 4)
+
+
+def test_parallel_axis_is_exactly_symmetric_and_broadcasts():
+    J_G = I.box(1.0, 1.0, 2.0, 3.0)
+    d = np.random.default_rng(1).normal(size=(5, 3)) * 1e3
+    J = I.parallel_axis(J_G, np.arange(1.0, 6.0), d)
+    assert J.shape == (5, 3, 3)
+    np.testing.assert_array_equal(J, np.swapaxes(J, -1, -2))
+
+
+def test_parallel_axis_validates_its_inputs():
+    with pytest.raises(NonPhysicalInertiaError):
+        I.parallel_axis(np.diag([1.0, 1.0, 3.0]), 1.0, [0, 0, 1])
+    with pytest.raises(NegativeMassError):
+        I.parallel_axis(np.eye(3), -1.0, [0, 0, 1])
+    with pytest.raises(ShapeError):
+        I.parallel_axis(np.eye(3), 1.0, [0, 1])
+    with pytest.raises(NonFiniteError):
+        I.parallel_axis(np.eye(3), 1.0, [0, np.nan, 1])
+
+
+def test_parallel_axis_reports_overflow():
+    from mechanics.errors import ResultOverflowError
+
+    with pytest.raises(ResultOverflowError):
+        I.parallel_axis(np.eye(3), 1.0, [1e200, 0, 0])
+
+
+# ---------------------------------------------------------------- rotate_inertia
+
+
+def test_rotate_inertia_reproduces_example_4_2():
+    Jx, Jy, Jz, psi = 1.0, 2.0, 2.5, 0.7
+    c, s = math.cos(psi), math.sin(psi)
+    book = np.array(  # (4.30)
+        [
+            [c * c * Jx + s * s * Jy, c * s * (Jx - Jy), 0],
+            [c * s * (Jx - Jy), s * s * Jx + c * c * Jy, 0],
+            [0, 0, Jz],
+        ]
+    )
+    J_O = I.rotate_inertia(np.diag([Jx, Jy, Jz]), R3(psi))
+    np.testing.assert_allclose(J_O, book, rtol=0, atol=ENTRY_ATOL * Jz)
+    # (4.31): the product of inertia D_xy = −cos ψ sin ψ (J'x − J'y) = −J_O[0, 1].
+    assert -J_O[0, 1] == pytest.approx(-c * s * (Jx - Jy), rel=4 * EPS)
+
+
+def test_rotate_inertia_of_a_symmetric_top_about_its_axis_leaves_it_diagonal():
+    J = np.diag([2.0, 2.0, 3.0])
+    out = I.rotate_inertia(J, R3(0.9))
+    np.testing.assert_allclose(out, J, rtol=0, atol=ENTRY_ATOL * 3)
+
+
+def test_rotate_inertia_is_exactly_symmetric_and_inverted_by_inertia_A_from_O():
+    R = matrix_from_rotvec(np.random.default_rng(2).normal(size=(50, 3)))
+    J = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), R)
+    np.testing.assert_array_equal(J, np.swapaxes(J, -1, -2))
+    back = I.inertia_A_from_O(J, R)
+    np.testing.assert_allclose(
+        back,
+        np.broadcast_to(np.diag([1.0, 2.0, 2.5]), back.shape),
+        rtol=0,
+        atol=ENTRY_ATOL * 2.5 * 2,
+    )
+
+
+def test_rotate_inertia_rejects_a_reflection():
+    with pytest.raises(NotARotationError):
+        I.rotate_inertia(np.eye(3), np.diag([1.0, 1.0, -1.0]))
+
+
+# ---------------------------------------------------------------- principal axes
+
+
+def test_principal_axes_of_a_diagonal_tensor_are_the_basis_sorted():
+    moments, R = I.principal_axes(np.diag([3.0, 1.0, 2.0]))
+    assert moments.tolist() == [1.0, 2.0, 3.0]
+    np.testing.assert_array_equal(np.abs(R), np.eye(3)[[1, 2, 0]])
+    assert np.linalg.det(R) == pytest.approx(1.0, abs=EPS)
+
+
+def test_principal_axes_rows_are_eigenvectors_4_13():
+    J = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec([0.3, -0.8, 1.9]))
+    moments, R = I.principal_axes(J)
+    for i in range(3):
+        np.testing.assert_allclose(J @ R[i], moments[i] * R[i], rtol=0, atol=8 * EPS * 2.5)
+
+
+def test_principal_axes_is_a_proper_rotation_with_fixed_signs():
+    rng = np.random.default_rng(3)
+    J = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec(rng.normal(size=(200, 3))))
+    _, R = I.principal_axes(J)
+    det = np.linalg.det(R)
+    np.testing.assert_allclose(det, 1.0, rtol=0, atol=8 * EPS)
+    for i in (0, 1):
+        row = R[:, i, :]
+        k = np.argmax(np.abs(row), axis=-1)
+        assert (row[np.arange(len(k)), k] > 0).all()
+
+
+def test_principal_axes_of_a_spherical_top_and_of_a_rod():
+    moments, R = I.principal_axes(I.solid_sphere(5.0, 1.0))
+    np.testing.assert_array_equal(moments, [2.0, 2.0, 2.0])
+    moments, R = I.principal_axes(I.rod(12.0, 1.0))
+    assert moments.tolist() == [0.0, 1.0, 1.0]
+    assert np.abs(R[0]).tolist() == [0.0, 0.0, 1.0]  # the rod's axis
+    with pytest.raises(NonPhysicalInertiaError):
+        I.principal_axes(I.rod(12.0, 1.0), allow_singular=False)
+
+
+def test_principal_axes_rejects_a_non_physical_tensor():
+    with pytest.raises(NonPhysicalInertiaError, match="triangle"):
+        I.principal_axes(np.diag([1.0, 1.0, 3.0]))
+
+
+def test_principal_subspaces_of_a_symmetric_top_are_unique():
+    J = I.rotate_inertia(np.diag([2.0, 2.0, 3.0]), matrix_from_rotvec([0.3, -0.8, 1.9]))
+    _moments, P = I.principal_subspaces(J)
+    e3 = I.principal_axes(J)[1][2]
+    plane = np.eye(3) - np.outer(e3, e3)
+    np.testing.assert_allclose(P[0], plane, rtol=0, atol=16 * EPS)
+    np.testing.assert_allclose(P[1], plane, rtol=0, atol=16 * EPS)
+    np.testing.assert_allclose(np.trace(P, axis1=-2, axis2=-1), [2.0, 2.0, 1.0], atol=16 * EPS)
+
+
+def test_principal_subspaces_rtol_decides_what_coincides():
+    J = np.diag([1.0, 1.0 + 1e-10, 2.0])
+    _, P = I.principal_subspaces(J)  # default √eps: one plane
+    assert np.trace(P[0]) == pytest.approx(2.0)
+    _, P = I.principal_subspaces(J, rtol=1e-12)  # separated
+    assert np.trace(P[0]) == pytest.approx(1.0)
+    with pytest.raises(NonPositiveParameterError):
+        I.principal_subspaces(J, rtol=-1.0)
+
+
+# ------------------------------------------------------------- Example 4.1
+
+
+def test_four_particle_realisation_reproduces_example_4_1():
+    m, Jx, Jy, Jz = 2.0, 1.0, 2.0, 2.5
+    masses, r = I.four_particle_realisation(m, np.diag([Jx, Jy, Jz]))
+    assert masses.tolist() == [0.5] * 4
+    a = math.sqrt((Jz - Jx + Jy) / m)  # (4.29)
+    b = math.sqrt((Jz + Jx - Jy) / m)
+    c = math.sqrt((Jx + Jy - Jz) / (2 * m))
+    book = np.array([[a, 0, c], [-a, 0, c], [0, b, -c], [0, -b, -c]])  # (4.15)-(4.18)
+    np.testing.assert_allclose(np.abs(r), np.abs(book), rtol=0, atol=4 * EPS)
+    # (4.19)-(4.25): the particles have the tensor they were built for.
+    np.testing.assert_allclose(
+        I.inertia_tensor(masses, r, about=ORIGIN), np.diag([Jx, Jy, Jz]), rtol=0, atol=8 * EPS
+    )
+
+
+def test_four_particles_of_a_spherical_top_form_a_regular_tetrahedron():
+    _, r = I.four_particle_realisation(1.0, np.eye(3))
+    dist = np.linalg.norm(r[:, None, :] - r[None, :, :], axis=-1)[np.triu_indices(4, 1)]
+    np.testing.assert_allclose(dist, dist[0], rtol=4 * EPS)
+
+
+def test_four_particle_realisation_of_a_flat_body_is_planar():
+    # J1 + J2 = J3: c = 0, all four particles in one plane (the book's remark
+    # on three-particle systems, read backward).
+    _masses, r = I.four_particle_realisation(1.0, I.rectangular_plate(1.0, 2.0, 1.0))
+    assert np.abs(r[:, 2]).max() == 0.0
+
+
+def test_four_particle_realisation_validates():
+    with pytest.raises(NonPositiveParameterError):
+        I.four_particle_realisation(0.0, np.eye(3))
+    with pytest.raises(NegativeMassError):
+        I.four_particle_realisation(-1.0, np.eye(3))
+    with pytest.raises(NonPhysicalInertiaError):
+        I.four_particle_realisation(1.0, np.diag([1.0, 1.0, 3.0]))
+
+
+def test_rotate_inertia_reports_overflow():
+    from mechanics.errors import ResultOverflowError
+
+    with pytest.raises(ResultOverflowError):
+        I.rotate_inertia(np.eye(3) * 1.7e308, matrix_from_rotvec([0.3, 0.4, 0.5]))
+
+
+def test_rotate_inertia_rejects_an_asymmetric_matrix_instead_of_symmetrising_it():
+    J = np.diag([1.0, 2.0, 2.5])
+    J[0, 1] = 1e-3
+    with pytest.raises(NonPhysicalInertiaError, match="J_A is not symmetric"):
+        I.rotate_inertia(J, np.eye(3))
+    with pytest.raises(NonPhysicalInertiaError, match="J_O is not symmetric"):
+        I.inertia_A_from_O(J, np.eye(3))

@@ -1,0 +1,379 @@
+"""API, validation and special cases of :mod:`mechanics.tops`.
+
+Independent routes: scipy's DOP853 on Euler's equations (4.47) and the attitude
+equation dR/dt = −[ω]× R; the free symmetric top's uniform closed form (5.34)–(5.45)
+against the elliptic solution at m = 0; Example 5.1's kinematics and energy (5.27);
+the heavy top against DOP853 on the book's equations (5.50)–(5.52); the steady
+precession and sleeping-top conditions (5.60), (5.72) against the cubic f(u).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from mechanics import tops
+from mechanics.errors import (
+    GimbalLockError,
+    NonFiniteError,
+    NonPhysicalInertiaError,
+    NonPositiveParameterError,
+    NotARotationError,
+    OutOfDomainError,
+    ShapeError,
+    UnknownOptionError,
+)
+from mechanics.rotation import matrix_from_euler
+
+EPS = np.finfo(float).eps
+
+# DOP853 at rtol = 1e-13 over t ≤ 10 (a few rotations): its global error stays below
+# ~1e-12 of the state scale; the exact solution is within 100 eps of the truth.
+ODE_ATOL = 2e-11
+ODE_RTOL = 1e-13
+
+R0 = matrix_from_euler(0.3, 1.1, -0.7)
+
+
+def _euler_rhs(J):
+    J = np.asarray(J, float)
+
+    def f(t, y):
+        w = y[:3]
+        R = y[3:].reshape(3, 3)
+        dw = np.array(
+            [
+                (J[1] - J[2]) * w[1] * w[2] / J[0],
+                (J[2] - J[0]) * w[2] * w[0] / J[1],
+                (J[0] - J[1]) * w[0] * w[1] / J[2],
+            ]
+        )
+        S = np.array([[0, -w[2], w[1]], [w[2], 0, -w[0]], [-w[1], w[0], 0]])
+        return np.concatenate([dw, (-S @ R).ravel()])
+
+    return f
+
+
+def _integrate(J, w0, ts):
+    sol = solve_ivp(
+        _euler_rhs(J),
+        (0, ts[-1]),
+        np.concatenate([w0, R0.ravel()]),
+        method="DOP853",
+        rtol=ODE_RTOL,
+        atol=1e-15,
+        t_eval=ts,
+    )
+    return sol.y[:3].T, sol.y[3:].T.reshape(-1, 3, 3)
+
+
+CASES = {
+    "near axis 1": ([1.0, 2.0, 3.0], [1.0, 0.1, 0.5], "axis1"),
+    "near axis 3": ([1.0, 2.0, 3.0], [0.2, 0.1, 1.5], "axis3"),
+    "unsorted moments": ([3.0, 1.0, 2.5], [0.1, 1.0, 0.3], "axis1"),
+    "unsorted, odd permutation": ([2.0, 1.0, 2.5], [0.4, 1.0, 0.3], None),
+    "near the middle axis (Dzhanibekov)": ([1.0, 2.0, 3.0], [1e-3, 1.0, 1e-3], "axis3"),
+    "separatrix to 1e-16": ([1.0, 2.0, 3.0], [1.0, 0.0, 0.5773502691896257], "axis1"),
+    "on the separatrix": ([3.0, 4.0, 6.0], [2.0, 0.5, 1.0], "separatrix"),
+    "on the separatrix, ω1 < 0": ([3.0, 4.0, 6.0], [-2.0, 0.5, 1.0], "separatrix"),
+    "prolate symmetric": ([1.0, 1.0, 2.0], [0.3, 0.4, 1.0], "axis3"),
+    "oblate symmetric": ([1.0, 2.0, 2.0], [0.3, 0.4, 1.0], "axis1"),
+    "spherical": ([2.0, 2.0, 2.0], [0.3, 0.4, 1.0], "steady"),
+    "about the middle axis": ([1.0, 2.0, 3.0], [0.0, 1.0, 0.0], "steady"),
+    "in a degenerate plane": ([1.0, 1.0, 2.0], [0.3, 0.4, 0.0], "steady"),
+    "at rest": ([1.0, 2.0, 3.0], [0.0, 0.0, 0.0], "rest"),
+    "flat body J1 + J2 = J3": ([1.0, 2.0, 3.0], [0.5, 0.5, 0.5], None),
+}
+
+
+@pytest.mark.parametrize("case", list(CASES))
+def test_free_top_matches_dop853_for_omega_and_attitude(case):
+    J, w0, regime = CASES[case]
+    top = tops.FreeAsymmetricTop(J, w0, R0)
+    if regime is not None:
+        assert top.regime == regime
+    ts = np.linspace(0, 10, 11)
+    w_ref, R_ref = _integrate(J, np.asarray(w0), ts)
+    w, R = top.omega(ts), top.attitude(ts)
+    assert np.isfinite(w).all()
+    assert np.isfinite(R).all()
+    scale = max(1.0, float(np.abs(w0).max()))
+    assert np.abs(w - w_ref).max() <= ODE_ATOL * scale
+    assert np.abs(R - R_ref).max() <= ODE_ATOL * scale * 10
+
+
+def test_omega_and_attitude_broadcast_over_time_shape():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [1.0, 0.1, 0.5])
+    t = np.linspace(0, 3, 6).reshape(2, 3)
+    assert top.omega(t).shape == (2, 3, 3)
+    assert top.attitude(t).shape == (2, 3, 3, 3)
+    assert top.omega(1.0).shape == (3,)
+    assert top.attitude(1.0).shape == (3, 3)
+    np.testing.assert_array_equal(top.omega(t)[1, 2], top.omega(t[1, 2]))
+
+
+def test_free_top_starts_at_its_initial_condition():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.3, -0.8, 0.5], R0)
+    assert np.abs(top.omega(0.0) - [0.3, -0.8, 0.5]).max() <= 8 * EPS
+    assert np.abs(top.attitude(0.0) - R0).max() <= 16 * EPS
+
+
+def test_flip_period_is_the_period_of_omega_and_inf_for_steady_motion():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.05, 1.0, 0.05])
+    T = top.flip_period()
+    w = top.omega(np.array([0.37, 0.37 + T]))
+    assert np.abs(w[1] - w[0]).max() <= 64 * EPS * (1 + T)
+    half = top.omega(0.37 + T / 2)
+    assert half[1] == pytest.approx(-w[0, 1], rel=1e-12)  # the flip: ω2 reverses in T/2
+    assert tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.0, 1.0, 0.0]).flip_period() == math.inf
+
+
+def test_flip_period_diverges_logarithmically_toward_the_separatrix():
+    # T ≈ (4/λ) ln(4/√m1) near m = 1: halving log10 m1 roughly doubles T's log part
+    Ts = [
+        tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [e, 1.0, e]).flip_period()
+        for e in (1e-2, 1e-4, 1e-8)
+    ]
+    assert Ts[0] < Ts[1] < Ts[2]
+    assert (Ts[2] - Ts[1]) == pytest.approx(2 * (Ts[1] - Ts[0]), rel=0.05)
+
+
+def test_poinsot_residuals_vanish():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [1.0, 0.1, 0.5], R0)
+    ell, plane = top.poinsot_residuals(np.linspace(0, 50, 101))
+    assert np.abs(ell).max() <= 32 * EPS * top.energy
+    assert np.abs(plane).max() <= 256 * EPS * top.energy
+
+
+def test_free_symmetric_top_closed_form_matches_the_general_solution():
+    for w0 in ([0.3, 0.4, 1.0], [0.3, 0.4, -2.0], [0.3, 0.4, 0.0], [0.0, 0.0, 1.0]):
+        sym = tops.FreeSymmetricTop(1.0, 2.0, w0, R0)
+        gen = tops.FreeAsymmetricTop([1.0, 1.0, 2.0], w0, R0)
+        ts = np.linspace(0, 20, 9)
+        assert np.abs(sym.omega(ts) - gen.omega(ts)).max() <= 64 * EPS * 20
+        assert np.abs(sym.attitude(ts) - gen.attitude(ts)).max() <= 256 * EPS * 20
+
+
+def test_free_symmetric_top_rates_are_the_books():
+    J1, J3, w0 = 2.0, 1.0, np.array([0.3, 0.1, 1.5])
+    top = tops.FreeSymmetricTop(J1, J3, w0)
+    L = np.linalg.norm([J1 * w0[0], J1 * w0[1], J3 * w0[2]])
+    assert top.body_precession_rate == pytest.approx((J3 - J1) * w0[2] / J1, rel=4 * EPS)  # 5.40
+    assert top.space_precession_rate == pytest.approx(L / J1, rel=4 * EPS)  # 5.34
+    cos_t = J3 * w0[2] / L
+    assert top.spin_rate == pytest.approx(L / J1 * cos_t * (J1 - J3) / J3, rel=8 * EPS)  # 5.35
+
+
+@pytest.mark.parametrize(
+    ("J", "match"),
+    [
+        ([0.0, 1.0, 1.0], "J1 = 0.0 ≤ 0"),
+        ([1.0, -2.0, 2.0], "J2 = -2.0 ≤ 0"),
+        ([1.0, 2.0, 3.5], r"J1 \+ J2 ≥ J3: J3 exceeds J1 \+ J2 by 0.5"),
+        ([4.0, 1.0, 2.0], r"J2 \+ J3 ≥ J1: J1 exceeds J2 \+ J3 by 1"),
+    ],
+)
+def test_non_physical_moments_name_the_condition_and_the_excess(J, match):
+    with pytest.raises(NonPhysicalInertiaError, match=match):
+        tops.FreeAsymmetricTop(J, [1.0, 0.0, 0.0])
+
+
+def test_triangle_inequality_excess_is_measured_exactly():
+    # J3 = J1 + J2 + 1 ulp: exact rational arithmetic sees the ulp
+    J3 = math.nextafter(3.0, 4.0)
+    with pytest.raises(NonPhysicalInertiaError, match=r"4\.44089e-16"):
+        tops.check_principal_moments([1.0, 2.0, J3])
+    tops.check_principal_moments([1.0, 2.0, 3.0])  # the flat body is allowed
+
+
+@pytest.mark.parametrize(
+    ("args", "err"),
+    [
+        (([1.0, 2.0, np.nan], [1.0, 0, 0]), NonFiniteError),
+        (([1.0, 2.0, 3.0], [1.0, np.inf, 0]), NonFiniteError),
+        (([1.0, 2.0], [1.0, 0, 0]), ShapeError),
+        (([1.0, 2.0, 3.0], [1.0, 0, 0], np.diag([1.0, 1.0, -1.0])), NotARotationError),
+    ],
+)
+def test_free_top_bad_input(args, err):
+    with pytest.raises(err):
+        tops.FreeAsymmetricTop(*args)
+
+
+def test_free_top_at_rest_is_trivial_not_nan():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.0, 0.0, 0.0], R0)
+    t = np.linspace(0, 5, 4)
+    np.testing.assert_array_equal(top.omega(t), 0.0)
+    np.testing.assert_array_equal(top.attitude(t), np.broadcast_to(R0, (4, 3, 3)))
+    assert top.energy == 0.0
+    assert top.flip_period() == math.inf
+
+
+def test_free_top_time_must_be_finite():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [1.0, 0.1, 0.5])
+    with pytest.raises(NonFiniteError):
+        top.omega([0.0, np.nan])
+
+
+def test_principal_axis_stability_middle_axis_unstable_others_oscillate():
+    J = [1.0, 2.0, 4.0 - 1.0]
+    w = 2.0
+    s1, s2, s3 = (tops.principal_axis_stability(J, a, omega=w) for a in (1, 2, 3))
+    assert (s1.kind, s2.kind, s3.kind) == ("stable", "unstable", "stable")
+    # (5.102) with Ci = (Jj − Jk)/Ji written out by hand
+    assert s2.rate == pytest.approx(w * math.sqrt((3 - 2) / 1 * (2 - 1) / 3), rel=4 * EPS)
+    assert s1.rate == pytest.approx(w * math.sqrt((3 - 1) / 2 * (3 - 2) / 3), rel=4 * EPS)
+    assert s3.rate == pytest.approx(w * math.sqrt((3 - 1) / 2 * (2 - 1) / 1), rel=4 * EPS)
+    assert tops.principal_axis_stability([1.0, 1.0, 2.0], 1).kind == "neutral"
+    with pytest.raises(UnknownOptionError):
+        tops.principal_axis_stability(J, 4)
+
+
+def test_middle_axis_growth_rate_matches_the_exact_free_top():
+    # a perturbation of 1e-12 about axis 2 grows like e^{rate t}: by t = 12 the decaying
+    # mode is down by e^{-2 rate t} ≈ 1e-6, and at t = 20 the amplitude is still ~1e-7
+    J, eps0 = [1.0, 2.0, 3.0], 1e-12
+    top = tops.FreeAsymmetricTop(J, [eps0, 1.0, eps0])
+    rate = tops.principal_axis_stability(J, 2).rate
+    t = np.array([12.0, 20.0])
+    w1 = np.abs(top.omega(t)[:, 0])
+    assert math.log(w1[1] / w1[0]) / 8.0 == pytest.approx(rate, rel=1e-5)
+
+
+def test_spherical_top_on_incline_example_5_1():
+    m, R, J, beta, g = 2.0, 0.3, 0.4 * 2.0 * 0.09, 0.4, 9.81
+    w0 = np.array([0.5, -1.0, 3.0])
+    t = np.linspace(0, 2, 5)
+    x, _, w = tops.spherical_top_on_incline(
+        t, m=m, R=R, J=J, beta=beta, g=g, x0=1.0, y0=-1.0, omega_0=w0
+    )
+    alpha = R * m * g * np.sin(beta) / (J + m * R * R)
+    assert alpha == pytest.approx(5 / 7 * g * np.sin(beta) / R, rel=4 * EPS)  # solid sphere
+    np.testing.assert_allclose(w[:, 1], w0[1] + alpha * t, rtol=4 * EPS)
+    # rolling: ẋ = R ω_y (5.6), ẏ = −R ω_x (5.7), by finite difference of the trajectory
+    h = 1e-4
+    xp, yp, _ = tops.spherical_top_on_incline(
+        t + h, m=m, R=R, J=J, beta=beta, g=g, x0=1.0, y0=-1.0, omega_0=w0
+    )
+    xm, ym, _ = tops.spherical_top_on_incline(
+        t - h, m=m, R=R, J=J, beta=beta, g=g, x0=1.0, y0=-1.0, omega_0=w0
+    )
+    np.testing.assert_allclose((xp - xm) / (2 * h), R * w[:, 1], atol=1e-9)
+    np.testing.assert_allclose((yp - ym) / (2 * h), -R * w[:, 0], atol=1e-9)
+    # energy (5.24)–(5.26) conserved
+    T = 0.5 * ((J + m * R * R) * (w[:, 0] ** 2 + w[:, 1] ** 2) + J * w[:, 2] ** 2)
+    E = T - m * g * x * np.sin(beta)
+    np.testing.assert_allclose(E, E[0], rtol=0, atol=64 * EPS * abs(T).max())
+    with pytest.raises(NonPositiveParameterError):
+        tops.spherical_top_on_incline(t, m=-1.0, R=R, J=J, beta=beta, g=g)
+    with pytest.raises(OutOfDomainError):
+        tops.spherical_top_on_incline(t, m=m, R=R, J=J, beta=2.0, g=g)
+
+
+# ----------------------------------------------------------------- heavy top
+
+
+def _heavy_rhs(J1, J3, mgl):
+    def f(t, y):
+        th, _, _, thd, psd, phd = y
+        s, c = np.sin(th), np.cos(th)
+        # (5.50)–(5.52) solved for the second derivatives
+        thdd = (mgl * s - ((J3 - J1) * psd**2 * s * c + J3 * psd * phd * s)) / J1
+        psdd = ((J3 - J1) * psd * thd * c + J3 * thd * phd - J1 * psd * thd * c) / (J1 * s)
+        phdd = -(psdd * c - psd * thd * s)
+        return [thd, psd, phd, thdd, psdd, phdd]
+
+    return f
+
+
+HEAVY = {
+    "nutating": dict(theta=1.0, psi=0.2, phi=0.1, theta_dot=0.3, psi_dot=0.3, phi_dot=8.0),
+    "from rest in θ": dict(theta=0.6, theta_dot=0.0, psi_dot=0.0, phi_dot=12.0),
+    "looping": dict(theta=1.2, theta_dot=0.0, psi_dot=-1.5, phi_dot=6.0),
+    "slow spin": dict(theta=0.8, theta_dot=-0.5, psi_dot=0.7, phi_dot=1.0),
+}
+
+
+@pytest.mark.parametrize("case", list(HEAVY))
+def test_heavy_top_matches_dop853_on_the_books_equations(case):
+    J1, J3, mgl = 1.0, 0.5, 1.0
+    kw = HEAVY[case]
+    top = tops.HeavySymmetricTop(J1, J3, mgl, **kw)
+    ts = np.linspace(0, 8, 9)
+    y0 = [
+        kw["theta"],
+        kw.get("psi", 0.0),
+        kw.get("phi", 0.0),
+        kw["theta_dot"],
+        kw["psi_dot"],
+        kw["phi_dot"],
+    ]
+    sol = solve_ivp(
+        _heavy_rhs(J1, J3, mgl), (0, 8), y0, method="DOP853", rtol=1e-13, atol=1e-13, t_eval=ts
+    )
+    assert np.abs(top.theta(ts) - sol.y[0]).max() <= 1e-10
+    assert np.abs(top.psi(ts) - sol.y[1]).max() <= 1e-10
+    assert np.abs(top.phi(ts) - sol.y[2]).max() <= 1e-10
+
+
+def test_heavy_top_roots_bracket_the_motion_and_are_roots_of_f():
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, **HEAVY["nutating"])
+    u1, u2, u3 = top.roots
+    assert -1 <= u1 <= math.cos(1.0) <= u2 <= 1 < u3
+    scale = np.abs(top.f(np.array([-1.0, 1.0]))).max() + 1
+    assert np.abs(top.f(np.array(top.roots))).max() <= 64 * EPS * scale
+    u = top.u(np.linspace(0, 20, 200))
+    assert u.min() >= u1 - 4 * EPS
+    assert u.max() <= u2 + 4 * EPS
+
+
+def test_steady_precession_gives_a_double_root_and_constant_theta():
+    J1, J3, mgl, th = 1.0, 0.5, 1.0, 0.9
+    phid = 10.0
+    # choose Ω from (5.60) with L3 = J3(Ω cos θ + φ̇): J1 cosθ Ω² − L3 Ω + mgl = 0 → solve by
+    # fixed point on the slow root
+    om = 0.0
+    for _ in range(60):
+        L3 = J3 * (om * math.cos(th) + phid)
+        om = tops.steady_precession_rates(J1, L3, mgl, th)[0]
+    top = tops.HeavySymmetricTop(J1, J3, mgl, theta=th, theta_dot=0.0, psi_dot=om, phi_dot=phid)
+    u1, u2, _ = top.roots
+    assert abs(u2 - u1) <= 1e-12
+    ts = np.linspace(0, 30, 31)
+    assert np.abs(top.theta(ts) - th).max() <= 1e-6
+    np.testing.assert_allclose(top.psi(ts), om * ts, rtol=1e-9, atol=1e-12)
+
+
+def test_sleeping_top_condition_and_motion():
+    assert tops.sleeping_top_is_stable(1.0, 2.0 + 1e-9, 1.0)
+    assert not tops.sleeping_top_is_stable(1.0, 2.0 - 1e-9, 1.0)
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=0.0, psi_dot=0.5, phi_dot=3.0)
+    assert top.sleeping
+    np.testing.assert_array_equal(top.u(np.array([0.0, 5.0])), 1.0)
+    with pytest.raises(GimbalLockError):
+        tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=0.0, theta_dot=1.0)
+
+
+def test_effective_potential_turning_points_are_the_roots():
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, **HEAVY["nutating"])
+    u1, u2, _ = top.roots
+    th = np.arccos([u1, u2])
+    # E' − Φ_eff(θ) = 0 at the turning points (5.71)
+    gap = top.reduced_energy - top.effective_potential(th)
+    assert np.abs(gap).max() <= 1e-12 * abs(top.energy)
+
+
+def test_heavy_top_bad_input():
+    with pytest.raises(NonPositiveParameterError):
+        tops.HeavySymmetricTop(-1.0, 0.5, 1.0, theta=1.0)
+    with pytest.raises(NonPositiveParameterError):
+        tops.HeavySymmetricTop(1.0, 0.5, 0.0, theta=1.0)
+    with pytest.raises(NonFiniteError):
+        tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=np.nan)
+    with pytest.raises(OutOfDomainError):
+        tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=4.0)
+    with pytest.raises(OutOfDomainError):
+        tops.steady_precession_rates(1.0, 0.1, 1.0, 0.2)

@@ -1,0 +1,210 @@
+"""The exact free top near the separatrix against mpmath, errors in eps.
+
+Two oracles, both taking the float inputs (J, ω0, R0) as exact binary numbers:
+
+- ``tests/data/elliptic_reference.json`` (``tools/make_elliptic_reference.py``):
+  mpmath's Taylor-series ODE solver on Euler's equations (4.47) and
+  dR/dt = −[ω]× R at 40 digits, to t = 20, near the separatrix from both sides
+  (|L² − 2EJ2|/L² from 1e-3 to 1e-16) and exactly on it.  No elliptic function
+  and no formula of ``mechanics.tops`` is involved.
+- In-test, for the hypothesis search closer to the separatrix than an ODE
+  solver can follow (m1 down to 1e-280): the book's/Landau's elliptic solution
+  evaluated by mpmath at 60+ digits with its parameters computed from the exact
+  inputs (the formulas are pinned by the ODE oracles; this one measures rounding).
+
+Error measure: max over components |ω − ω*| / (eps · |ω0| · (1 + λ t)), the
+relative error allowed the unavoidable phase error of a float time t (λ t is
+the elliptic argument, about 2π per quarter flip).  Bound: :data:`TOP_EPS`.
+Attitude: max-abs matrix error / (eps · (1 + λ t)).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import mpmath
+import numpy as np
+import pytest
+from hypothesis import example, given, target
+from hypothesis import strategies as st
+
+from mechanics import tops
+from mechanics.rotation import matrix_from_euler
+
+EPS = np.finfo(float).eps
+DATA = Path(__file__).resolve().parent.parent / "data" / "elliptic_reference.json"
+
+# ω(t) = amplitude × (sn, cn, dn)(λt + u0): the amplitudes and λ are rounded once from
+# exact rationals, u0 is an R_F value within a few eps, the functions within
+# ELLIPJ_EPS (measured ≤ 1.1 conditioned eps): a few tens of eps per unit of phase,
+# plus the sensitivity dω/du·δu of the phase itself near the separatrix.
+TOP_EPS = 64.0
+
+# The attitude adds the precession angle's closed form (R_J, ≤ a few eps per term)
+# and a product of three rotation matrices.
+ATTITUDE_EPS = 256.0
+
+
+def _reference():
+    return json.loads(DATA.read_text())["free_top"]
+
+
+def test_free_top_near_separatrix_against_the_mpmath_ode_solution():
+    lines = []
+    worst_w = worst_R = 0.0
+    for case in _reference():
+        J = [float(x) for x in case["J"]]
+        w0 = np.array([float(x) for x in case["omega_0"]])
+        R0 = matrix_from_euler(*(float(x) for x in case["euler_0"]))
+        top = tops.FreeAsymmetricTop(J, w0, R0)
+        lam = getattr(top, "_lam", 0.0)
+        ew = eR = 0.0
+        for s in case["samples"]:
+            t = float(s["t"])
+            scale = 1 + lam * t
+            ref = [mpmath.mpf(x) for x in s["omega"]]
+            w = top.omega(t)
+            e = max(abs(mpmath.mpf(float(a)) - r) for a, r in zip(w, ref, strict=True))
+            ew = max(ew, float(e / (EPS * np.linalg.norm(w0) * scale)))
+            if s["R"] is not None:
+                R = top.attitude(t).ravel()
+                e = max(
+                    abs(mpmath.mpf(float(a)) - mpmath.mpf(r))
+                    for a, r in zip(R, s["R"], strict=True)
+                )
+                eR = max(eR, float(e / (EPS * scale)))
+        worst_w, worst_R = max(worst_w, ew), max(worst_R, eR)
+        lines.append(
+            f"  J={J} ω0={w0.tolist()} {top.regime:10s} m1={top.m1:.3g}: "
+            f"ω {ew:.3g} eps, R {eR:.3g} eps"
+        )
+    print("\nfree top vs mpmath odefun (eps, per unit of phase):")  # shown with -s
+    print("\n".join(lines))
+    assert worst_w <= TOP_EPS
+    assert worst_R <= ATTITUDE_EPS
+
+
+def _mp_omega(J, w0, t):
+    """The elliptic solution in mpmath for sorted J1 < J2 < J3 (Landau §37)."""
+    J1, J2, J3 = (mpmath.mpf(x) for x in J)
+    w1, w2, w3 = (mpmath.mpf(x) for x in w0)
+    E2 = J1 * w1**2 + J2 * w2**2 + J3 * w3**2
+    L2 = J1**2 * w1**2 + J2**2 * w2**2 + J3**2 * w3**2
+    A, B = E2 * J3 - L2, L2 - E2 * J1
+    D = L2 - E2 * J2
+    if D > 0:
+        m = (J2 - J1) * A / ((J3 - J2) * B)
+        lam = mpmath.sqrt((J3 - J2) * B / (J1 * J2 * J3))
+        a = [
+            mpmath.sqrt(A / (J1 * (J3 - J1))),
+            mpmath.sqrt(A / (J2 * (J3 - J2))),
+            mpmath.sqrt(B / (J3 * (J3 - J1))),
+        ]
+        s = mpmath.sign(w3)
+        sn0, cn0 = s * w2 / a[1], w1 / a[0]
+    else:
+        m = (J3 - J2) * B / ((J2 - J1) * A)
+        lam = mpmath.sqrt((J2 - J1) * A / (J1 * J2 * J3))
+        a = [
+            mpmath.sqrt(A / (J1 * (J3 - J1))),
+            mpmath.sqrt(B / (J2 * (J2 - J1))),
+            mpmath.sqrt(B / (J3 * (J3 - J1))),
+        ]
+        s = mpmath.sign(w1)
+        sn0, cn0 = s * w2 / a[1], w3 / a[2]
+    u0 = mpmath.ellipf(mpmath.atan2(sn0, cn0), m)
+    u = lam * mpmath.mpf(t) + u0
+    sn, cn, dn = (mpmath.ellipfun(f, u, m=m) for f in ("sn", "cn", "dn"))
+    if D > 0:
+        return [a[0] * cn, s * a[1] * sn, s * a[2] * dn], lam
+    return [s * a[0] * dn, s * a[1] * sn, a[2] * cn], lam
+
+
+@st.composite
+def near_separatrix(draw):
+    """Sorted J and ω0 with L² − 2EJ2 = δ · J1(J2 − J1)ω1², |δ| from 1e-2 to 1e-280."""
+    J1 = draw(st.floats(0.5, 2.0))
+    J2 = J1 * draw(st.floats(1.05, 2.0))
+    J3 = J2 + (J1 + J2 - J2) * draw(st.floats(0.1, 0.95))
+    k = draw(st.integers(2, 280))
+    sign = draw(st.sampled_from([-1, 1]))
+    w1 = draw(st.floats(0.1, 1.0))
+    w2 = draw(st.floats(-1.0, 1.0))
+    # ω3² = J1(J2−J1)ω1²(1 + δ)/(J3(J3−J2)) with δ = ±10^−k, in mpmath then rounded: the
+    # float rounding moves δ by ~eps, so small k keep the side, large k land anywhere
+    # within ~1e-16 of the separatrix on either side (both are wanted)
+    with mpmath.workdps(30):
+        w3 = float(
+            w1 * mpmath.sqrt(J1 * (J2 - J1) * (1 + sign * mpmath.mpf(10) ** -k) / (J3 * (J3 - J2)))
+        )
+    t = draw(st.floats(0.0, 30.0))
+    return (J1, J2, J3), (w1, w2, w3), t
+
+
+@pytest.mark.slow
+@given(near_separatrix())
+@example(((1.0, 2.0, 3.0), (1.0, 0.001, 0.5773502691896257), 20.0))
+@example(((1.0, 2.0, 3.0), (1.0, 1e-9, 0.5773502691896258), 29.0))
+def test_free_top_near_separatrix_against_mpmath_elliptic_functions(case):
+    J, w0, t = case
+    top = tops.FreeAsymmetricTop(J, w0)
+    if top.regime not in ("axis1", "axis3"):
+        return  # exactly on the separatrix: covered by the ODE oracle
+    dps = 60 + int(-math.log10(top.m1)) if top.m1 > 0 else 60
+    with mpmath.workdps(dps):
+        ref, lam = _mp_omega(J, w0, t)
+        w = top.omega(t)
+        e = max(abs(mpmath.mpf(float(a)) - r) for a, r in zip(w, ref, strict=True))
+        err = float(e / (EPS * math.sqrt(sum(x * x for x in w0)) * (1 + lam * t)))
+    target(err, label="free top ω error in eps per unit phase")
+    assert err <= TOP_EPS, (case, err)
+
+
+# ----------------------------------------------------------------- heavy top
+
+
+# The nutation limits u1 ≤ u0 ≤ u2 come from a quadratic whose roots have opposite
+# signs (no cancellation) and a Newton polish; measured ≤ 4.2 eps absolute, also at
+# the double root of steady precession.  u3 ≥ 1 by bracketing, measured ≤ 28 eps
+# absolute for u3 up to ~40 (a relative 1 eps of u3 plus the deflation).
+NUTATION_ROOT_EPS = 8.0
+LARGE_ROOT_REL_EPS = 8.0
+
+
+def _mp_roots(J1, J3, mgl, th, thd, psd, phd):
+    """Roots of f(u) (5.66)–(5.71) from the exact inputs, by mpmath's polyroots."""
+    J1, J3, mgl, th, thd, psd, phd = (mpmath.mpf(x) for x in (J1, J3, mgl, th, thd, psd, phd))
+    u0, S = mpmath.cos(th), mpmath.sin(th)
+    L3 = J3 * (psd * u0 + phd)
+    Lz = J1 * S**2 * psd + L3 * u0
+    E = J1 / 2 * (thd**2 + psd**2 * S**2) + L3**2 / (2 * J3) + mgl * u0
+    beta, a, b = 2 * mgl / J1, Lz / J1, L3 / J1
+    e = (2 * E - L3**2 / J3) / J1
+    r = mpmath.polyroots(
+        [beta, -(e + b * b), 2 * a * b - beta, e - a * a], maxsteps=200, extraprec=300
+    )
+    return sorted(mpmath.re(x) for x in r)
+
+
+@pytest.mark.parametrize("theta", [0.3, 1.0, 2.0])
+@pytest.mark.parametrize("delta", [1e-2, 1e-6, 1e-10, 1e-14, 0.0])
+@pytest.mark.parametrize("theta_dot", [0.0, 1e-9])
+def test_heavy_top_roots_near_steady_precession_against_mpmath(theta, delta, theta_dot):
+    """ψ̇0 = Ω_slow (1 + δ): the nutation band closes to a double root as δ → 0."""
+    J1, J3, mgl, phd = 1.0, 0.5, 1.0, 10.0
+    om = 0.0
+    for _ in range(80):  # the slow steady rate (5.60) at this θ, by fixed point in L3
+        L3 = J3 * (om * math.cos(theta) + phd)
+        om = tops.steady_precession_rates(J1, L3, mgl, theta)[0]
+    psd = om * (1 + delta)
+    top = tops.HeavySymmetricTop(
+        J1, J3, mgl, theta=theta, theta_dot=theta_dot, psi_dot=psd, phi_dot=phd
+    )
+    with mpmath.workdps(60):
+        ex = _mp_roots(J1, J3, mgl, theta, theta_dot, psd, phd)
+        errs = [float(abs(mpmath.mpf(a) - b) / EPS) for a, b in zip(top.roots, ex, strict=True)]
+        u3 = float(ex[2])
+    assert max(errs[:2]) <= NUTATION_ROOT_EPS, errs
+    assert errs[2] <= LARGE_ROOT_REL_EPS * abs(u3), errs
