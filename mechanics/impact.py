@@ -34,8 +34,7 @@ Conventions (Essén 1996, ch. 6)
   During the impact positions do not change (6.11).
 - Masses of rigid bodies must be > 0; in the direct impact one mass may be 0
   (a massless body), not both.  Inertia tensors must be symmetric, positive
-  definite and obey the triangle inequality (:data:`INERTIA_SYM_RTOL`,
-  :data:`INERTIA_TRIANGLE_RTOL`).
+  definite and obey the triangle inequality (:func:`mechanics.inertia.check_inertia`).
 - Everything is float64 and broadcasts over leading axes: scalars ``(...)``,
   vectors ``(..., 3)``, tensors ``(..., 3, 3)``.
 
@@ -73,7 +72,6 @@ import numpy as np
 from ._validate import as_float_array
 from .errors import (
     NegativeMassError,
-    NonPhysicalInertiaError,
     NonPositiveParameterError,
     OutOfDomainError,
     RestitutionRangeError,
@@ -83,12 +81,10 @@ from .errors import (
     ZeroNormalError,
     ZeroTotalMassError,
 )
+from .inertia import check_inertia
 
 __all__ = [
     "DIRECT_ULPS",
-    "INERTIA_PD_RTOL",
-    "INERTIA_SYM_RTOL",
-    "INERTIA_TRIANGLE_RTOL",
     "CentreOfPercussion",
     "HingedImpact",
     "RigidBody",
@@ -112,25 +108,6 @@ EPS = float(np.finfo(np.float64).eps)
 #: final rounding (½ ulp) and, for velocities, the last addition remain; the
 #: stability tests measure at most 0.5 ulp (see the module docstring).
 DIRECT_ULPS = 2.0
-
-#: Accepted asymmetry of an inertia tensor, max |J − Jᵀ| relative to max |J|.
-#: A diagonal tensor turned by a float64 rotation, R D Rᵀ, is symmetric to a
-#: few eps (each entry is a sum of three products); 64 eps leaves room for
-#: tensors assembled from several parts and still rejects a real asymmetry.
-INERTIA_SYM_RTOL = 64 * EPS
-
-#: Slack on the triangle inequality J1 + J2 ≥ J3 of the principal moments,
-#: relative to J3.  A flat lamina has J1 + J2 = J3 exactly; the eigenvalues of
-#: its rotated tensor come out within a few eps of max |J| (eigvalsh is
-#: backward stable), so 64 eps accepts every lamina and rejects anything
-#: visibly non-physical.
-INERTIA_TRIANGLE_RTOL = 64 * EPS
-
-#: The smallest principal moment must exceed this times the largest: below it
-#: the moment is within the rounding of the largest (eigvalsh is backward
-#: stable to a few eps of max |J|), indistinguishable from 0, and J⁻¹ is
-#: meaningless (a float64 solve may report the matrix singular).
-INERTIA_PD_RTOL = 64 * EPS
 
 _SEPARATING = ("raise", "ignore")
 
@@ -240,37 +217,10 @@ def _unit(n, name: str) -> np.ndarray:
 
 
 def _check_inertia(J, name: str) -> np.ndarray:
-    """Return the symmetrised tensor or raise NonPhysicalInertiaError naming the condition."""
-    a = as_float_array(J, name, (3, 3))
-    scale = np.abs(a).max(axis=(-1, -2))
-    asym = np.abs(a - np.swapaxes(a, -1, -2)).max(axis=(-1, -2))
-    bad = asym > INERTIA_SYM_RTOL * scale
-    if bad.any():
-        idx = tuple(int(i) for i in np.argwhere(bad)[0])
-        raise NonPhysicalInertiaError(
-            f"{name} is not symmetric: max |J - J^T| = {float(asym[idx])!r} exceeds "
-            f"{INERTIA_SYM_RTOL / EPS:.0f} eps x max |J| = {float(scale[idx])!r} at index {idx}"
-        )
-    sym = 0.5 * (a + np.swapaxes(a, -1, -2))
-    lam = np.linalg.eigvalsh(sym)
-    bad = lam[..., 0] <= INERTIA_PD_RTOL * lam[..., 2]
-    if bad.any():
-        idx = tuple(int(i) for i in np.argwhere(bad)[0])
-        raise NonPhysicalInertiaError(
-            f"{name} is not positive definite: smallest principal moment "
-            f"{float(lam[idx][0])!r} is not above {INERTIA_PD_RTOL / EPS:.0f} eps x the largest "
-            f"{float(lam[idx][2])!r} at index {idx}"
-        )
-    gap = lam[..., 2] - lam[..., 0] - lam[..., 1]
-    bad = gap > INERTIA_TRIANGLE_RTOL * lam[..., 2]
-    if bad.any():
-        idx = tuple(int(i) for i in np.argwhere(bad)[0])
-        J1, J2, J3 = (float(x) for x in lam[idx])
-        raise NonPhysicalInertiaError(
-            f"{name} breaks the triangle inequality J1 + J2 >= J3: principal moments "
-            f"{J1!r}, {J2!r}, {J3!r} (J3 exceeds J1 + J2 by {J3 - J1 - J2!r}) at index {idx}"
-        )
-    return sym
+    """:func:`mechanics.inertia.check_inertia` (positive definite: J⁻¹ is needed),
+    returned symmetrised so that the solves below see an exactly symmetric tensor."""
+    a = check_inertia(J, name=name)
+    return 0.5 * (a + np.swapaxes(a, -1, -2))
 
 
 def _first(mask: np.ndarray) -> tuple[int, ...]:

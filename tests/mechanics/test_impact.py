@@ -302,7 +302,7 @@ def test_rigid_separating_contact_raises_or_is_ignored():
     ("J", "match"),
     [
         pytest.param(np.diag([1.0, 1.0, 3.0]), "triangle inequality", id="triangle"),
-        pytest.param(np.diag([1.0, -1.0, 1.0]), "not positive definite", id="indefinite"),
+        pytest.param(np.diag([1.0, -1.0, 1.0]), "not positive semidefinite", id="indefinite"),
         pytest.param(np.diag([1.0, 1.0, 0.0]), "not positive definite", id="rod-axis"),
         pytest.param(np.array([[1, 0.5, 0], [0, 1, 0], [0, 0, 1.0]]), "not symmetric", id="asym"),
     ],
