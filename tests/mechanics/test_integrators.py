@@ -1,0 +1,476 @@
+"""API, validation, convergence orders and work counts of :mod:`mechanics.integrators`.
+
+References are independent of the code under test: exp(λt) and (cos t, −sin t) in
+closed form, the Jacobi-elliptic motion of :class:`mechanics.tops.FreeAsymmetricTop`,
+Euler's equations from :func:`mechanics.dynamics.euler_equations_rhs` and the book's
+Ω from :func:`mechanics.kinematics.omega_matrix_from_vector`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from mechanics.dynamics import euler_equations_rhs
+from mechanics.errors import (
+    NonFiniteError,
+    NonPhysicalInertiaError,
+    NonPositiveParameterError,
+    NotARotationError,
+    OutOfDomainError,
+    ResultOverflowError,
+    ShapeError,
+    StepSizeError,
+    UnknownOptionError,
+)
+from mechanics.integrators import (
+    METHODS,
+    Solution,
+    free_rigid_body_rhs,
+    free_rigid_body_splitting,
+    integrate,
+    rigid_body_parts,
+    rigid_body_state,
+    so3_exp_step,
+    time_grid,
+)
+from mechanics.kinematics import angular_velocity_from_matrix_rate, omega_matrix_from_vector
+from mechanics.rotation import R1, R3, ROTATION_ATOL, matrix_from_rotvec
+from mechanics.tops import FreeAsymmetricTop
+
+EPS = float(np.finfo(float).eps)
+
+J_TOP = np.array([1.0, 2.0, 2.5])
+W_TOP = np.array([0.3, -1.0, 0.7])
+
+
+def decay(t, y):
+    return -y
+
+
+def oscillator(t, y):
+    """q' = p, p' = −q; exact (cos t, −sin t) from (1, 0)."""
+    return np.stack([y[..., 1], -y[..., 0]], axis=-1)
+
+
+class Counting:
+    """A right-hand side that counts its own calls and records the times."""
+
+    def __init__(self, f):
+        self.f, self.calls, self.times = f, 0, []
+
+    def __call__(self, t, y):
+        self.calls += 1
+        self.times.append(t)
+        return self.f(t, y)
+
+
+def _osc_error(sol):
+    t = sol.t[-1]
+    return float(np.abs(sol.y[-1] - [np.cos(t), -np.sin(t)]).max())
+
+
+# ------------------------------------------------------------------------ API
+
+
+def test_solution_holds_times_states_and_work_and_is_frozen():
+    sol = integrate(decay, [1.0, 2.0], [0.0, 0.5, 1.0], method="rk4", h=0.1)
+    assert isinstance(sol, Solution)
+    assert sol.t.tolist() == [0.0, 0.5, 1.0]
+    assert sol.y.shape == (3, 2)
+    assert sol.y[0].tolist() == [1.0, 2.0]
+    assert (sol.method, sol.steps, sol.rhs_evals, sol.rejected_steps) == ("rk4", 10, 40, 0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        sol.steps = 3
+    with pytest.raises(ValueError, match="read-only"):
+        sol.y[0, 0] = 5.0
+
+
+def test_states_keep_the_shape_of_y0():
+    y0 = np.ones((4, 3, 2))
+    for method, kw in (("rk4", {"h": 0.1}), ("dop853", {"rtol": 1e-8})):
+        sol = integrate(decay, y0, (0.0, 1.0), method=method, **kw)
+        assert sol.y.shape == (2, 4, 3, 2)
+    scalar = integrate(decay, 1.0, (0.0, 1.0), method="rk4", h=0.5)
+    assert scalar.y.shape == (2,)
+
+
+# ----------------------------------------------------------------- validation
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_initial_state_is_rejected(bad):
+    with pytest.raises(NonFiniteError, match="y0"):
+        integrate(decay, [1.0, bad], (0.0, 1.0), method="rk4", h=0.1)
+
+
+@pytest.mark.parametrize("h", [0.0, -0.1])
+def test_non_positive_step_is_rejected(h):
+    with pytest.raises(NonPositiveParameterError, match="h must be > 0"):
+        integrate(decay, 1.0, (0.0, 1.0), method="rk4", h=h)
+    with pytest.raises(NonPositiveParameterError, match="h must be > 0"):
+        free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), (0.0, 1.0), h)
+    with pytest.raises(NonPositiveParameterError, match="h must be > 0"):
+        so3_exp_step(np.eye(3), [0.0, 0.0, 1.0], h)
+
+
+@pytest.mark.parametrize("name", ["rtol", "atol"])
+@pytest.mark.parametrize("value", [0.0, -1e-8])
+def test_non_positive_tolerance_is_rejected(name, value):
+    kw = {"rtol": 1e-8, name: value}
+    with pytest.raises(NonPositiveParameterError, match=f"{name} must be > 0"):
+        integrate(decay, 1.0, (0.0, 1.0), method="dop853", **kw)
+
+
+def test_missing_step_or_tolerance_is_named():
+    with pytest.raises(NonPositiveParameterError, match="'rk4' needs a step h"):
+        integrate(decay, 1.0, (0.0, 1.0), method="rk4")
+    with pytest.raises(NonPositiveParameterError, match="'dop853' needs rtol"):
+        integrate(decay, 1.0, (0.0, 1.0), method="dop853")
+    with pytest.raises(UnknownOptionError, match="rtol/atol"):
+        integrate(decay, 1.0, (0.0, 1.0), method="rk4", h=0.1, rtol=1e-6)
+
+
+def test_unknown_method_names_the_choices():
+    with pytest.raises(UnknownOptionError) as info:
+        integrate(decay, 1.0, (0.0, 1.0), method="rk45", h=0.1)
+    for m in METHODS:
+        assert repr(m) in str(info.value)
+    with pytest.raises(UnknownOptionError, match=r"\(2, 4, 6\)"):
+        free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), (0.0, 1.0), 0.1, order=3)
+
+
+def test_bad_time_grids_are_rejected():
+    with pytest.raises(OutOfDomainError, match=r"t\[2\] = 0.5"):
+        integrate(decay, 1.0, [0.0, 1.0, 0.5], method="rk4", h=0.1)
+    with pytest.raises(OutOfDomainError, match="strictly increasing"):
+        integrate(decay, 1.0, [0.0, 0.0], method="rk4", h=0.1)
+    with pytest.raises(ShapeError, match="at least two"):
+        integrate(decay, 1.0, [0.0], method="rk4", h=0.1)
+    with pytest.raises(NonFiniteError, match="t must be finite"):
+        integrate(decay, 1.0, [0.0, np.inf], method="rk4", h=0.1)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_rhs_of_the_wrong_shape_is_named_with_its_time(method):
+    kw = {"h": 0.1} if method == "rk4" else {"rtol": 1e-6}
+    with pytest.raises(ShapeError, match=r"shape \(3,\) at t=0\.0.*\(2,\)"):
+        integrate(lambda t, y: np.ones(3), [1.0, 1.0], (0.0, 1.0), method=method, **kw)
+
+
+@pytest.mark.parametrize("method", METHODS)
+def test_rhs_returning_nan_is_named_with_its_time(method):
+    def f(t, y):
+        return np.full_like(y, np.nan) if t > 0.45 else -y
+
+    kw = {"h": 0.1} if method == "rk4" else {"rtol": 1e-6, "h": 0.05}
+    g = Counting(f)
+    with pytest.raises(NonFiniteError, match=r"non-finite value at t=") as info:
+        integrate(g, [1.0, 1.0], [0.0, 0.3, 1.0], method=method, **kw)
+    first_bad = next(t for t in g.times if t > 0.45)  # rk4: 0.5, a stage time
+    assert f"at t={first_bad!r}:" in str(info.value)
+
+
+def test_blow_up_is_reported_not_returned():
+    with pytest.raises((NonFiniteError, ResultOverflowError), match="t="):
+        integrate(lambda t, y: y * y, 1.0, (0.0, 2.0), method="rk4", h=0.01)
+    with pytest.raises((NonFiniteError, ResultOverflowError, StepSizeError), match="t="):
+        integrate(lambda t, y: y * y, 1.0, (0.0, 2.0), method="dop853", rtol=1e-8)
+
+
+def test_too_many_adaptive_steps_raise():
+    with pytest.raises(StepSizeError, match="max_steps=5"):
+        integrate(oscillator, [1.0, 0.0], (0.0, 100.0), method="dop853", rtol=1e-10, max_steps=5)
+
+
+def test_rigid_body_inputs_are_validated():
+    L0 = J_TOP * W_TOP
+    with pytest.raises(NonPhysicalInertiaError, match="> 0"):
+        free_rigid_body_splitting([1.0, -2.0, 2.5], L0, np.eye(3), (0.0, 1.0), 0.1)
+    with pytest.raises(NonPhysicalInertiaError, match="triangle inequality J1 \\+ J2 ≥ J3"):
+        free_rigid_body_splitting([1.0, 2.0, 4.0], L0, np.eye(3), (0.0, 1.0), 0.1)
+    with pytest.raises(NotARotationError):
+        free_rigid_body_splitting(J_TOP, L0, 2 * np.eye(3), (0.0, 1.0), 0.1)
+    with pytest.raises(NonFiniteError, match="L0"):
+        free_rigid_body_splitting(J_TOP, [np.nan, 0, 0], np.eye(3), (0.0, 1.0), 0.1)
+    with pytest.raises(NotARotationError):
+        so3_exp_step(np.ones((3, 3)), [0.0, 0.0, 1.0], 0.1)
+    with pytest.raises(ShapeError, match=r"\(\.\.\., 12\)"):
+        free_rigid_body_rhs(J_TOP)(0.0, np.ones(9))
+
+
+# ----------------------------------------------------- orders of convergence
+
+
+def test_rk4_error_falls_16_fold_when_h_halves_on_exponential_decay():
+    errs = [
+        abs(integrate(decay, 1.0, (0.0, 2.0), method="rk4", h=h).y[-1] - math.exp(-2.0))
+        for h in (0.2, 0.1, 0.05)
+    ]
+    ratios = [errs[0] / errs[1], errs[1] / errs[2]]
+    assert all(14.0 < r < 18.0 for r in ratios), ratios
+
+
+def test_rk4_error_falls_16_fold_when_h_halves_on_the_oscillator():
+    errs = [
+        _osc_error(integrate(oscillator, [1.0, 0.0], (0.0, 10.0), method="rk4", h=h))
+        for h in (0.2, 0.1, 0.05)
+    ]
+    ratios = [errs[0] / errs[1], errs[1] / errs[2]]
+    assert all(14.0 < r < 18.0 for r in ratios), ratios
+
+
+def test_dop853_global_error_tracks_rtol():
+    # Measured: error/rtol between 1.43 and 1.49 for rtol = 1e-6 … 1e-12 over 10
+    # time units; "tracks" = within a factor 10 of rtol and falling with it.
+    errs = []
+    for rtol in (1e-6, 1e-8, 1e-10, 1e-12):
+        sol = integrate(oscillator, [1.0, 0.0], (0.0, 10.0), method="dop853", rtol=rtol)
+        errs.append(_osc_error(sol))
+        assert errs[-1] <= 10 * rtol
+        assert errs[-1] >= 0.01 * rtol  # not a fluke of a step far finer than needed
+    assert all(a > 30 * b for a, b in itertools.pairwise(errs))
+
+
+def test_dop853_is_of_order_eight_on_exponential_decay():
+    # With a huge rtol no step is rejected and the given h stays the step: an
+    # 8th-order method's error falls about 2⁸ = 256-fold when h halves.
+    errs = []
+    for n in (4, 8):
+        sol = integrate(
+            decay, 1.0, time_grid(0.0, 2.0 / n, n), method="dop853", rtol=1e3, h=2.0 / n
+        )
+        assert sol.steps == n
+        assert sol.rejected_steps == 0
+        errs.append(abs(sol.y[-1] - math.exp(-2.0)))
+    assert 180.0 < errs[0] / errs[1] < 360.0
+
+
+@pytest.mark.parametrize(("order", "lo", "hi"), [(2, 3.6, 4.4), (4, 14.0, 18.0), (6, 55.0, 72.0)])
+def test_splitting_converges_at_its_order_to_the_exact_top(order, lo, hi):
+    top = FreeAsymmetricTop(J_TOP, W_TOP)
+    T = 20.0
+    L_ex, R_ex = J_TOP * top.omega(T), top.attitude(T)
+    errs = []
+    for h in (0.1, 0.05, 0.025):
+        sol = free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), (0.0, T), h, order=order)
+        L, R = rigid_body_parts(sol.y[-1])
+        errs.append(max(np.abs(L - L_ex).max(), np.abs(R - R_ex).max()))
+    ratios = [errs[0] / errs[1], errs[1] / errs[2]]
+    assert all(lo < r < hi for r in ratios), ratios
+
+
+# ------------------------------------------------------------------ time grid
+
+
+def test_time_grid_is_t0_plus_n_h_where_a_running_sum_drifts():
+    n = 10**6
+    t = time_grid(0.0, 0.1, n)
+    assert t[-1] == 100000.0
+    assert np.array_equal(t, 0.1 * np.arange(n + 1))
+    assert np.cumsum(np.full(n, 0.1))[-1] != 100000.0  # what t += h would give
+
+
+def test_rk4_on_the_grid_steps_once_per_output_at_the_grid_times():
+    t = time_grid(0.3, 0.1, 50)
+    f = Counting(decay)
+    sol = integrate(f, 1.0, t, method="rk4", h=0.1)
+    assert sol.steps == 50
+    assert np.array_equal(sol.t, t)
+    assert f.times[0::4] == t[:-1].tolist()  # the first stage of each step
+
+
+def test_long_rk4_run_reaches_the_end_time_without_accumulating():
+    n, h = 10**4, 0.1
+    f = Counting(lambda t, y: np.zeros_like(y))
+    sol = integrate(f, 0.0, (0.0, n * h), method="rk4", h=h)
+    assert sol.steps == n
+    t_last = f.times[-1]  # the last stage: t0 + n h_eff
+    assert abs(t_last - n * h) <= math.ulp(n * h)
+    acc = 0.0
+    for _ in range(n):
+        acc += h
+    assert abs(acc - n * h) > 100 * math.ulp(n * h)  # the running sum is visibly off
+
+
+# ---------------------------------------------------------------------- Kahan
+
+
+def test_kahan_summation_removes_the_rounding_walk_of_a_long_fixed_step_run():
+    # y' = c for 200 values of c over 2¹⁴ steps of h = 2⁻¹⁰: the exact end value
+    # 1 + 16 c is a float (a power-of-2 multiple).  Measured: plain addition 2623
+    # eps worst (1018 median), compensated 1.15 eps worst.
+    c = np.random.default_rng(20240919).uniform(0.1, 1.0, 200)
+    n, h = 2**14, 2.0**-10
+    exact = 1.0 + c * (n * h)
+
+    def run(kahan):
+        sol = integrate(lambda t, y: c, np.ones(200), (0.0, n * h), method="rk4", h=h, kahan=kahan)
+        return float((np.abs(sol.y[-1] - exact) / exact).max())
+
+    plain, compensated = run(False), run(True)
+    assert compensated <= 4 * EPS
+    assert plain >= 100 * EPS
+    dop = integrate(
+        lambda t, y: c, np.ones(200), (0.0, n * h), method="dop853", rtol=1e-6, kahan=True
+    )
+    assert float((np.abs(dop.y[-1] - exact) / exact).max()) <= 4 * EPS
+
+
+# --------------------------------------------------------------------- batches
+
+
+@pytest.mark.parametrize("kahan", [False, True])
+def test_batched_rk4_equals_stacked_single_runs_bitwise(kahan):
+    rng = np.random.default_rng(1)
+    y0 = rng.normal(size=(7, 2))
+    t = [0.0, 1.3, 5.0]
+    batch = integrate(oscillator, y0, t, method="rk4", h=0.1, kahan=kahan)
+    singles = np.stack(
+        [integrate(oscillator, y, t, method="rk4", h=0.1, kahan=kahan).y for y in y0], axis=1
+    )
+    assert np.array_equal(batch.y, singles)
+    assert batch.rhs_evals == integrate(oscillator, y0[0], t, method="rk4", h=0.1).rhs_evals
+
+
+def test_batched_splitting_equals_stacked_single_runs():
+    rng = np.random.default_rng(2)
+    L0 = J_TOP * rng.normal(size=(5, 3))
+    R0 = matrix_from_rotvec(rng.normal(size=(5, 3)))
+    t = time_grid(0.0, 0.7, 10)
+    batch = free_rigid_body_splitting(J_TOP, L0, R0, t, 0.1, order=4)
+    singles = np.stack(
+        [
+            free_rigid_body_splitting(J_TOP, L, R, t, 0.1, order=4).y
+            for L, R in zip(L0, R0, strict=True)
+        ],
+        axis=1,
+    )
+    # One body runs in Python floats (math.cos), a batch in numpy (np.cos): the
+    # two libraries may round a cosine differently by an ulp; measured equal.
+    assert np.abs(batch.y - singles).max() <= 64 * EPS * np.abs(singles).max()
+    assert batch.steps == 70
+
+
+def test_batched_dop853_takes_one_step_for_all_and_keeps_each_within_tolerance():
+    J = np.array([[1.0, 2.0, 2.5], [1.0, 1.5, 2.0], [2.0, 2.0, 3.0]])
+    w0 = np.array([[0.3, -1.0, 0.7], [1.0, 0.2, -0.5], [0.1, 0.1, 2.0]])
+    y0 = rigid_body_state(J * w0, np.eye(3))
+    T, rtol = 8.0, 1e-9
+    batch = integrate(
+        free_rigid_body_rhs(J), y0, (0.0, T), method="dop853", rtol=rtol, batch_ndim=1
+    )
+    singles = [
+        integrate(free_rigid_body_rhs(J[i]), y0[i], (0.0, T), method="dop853", rtol=rtol)
+        for i in range(3)
+    ]
+    assert batch.steps >= max(s.steps for s in singles)
+    for i, s in enumerate(singles):
+        top = FreeAsymmetricTop(J[i], w0[i])
+        L_b, _ = rigid_body_parts(batch.y[-1, i])
+        L_s, _ = rigid_body_parts(s.y[-1])
+        L_ex = J[i] * top.omega(T)
+        assert np.abs(L_b - L_ex).max() <= 100 * rtol * np.abs(L_ex).max()
+        assert np.abs(L_b - L_ex).max() <= 2 * np.abs(L_s - L_ex).max() + 10 * rtol
+
+
+# ------------------------------------------------------------------ work counts
+
+
+def test_rk4_work_is_four_evaluations_per_step():
+    f = Counting(oscillator)
+    sol = integrate(f, [1.0, 0.0], [0.0, 0.25, 1.0], method="rk4", h=0.1)
+    assert sol.steps == 3 + 8  # ⌈0.25/0.1⌉ + ⌈0.75/0.1⌉
+    assert sol.rhs_evals == f.calls == 4 * sol.steps
+
+
+@pytest.mark.parametrize("h0", [None, 10.0])
+def test_dop853_work_counts_every_evaluation_and_rejection(h0):
+    f = Counting(oscillator)
+    sol = integrate(f, [1.0, 0.0], (0.0, 20.0), method="dop853", rtol=1e-10, h=h0)
+    assert sol.rhs_evals == f.calls
+    start = 2 if h0 is None else 1  # f(t0), and Hairer's trial evaluation
+    assert f.calls == start + 12 * (sol.steps + sol.rejected_steps)
+    if h0 is not None:  # a first step of 10 (1.6 periods) cannot meet 1e-10
+        assert sol.rejected_steps >= 1
+
+
+def test_dop853_matches_scipy_step_for_step():
+    from scipy.integrate import solve_ivp
+
+    rhs = free_rigid_body_rhs(J_TOP)
+    y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
+    ours = integrate(rhs, y0, (0.0, 20.0), method="dop853", rtol=1e-9, atol=1e-9)
+    ref = solve_ivp(rhs, (0.0, 20.0), y0, method="DOP853", rtol=1e-9, atol=1e-9)
+    assert ours.steps == ref.t.size - 1
+    assert ours.rhs_evals == ref.nfev
+    assert np.abs(ours.y[-1] - ref.y[:, -1]).max() <= 64 * EPS
+
+
+def test_splitting_work_counts_merged_sub_flows():
+    L0 = J_TOP * W_TOP
+    span = free_rigid_body_splitting(J_TOP, L0, np.eye(3), (0.0, 1.0), 0.1)
+    assert span.steps == 10
+    assert span.rhs_evals == 4 * 10 + 1  # H1 half-flows of adjacent steps merge
+    grid = free_rigid_body_splitting(J_TOP, L0, np.eye(3), time_grid(0.0, 0.1, 10), 0.1)
+    assert grid.rhs_evals == 5 * 10  # an output between steps keeps them apart
+    assert np.abs(grid.y[-1] - span.y[-1]).max() <= 64 * EPS
+
+
+# --------------------------------------------------------- rigid-body pieces
+
+
+def test_free_rigid_body_rhs_is_eulers_equations_and_the_books_omega():
+    rng = np.random.default_rng(3)
+    L = rng.normal(size=(6, 3))
+    R = matrix_from_rotvec(rng.normal(size=(6, 3)))
+    dy = free_rigid_body_rhs(J_TOP)(0.0, rigid_body_state(L, R))
+    dL, dR = dy[..., :3], dy[..., 3:].reshape(6, 3, 3)
+    w = L / J_TOP
+    assert np.abs(dL - J_TOP * euler_equations_rhs(J_TOP, w, np.zeros(3))).max() <= 8 * EPS * 10
+    assert np.abs(dR - omega_matrix_from_vector(w) @ R).max() <= 8 * EPS * 10
+
+
+def test_rigid_body_state_round_trips():
+    L, R = np.array([1.0, -2.0, 0.5]), R1(0.3) @ R3(1.1)
+    L2, R2 = rigid_body_parts(rigid_body_state(L, R))
+    assert np.array_equal(L2, L)
+    assert np.array_equal(R2, R)
+
+
+def test_so3_exp_step_has_the_rate_of_the_books_omega():
+    rng = np.random.default_rng(4)
+    R = matrix_from_rotvec(rng.normal(size=3))
+    w = rng.normal(size=3)
+    h = 1e-6
+    rate = (so3_exp_step(R, w, h) - R) / h  # forward difference: O(h |ω|²) off
+    assert np.abs(rate - omega_matrix_from_vector(w) @ R).max() <= 10 * h * (w @ w)
+    w_back = angular_velocity_from_matrix_rate(R, omega_matrix_from_vector(w) @ R)
+    assert np.abs(w_back - w).max() <= 16 * EPS
+
+
+def test_so3_exp_steps_compose_and_stay_orthogonal_where_euler_steps_drift():
+    rng = np.random.default_rng(5)
+    w, h, n = rng.normal(size=3), 1e-3, 10**3
+    R = R_euler = np.eye(3)
+    for _ in range(n):
+        R = so3_exp_step(R, w, h)
+        R_euler = R_euler + h * omega_matrix_from_vector(w) @ R_euler
+    # n steps of constant ω are one turn by n h ω (2.29)
+    assert np.abs(R - matrix_from_rotvec(n * h * w)).max() <= 8 * EPS * math.sqrt(n) * 4
+    assert np.abs(R @ R.T - np.eye(3)).max() <= ROTATION_ATOL
+    assert np.abs(R_euler @ R_euler.T - np.eye(3)).max() > 1e3 * ROTATION_ATOL
+
+
+def test_so3_exp_step_broadcasts_over_a_batch():
+    rng = np.random.default_rng(6)
+    R = matrix_from_rotvec(rng.normal(size=(4, 3)))
+    w = rng.normal(size=(4, 3))
+    out = so3_exp_step(R, w, 0.2)
+    assert out.shape == (4, 3, 3)
+    for i in range(4):
+        assert np.array_equal(out[i], so3_exp_step(R[i], w[i], 0.2))
