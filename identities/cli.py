@@ -3,8 +3,12 @@
     bodycheck check [--chapter N] [--id ID ...] [--kind KIND] [--json] [-j N] [--timings N]
     bodycheck explain ID [--json]
     bodycheck catalogue [--write PATH]
+    bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
+    bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
+    bodycheck demo --list
 
-Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale), 2 bad usage.
+Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale, or a scene missed the
+book), 2 bad usage (including a bad scene file: one line naming file, field and reason).
 """
 
 from __future__ import annotations
@@ -66,6 +70,19 @@ def _parser() -> argparse.ArgumentParser:
     e.add_argument("--json", action="store_true", help="print id, status and quantities (srepr)")
     g = sub.add_parser("catalogue", help="render CHECKS.md from the registry")
     g.add_argument("--write", metavar="PATH", help="write to PATH instead of stdout")
+    sc = sub.add_parser("scene", help="run a scene file (TOML) and compare it with the book")
+    sc.add_argument("file", metavar="FILE.toml")
+    dm = sub.add_parser("demo", help="run a built-in scene (--list lists them)")
+    dm.add_argument("name", metavar="NAME", nargs="?")
+    dm.add_argument("--list", action="store_true", help="list the built-in scenes")
+    for q in (sc, dm):
+        q.add_argument("--plot", metavar="OUT.png", help="write a plot of the run")
+        q.add_argument("--json", action="store_true", help="print the result as JSON")
+        q.add_argument(
+            "--method",
+            choices=("auto", "exact", "integrate"),
+            help="override the scene's method (auto: the exact flow where there is one)",
+        )
     return p
 
 
@@ -310,13 +327,65 @@ def _cmd_catalogue(args) -> int:
     return 0
 
 
+def _run_scene_file(path, args) -> int:
+    import dataclasses
+
+    from mechanics.scenes import SceneError, load_scene, run_scene
+
+    try:
+        scene = load_scene(path)
+        if args.method:
+            scene = dataclasses.replace(scene, method=args.method)
+        result = run_scene(scene)
+    except SceneError as exc:
+        raise UsageError(str(exc)) from None
+    if args.plot:
+        from .scene_plots import plot_result
+
+        plot_result(result, args.plot)
+    if args.json:
+        print(result.to_json())
+    else:
+        print(result.summary())
+        if args.plot:
+            print(f"plot: {args.plot}")
+    return 0 if result.passed else 1
+
+
+def _cmd_scene(args) -> int:
+    return _run_scene_file(args.file, args)
+
+
+def _cmd_demo(args) -> int:
+    from mechanics.scenes import builtin_scenes, load_scene
+
+    scenes = builtin_scenes()
+    if args.list:
+        if args.json:
+            print(json.dumps({n: load_scene(p).title for n, p in scenes.items()}, indent=1))
+        else:
+            for n, p in scenes.items():
+                sc = load_scene(p)
+                print(f"{n:<26} {sc.book:<18} {sc.title}")
+        return 0
+    if not args.name:
+        raise UsageError("demo needs a NAME or --list")
+    if args.name not in scenes:
+        raise UsageError(f"unknown demo {args.name!r} (known: {', '.join(scenes)})")
+    return _run_scene_file(scenes[args.name], args)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bodycheck`` console script."""
     try:
         args = _parser().parse_args(argv)
-        handler = {"check": _cmd_check, "explain": _cmd_explain, "catalogue": _cmd_catalogue}[
-            args.command
-        ]
+        handler = {
+            "check": _cmd_check,
+            "explain": _cmd_explain,
+            "catalogue": _cmd_catalogue,
+            "scene": _cmd_scene,
+            "demo": _cmd_demo,
+        }[args.command]
         return handler(args)
     except UsageError as exc:
         print(f"bodycheck: error: {exc}", file=sys.stderr)

@@ -1,0 +1,48 @@
+"""Scenes: bodies, an initial state and exactly the effects the scene lists, simulated
+(by the exact flow where the effects have one) and compared with the book.
+
+Public API: :func:`load_scene`, :func:`parse_scene`, :func:`run_scene`,
+:func:`builtin_scenes`, :func:`builtin_path`, :class:`SceneError`, :class:`SceneResult`.
+
+Examples
+--------
+>>> scene = load_scene(builtin_path("rolling_incline"))
+>>> result = run_scene(scene)
+>>> result.passed, result.method.split(":")[0]
+(True, 'exact')
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .result import Comparison, ConservedReport, SceneResult, run_scene
+from .spec import Scene, SceneError, load_scene, parse_scene
+
+__all__ = [
+    "Comparison",
+    "ConservedReport",
+    "Scene",
+    "SceneError",
+    "SceneResult",
+    "builtin_path",
+    "builtin_scenes",
+    "load_scene",
+    "parse_scene",
+    "run_scene",
+]
+
+_BUILTIN = Path(__file__).with_name("builtin")
+
+
+def builtin_scenes() -> dict[str, Path]:
+    """The built-in scene files by name (the file stem), sorted."""
+    return {p.stem: p for p in sorted(_BUILTIN.glob("*.toml"))}
+
+
+def builtin_path(name: str) -> Path:
+    """The path of a built-in scene; KeyError naming the known ones otherwise."""
+    scenes = builtin_scenes()
+    if name not in scenes:
+        raise KeyError(f"unknown built-in scene {name!r} (known: {', '.join(scenes)})")
+    return scenes[name]

@@ -1,0 +1,224 @@
+"""The result of a scene run: samples, events, conserved quantities, book comparisons.
+
+Conventions
+-----------
+- A conserved quantity is reported by its drift: the largest change within a segment
+  between events (impacts change the energy; between them it must hold), relative to
+  the scale of the quantity (its largest magnitude over the run, or of its parts,
+  at least 1e-300).  It passes when the drift is within ``CONSERVED_RTOL`` for an exact
+  flow, ``CONSERVED_RTOL_INTEGRATED`` for an integrated one.
+- A comparison holds the simulated value, the book's closed form, their relative
+  difference and the tolerance with its reason.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .simulate import EPS, Trajectory, simulate
+from .spec import Scene
+
+__all__ = [
+    "CONSERVED_RTOL",
+    "CONSERVED_RTOL_INTEGRATED",
+    "Comparison",
+    "ConservedReport",
+    "SceneResult",
+    "run_scene",
+]
+
+#: exact flows: each sample is a closed form, rounding grows with the terms (≤ ~100 ops)
+CONSERVED_RTOL = 1024 * EPS
+#: DOP853 at rtol = atol = 1e-12 over the scene's duration (measured worst ≈ 1e-11)
+CONSERVED_RTOL_INTEGRATED = 2**20 * EPS  # ≈ 2.3e-10
+
+
+@dataclass(frozen=True)
+class Comparison:
+    """A simulated quantity against the book's closed form."""
+
+    name: str
+    book: str
+    simulated: float
+    closed_form: float
+    tolerance: float
+    reason: str
+
+    @property
+    def difference(self) -> float:
+        return self.simulated - self.closed_form
+
+    @property
+    def relative_difference(self) -> float:
+        d = abs(self.difference)
+        return d / abs(self.closed_form) if self.closed_form != 0 else d
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.relative_difference <= self.tolerance)
+
+    def as_dict(self) -> dict:
+        return {
+            "name": self.name,
+            "book": self.book,
+            "simulated": float(self.simulated),
+            "closed_form": float(self.closed_form),
+            "difference": float(self.difference),
+            "relative_difference": float(self.relative_difference),
+            "tolerance": float(self.tolerance),
+            "reason": self.reason,
+            "ok": self.ok,
+        }
+
+
+@dataclass(frozen=True)
+class ConservedReport:
+    """The drift of a quantity the effects conserve."""
+
+    name: str
+    value: float
+    drift: float
+    tolerance: float
+    since: float = 0.0
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.drift <= self.tolerance)
+
+    def as_dict(self) -> dict:
+        return {
+            "name": self.name,
+            "value": float(self.value),
+            "relative_drift": float(self.drift),
+            "tolerance": float(self.tolerance),
+            "since": float(self.since),
+            "ok": self.ok,
+        }
+
+
+@dataclass
+class SceneResult:
+    """A scene run: the trajectory, the conserved quantities and the book comparisons."""
+
+    scene: Scene
+    trajectory: Trajectory
+    conserved: list[ConservedReport]
+    comparisons: list[Comparison] = field(default_factory=list)
+
+    @property
+    def passed(self) -> bool:
+        return all(c.ok for c in self.conserved) and all(c.ok for c in self.comparisons)
+
+    @property
+    def method(self) -> str:
+        return self.trajectory.method
+
+    def as_dict(self) -> dict:
+        tr = self.trajectory
+        return {
+            "scene": self.scene.name,
+            "title": self.scene.title,
+            "book": self.scene.book,
+            "source": self.scene.source,
+            "effects": list(self.scene.effect_types),
+            "method": tr.method,
+            "passed": self.passed,
+            "events": [{"t": e.t, "kind": e.kind, **_plain(e.detail)} for e in tr.events],
+            "conserved": [c.as_dict() for c in self.conserved],
+            "comparisons": [c.as_dict() for c in self.comparisons],
+            "samples": {
+                "t": tr.t.tolist(),
+                **{k: np.asarray(v).tolist() for k, v in tr.series.items()},
+            },
+        }
+
+    def to_json(self) -> str:
+        return json.dumps(self.as_dict(), indent=1, allow_nan=False)
+
+    def summary(self) -> str:
+        s, tr = self.scene, self.trajectory
+        lines = [
+            f"scene {s.name}"
+            + (f": {s.title}" if s.title else "")
+            + (f" ({s.book})" if s.book else ""),
+            f"effects: {', '.join(s.effect_types) or 'none'}",
+            f"method: {tr.method}",
+            f"events: {len(tr.events)}"
+            + (
+                "  ("
+                + ", ".join(f"{e.kind} at t={e.t:.6g}" for e in tr.events[:4])
+                + (", ..." if len(tr.events) > 4 else "")
+                + ")"
+                if tr.events
+                else ""
+            ),
+        ]
+        if self.conserved:
+            lines.append("conserved (relative drift within segments between events):")
+            for c in self.conserved:
+                since = f" from t={c.since:.6g}" if c.since else ""
+                lines.append(
+                    f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<24} {c.value:>+.12g}  "
+                    f"drift {c.drift:.2e} ≤ {c.tolerance:.1e}{since}"
+                )
+        if self.comparisons:
+            lines.append("against the book:")
+            for c in self.comparisons:
+                lines.append(
+                    f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<34} sim {c.simulated:>+.15g}  "
+                    f"book {c.closed_form:>+.15g}  rel {c.relative_difference:.2e} ≤ "
+                    f"{c.tolerance:.1e}  [{c.book}; {c.reason}]"
+                )
+        lines.append("PASSED" if self.passed else "FAILED")
+        return "\n".join(lines)
+
+
+def _plain(d: dict) -> dict:
+    out = {}
+    for k, v in d.items():
+        if isinstance(v, np.generic):
+            v = v.item()
+        out[k] = v
+    return out
+
+
+def _drift(values: np.ndarray, t: np.ndarray, segments, since: float, scale=0.0) -> float:
+    worst = 0.0
+    v = np.asarray(values, dtype=float)
+    scale = max(float(np.max(np.abs(v))), scale, 1e-300)
+    for a, b in segments:
+        m = (t >= max(a, since)) & (t < b) if math.isfinite(b) else (t >= max(a, since))
+        if m.sum() >= 2:
+            seg = v[m]
+            worst = max(worst, float(seg.max() - seg.min()) / scale)
+    return worst
+
+
+def run_scene(scene: Scene) -> SceneResult:
+    """Simulate the scene, report its conserved quantities, compare with the book."""
+    tr = simulate(scene)
+    tol = CONSERVED_RTOL_INTEGRATED if tr.method.startswith("integrated") else CONSERVED_RTOL
+    segs = tr.segments()
+    conserved = []
+    scales = tr.extra.get("scales", {})
+    for name, vals in tr.conserved.items():
+        since = tr.conserved_from.get(name, 0.0)
+        conserved.append(
+            ConservedReport(
+                name,
+                float(np.asarray(vals)[-1]),
+                _drift(vals, tr.t, segs, since, scales.get(name, 0.0)),
+                tol,
+                since,
+            )
+        )
+    comparisons = []
+    if scene.compare:
+        from .compare import COMPARISONS
+
+        comparisons = COMPARISONS[scene.compare](scene, tr)
+    return SceneResult(scene, tr, conserved, comparisons)

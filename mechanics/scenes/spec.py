@@ -1,0 +1,484 @@
+"""The scene file: a TOML schema, parsed with :mod:`tomllib` and validated field by field.
+
+Conventions
+-----------
+- **Units: SI only.**  Every value is a plain TOML number in SI units (m, kg, s, rad,
+  N/m, N·m/rad, kg/s, m/s, m²).  A string such as ``"9.81 m/s^2"`` is rejected: units
+  are never parsed.  An optional ``[units]`` table may say ``system = "SI"``; any other
+  system is an error.
+- **Nothing is evaluated as code**: no evaluation of text and no symbolic parsing;
+  numbers are TOML numbers.
+- Every error is a :class:`SceneError` (a ``ValueError``) whose message reads
+  ``<file>: <field>: <reason>``, e.g. ``ball.toml: effects[1].restitution: must lie in
+  [0, 1]; got 1.2``.
+- Angles are radians; vectors are arrays of 3 numbers in the space frame O (z up unless
+  the gravity effect says otherwise); ``omega`` of a free body is in body components.
+
+Schema
+------
+``[scene]``: ``name`` (str), ``title`` (str, optional), ``book`` (str, optional),
+``duration`` (> 0), ``samples`` (int ≥ 2, default 201), ``method`` (``"auto"``: the exact
+flow where the effects have one, else integration; ``"exact"``: fail if there is none;
+``"integrate"``: always integrate), ``rtol``/``atol`` of the integrator (default 1e-12),
+``compare`` (optional: the name of a book comparison, see
+:data:`mechanics.scenes.compare.COMPARISONS`).
+
+``[[bodies]]``: ``name``, ``shape`` (one of :data:`SHAPES`) with its dimensions, ``mass``
+(not for a tank), and an ``[bodies.initial]`` table (keys in :data:`INITIAL_KEYS`).
+
+``[[effects]]``: ``type`` (one of :data:`EFFECT_FIELDS`) and its fields.  Only the listed
+effects act: there is no default gravity, no damping, no position correction.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+__all__ = [
+    "EFFECT_FIELDS",
+    "INITIAL_KEYS",
+    "METHODS",
+    "SHAPES",
+    "Body",
+    "EffectSpec",
+    "Scene",
+    "SceneError",
+    "load_scene",
+    "parse_scene",
+]
+
+
+class SceneError(ValueError):
+    """A scene file is invalid: the message names the file, the field and the reason."""
+
+    def __init__(self, source: str, field_: str, reason: str) -> None:
+        self.source, self.field, self.reason = source, field_, reason
+        super().__init__(f"{source}: {field_}: {reason}")
+
+
+#: shape -> the dimensions it needs (in SI metres); "custom" takes principal moments.
+SHAPES: dict[str, tuple[str, ...]] = {
+    "point": (),
+    "rod": ("length",),
+    "ring": ("radius",),
+    "disc": ("radius",),
+    "cylinder": ("radius", "height"),
+    "cylindrical_shell": ("radius", "height"),
+    "solid_sphere": ("radius",),
+    "hollow_sphere": ("radius",),
+    "rectangular_plate": ("a", "b"),
+    "box": ("a", "b", "c"),
+    "custom": ("inertia",),
+    "tank": ("area",),
+}
+ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere", "hollow_sphere")
+SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
+
+#: initial-state keys: name -> (kind, meaning)
+INITIAL_KEYS: dict[str, str] = {
+    "position": "vector",  # free body: centre of mass, m
+    "velocity": "vector",  # free body: m/s
+    "omega": "vector",  # free body: angular velocity, body components, rad/s
+    "angle": "number",  # fixed axis: φ from the downward vertical; track: ψ
+    "angular_velocity": "number",  # fixed axis φ̇, track ψ̇
+    "distance": "number",  # rolling/sliding: along the plane, m
+    "speed": "number",  # rolling/sliding: speed of G along the plane
+    "spin": "number",  # sliding: ω (positive = the rolling sense)
+    "theta": "number",  # fixed point: Euler angles z-x-z and rates
+    "psi": "number",
+    "phi": "number",
+    "theta_dot": "number",
+    "psi_dot": "number",
+    "phi_dot": "number",
+    "level": "number",  # tank: height of the surface above the hole, m
+}
+
+#: effect type -> {field: (kind, required)}; kinds: body, name, number, vector, table, str
+EFFECT_FIELDS: dict[str, dict[str, tuple[str, bool]]] = {
+    "gravity": {"g": ("positive", True), "direction": ("vector", False)},
+    "fixed_axis": {
+        "body": ("body", True),
+        "axis": ("vector", False),
+        "distance": ("nonnegative", False),
+        "body_axis": ("axis_name", False),
+    },
+    "fixed_point": {"body": ("body", True), "distance": ("nonnegative", True)},
+    "rolling": {
+        "body": ("body", True),
+        "surface": ("str", True),
+        "angle": ("number", False),
+        "track_radius": ("positive", False),
+        "body_axis": ("axis_name", False),
+    },
+    "coulomb_friction": {
+        "body": ("body", True),
+        "mu": ("positive", True),
+        "angle": ("number", False),
+        "body_axis": ("axis_name", False),
+    },
+    "spring": {
+        "body": ("body", True),
+        "other": ("body", False),
+        "anchor": ("vector", False),
+        "stiffness": ("positive", True),
+        "rest_length": ("nonnegative", False),
+    },
+    "torsion": {"body": ("body", True), "stiffness": ("positive", True)},
+    "impact": {
+        "body": ("body", True),
+        "other": ("body", False),
+        "plane_point": ("vector", False),
+        "plane_normal": ("vector", False),
+        "restitution": ("restitution", True),
+    },
+    "thrust": {
+        "body": ("body", True),
+        "mass_flow": ("positive", True),
+        "exhaust_speed": ("positive", True),
+        "fuel_mass": ("nonnegative", True),
+        "direction": ("vector", False),
+    },
+    "mass_flow": {
+        "body": ("body", True),
+        "rate": ("nonnegative", True),
+        "speed": ("number", True),
+        "offset": ("number", True),
+        "radius": ("positive", True),
+    },
+    "tank_outflow": {"body": ("body", True), "hole_area": ("positive", True)},
+}
+
+METHODS = ("auto", "exact", "integrate")
+_NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_\-]*$")
+
+
+@dataclass(frozen=True)
+class Body:
+    """A body of the scene: its shape, mass, dimensions and initial state (SI)."""
+
+    name: str
+    shape: str
+    mass: float
+    dims: dict[str, Any]
+    initial: dict[str, Any]
+
+
+@dataclass(frozen=True)
+class EffectSpec:
+    """One listed effect: its type, its position in the file and its fields."""
+
+    type: str
+    index: int
+    fields: dict[str, Any]
+
+    @property
+    def where(self) -> str:
+        return f"effects[{self.index}]"
+
+
+@dataclass(frozen=True)
+class Scene:
+    """A validated scene."""
+
+    name: str
+    source: str
+    duration: float
+    samples: int
+    method: str
+    rtol: float
+    atol: float
+    bodies: tuple[Body, ...]
+    effects: tuple[EffectSpec, ...]
+    title: str = ""
+    book: str = ""
+    compare: str = ""
+    raw: dict = field(default_factory=dict, compare=False, repr=False)
+
+    def body(self, name: str) -> Body:
+        return next(b for b in self.bodies if b.name == name)
+
+    def effects_of(self, kind: str) -> list[EffectSpec]:
+        return [e for e in self.effects if e.type == kind]
+
+    @property
+    def effect_types(self) -> tuple[str, ...]:
+        return tuple(e.type for e in self.effects)
+
+    def error(self, field_: str, reason: str) -> SceneError:
+        return SceneError(self.source, field_, reason)
+
+
+# ------------------------------------------------------------------ field checks
+
+
+def _type_name(v: Any) -> str:
+    return {str: "a string", bool: "a boolean", dict: "a table", list: "an array"}.get(
+        type(v), type(v).__name__
+    )
+
+
+def _number(src: str, where: str, v: Any) -> float:
+    if isinstance(v, bool) or not isinstance(v, int | float):
+        hint = ""
+        if isinstance(v, str):
+            hint = " (units are not parsed: write the value as a plain number in SI units)"
+        raise SceneError(
+            src, where, f"expected a number in SI units, got {_type_name(v)} {v!r}{hint}"
+        )
+    x = float(v)
+    if not math.isfinite(x):
+        raise SceneError(src, where, f"must be finite; got {v!r}")
+    return x
+
+
+def _check(src: str, where: str, kind: str, v: Any, bodies: set[str] | None = None) -> Any:
+    if kind == "number":
+        return _number(src, where, v)
+    if kind == "positive":
+        x = _number(src, where, v)
+        if x <= 0:
+            raise SceneError(src, where, f"must be > 0 (non-physical otherwise); got {v!r}")
+        return x
+    if kind == "nonnegative":
+        x = _number(src, where, v)
+        if x < 0:
+            raise SceneError(src, where, f"must be ≥ 0 (non-physical otherwise); got {v!r}")
+        return x
+    if kind == "restitution":
+        x = _number(src, where, v)
+        if not 0.0 <= x <= 1.0:
+            raise SceneError(
+                src, where, f"the coefficient of restitution must lie in [0, 1]; got {v!r}"
+            )
+        return x
+    if kind == "vector":
+        if not isinstance(v, list) or len(v) != 3:
+            raise SceneError(src, where, f"expected an array of 3 numbers (SI), got {v!r}")
+        return [_number(src, f"{where}[{i}]", x) for i, x in enumerate(v)]
+    if kind == "str":
+        if not isinstance(v, str):
+            raise SceneError(src, where, f"expected a string, got {_type_name(v)} {v!r}")
+        return v
+    if kind == "axis_name":
+        if v not in ("x", "y", "z"):
+            raise SceneError(src, where, f"expected one of 'x', 'y', 'z'; got {v!r}")
+        return v
+    if kind == "body":
+        if not isinstance(v, str):
+            raise SceneError(src, where, f"expected a body name (string), got {_type_name(v)}")
+        if bodies is not None and v not in bodies:
+            known = ", ".join(sorted(bodies)) or "none"
+            raise SceneError(src, where, f"unknown body {v!r} (bodies: {known})")
+        return v
+    raise AssertionError(kind)  # pragma: no cover - schema typo
+
+
+def _table(src: str, where: str, v: Any) -> dict:
+    if not isinstance(v, dict):
+        raise SceneError(src, where, f"expected a table, got {_type_name(v)}")
+    return v
+
+
+def _unknown(src: str, where: str, keys, allowed) -> None:
+    for k in keys:
+        if k not in allowed:
+            raise SceneError(
+                src,
+                f"{where}.{k}" if where else k,
+                f"unknown field (allowed: {', '.join(sorted(allowed))})",
+            )
+
+
+def _parse_body(src: str, i: int, b: Any) -> Body:
+    where = f"bodies[{i}]"
+    b = _table(src, where, b)
+    for req in ("name", "shape"):
+        if req not in b:
+            raise SceneError(src, f"{where}.{req}", "missing required field")
+    name = _check(src, f"{where}.name", "str", b["name"])
+    if not _NAME.match(name):
+        raise SceneError(src, f"{where}.name", f"must be an identifier; got {name!r}")
+    shape = _check(src, f"{where}.shape", "str", b["shape"])
+    if shape not in SHAPES:
+        raise SceneError(
+            src, f"{where}.shape", f"unknown body shape {shape!r} (known: {', '.join(SHAPES)})"
+        )
+    dims_needed = SHAPES[shape]
+    allowed = {"name", "shape", "initial", *dims_needed} | ({"mass"} if shape != "tank" else set())
+    _unknown(src, where, b, allowed)
+    mass = 0.0
+    if shape != "tank":
+        if "mass" not in b:
+            raise SceneError(src, f"{where}.mass", "missing required field")
+        mass = _check(src, f"{where}.mass", "positive", b["mass"])
+    dims: dict[str, Any] = {}
+    for d in dims_needed:
+        if d not in b:
+            raise SceneError(src, f"{where}.{d}", f"missing required field (a {shape} needs it)")
+        if d == "inertia":
+            J = _check(src, f"{where}.inertia", "vector", b[d])
+            if min(J) <= 0:
+                raise SceneError(src, f"{where}.inertia", f"principal moments must be > 0; got {J}")
+            s = sorted(J)
+            if s[2] > s[0] + s[1] * (1 + 1e-15):  # triangle inequality (4.30), rounding slack
+                raise SceneError(
+                    src,
+                    f"{where}.inertia",
+                    f"principal moments violate the triangle inequality J3 ≤ J1 + J2; got {J}",
+                )
+            dims[d] = J
+        else:
+            dims[d] = _check(src, f"{where}.{d}", "positive", b[d])
+    initial = {}
+    if "initial" in b:
+        ini = _table(src, f"{where}.initial", b["initial"])
+        _unknown(src, f"{where}.initial", ini, INITIAL_KEYS)
+        for k, v in ini.items():
+            initial[k] = _check(src, f"{where}.initial.{k}", INITIAL_KEYS[k], v)
+        if "level" in initial and initial["level"] <= 0:
+            raise SceneError(
+                src, f"{where}.initial.level", f"must be > 0; got {initial['level']!r}"
+            )
+    return Body(name, shape, mass, dims, initial)
+
+
+def _parse_effect(src: str, i: int, e: Any, bodies: set[str]) -> EffectSpec:
+    where = f"effects[{i}]"
+    e = _table(src, where, e)
+    if "type" not in e:
+        raise SceneError(src, f"{where}.type", "missing required field")
+    kind = _check(src, f"{where}.type", "str", e["type"])
+    if kind not in EFFECT_FIELDS:
+        raise SceneError(
+            src, f"{where}.type", f"unknown effect {kind!r} (known: {', '.join(EFFECT_FIELDS)})"
+        )
+    schema = EFFECT_FIELDS[kind]
+    _unknown(src, where, e, {"type", *schema})
+    out: dict[str, Any] = {}
+    for k, (fk, required) in schema.items():
+        if k in e:
+            out[k] = _check(src, f"{where}.{k}", fk, e[k], bodies)
+        elif required:
+            raise SceneError(
+                src, f"{where}.{k}", f"missing required field (a {kind} effect needs it)"
+            )
+    for k in ("direction", "axis", "plane_normal"):
+        if k in out and math.hypot(*out[k]) == 0:
+            raise SceneError(src, f"{where}.{k}", "must be a nonzero vector")
+    return EffectSpec(kind, i, out)
+
+
+def parse_scene(data: dict, *, source: str = "<scene>") -> Scene:
+    """Validate a scene given as a dict (the parsed TOML); raise :class:`SceneError`.
+
+    Examples
+    --------
+    >>> s = parse_scene({"scene": {"name": "drop", "duration": 1.0},
+    ...                  "bodies": [{"name": "ball", "shape": "point", "mass": 1.0}],
+    ...                  "effects": [{"type": "gravity", "g": 9.81}]})
+    >>> s.effect_types
+    ('gravity',)
+    >>> parse_scene({"scene": {"name": "x", "duration": "2 s"}})
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.spec.SceneError: <scene>: scene.duration: expected a number in SI units, \
+got a string '2 s' (units are not parsed: write the value as a plain number in SI units)
+    """
+    src = source
+    data = _table(src, "(top level)", data)
+    _unknown(src, "", data, {"scene", "units", "bodies", "effects"})
+    if "units" in data:
+        u = _table(src, "units", data["units"])
+        _unknown(src, "units", u, {"system"})
+        if u.get("system") != "SI":
+            raise SceneError(
+                src, "units.system", f"only SI units are supported; got {u.get('system')!r}"
+            )
+    if "scene" not in data:
+        raise SceneError(src, "scene", "missing required table [scene]")
+    s = _table(src, "scene", data["scene"])
+    _unknown(
+        src,
+        "scene",
+        s,
+        {"name", "title", "book", "duration", "samples", "method", "rtol", "atol", "compare"},
+    )
+    for req in ("name", "duration"):
+        if req not in s:
+            raise SceneError(src, f"scene.{req}", "missing required field")
+    name = _check(src, "scene.name", "str", s["name"])
+    duration = _check(src, "scene.duration", "positive", s["duration"])
+    samples = s.get("samples", 201)
+    if isinstance(samples, bool) or not isinstance(samples, int) or samples < 2:
+        raise SceneError(src, "scene.samples", f"expected an integer ≥ 2; got {samples!r}")
+    method = _check(src, "scene.method", "str", s.get("method", "auto"))
+    if method not in METHODS:
+        raise SceneError(src, "scene.method", f"expected one of {METHODS}; got {method!r}")
+    tols = {}
+    for k in ("rtol", "atol"):
+        tols[k] = _check(src, f"scene.{k}", "positive", s.get(k, 1e-12))
+        if tols[k] > 1e-3:
+            raise SceneError(src, f"scene.{k}", f"must be ≤ 1e-3; got {tols[k]!r}")
+    title = _check(src, "scene.title", "str", s.get("title", ""))
+    book = _check(src, "scene.book", "str", s.get("book", ""))
+    compare = _check(src, "scene.compare", "str", s.get("compare", ""))
+    raw_bodies = data.get("bodies", [])
+    if not isinstance(raw_bodies, list) or not raw_bodies:
+        raise SceneError(src, "bodies", "expected at least one [[bodies]] table")
+    bodies = tuple(_parse_body(src, i, b) for i, b in enumerate(raw_bodies))
+    names = [b.name for b in bodies]
+    for i, n in enumerate(names):
+        if n in names[:i]:
+            raise SceneError(src, f"bodies[{i}].name", f"duplicate body name {n!r}")
+    raw_effects = data.get("effects", [])
+    if not isinstance(raw_effects, list):
+        raise SceneError(src, "effects", "expected an array of [[effects]] tables")
+    effects = tuple(_parse_effect(src, i, e, set(names)) for i, e in enumerate(raw_effects))
+    scene = Scene(
+        name=name,
+        source=src,
+        duration=duration,
+        samples=samples,
+        method=method,
+        bodies=bodies,
+        effects=effects,
+        title=title,
+        book=book,
+        compare=compare,
+        raw=data,
+        **tols,
+    )
+    from .simulate import select_model  # the combination of effects must make a model
+
+    select_model(scene)
+    if compare:
+        from .compare import COMPARISONS
+
+        if compare not in COMPARISONS:
+            raise SceneError(
+                src,
+                "scene.compare",
+                f"unknown comparison {compare!r} (known: {', '.join(COMPARISONS)})",
+            )
+    return scene
+
+
+def load_scene(path) -> Scene:
+    """Read and validate a scene file (TOML); errors name the file, field and reason."""
+    p = Path(path)
+    try:
+        text = p.read_bytes()
+    except OSError as exc:
+        raise SceneError(str(path), "(file)", f"cannot read: {exc.strerror}") from None
+    try:
+        data = tomllib.loads(text.decode("utf-8"))
+    except UnicodeDecodeError:
+        raise SceneError(str(path), "(file)", "not UTF-8 text") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise SceneError(str(path), "(syntax)", f"invalid TOML: {exc}") from None
+    return parse_scene(data, source=str(path))
