@@ -1,5 +1,324 @@
-"""Hypothesis strategies for particles (see :mod:`mechanics.strategies`)."""
+"""Hypothesis strategies for particle systems and their internal forces.
+
+Conventions
+-----------
+- Shapes are those of :mod:`mechanics.particles`: masses ``(N,)``, positions
+  and velocities ``(N, 3)``, pair forces ``(N, N, 3)`` with ``f[k, j]`` the
+  force on k from j.  Everything is float64.
+- **Valid by construction.**  Masses are drawn > 0 (so the total mass is never
+  zero); pair forces are drawn for k < j and mirrored, f_jk = −f_kj (Newton's
+  third law, 1.19), and a central force is a symmetric scalar times r_kj.
+- **Hard regimes are explicit branches**, drawn first with ``st.sampled_from``
+  (the first is the simple one, so that failures shrink toward unit masses at
+  rest near the origin) and recorded with :func:`hypothesis.event` as
+  ``"<strategy>: <regime>"``.  ``tests/theorems/test_particles_strategy_quality.py``
+  proves every regime is reached.
+- Bounds are keyword-only; bad arguments raise
+  :class:`hypothesis.errors.InvalidArgument` quoting the value.
+
+Examples
+--------
+>>> from hypothesis import given
+>>> from mechanics.particles import centre_of_mass
+>>> @given(particle_systems(max_particles=5))
+... def test_centre_of_mass_is_finite(s):
+...     assert np.isfinite(centre_of_mass(s.m, s.r)).all()
+>>> test_centre_of_mass_is_finite()
+"""
 
 from __future__ import annotations
 
-__all__: list[str] = []
+import math
+from numbers import Integral, Real
+from typing import NamedTuple
+
+import numpy as np
+from hypothesis import event
+from hypothesis import strategies as st
+from hypothesis.errors import InvalidArgument
+
+__all__ = [
+    "FAR_OFFSET",
+    "MASS_REGIMES",
+    "PAIR_FORCE_REGIMES",
+    "SYSTEM_REGIMES",
+    "ParticleSystem",
+    "masses",
+    "pair_forces",
+    "particle_systems",
+]
+
+#: Regimes of :func:`masses`: all 1.0; all equal to one drawn value; each
+#: log-uniform in the bounds; "extreme-ratio": every mass at one of the two
+#: bounds (both present when N ≥ 2), a ratio of 1e12 with the default bounds.
+MASS_REGIMES = ("unit", "equal", "log-uniform", "extreme-ratio")
+
+#: Regimes of :func:`particle_systems`: "simple" (unit masses, coordinates and
+#: velocities in [−1, 1]); "generic" (masses of any :data:`MASS_REGIMES`,
+#: coordinates in [−10, 10], velocities in [−10, 10]); "wide-mass-ratio" (the
+#: extreme-ratio masses); "far-offset" (every particle within 1 of a point at
+#: distance ~:data:`FAR_OFFSET` from the origin); "fast-translation" (a common
+#: velocity of magnitude ~1e6 plus internal velocities in [−1, 1]).
+SYSTEM_REGIMES = ("simple", "generic", "wide-mass-ratio", "far-offset", "fast-translation")
+
+#: The far-offset regime puts the system this far from the origin (per
+#: coordinate, in magnitude): ulp(1e8) = 1.5e-8, so positions carry only about
+#: 8 significant digits of their offsets from G.
+FAR_OFFSET = 1e8
+
+_FAST_SPEED = 1e6
+
+#: Regimes of :func:`pair_forces`: no internal forces; central forces
+#: f_kj = s_kj r_kj with s symmetric (f_kj ∥ r_kj); non-central forces (a
+#: central part plus a part perpendicular to r_kj of magnitude ≥ 5e-4 of the bound).
+PAIR_FORCE_REGIMES = ("none", "central", "non-central")
+
+
+class ParticleSystem(NamedTuple):
+    """Masses ``(N,)``, positions ``(N, 3)`` and velocities ``(N, 3)``."""
+
+    m: np.ndarray
+    r: np.ndarray
+    v: np.ndarray
+
+
+# ------------------------------------------------------------------ validation
+
+
+def _check_real(value, name: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, Real):
+        raise InvalidArgument(f"{name}={value!r} must be a real number")
+    v = float(value)
+    if not math.isfinite(v):
+        raise InvalidArgument(f"{name}={value!r} must be finite")
+    return v
+
+
+def _check_int(value, name: str, minimum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, Integral):
+        raise InvalidArgument(f"{name}={value!r} must be an integer")
+    if value < minimum:
+        raise InvalidArgument(f"{name}={value!r} must be >= {minimum}")
+    return int(value)
+
+
+def _check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ...]:
+    if regimes is None:
+        return allowed
+    if isinstance(regimes, str):
+        raise InvalidArgument(f"regimes={regimes!r} must be a collection of names, not a string")
+    chosen = tuple(regimes)
+    unknown = [r for r in chosen if r not in allowed]
+    if unknown:
+        raise InvalidArgument(f"regimes={regimes!r}: unknown {unknown}; {name} has {allowed}")
+    if not chosen:
+        raise InvalidArgument(f"regimes={regimes!r} is empty; choose from {allowed}")
+    return tuple(r for r in allowed if r in chosen)
+
+
+def _check_mass_bounds(min_value, max_value) -> tuple[float, float]:
+    lo = _check_real(min_value, "min_mass")
+    hi = _check_real(max_value, "max_mass")
+    if lo <= 0:
+        raise InvalidArgument(f"min_mass={min_value!r} must be > 0 (masses are drawn positive)")
+    if lo > hi:
+        raise InvalidArgument(f"min_mass={min_value!r} exceeds max_mass={max_value!r}")
+    return lo, hi
+
+
+def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
+    """Floats in [lo, hi] (0 < lo <= hi), log-uniform, shrinking toward ``lo``."""
+    a, b = math.log10(lo), math.log10(hi)
+    return st.floats(0.0, 1.0).map(lambda t: min(hi, max(lo, 10.0 ** (a + (b - a) * t))))
+
+
+def _signed_units(k: int) -> st.SearchStrategy[np.ndarray]:
+    """k floats in [−1, 1), from one draw of 8k bytes (int64 / 2**63).
+
+    One ``st.binary`` draw instead of k ``st.floats`` draws: 50 particles need
+    hundreds of coordinates, and per-float draws made generation the slowest
+    part of the property tests (hypothesis' too_slow health check).  Zero bytes
+    give 0, so examples shrink toward the origin.
+    """
+    return st.binary(min_size=8 * k, max_size=8 * k).map(
+        lambda bs: np.frombuffer(bs, dtype="<i8").astype(np.float64) * 2.0**-63
+    )
+
+
+def _vectors(n: int, bound: float) -> st.SearchStrategy[np.ndarray]:
+    """(n, 3) arrays of floats in [−bound, bound), shrinking toward 0."""
+    return _signed_units(3 * n).map(lambda u: bound * u.reshape(n, 3))
+
+
+def _log_uniform_array(n: int, lo: float, hi: float) -> st.SearchStrategy[np.ndarray]:
+    """n floats in [lo, hi], log-uniform, from one byte draw (shrinking toward ``lo``)."""
+    a, b = math.log10(lo), math.log10(hi)
+    return _signed_units(n).map(lambda u: np.clip(10.0 ** (a + (b - a) * np.abs(u)), lo, hi))
+
+
+# ---------------------------------------------------------------------- masses
+
+
+def _mass_array(draw, n: int, lo: float, hi: float, regime: str) -> np.ndarray:
+    if regime == "unit":
+        return np.ones(n)
+    if regime == "equal":
+        return np.full(n, draw(_log_uniform(lo, hi)))
+    if regime == "log-uniform":
+        return draw(_log_uniform_array(n, lo, hi))
+    # extreme-ratio: each at a bound; the first two differ, so both are present.
+    m = np.where(draw(_signed_units(n)) < 0, hi, lo)
+    if n >= 2:
+        m[0], m[1] = lo, hi
+    return m
+
+
+def masses(
+    *,
+    min_particles: int = 1,
+    max_particles: int = 50,
+    min_value: float = 1e-6,
+    max_value: float = 1e6,
+    regimes=None,
+) -> st.SearchStrategy[np.ndarray]:
+    """Mass vectors ``(N,)``, each mass in [``min_value``, ``max_value``] (> 0).
+
+    Regimes (:data:`MASS_REGIMES`): ``unit`` (all 1.0, when 1 is in the
+    bounds), ``equal``, ``log-uniform``, ``extreme-ratio`` (masses at the two
+    bounds: 1e-6 and 1e6 by default).  Shrinks toward one unit mass.
+    """
+    nlo = _check_int(min_particles, "min_particles", 1)
+    nhi = _check_int(max_particles, "max_particles", 1)
+    if nlo > nhi:
+        raise InvalidArgument(
+            f"min_particles={min_particles!r} exceeds max_particles={max_particles!r}"
+        )
+    lo, hi = _check_mass_bounds(min_value, max_value)
+    names = _check_regimes(regimes, MASS_REGIMES, "masses")
+    if not lo <= 1.0 <= hi:
+        names = tuple(r for r in names if r != "unit")
+        if not names:
+            raise InvalidArgument(f"regimes={regimes!r}: 'unit' needs 1.0 in [{lo}, {hi}]")
+
+    @st.composite
+    def draw_masses(draw) -> np.ndarray:
+        n = draw(st.integers(nlo, nhi))
+        regime = draw(st.sampled_from(names))
+        event(f"masses: {regime}")
+        return _mass_array(draw, n, lo, hi, regime)
+
+    return draw_masses()
+
+
+# ------------------------------------------------------------ particle systems
+
+
+def particle_systems(
+    *,
+    min_particles: int = 1,
+    max_particles: int = 50,
+    min_mass: float = 1e-6,
+    max_mass: float = 1e6,
+    regimes=None,
+) -> st.SearchStrategy[ParticleSystem]:
+    """Particle systems (m, r, v) with 1 … 50 particles, masses 1e-6 … 1e6.
+
+    Regimes (:data:`SYSTEM_REGIMES`): ``simple``, ``generic``,
+    ``wide-mass-ratio``, ``far-offset`` (within 1 of a point whose coordinates
+    have magnitude :data:`FAR_OFFSET`, signs drawn) and ``fast-translation``
+    (common velocity of magnitude ~1e6).  ``regimes`` restricts the draw.
+    Shrinks toward one unit mass at rest at the origin.
+    """
+    nlo = _check_int(min_particles, "min_particles", 1)
+    nhi = _check_int(max_particles, "max_particles", 1)
+    if nlo > nhi:
+        raise InvalidArgument(
+            f"min_particles={min_particles!r} exceeds max_particles={max_particles!r}"
+        )
+    lo, hi = _check_mass_bounds(min_mass, max_mass)
+    names = _check_regimes(regimes, SYSTEM_REGIMES, "particle_systems")
+    signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 3).map(np.array)
+    unit_ok = lo <= 1.0 <= hi
+    mass_regimes = tuple(r for r in MASS_REGIMES if unit_ok or r != "unit")
+
+    @st.composite
+    def draw_system(draw) -> ParticleSystem:
+        n = draw(st.integers(nlo, nhi))
+        regime = draw(st.sampled_from(names))
+        event(f"particle_systems: {regime}")
+        if regime == "simple":
+            m = _mass_array(draw, n, lo, hi, "unit" if unit_ok else "equal")
+            return ParticleSystem(m, draw(_vectors(n, 1.0)), draw(_vectors(n, 1.0)))
+        if regime == "wide-mass-ratio":
+            m = _mass_array(draw, n, lo, hi, "extreme-ratio")
+        else:
+            m = _mass_array(draw, n, lo, hi, draw(st.sampled_from(mass_regimes)))
+        if regime == "far-offset":
+            centre = FAR_OFFSET * draw(signs) * draw(st.floats(1.0, 2.0))
+            return ParticleSystem(m, centre + draw(_vectors(n, 1.0)), draw(_vectors(n, 1.0)))
+        if regime == "fast-translation":
+            V = _FAST_SPEED * draw(signs) * draw(st.floats(1.0, 2.0))
+            return ParticleSystem(m, draw(_vectors(n, 10.0)), V + draw(_vectors(n, 1.0)))
+        return ParticleSystem(m, draw(_vectors(n, 10.0)), draw(_vectors(n, 10.0)))
+
+    return draw_system()
+
+
+# ------------------------------------------------------------------ pair forces
+
+
+def pair_forces(r, *, max_magnitude: float = 1e3, regimes=None) -> st.SearchStrategy[np.ndarray]:
+    """Internal pair forces ``(N, N, 3)`` between particles at ``r`` ``(N, 3)``.
+
+    ``f[k, j]`` is the force on k from j; f_jk = −f_kj and f_kk = 0 by
+    construction (1.19).  Regimes (:data:`PAIR_FORCE_REGIMES`): ``none``;
+    ``central``: f_kj = s_kj r_kj, s symmetric, |f_kj| ≤ ``max_magnitude``
+    (zero for coincident particles); ``non-central``: a central part plus a
+    part perpendicular to r_kj of magnitude in [5e-4, 0.25] × ``max_magnitude``
+    (along any direction for coincident particles).  Shrinks toward no force.
+    """
+    rr = np.asarray(r, dtype=np.float64)
+    if rr.ndim != 2 or rr.shape[1] != 3 or rr.shape[0] < 1:
+        raise InvalidArgument(f"r with shape {rr.shape!r} must be (N, 3) with N >= 1")
+    if not np.isfinite(rr).all():
+        raise InvalidArgument(f"r={rr.tolist()!r} must be finite")
+    fmax = _check_real(max_magnitude, "max_magnitude")
+    if fmax <= 0:
+        raise InvalidArgument(f"max_magnitude={max_magnitude!r} must be > 0")
+    names = _check_regimes(regimes, PAIR_FORCE_REGIMES, "pair_forces")
+    n = rr.shape[0]
+
+    @st.composite
+    def draw_forces(draw) -> np.ndarray:
+        regime = draw(st.sampled_from(names))
+        event(f"pair_forces: {regime}")
+        if regime == "none":
+            return np.zeros((n, n, 3))
+        # Symmetric pair parameters from per-particle draws (O(N) draws, not
+        # O(N²)): t_kj = (u_k + u_j)/2 in [−1, 1], the same for (k, j) and (j, k).
+        u = draw(_signed_units(n))
+        if regime == "non-central":
+            w = 1e-3 + (0.5 - 1e-3) * np.abs(draw(_signed_units(n)))
+            ang = math.pi * draw(_signed_units(n))
+        d = rr[:, None, :] - rr[None, :, :]  # r_kj
+        dist = np.linalg.norm(d, axis=-1)
+        apart = dist > 0
+        e = np.where(apart[..., None], d / np.where(apart, dist, 1.0)[..., None], [1.0, 0.0, 0.0])
+        t = 0.5 * (u[:, None] + u[None, :])
+        f = np.where(apart[..., None], (0.5 * fmax * t)[..., None] * e, 0.0)
+        if regime == "non-central":
+            # Unit vectors normal to e: e × (the coordinate axis least aligned with e).
+            a = np.zeros_like(e)
+            np.put_along_axis(a, np.argmin(np.abs(e), axis=-1)[..., None], 1.0, axis=-1)
+            n1 = np.cross(e, a)
+            n1 /= np.linalg.norm(n1, axis=-1, keepdims=True)
+            n2 = np.cross(e, n1)
+            phi = (ang[:, None] + ang[None, :])[..., None]
+            mag = (0.5 * fmax * 0.5 * (w[:, None] + w[None, :]))[..., None]
+            f = f + mag * (np.cos(phi) * n1 + np.sin(phi) * n2)
+        # Newton's third law by construction: keep k < j, mirror to j > k.
+        upper = np.triu(np.ones((n, n), dtype=bool), 1)[..., None]
+        f = np.where(upper, f, 0.0)
+        return f - np.swapaxes(f, 0, 1)
+
+    return draw_forces()

@@ -140,7 +140,9 @@ def test_carousel_angular_momentum_balance(c, n_tau):
     assert abs(w) <= abs(lim) * (1 + SUM_ATOL)
 
 
-@given(carousels(), st.floats(-1.0, 1.0))
+# the initial rate as a fraction of the limit: 0, or 1e-6 … 1 of it either way (not a
+# subnormal-scale rate, where scipy's error norm underflows to 0/0)
+@given(carousels(), st.just(0.0) | st.floats(1e-6, 1.0) | st.floats(-1.0, -1e-6))
 def test_carousel_closed_form_matches_integration_of_7_39(c, w0_frac):
     lim = float(osys.carousel_limit_angular_velocity(v=c["v"], r=c["r"], R=c["R"]))
     w0 = 2 * w0_frac * (abs(lim) + 1.0)

@@ -1,0 +1,271 @@
+"""API, validation and edge cases of :mod:`mechanics.particles`."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from mechanics import particles as mp
+from mechanics.errors import (
+    NegativeMassError,
+    NonFiniteError,
+    NonPositiveParameterError,
+    OutOfDomainError,
+    ResultOverflowError,
+    ShapeError,
+    ZeroAxisError,
+    ZeroTotalMassError,
+)
+
+EPS = np.finfo(float).eps
+
+M3 = np.array([1.0, 2.0, 0.5])
+R3 = np.array([[1.0, 0.0, 0.0], [0.0, 2.0, 1.0], [-1.0, 1.0, 3.0]])
+V3 = np.array([[0.0, 1.0, 0.0], [1.0, 0.0, -1.0], [2.0, 2.0, 0.0]])
+O = np.zeros(3)
+
+
+# ----------------------------------------------------------- book examples
+
+
+@pytest.mark.parametrize("t", [0.0, 0.3, 1.7])
+def test_example_1_1_angular_momentum_and_moment_match_the_book(t):
+    # Example 1.1, (1.34)–(1.38): two balls m at ±r_1 on a rod of length 2R
+    # at angle ϑ to the z-axis, turning at ω.
+    m, R, th, w = 0.7, 1.3, 0.4, 2.1
+    c, s = math.cos(w * t), math.sin(w * t)
+    r1 = np.array([R * math.sin(th) * c, R * math.sin(th) * s, R * math.cos(th)])
+    v1 = R * math.sin(th) * w * np.array([-s, c, 0.0])
+    a1 = -(w**2) * np.array([r1[0], r1[1], 0.0])
+    r, v, a = np.stack([r1, -r1]), np.stack([v1, -v1]), np.stack([a1, -a1])
+    masses = [m, m]
+    assert np.abs(mp.momentum(masses, v)).max() == 0.0  # (1.36)
+    L = mp.angular_momentum(masses, r, v, about=O)
+    book_L = (
+        2
+        * m
+        * R**2
+        * math.sin(th)
+        * w
+        * np.array([-math.cos(th) * c, -math.cos(th) * s, math.sin(th)])
+    )  # (1.37)
+    np.testing.assert_allclose(L, book_L, rtol=0, atol=8 * EPS * np.abs(book_L).max())
+    Ldot = mp.angular_momentum_rate(masses, r, v, a, about=O, about_velocity=O)
+    book_M = 2 * m * R**2 * w**2 * math.sin(th) * math.cos(th) * np.array([s, -c, 0.0])  # (1.38)
+    np.testing.assert_allclose(Ldot, book_M, rtol=0, atol=8 * EPS * np.abs(book_M).max() + 1e-300)
+
+
+def test_example_1_2_platform_relation_conserves_axial_angular_momentum():
+    # (1.78)–(1.80): with α̇ = −m ρ² ϕ̇/(J_z + m ρ²), the platform (a ring of
+    # particles of total moment J_z) and the walker have L_z = 0.
+    Jz, m, rho, phidot = 4.0, 1.5, 0.8, 0.9
+    alphadot = -m * rho**2 * phidot / (Jz + m * rho**2)
+    ring_angles = np.linspace(0, 2 * np.pi, 8, endpoint=False)
+    ring = np.stack([np.cos(ring_angles), np.sin(ring_angles), 0 * ring_angles], -1)
+    ring_m = np.full(8, Jz / 8)
+    walker = np.array([[rho, 0.0, 0.0]])
+    r = np.concatenate([ring, walker])
+    ez = np.array([0.0, 0.0, 1.0])
+    v = np.concatenate([np.cross(alphadot * ez, ring), np.cross((alphadot + phidot) * ez, walker)])
+    L = mp.angular_momentum(np.concatenate([ring_m, [m]]), r, v, about=O)
+    assert abs(L[2]) <= 8 * EPS * (Jz + m) * abs(phidot)
+
+
+# -------------------------------------------------------------------- API
+
+
+def test_total_mass_and_centre_of_mass_of_a_simple_system():
+    assert mp.total_mass(M3) == 3.5
+    np.testing.assert_array_equal(mp.centre_of_mass(M3, R3), (M3 @ R3) / 3.5)
+
+
+def test_batches_broadcast_one_mass_vector_over_many_configurations():
+    rng = np.random.default_rng(0)
+    r = rng.normal(size=(4, 5, 3))
+    v = rng.normal(size=(4, 5, 3))
+    m = rng.uniform(1, 2, 5)
+    rG = mp.centre_of_mass(m, r)
+    assert rG.shape == (4, 3)
+    L = mp.angular_momentum(m, r, v, about=np.zeros((4, 3)))
+    assert L.shape == (4, 3)
+    for b in range(4):
+        np.testing.assert_allclose(rG[b], mp.centre_of_mass(m, r[b]), rtol=4 * EPS)
+        np.testing.assert_allclose(L[b], mp.angular_momentum(m, r[b], v[b], about=O), rtol=1e-15)
+    T = mp.kinetic_energy(m, v)
+    assert T.shape == (4,)
+    T_G, T_cm = mp.kinetic_energy_decomposition(m, v)
+    assert T_G.shape == T_cm.shape == (4,)
+
+
+def test_single_particle_has_no_internal_angular_momentum_or_energy():
+    L_G, L_ext = mp.angular_momentum_decomposition([2.0], [[1.0, 2.0, 3.0]], [[0, 1, 0]], about=O)
+    assert not L_G.any()
+    np.testing.assert_array_equal(L_ext, np.cross([1.0, 2.0, 3.0], [0.0, 2.0, 0.0]))
+    T_G, T_cm = mp.kinetic_energy_decomposition([2.0], [[0.0, 3.0, 0.0]])
+    assert T_G == 0.0
+    assert T_cm == 9.0
+
+
+def test_zero_masses_are_allowed_when_some_mass_remains():
+    rG = mp.centre_of_mass([0.0, 2.0], [[1e300, 0, 0], [1.0, 2.0, 3.0]])
+    np.testing.assert_array_equal(rG, [1.0, 2.0, 3.0])
+
+
+def test_relative_velocity_angular_momentum_about_G_is_L_G():
+    rG, vG = mp.centre_of_mass(M3, R3), mp.centre_of_mass_velocity(M3, V3)
+    L_rel = mp.angular_momentum(M3, R3, V3, about=rG, about_velocity=vG)
+    L_G, _ = mp.angular_momentum_decomposition(M3, R3, V3, about=O)
+    np.testing.assert_allclose(L_rel, L_G, rtol=0, atol=16 * EPS * 10)
+
+
+def test_internal_forces_and_moment_of_a_non_central_pair():
+    f = np.zeros((3, 3, 3))
+    f[0, 2] = [0.0, 0.0, 1.0]
+    f[2, 0] = -f[0, 2]
+    F = mp.internal_forces(f)
+    np.testing.assert_array_equal(F, [[0, 0, 1], [0, 0, 0], [0, 0, -1]])
+    # M^i = r_02 × f_02 = (2, -1, -3) × (0, 0, 1)
+    np.testing.assert_array_equal(mp.internal_moment(R3, f), np.cross(R3[0] - R3[2], f[0, 2]))
+
+
+def test_cylindrical_components_of_a_point_on_the_x_axis():
+    c = mp.cylindrical_components([2.0, 0.0, 1.0], [1.0, 4.0, -1.0], about=O, axis=[0, 0, 1])
+    assert (float(c.rho), float(c.phi), float(c.z)) == (2.0, 0.0, 1.0)
+    assert (float(c.rhodot), float(c.phidot), float(c.zdot)) == (1.0, 2.0, -1.0)
+
+
+def test_cylindrical_components_about_a_general_axis_are_consistent():
+    e = np.array([1.0, 2.0, 2.0]) / 3
+    A = np.array([0.5, -1.0, 2.0])
+    r, v = np.array([3.0, 1.0, -2.0]), np.array([0.3, -0.4, 1.1])
+    c = mp.cylindrical_components(r, v, about=A, axis=3 * e)
+    # ρ² + z² = |r − A|², ρ ρ̇ + z ż = (r − A)·v and ρ² ϕ̇ = ((r − A) × v)·e (1.68).
+    d = r - A
+    assert c.rho**2 + c.z**2 == pytest.approx(d @ d, rel=1e-14)
+    assert c.rho * c.rhodot + c.z * c.zdot == pytest.approx(d @ v, rel=1e-14)
+    assert c.rho**2 * c.phidot == pytest.approx(np.cross(d, v) @ e, rel=1e-14)
+
+
+def test_continuous_rod_by_the_midpoint_rule_converges_at_second_order():
+    errs = []
+    for n in (100, 200):
+        x = (np.arange(n) + 0.5) * (2.0 / n)
+        pts = np.stack([x, 0 * x, 0 * x], -1)
+        errs.append(abs(mp.continuous_centre_of_mass(x, pts, cell_volume=2.0 / n)[0] - 4 / 3))
+    assert 3.9 < errs[0] / errs[1] < 4.1
+
+
+# -------------------------------------------------------------- validation
+
+
+@pytest.mark.parametrize(
+    ("func", "args", "kwargs"),
+    [
+        (mp.total_mass, ([1.0, -0.5],), {}),
+        (mp.centre_of_mass, ([1.0, -0.5], R3[:2]), {}),
+        (mp.momentum, ([1.0, -1.0], V3[:2]), {}),
+        (mp.angular_momentum, ([1.0, -1e-300], R3[:2], V3[:2]), {"about": O}),
+        (mp.kinetic_energy, ([1.0, -2.0], V3[:2]), {}),
+    ],
+)
+def test_negative_masses_are_rejected_naming_the_value(func, args, kwargs):
+    with pytest.raises(NegativeMassError, match=r"m must be >= 0; found -.* at index \(1,\)"):
+        func(*args, **kwargs)
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_non_finite_masses_and_positions_are_rejected(bad):
+    with pytest.raises(NonFiniteError, match="m must be finite"):
+        mp.total_mass([1.0, bad])
+    r = R3.copy()
+    r[1, 2] = bad
+    with pytest.raises(NonFiniteError, match=r"r must be finite; found .* at index \(1, 2\)"):
+        mp.centre_of_mass(M3, r)
+
+
+def test_zero_total_mass_is_rejected():
+    with pytest.raises(ZeroTotalMassError, match="total mass is 0"):
+        mp.centre_of_mass([0.0, 0.0], R3[:2])
+    with pytest.raises(ZeroTotalMassError):
+        mp.angular_momentum_decomposition([0.0], R3[:1], V3[:1], about=O)
+
+
+@pytest.mark.parametrize(
+    ("m", "r"),
+    [
+        (M3, R3[:2]),  # N differs
+        (M3, R3[:, :2]),  # not 3-vectors
+        (2.0, R3[:1]),  # scalar mass: no particle axis
+        (np.ones((2, 3)), np.ones((3, 3, 3))),  # batch axes 2 vs 3
+        ([], np.zeros((0, 3))),  # no particle
+    ],
+)
+def test_mismatched_shapes_are_rejected_naming_them(m, r):
+    with pytest.raises(ShapeError, match=r"shape|\(2, 3\)"):
+        mp.centre_of_mass(m, r)
+
+
+def test_base_point_is_required():
+    with pytest.raises(TypeError):
+        mp.angular_momentum(M3, R3, V3)  # type: ignore[call-arg]
+    with pytest.raises(ShapeError, match="about"):
+        mp.angular_momentum(M3, R3, V3, about=[0.0, 0.0])
+
+
+def test_pair_forces_must_be_square():
+    with pytest.raises(ShapeError, match=r"\(\.\.\., N, N, 3\)"):
+        mp.internal_forces(np.zeros((2, 3, 3)))
+
+
+def test_axis_problems_are_rejected():
+    with pytest.raises(ZeroAxisError):
+        mp.axial_component([1.0, 2.0, 3.0], axis=[0.0, 0.0, 0.0])
+    with pytest.raises(OutOfDomainError, match="on the axis"):
+        mp.cylindrical_components([0.0, 0.0, 5.0], [1, 0, 0], about=O, axis=[0, 0, 1])
+    with pytest.raises(OutOfDomainError, match="J_z = 0"):
+        mp.average_angular_velocity(
+            [1.0], [[0.0, 0.0, 1.0]], [[1.0, 0, 0]], about=O, axis=[0, 0, 1]
+        )
+
+
+def test_density_validation():
+    with pytest.raises(NegativeMassError, match="rho"):
+        mp.masses_from_density([1.0, -1.0], cell_volume=1.0)
+    with pytest.raises(NonPositiveParameterError, match="cell_volume"):
+        mp.masses_from_density([1.0], cell_volume=0.0)
+
+
+# ----------------------------------------------------------- extreme scales
+
+
+def test_centre_of_mass_is_found_where_the_weighted_sum_overflows():
+    # Σ m r = 1e300 × 1e100 is beyond float64, r_G = 1e100 is not.
+    rG = mp.centre_of_mass([1e300, 1e300], [[1e100, 0, 0], [1e100, 2.0, 0]])
+    np.testing.assert_allclose(rG, [1e100, 1.0, 0.0], rtol=2 * EPS)
+
+
+def test_centre_of_mass_of_tiny_masses_does_not_underflow():
+    rG = mp.centre_of_mass([1e-300, 3e-300], [[0.0, 0, 0], [4.0, 0, 0]])
+    np.testing.assert_allclose(rG, [3.0, 0.0, 0.0], rtol=2 * EPS)
+
+
+def test_an_overflowing_result_raises_instead_of_returning_inf():
+    with pytest.raises(ResultOverflowError, match="momentum"):
+        mp.momentum([1e300, 1e300], [[1e10, 0, 0], [1e10, 0, 0]])
+    with pytest.raises(ResultOverflowError):
+        mp.kinetic_energy([1.0], [[1e200, 0, 0]])
+
+
+def test_compensated_sums_are_exact_where_plain_sums_lose_everything():
+    # 1 + 1e100 − 1e100 cancels: the compensated momentum keeps the 1.
+    p = mp.momentum([1.0, 1.0, 1.0], [[1.0, 0, 0], [1e100, 0, 0], [-1e100, 0, 0]])
+    assert p[0] == 1.0
+    assert (np.array([1.0, 1e100, -1e100])).sum() == 0.0  # the plain sum loses it
+
+
+def test_koenig_parts_of_T_at_a_speed_of_1e8():
+    T_G, T_cm = mp.kinetic_energy_decomposition([1.0, 1.0], [[1e8 + 1, 0, 0], [1e8 - 1, 0, 0]])
+    assert T_G == 1.0
+    assert T_cm == 1e16
