@@ -25,10 +25,12 @@ test: $(STAMP)
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
 
-## make bench: time the kernels (pytest-benchmark), saved for --benchmark-compare
+## make bench: time the kernels (pytest-benchmark, saved for --benchmark-compare), then
+## the work-precision study (bodycheck bench: table, JSON and plots in bench-results/)
 bench: $(STAMP)
 	$(BIN)/python -m pytest tests/benchmarks --benchmark-enable --benchmark-only \
 		--benchmark-autosave --benchmark-columns=min,median,max,rounds
+	$(BIN)/bodycheck bench --out bench-results
 
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis .benchmarks .ruff_cache
+	rm -rf $(VENV) .pytest_cache .hypothesis .benchmarks .ruff_cache bench-results

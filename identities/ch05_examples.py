@@ -199,7 +199,7 @@ def example_5_2(d: Derivation) -> None:
     d.prove_equal(
         (sol[w[0]] + sp.I * sol[w[1]]).rewrite(sp.exp),
         A * sp.exp(sp.I * (b * t + al)),
-        strategy="simplify",
+        strategy="expand",
         claim="(5.43): ζ = |A| e^{iα} e^{iβt}",
     )
     bad = {w[0]: A * sp.cos(-b * t + al), w[1]: A * sp.sin(-b * t + al), w[2]: w30}

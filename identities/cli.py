@@ -6,6 +6,7 @@
     bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
     bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
     bodycheck demo --list
+    bodycheck bench [--quick] [--out DIR] [--repeats N]
 
 Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale, or a scene missed the
 book), 2 bad usage (including a bad scene file: one line naming file, field and reason).
@@ -83,6 +84,16 @@ def _parser() -> argparse.ArgumentParser:
             choices=("auto", "exact", "integrate"),
             help="override the scene's method (auto: the exact flow where there is one)",
         )
+    b = sub.add_parser("bench", help="the work-precision study: what accuracy costs in time")
+    b.add_argument("--quick", action="store_true", help="short horizons, few points (< 30 s)")
+    b.add_argument("--out", default="bench-results", metavar="DIR", help="output directory")
+    b.add_argument(
+        "--repeats",
+        type=int,
+        default=None,
+        metavar="N",
+        help="timing repeats, the median is taken (default 3; 1 with --quick)",
+    )
     return p
 
 
@@ -375,6 +386,26 @@ def _cmd_demo(args) -> int:
     return _run_scene_file(scenes[args.name], args)
 
 
+def _cmd_bench(args) -> int:
+    from .workprecision import format_value, run_study
+
+    repeats = args.repeats if args.repeats is not None else (1 if args.quick else 3)
+    if repeats < 1:
+        raise UsageError(f"--repeats must be at least 1; got {repeats}")
+    study = run_study(quick=args.quick, out_dir=Path(args.out), repeats=repeats, progress=True)
+    h = study["headline"]
+    print(
+        f"wrote {args.out}/workprecision.{{json,md,png}} and energy_drift.png "
+        f"in {study['total_time_s']:.1f} s"
+    )
+    print(
+        f"time of scipy DOP853 / our best stepper at equal error: "
+        f"{format_value(h['best_stepper_vs_scipy_dop853'], '.2f')}; "
+        f"scipy DOP853 / exact solution: {format_value(h['exact_vs_scipy_dop853'], '.3g')}"
+    )
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bodycheck`` console script."""
     try:
@@ -385,6 +416,7 @@ def main(argv: list[str] | None = None) -> int:
             "catalogue": _cmd_catalogue,
             "scene": _cmd_scene,
             "demo": _cmd_demo,
+            "bench": _cmd_bench,
         }[args.command]
         return handler(args)
     except UsageError as exc:

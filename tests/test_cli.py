@@ -114,3 +114,15 @@ def test_timings_lists_the_slowest_checks_with_their_strategies(capsys) -> None:
     rows = {line.split()[0]: line for line in table[2:]}
     assert set(rows) < {"eq8.6", "eq8.8", "E8.1"}
     assert all("expand" in line and "proved (expand" in line for line in rows.values())
+
+
+def test_bench_quick_writes_the_study(tmp_path, capsys) -> None:
+    assert main(["bench", "--quick", "--out", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "scipy DOP853 / exact solution" in out
+    study = json.loads((tmp_path / "workprecision.json").read_text())
+    assert study["quick"] is True
+    assert {"free_top", "heavy_top", "pendulum"} <= set(study["problems"])
+    for name in ("workprecision.md", "workprecision.png", "energy_drift.png"):
+        assert (tmp_path / name).stat().st_size > 0
+    assert main(["bench", "--quick", "--repeats", "0", "--out", str(tmp_path)]) == 2

@@ -1,0 +1,212 @@
+"""The work-precision study (``bodycheck bench``, issue 6): outputs and its power to fail.
+
+The quick study runs once (module fixture, a few seconds) through ``main_bench``;
+the tests read what it wrote.  No test asserts a time: the ratios are reported.
+A study that cannot fail proves nothing, so a deliberately broken "method" (one
+that returns the initial state, and one that integrates a top with a wrong
+moment of inertia) goes through the same pipeline and must show a large error.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import struct
+
+import numpy as np
+import pytest
+
+from identities import workprecision as wp
+from mechanics.integrators import free_rigid_body_rhs, integrate
+from mechanics.rotation import EPS
+from mechanics.tops import HeavySymmetricTop
+
+PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+EXPECTED_PROBLEMS = ("free_top", "heavy_top", "pendulum", "impact")
+SCIPY = ("scipy-RK45", "scipy-DOP853", "scipy-LSODA")
+EXPECTED_METHODS = {
+    "free_top": ("exact", "rk4", "dop853", "splitting-2", "splitting-4", "splitting-6", *SCIPY),
+    "heavy_top": ("exact", "rk4", "dop853", *SCIPY),
+    "pendulum": ("exact", "rk4", "dop853", *SCIPY),
+    "impact": ("exact", "rk4", "dop853", *SCIPY),
+}
+# The exact references' own residuals are rounding: a few hundred eps at most over
+# the quick horizons (elliptic phase ~100, a few eps per unit phase, tops.py).
+EXACT_RESIDUAL_MAX = 1024 * EPS
+# Every quick-run method reaches at least this error at its tightest setting
+# (the loosest, RK4 at 200 steps per period of the θ0 = 3 pendulum, measured below).
+TIGHTEST_ERROR_MAX = 1e-2
+# A method that does not move, or a top with J2 off by 1e-6 relative, is off by
+# far more than any working method: the frozen state is O(1) away after 20 rotations.
+BROKEN_ERROR_MIN = 1e-2
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    out = tmp_path_factory.mktemp("bench")
+    rc = wp.main_bench(["--quick", "--out", str(out), "--repeats", "1"])
+    data = json.loads((out / "workprecision.json").read_text(encoding="utf-8"))
+    return rc, out, data
+
+
+def _png_size(path) -> tuple[int, int]:
+    raw = path.read_bytes()
+    assert raw[:8] == PNG_MAGIC, f"{path.name} is not a PNG"
+    assert raw[12:16] == b"IHDR"
+    w, h = struct.unpack(">II", raw[16:24])
+    assert raw.rstrip(b"\x00")[-8:-4] == b"IEND" or b"IEND" in raw[-16:]
+    return w, h
+
+
+def test_quick_bench_writes_the_four_outputs(quick_run):
+    rc, out, _ = quick_run
+    assert rc == 0
+    for name in ("workprecision.json", "workprecision.md", "workprecision.png", "energy_drift.png"):
+        assert (out / name).stat().st_size > 0, name
+    for name in ("workprecision.png", "energy_drift.png"):
+        w, h = _png_size(out / name)
+        assert w >= 300, (name, w, h)
+        assert h >= 200, (name, w, h)
+
+
+def test_json_schema_has_every_problem_and_method(quick_run):
+    _, _, d = quick_run
+    assert d["schema"] == wp.SCHEMA
+    assert d["quick"] is True
+    assert d["repeats"] == 1
+    assert tuple(d["problems"]) == EXPECTED_PROBLEMS
+    for name, p in d["problems"].items():
+        assert {"title", "horizon", "error_measure", "records", "skipped"} <= set(p)
+        methods = {r["method"] for r in p["records"]}
+        assert methods == set(EXPECTED_METHODS[name]), name
+        for r in p["records"]:
+            assert {"param", "error", "time_s", "steps", "rhs_evals", "rejected_steps"} <= set(r)
+            assert math.isfinite(r["error"]), r
+            assert r["error"] >= 0, r
+            assert math.isfinite(r["time_s"]), r
+            assert r["time_s"] > 0, r
+            if r["method"] != "exact":
+                assert r["steps"] > 0, r
+                assert r["rhs_evals"] >= r["steps"], r
+
+
+def test_every_method_converges_toward_the_exact_solution(quick_run):
+    _, _, d = quick_run
+    for name, p in d["problems"].items():
+        for m in EXPECTED_METHODS[name]:
+            errs = [r["error"] for r in p["records"] if r["method"] == m]
+            if m == "exact":
+                assert errs[0] <= EXACT_RESIDUAL_MAX, (name, errs)
+                continue
+            assert min(errs) <= TIGHTEST_ERROR_MAX, (name, m, errs)
+            # a tighter setting (listed later) gives a smaller error
+            assert errs[-1] < errs[0], (name, m, errs)
+
+
+def test_headline_ratios_are_reported_not_asserted(quick_run):
+    _, _, d = quick_run
+    h = d["headline"]
+    assert h["target_error"] == wp.TARGET_ERROR
+    assert h["exact_vs_scipy_dop853"] is not None
+    assert h["exact_vs_scipy_dop853"] > 0
+    assert set(h["batched_1000_over_1"]) == {"rk4", "splitting-4"}
+    assert set(h["goals"]) >= {"exact_vs_scipy_dop853 >= 1e4"}
+    b = d["batched"]
+    for k in ("rk4", "splitting-4"):
+        # the batch's first member is exactly the single body's run (fixed-step methods)
+        assert b[k]["member_0_max_diff"] == 0.0, b[k]
+
+
+def test_energy_drift_bounded_for_the_splitting_and_growing_for_rk4(quick_run):
+    _, _, d = quick_run
+    curves = d["energy_drift"]["curves"]
+    split = next(v for k, v in curves.items() if k.startswith("splitting"))
+    rk4 = next(v for k, v in curves.items() if k.startswith("rk4"))
+    assert len(d["energy_drift"]["horizons_rotations"]) == len(split) >= 2
+    # RK4 is dissipative: its maximum energy error grows with the horizon (measured
+    # ×2.8 from 10 to 30 rotations); the Lie–Poisson splitting's does not grow
+    # beyond its first oscillations (measured ×1.00).
+    assert rk4[-1] > 2.0 * rk4[0], rk4
+    assert split[-1] < 1.5 * split[0], split
+
+
+def test_markdown_has_a_table_per_problem_and_the_headline(quick_run):
+    _, out, d = quick_run
+    md = (out / "workprecision.md").read_text(encoding="utf-8")
+    assert "## Headline ratios" in md
+    assert md.count("| method | parameter | error | time [s] |") == len(EXPECTED_PROBLEMS)
+    for p in d["problems"].values():
+        assert p["title"] in md
+        for r in p["records"]:
+            assert f"| {r['method']} |" in md
+
+
+def test_a_broken_method_shows_a_large_error(tmp_path):
+    free = wp._free_top_problem(True)
+    pend = wp._pendulum_problem(True)
+    for p in (free, pend):
+        y0 = p.y0
+
+        def frozen(_=None, p=p, y0=y0):
+            r = p.score(y0)  # "integrates" by returning the initial state
+            r.steps, r.rhs_evals, r.rejected_steps = 1, 1, 0
+            return r
+
+        p.methods["frozen"] = (None, [None], frozen)
+    wrong_J = wp.FREE_J * np.array([1.0, 1.0 + 1e-6, 1.0])
+
+    def wrong_inertia(n):
+        rot = 2 * math.pi / float(np.linalg.norm(wp.FREE_W0))
+        s = integrate(
+            free_rigid_body_rhs(wrong_J), free.y0, (0.0, free.horizon), method="rk4", h=rot / n
+        )
+        r = free.score(s.y[-1])
+        r.steps, r.rhs_evals, r.rejected_steps = s.steps, s.rhs_evals, 0
+        return r
+
+    free.methods["rk4-wrong-J2"] = ("steps per rotation", [200], wrong_inertia)
+    d = wp.run_study(quick=True, out_dir=tmp_path, repeats=1, progress=False, problems=[free, pend])
+    recs = {
+        (name, r["method"]): r["error"] for name, p in d["problems"].items() for r in p["records"]
+    }
+    assert recs[("free_top", "frozen")] > BROKEN_ERROR_MIN
+    assert recs[("pendulum", "frozen")] > BROKEN_ERROR_MIN
+    # J2 off by 1e-6 gives a phase error ~1e-6 × (ω t ~ 126) ~ 1e-4 ≫ RK4's own 2e-7 here
+    assert recs[("free_top", "rk4-wrong-J2")] > 1e-5
+    assert recs[("free_top", "splitting-6")] < 1e-3  # the working methods stay accurate
+    md = (tmp_path / "workprecision.md").read_text(encoding="utf-8")
+    assert "| frozen |" in md
+
+
+def test_heavy_top_rhs_matches_the_exact_rates():
+    """The Euler-angle right-hand side against HeavySymmetricTop's closed-form rates
+    (θ̈ by a central difference of the exact θ̇: error ~ δ² ≈ 1e-8)."""
+    top = HeavySymmetricTop(**wp.HEAVY, **wp.HEAVY_INIT)
+    rhs = wp.heavy_top_rhs(wp.HEAVY["J_1"], wp.HEAVY["J_3"], wp.HEAVY["m_g_ell"], top.L_z, top.L_3)
+    for t in (0.3, 1.7, 4.2):
+        thd, psid, phid = (float(x) for x in top.rates(t))
+        y = np.array([float(top.theta(t)), float(top.psi(t)), float(top.phi(t)), thd])
+        dy = rhs(t, y)
+        delta = 1e-4
+        thdd = (float(top.rates(t + delta)[0]) - float(top.rates(t - delta)[0])) / (2 * delta)
+        np.testing.assert_allclose(dy[:3], [thd, psid, phid], rtol=0, atol=1e-12)
+        assert abs(dy[3] - thdd) < 1e-7, (t, dy[3], thdd)
+
+
+def test_impact_exact_follows_energy_and_restitution():
+    """First impact a quarter period after release; after it sin(θ1/2) = e sin(θ0/2)
+    (rebound speed e times the speed at the bottom, 2ω0 sin(θ0/2))."""
+    from mechanics.dynamics import pendulum_period
+
+    times, amps, t_end, _ = wp._impact_exact(3)
+    T0 = float(pendulum_period(*wp.PEND, wp.IMPACT_THETA0))
+    assert abs(times[0] - T0 / 4) <= 4 * EPS * T0
+    assert abs(math.sin(amps[0] / 2) - wp.IMPACT_E * math.sin(wp.IMPACT_THETA0 / 2)) < 8 * EPS
+    T1 = float(pendulum_period(*wp.PEND, amps[0]))
+    assert abs(times[1] - times[0] - T1 / 2) <= 8 * EPS * times[1]
+    assert t_end > times[-1]
+
+
+def test_main_bench_rejects_a_bad_repeats(tmp_path):
+    with pytest.raises(SystemExit):
+        wp.main_bench(["--quick", "--out", str(tmp_path), "--repeats", "0"])
