@@ -253,16 +253,10 @@ def problem_2_4(d: Derivation) -> None:
     )
 
 
-@check(
-    "P2.5",
-    "Problem 2.5: instantaneous centres of six rollers in a pyramid",
-    kind="derivation",
-    covers=("P2.5",),
-    statement="rollers of radius r at A, B, C (AB = BC = 4r, AC = 6r) and at the midpoints of the "
-    "rods; the frame moves right with speed v; no slip anywhere",
-)
-def problem_2_5(d: Derivation) -> None:
-    r, v = sp.symbols("r v", positive=True)
+def roller_pyramid(r, v):
+    """The six rollers of Problem 2.5 (reused by Problem 3.2): their centres, the pairs in
+    contact, and the angular velocities that rolling everywhere without slip forces when
+    the frame translates with speed v (solved from the contact conditions)."""
     h = sp.sqrt(7) * r  # height of B above AC: sqrt((4r)^2 - (3r)^2)
     centres = {
         "A": vec(0, r, 0),
@@ -280,11 +274,6 @@ def problem_2_5(d: Derivation) -> None:
         ("M_AB", "M_AC"),
         ("M_BC", "M_AC"),
     ]
-    for p, q in contacts:
-        gap = centres[p] - centres[q]
-        d.prove_equal(
-            gap.dot(gap), 4 * r**2, strategy="expand", claim=f"{p} and {q} touch (centres 2r apart)"
-        )
     w = {k: sp.Symbol(f"omega_{k}", real=True) for k in centres}
     vc = vec(v, 0, 0)  # the rods translate: A and C roll on the floor, the frame cannot turn
     eqs = []
@@ -296,9 +285,29 @@ def problem_2_5(d: Derivation) -> None:
     sol = sp.solve(eqs, list(w.values()), dict=True)
     if len(sol) != 1:
         raise AssertionError(f"expected a unique set of angular velocities, got {sol}")
+    return centres, contacts, {k: sol[0][w[k]] for k in centres}
+
+
+@check(
+    "P2.5",
+    "Problem 2.5: instantaneous centres of six rollers in a pyramid",
+    kind="derivation",
+    covers=("P2.5",),
+    statement="rollers of radius r at A, B, C (AB = BC = 4r, AC = 6r) and at the midpoints of the "
+    "rods; the frame moves right with speed v; no slip anywhere",
+)
+def problem_2_5(d: Derivation) -> None:
+    r, v = sp.symbols("r v", positive=True)
+    centres, contacts, omegas = roller_pyramid(r, v)
+    for p, q in contacts:
+        gap = centres[p] - centres[q]
+        d.prove_equal(
+            gap.dot(gap), 4 * r**2, strategy="expand", claim=f"{p} and {q} touch (centres 2r apart)"
+        )
+    vc = vec(v, 0, 0)
     centres_C = {}
     for k, c in centres.items():
-        wk = sol[0][w[k]]
+        wk = omegas[k]
         centres_C[k] = c + cross(wk * ez, vc) / wk**2  # (2.77)
         d.quantity(f"omega_{k}", wk)
         d.quantity(f"C_{k}", centres_C[k])

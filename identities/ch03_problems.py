@@ -16,6 +16,7 @@ from mechanics import kinematics as kin
 from mechanics import particles as pt
 
 from .catalogue import check
+from .ch02_problems import roller_pyramid
 from .ch03_examples import _cylinder_moment, _disc_moment
 from .ch03_power import EPS, ODE_RTOL
 from .proof import Derivation
@@ -114,35 +115,8 @@ def problem_3_1(d: Derivation) -> None:
 )
 def problem_3_2(d: Derivation) -> None:
     m, r, v = sp.symbols("m r v", positive=True)
-    h = sp.sqrt(7) * r  # B above AC: sqrt((4r)² - (3r)²)
-    centres = {
-        "A": vec(0, r, 0),
-        "M_AC": vec(3 * r, r, 0),
-        "C": vec(6 * r, r, 0),
-        "M_AB": vec(sp.Rational(3, 2) * r, r + h / 2, 0),
-        "M_BC": vec(sp.Rational(9, 2) * r, r + h / 2, 0),
-        "B": vec(3 * r, r + h, 0),
-    }
-    contacts = [
-        ("A", "M_AB"),
-        ("M_AB", "B"),
-        ("B", "M_BC"),
-        ("M_BC", "C"),
-        ("M_AB", "M_AC"),
-        ("M_BC", "M_AC"),
-    ]
-    w = {k: sp.Symbol(f"omega_{k}", real=True) for k in centres}
-    vc = vec(v, 0, 0)
-    eqs = []
-    for k in ("A", "M_AC", "C"):  # rolling on the floor
-        eqs += list(vc + cross(w[k] * ez, vec(0, -r, 0)))[:2]
-    for p, q in contacts:  # equal material velocities at each contact
-        n = (centres[q] - centres[p]) / 2
-        eqs += list(cross(w[p] * ez, n) - cross(w[q] * ez, -n))[:2]
-    sol = sp.solve(eqs, list(w.values()), dict=True)
-    if len(sol) != 1:
-        raise AssertionError(f"expected unique angular velocities, got {sol}")
-    omegas = {k: sol[0][w[k]] for k in centres}
+    _, _, omegas = roller_pyramid(r, v)  # the rollers of Problem 2.5
+    vc = vec(v, 0, 0)  # the frame translates
     J_G = _cylinder_moment(m, r)
     d.prove_equal(J_G, m * r**2 / 2, strategy="expand", claim="J_G = ½ m r² by integration")
     T_a = d.quantity(

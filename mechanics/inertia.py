@@ -422,7 +422,7 @@ def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
 def inertia_tensor(m, r, *, about) -> np.ndarray:
     """The inertia tensor J_C of particles about the point C = ``about`` (4.34).
 
-    Built in centre-of-mass coordinates: G is found relative to the first
+    Built in centre-of-mass coordinates: G is found relative to the heaviest
     particle, J_G = Σ m (|s|² 1 − s sᵀ) with s = r − G (diagonal entries as
     Σ m (s_j² + s_k²), which cannot cancel), then shifted to C by
     :func:`parallel_axis` (4.38).  So a compact system far from the origin
@@ -477,7 +477,11 @@ def _centre_of_mass_tensor(m, r):
     M = mm.sum(axis=-1)
     if (M <= 0).any():
         raise ZeroTotalMassError(f"total mass is 0 (index {_first(M <= 0)}): G is undefined")
-    ref = rr[..., :1, :]
+    # reference: the heaviest particle, which is closest to G in the mass-weighted sense,
+    # so G = ref + G_rel adds a small correction (a light far particle as reference would
+    # make G a difference of two large numbers when the masses differ by many orders)
+    heaviest = np.argmax(mm, axis=-1)[..., None, None]
+    ref = np.take_along_axis(rr, np.broadcast_to(heaviest, (*rr.shape[:-2], 1, 3)), axis=-2)
     rel = rr - ref
     G_rel = np.einsum("...n,...ni->...i", mm, rel) / M[..., None]
     s = rel - G_rel[..., None, :]

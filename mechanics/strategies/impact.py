@@ -46,7 +46,8 @@ from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
 from ..impact import RigidBody
-from .rotation import _check_real, _check_regimes, _log_uniform, rotation_matrices, unit_vectors
+from ._common import check_real, check_regimes, log_uniform
+from .rotation import rotation_matrices, unit_vectors
 
 __all__ = [
     "CONTACT_REGIMES",
@@ -152,13 +153,13 @@ def impact_masses(*, min_value: float = 1e-15, max_value: float = 1e15, regimes=
     Regimes (:data:`IMPACT_MASS_REGIMES`), each used when it meets the bounds.
     Shrinks toward 1 (or the nearest bound).
     """
-    lo = _check_real(min_value, "min_value")
-    hi = _check_real(max_value, "max_value")
+    lo = check_real(min_value, "min_value")
+    hi = check_real(max_value, "max_value")
     if lo <= 0:
         raise InvalidArgument(f"min_value={min_value!r} must be > 0")
     if lo > hi:
         raise InvalidArgument(f"min_value={min_value!r} exceeds max_value={max_value!r}")
-    wanted = _check_regimes(regimes, IMPACT_MASS_REGIMES, "impact_masses")
+    wanted = check_regimes(regimes, IMPACT_MASS_REGIMES, "impact_masses")
     spans = {
         "unit": (max(lo, 1.0), min(hi, 1.0)),
         "generic": (max(lo, 1e-3), min(hi, 1e3)),
@@ -176,7 +177,7 @@ def impact_masses(*, min_value: float = 1e-15, max_value: float = 1e15, regimes=
         regime = draw(st.sampled_from(names))
         event(f"impact_masses: {regime}")
         a, b = spans[regime]
-        return draw(_log_uniform(a, b))
+        return draw(log_uniform(a, b, shrink_to="hi"))
 
     return draw_mass()
 
@@ -187,11 +188,11 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
     Regimes (:data:`MASS_PAIR_REGIMES`); ``max_ratio`` ≥ 1e6 keeps the extreme
     regimes reachable.  Shrinks toward (1, 1).
     """
-    r = _check_real(max_ratio, "max_ratio")
+    r = check_real(max_ratio, "max_ratio")
     if r < 1e6:
         raise InvalidArgument(f"max_ratio={max_ratio!r} must be >= 1e6")
-    names = _check_regimes(regimes, MASS_PAIR_REGIMES, "mass_pairs")
-    base = _log_uniform(1e-3, 1e3)
+    names = check_regimes(regimes, MASS_PAIR_REGIMES, "mass_pairs")
+    base = log_uniform(1e-3, 1e3, shrink_to="hi")
 
     @st.composite
     def draw_pair(draw) -> tuple[float, float]:
@@ -202,7 +203,7 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
         if regime == "generic":
             return (draw(base), draw(base))
         m2 = draw(base)
-        ratio = draw(_log_uniform(1e6, r))
+        ratio = draw(log_uniform(1e6, r, shrink_to="hi"))
         return (m2 / ratio, m2) if regime == "light-1" else (m2 * ratio, m2)
 
     return draw_pair()
@@ -213,14 +214,14 @@ def restitution_coefficients(*, regimes=None):
 
     Shrinks toward 0.
     """
-    names = _check_regimes(regimes, RESTITUTION_REGIMES, "restitution_coefficients")
+    names = check_regimes(regimes, RESTITUTION_REGIMES, "restitution_coefficients")
     below_one = 1.0 - math.nextafter(1.0, 0.0)  # 1.1e-16, the spacing below 1
     branches = {
         "zero": st.just(0.0),
         "one": st.just(1.0),
         "interior": st.floats(0.0, 1.0),
-        "near-zero": _log_uniform(1e-15, 1e-6),
-        "near-one": _log_uniform(below_one, 1e-6).map(lambda d: 1.0 - d),
+        "near-zero": log_uniform(1e-15, 1e-6, shrink_to="hi"),
+        "near-one": log_uniform(below_one, 1e-6, shrink_to="hi").map(lambda d: 1.0 - d),
     }
 
     @st.composite
@@ -245,11 +246,11 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
     X axis, so the relative velocity Δẋ = ẋ_2 − ẋ_1 ≤ 0 (computed in float64,
     ẋ_1 = fl(ẋ_2 + s) ≥ ẋ_2 for s ≥ 0).  Shrinks toward a head-on (1, −1).
     """
-    top = _check_real(max_speed, "max_speed")
+    top = check_real(max_speed, "max_speed")
     if top < 1.0:
         raise InvalidArgument(f"max_speed={max_speed!r} must be >= 1")
-    names = _check_regimes(regimes, DIRECT_VELOCITY_REGIMES, "direct_velocities")
-    speed = _log_uniform(1e-6, top / 2)
+    names = check_regimes(regimes, DIRECT_VELOCITY_REGIMES, "direct_velocities")
+    speed = log_uniform(1e-6, top / 2, shrink_to="hi")
 
     @st.composite
     def draw_pair(draw) -> tuple[float, float]:
@@ -264,7 +265,7 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
         if regime == "chase":
             s = draw(st.floats(0.0, 1.0)) * abs(v2)  # v1 = v2 + s keeps the sign of v2
         else:
-            s = abs(v2) * draw(_log_uniform(1e-12, 1e-6))
+            s = abs(v2) * draw(log_uniform(1e-12, 1e-6, shrink_to="hi"))
         return (v2 + s, v2)
 
     return draw_pair()
@@ -278,9 +279,9 @@ def _vectors(max_norm: float):
     return st.tuples(comp, comp, comp).map(np.array)
 
 
-_MOMENT_SCALES = _log_uniform(1e-3, 1e3)
-_DEGENERATE_GAPS = _log_uniform(1e-12, 1e-6)
-_ELONGATIONS = _log_uniform(1e-6, 1e-2)
+_MOMENT_SCALES = log_uniform(1e-3, 1e3, shrink_to="hi")
+_DEGENERATE_GAPS = log_uniform(1e-12, 1e-6, shrink_to="hi")
+_ELONGATIONS = log_uniform(1e-6, 1e-2, shrink_to="hi")
 _UNIT_INTERVAL = st.floats(0.0, 1.0)
 _SYMMETRIC_RATIOS = st.floats(1e-2, 2.0)
 _GENERAL_RATIOS = st.floats(1e-2, 1.0)
@@ -325,7 +326,7 @@ def impact_inertia_tensors(*, regimes=None, rotations=None):
     :func:`mechanics.strategies.rotation_matrices`): J_O = Rᵀ diag(J) R.
     Shrinks toward an unturned sphere tensor (a multiple of the identity).
     """
-    names = _check_regimes(regimes, IMPACT_INERTIA_REGIMES, "impact_inertia_tensors")
+    names = check_regimes(regimes, IMPACT_INERTIA_REGIMES, "impact_inertia_tensors")
     rotations = rotation_matrices() if rotations is None else rotations
     if not isinstance(rotations, st.SearchStrategy):
         raise InvalidArgument(f"rotations={rotations!r} must be a hypothesis strategy")
@@ -349,8 +350,8 @@ def impact_bodies(*, masses_=None, tensors=None, max_position: float = 10.0, max
     """
     masses_ = impact_masses(min_value=1e-6, max_value=1e6) if masses_ is None else masses_
     tensors = impact_inertia_tensors() if tensors is None else tensors
-    pos = _check_real(max_position, "max_position")
-    spd = _check_real(max_speed, "max_speed")
+    pos = check_real(max_position, "max_position")
+    spd = check_real(max_speed, "max_speed")
     return st.builds(
         lambda m, J, r, v, w: RigidBody(m, m * J, r, v, w),
         masses_,
@@ -379,16 +380,16 @@ def contacts(*, regimes=None, restitution=None):
     contact is an impact.  ``restitution`` defaults to
     :func:`restitution_coefficients`.
     """
-    names = _check_regimes(regimes, CONTACT_REGIMES, "contacts")
+    names = check_regimes(regimes, CONTACT_REGIMES, "contacts")
     es = restitution_coefficients() if restitution is None else restitution
     if not isinstance(es, st.SearchStrategy):
         raise InvalidArgument(f"restitution={restitution!r} must be a hypothesis strategy")
-    speeds = _log_uniform(1e-2, 1e2)
+    speeds = log_uniform(1e-2, 1e2, shrink_to="hi")
     arms = st.floats(0.05, 3.0)
     bodies = impact_bodies()
     plane_masses = impact_masses(min_value=1e-3, max_value=1e3)
     plane_regimes = st.sampled_from(IMPACT_INERTIA_REGIMES)
-    ratios = _log_uniform(1e6, 1e12)
+    ratios = log_uniform(1e6, 1e12, shrink_to="hi")
     offsets, positions, velocities = _vectors(3.0), _vectors(10.0), _vectors(10.0)
     spins = st.floats(-10.0, 10.0)
     in_plane = np.array([1.0, 1.0, 0.0])
@@ -438,7 +439,7 @@ def hinged_bodies(*, regimes=None):
     parallel-axis theorem, J_A = J_G + m (|d|² 1 − d dᵀ), d = r_G − A, so it is
     valid by construction.  G is 0.1 … 5 from the axis.
     """
-    names = _check_regimes(regimes, HINGED_REGIMES, "hinged_bodies")
+    names = check_regimes(regimes, HINGED_REGIMES, "hinged_bodies")
     body_masses = impact_masses(min_value=1e-3, max_value=1e3)
     distances = st.floats(0.1, 5.0)
     tensors = impact_inertia_tensors()

@@ -31,7 +31,6 @@ Examples
 from __future__ import annotations
 
 import math
-from numbers import Real
 from typing import NamedTuple
 
 import numpy as np
@@ -40,6 +39,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import inertia as _inertia
+from ._common import check_positive, check_regimes, log_uniform
 from .rotation import rotation_matrices
 
 __all__ = [
@@ -53,6 +53,7 @@ __all__ = [
     "principal_moments",
     "rigid_bodies",
 ]
+
 
 #: Regimes of :func:`principal_moments`:
 #:
@@ -107,38 +108,10 @@ class RigidBody(NamedTuple):
     r_G: np.ndarray
 
 
-def _check_positive(value, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise InvalidArgument(f"{name}={value!r} must be a real number")
-    v = float(value)
-    if not (math.isfinite(v) and v > 0):
-        raise InvalidArgument(f"{name}={value!r} must be finite and > 0")
-    return v
-
-
-def _check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ...]:
-    if regimes is None:
-        return allowed
-    if isinstance(regimes, str):
-        raise InvalidArgument(f"regimes={regimes!r} must be a collection of names, not a string")
-    chosen = tuple(regimes)
-    unknown = [r for r in chosen if r not in allowed]
-    if unknown:
-        raise InvalidArgument(f"regimes={regimes!r}: unknown {unknown}; {name} has {allowed}")
-    if not chosen:
-        raise InvalidArgument(f"regimes={regimes!r} is empty; choose from {allowed}")
-    return tuple(r for r in allowed if r in chosen)  # documented order: simplest first
-
-
 def _log_scale(lo: float, hi: float) -> st.SearchStrategy[float]:
     """10**e, e uniform in [log10 lo, log10 hi], shrinking toward 1 (or the nearer bound)."""
     a, b = math.log10(lo), math.log10(hi)
     return st.floats(a, b).map(lambda e: min(hi, max(lo, 10.0**e)))
-
-
-def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
-    a, b = math.log10(lo), math.log10(hi)
-    return st.floats(0.0, 1.0).map(lambda t: min(hi, max(lo, 10.0 ** (b - (b - a) * t))))
 
 
 def _triple(J1: float, J2: float, J3: float) -> np.ndarray:
@@ -157,11 +130,11 @@ def principal_moments(
     ``wide-scales`` draw it near 1 (1e-2 … 1e2 within the bounds).
     ``regimes`` restricts the draw.  Shrinks toward (1, 1, 1).
     """
-    lo = _check_positive(min_scale, "min_scale")
-    hi = _check_positive(max_scale, "max_scale")
+    lo = check_positive(min_scale, "min_scale")
+    hi = check_positive(max_scale, "max_scale")
     if lo > hi:
         raise InvalidArgument(f"min_scale={min_scale!r} exceeds max_scale={max_scale!r}")
-    names = _check_regimes(regimes, PRINCIPAL_MOMENT_REGIMES, "principal_moments")
+    names = check_regimes(regimes, PRINCIPAL_MOMENT_REGIMES, "principal_moments")
     near = (max(lo, _SCALE_RANGE[0]), min(hi, _SCALE_RANGE[1]))
     if near[0] > near[1]:
         near = (lo, hi)
@@ -171,7 +144,7 @@ def principal_moments(
     wide = st.one_of(wides) if wides else _log_scale(lo, hi)
     unit = st.floats(0.0, 1.0)
     ratio = st.floats(0.05, 1.0)  # J1/J2 in the general regimes: gaps well above rounding
-    delta = _log_uniform(*NEAR_DEGENERATE_RANGE)
+    delta = log_uniform(*NEAR_DEGENERATE_RANGE, shrink_to="hi")
 
     @st.composite
     def draw_moments(draw) -> np.ndarray:
@@ -201,7 +174,7 @@ def principal_moments(
             J1 = J2 * draw(ratio)
             return _triple(J1, J2, (J1 + J2) * (1.0 - draw(delta)))
         # thin
-        J1 = J2 * draw(_log_uniform(*THIN_RANGE))
+        J1 = J2 * draw(log_uniform(*THIN_RANGE, shrink_to="hi"))
         return _triple(J1, J2, J2 + draw(unit) * J1)
 
     return draw_moments()
@@ -234,14 +207,14 @@ def rigid_bodies(
     Example 4.1), and r_G follows the regimes :data:`CENTRE_REGIMES`, measured
     in the body's size √(J3/m).
     """
-    lo = _check_positive(min_mass, "min_mass")
-    hi = _check_positive(max_mass, "max_mass")
+    lo = check_positive(min_mass, "min_mass")
+    hi = check_positive(max_mass, "max_mass")
     if lo > hi:
         raise InvalidArgument(f"min_mass={min_mass!r} exceeds max_mass={max_mass!r}")
     tensors = inertia_tensors() if tensors is None else tensors
     if not isinstance(tensors, st.SearchStrategy):
         raise InvalidArgument(f"tensors={tensors!r} must be a hypothesis strategy")
-    names = _check_regimes(regimes, CENTRE_REGIMES, "rigid_bodies")
+    names = check_regimes(regimes, CENTRE_REGIMES, "rigid_bodies")
     direction = st.tuples(st.floats(-1.0, 1.0), st.floats(-math.pi, math.pi))
 
     @st.composite
@@ -254,7 +227,9 @@ def rigid_bodies(
             return RigidBody(m, J, np.zeros(3))
         size = math.sqrt(float(np.trace(J)) / (2.0 * m))
         dist = size * (
-            draw(st.floats(0.0, 10.0)) if regime == "general" else draw(_log_uniform(1e6, 1e10))
+            draw(st.floats(0.0, 10.0))
+            if regime == "general"
+            else draw(log_uniform(1e6, 1e10, shrink_to="hi"))
         )
         z, az = draw(direction)
         rho = math.sqrt((1.0 - z) * (1.0 + z))

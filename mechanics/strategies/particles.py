@@ -29,13 +29,14 @@ Examples
 from __future__ import annotations
 
 import math
-from numbers import Integral, Real
 from typing import NamedTuple
 
 import numpy as np
 from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
+
+from ._common import check_int, check_real, check_regimes, log_uniform
 
 __all__ = [
     "FAR_OFFSET",
@@ -47,6 +48,7 @@ __all__ = [
     "pair_forces",
     "particle_systems",
 ]
+
 
 #: Regimes of :func:`masses`: all 1.0; all equal to one drawn value; each
 #: log-uniform in the bounds; "extreme-ratio": every mass at one of the two
@@ -85,51 +87,14 @@ class ParticleSystem(NamedTuple):
 # ------------------------------------------------------------------ validation
 
 
-def _check_real(value, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise InvalidArgument(f"{name}={value!r} must be a real number")
-    v = float(value)
-    if not math.isfinite(v):
-        raise InvalidArgument(f"{name}={value!r} must be finite")
-    return v
-
-
-def _check_int(value, name: str, minimum: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, Integral):
-        raise InvalidArgument(f"{name}={value!r} must be an integer")
-    if value < minimum:
-        raise InvalidArgument(f"{name}={value!r} must be >= {minimum}")
-    return int(value)
-
-
-def _check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ...]:
-    if regimes is None:
-        return allowed
-    if isinstance(regimes, str):
-        raise InvalidArgument(f"regimes={regimes!r} must be a collection of names, not a string")
-    chosen = tuple(regimes)
-    unknown = [r for r in chosen if r not in allowed]
-    if unknown:
-        raise InvalidArgument(f"regimes={regimes!r}: unknown {unknown}; {name} has {allowed}")
-    if not chosen:
-        raise InvalidArgument(f"regimes={regimes!r} is empty; choose from {allowed}")
-    return tuple(r for r in allowed if r in chosen)
-
-
 def _check_mass_bounds(min_value, max_value) -> tuple[float, float]:
-    lo = _check_real(min_value, "min_mass")
-    hi = _check_real(max_value, "max_mass")
+    lo = check_real(min_value, "min_mass")
+    hi = check_real(max_value, "max_mass")
     if lo <= 0:
         raise InvalidArgument(f"min_mass={min_value!r} must be > 0 (masses are drawn positive)")
     if lo > hi:
         raise InvalidArgument(f"min_mass={min_value!r} exceeds max_mass={max_value!r}")
     return lo, hi
-
-
-def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
-    """Floats in [lo, hi] (0 < lo <= hi), log-uniform, shrinking toward ``lo``."""
-    a, b = math.log10(lo), math.log10(hi)
-    return st.floats(0.0, 1.0).map(lambda t: min(hi, max(lo, 10.0 ** (a + (b - a) * t))))
 
 
 def _signed_units(k: int) -> st.SearchStrategy[np.ndarray]:
@@ -163,7 +128,7 @@ def _mass_array(draw, n: int, lo: float, hi: float, regime: str) -> np.ndarray:
     if regime == "unit":
         return np.ones(n)
     if regime == "equal":
-        return np.full(n, draw(_log_uniform(lo, hi)))
+        return np.full(n, draw(log_uniform(lo, hi, shrink_to="lo")))
     if regime == "log-uniform":
         return draw(_log_uniform_array(n, lo, hi))
     # extreme-ratio: each at a bound; the first two differ, so both are present.
@@ -187,14 +152,14 @@ def masses(
     bounds), ``equal``, ``log-uniform``, ``extreme-ratio`` (masses at the two
     bounds: 1e-6 and 1e6 by default).  Shrinks toward one unit mass.
     """
-    nlo = _check_int(min_particles, "min_particles", 1)
-    nhi = _check_int(max_particles, "max_particles", 1)
+    nlo = check_int(min_particles, "min_particles", 1)
+    nhi = check_int(max_particles, "max_particles", 1)
     if nlo > nhi:
         raise InvalidArgument(
             f"min_particles={min_particles!r} exceeds max_particles={max_particles!r}"
         )
     lo, hi = _check_mass_bounds(min_value, max_value)
-    names = _check_regimes(regimes, MASS_REGIMES, "masses")
+    names = check_regimes(regimes, MASS_REGIMES, "masses")
     if not lo <= 1.0 <= hi:
         names = tuple(r for r in names if r != "unit")
         if not names:
@@ -229,14 +194,14 @@ def particle_systems(
     (common velocity of magnitude ~1e6).  ``regimes`` restricts the draw.
     Shrinks toward one unit mass at rest at the origin.
     """
-    nlo = _check_int(min_particles, "min_particles", 1)
-    nhi = _check_int(max_particles, "max_particles", 1)
+    nlo = check_int(min_particles, "min_particles", 1)
+    nhi = check_int(max_particles, "max_particles", 1)
     if nlo > nhi:
         raise InvalidArgument(
             f"min_particles={min_particles!r} exceeds max_particles={max_particles!r}"
         )
     lo, hi = _check_mass_bounds(min_mass, max_mass)
-    names = _check_regimes(regimes, SYSTEM_REGIMES, "particle_systems")
+    names = check_regimes(regimes, SYSTEM_REGIMES, "particle_systems")
     signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 3).map(np.array)
     unit_ok = lo <= 1.0 <= hi
     mass_regimes = tuple(r for r in MASS_REGIMES if unit_ok or r != "unit")
@@ -282,10 +247,10 @@ def pair_forces(r, *, max_magnitude: float = 1e3, regimes=None) -> st.SearchStra
         raise InvalidArgument(f"r with shape {rr.shape!r} must be (N, 3) with N >= 1")
     if not np.isfinite(rr).all():
         raise InvalidArgument(f"r={rr.tolist()!r} must be finite")
-    fmax = _check_real(max_magnitude, "max_magnitude")
+    fmax = check_real(max_magnitude, "max_magnitude")
     if fmax <= 0:
         raise InvalidArgument(f"max_magnitude={max_magnitude!r} must be > 0")
-    names = _check_regimes(regimes, PAIR_FORCE_REGIMES, "pair_forces")
+    names = check_regimes(regimes, PAIR_FORCE_REGIMES, "pair_forces")
     n = rr.shape[0]
 
     @st.composite

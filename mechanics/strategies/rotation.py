@@ -36,7 +36,6 @@ Examples
 from __future__ import annotations
 
 import math
-from numbers import Real
 
 import numpy as np
 from hypothesis import event
@@ -44,6 +43,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
+from ._common import check_real, check_regimes, log_uniform
 
 __all__ = [
     "ANGLE_REGIMES",
@@ -60,6 +60,7 @@ __all__ = [
     "rotvecs",
     "unit_vectors",
 ]
+
 
 #: Regimes of :func:`unit_vectors`: a signed coordinate axis; a general direction
 #: (height uniform in [−1, 1], azimuth uniform); a direction within 1e-12 … 1e-3
@@ -111,36 +112,6 @@ MATRIX_REGIMES = ("identity", "signed-permutation", "rotvec", "euler", "quaterni
 # ------------------------------------------------------------------ validation
 
 
-def _check_real(value, name: str) -> float:
-    if isinstance(value, bool) or not isinstance(value, Real):
-        raise InvalidArgument(f"{name}={value!r} must be a real number")
-    v = float(value)
-    if not math.isfinite(v):
-        raise InvalidArgument(f"{name}={value!r} must be finite")
-    return v
-
-
-def _check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ...]:
-    if regimes is None:
-        return allowed
-    if isinstance(regimes, str):
-        raise InvalidArgument(f"regimes={regimes!r} must be a collection of names, not a string")
-    chosen = tuple(regimes)
-    unknown = [r for r in chosen if r not in allowed]
-    if unknown:
-        raise InvalidArgument(f"regimes={regimes!r}: unknown {unknown}; {name} has {allowed}")
-    if not chosen:
-        raise InvalidArgument(f"regimes={regimes!r} is empty; choose from {allowed}")
-    # Keep the documented order, so the first (simplest) regime stays first.
-    return tuple(r for r in allowed if r in chosen)
-
-
-def _log_uniform(lo: float, hi: float) -> st.SearchStrategy[float]:
-    """Floats in [lo, hi] (0 < lo <= hi), log-uniform, shrinking toward ``hi``."""
-    a, b = math.log10(lo), math.log10(hi)
-    return st.floats(0.0, 1.0).map(lambda t: min(hi, max(lo, 10.0 ** (b - (b - a) * t))))
-
-
 # --------------------------------------------------------------------- vectors
 
 
@@ -165,7 +136,7 @@ def unit_vectors() -> st.SearchStrategy[np.ndarray]:
             z = draw(st.floats(-1.0, 1.0))
             rho = math.sqrt((1.0 - z) * (1.0 + z))
         else:  # sin of the tilt, not sqrt(1 - z²): cos(1e-12) rounds to 1
-            tilt = draw(_log_uniform(1e-12, 1e-3))
+            tilt = draw(log_uniform(1e-12, 1e-3, shrink_to="hi"))
             z = math.cos(tilt) * draw(st.sampled_from((1.0, -1.0)))
             rho = math.sin(tilt)
         azimuth = draw(st.floats(-math.pi, math.pi))
@@ -192,15 +163,15 @@ def rotation_angles(
     (exactly ``math.pi``).  ``regimes`` restricts the draw to some of them.
     Shrinks toward 0 (the identity), or the lower bound.
     """
-    lo = _check_real(min_value, "min_value")
-    hi = _check_real(max_value, "max_value")
+    lo = check_real(min_value, "min_value")
+    hi = check_real(max_value, "max_value")
     if lo < 0:
         raise InvalidArgument(f"min_value={min_value!r} must be >= 0")
     if hi > math.pi:
         raise InvalidArgument(f"max_value={max_value!r} must be <= math.pi")
     if lo > hi:
         raise InvalidArgument(f"min_value={min_value!r} exceeds max_value={max_value!r}")
-    wanted = _check_regimes(regimes, ANGLE_REGIMES, "rotation_angles")
+    wanted = check_regimes(regimes, ANGLE_REGIMES, "rotation_angles")
 
     tiny = (max(lo, TINY_ANGLE_RANGE[0]), min(hi, TINY_ANGLE_RANGE[1]))
     below_pi = math.nextafter(math.pi, 0.0)
@@ -210,11 +181,11 @@ def rotation_angles(
         branches["zero"] = st.just(0.0)
     branches["generic"] = st.floats(lo, hi, allow_subnormal=False)
     if tiny[0] <= tiny[1]:
-        branches["tiny"] = _log_uniform(*tiny)
+        branches["tiny"] = log_uniform(*tiny, shrink_to="hi")
     if near[0] <= near[1]:
         d_hi = math.pi - near[0]
         d_lo = max(_PI_ULP, math.pi - near[1])
-        branches["near-pi"] = _log_uniform(d_lo, d_hi).map(
+        branches["near-pi"] = log_uniform(d_lo, d_hi, shrink_to="hi").map(
             lambda d: min(near[1], max(near[0], math.pi - d))
         )
     if lo <= math.pi <= hi:
@@ -261,11 +232,11 @@ def euler_angles(*, regimes=None) -> st.SearchStrategy[tuple[float, float, float
     ψ − φ (θ = π) is defined, and zero outer angles would hide a wrong split.
     ``regimes`` restricts the draw to some of them.  Shrinks toward (0, 0, 0).
     """
-    names = _check_regimes(regimes, EULER_REGIMES, "euler_angles")
+    names = check_regimes(regimes, EULER_REGIMES, "euler_angles")
     outer = st.tuples(st.floats(_OUTER_MIN, math.pi), st.sampled_from((1.0, -1.0))).map(
         lambda t: t[0] * t[1]
     )
-    band = _log_uniform(*_GIMBAL_BAND)
+    band = log_uniform(*_GIMBAL_BAND, shrink_to="hi")
     thetas = {
         "theta-zero": st.just(0.0),
         "theta-pi": st.just(math.pi),
