@@ -193,3 +193,26 @@ def test_pendulum_motion_matches_mpmath_near_the_separatrix(theta_0, periods):
         err = float(abs(_mp(phi) - exact) / (scale * EPS))
     target(err, label="motion eps")
     assert err <= MOTION_EPS
+
+
+def test_inertia_tensor_of_a_heavy_and_a_light_particle_keeps_its_digits():
+    """Mass ratio 1e12, the light particle first and 1e4 times farther from G than the
+    heavy one, all near the origin after a naive centring: with the first particle as
+    reference G came out as a difference of large numbers (658 eps); the heaviest
+    particle as reference keeps the error at a few eps (exact rational reference)."""
+    from fractions import Fraction
+
+    m = np.array([1e-6, 1e6])
+    r = np.array([[3.0e-5, -1.0e-5, 2.0e-5], [1.1e-8, 0.7e-8, -1.3e-8]])
+    J = I.inertia_tensor(m, r, about=np.zeros(3))
+    exact = np.zeros((3, 3))
+    for a in range(3):
+        for b in range(3):
+            s = Fraction(0)
+            for mi, ri in zip(m, r, strict=True):
+                q = [Fraction(x) for x in ri]
+                n2 = sum(x * x for x in q)
+                s += Fraction(mi) * ((n2 if a == b else 0) - q[a] * q[b])
+            exact[a, b] = float(s)
+    scale = float((m * (r * r).sum(-1)).sum())
+    assert np.abs(J - exact).max() <= 4 * EPS * scale
