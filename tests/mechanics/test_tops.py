@@ -29,6 +29,9 @@ from mechanics.errors import (
 from mechanics.rotation import matrix_from_euler
 
 EPS = np.finfo(float).eps
+#: central differences of the incline trajectory (quadratic in t: no truncation error)
+#: with rounding ~ eps |x| / h for |x| ~ 1: 2^23 eps = 1.9e-9
+FD_ATOL = 2**23 * EPS
 
 # DOP853 at rtol = 1e-13 over t ≤ 10 (a few rotations): its global error stays below
 # ~1e-12 of the state scale; the exact solution is within 100 eps of the truth.
@@ -127,7 +130,7 @@ def test_flip_period_is_the_period_of_omega_and_inf_for_steady_motion():
     w = top.omega(np.array([0.37, 0.37 + T]))
     assert np.abs(w[1] - w[0]).max() <= 64 * EPS * (1 + T)
     half = top.omega(0.37 + T / 2)
-    assert half[1] == pytest.approx(-w[0, 1], rel=1e-12)  # the flip: ω2 reverses in T/2
+    assert half[1] == pytest.approx(-w[0, 1], rel=64 * EPS * (1 + T))  # ω2 reverses in T/2
     assert tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.0, 1.0, 0.0]).flip_period() == math.inf
 
 
@@ -240,7 +243,9 @@ def test_middle_axis_growth_rate_matches_the_exact_free_top():
     rate = tops.principal_axis_stability(J, 2).rate
     t = np.array([12.0, 20.0])
     w1 = np.abs(top.omega(t)[:, 0])
-    assert math.log(w1[1] / w1[0]) / 8.0 == pytest.approx(rate, rel=1e-5)
+    # the linear growth rate holds up to the decaying mode's share e^{-2 rate t} at t = 12
+    # and the nonlinear terms ~ amplitude² ≈ 1e-14: allow ten times the former
+    assert math.log(w1[1] / w1[0]) / 8.0 == pytest.approx(rate, rel=10 * math.exp(-2 * rate * 12))
 
 
 def test_spherical_top_on_incline_example_5_1():
@@ -261,8 +266,8 @@ def test_spherical_top_on_incline_example_5_1():
     xm, ym, _ = tops.spherical_top_on_incline(
         t - h, m=m, R=R, J=J, beta=beta, g=g, x0=1.0, y0=-1.0, omega_0=w0
     )
-    np.testing.assert_allclose((xp - xm) / (2 * h), R * w[:, 1], atol=1e-9)
-    np.testing.assert_allclose((yp - ym) / (2 * h), -R * w[:, 0], atol=1e-9)
+    np.testing.assert_allclose((xp - xm) / (2 * h), R * w[:, 1], atol=FD_ATOL)
+    np.testing.assert_allclose((yp - ym) / (2 * h), -R * w[:, 0], atol=FD_ATOL)
     # energy (5.24)–(5.26) conserved
     T = 0.5 * ((J + m * R * R) * (w[:, 0] ** 2 + w[:, 1] ** 2) + J * w[:, 2] ** 2)
     E = T - m * g * x * np.sin(beta)
@@ -341,10 +346,12 @@ def test_steady_precession_gives_a_double_root_and_constant_theta():
         om = tops.steady_precession_rates(J1, L3, mgl, th)[0]
     top = tops.HeavySymmetricTop(J1, J3, mgl, theta=th, theta_dot=0.0, psi_dot=om, phi_dot=phid)
     u1, u2, _ = top.roots
-    assert abs(u2 - u1) <= 1e-12
+    # the roots are refined to rounding (measured: equal); θ then stays at th, and ψ grows
+    # as om t up to the rounding of om t (|om t| ≤ ~30: measured 9e-15)
+    assert abs(u2 - u1) <= 64 * EPS
     ts = np.linspace(0, 30, 31)
-    assert np.abs(top.theta(ts) - th).max() <= 1e-6
-    np.testing.assert_allclose(top.psi(ts), om * ts, rtol=1e-9, atol=1e-12)
+    assert np.abs(top.theta(ts) - th).max() <= 64 * EPS
+    np.testing.assert_allclose(top.psi(ts), om * ts, rtol=64 * EPS, atol=64 * EPS)
 
 
 def test_sleeping_top_condition_and_motion():

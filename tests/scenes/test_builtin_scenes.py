@@ -13,6 +13,13 @@ from mechanics.scenes import builtin_scenes, load_scene, run_scene
 from mechanics.scenes import effects as fx
 from mechanics.scenes.compare import INTEGRATED_RTOL
 
+EPS = float(np.finfo(float).eps)
+#: the speed at the next impact after a free flight, by the exact flow or by DOP853 at
+#: rtol 1e-12 with event location: the integration error, ~1e-12 relative
+FLIGHT_RTOL = 2**14 * EPS
+#: one impact in closed form ((6.36)-(6.41)): a handful of float operations
+IMPACT_RTOL = 64 * EPS
+
 NAMES = list(builtin_scenes())
 #: what each built-in scene must compare (the issue's list) and conserve
 EXPECTED = {
@@ -79,19 +86,19 @@ def test_bouncing_ball_never_penetrates_and_loses_energy_by_e_squared(results) -
     for method in ("auto", "integrate"):
         r = results["bouncing_ball", method]
         z = r.trajectory.series["z"]
-        assert z.min() >= 0.1 - 1e-12, "the ball's surface never goes below the floor"
+        assert z.min() >= 0.1 - FLIGHT_RTOL * 10.0, "the ball's surface never goes below the floor"
         impacts = [e for e in r.trajectory.events if e.kind == "impact"]
         assert len(impacts) == 5
         e = 5 / 6
         for a, b in itertools.pairwise(impacts):
             assert b.detail["normal_speed_before"] == pytest.approx(
-                a.detail["normal_speed_after"], rel=1e-12
+                a.detail["normal_speed_after"], rel=FLIGHT_RTOL
             ), "free flight between impacts: the speed returns"
             assert b.detail["normal_speed_after"] == pytest.approx(
-                e * b.detail["normal_speed_before"], rel=1e-14
+                e * b.detail["normal_speed_before"], rel=IMPACT_RTOL
             )
             assert a.detail["energy_loss"] == pytest.approx(
-                0.5 * 0.5 * (1 - e * e) * a.detail["normal_speed_before"] ** 2, rel=1e-14
+                0.5 * 0.5 * (1 - e * e) * a.detail["normal_speed_before"] ** 2, rel=IMPACT_RTOL
             )
 
 

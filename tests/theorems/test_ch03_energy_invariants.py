@@ -242,7 +242,7 @@ def test_non_central_internal_forces_can_work_in_a_rigid_body(dist, e, w, ang):
     omega = w * np.cross(e, n1)
     v = np.cross(omega, r)
     P_i = float(me.power(mp.internal_forces(f), v))
-    assert P_i == pytest.approx(w * dist, rel=1e-12)
+    assert P_i == pytest.approx(w * dist, rel=64 * EPS)  # a few products and a cross
 
 
 @given(rigid_motions(), st.data())
