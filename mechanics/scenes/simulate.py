@@ -268,6 +268,23 @@ def _single(cls, scene: Scene) -> None:
         raise scene.error("bodies", f"a {cls.name} scene has exactly one body")
 
 
+def _round_body(scene: Scene, e) -> None:
+    """The single body of a rolling or sliding scene must be round."""
+    b = scene.bodies[0]
+    if b.shape not in ROUND_SHAPES:
+        raise scene.error(
+            f"{e.where}.body",
+            f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
+        )
+
+
+def _plane_angle(scene: Scene, e) -> None:
+    """An incline's angle must lie in [0, π/2)."""
+    a = e.fields.get("angle", 0.0)
+    if not 0 <= a < math.pi / 2:
+        raise scene.error(f"{e.where}.angle", f"must lie in [0, π/2); got {a!r}")
+
+
 # ---------------------------------------------------------------- free bodies
 
 
@@ -963,16 +980,10 @@ class RollingModel(Model):
         _single(cls, scene)
         b = scene.bodies[0]
         e = scene.effects_of("rolling")[0]
-        if b.shape not in ROUND_SHAPES:
-            raise scene.error(
-                f"{e.where}.body",
-                f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
-            )
+        _round_body(scene, e)
         surf = e.fields["surface"]
         if surf == "incline":
-            a = e.fields.get("angle", 0.0)
-            if not 0 <= a < math.pi / 2:
-                raise scene.error(f"{e.where}.angle", f"must lie in [0, π/2); got {a!r}")
+            _plane_angle(scene, e)
             keys = ("distance", "speed")
         elif surf == "track":
             R = e.fields.get("track_radius")
@@ -1107,19 +1118,14 @@ class SlidingModel(Model):
         _single(cls, scene)
         b = scene.bodies[0]
         e = scene.effects_of("coulomb_friction")[0]
-        if b.shape not in ROUND_SHAPES:
-            raise scene.error(
-                f"{e.where}.body", f"only round bodies roll; {b.name!r} is a {b.shape}"
-            )
+        _round_body(scene, e)
         if not scene.effects_of("gravity"):
             raise scene.error(
                 f"{e.where}.type",
                 "coulomb_friction on a plane needs a gravity effect to press the body on it "
                 "(the normal force); none is listed",
             )
-        a = e.fields.get("angle", 0.0)
-        if not 0 <= a < math.pi / 2:
-            raise scene.error(f"{e.where}.angle", f"must lie in [0, π/2); got {a!r}")
+        _plane_angle(scene, e)
         for k in b.initial:
             if k not in ("distance", "speed", "spin"):
                 raise scene.error(f"bodies[0].initial.{k}", "sliding takes distance, speed, spin")
