@@ -510,11 +510,15 @@ def compression_restitution_impulses(m_1, m_2, v_1, v_2, e, *, separating: str =
     d = _direct_parts(m_1, m_2, v_1, v_2, e, separating)
     mu = _reduced_mass(d)
     s1 = _dd_mul(mu, d.delta)
-    s2 = _dd_mul(s1, (d.e, np.zeros_like(d.e)))
-    with np.errstate(over="ignore"):
-        out1 = np.ldexp(np.where(d.approach, s1[0] + s1[1], 0.0), d.km + d.kv)
-        out2 = np.ldexp(np.where(d.approach, s2[0] + s2[1], 0.0), d.km + d.kv)
-    return _overflow(out1, "S_1")[()], _overflow(out2, "S_2")[()]
+    k = d.km + d.kv
+    with np.errstate(over="ignore", invalid="ignore"):
+        out1 = np.ldexp(np.where(d.approach, s1[0] + s1[1], 0.0), k)
+        # e S1 at full scale: in the scaled units a tiny e (down to the smallest normal)
+        # would push the product into the subnormals and lose its digits there
+        s2 = _dd_mul((np.ldexp(s1[0], k), np.ldexp(s1[1], k)), (d.e, np.zeros_like(d.e)))
+        out2 = np.where(d.approach, s2[0] + s2[1], 0.0)
+    out1 = _overflow(out1, "S_1")
+    return out1[()], _overflow(out2, "S_2")[()]
 
 
 # ------------------------------------------------------------ rigid bodies
