@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from .result import Comparison, ConservedReport, SceneResult, run_scene
+from .result import Comparison, ConservedReport, SceneResult, SelfCheck, run_scene
 from .spec import Scene, SceneError, load_scene, parse_scene
 
 __all__ = [
@@ -25,6 +25,7 @@ __all__ = [
     "Scene",
     "SceneError",
     "SceneResult",
+    "SelfCheck",
     "builtin_path",
     "builtin_scenes",
     "load_scene",

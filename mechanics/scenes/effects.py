@@ -211,8 +211,31 @@ class Impact(Effect):
             return float((R[self.i] - self.point) @ self.normal) - self.r_i
         return float(np.linalg.norm(R[self.i] - R[self.j])) - self.r_i - self.r_j
 
+    @property
+    def label(self) -> str:
+        """The pair in words: "bodies 'a' and 'b'" or "body 'a' and the plane"."""
+        if self.j is None:
+            return f"body {self.fields['body']!r} and the plane"
+        return f"bodies {self.fields['body']!r} and {self.fields['other']!r}"
+
+    def bodies(self) -> list[int]:
+        """Indices of the bodies the impulse acts on."""
+        return [self.i] if self.j is None else [self.i, self.j]
+
     def apply(self, R, V, M) -> dict:
-        """New velocities (in place) by Newton's restitution; returns the event details."""
+        """New velocities (in place) by Newton's restitution; returns the event details,
+        with the kinetic energy and momentum of the bodies involved before and after
+        (read off the velocities, an independent route to the loss formula)."""
+        idx = self.bodies()
+        before = _kinetic_and_momentum(V[idx], M[idx])
+        detail = self._apply(R, V, M)
+        after = _kinetic_and_momentum(V[idx], M[idx])
+        detail["kinetic_energy_before"], detail["momentum_before"] = before[:2]
+        detail["kinetic_energy_after"], detail["momentum_after"] = after[:2]
+        detail["momentum_scale"] = before[2]  # Σ m|v| before: the size of the terms
+        return detail
+
+    def _apply(self, R, V, M) -> dict:
         from mechanics.impact import direct_impact  # (6.36)–(6.38)
 
         if self.j is None:
@@ -237,6 +260,13 @@ class Impact(Effect):
             "normal_speed_after": float(v2f - v1f),  # separation speed
             "energy_loss": 0.5 * mu * (1.0 - self.e) * (1.0 + self.e) * (v1 - v2) ** 2,
         }
+
+
+def _kinetic_and_momentum(V, M) -> tuple[float, list[float], float]:
+    """½ Σ m v², Σ m v and Σ m |v| of a few bodies (translation: impacts act through G)."""
+    T = float(0.5 * (M * (V * V).sum(-1)).sum())
+    P = [float(c) for c in (M[:, None] * V).sum(0)]
+    return T, P, float((M * np.linalg.norm(V, axis=-1)).sum())
 
 
 class FixedAxis(Effect):

@@ -9,6 +9,11 @@ Conventions
   flow, ``CONSERVED_RTOL_INTEGRATED`` for an integrated one.
 - A comparison holds the simulated value, the book's closed form, their relative
   difference and the tolerance with its reason.
+- Self-checks: what a run can verify on its own output, whatever the scene.  No two
+  bodies of an impact pair interpenetrate at any sample (beyond ``PENETRATION_RTOL`` of
+  the positions' size); at every impact the kinetic energy read off the velocities drops
+  by the loss formula ½ μ (1 − e²) v_n² (6.41), and a two-body impact keeps the momentum
+  (6.37).  A violation fails the run: a wrong motion never reports PASSED.
 """
 
 from __future__ import annotations
@@ -25,9 +30,12 @@ from .spec import Scene
 __all__ = [
     "CONSERVED_RTOL",
     "CONSERVED_RTOL_INTEGRATED",
+    "IMPACT_RTOL",
+    "PENETRATION_RTOL",
     "Comparison",
     "ConservedReport",
     "SceneResult",
+    "SelfCheck",
     "run_scene",
 ]
 
@@ -35,6 +43,14 @@ __all__ = [
 CONSERVED_RTOL = 1024 * EPS
 #: DOP853 at rtol = atol = 1e-12 over the scene's duration (measured worst ≈ 1e-11)
 CONSERVED_RTOL_INTEGRATED = 2**20 * EPS  # ≈ 2.3e-10
+#: a gap below zero by more than this × (max |position| + the radii) is an
+#: interpenetration: contacts are located to 4 eps of the time and the positions are
+#: sums of a few dozen rounded terms, so a resolved contact leaves a few eps at most
+PENETRATION_RTOL = 256 * EPS
+#: the impact's loss formula against the velocities (relative to the kinetic energy or
+#: momentum scale before): direct_impact is within a few ulps, the update adds one
+#: rounding per component, the sums over ≤ 2 bodies a few more
+IMPACT_RTOL = 64 * EPS
 
 
 @dataclass(frozen=True)
@@ -100,6 +116,30 @@ class ConservedReport:
         }
 
 
+@dataclass(frozen=True)
+class SelfCheck:
+    """A property the run verifies on its own output (no interpenetration, the impact
+    laws), with its worst relative violation and the tolerance."""
+
+    name: str
+    violation: float
+    tolerance: float
+    reason: str
+
+    @property
+    def ok(self) -> bool:
+        return bool(self.violation <= self.tolerance)
+
+    def as_dict(self) -> dict:
+        return {
+            "name": self.name,
+            "violation": float(self.violation),
+            "tolerance": float(self.tolerance),
+            "reason": self.reason,
+            "ok": self.ok,
+        }
+
+
 @dataclass
 class SceneResult:
     """A scene run: the trajectory, the conserved quantities and the book comparisons."""
@@ -108,10 +148,11 @@ class SceneResult:
     trajectory: Trajectory
     conserved: list[ConservedReport]
     comparisons: list[Comparison] = field(default_factory=list)
+    self_checks: list[SelfCheck] = field(default_factory=list)
 
     @property
     def passed(self) -> bool:
-        return all(c.ok for c in self.conserved) and all(c.ok for c in self.comparisons)
+        return all(c.ok for c in [*self.conserved, *self.comparisons, *self.self_checks])
 
     @property
     def method(self) -> str:
@@ -130,6 +171,7 @@ class SceneResult:
             "events": [{"t": e.t, "kind": e.kind, **_plain(e.detail)} for e in tr.events],
             "conserved": [c.as_dict() for c in self.conserved],
             "comparisons": [c.as_dict() for c in self.comparisons],
+            "self_checks": [c.as_dict() for c in self.self_checks],
             "samples": {
                 "t": tr.t.tolist(),
                 **{k: np.asarray(v).tolist() for k, v in tr.series.items()},
@@ -164,6 +206,13 @@ class SceneResult:
                 lines.append(
                     f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<24} {c.value:>+.12g}  "
                     f"drift {c.drift:.2e} ≤ {c.tolerance:.1e}{since}"
+                )
+        if self.self_checks:
+            lines.append("self-checks (worst relative violation):")
+            for c in self.self_checks:
+                lines.append(
+                    f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<48} {c.violation:.2e} ≤ "
+                    f"{c.tolerance:.1e}  [{c.reason}]"
                 )
         if self.comparisons:
             lines.append("against the book:")
@@ -221,4 +270,55 @@ def run_scene(scene: Scene) -> SceneResult:
         from .compare import COMPARISONS
 
         comparisons = COMPARISONS[scene.compare](scene, tr)
-    return SceneResult(scene, tr, conserved, comparisons)
+    return SceneResult(scene, tr, conserved, comparisons, self_checks(tr))
+
+
+def self_checks(tr: Trajectory) -> list[SelfCheck]:
+    """What the run can verify on its own output (see the module Conventions)."""
+    out = []
+    scale = tr.extra.get("length_scale", 0.0)
+    for pair, gaps in tr.extra.get("gaps", {}).items():
+        depth = max(0.0, -float(np.min(gaps, initial=0.0)))
+        out.append(
+            SelfCheck(
+                f"no interpenetration of {pair}",
+                depth / max(scale, 1e-300),
+                PENETRATION_RTOL,
+                "gap ≥ 0 at every sample",
+            )
+        )
+    impacts = [e.detail for e in tr.events if "kinetic_energy_before" in e.detail]
+    if impacts:
+        worst = max(
+            abs(d["kinetic_energy_before"] - d["kinetic_energy_after"] - d["energy_loss"])
+            / max(d["kinetic_energy_before"], 1e-300)
+            for d in impacts
+        )
+        out.append(
+            SelfCheck(
+                f"impact energy loss ({_count(len(impacts), 'impact')})",
+                worst,
+                IMPACT_RTOL,
+                "T_before − T_after = ½ μ (1 − e²) v_n² (6.41)",
+            )
+        )
+    pairs = [d for d in impacts if "bodies" in d]
+    if pairs:
+        worst = max(
+            float(np.linalg.norm(np.subtract(d["momentum_after"], d["momentum_before"])))
+            / max(d["momentum_scale"], 1e-300)
+            for d in pairs
+        )
+        out.append(
+            SelfCheck(
+                f"momentum across two-body impacts ({_count(len(pairs), 'impact')})",
+                worst,
+                IMPACT_RTOL,
+                "Σ m v unchanged by the impulses (6.37)",
+            )
+        )
+    return out
+
+
+def _count(n: int, word: str) -> str:
+    return f"{n} {word}{'' if n == 1 else 's'}"

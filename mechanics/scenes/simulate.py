@@ -36,7 +36,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.polynomial import chebyshev as C
 
+from . import contacts
 from . import effects as fx
 from .spec import ROUND_SHAPES, SPHERICAL_SHAPES, Scene
 
@@ -52,6 +54,10 @@ __all__ = [
 ]
 
 EPS = float(np.finfo(float).eps)
+#: a gap within this multiple of eps × the positions' size over a step is the rounding
+#: of a contact just resolved (the contact time is refined to 4 eps of the step, the
+#: positions are sums of a few dozen rounded terms), not an interpenetration
+GAP_ROUNDING = 64 * EPS
 #: Impacts per scene before the run is declared Zeno (accumulating impacts).
 MAX_EVENTS = 2000
 
@@ -328,10 +334,11 @@ class FreeModel(Model):
         radii = [body_radius(b) for b in scene.bodies]
         index = {b.name: i for i, b in enumerate(scene.bodies)}
         for spec in scene.effects_of("impact"):
-            gap = fx.Impact(spec, index, radii).gap(R0)
+            imp = fx.Impact(spec, index, radii)
+            gap = imp.gap(R0)
             if gap < 0:
                 raise scene.error(
-                    spec.where, f"the bodies start interpenetrating (gap {gap:.3g} m < 0)"
+                    spec.where, f"{imp.label} overlap at t = 0 s (gap {gap:.3g} m < 0)"
                 )
         for i, b in enumerate(scene.bodies):
             if b.shape == "tank":
@@ -386,7 +393,7 @@ class FreeModel(Model):
     def exact_flow(self):
         kinds = self.others()
         spin = "; torque-free rotation (Jacobi elliptic functions)" if self.tops else ""
-        if kinds <= {"gravity", "impact"} and all(i.j is None for i in self.impacts):
+        if kinds <= {"gravity", "impact"}:
             what = "free flight under uniform gravity" if "gravity" in kinds else "uniform motion"
             if "impact" in kinds:
                 what += ", impacts solved in closed form"
@@ -402,6 +409,16 @@ class FreeModel(Model):
         return g
 
     # exact: ballistic with impacts
+    def _contact_time(self, imp, R, V, g) -> float:
+        """Closed-form time to the next contact of one impact pair (inf if none): under
+        uniform gravity a plane gap is quadratic in τ and the relative motion of two
+        bodies is uniform (gravity cancels), so |d + w τ| = a_i + a_j is a quadratic."""
+        if imp.j is None:
+            return contacts.plane_contact_time(
+                imp.gap(R), float(V[imp.i] @ imp.normal), float(g @ imp.normal)
+            )
+        return contacts.sphere_contact_time(R[imp.i] - R[imp.j], V[imp.i] - V[imp.j], imp.gap(R))
+
     def _ballistic(self, T_end):
         g = self._gvec()
         segs, events = [], []
@@ -409,12 +426,9 @@ class FreeModel(Model):
         while True:
             best = (math.inf, None)
             for imp in self.impacts:
-                gap0 = imp.gap(R)
-                vn = float(V[imp.i] @ imp.normal)
-                gn = float(g @ imp.normal)
-                for tau in _quadratic_roots(0.5 * gn, vn, gap0):
-                    if tau > 0 and vn + gn * tau < 0 and tau < best[0]:
-                        best = (tau, imp)
+                tau = self._contact_time(imp, R, V, g)
+                if tau < best[0]:
+                    best = (tau, imp)
             t1 = t0 + best[0]
             segs.append((t0, min(t1, T_end), _ballistic_dense(t0, R.copy(), V.copy(), g)))
             if t1 >= T_end:
@@ -422,12 +436,25 @@ class FreeModel(Model):
             tau, imp = best
             R = R + V * tau + 0.5 * g * tau * tau
             V = V + g * tau
-            detail = imp.apply(R, V, self.m0)
+            detail = self._impact(imp, t1, R, V)
             events.append(Event(t1, "impact", detail))
             if len(events) > MAX_EVENTS or _stalled(detail, imp.e):
                 raise _zeno(self.scene, t1)
             t0 = t1
         return segs, events
+
+    def _impact(self, imp, t, R, V) -> dict:
+        """Apply one impact; a contact that is separating is reported on one line."""
+        from mechanics.impact import SeparatingContactError
+
+        try:
+            return imp.apply(R, V, self.masses(t))
+        except SeparatingContactError as exc:
+            raise self.scene.error(
+                imp.where,
+                f"{imp.label}: the contact at t = {t:.17g} s was found on the "
+                f"exit side (the bodies separate there): {exc}",
+            ) from None
 
     def _rocket(self):
         from mechanics.open_systems import rocket_height, rocket_velocity
@@ -460,57 +487,80 @@ class FreeModel(Model):
         return self._finish(t, segs, events, how)
 
     def run_integrated(self, t):
-        s = self.scene
-        events, evs = [], []
-        for imp in self.impacts:
-
-            def gap(tt, y, imp=imp):
-                return imp.gap(y[: 3 * self.n].reshape(self.n, 3))
-
-            evs.append(gap)
-        burnt: set[int] = set()
-        for th in self.thrusts:
-
-            def burn(tt, y, th=th):
-                return -1.0 if th.i in burnt else th.burn_out - tt
-
-            burn.direction = -1
-            evs.append(burn)
-
-        def on_event(k, tt, y):
-            y = y.copy()
-            if k < len(self.impacts):
-                imp = self.impacts[k]
-                R, V = y[: 3 * self.n].reshape(self.n, 3), y[3 * self.n :].reshape(self.n, 3)
-                detail = imp.apply(R, V, self.masses(tt))
-                events.append(Event(tt, "impact", detail))
-                if len(events) > MAX_EVENTS or _stalled(detail, imp.e):
-                    raise _zeno(s, tt)
-            else:
-                th = self.thrusts[k - len(self.impacts)]
-                burnt.add(th.i)
-                events.append(Event(tt, "burn_out", {"body": self.names[th.i]}))
-            return y
-
-        y0 = np.concatenate([self.R0.ravel(), self.V0.ravel()])
-        try:
-            segs = integrate_segments(
-                self.rhs,
-                y0,
-                s.duration,
-                rtol=s.rtol,
-                atol=s.atol,
-                events=evs,
-                on_event=on_event,
-            )
-        except RuntimeError as exc:
-            if "too many events" in str(exc):
-                raise _zeno(s, events[-1].t) from None
-            raise
-        how = "integrated: DOP853 (scipy solve_ivp), events"
+        segs, events = self._integrate_with_contacts(self.scene.duration)
+        how = "integrated: DOP853 (scipy), contacts located on each step's dense polynomial"
         if self.tops:
             how += "; torque-free rotation exact (Jacobi elliptic functions)"
         return self._finish(t, segs, events, how)
+
+    def _integrate_with_contacts(self, t_end):
+        """DOP853 step by step; after every step each impact pair's gap is searched along
+        the step's dense polynomial (:func:`contacts.first_downward_crossing`), so a
+        contact is found whatever the step size.  Burn-outs are step boundaries."""
+        from scipy.integrate import DOP853
+
+        s, n = self.scene, self.n
+        burn = sorted({th.burn_out for th in self.thrusts if th.burn_out < t_end})
+        segs, events = [], []
+        t, y = 0.0, np.concatenate([self.R0.ravel(), self.V0.ravel()])
+        for stop in [*burn, t_end]:
+            while t < stop:
+                solver = DOP853(self.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
+                hit = None
+                while solver.status == "running" and hit is None:
+                    solver.step()
+                    if solver.status == "failed":
+                        raise RuntimeError(f"integration failed at t = {solver.t}")
+                    dense = solver.dense_output()
+                    hit = self._first_contact_on_step(dense, solver.t_old, solver.t)
+                    segs.append((solver.t_old, solver.t if hit is None else hit[0], dense))
+                if hit is None:
+                    t, y = float(solver.t), solver.y.copy()
+                    break
+                t, imp = hit
+                y = np.asarray(dense(t), dtype=float).copy()
+                R, V = y[: 3 * n].reshape(n, 3), y[3 * n :].reshape(n, 3)
+                detail = self._impact(imp, t, R, V)
+                events.append(Event(t, "impact", detail))
+                if len(events) > MAX_EVENTS or _stalled(detail, imp.e):
+                    raise _zeno(s, t)
+            for th in self.thrusts:
+                if th.burn_out == stop and stop < t_end:
+                    events.append(Event(stop, "burn_out", {"body": self.names[th.i]}))
+        return segs, events
+
+    def _first_contact_on_step(self, dense, t_a, t_b):
+        """The earliest contact of any impact pair within one step, or None."""
+        if not self.impacts or t_b <= t_a:
+            return None
+        n = self.n
+        coef = contacts.chebyshev_fit(lambda tt: np.asarray(dense(tt)).T[:, : 3 * n], t_a, t_b)
+        coef = coef.reshape(len(coef), n, 3)
+        best = None
+        for imp in self.impacts:
+            if imp.j is None:
+                p = coef[:, imp.i] @ imp.normal
+                p[0] -= imp.point @ imp.normal + imp.r_i
+                tol = GAP_ROUNDING * (np.abs(coef[:, imp.i]).sum() + imp.r_i)
+            else:
+                d = coef[:, imp.i] - coef[:, imp.j]
+                p = sum(C.chebmul(d[:, k], d[:, k]) for k in range(3))
+                size = imp.r_i + imp.r_j
+                p[0] -= size * size
+                tol = GAP_ROUNDING * (np.abs(d).sum() + size) * 2.0 * size
+            try:
+                x = contacts.first_downward_crossing(p, start_tol=tol)
+            except contacts.ContactError as exc:
+                raise self.scene.error(
+                    imp.where,
+                    f"{imp.label} interpenetrate at t = {t_a:.17g} s ({exc}): "
+                    "a contact was missed before this step",
+                ) from None
+            if x is not None:
+                tc = t_a if x == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * x, t_b)
+                if best is None or tc < best[0]:
+                    best = (tc, imp)
+        return best
 
     def _finish(self, t, segs, events, how):
         dense = _dense_from_segments(segs)
@@ -578,6 +628,11 @@ class FreeModel(Model):
 
         traj = Trajectory(t, series, events, how, state_at, conserved, cfrom)
         traj.extra["scales"] = scales
+        traj.extra["gaps"] = {
+            imp.label: np.array([imp.gap(Rk) for Rk in R]) for imp in self.impacts
+        }
+        radii = [imp.r_i + imp.r_j for imp in self.impacts]
+        traj.extra["length_scale"] = float(np.max(np.abs(R), initial=0.0) + max(radii, default=0))
         traj.extra["tops"] = {self.names[i]: top for i, (_, top) in self.tops.items()}
         return traj
 
@@ -585,17 +640,6 @@ class FreeModel(Model):
 def _energy_scale(KE, E) -> float:
     """max |T| + max |V|: the size of the terms whose sum is the energy."""
     return float(np.max(np.abs(KE)) + np.max(np.abs(np.asarray(E) - KE)))
-
-
-def _quadratic_roots(a, b, c):
-    """Real roots of a x² + b x + c without cancellation."""
-    if a == 0:
-        return [-c / b] if b != 0 else []
-    disc = b * b - 4 * a * c
-    if disc < 0:
-        return []
-    q = -0.5 * (b + math.copysign(math.sqrt(disc), b))
-    return sorted([q / a, c / q] if q != 0 else [0.0])
 
 
 def _ballistic_dense(t0, R0, V0, g):

@@ -105,7 +105,7 @@ CASES = [
         "effects[1].restitutoin",
         "unknown field",
     ),
-    ("start inside the floor", BALL, "7.439449541284404", "0.05", "effects[1]", "interpenetrating"),
+    ("start inside the floor", BALL, "7.439449541284404", "0.05", "effects[1]", "overlap at t = 0"),
     (
         "track smaller than the body",
         TRACK,
