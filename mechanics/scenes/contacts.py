@@ -26,6 +26,7 @@ freely (Chapter 1).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
@@ -135,15 +136,21 @@ def chebyshev_fit(fn, t_a: float, t_b: float, n: int = STEP_NODES) -> np.ndarray
     return C.chebfit(x, np.asarray(fn(t), dtype=float), n - 1)
 
 
-def first_downward_crossing(coef: np.ndarray, *, start_tol: float) -> float | None:
+def first_downward_crossing(
+    coef: np.ndarray, *, start_tol: float, refine: Callable[[float], float] | None = None
+) -> float | None:
     """First x in [−1, 1] where the Chebyshev series ``coef`` goes below zero.
 
     ``coef`` (shape ``(k,)``) is a polynomial with the sign of a gap along one step.
     The polynomial's extrema (real roots of its derivative) cut [−1, 1] into pieces on
     which it is monotone; the first piece that starts ≥ 0 and ends < 0 holds the
-    crossing, refined by Brent's method to ``ROOT_RTOL``.  A value in [−start_tol, 0)
-    is the rounding of a contact just resolved: the contact is *now* (the piece's start)
-    if the polynomial falls from there, nothing if it rises.  Returns None when the
+    crossing, refined by Brent's method to ``ROOT_RTOL`` on ``refine(x)`` (the gap
+    itself, free of the polynomial's cancellation; it must have the polynomial's sign)
+    when given and when its signs at the ends of the piece bracket a root, else on the
+    polynomial.  A value in [−start_tol, 0)
+    is the rounding of a contact just resolved, and a value within ±start_tol counts as
+    touching: the contact is *now* (the piece's start) if the polynomial falls from
+    there, nothing if it rises.  Returns None when the
     polynomial stays ≥ 0 (after a cheap bound c₀ − Σ|c_k| > 0 skips most steps).
 
     Raises
@@ -180,11 +187,13 @@ def first_downward_crossing(coef: np.ndarray, *, start_tol: float) -> float | No
         raise ContactError(f"the gap is already {vals[0]:.3g} < 0 at the start of the step")
     for k in range(len(xs) - 1):
         v0, v1 = vals[k], vals[k + 1]
-        if v0 < 0 and v1 < v0:
+        if v0 <= start_tol and v1 < v0:
             return xs[k]  # touching within rounding, and closing: the contact is now
         if v0 >= 0 > v1:
             from scipy.optimize import brentq
 
             f = lambda x: C.chebval(x, coef)  # noqa: E731
+            if refine is not None and refine(xs[k]) >= 0 > refine(xs[k + 1]):
+                f = refine
             return float(brentq(f, xs[k], xs[k + 1], xtol=ROOT_RTOL, rtol=ROOT_RTOL))
     return None

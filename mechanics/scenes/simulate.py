@@ -500,6 +500,7 @@ class FreeModel(Model):
         from scipy.integrate import DOP853
 
         s, n = self.scene, self.n
+        self._reach: dict[int, float] = {}
         burn = sorted({th.burn_out for th in self.thrusts if th.burn_out < t_end})
         segs, events = [], []
         t, y = 0.0, np.concatenate([self.R0.ravel(), self.V0.ravel()])
@@ -530,26 +531,47 @@ class FreeModel(Model):
         return segs, events
 
     def _first_contact_on_step(self, dense, t_a, t_b):
-        """The earliest contact of any impact pair within one step, or None."""
+        """The earliest contact of any impact pair within one step, or None.
+
+        Each pair's gap (the plane's) or |d|² − s² (two spheres, the sign of the gap)
+        is a polynomial along the step; :func:`contacts.first_downward_crossing` finds
+        its first crossing.  The rounding allowed at the step's start (a contact just
+        resolved) is ``GAP_ROUNDING`` × the largest size the pair's positions and their
+        change over a step have had so far (the contact time is refined to 4 eps of the
+        step it was found in, which may have been longer than this one).
+        """
         if not self.impacts or t_b <= t_a:
             return None
         n = self.n
         coef = contacts.chebyshev_fit(lambda tt: np.asarray(dense(tt)).T[:, : 3 * n], t_a, t_b)
         coef = coef.reshape(len(coef), n, 3)
         best = None
-        for imp in self.impacts:
+        for k, imp in enumerate(self.impacts):
             if imp.j is None:
-                p = coef[:, imp.i] @ imp.normal
-                p[0] -= imp.point @ imp.normal + imp.r_i
-                tol = GAP_ROUNDING * (np.abs(coef[:, imp.i]).sum() + imp.r_i)
+                rel = coef[:, imp.i] - imp.point
+                p = rel @ imp.normal
+                p[0] -= imp.r_i
+                units = 1.0  # p is the gap
             else:
-                d = coef[:, imp.i] - coef[:, imp.j]
-                p = sum(C.chebmul(d[:, k], d[:, k]) for k in range(3))
+                rel = coef[:, imp.i] - coef[:, imp.j]
+                p = C.chebadd(
+                    C.chebadd(*(C.chebmul(rel[:, c], rel[:, c]) for c in (0, 1))),
+                    C.chebmul(rel[:, 2], rel[:, 2]),
+                )
                 size = imp.r_i + imp.r_j
                 p[0] -= size * size
-                tol = GAP_ROUNDING * (np.abs(d).sum() + size) * 2.0 * size
+                units = 2.0 * size  # |d|² − s² ≈ 2 s × gap near contact
+            reach = np.abs(rel).sum() + imp.r_i + imp.r_j
+            self._reach[k] = max(self._reach.get(k, 0.0), reach)
+
+            def gap_at(x, imp=imp):
+                tt = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * x
+                return imp.gap(np.asarray(dense(tt))[: 3 * n].reshape(n, 3))
+
             try:
-                x = contacts.first_downward_crossing(p, start_tol=tol)
+                x = contacts.first_downward_crossing(
+                    p, start_tol=GAP_ROUNDING * self._reach[k] * units, refine=gap_at
+                )
             except contacts.ContactError as exc:
                 raise self.scene.error(
                     imp.where,

@@ -61,6 +61,10 @@ class SceneError(ValueError):
         super().__init__(f"{source}: {field_}: {reason}")
 
 
+#: the integrator's default rtol and atol (the tolerances of conserved quantities in
+#: :mod:`mechanics.scenes.result` are measured at this setting and scale with it)
+DEFAULT_TOL = 1e-12
+
 #: shape -> the dimensions it needs (in SI metres); "custom" takes principal moments.
 SHAPES: dict[str, tuple[str, ...]] = {
     "point": (),
@@ -421,7 +425,7 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         raise SceneError(src, "scene.method", f"expected one of {METHODS}; got {method!r}")
     tols = {}
     for k in ("rtol", "atol"):
-        tols[k] = _check(src, f"scene.{k}", "positive", s.get(k, 1e-12))
+        tols[k] = _check(src, f"scene.{k}", "positive", s.get(k, DEFAULT_TOL))
         if tols[k] > 1e-3:
             raise SceneError(src, f"scene.{k}", f"must be ≤ 1e-3; got {tols[k]!r}")
     title = _check(src, "scene.title", "str", s.get("title", ""))
