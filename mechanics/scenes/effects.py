@@ -211,6 +211,22 @@ class Impact(Effect):
             return float((R[self.i] - self.point) @ self.normal) - self.r_i
         return float(np.linalg.norm(R[self.i] - R[self.j])) - self.r_i - self.r_j
 
+    def normal_at(self, R) -> np.ndarray:
+        """Unit normal of the contact, pointing from the other body (or plane) to body i."""
+        if self.j is None:
+            return self.normal
+        d = R[self.i] - R[self.j]
+        return d / np.linalg.norm(d)
+
+    def approach(self, R, V) -> float:
+        """Normal speed of approach (positive while closing) at the contact."""
+        w = V[self.i] - (V[self.j] if self.j is not None else 0.0)
+        return -float(w @ self.normal_at(R))
+
+    def speed_scale(self, V) -> float:
+        """|v_i| + |v_j|: the size of the terms whose difference is the approach speed."""
+        return float(sum(np.linalg.norm(V[k]) for k in self.bodies()))
+
     @property
     def label(self) -> str:
         """The pair in words: "bodies 'a' and 'b'" or "body 'a' and the plane"."""

@@ -195,10 +195,16 @@ def _sample_dense(dense, t) -> np.ndarray:
 #: a rebound slower than this (m/s, relative to 1 + the approach speed) means the impacts
 #: accumulate (Zeno); the bouncing ball reaches it after ~150 bounces at e = 5/6
 ZENO_SPEED = 1e-9
+#: an approach speed within this multiple of eps × (|v_i| + |v_j|) is the rounding of
+#: zero: a touch (e.g. two bodies moving together after a plastic impact), not an impact;
+#: the velocities after an impact carry a few roundings of that size each
+CLOSING_ROUNDING = 64 * EPS
 
 
-def _stalled(detail: dict, e: float) -> bool:
-    return e > 0 and detail["normal_speed_after"] < ZENO_SPEED * (
+def _stalled(detail: dict, pressed: bool) -> bool:
+    """The bodies come to rest against each other while pressed together: the impacts
+    accumulate (Zeno) or stop (e = 0); neither is a motion without a resting contact."""
+    return pressed and detail["normal_speed_after"] < ZENO_SPEED * (
         1.0 + abs(detail["normal_speed_before"])
     )
 
@@ -207,11 +213,12 @@ def _constant(y):
     return lambda t: y
 
 
-def _zeno(scene, t):
+def _zeno(scene, t, who="the bodies"):
     return scene.error(
         "scene.duration",
-        f"the impacts accumulate (Zeno) near t = {t:.6g} s before the end "
-        f"{scene.duration:g} s: shorten the duration (there is no resting contact effect)",
+        f"{who} come to rest in contact (the impacts accumulate, or e = 0) near "
+        f"t = {t:.6g} s before the end {scene.duration:g} s: shorten the duration "
+        "(there is no resting contact effect)",
     )
 
 
@@ -414,10 +421,35 @@ class FreeModel(Model):
         uniform gravity a plane gap is quadratic in τ and the relative motion of two
         bodies is uniform (gravity cancels), so |d + w τ| = a_i + a_j is a quadratic."""
         if imp.j is None:
-            return contacts.plane_contact_time(
+            tau = contacts.plane_contact_time(
                 imp.gap(R), float(V[imp.i] @ imp.normal), float(g @ imp.normal)
             )
-        return contacts.sphere_contact_time(R[imp.i] - R[imp.j], V[imp.i] - V[imp.j], imp.gap(R))
+        else:
+            tau = contacts.sphere_contact_time(
+                R[imp.i] - R[imp.j], V[imp.i] - V[imp.j], imp.r_i + imp.r_j
+            )
+        if tau < math.inf and self._touch(imp, R + V * tau + 0.5 * g * tau * tau, V + g * tau):
+            return math.inf
+        return tau
+
+    def _touch(self, imp, R, V) -> bool:
+        """Touching with an approach speed that is zero up to rounding: no impact."""
+        return imp.approach(R, V) <= CLOSING_ROUNDING * imp.speed_scale(V)
+
+    def _pressed(self, imp, t, R, V) -> bool:
+        """Do the forces push the pair together (relative normal acceleration inward)?"""
+        n = self.n
+        acc = self.rhs(t, np.concatenate([R.ravel(), V.ravel()]))[3 * n :].reshape(n, 3)
+        return imp.approach(R, acc) > 0  # approach() of accelerations: inward is positive
+
+    def _after_impact(self, imp, t, R, V, events) -> None:
+        """Apply one impact at t, record it, and stop on accumulating impacts."""
+        detail = self._impact(imp, t, R, V)
+        events.append(Event(t, "impact", detail))
+        if len(events) > MAX_EVENTS:
+            raise _zeno(self.scene, t, imp.label)
+        if _stalled(detail, self._pressed(imp, t, R, V)):
+            raise _zeno(self.scene, t, imp.label)
 
     def _ballistic(self, T_end):
         g = self._gvec()
@@ -436,10 +468,7 @@ class FreeModel(Model):
             tau, imp = best
             R = R + V * tau + 0.5 * g * tau * tau
             V = V + g * tau
-            detail = self._impact(imp, t1, R, V)
-            events.append(Event(t1, "impact", detail))
-            if len(events) > MAX_EVENTS or _stalled(detail, imp.e):
-                raise _zeno(self.scene, t1)
+            self._after_impact(imp, t1, R, V, events)
             t0 = t1
         return segs, events
 
@@ -521,10 +550,7 @@ class FreeModel(Model):
                 t, imp = hit
                 y = np.asarray(dense(t), dtype=float).copy()
                 R, V = y[: 3 * n].reshape(n, 3), y[3 * n :].reshape(n, 3)
-                detail = self._impact(imp, t, R, V)
-                events.append(Event(t, "impact", detail))
-                if len(events) > MAX_EVENTS or _stalled(detail, imp.e):
-                    raise _zeno(s, t)
+                self._after_impact(imp, t, R, V, events)
             for th in self.thrusts:
                 if th.burn_out == stop and stop < t_end:
                     events.append(Event(stop, "burn_out", {"body": self.names[th.i]}))
@@ -536,9 +562,11 @@ class FreeModel(Model):
         Each pair's gap (the plane's) or |d|² − s² (two spheres, the sign of the gap)
         is a polynomial along the step; :func:`contacts.first_downward_crossing` finds
         its first crossing.  The rounding allowed at the step's start (a contact just
-        resolved) is ``GAP_ROUNDING`` × the largest size the pair's positions and their
-        change over a step have had so far (the contact time is refined to 4 eps of the
-        step it was found in, which may have been longer than this one).
+        resolved) is ``GAP_ROUNDING`` × the largest size the pair's positions (and the
+        plane's point) and their change over a step have had so far (the contact time
+        is refined to 4 eps of the step it was found in, which may have been longer).
+        A crossing with zero approach speed (up to ``CLOSING_ROUNDING``) is a touch,
+        not an impact: two bodies moving together after a plastic impact.
         """
         if not self.impacts or t_b <= t_a:
             return None
@@ -551,6 +579,7 @@ class FreeModel(Model):
                 rel = coef[:, imp.i] - imp.point
                 p = rel @ imp.normal
                 p[0] -= imp.r_i
+                size = imp.r_i
                 units = 1.0  # p is the gap
             else:
                 rel = coef[:, imp.i] - coef[:, imp.j]
@@ -561,7 +590,8 @@ class FreeModel(Model):
                 size = imp.r_i + imp.r_j
                 p[0] -= size * size
                 units = 2.0 * size  # |d|² − s² ≈ 2 s × gap near contact
-            reach = np.abs(rel).sum() + imp.r_i + imp.r_j
+            # positions round relative to their own size, not to their difference
+            reach = np.abs(coef[:, imp.bodies()]).sum() + np.abs(imp.point).sum() + size
             self._reach[k] = max(self._reach.get(k, 0.0), reach)
 
             def gap_at(x, imp=imp):
@@ -580,6 +610,10 @@ class FreeModel(Model):
                 ) from None
             if x is not None:
                 tc = t_a if x == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * x, t_b)
+                y = np.asarray(dense(tc), dtype=float)
+                R, V = y[: 3 * n].reshape(n, 3), y[3 * n :].reshape(n, 3)
+                if self._touch(imp, R, V):
+                    continue  # zero approach speed: the pair touches, nothing to resolve
                 if best is None or tc < best[0]:
                     best = (tc, imp)
         return best

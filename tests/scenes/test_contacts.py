@@ -4,6 +4,7 @@ times and velocities after are known in closed form (Essén (1996), Section 6.3)
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import subprocess
@@ -11,6 +12,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import example, given
+from hypothesis import strategies as st
 from numpy.polynomial import chebyshev as C
 
 from mechanics.scenes import SceneError, parse_scene, run_scene
@@ -99,10 +102,24 @@ def test_sphere_contact_is_the_entry_side_never_the_exit() -> None:
     d, w = np.array([-1.0, 0.0, 0.0]), np.array([2.0, 0.0, 0.0])
     # |−1 + 2τ| = 0.5 at τ = 0.25 (entry) and 0.75 (exit)
     assert ct.sphere_contact_time(d, w, 0.5) == pytest.approx(0.25, rel=4 * EPS)
-    # already overlapping by rounding and separating: the exit root is not a contact
-    assert ct.sphere_contact_time(-d, w, -1e-17) == math.inf
+    # overlapping by rounding and separating: the exit root is not a contact
+    assert ct.sphere_contact_time(np.array([0.5 - 1e-17, 0, 0]), w, 0.5) == math.inf
     # touching exactly, moving tangentially (a graze): no normal speed, no contact
-    assert ct.sphere_contact_time(np.array([0.5, 0, 0]), np.array([0, 1.0, 0]), 0.0) == math.inf
+    assert ct.sphere_contact_time(np.array([0.5, 0, 0]), np.array([0, 1.0, 0]), 0.5) == math.inf
+
+
+def test_sphere_contact_time_keeps_its_digits_far_apart() -> None:
+    """Spheres 1e6 sizes apart, impact parameter 0.9 s: the textbook discriminant
+    (d·w)² − |w|²(|d|² − s²) cancels most digits; the closed form must not."""
+    s_ab, y, gap = 0.02, 0.018, 2e4
+    x_touch = math.sqrt(s_ab * s_ab - y * y)
+    d = np.array([-(x_touch + gap), -y, 0.0])
+    tau = ct.sphere_contact_time(d, np.array([1.0, 0.0, 0.0]), s_ab)
+    assert abs(tau - gap) <= 8 * EPS * gap
+    # negative control: the textbook formula loses about 5e4 eps here
+    dw, c = float(d @ [1.0, 0, 0]), float(d @ d) - s_ab * s_ab
+    naive = -dw - math.sqrt(dw * dw - c)
+    assert abs(naive - gap) > 1e3 * EPS * gap
 
 
 def test_a_dip_between_positive_ends_is_found() -> None:
@@ -325,6 +342,54 @@ def test_a_spring_driven_approach_is_caught_on_a_curved_step(rtol) -> None:
     _assert_close(after["b.vx"], vb[0], tol, v_c, "v_b after")
 
 
+@pytest.mark.parametrize("method", ["auto", "integrate"])
+def test_a_plastic_impact_leaves_the_pair_moving_together(method) -> None:
+    """e = 0: one impact, then the spheres touch with zero approach speed forever, which
+    is no further impact (not a Zeno stop, not an exit-side contact)."""
+    scene = _spheres(
+        [("a", 1.0, 0.1, (0, 0, 0), (1, 0, 0)), ("b", 3.0, 0.1, (0.5, 0, 0), (0, 0, 0))],
+        duration=20.0,
+        e=0.0,
+        method=method,
+    )
+    r = run_scene(scene)
+    assert r.passed, r.summary()
+    assert len(r.trajectory.events) == 1
+    s = r.trajectory.series
+    tol = EXACT_RTOL if method == "auto" else STEPPED_RTOL
+    _assert_close([s["a.vx"][-1], s["b.vx"][-1]], [0.25, 0.25], tol, 1.0, "common velocity")
+
+
+def test_a_ball_that_comes_to_rest_on_the_floor_stops_with_one_line() -> None:
+    """e = 0 under gravity: the ball would rest on the floor, which needs a resting
+    contact; the run stops with one line naming the file, the pair and the time."""
+    scene = parse_scene(
+        {
+            "scene": {"name": "plastic", "duration": 2.0},
+            "bodies": [
+                {
+                    "name": "ball",
+                    "shape": "solid_sphere",
+                    "mass": 1.0,
+                    "radius": 0.1,
+                    "initial": {"position": [0.0, 0.0, 1.1]},
+                }
+            ],
+            "effects": [
+                {"type": "gravity", "g": 9.81},
+                {"type": "impact", "body": "ball", "restitution": 0.0},
+            ],
+        },
+        source="plastic.toml",
+    )
+    for method in ("auto", "integrate"):
+        with pytest.raises(SceneError, match="'ball' and the plane come to rest") as info:
+            run_scene(dataclasses.replace(scene, method=method))
+        t_c = math.sqrt(2.0 / 9.81)  # the fall of 1 m
+        assert f"t = {t_c:.6g} s" in str(info.value)
+        assert str(info.value).startswith("plastic.toml: scene.duration: ")
+
+
 # ----------------------------------------------------------------- a wrong motion fails loudly
 
 
@@ -427,3 +492,54 @@ def test_cli_exits_2_with_one_line_for_overlapping_bodies(tmp_path) -> None:
     assert str(path) in line
     assert "bodies 'a' and 'b' overlap at t = 0 s" in line
     assert "Traceback" not in out.stderr
+
+
+# ----------------------------------------------------------------- random oblique impacts
+
+
+@st.composite
+def _oblique_pairs(draw):
+    """Two spheres, b at rest, a flying along x with an impact parameter below 0.95 of
+    the sum of radii, touching before the end: valid by construction."""
+    r_a = draw(st.floats(0.01, 1.0))
+    r_b = draw(st.floats(0.01, 1.0))
+    s_ab = r_a + r_b
+    b_frac = draw(st.floats(0.0, 0.95))
+    ratio = 10.0 ** draw(st.floats(-3.0, 3.0))
+    speed = 10.0 ** draw(st.floats(-1.0, 1.0))
+    gap = draw(st.floats(0.01, 10.0))  # along x, between the touching position and b
+    span = draw(st.floats(1.05, 100.0))
+    e = draw(st.sampled_from([0.0, 0.5, 1.0]) | st.floats(0.0, 1.0))
+    return r_a, r_b, s_ab, b_frac * s_ab, ratio, speed, gap, span, e
+
+
+@given(case=_oblique_pairs(), method=st.sampled_from(["auto", "integrate"]))
+@example(case=(0.1, 0.1, 0.2, 0.0, 2.0, 1.0, 0.3, 1.0 / 0.3, 0.8), method="integrate")
+def test_random_oblique_impacts_obey_the_restitution_law(case, method) -> None:
+    """The issue's first report pinned: a at 1 m/s toward b (2 kg) 0.3 m away, 1 s."""
+    r_a, r_b, s_ab, y, ratio, speed, gap, span, e = case
+    x_touch = math.sqrt(s_ab * s_ab - y * y)
+    x_b = x_touch + gap
+    t_c = gap / speed
+    scene = _spheres(
+        [("a", 1.0, r_a, (0, 0, 0), (speed, 0, 0)), ("b", ratio, r_b, (x_b, y, 0), (0, 0, 0))],
+        duration=span * t_c,
+        e=e,
+        method=method,
+    )
+    r = run_scene(scene)
+    assert r.passed, r.summary()
+    ev = r.trajectory.events[0]
+    # conditioning: the positions carry eps × X (X = x_b + s, the largest coordinate);
+    # the normal is their difference over s, the contact time that over the normal speed
+    X = x_b + s_ab
+    rtol = EXACT_RTOL if method == "auto" else STEPPED_RTOL
+    _assert_close(ev.t, t_c, rtol * X * s_ab / x_touch, t_c / gap, "contact time")
+    n = np.array([-x_touch, -y, 0.0]) / s_ab  # from b to a at the contact, by construction
+    va, vb = _after(1.0, ratio, (speed, 0, 0), (0, 0, 0), n, e)
+    tol = rtol * X / s_ab
+    after = r.trajectory.state_at(min(ev.t * (1 + 1e-12), scene.duration))
+    got_a = [after[f"a.v{c}"] for c in "xyz"]
+    got_b = [after[f"b.v{c}"] for c in "xyz"]
+    _assert_close(got_a, va, tol, speed, "v_a after")
+    _assert_close(got_b, vb, tol, speed / min(ratio, 1.0), "v_b after")
