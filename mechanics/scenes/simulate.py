@@ -11,18 +11,26 @@ Conventions
   since every free-body effect acts at G, and follows the exact Jacobi-elliptic flow of
   :class:`mechanics.tops.FreeAsymmetricTop`).
 - **Exact flows** (``method = "auto"`` or ``"exact"``): free flight under uniform gravity
-  between impacts, with the impact instants solved in closed form (a quadratic);
-  the rocket (7.30) through :mod:`mechanics.open_systems`; the torque-free top; the
-  heavy symmetric top (:class:`mechanics.tops.HeavySymmetricTop`); the pendulum released
-  from rest (:func:`mechanics.dynamics.pendulum_motion`), also for the cylinder in a
-  track (an equivalent pendulum); uniform acceleration when rolling down an incline,
-  and for each phase of sliding with the switch solved exactly; the carousel (7.39);
-  the draining tank (:func:`mechanics.fluids.tank_level`).
-- **Integration** otherwise (or ``method = "integrate"``): scipy's ``solve_ivp`` with
-  DOP853 at the scene's ``rtol``/``atol``; impacts, the burn-out and the switch from
-  sliding to rolling are ``events=`` (terminal), and integration restarts after them.
-  The in-house integrators of ``mechanics/integrators.py`` were not available when this
-  was written.
+  between impacts, with the impact instants solved in closed form (a quadratic for a
+  body against a plane; for two spheres, whose relative motion is uniform, a quadratic
+  formed without cancellation, :func:`contacts.sphere_contact_time`); the rocket (7.30)
+  through :mod:`mechanics.open_systems`; the torque-free top; the heavy symmetric top
+  (:class:`mechanics.tops.HeavySymmetricTop`); the pendulum released from rest
+  (:func:`mechanics.dynamics.pendulum_motion`), also for the cylinder in a track (an
+  equivalent pendulum); uniform acceleration when rolling down an incline, and for each
+  phase of sliding with the switch solved exactly; the carousel (7.39); the draining
+  tank (:func:`mechanics.fluids.tank_level`).
+- **Integration** otherwise (or ``method = "integrate"``): DOP853 at the scene's
+  ``rtol``/``atol``.  Free bodies step with scipy's ``DOP853`` solver; after each step
+  every impact pair's gap is searched along the step's dense polynomial
+  (:mod:`mechanics.scenes.contacts`), so a contact is found whatever the step size, and
+  burn-outs are step boundaries.  The one-degree-of-freedom models use ``solve_ivp``
+  with terminal ``events=`` (the switch from sliding to rolling) and restart after them.
+- **Contacts.**  A contact is the gap reaching zero while closing; a touch at zero
+  approach speed (up to rounding) is no impact; a contact found on the exit side, a
+  pair already interpenetrating at a step's start, or a pair that comes to rest under
+  a pressing force (accumulating impacts, e = 0) stops the run with a
+  :class:`~mechanics.scenes.spec.SceneError` naming the pair and the time.
 - The result holds the samples (evenly spaced over ``[0, duration]``), a dense
   ``state_at(t)`` for locating features exactly, the events, and the quantities the
   effects conserve, each with the segments (between events) over which it is conserved.
