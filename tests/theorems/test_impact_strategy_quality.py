@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import Phase, find, given, settings
+from hypothesis import Phase, example, find, given, settings
 from hypothesis.errors import InvalidArgument
 
 from mechanics import impact as im
@@ -238,12 +238,37 @@ def test_contacts_are_impacts(c):
     assert 0.0 <= c.e <= 1.0
 
 
+#: J_G + m (|d|² 1 − d dᵀ) from an exact d: a few rounded products and sums per entry
+PARALLEL_AXIS_RTOL = 4 * EPS
+
+
+def _hinged_example(m, J_G, d, A, axis) -> ms.HingedBody:
+    """A hinged body built the way the strategy builds one (J_A from the exact d)."""
+    J_A = J_G + m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    return ms.HingedBody(m, 0.5 * (J_A + J_A.T), A + d, A, axis, J_G)
+
+
 @CONTACT_SETTINGS
 @given(ms.hinged_bodies())
+@example(  # found on a fresh clone: r_G = 1 + 0.1 rounds, and r_G − A ≠ 0.1 by 1e-17
+    _hinged_example(
+        1.0,
+        1e-3 * np.eye(3),
+        np.array([0.0, 0.0, 0.1]),
+        np.array([0.0, 0, 1]),
+        np.array([1.0, 0, 0]),
+    )
+)
 def test_hinged_bodies_obey_the_parallel_axis_theorem(h):
     d = h.r_G - h.axis_point
     expected = h.J_G + h.m * (float(d @ d) * np.eye(3) - np.outer(d, d))
-    assert np.abs(h.J_A - expected).max() <= 4 * EPS * np.abs(expected).max()
+    # d is formed here from the rounded r_G = A + d₀ (one rounding of the strategy's
+    # sum) and rounds once more in the subtraction: |d − d₀| ≤ δ = eps (|r_G| + |d|).
+    # The tensor then moves by at most m (4 |d| δ + 2 δ²) in each entry.
+    delta = EPS * (np.linalg.norm(h.r_G) + np.linalg.norm(d))
+    input_rounding = h.m * (4 * np.linalg.norm(d) * delta + 2 * delta * delta)
+    tol = PARALLEL_AXIS_RTOL * np.abs(expected).max() + input_rounding
+    assert np.abs(h.J_A - expected).max() <= tol
     assert abs(math.hypot(*h.axis) - 1.0) <= 2 * EPS
     # G is off the axis: a centre of percussion exists.
     perp = d - (d @ h.axis) * h.axis
