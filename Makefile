@@ -3,34 +3,64 @@ PYTHON ?= $(shell command -v python3.11 2>/dev/null || command -v python3)
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
+LOCK   := requirements/lock.txt
+# the suite's one command line; test-latest and test-oldest run it in their own venvs
+PYTEST_ARGS := -n auto
 
-.PHONY: run test checks bench clean
+.PHONY: run test checks bench lock test-latest test-oldest clean
 
-$(STAMP): pyproject.toml
+# The venv holds exactly the lock (hashes checked), then bodycheck itself, editable.
+$(STAMP): pyproject.toml $(LOCK) requirements/tools.in
+	$(PYTHON) tools/lock.py check
 	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check -e '.[test]'
+	$(PYTHON) tools/lock.py pin uv > $(VENV)/uv-requirement.txt
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --require-hashes \
+		-r $(VENV)/uv-requirement.txt
+	$(BIN)/uv pip sync --quiet --python $(BIN)/python --require-hashes $(LOCK)
+	$(BIN)/uv pip install --quiet --python $(BIN)/python --no-deps --no-build-isolation -e .
 	touch $(STAMP)
 
 ## make run: the main job, the whole catalogue
 run: $(STAMP)
 	$(BIN)/bodycheck check
 
-## make test: lint, format check and the whole test suite
+## make test: lint, format check and the whole test suite (in parallel, random order)
 test: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
 ## make checks: regenerate CHECKS.md from the registry
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
 
+## make lock: re-resolve every dependency to the newest allowed versions (needs the venv's uv)
+lock: $(STAMP)
+	$(PYTHON) tools/lock.py write $(BIN)/uv
+
+## make test-latest: the suite on the newest versions pyproject allows (no lock), in .venv-latest
+test-latest: $(STAMP)
+	rm -rf .venv-latest
+	$(PYTHON) -m venv .venv-latest
+	$(BIN)/uv pip install --quiet --python .venv-latest/bin/python --upgrade -e '.[test]'
+	.venv-latest/bin/python -m pip list --format=freeze 2>/dev/null | grep -iE '^(numpy|scipy|sympy|mpmath|hypothesis|matplotlib|pytest)=='
+	.venv-latest/bin/python -m pytest $(PYTEST_ARGS) -p no:cacheprovider
+
+## make test-oldest: the suite on the lowest versions pyproject allows, in .venv-oldest
+test-oldest: $(STAMP)
+	rm -rf .venv-oldest
+	$(PYTHON) -m venv .venv-oldest
+	$(BIN)/uv pip install --quiet --python .venv-oldest/bin/python --resolution lowest-direct -e '.[test]'
+	.venv-oldest/bin/python -m pip list --format=freeze 2>/dev/null | grep -iE '^(numpy|scipy|sympy|mpmath|hypothesis|matplotlib|pytest)=='
+	.venv-oldest/bin/python -m pytest $(PYTEST_ARGS) -p no:cacheprovider
+
 ## make bench: time the kernels (pytest-benchmark, saved for --benchmark-compare), then
 ## the work-precision study (bodycheck bench: table, JSON and plots in bench-results/)
 bench: $(STAMP)
 	$(BIN)/python -m pytest tests/benchmarks --benchmark-enable --benchmark-only \
-		--benchmark-autosave --benchmark-columns=min,median,max,rounds
+		--benchmark-autosave --benchmark-columns=min,median,max,rounds -p no:randomly
 	$(BIN)/bodycheck bench --out bench-results
 
 clean:
-	rm -rf $(VENV) .pytest_cache .hypothesis .benchmarks .ruff_cache bench-results
+	rm -rf $(VENV) .venv-latest .venv-oldest .pytest_cache .hypothesis .benchmarks \
+		.ruff_cache bench-results
