@@ -9,13 +9,18 @@ PYTEST_ARGS := -n auto
 
 .PHONY: run test checks bench lock test-latest test-oldest clean
 
+# A venv with the lock's uv (hash-checked), installed by the venv's own pip.
+define BOOTSTRAP_UV
+test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+test -x $(BIN)/uv || { $(PYTHON) tools/lock.py pin uv > $(VENV)/uv-requirement.txt && \
+	$(BIN)/python -m pip install --quiet --disable-pip-version-check --require-hashes \
+	-r $(VENV)/uv-requirement.txt; }
+endef
+
 # The venv holds exactly the lock (hashes checked), then bodycheck itself, editable.
 $(STAMP): pyproject.toml $(LOCK) requirements/tools.in
 	$(PYTHON) tools/lock.py check
-	test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(PYTHON) tools/lock.py pin uv > $(VENV)/uv-requirement.txt
-	$(BIN)/python -m pip install --quiet --disable-pip-version-check --require-hashes \
-		-r $(VENV)/uv-requirement.txt
+	$(BOOTSTRAP_UV)
 	$(BIN)/uv pip sync --quiet --python $(BIN)/python --require-hashes $(LOCK)
 	$(BIN)/uv pip install --quiet --python $(BIN)/python --no-deps --no-build-isolation -e .
 	touch $(STAMP)
@@ -34,8 +39,10 @@ test: $(STAMP)
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
 
-## make lock: re-resolve every dependency to the newest allowed versions (needs the venv's uv)
-lock: $(STAMP)
+## make lock: re-resolve every dependency to the newest allowed versions and rewrite the lock
+## (it works on a stale lock: only the lock's uv pin is read, to bootstrap uv)
+lock:
+	$(BOOTSTRAP_UV)
 	$(PYTHON) tools/lock.py write $(BIN)/uv
 
 ## make test-latest: the suite on the newest versions pyproject allows (no lock), in .venv-latest
