@@ -47,8 +47,8 @@ EPS = float(np.finfo(float).eps)
 STEP_NODES = 9
 #: a root of the derivative counts as real when its imaginary part is below this (in the
 #: step's [−1, 1] variable): eigenvalues of a companion matrix carry ~ sqrt(eps) errors
-#: near a double root, so real extrema are never dropped; complex ones only add a probe.
-REAL_ROOT_IMAG = 1e-6
+#: near a double root, so real extrema are never dropped; complex ones only add a probe
+REAL_ROOT_IMAG = 64 * math.sqrt(EPS)  # ≈ 9.5e-7
 #: tail Chebyshev coefficients below this fraction of Σ|c_k| are the interpolation's
 #: rounding (a fit of degree 8 to a degree-7 step); dropping them changes the values by
 #: less than that and keeps the companion matrix of the derivative well scaled
@@ -154,14 +154,13 @@ def first_downward_crossing(
     ``coef`` (shape ``(k,)``) is a polynomial with the sign of a gap along one step.
     The polynomial's extrema (real roots of its derivative) cut [−1, 1] into pieces on
     which it is monotone; the first piece that starts ≥ 0 and ends < 0 holds the
-    crossing, refined by Brent's method to ``ROOT_RTOL`` on ``refine(x)`` (the gap
-    itself, free of the polynomial's cancellation; it must have the polynomial's sign)
-    when given and when its signs at the ends of the piece bracket a root, else on the
-    polynomial.  A value in [−start_tol, 0)
-    is the rounding of a contact just resolved, and a value within ±start_tol counts as
-    touching: the contact is *now* (the piece's start) if the polynomial falls from
-    there, nothing if it rises.  Returns None when the
-    polynomial stays ≥ 0 (after a cheap bound c₀ − Σ|c_k| > 0 skips most steps).
+    crossing, refined by Brent's method to ``ROOT_RTOL``: on ``refine(x)`` (the gap
+    itself, free of the polynomial's cancellation) when given and when its signs at the
+    ends of the piece bracket a root, else on the polynomial.  A value within
+    ±``start_tol`` counts as touching (the rounding of a contact just resolved): the
+    contact is *now* (the piece's start) if the polynomial falls from there, nothing if
+    it rises.  Returns None when the polynomial stays ≥ 0; a cheap bound
+    c₀ − Σ|c_k| > 0 skips most steps without finding roots.
 
     Raises
     ------
