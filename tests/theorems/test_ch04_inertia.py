@@ -27,6 +27,12 @@ from mechanics.rotation import EPS, R3
 #: difference of two such computations.
 SUM_ATOL = 64 * EPS
 
+#: Underflow: a product of float64 coordinates below the smallest subnormal flushes to
+#: 0 (the extended-precision reference keeps it), so each of the ≤ 6 terms of an entry
+#: may be off by m × smallest subnormal whatever the relative tolerance; 2 such per
+#: term (|s|² and s sᵀ) bound it.
+UNDERFLOW_TERMS = 2
+
 #: Principal moments against the moments a tensor was built from: the built
 #: tensor carries ~4 eps·J3 of rounding from the rotation, the Jacobi moments
 #: another ~4 eps·J3 (measured worst 3.4 eps over 1e5 tensors).
@@ -60,17 +66,22 @@ def _direct(m, r, C):
     ms.ParticleSystem(np.ones(2), np.array([[1.0, 0, 0], [-1.0, 0, 0]]), np.zeros((2, 3))),
     np.array([0.0, 0.0, 5.0]),
 )
+@example(  # found by the explore profile: |C|² = 7e-326 underflows to 0 in float64
+    ms.ParticleSystem(np.array([1e-6, 1e6]), np.zeros((2, 3)), np.zeros((2, 3))),
+    np.array([0.0, 0.0, 2.7229738264047844e-163]),
+)
 def test_parallel_axis_theorem_holds_about_any_point_4_38(system, C):
     m, r = system.m, system.r
     J_C = I.inertia_tensor(m, r, about=C)
     J_ref, scale = _direct(m, r, C)
-    assert np.abs(J_C - J_ref).max() <= SUM_ATOL * scale
+    tiny = UNDERFLOW_TERMS * float(m.sum()) * np.finfo(float).smallest_subnormal
+    assert np.abs(J_C - J_ref).max() <= SUM_ATOL * scale + tiny
     # and J_C = J_G + m(|R|² 1 − R ⊗ R) with R = GC (4.38), J_G from the same particles.
     M = m.sum()
     G = (m[:, None] * r).sum(0) / M
     J_G = I.inertia_tensor(m, r, about=G)
     shifted = I.parallel_axis(J_G, M, C - G, allow_singular=True)
-    assert np.abs(shifted - J_ref).max() <= SUM_ATOL * scale
+    assert np.abs(shifted - J_ref).max() <= SUM_ATOL * scale + tiny
 
 
 @given(ms.rigid_bodies(), points, points)
