@@ -341,13 +341,15 @@ def _cmd_catalogue(args) -> int:
 def _run_scene_file(path, args) -> int:
     import dataclasses
 
-    from mechanics.scenes import SceneError, load_scene, run_scene
+    from mechanics.scenes import SceneError
+
+    from .scene_compare import load_book_scene, run_book_scene
 
     try:
-        scene = load_scene(path)
+        scene = load_book_scene(path)
         if args.method:
             scene = dataclasses.replace(scene, method=args.method)
-        result = run_scene(scene)
+        result = run_book_scene(scene)
     except SceneError as exc:
         raise UsageError(str(exc)) from None
     if args.plot:

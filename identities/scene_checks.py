@@ -3,17 +3,18 @@ effects its file lists and compares what it measures on the motion with the book
 closed form; the conserved quantities its effects imply must hold.
 
 The label is ``numeric``: a simulation is evidence, not a proof.  The comparisons and
-their tolerances (with reasons) live in :mod:`mechanics.scenes.compare`.
+their tolerances (with reasons) live in :mod:`identities.scene_compare`.
 """
 
 from __future__ import annotations
 
 import dataclasses
 
-from mechanics.scenes import builtin_path, load_scene, run_scene
+from mechanics.scenes import builtin_path, load_scene
 
 from .catalogue import check
 from .proof import Derivation
+from .scene_compare import run_book_scene
 
 #: built-in scene → the book items it reproduces
 SCENES = {
@@ -35,7 +36,7 @@ def _run(d: Derivation, name: str, method: str) -> None:
     scene = load_scene(builtin_path(name))
     if method != scene.method:
         scene = dataclasses.replace(scene, method=method)
-    result = run_scene(scene)
+    result = run_book_scene(scene)
     d.note(f"{name} ({result.method}): {len(result.trajectory.t)} samples")
     if not result.comparisons:
         raise AssertionError(f"scene {name} compared nothing with the book")

@@ -159,8 +159,10 @@ def first_downward_crossing(
     ends of the piece bracket a root, else on the polynomial.  A value within
     ±``start_tol`` counts as touching (the rounding of a contact just resolved): the
     contact is *now* (the piece's start) if the polynomial falls from there, nothing if
-    it rises.  Returns None when the polynomial stays ≥ 0; a cheap bound
-    c₀ − Σ|c_k| > 0 skips most steps without finding roots.
+    it rises; an interior minimum below zero by no more than ``start_tol`` is a graze
+    (a tangential touch whose rounding dips below zero), not a contact.  Returns None
+    when the polynomial stays ≥ 0; a cheap bound c₀ − Σ|c_k| > 0 skips most steps
+    without finding roots.
 
     Raises
     ------
@@ -199,6 +201,8 @@ def first_downward_crossing(
         if v0 <= start_tol and v1 < v0:
             return xs[k]  # touching within rounding, and closing: the contact is now
         if v0 >= 0 > v1:
+            if v1 >= -start_tol and xs[k + 1] < 1.0:
+                continue  # a graze: a dip below zero within rounding, rising again
             from scipy.optimize import brentq
 
             f = lambda x: C.chebval(x, coef)  # noqa: E731

@@ -1,4 +1,5 @@
-"""The result of a scene run: samples, events, conserved quantities, book comparisons.
+"""The result of a scene run: samples, events, conserved quantities, self-checks, and the
+comparisons a caller asks for (the book layer's, :mod:`identities.scene_compare`).
 
 Conventions
 -----------
@@ -13,7 +14,10 @@ Conventions
   bodies of an impact pair interpenetrate at any sample (beyond ``PENETRATION_RTOL`` of
   the positions' size); at every impact the kinetic energy read off the velocities drops
   by the loss formula ½ μ (1 − e²) v_n² (6.41), and a two-body impact keeps the momentum
-  (6.37).  A violation fails the run: a wrong motion never reports PASSED.
+  (6.37) and every two-body impact the angular momentum about the contact point (6.21);
+  a rigid body's attitude stays orthogonal (R Rᵀ = I within ``ORTHOGONALITY_RTOL`` for
+  an exact flow, the conserved tolerance for an integrated one).  A violation fails the
+  run: a wrong motion never reports PASSED.
 """
 
 from __future__ import annotations
@@ -24,13 +28,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .simulate import EPS, Trajectory, simulate
+from .simulate import simulate
 from .spec import DEFAULT_TOL, Scene
+from .trajectory import EPS, Trajectory
 
 __all__ = [
     "CONSERVED_RTOL",
     "CONSERVED_RTOL_INTEGRATED",
     "IMPACT_RTOL",
+    "ORTHOGONALITY_RTOL",
     "PENETRATION_RTOL",
     "Comparison",
     "ConservedReport",
@@ -53,6 +59,8 @@ PENETRATION_RTOL = 256 * EPS
 #: momentum scale before): direct_impact is within a few ulps, the update adds one
 #: rounding per component, the sums over ≤ 2 bodies a few more
 IMPACT_RTOL = 64 * EPS
+#: an exact attitude (the elliptic flow's product of rotations, a few dozen roundings)
+ORTHOGONALITY_RTOL = 64 * EPS
 
 
 @dataclass(frozen=True)
@@ -249,15 +257,12 @@ def _drift(values: np.ndarray, t: np.ndarray, segments, since: float, scale=0.0)
     return worst
 
 
-def run_scene(scene: Scene) -> SceneResult:
-    """Simulate the scene, report its conserved quantities, compare with the book."""
+def run_scene(scene: Scene, compare=None) -> SceneResult:
+    """Simulate the scene and report its conserved quantities and self-checks; with
+    ``compare`` (a function ``(scene, trajectory) -> list[Comparison]``), also the
+    comparisons it makes (the book's: :func:`identities.scene_compare.run_book_scene`)."""
     tr = simulate(scene)
-    tol = CONSERVED_RTOL
-    if tr.method.startswith("integrated"):  # measured at the default; looser asks more
-        tol = CONSERVED_RTOL_INTEGRATED * max(
-            1.0, scene.rtol / DEFAULT_TOL, scene.atol / DEFAULT_TOL
-        )
-    segs = tr.segments()
+    tol = conserved_tolerance(scene, tr)
     conserved = []
     scales = tr.extra.get("scales", {})
     for name, vals in tr.conserved.items():
@@ -266,22 +271,38 @@ def run_scene(scene: Scene) -> SceneResult:
             ConservedReport(
                 name,
                 float(np.asarray(vals)[-1]),
-                _drift(vals, tr.t, segs, since, scales.get(name, 0.0)),
+                _drift(vals, tr.t, tr.segments(name), since, scales.get(name, 0.0)),
                 tol,
                 since,
             )
         )
-    comparisons = []
-    if scene.compare:
-        from .compare import COMPARISONS
-
-        comparisons = COMPARISONS[scene.compare](scene, tr)
-    return SceneResult(scene, tr, conserved, comparisons, self_checks(tr))
+    comparisons = list(compare(scene, tr)) if compare is not None else []
+    return SceneResult(scene, tr, conserved, comparisons, self_checks(tr, tol))
 
 
-def self_checks(tr: Trajectory) -> list[SelfCheck]:
-    """What the run can verify on its own output (see the module Conventions)."""
+def conserved_tolerance(scene: Scene, tr: Trajectory) -> float:
+    """The relative drift allowed a conserved quantity (see the module Conventions)."""
+    if tr.method.startswith("integrated"):  # measured at the default; looser asks more
+        return CONSERVED_RTOL_INTEGRATED * max(
+            1.0, scene.rtol / DEFAULT_TOL, scene.atol / DEFAULT_TOL
+        )
+    return CONSERVED_RTOL
+
+
+def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
+    """What the run can verify on its own output (see the module Conventions); ``tol``
+    is the conserved quantities' tolerance (an integrated attitude drifts like them)."""
     out = []
+    if "orthogonality" in tr.extra:
+        exact = not tr.method.startswith("integrated")
+        out.append(
+            SelfCheck(
+                "attitudes orthogonal",
+                tr.extra["orthogonality"],
+                ORTHOGONALITY_RTOL if exact else tol,
+                "max |R Rᵀ − I|",
+            )
+        )
     scale = tr.extra.get("length_scale", 0.0)
     for pair, gaps in tr.extra.get("gaps", {}).items():
         depth = max(0.0, -float(np.min(gaps, initial=0.0)))
@@ -323,6 +344,25 @@ def self_checks(tr: Trajectory) -> list[SelfCheck]:
                 "Σ m v unchanged by the impulses (6.37)",
             )
         )
+        with_L = [d for d in pairs if "angular_momentum_before" in d]
+        if with_L:
+            worst = max(
+                float(
+                    np.linalg.norm(
+                        np.subtract(d["angular_momentum_after"], d["angular_momentum_before"])
+                    )
+                )
+                / max(d["angular_momentum_scale"], 1e-300)
+                for d in with_L
+            )
+            out.append(
+                SelfCheck(
+                    f"angular momentum across two-body impacts ({_count(len(with_L), 'impact')})",
+                    worst,
+                    IMPACT_RTOL,
+                    "Σ (ρ × m v + Rᵀ L_A) about the contact point unchanged (6.21)",
+                )
+            )
     return out
 
 

@@ -20,11 +20,13 @@ Schema
 ``duration`` (> 0), ``samples`` (int ≥ 2, default 201), ``method`` (``"auto"``: the exact
 flow where the effects have one, else integration; ``"exact"``: fail if there is none;
 ``"integrate"``: always integrate), ``rtol``/``atol`` of the integrator (default 1e-12),
-``compare`` (optional: the name of a book comparison, see
-:data:`mechanics.scenes.compare.COMPARISONS`).
+``compare`` (optional: the name of a book comparison; :mod:`mechanics` carries it as
+a label, the book layer :mod:`identities.scene_compare` knows the comparisons).
 
 ``[[bodies]]``: ``name``, ``shape`` (one of :data:`SHAPES`) with its dimensions, ``mass``
-(not for a tank), and an ``[bodies.initial]`` table (keys in :data:`INITIAL_KEYS`).
+(not for a tank), ``fixed`` (optional boolean: the body stays where it is, an immovable
+partner of contacts and springs), and an ``[bodies.initial]`` table (keys in
+:data:`INITIAL_KEYS`; a free rigid body's attitude by its Euler angles psi, theta, phi).
 
 ``[[effects]]``: ``type`` (one of :data:`EFFECT_FIELDS`) and its fields.  Only the listed
 effects act: there is no default gravity, no damping, no position correction.
@@ -39,11 +41,17 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .effects import EFFECT_CLASSES
+from .errors import SceneError
+from .state import ROUND_SHAPES, SPHERICAL_SHAPES
+
 __all__ = [
     "EFFECT_FIELDS",
     "INITIAL_KEYS",
     "METHODS",
+    "ROUND_SHAPES",
     "SHAPES",
+    "SPHERICAL_SHAPES",
     "Body",
     "EffectSpec",
     "Scene",
@@ -51,14 +59,6 @@ __all__ = [
     "load_scene",
     "parse_scene",
 ]
-
-
-class SceneError(ValueError):
-    """A scene file is invalid: the message names the file, the field and the reason."""
-
-    def __init__(self, source: str, field_: str, reason: str) -> None:
-        self.source, self.field, self.reason = source, field_, reason
-        super().__init__(f"{source}: {field_}: {reason}")
 
 
 #: the integrator's default rtol and atol (the tolerances of conserved quantities in
@@ -80,8 +80,6 @@ SHAPES: dict[str, tuple[str, ...]] = {
     "custom": ("inertia",),
     "tank": ("area",),
 }
-ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere", "hollow_sphere")
-SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 
 #: initial-state keys: name -> (kind, meaning)
 INITIAL_KEYS: dict[str, str] = {
@@ -93,7 +91,7 @@ INITIAL_KEYS: dict[str, str] = {
     "distance": "number",  # rolling/sliding: along the plane, m
     "speed": "number",  # rolling/sliding: speed of G along the plane
     "spin": "number",  # sliding: ω (positive = the rolling sense)
-    "theta": "number",  # fixed point: Euler angles z-x-z and rates
+    "theta": "number",  # fixed point, free rigid body: Euler angles z-x-z (and rates)
     "psi": "number",
     "phi": "number",
     "theta_dot": "number",
@@ -102,59 +100,11 @@ INITIAL_KEYS: dict[str, str] = {
     "level": "number",  # tank: height of the surface above the hole, m
 }
 
-#: effect type -> {field: (kind, required)}; kinds: body, name, number, vector, table, str
+#: effect type -> {field: (kind, required)}, from each effect's ``schema``; kinds: body,
+#: bodies (an array of body names), number, positive, nonnegative, restitution, vector,
+#: str, axis_name, frame ("space" or "body")
 EFFECT_FIELDS: dict[str, dict[str, tuple[str, bool]]] = {
-    "gravity": {"g": ("positive", True), "direction": ("vector", False)},
-    "fixed_axis": {
-        "body": ("body", True),
-        "axis": ("vector", False),
-        "distance": ("nonnegative", False),
-        "body_axis": ("axis_name", False),
-    },
-    "fixed_point": {"body": ("body", True), "distance": ("nonnegative", True)},
-    "rolling": {
-        "body": ("body", True),
-        "surface": ("str", True),
-        "angle": ("number", False),
-        "track_radius": ("positive", False),
-        "body_axis": ("axis_name", False),
-    },
-    "coulomb_friction": {
-        "body": ("body", True),
-        "mu": ("positive", True),
-        "angle": ("number", False),
-        "body_axis": ("axis_name", False),
-    },
-    "spring": {
-        "body": ("body", True),
-        "other": ("body", False),
-        "anchor": ("vector", False),
-        "stiffness": ("positive", True),
-        "rest_length": ("nonnegative", False),
-    },
-    "torsion": {"body": ("body", True), "stiffness": ("positive", True)},
-    "impact": {
-        "body": ("body", True),
-        "other": ("body", False),
-        "plane_point": ("vector", False),
-        "plane_normal": ("vector", False),
-        "restitution": ("restitution", True),
-    },
-    "thrust": {
-        "body": ("body", True),
-        "mass_flow": ("positive", True),
-        "exhaust_speed": ("positive", True),
-        "fuel_mass": ("nonnegative", True),
-        "direction": ("vector", False),
-    },
-    "mass_flow": {
-        "body": ("body", True),
-        "rate": ("nonnegative", True),
-        "speed": ("number", True),
-        "offset": ("number", True),
-        "radius": ("positive", True),
-    },
-    "tank_outflow": {"body": ("body", True), "hole_area": ("positive", True)},
+    t: cls.schema for t, cls in EFFECT_CLASSES.items()
 }
 
 METHODS = ("auto", "exact", "integrate")
@@ -170,6 +120,7 @@ class Body:
     mass: float
     dims: dict[str, Any]
     initial: dict[str, Any]
+    fixed: bool = False
 
 
 @dataclass(frozen=True)
@@ -272,6 +223,14 @@ def _check(src: str, where: str, kind: str, v: Any, bodies: set[str] | None = No
         if v not in ("x", "y", "z"):
             raise SceneError(src, where, f"expected one of 'x', 'y', 'z'; got {v!r}")
         return v
+    if kind == "frame":
+        if v not in ("space", "body"):
+            raise SceneError(src, where, f"expected 'space' or 'body'; got {v!r}")
+        return v
+    if kind == "bodies":
+        if not isinstance(v, list) or not v:
+            raise SceneError(src, where, f"expected a non-empty array of body names, got {v!r}")
+        return [_check(src, f"{where}[{i}]", "body", x, bodies) for i, x in enumerate(v)]
     if kind == "body":
         if not isinstance(v, str):
             raise SceneError(src, where, f"expected a body name (string), got {_type_name(v)}")
@@ -313,7 +272,9 @@ def _parse_body(src: str, i: int, b: Any) -> Body:
             src, f"{where}.shape", f"unknown body shape {shape!r} (known: {', '.join(SHAPES)})"
         )
     dims_needed = SHAPES[shape]
-    allowed = {"name", "shape", "initial", *dims_needed} | ({"mass"} if shape != "tank" else set())
+    allowed = {"name", "shape", "initial", "fixed", *dims_needed} | (
+        {"mass"} if shape != "tank" else set()
+    )
     _unknown(src, where, b, allowed)
     mass = 0.0
     if shape != "tank":
@@ -348,7 +309,10 @@ def _parse_body(src: str, i: int, b: Any) -> Body:
             raise SceneError(
                 src, f"{where}.initial.level", f"must be > 0; got {initial['level']!r}"
             )
-    return Body(name, shape, mass, dims, initial)
+    fixed = b.get("fixed", False)
+    if not isinstance(fixed, bool):
+        raise SceneError(src, f"{where}.fixed", f"expected true or false, got {fixed!r}")
+    return Body(name, shape, mass, dims, initial, fixed)
 
 
 def _parse_effect(src: str, i: int, e: Any, bodies: set[str]) -> EffectSpec:
@@ -390,7 +354,7 @@ def parse_scene(data: dict, *, source: str = "<scene>") -> Scene:
     >>> parse_scene({"scene": {"name": "x", "duration": "2 s"}})
     Traceback (most recent call last):
     ...
-    mechanics.scenes.spec.SceneError: <scene>: scene.duration: expected a number in SI units, \
+    mechanics.scenes.errors.SceneError: <scene>: scene.duration: expected a number in SI units, \
 got a string '2 s' (units are not parsed: write the value as a plain number in SI units)
     """
     src = source
@@ -457,18 +421,9 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         raw=data,
         **tols,
     )
-    from .simulate import select_model  # the combination of effects must make a model
+    from .simulate import validate  # the combination of bodies and effects must make sense
 
-    select_model(scene)
-    if compare:
-        from .compare import COMPARISONS
-
-        if compare not in COMPARISONS:
-            raise SceneError(
-                src,
-                "scene.compare",
-                f"unknown comparison {compare!r} (known: {', '.join(COMPARISONS)})",
-            )
+    validate(scene)
     return scene
 
 

@@ -1,5 +1,6 @@
 """Every built-in scene reproduces the book's closed form within its stated tolerance,
-by the exact flow and by integration, and conserves what its effects imply."""
+by the exact flow and by integration, and conserves what its effects imply (the
+comparisons are the book layer's, :mod:`identities.scene_compare`)."""
 
 from __future__ import annotations
 
@@ -9,9 +10,9 @@ import itertools
 import numpy as np
 import pytest
 
-from mechanics.scenes import builtin_scenes, load_scene, run_scene
+from identities.scene_compare import INTEGRATED_RTOL, run_book_scene
+from mechanics.scenes import builtin_scenes, load_scene
 from mechanics.scenes import effects as fx
-from mechanics.scenes.compare import INTEGRATED_RTOL
 
 EPS = float(np.finfo(float).eps)
 #: the speed at the next impact after a free flight, by the exact flow or by DOP853 at
@@ -39,7 +40,7 @@ EXPECTED = {
 
 def _run(name: str, method: str):
     scene = dataclasses.replace(load_scene(builtin_scenes()[name]), method=method)
-    return run_scene(scene)
+    return run_book_scene(scene)
 
 
 def test_the_issue_s_built_in_scenes_are_all_there() -> None:
@@ -132,7 +133,7 @@ def test_a_wrong_restitution_fails_example_6_1(tmp_path) -> None:
     )
     p = tmp_path / "ball.toml"
     p.write_text(text)
-    r = run_scene(load_scene(p))
+    r = run_book_scene(load_scene(p))
     bad = {c.name for c in r.comparisons if not c.ok}
     assert "speed after the first impact" in bad
     assert "apex ratio" not in " ".join(bad), "the ratio e² holds for any e"

@@ -16,9 +16,8 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from numpy.polynomial import chebyshev as C
 
-from mechanics.scenes import SceneError, parse_scene, run_scene
+from mechanics.scenes import SceneError, engine, parse_scene, run_scene
 from mechanics.scenes import contacts as ct
-from mechanics.scenes import simulate as sim
 
 EPS = 2.0**-52
 #: straight free flight: the contact time is one quadratic root, and positions and the
@@ -404,7 +403,7 @@ def _head_on(duration=1.0, method="integrate"):
 def test_a_missed_contact_fails_the_self_check(monkeypatch) -> None:
     """Negative control: with contact detection switched off, the spheres pass through
     each other, and the run must say FAILED (the old engine said PASSED here)."""
-    monkeypatch.setattr(sim.FreeModel, "_first_contact_on_step", lambda self, *a: None)
+    monkeypatch.setattr(engine.Engine, "_first_contact_on_step", lambda self, *a: None)
     r = run_scene(_head_on(duration=5.0))
     assert r.trajectory.events == []
     assert not r.passed
@@ -427,12 +426,11 @@ def test_a_wrong_impact_law_fails_the_self_check(monkeypatch, which, broken) -> 
 
     real = fx.Impact._apply
 
-    def wrong(self, R, V, M):
-        V0 = V.copy()
-        detail = real(self, R, V, M)
+    def wrong(self, s, S, n, v_n):
+        V0 = s.v.copy()
+        real(self, s, S, n, v_n)
         rows = self.bodies() if which == "both" else [self.i]
-        V[rows] += 0.01 * (V[rows] - V0[rows])
-        return detail
+        s.v[rows] += 0.01 * (s.v[rows] - V0[rows])
 
     monkeypatch.setattr(fx.Impact, "_apply", wrong)
     r = run_scene(_head_on(method="auto"))

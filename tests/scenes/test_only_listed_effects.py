@@ -75,7 +75,7 @@ def test_integration_calls_each_listed_force_once_per_stage(monkeypatch) -> None
     scene = dataclasses.replace(load_scene(builtin_scenes()["rocket"]), method="integrate")
     calls = _instrument(monkeypatch, {"gravity", "thrust"})
     run_scene(scene)
-    assert calls["gravity.free_force"] == calls["thrust.free_force"] > 100
+    assert calls["gravity.loads"] == calls["thrust.loads"] > 100
 
 
 def _free(effects, **initial):

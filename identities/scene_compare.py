@@ -1,4 +1,7 @@
-"""The book's closed forms, and the simulated quantities measured against them.
+"""The book's closed forms, and the simulated scene quantities measured against them.
+
+The book layer's half of the scenes: :mod:`mechanics.scenes` simulates and checks a run
+on its own output; this module knows the book's examples and compares.
 
 Conventions
 -----------
@@ -25,10 +28,17 @@ import math
 
 import numpy as np
 
-from .simulate import EPS, Trajectory, body_inertia
-from .spec import Scene
+from mechanics.scenes import Comparison, Scene, SceneError, load_scene, run_scene
+from mechanics.scenes.simulate import EPS, Trajectory, body_inertia
 
-__all__ = ["COMPARISONS", "EXACT_RTOL", "INTEGRATED_RTOL"]
+__all__ = [
+    "COMPARISONS",
+    "EXACT_RTOL",
+    "INTEGRATED_RTOL",
+    "book_comparison",
+    "load_book_scene",
+    "run_book_scene",
+]
 
 #: closed forms by another route (log1p vs log, elliptic functions vs integrals,
 #: root location by brentq at xtol = 4 eps): a few hundred roundings at most
@@ -420,7 +430,7 @@ def carousel(scene: Scene, tr: Trajectory):
     mf = scene.effects_of("mass_flow")
     ax = scene.effects_of("fixed_axis")
     _need(scene, len(mf) == 1 and len(ax) == 1, "one fixed_axis and one mass_flow")
-    from .effects import FixedAxis
+    from mechanics.scenes.effects import FixedAxis
 
     J0 = FixedAxis(ax[0]).moment_of_inertia(b.mass, np.diag(body_inertia(b)))
     f = mf[0].fields
@@ -521,8 +531,6 @@ def sliding_ball(scene: Scene, tr: Trajectory):
     ]
 
 
-from .result import Comparison  # noqa: E402  (result imports simulate; no cycle at runtime)
-
 COMPARISONS = {
     "E6.1": bouncing_ball,
     "E3.6": rolling_incline,
@@ -536,3 +544,29 @@ COMPARISONS = {
     "E8.1": tank,
     "sliding": sliding_ball,
 }
+
+
+def book_comparison(scene: Scene):
+    """The comparison a scene names (``scene.compare``), or None; SceneError naming the
+    file and field when the name is unknown."""
+    if not scene.compare:
+        return None
+    if scene.compare not in COMPARISONS:
+        raise SceneError(
+            scene.source,
+            "scene.compare",
+            f"unknown comparison {scene.compare!r} (known: {', '.join(COMPARISONS)})",
+        )
+    return COMPARISONS[scene.compare]
+
+
+def run_book_scene(scene: Scene):
+    """Run a scene and compare it with the book where it names a comparison."""
+    return run_scene(scene, compare=book_comparison(scene))
+
+
+def load_book_scene(path) -> Scene:
+    """Load a scene file and check that the comparison it names is known."""
+    scene = load_scene(path)
+    book_comparison(scene)
+    return scene

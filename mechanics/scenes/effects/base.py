@@ -1,0 +1,205 @@
+"""The one interface of an effect, the snapshot of the bodies it reads, and the loads it adds.
+
+Conventions
+-----------
+- **Registered by name.**  An effect is a class with a ``type`` (the name a scene file
+  lists) and a ``schema`` ``{field: (kind, required)}`` that the scene file's parser
+  checks (kinds: see :func:`mechanics.scenes.spec.check_field`).  :func:`register`
+  adds it to :data:`REGISTRY`.  An object is built only for an effect the scene
+  lists; no code of an unlisted effect runs.
+- **What an effect may contribute** (each optional, the base class contributes
+  nothing): :meth:`Effect.loads` adds forces (in the space basis O, at a point given in
+  body components about G, or at G) and moments to a :class:`Loads`; :meth:`potential`
+  gives its potential energy (``None`` if it has none); :meth:`mass_loss` the mass a
+  body has lost by time t; :meth:`keeps` says which of the total momentum p_x, p_y,
+  p_z, the total angular momentum about the origin L_x, L_y, L_z and the total energy
+  E it leaves unchanged (the engine reports as conserved exactly the quantities every
+  listed effect keeps).  Contacts (the ``impact`` effect) add events instead.
+- ``engine = False`` marks the effects of the one-degree-of-freedom models (fixed axis,
+  fixed point, rolling, sliding, tank), which have their own coordinates.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+__all__ = [
+    "CONSERVED",
+    "REGISTRY",
+    "Context",
+    "Effect",
+    "Loads",
+    "Schema",
+    "Snapshot",
+    "keeps_for_force_along",
+    "register",
+    "unit",
+]
+
+#: the quantities an effect may keep (see :meth:`Effect.keeps`)
+CONSERVED = ("p_x", "p_y", "p_z", "L_x", "L_y", "L_z", "E")
+
+REGISTRY: dict[str, type[Effect]] = {}
+#: an effect's fields: name -> (kind, required)
+Schema = dict[str, tuple[str, bool]]
+
+
+def register(cls):
+    """Class decorator: make an effect type known by its ``type`` name."""
+    if cls.type in REGISTRY:  # pragma: no cover - a programming error
+        raise RuntimeError(f"effect type {cls.type!r} registered twice")
+    REGISTRY[cls.type] = cls
+    return cls
+
+
+def unit(v) -> np.ndarray:
+    a = np.asarray(v, dtype=float)
+    return a / np.linalg.norm(a)
+
+
+@dataclass(frozen=True)
+class Context:
+    """What an effect may know of its scene: the bodies, their index by name, the
+    layout's kinds (point, rigid, fixed) and the scene (for its errors)."""
+
+    scene: Any
+    index: dict[str, int]
+    kinds: tuple[str, ...]
+
+    def body(self, name: str):
+        return self.scene.bodies[self.index[name]]
+
+
+class Snapshot:
+    """The bodies at one time, or at many (leading axes): r, v (O), L_A, ω_A (body
+    components), R_A_O, masses m and principal moments J.  Shapes (..., n, 3),
+    (..., n, 3, 3), (..., n).  Loads that switch on or off read ``phase``, not t."""
+
+    __slots__ = ("J", "L_A", "R", "m", "omega", "phase", "r", "t", "v")
+
+    def __init__(self, t, r, v, L_A, R, omega, m, J, phase=None) -> None:
+        self.t, self.r, self.v, self.L_A, self.R = t, r, v, L_A, R
+        self.omega, self.m, self.J = omega, m, J
+        #: the time that decides which loads are switched on: inside an integration
+        #: segment between switch times, its midpoint (a stage at the segment's end
+        #: still belongs to it); else t
+        self.phase = t if phase is None else phase
+
+    def to_space(self, i: int, x_A) -> np.ndarray:
+        """Space components of a vector with body components x_A (R_A_Oᵀ x_A)."""
+        return np.einsum("...ji,...j->...i", self.R[..., i, :, :], np.asarray(x_A, float))
+
+    def to_body(self, i: int, x_O) -> np.ndarray:
+        """Body components of a vector with space components x_O (R_A_O x_O)."""
+        return np.einsum("...ij,...j->...i", self.R[..., i, :, :], np.asarray(x_O, float))
+
+    def point(self, i: int, at_A=None) -> np.ndarray:
+        """Position of the body point with body components ``at_A`` about G (None: G)."""
+        if at_A is None:
+            return self.r[..., i, :]
+        return self.r[..., i, :] + self.to_space(i, at_A)
+
+    def point_velocity(self, i: int, at_A=None) -> np.ndarray:
+        """Velocity of that body point: v_G + ω × (R_A_Oᵀ at_A) (2.66)."""
+        if at_A is None:
+            return self.v[..., i, :]
+        w_O = self.to_space(i, self.omega[..., i, :])
+        return self.v[..., i, :] + np.cross(w_O, self.to_space(i, at_A))
+
+
+class Loads:
+    """Forces at G in O (n, 3) and moments about G in body components (n, 3), summed
+    over the listed effects for one time."""
+
+    __slots__ = ("F", "M_A", "snap")
+
+    def __init__(self, n: int, snap: Snapshot) -> None:
+        self.F = np.zeros((n, 3))
+        self.M_A = np.zeros((n, 3))
+        self.snap = snap
+
+    def force(self, i: int, F_O, at_A=None) -> None:
+        """Add the force F_O (space components) on body i, at the body point at_A (body
+        components about G; None: at G).  Its moment about G is (Rᵀ at_A) × F_O, in body
+        components at_A × (R F_O)."""
+        F_O = np.asarray(F_O, dtype=float)
+        self.F[i] += F_O
+        if at_A is not None:
+            self.M_A[i] += np.cross(at_A, self.snap.to_body(i, F_O))
+
+    def moment(self, i: int, M_O) -> None:
+        """Add a pure moment (a couple) with space components M_O on body i."""
+        self.M_A[i] += self.snap.to_body(i, M_O)
+
+    def moment_body(self, i: int, M_A) -> None:
+        """Add a pure moment with body components M_A on body i."""
+        self.M_A[i] += np.asarray(M_A, dtype=float)
+
+
+class Effect:
+    """Base class: holds the listed effect's spec; contributes nothing by itself."""
+
+    type: ClassVar[str] = ""
+    schema: ClassVar[Schema] = {}
+    engine: ClassVar[bool] = True
+
+    def __init__(self, spec, ctx: Context | None = None) -> None:
+        self.spec = spec
+        self.fields = spec.fields
+        self.ctx = ctx
+
+    @property
+    def where(self) -> str:
+        return self.spec.where
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.fields})"
+
+    @classmethod
+    def check(cls, spec, scene, index: dict[str, int]) -> None:
+        """Validate the combination of this effect with the scene (fields are checked
+        one by one by the parser); raise ``scene.error(field, reason)``."""
+
+    # contributions (the engine calls them only on listed effects)
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
+        """Add this effect's forces and moments at time t."""
+
+    potential = None  # a method (Snapshot -> array (...)) where the effect has one
+
+    def mass_loss(self, t) -> np.ndarray | None:
+        """Mass lost by each body by time t, shape (n,), or None."""
+        return None
+
+    def keeps(self, quantity: str) -> bool:
+        """Does this effect leave ``quantity`` (one of :data:`CONSERVED`) unchanged?"""
+        return False
+
+    def exerts_moment(self, k: int) -> bool:
+        """Can this effect exert a moment about the centre of mass of body k?  (The
+        default claims nothing: yes.)  A body no listed effect turns keeps its spin
+        angular momentum about G."""
+        return True
+
+    def switch_times(self) -> list[float]:
+        """Instants where the effect switches on or off (step boundaries)."""
+        return []
+
+
+def _axis_index(q: str) -> int:
+    return "xyz".index(q[-1])
+
+
+def keeps_for_force_along(direction, quantity: str) -> bool:
+    """What forces along one fixed ``direction`` keep, wherever they act: the momentum
+    components across it, and the angular momentum about the origin along it (a moment
+    r × F d is ⟂ d).  Energy: not by this rule."""
+    d = unit(direction)
+    if quantity.startswith("p_"):
+        return abs(d[_axis_index(quantity)]) == 0.0
+    if quantity.startswith("L_"):  # (Σ m r) × F d is ⟂ d: only the component along d
+        k = _axis_index(quantity)
+        return bool(np.all(np.delete(d, k) == 0.0))
+    return False

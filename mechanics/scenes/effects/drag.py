@@ -1,0 +1,59 @@
+"""Drag of a body moving through still air: linear and quadratic in the speed, on the
+translation (at G) and on the rotation (a resisting moment).
+
+F = −(b₁ + b₂ |v|) v at G and M = −(c₁ + c₂ |ω|) ω about G.  Dissipative: it keeps
+nothing.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from .base import Effect, Schema, register
+
+
+@register
+class Drag(Effect):
+    """Linear (N·s/m) and quadratic (N·s²/m²) drag, and their rotational counterparts."""
+
+    type = "drag"
+    schema: ClassVar[Schema] = {
+        "body": ("body", True),
+        "linear": ("nonnegative", False),
+        "quadratic": ("nonnegative", False),
+        "angular_linear": ("nonnegative", False),
+        "angular_quadratic": ("nonnegative", False),
+    }
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        f = spec.fields
+        keys = ("linear", "quadratic", "angular_linear", "angular_quadratic")
+        if not any(f.get(k, 0.0) for k in keys):
+            raise scene.error(spec.where, f"a drag needs one of {keys} > 0")
+        body = scene.body(f["body"])
+        for k in ("angular_linear", "angular_quadratic"):
+            if f.get(k) and body.shape == "point":
+                raise scene.error(
+                    f"{spec.where}.{k}", f"body {body.name!r} is a point: it has no rotation"
+                )
+
+    def __init__(self, spec, ctx) -> None:
+        super().__init__(spec, ctx)
+        f = self.fields
+        self.i = ctx.index[f["body"]]
+        self.b1, self.b2 = float(f.get("linear", 0.0)), float(f.get("quadratic", 0.0))
+        self.c1 = float(f.get("angular_linear", 0.0))
+        self.c2 = float(f.get("angular_quadratic", 0.0))
+
+    def loads(self, t, s, out) -> None:
+        v = s.v[self.i]
+        out.force(self.i, -(self.b1 + self.b2 * np.sqrt(v @ v)) * v)
+        if self.c1 or self.c2:
+            w_O = s.to_space(self.i, s.omega[self.i])
+            out.moment(self.i, -(self.c1 + self.c2 * np.sqrt(w_O @ w_O)) * w_O)
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i and bool(self.c1 or self.c2)

@@ -1,0 +1,115 @@
+"""Applied loads: a force at a body point, or a couple, constant in the space basis or
+fixed in the body, acting during a time window [start, end).
+
+A body-fixed force turns with the body (a thruster on a hull); a space-fixed one keeps
+its direction (a push from outside).  Applied off G, a force exerts the moment
+(Rᵀ at) × F about G.  Applied loads do work: they keep the momentum across a constant
+space-fixed force and nothing else.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import ClassVar
+
+import numpy as np
+
+from .base import Effect, Schema, keeps_for_force_along, register
+
+FRAMES = ("space", "body")
+
+
+class _Applied(Effect):
+    schema: ClassVar[Schema] = {
+        "body": ("body", True),
+        "frame": ("frame", False),
+        "start": ("nonnegative", False),
+        "end": ("positive", False),
+    }
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        f = spec.fields
+        if f.get("end", math.inf) <= f.get("start", 0.0):
+            raise scene.error(
+                f"{spec.where}.end",
+                f"must be after start {f.get('start', 0.0)!r}; got {f['end']!r}",
+            )
+        body = scene.body(f["body"])
+        if body.shape == "point" and (any(f.get("at", [0.0])) or cls.type == "torque"):
+            raise scene.error(
+                f"{spec.where}.{'at' if cls.type == 'force' else 'type'}",
+                f"body {body.name!r} is a point: it has no rotation (no points off G, no couple)",
+            )
+
+    def __init__(self, spec, ctx) -> None:
+        super().__init__(spec, ctx)
+        f = self.fields
+        self.i = ctx.index[f["body"]]
+        self.body_frame = f.get("frame", "space") == "body"
+        self.start, self.end = float(f.get("start", 0.0)), float(f.get("end", math.inf))
+
+    def active(self, t: float) -> bool:
+        return self.start <= t < self.end
+
+    def switch_times(self) -> list[float]:
+        """The instants where the load switches on or off: step boundaries."""
+        return [x for x in (self.start, self.end) if 0 < x < math.inf]
+
+
+@register
+class Force(_Applied):
+    """A force (N) at a body point ``at`` (body components about G; default G)."""
+
+    type = "force"
+    schema: ClassVar[Schema] = {
+        **_Applied.schema,
+        "force": ("vector", True),
+        "at": ("vector", False),
+    }
+
+    def __init__(self, spec, ctx) -> None:
+        super().__init__(spec, ctx)
+        self.value = np.asarray(self.fields["force"], dtype=float)
+        at = self.fields.get("at")
+        self.at = np.asarray(at, float) if at is not None and any(at) else None
+
+    def loads(self, t, s, out) -> None:
+        if self.active(s.phase):
+            F = s.to_space(self.i, self.value) if self.body_frame else self.value
+            out.force(self.i, F, self.at)
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i and self.at is not None
+
+    def keeps(self, quantity: str) -> bool:
+        if not self.value.any():
+            return True
+        if self.body_frame or quantity == "E":
+            return False
+        return keeps_for_force_along(self.value, quantity)
+
+
+@register
+class Torque(_Applied):
+    """A couple (N·m) on a body, in space or body components."""
+
+    type = "torque"
+    schema: ClassVar[Schema] = {**_Applied.schema, "torque": ("vector", True)}
+
+    def __init__(self, spec, ctx) -> None:
+        super().__init__(spec, ctx)
+        self.value = np.asarray(self.fields["torque"], dtype=float)
+
+    def loads(self, t, s, out) -> None:
+        if self.active(s.phase):
+            if self.body_frame:
+                out.moment_body(self.i, self.value)
+            else:
+                out.moment(self.i, self.value)
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i
+
+    def keeps(self, quantity: str) -> bool:
+        return quantity.startswith("p_")

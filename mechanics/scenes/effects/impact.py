@@ -1,0 +1,285 @@
+"""Impacts with restitution (Chapter 6): a body against a plane, or two bodies, located as
+events where a gap closes, resolved by the rigid-body impulse at the contact point.
+
+Conventions
+-----------
+- **Contact features.**  A spherical body (``point``, ``solid_sphere``,
+  ``hollow_sphere``) touches with its surface about G (radius a; 0 for a point); a
+  polyhedral body (``box``, ``rectangular_plate``, ``rod``) with its corners (the rod's
+  two ends), :func:`mechanics.scenes.state.body_vertices`.  A plane is given by a point
+  p and a normal n (toward the side the body is on).  Pairs: sphere–sphere and
+  sphere–corner; two polyhedra, and round bodies that are not spheres (discs,
+  cylinders, rings), are not modelled and are refused when the scene is read.
+- **Gaps** (positive apart): plane: (x − p)·n − a for a feature at x of radius a; pair:
+  |x_f − r_s| − a_s − a_f for a sphere s and a feature f (a corner has a_f = 0).  Each
+  is linear in the state (plane) or the square root of a quadratic (pair), so along a
+  step's dense polynomial it is searched exactly (:mod:`mechanics.scenes.contacts`).
+- **The impulse** (6.16)–(6.21), (6.36): the normal n points into ``body`` (from the
+  plane or ``other``); the contact point S; the arms ρ_k = S − r_Gk; the effective mass
+  1/μ = Σ_k 1/m_k + (ρ_k × n)·J_k⁻¹(ρ_k × n) (a fixed body or the plane: no term);
+  v_n = n·(v_S,body − v_S,other) < 0 while approaching; the impulse S n on ``body``
+  (−S n on ``other``) with S = −(1 + e) μ v_n, so that v_n' = −e v_n, and the energy
+  lost ½ μ (1 − e)(1 + e) v_n² (6.41).  Smooth: no tangential impulse.  Where both
+  arms are along n (spheres and points), the impulse passes through the centres and
+  :func:`mechanics.impact.direct_impact` gives the velocities to 2 ulps.
+- A contact found while *separating* is the exit side of an interpenetration: a bug,
+  reported as a :class:`~mechanics.scenes.errors.SceneError`, never resolved.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from ..state import SPHERICAL_SHAPES, body_radius, body_vertices
+from .base import Effect, Schema, keeps_for_force_along, register, unit
+
+POLYHEDRA = ("box", "rectangular_plate", "rod")
+
+
+@dataclass(frozen=True)
+class Feature:
+    """One contact feature of an impact: the corner ``at`` (body components about G; None
+    for the centre of a sphere) of ``body`` with radius ``a``, against the plane or the
+    sphere ``sphere`` (index) of radius ``a_s``.  ``flip``: the sphere is ``body`` and
+    the feature belongs to ``other`` (the normal into ``body`` is then reversed)."""
+
+    body: int
+    at: np.ndarray | None
+    a: float
+    sphere: int | None
+    a_s: float
+    flip: bool
+    label: str
+
+
+@register
+class Impact(Effect):
+    """Impacts of ``body`` with a plane or with ``other``, restitution e."""
+
+    type = "impact"
+    schema: ClassVar[Schema] = {
+        "body": ("body", True),
+        "other": ("body", False),
+        "plane_point": ("vector", False),
+        "plane_normal": ("vector", False),
+        "restitution": ("restitution", True),
+    }
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        f = spec.fields
+        if f.get("other") == f["body"]:
+            raise scene.error(f"{spec.where}.other", "a body cannot hit itself")
+        if "other" in f and ("plane_point" in f or "plane_normal" in f):
+            raise scene.error(
+                f"{spec.where}.other", "give either another body or a plane, not both"
+            )
+        shapes = []
+        for key in ("body", "other"):
+            if key in f:
+                b = scene.body(f[key])
+                if b.shape not in SPHERICAL_SHAPES + POLYHEDRA:
+                    raise scene.error(
+                        f"{spec.where}.{key}",
+                        f"contacts of a {b.shape} are not modelled (only "
+                        f"{', '.join(SPHERICAL_SHAPES + POLYHEDRA)}); body {b.name!r}",
+                    )
+                shapes.append(b.shape)
+        if len(shapes) == 2 and all(s in POLYHEDRA for s in shapes):
+            raise scene.error(
+                f"{spec.where}.other",
+                f"contacts between two polyhedral bodies ({shapes[0]}, {shapes[1]}) are not "
+                "modelled: one of the pair must be a sphere or a point",
+            )
+        if "other" not in f:
+            fixed = scene.body(f["body"]).fixed
+            if fixed:
+                raise scene.error(f"{spec.where}.body", "a fixed body cannot hit a plane")
+        elif all(scene.body(f[k]).fixed for k in ("body", "other")):
+            raise scene.error(f"{spec.where}.other", "two fixed bodies never meet")
+
+    def __init__(self, spec, ctx) -> None:
+        super().__init__(spec, ctx)
+        f = self.fields
+        self.i = ctx.index[f["body"]]
+        self.j = ctx.index[f["other"]] if "other" in f else None
+        self.e = float(f["restitution"])
+        self.point = np.asarray(f.get("plane_point", [0.0, 0.0, 0.0]), dtype=float)
+        self.normal = unit(f.get("plane_normal", [0.0, 0.0, 1.0]))
+        bodies = ctx.scene.bodies
+        self.fixed = {k for k, kind in enumerate(ctx.kinds) if kind == "fixed"}
+        self.features = self._features(bodies)
+
+    # ----------------------------------------------------------------- geometry
+    def _features(self, bodies) -> list[Feature]:
+        label = self.label
+
+        def feats(k):
+            a = body_radius(bodies[k])
+            if a is not None:
+                return [(None, a, label)]
+            name = bodies[k].name
+            return [
+                (v, 0.0, f"{label} (corner {c} of {name!r})")
+                for c, v in enumerate(body_vertices(bodies[k]))
+            ]
+
+        if self.j is None:
+            return [Feature(self.i, at, a, None, 0.0, False, lab) for at, a, lab in feats(self.i)]
+        if body_radius(bodies[self.j]) is not None:  # other is the sphere
+            s, f, flip = self.j, self.i, False
+        else:  # body is the sphere, the corners are the other's
+            s, f, flip = self.i, self.j, True
+        a_s = body_radius(bodies[s])
+        return [Feature(f, at, a, s, a_s, flip, lab) for at, a, lab in feats(f)]
+
+    @property
+    def label(self) -> str:
+        """The pair in words: "bodies 'a' and 'b'" or "body 'a' and the plane"."""
+        if self.j is None:
+            return f"body {self.fields['body']!r} and the plane"
+        return f"bodies {self.fields['body']!r} and {self.fields['other']!r}"
+
+    def bodies(self) -> list[int]:
+        """Indices of the moving bodies the impulse acts on."""
+        ks = [self.i] if self.j is None else [self.i, self.j]
+        return [k for k in ks if k not in self.fixed]
+
+    def feature_point(self, s, ft: Feature) -> np.ndarray:
+        """World position of the feature's centre or corner (any leading shape)."""
+        return s.point(ft.body, ft.at)
+
+    def gap(self, s, ft: Feature) -> np.ndarray:
+        x = self.feature_point(s, ft)
+        if ft.sphere is None:
+            return (x - self.point) @ self.normal - ft.a
+        d = x - s.r[..., ft.sphere, :]
+        return np.sqrt((d * d).sum(-1)) - ft.a - ft.a_s
+
+    def contact(self, s, ft: Feature) -> tuple[np.ndarray, np.ndarray]:
+        """The contact point S and the unit normal n into ``body``, at one time."""
+        x = self.feature_point(s, ft)
+        if ft.sphere is None:
+            return x - ft.a * self.normal, self.normal
+        u = unit(x - s.r[ft.sphere])  # from the sphere toward the feature
+        S = s.r[ft.sphere] + ft.a_s * u
+        return S, (-u if ft.flip else u)
+
+    def approach(self, s, ft: Feature) -> float:
+        """Normal speed of approach at the contact (> 0 closing)."""
+        S, n = self.contact(s, ft)
+        return -float(n @ self._relative_velocity(s, S))
+
+    def _relative_velocity(self, s, S) -> np.ndarray:
+        def vel(k):
+            if k is None or k in self.fixed:
+                return np.zeros(3)
+            w_O = s.to_space(k, s.omega[k])
+            return s.v[k] + np.cross(w_O, S - s.r[k])
+
+        return vel(self.i) - vel(self.j)
+
+    def speed_scale(self, s, ft: Feature) -> float:
+        """Σ |v_S,k|: the size of the terms whose difference is the approach speed."""
+        S, _ = self.contact(s, ft)
+        tot = 0.0
+        for k in self.bodies():
+            w_O = s.to_space(k, s.omega[k])
+            tot += float(np.linalg.norm(s.v[k]) + np.linalg.norm(np.cross(w_O, S - s.r[k])))
+        return tot
+
+    # ------------------------------------------------------------------ impulse
+    def apply(self, s, ft: Feature) -> dict:
+        """Resolve the impact at this feature: new v and L_A written into the snapshot's
+        arrays (in place); returns the event's details, with the kinetic energy, momentum
+        and angular momentum (about the contact point) of the bodies involved before and
+        after, read off the velocities: an independent route to the loss formula."""
+        from mechanics.errors import SeparatingContactError
+
+        S, n = self.contact(s, ft)
+        idx = self.bodies()
+        before = _totals(s, idx, S)
+        v_n = -self.approach(s, ft)
+        if not v_n < 0:
+            raise SeparatingContactError(f"the contact separates (v_n = {v_n!r} ≥ 0)")
+        self._apply(s, S, n, v_n)
+        after = _totals(s, idx, S)
+        detail = {"normal_speed_before": -v_n, "normal_speed_after": self.approach(s, ft) * -1}
+        if self.j is None:
+            detail["body"] = self.fields["body"]
+        else:
+            detail["bodies"] = [self.fields["body"], self.fields["other"]]
+        detail["feature"] = ft.label
+        detail["energy_loss"] = self._loss
+        detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
+        detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
+        detail["momentum_scale"] = before[2]
+        detail["angular_momentum_before"], detail["angular_momentum_after"] = before[3], after[3]
+        detail["angular_momentum_scale"] = before[4]
+        return detail
+
+    def _apply(self, s, S, n, v_n) -> None:
+        """The impulse (see the Conventions); sets ``self._loss``."""
+        e, moving = self.e, self.bodies()
+        arms = {k: S - s.r[k] for k in moving}
+        u_A = {k: s.to_body(k, np.cross(arms[k], n)) for k in moving}
+        jinv = {
+            k: np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0) for k in moving
+        }
+        central = all(not np.any(u_A[k] * jinv[k]) for k in moving)
+        sign = {self.i: 1.0, self.j: -1.0}
+        if central and len(moving) == 2:  # through both centres: the direct impact, 2 ulps
+            from mechanics.impact import direct_impact
+
+            i, j = self.i, self.j
+            m_i, m_j = s.m[i], s.m[j]
+            v1, v2 = float(s.v[j] @ n), float(s.v[i] @ n)  # j behind i along n
+            v1f, v2f = direct_impact(m_j, m_i, v1, v2, e)
+            s.v[j] += (float(v1f) - v1) * n
+            s.v[i] += (float(v2f) - v2) * n
+            mu = m_i * m_j / (m_i + m_j)
+        else:
+            inv = sum(1.0 / s.m[k] + u_A[k] @ (jinv[k] * u_A[k]) for k in moving)
+            mu = 1.0 / inv
+            P = -(1.0 + e) * mu * v_n
+            for k in moving:
+                s.v[k] += sign[k] * P / s.m[k] * n
+                s.L_A[k] += sign[k] * P * u_A[k]
+                s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] * jinv[k], 0.0)
+        self._loss = 0.5 * mu * (1.0 - e) * (1.0 + e) * v_n * v_n
+
+    # ---------------------------------------------------------------- invariants
+    def keeps(self, quantity: str) -> bool:
+        if self.j is None:
+            return quantity != "E" and keeps_for_force_along(self.normal, quantity)
+        if self.fixed:
+            return False
+        return quantity != "E" or self.e == 1.0
+
+    def exerts_moment(self, k: int) -> bool:
+        return any(ft.at is not None for ft in self.features) and k in self.bodies()
+
+
+def _momentum_size(m, v) -> float:
+    return m * float(np.linalg.norm(v))
+
+
+def _totals(s, idx, S) -> tuple[float, list[float], float, list[float], float]:
+    """Kinetic energy ½ m v² + ½ L_A·ω_A, momentum Σ m v, Σ m|v|, the angular momentum
+    about the point S, Σ (ρ × m v) + Rᵀ L_A, and the size of its terms."""
+    T, P, Pabs = 0.0, np.zeros(3), 0.0
+    L, Labs = np.zeros(3), 0.0
+    for k in idx:
+        m, v = float(s.m[k]), s.v[k]
+        T += 0.5 * m * float(v @ v) + 0.5 * float(s.L_A[k] @ s.omega[k])
+        P += m * v
+        Pabs += m * float(np.linalg.norm(v))
+        arm = s.r[k] - S
+        spin = s.to_space(k, s.L_A[k])
+        L += np.cross(arm, m * v) + spin
+        # |ρ| m |v| bounds the orbital term: the size its rounding is relative to
+        Labs += float(np.linalg.norm(arm) * _momentum_size(m, v) + np.linalg.norm(spin))
+    return T, P.tolist(), Pabs, L.tolist(), Labs

@@ -1,0 +1,61 @@
+"""Newtonian gravity between bodies: F_ij = −G m_i m_j (r_i − r_j)/|r_i − r_j|³ on body i.
+
+Each body attracts as a point mass at its centre of mass (exact for spheres and points;
+the monopole term for other shapes: no tidal moments).  Internal and central: it keeps
+the total momentum, the total angular momentum about any point and the energy, with the
+potential −Σ_{i<j} G m_i m_j/|r_i − r_j|.
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar
+
+import numpy as np
+
+from .base import Effect, Schema, register
+
+#: CODATA 2018, m³ kg⁻¹ s⁻²
+G_NEWTON = 6.67430e-11
+
+
+@register
+class NewtonGravity(Effect):
+    """Mutual attraction of the listed bodies (default: every body)."""
+
+    type = "newton_gravity"
+    schema: ClassVar[Schema] = {"G": ("positive", False), "bodies": ("bodies", False)}
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        names = spec.fields.get("bodies", [b.name for b in scene.bodies])
+        if len(set(names)) < 2:
+            raise scene.error(f"{spec.where}.bodies", f"needs at least two bodies; got {names}")
+        if len(set(names)) != len(names):
+            raise scene.error(f"{spec.where}.bodies", f"a body is listed twice: {names}")
+
+    def __init__(self, spec, ctx) -> None:
+        super().__init__(spec, ctx)
+        self.G = float(self.fields.get("G", G_NEWTON))
+        names = self.fields.get("bodies", [b.name for b in ctx.scene.bodies])
+        idx = [ctx.index[n] for n in names]
+        self.pairs = np.array([(a, b) for k, a in enumerate(idx) for b in idx[k + 1 :]])
+
+    def loads(self, t, s, out) -> None:
+        i, j = self.pairs[:, 0], self.pairs[:, 1]
+        d = s.r[i] - s.r[j]
+        dist = np.sqrt((d * d).sum(-1))
+        f = -(self.G * s.m[i] * s.m[j] / dist**3)[:, None] * d
+        np.add.at(out.F, i, f)
+        np.add.at(out.F, j, -f)
+
+    def potential(self, s) -> np.ndarray:
+        i, j = self.pairs[:, 0], self.pairs[:, 1]
+        d = s.r[..., i, :] - s.r[..., j, :]
+        dist = np.sqrt((d * d).sum(-1))
+        return -(self.G * s.m[..., i] * s.m[..., j] / dist).sum(-1)
+
+    def keeps(self, quantity: str) -> bool:
+        return True
+
+    def exerts_moment(self, k: int) -> bool:
+        return False

@@ -1,0 +1,678 @@
+"""The engine for scenes of free bodies: it assembles exactly the listed effects, uses the
+exact flow where their set has one, integrates otherwise, and finds every contact.
+
+Conventions
+-----------
+- **State**: :mod:`mechanics.scenes.state` (points, rigid bodies with L_A and ^A R^O,
+  fixed bodies).  A rigid body starts with the attitude ^A R^O = R3(φ) R1(θ) R3(ψ) of
+  its initial Euler angles ``psi``, ``theta``, ``phi`` (z-x-z, default 0: the body axes
+  along the space axes) and the angular velocity ``omega`` in body components.
+- **Effects**: :mod:`mechanics.scenes.effects`; the right-hand side sums the
+  :meth:`~mechanics.scenes.effects.base.Effect.loads` of the listed effects and
+  nothing else (no default gravity, no damping, no position correction).
+- **Exact flows** (``method = "auto"`` or ``"exact"``): with only uniform gravity and
+  impacts of spheres and points (smooth, through the centres): free flight between
+  impacts, the impact instants in closed form (a quadratic for a plane; for two
+  spheres, whose relative motion is uniform, a quadratic formed without cancellation,
+  :func:`contacts.sphere_contact_time`); with only gravity and space-fixed thrust: the
+  rocket (7.30); in both, each spinning rigid body turns by the torque-free
+  Jacobi-elliptic flow of :class:`mechanics.tops.FreeAsymmetricTop`.
+- **Integration** otherwise (or ``method = "integrate"``): the project's adaptive
+  Dormand–Prince 8(5,3) stepper (:class:`mechanics.integrators.DOP853Stepper`) at the
+  scene's ``rtol``/``atol``.  After every step each contact feature's gap is searched
+  along the step's dense polynomial (:func:`contacts.first_downward_crossing`), so a
+  contact is found whatever the step size; switch times (burn-out, the window of an
+  applied load) are step boundaries.
+- **Contacts**: a contact is a gap reaching zero while closing, resolved by the
+  Chapter 6 impulse (:mod:`mechanics.scenes.effects.impact`).  *Simultaneous
+  contacts* (a Newton's cradle) are resolved by sequential impulses: after each
+  impulse every feature touching within rounding and still closing is resolved in
+  turn, the fastest approach first, until none closes (at most ``MAX_SWEEPS`` rounds;
+  for a row of equal elastic spheres this passes the momentum down the row).  A touch
+  at zero approach speed (up to rounding) is no impact.  A contact found on the exit
+  side, a pair interpenetrating at a step's start, or a pair that comes to rest under a
+  pressing force (accumulating impacts, or e = 0) stops the run with a
+  :class:`~mechanics.scenes.errors.SceneError` naming the pair and the time.
+- **Invariants**: the result names the quantities every listed effect keeps
+  (:meth:`~mechanics.scenes.effects.base.Effect.keeps`): the total momentum p_x, p_y,
+  p_z, the total angular momentum about the origin L_x, L_y, L_z (orbital r × m v plus
+  the spins Rᵀ L_A) and the energy E (kinetic ½ m v² + ½ L_A·ω_A plus the effects'
+  potentials), and the spin angular momentum about G of each rigid body no effect
+  turns; each with its samples, checked within the segments between impacts, or over
+  the whole run where the impulses keep it too.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+from numpy.polynomial import chebyshev as C
+
+from . import contacts
+from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
+from .effects.base import CONSERVED, Effect
+from .effects.impact import Impact
+from .errors import SceneError
+from .state import Layout, body_vertices
+from .trajectory import (
+    EPS,
+    Event,
+    Trajectory,
+    dense_from_segments,
+    energy_scale,
+    sample_segments,
+    vectorized,
+)
+
+__all__ = ["Engine", "validate"]
+
+#: a gap within this multiple of eps × the positions' size over a step is the rounding
+#: of a contact just resolved (the contact time is refined to 4 eps of the step, the
+#: positions are sums of a few dozen rounded terms), not an interpenetration
+GAP_ROUNDING = 64 * EPS
+#: an approach speed within this multiple of eps × the contact speeds' size is the
+#: rounding of zero: a touch (two bodies moving together after a plastic impact)
+CLOSING_ROUNDING = 64 * EPS
+#: a rebound slower than this (m/s, relative to 1 + the approach speed) under a pressing
+#: force means the impacts accumulate (Zeno); the bouncing ball reaches it after ~150
+#: bounces at e = 5/6
+ZENO_SPEED = 1e-9
+#: impacts per run before it is declared Zeno
+MAX_EVENTS = 2000
+#: rounds of sequential impulses at one instant (a row of k touching bodies needs k)
+MAX_SWEEPS = 1000
+
+FREE_INITIAL = ("position", "velocity", "omega", "psi", "theta", "phi")
+
+
+def _attitude(initial) -> np.ndarray:
+    from mechanics.rotation import matrix_from_euler
+
+    e = [float(initial.get(k, 0.0)) for k in ("psi", "theta", "phi")]
+    return matrix_from_euler(*e) if any(e) else np.eye(3)
+
+
+def validate(scene) -> None:
+    """Check a scene of free bodies as a whole (each field is checked by the parser)."""
+    index = {b.name: i for i, b in enumerate(scene.bodies)}
+    for spec in scene.effects:
+        cls = REGISTRY[spec.type]
+        if not cls.engine:
+            raise scene.error(
+                f"{spec.where}.type",
+                f"a {spec.type!r} effect acts only together with the fixed_axis it turns a "
+                "body about; list a fixed_axis",
+            )
+    for i, b in enumerate(scene.bodies):
+        where = f"bodies[{i}]"
+        if b.shape == "tank":
+            raise scene.error(f"{where}.shape", "a tank needs a tank_outflow effect")
+        for k in b.initial:
+            if k not in FREE_INITIAL:
+                raise scene.error(
+                    f"{where}.initial.{k}",
+                    f"a free body takes {', '.join(FREE_INITIAL)}",
+                )
+        w = np.asarray(b.initial.get("omega", [0.0, 0.0, 0.0]))
+        if b.fixed:
+            for k in ("velocity", "omega"):
+                if any(b.initial.get(k, [0.0])):
+                    raise scene.error(f"{where}.initial.{k}", "a fixed body stays at rest")
+        elif b.shape == "point":
+            if w.any() or any(b.initial.get(k, 0.0) for k in ("psi", "theta", "phi")):
+                key = "omega" if w.any() else "psi"
+                raise scene.error(
+                    f"{where}.initial.{key}", "a point has no attitude and no rotation"
+                )
+        else:
+            from .state import body_inertia
+
+            J = body_inertia(b)
+            if np.any((J <= 0) & (w != 0)):
+                raise scene.error(
+                    f"{where}.initial.omega",
+                    f"a {b.shape} has a zero principal moment {J.tolist()}: it cannot spin "
+                    f"about that axis; got omega = {w.tolist()}",
+                )
+    for spec in scene.effects:
+        REGISTRY[spec.type].check(spec, scene, index)
+    if scene.effects_of("impact"):
+        eng = Engine(scene)
+        s = eng.snapshot(0.0, eng.y0)
+        for imp in eng.impacts:
+            for ft in imp.features:
+                gap = float(imp.gap(s, ft))
+                reach = np.abs(imp.feature_point(s, ft)).sum() + np.abs(imp.point).sum()
+                if gap < -GAP_ROUNDING * (reach + ft.a + ft.a_s):  # beyond the rounding
+                    raise scene.error(
+                        imp.where, f"{ft.label} overlap at t = 0 s (gap {gap:.3g} m < 0)"
+                    )
+
+
+class Engine:
+    """A scene of free bodies, assembled from its listed effects."""
+
+    name = "free-body"
+
+    def __init__(self, scene) -> None:
+        self.scene = scene
+        self.layout = Layout.of(scene.bodies)
+        self.n = self.layout.n
+        self.names = [b.name for b in scene.bodies]
+        index = {b.name: i for i, b in enumerate(scene.bodies)}
+        self.effects = build_effects(scene, Context(scene, index, self.layout.kinds))
+        self.impacts: list[Impact] = [e for e in self.effects if e.type == "impact"]
+        self.forces = [e for e in self.effects if e.type != "impact"]
+        self.potentials = [e for e in self.forces if e.potential is not None]
+        self.losing = [e for e in self.forces if type(e).mass_loss is not Effect.mass_loss]
+        self.m0 = np.array([b.mass for b in scene.bodies], dtype=float)
+        b0 = scene.bodies
+        r0 = np.array([b.initial.get("position", [0.0] * 3) for b in b0], float)
+        v0 = np.array([b.initial.get("velocity", [0.0] * 3) for b in b0], float)
+        w0 = np.array([b.initial.get("omega", [0.0] * 3) for b in b0], float)
+        R0 = np.array([_attitude(b.initial) for b in b0])
+        self.w0, self.R0 = w0, R0
+        self.y0 = self.layout.pack(r0, v0, self.layout.J * w0, R0)
+        self.rigid = self.layout.rigid_bodies
+        self._phase: float | None = None  # see Snapshot.phase
+
+    # ---------------------------------------------------------------- the state
+    def masses(self, t) -> np.ndarray:
+        m = np.broadcast_to(self.m0, (*np.shape(t), self.n)).copy()
+        for e in self.losing:
+            m -= e.mass_loss(t)
+        return m
+
+    def snapshot(self, t, y) -> Snapshot:
+        """The bodies at time(s) t from state(s) y (writable copies)."""
+        r, v, L, R = (np.array(a) for a in self.layout.gather(y))
+        m = self.masses(t)
+        J = self.layout.J * (m / self.m0)[..., None]
+        return Snapshot(t, r, v, L, R, self.layout.omega(L, J), m, J)
+
+    def rhs(self, t, y) -> np.ndarray:
+        s = self.snapshot(t, y)
+        if self._phase is not None:
+            s.phase = self._phase
+        out = Loads(self.n, s)
+        for e in self.forces:
+            e.loads(t, s, out)
+        return self.layout.derivative(y, out.F, out.M_A, s.m, s.J)
+
+    def pack(self, s: Snapshot) -> np.ndarray:
+        return self.layout.pack(s.r, s.v, s.L_A, s.R)
+
+    # ------------------------------------------------------------- exact flows
+    def exact_flow(self) -> str | None:
+        kinds = {e.type for e in self.effects}
+        if self.layout.fixed_bodies:
+            return None
+        for i in self.rigid:  # torque-free rotation by elliptic functions needs J > 0
+            if self.w0[i].any() and not np.all(self.layout.J[i] > 0):
+                return None
+        spin = "; torque-free rotation (Jacobi elliptic functions)" if self._spinning() else ""
+        if kinds <= {"gravity", "impact"} and all(
+            ft.at is None for imp in self.impacts for ft in imp.features
+        ):
+            what = "free flight under uniform gravity" if "gravity" in kinds else "uniform motion"
+            if "impact" in kinds:
+                what += ", impacts solved in closed form"
+            return f"exact: {what}{spin}"
+        if kinds <= {"gravity", "thrust"} and not any(
+            e.body_frame for e in self.effects if e.type == "thrust"
+        ):
+            return f"exact: rocket flight (7.30) with uniform gravity{spin}"
+        return None
+
+    def _spinning(self) -> list[int]:
+        return [i for i in self.rigid if self.w0[i].any()]
+
+    def _rotation(self):
+        """Per spinning rigid body, t -> (L_A, R_A_O) by the torque-free flow."""
+        from mechanics.tops import FreeAsymmetricTop
+
+        out = {}
+        for i in self._spinning():
+            J = self.layout.J[i]
+            top = FreeAsymmetricTop(J, self.w0[i], self.R0[i])
+            out[i] = (J, top)
+        return out
+
+    def _gvec(self) -> np.ndarray:
+        g = np.zeros(3)
+        for e in self.effects:
+            if e.type == "gravity":
+                g = g + e.vector
+        return g
+
+    def _with_rotation(self, y_trans, t, tops) -> np.ndarray:
+        """Flat states (..., size) whose translation comes from y_trans and rotation from
+        the tops, at the time(s) t."""
+        y = np.array(y_trans, dtype=float)
+        tt = np.asarray(t, dtype=float)
+        for i, (J, top) in tops.items():
+            o = self.layout.offsets[i]
+            y[..., o + 6 : o + 9] = J * top.omega(tt)
+            y[..., o + 9 : o + 18] = top.attitude(tt).reshape(*tt.shape, 9)
+        return y
+
+    def _ballistic(self, T_end, tops):
+        """Free flight under uniform gravity between impacts at closed-form instants."""
+        g = self._gvec()
+        segs, events = [], []
+        t0, y = 0.0, self.y0.copy()
+        while True:
+            s = self.snapshot(t0, y)
+            best = (math.inf, None, None)
+            for imp in self.impacts:
+                ft = imp.features[0]
+                tau = self._contact_time(imp, ft, s, g)
+                if tau < best[0]:
+                    best = (tau, imp, ft)
+            t1 = t0 + best[0]
+            segs.append((t0, min(t1, T_end), self._flight(t0, y, g, tops)))
+            if t1 >= T_end:
+                break
+            y = segs[-1][2](t1)
+            y = self._resolve(t1, y, best[1], best[2], events)
+            t0 = t1
+        return segs, events
+
+    def _flight(self, t0, y0, g, tops):
+        r0, v0, L0, R0 = self.layout.gather(y0)
+
+        @vectorized
+        def at(t):
+            tau = (np.asarray(t, dtype=float) - t0)[..., None, None]
+            r = r0 + v0 * tau + 0.5 * g * tau * tau
+            v = v0 + g * tau
+            L, R = np.broadcast_to(L0, v.shape), np.broadcast_to(R0, (*v.shape, 3))
+            return self._with_rotation(self.layout.pack(r, v, L, R), t, tops)
+
+        return at
+
+    def _contact_time(self, imp, ft, s, g) -> float:
+        """Closed-form time to the next contact of a sphere or point (inf if none): under
+        uniform gravity a plane gap is quadratic in τ, and the relative motion of two
+        bodies is uniform (gravity cancels), so |d + w τ| = a_i + a_j is a quadratic."""
+        i = imp.i
+        if imp.j is None:
+            tau = contacts.plane_contact_time(
+                float(imp.gap(s, ft)), float(s.v[i] @ imp.normal), float(g @ imp.normal)
+            )
+        else:
+            j = imp.j
+            tau = contacts.sphere_contact_time(s.r[i] - s.r[j], s.v[i] - s.v[j], ft.a + ft.a_s)
+        if tau < math.inf:
+            s2 = self.snapshot(s.t + tau, self.pack(s))
+            s2.r += s.v * tau + 0.5 * g * tau * tau
+            s2.v += g * tau
+            if self._touch(imp, ft, s2):
+                return math.inf
+        return tau
+
+    def _rocket(self, tops):
+        from mechanics.open_systems import rocket_height, rocket_velocity
+
+        g = self._gvec()
+        thrusts = {e.i: e for e in self.effects if e.type == "thrust"}
+        r0, v0, L0, R0 = self.layout.gather(self.y0)
+
+        @vectorized
+        def at(t):
+            tt = np.asarray(t, dtype=float)
+            tau = tt[..., None, None]
+            r = r0 + v0 * tau + 0.5 * g * tau * tau
+            v = v0 + g * tau
+            for i, th in thrusts.items():
+                kw = dict(m_0=self.m0[i], q=th.q, u=th.u, m_f=th.m_f, g=0.0, after_burn_out="coast")
+                r[..., i, :] += np.asarray(rocket_height(tt, **kw))[..., None] * th.direction
+                v[..., i, :] += np.asarray(rocket_velocity(tt, **kw))[..., None] * th.direction
+            L, R = np.broadcast_to(L0, v.shape), np.broadcast_to(R0, (*v.shape, 3))
+            return self._with_rotation(self.layout.pack(r, v, L, R), t, tops)
+
+        events = [
+            Event(th.burn_out, "burn_out", {"body": self.names[th.i]})
+            for th in thrusts.values()
+            if th.burn_out <= self.scene.duration
+        ]
+        return [(0.0, self.scene.duration, at)], events
+
+    # ------------------------------------------------------------------- run
+    def run(self) -> Trajectory:
+        s = self.scene
+        t = np.linspace(0.0, s.duration, s.samples)
+        exact = self.exact_flow()
+        if s.method == "exact" and exact is None:
+            kinds = sorted({e.type for e in self.effects})
+            raise s.error(
+                "scene.method",
+                f"'exact' requested but the effects {kinds} of this free-body scene have no "
+                "exact flow here; use 'auto' or 'integrate'",
+            )
+        if exact is not None and s.method != "integrate":
+            tops = self._rotation()
+            if "rocket" in exact:
+                segs, events = self._rocket(tops)
+            else:
+                segs, events = self._ballistic(s.duration, tops)
+            return self._finish(t, segs, events, exact)
+        segs, events = self._integrate(s.duration)
+        how = (
+            "integrated: DOP853 (mechanics.integrators), contacts located on each step's "
+            "dense polynomial"
+        )
+        return self._finish(t, segs, events, how)
+
+    def _integrate(self, t_end):
+        from mechanics.errors import StepSizeError
+        from mechanics.integrators import DOP853Stepper
+
+        s = self.scene
+        self._reach: dict[tuple[int, int], float] = {}
+        switches = sorted({x for e in self.forces for x in e.switch_times() if 0 < x < t_end})
+        segs, events = [], []
+        t, y = 0.0, self.y0.copy()
+        for start, stop in itertools.pairwise([0.0, *switches, t_end]):
+            self._phase = 0.5 * (start + stop)
+            while t < stop:
+                solver = DOP853Stepper(self.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
+                hit = None
+                while solver.status == "running" and hit is None:
+                    try:
+                        solver.step()
+                    except StepSizeError as exc:
+                        raise self.scene.error(
+                            "scene.rtol",
+                            f"the integration stalled at t = {solver.t:.17g} s (a singular "
+                            f"force, e.g. bodies meeting under newton_gravity?): {exc}",
+                        ) from None
+                    dense = solver.dense_output()
+                    hit = self._first_contact_on_step(dense, solver.t_old, solver.t)
+                    segs.append((solver.t_old, solver.t if hit is None else hit[0], _rows(dense)))
+                if hit is None:
+                    t, y = float(solver.t), np.array(solver.y, dtype=float)
+                    break
+                t, imp, ft = hit
+                y = self._resolve(t, np.asarray(dense(t), dtype=float), imp, ft, events)
+            for e in self.forces:
+                if e.type == "thrust" and e.burn_out == stop and stop < t_end:
+                    events.append(Event(stop, "burn_out", {"body": self.names[e.i]}))
+        self._phase = None
+        return segs, events
+
+    # ---------------------------------------------------------------- contacts
+    def _feature_coef(self, coef_y, imp, ft):
+        """Chebyshev coefficients (k, 3) of a feature's position along the step."""
+        k = ft.body
+        kind, o = self.layout.kinds[k], self.layout.offsets[k]
+        if kind == "fixed":
+            c = np.zeros((coef_y.shape[0], 3))
+            c[0] = self.layout.r_fixed[k]
+            if ft.at is not None:
+                c[0] += ft.at
+            return c
+        c = coef_y[:, o : o + 3].copy()
+        if ft.at is not None:  # x = r + R_A_Oᵀ ρ: linear in the state
+            R = coef_y[:, o + 9 : o + 18].reshape(-1, 3, 3)
+            c += np.einsum("kic,i->kc", R, ft.at)
+        return c
+
+    def _centre_coef(self, coef_y, k):
+        if self.layout.kinds[k] == "fixed":
+            c = np.zeros((coef_y.shape[0], 3))
+            c[0] = self.layout.r_fixed[k]
+            return c
+        o = self.layout.offsets[k]
+        return coef_y[:, o : o + 3]
+
+    def _first_contact_on_step(self, dense, t_a, t_b):
+        """The earliest contact of any feature within one step, or None.
+
+        Each feature's gap (the plane's) or |d|² − s² (a sphere's pair, the sign of the
+        gap) is a polynomial along the step (positions and attitudes are state
+        components, so a corner's position is linear in them);
+        :func:`contacts.first_downward_crossing` finds its first crossing.  The
+        rounding allowed at the step's start (a contact just resolved) is
+        ``GAP_ROUNDING`` × the largest size the feature's positions (and the plane's
+        point) and their change over a step have had so far.  A crossing with zero
+        approach speed (up to ``CLOSING_ROUNDING``) is a touch, not an impact.
+        """
+        if not self.impacts or t_b <= t_a:
+            return None
+        coef_y = contacts.chebyshev_fit(lambda tt: np.asarray(dense(tt)).T, t_a, t_b)
+        best = None
+        for a, imp in enumerate(self.impacts):
+            for b, ft in enumerate(imp.features):
+                x = self._feature_coef(coef_y, imp, ft)
+                if ft.sphere is None:
+                    p = (x - imp.point) @ imp.normal
+                    p[0] -= ft.a
+                    size, units, other = ft.a, 1.0, np.abs(imp.point).sum()
+                else:
+                    rel = x - self._centre_coef(coef_y, ft.sphere)
+                    p = C.chebadd(
+                        C.chebadd(*(C.chebmul(rel[:, c], rel[:, c]) for c in (0, 1))),
+                        C.chebmul(rel[:, 2], rel[:, 2]),
+                    )
+                    size = ft.a + ft.a_s
+                    p[0] -= size * size
+                    units = 2.0 * size  # |d|² − s² ≈ 2 s × gap near contact
+                    other = np.abs(self._centre_coef(coef_y, ft.sphere)).sum()
+                # positions round relative to their own size, not to their difference
+                reach = np.abs(x).sum() + other + size
+                self._reach[a, b] = max(self._reach.get((a, b), 0.0), reach)
+
+                def gap_at(xx, imp=imp, ft=ft):
+                    tt = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xx
+                    return float(imp.gap(self.snapshot(tt, np.asarray(dense(tt))), ft))
+
+                try:
+                    xc = contacts.first_downward_crossing(
+                        p, start_tol=GAP_ROUNDING * self._reach[a, b] * units, refine=gap_at
+                    )
+                except contacts.ContactError as exc:
+                    raise self.scene.error(
+                        imp.where,
+                        f"{ft.label} interpenetrate at t = {t_a:.17g} s ({exc}): "
+                        "a contact was missed before this step",
+                    ) from None
+                if xc is None:
+                    continue
+                tc = t_a if xc == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xc, t_b)
+                if self._touch(imp, ft, self.snapshot(tc, np.asarray(dense(tc), dtype=float))):
+                    continue  # zero approach speed: the pair touches, nothing to resolve
+                if best is None or tc < best[0]:
+                    best = (tc, imp, ft)
+        return best
+
+    def _touch(self, imp, ft, s) -> bool:
+        """Touching with an approach speed that is zero up to rounding: no impact."""
+        return imp.approach(s, ft) <= CLOSING_ROUNDING * imp.speed_scale(s, ft)
+
+    def _pressed(self, imp, ft, t, y) -> bool:
+        """Do the loads push the pair together (normal relative acceleration inward)?"""
+        s = self.snapshot(t, y)
+        dy = self.rhs(t, y)
+        acc = self.snapshot(t, dy)  # the derivative in the same layout: v̇ in r's place
+        S, n = imp.contact(s, ft)
+
+        def a_point(k):
+            if k is None or self.layout.kinds[k] == "fixed":
+                return np.zeros(3)
+            a = acc.v[k]
+            if self.layout.kinds[k] == "rigid":
+                rho = S - s.r[k]
+                w = s.to_space(k, s.omega[k])
+                alpha = s.to_space(k, self.layout.omega(acc.L_A[k], s.J[k]))
+                a = a + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
+            return a
+
+        return float(n @ (a_point(imp.i) - a_point(imp.j))) < 0
+
+    def _resolve(self, t, y, imp, ft, events) -> np.ndarray:
+        """Resolve the impact found at t, then every simultaneous one (sequential
+        impulses, see the Conventions); record the events; return the new state."""
+        from mechanics.errors import SeparatingContactError
+
+        s = self.snapshot(t, y)
+        for _ in range(MAX_SWEEPS):
+            try:
+                detail = imp.apply(s, ft)
+            except SeparatingContactError as exc:
+                raise self.scene.error(
+                    imp.where,
+                    f"{ft.label}: the contact at t = {t:.17g} s was found on the exit side "
+                    f"(the bodies separate there): {exc}",
+                ) from None
+            events.append(Event(t, "impact", detail))
+            if len(events) > MAX_EVENTS:
+                raise _zeno(self.scene, t, imp.label)
+            y = self.pack(s)
+            if detail["normal_speed_after"] < ZENO_SPEED * (
+                1.0 + abs(detail["normal_speed_before"])
+            ) and self._pressed(imp, ft, t, y):
+                raise _zeno(self.scene, t, imp.label)
+            nxt = self._closing_now(s)
+            if nxt is None:
+                return y
+            imp, ft = nxt
+        raise self.scene.error(
+            "effects", f"more than {MAX_SWEEPS} rounds of simultaneous impacts at t = {t:.6g} s"
+        )
+
+    def _closing_now(self, s):
+        """The touching feature that closes fastest (sequential impulses), or None."""
+        best, speed = None, 0.0
+        for imp in self.impacts:
+            for ft in imp.features:
+                scale = np.abs(imp.feature_point(s, ft)).sum() + imp.point @ imp.point + ft.a
+                if abs(float(imp.gap(s, ft))) > GAP_ROUNDING * 4 * max(scale, ft.a + ft.a_s):
+                    continue
+                v = imp.approach(s, ft)
+                if v > CLOSING_ROUNDING * imp.speed_scale(s, ft) and v > speed:
+                    best, speed = (imp, ft), v
+        return best
+
+    # ------------------------------------------------------------------ result
+    def keeps(self, quantity: str, effects) -> bool:
+        return all(e.keeps(quantity) for e in effects)
+
+    def _finish(self, t, segs, events, how) -> Trajectory:
+        dense = dense_from_segments(segs)
+        Y = sample_segments(segs, t)
+        s = self.snapshot(t, Y)
+        n, lay = self.n, self.layout
+        moving = list(lay.moving_bodies)
+        series: dict[str, np.ndarray] = {}
+        pre = (lambda i: f"{self.names[i]}.") if n > 1 else (lambda i: "")
+        thrust = bool(self.losing)
+        for i in moving:
+            p = pre(i)
+            for k, c in enumerate("xyz"):
+                series[p + c] = s.r[:, i, k]
+            for k, c in enumerate("xyz"):
+                series[p + "v" + c] = s.v[:, i, k]
+            if thrust:
+                series[p + "mass"] = s.m[:, i]
+            if i in self.rigid:
+                for k in range(3):
+                    series[f"{p}omega{k + 1}"] = s.omega[:, i, k]
+        m = s.m[:, moving]
+        v, r = s.v[:, moving], s.r[:, moving]
+        KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))
+        E = KE.copy()
+        for e in self.potentials:
+            E = E + e.potential(s)
+        series["E"] = E
+        P = (m[..., None] * v).sum(-2)
+        orb = np.cross(r, m[..., None] * v)
+        spins = np.einsum("...ji,...j->...i", s.R, s.L_A)
+        L_O = orb.sum(-2) + spins.sum(-2)
+        conserved, scales, across = {}, {"E": energy_scale(KE, E)}, set()
+        p_scale = float(np.max((m * np.linalg.norm(v, axis=-1)).sum(-1), initial=0.0))
+        # the size of the terms: |r| m |v| bounds each orbital term |r × m v| (a small
+        # cross product of large vectors is known only to their size)
+        L_scale = float(
+            np.max(
+                (np.linalg.norm(r, axis=-1) * m * np.linalg.norm(v, axis=-1)).sum(-1)
+                + np.linalg.norm(spins, axis=-1).sum(-1),
+                initial=0.0,
+            )
+        )
+        values = {"E": E}
+        for k, c in enumerate("xyz"):
+            values[f"p_{c}"], scales[f"p_{c}"] = P[:, k], p_scale
+            values[f"L_{c}"], scales[f"L_{c}"] = L_O[:, k], L_scale
+        if len(moving) > 1 or self.rigid:
+            for k, c in enumerate("xyz"):
+                series[f"p_{c}"], series[f"L_{c}"] = P[:, k], L_O[:, k]
+        for q in CONSERVED:
+            if self.keeps(q, self.forces) and not (q != "E" and self.losing):
+                conserved[q] = values[q]
+                if self.keeps(q, self.impacts):
+                    across.add(q)
+        for i in self.rigid:
+            if self.w0[i].any() and not any(e.exerts_moment(i) for e in self.effects):
+                p = pre(i)
+                for k, c in enumerate("xyz"):
+                    name = f"{p}L_{c} (spin about G)"
+                    conserved[name] = spins[:, i, k]
+                    scales[name] = float(np.max(np.linalg.norm(spins[:, i], axis=-1)))
+                    across.add(name)
+
+        def state_at(tt):
+            ss = self.snapshot(tt, np.asarray(dense(tt), dtype=float))
+            out = {}
+            for i in moving:
+                p = pre(i)
+                for k, c in enumerate("xyz"):
+                    out[p + c] = float(ss.r[i, k])
+                    out[p + "v" + c] = float(ss.v[i, k])
+                if i in self.rigid:
+                    for k in range(3):
+                        out[f"{p}omega{k + 1}"] = float(ss.omega[i, k])
+            return out
+
+        traj = Trajectory(t, series, events, how, state_at, conserved, {}, {}, frozenset(across))
+        traj.extra["scales"] = scales
+        traj.extra["gaps"] = {
+            imp.label: np.min([imp.gap(s, ft) for ft in imp.features], axis=0)
+            for imp in self.impacts
+        }
+        radii = [ft.a + ft.a_s for imp in self.impacts for ft in imp.features]
+        verts = [
+            np.abs(body_vertices(b)).max()
+            for b in self.scene.bodies
+            if body_vertices(b) is not None
+        ]
+        traj.extra["length_scale"] = float(
+            np.max(np.abs(r), initial=0.0) + max(radii, default=0.0) + max(verts, default=0.0)
+        )
+        if self.rigid:
+            Rr = s.R[:, list(self.rigid)]
+            dev = np.einsum("...ij,...kj->...ik", Rr, Rr) - np.eye(3)
+            traj.extra["orthogonality"] = float(np.max(np.abs(dev)))
+        return traj
+
+
+def _zeno(scene, t, who="the bodies") -> SceneError:
+    return scene.error(
+        "scene.duration",
+        f"{who} come to rest in contact (the impacts accumulate, or e = 0) near "
+        f"t = {t:.6g} s before the end {scene.duration:g} s: shorten the duration "
+        "(there is no resting contact effect)",
+    )
+
+
+def _rows(dense):
+    """A step's dense output (scipy's convention: (size, k) for k times) as a vectorised
+    function returning (k, size), (size,) for one time."""
+
+    @vectorized
+    def at(t):
+        return np.asarray(dense(t)).T
+
+    return at

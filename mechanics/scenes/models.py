@@ -1,0 +1,952 @@
+"""The one-degree-of-freedom models: a body on a fixed axis, about a fixed point, rolling,
+sliding with Coulomb friction, and the draining tank.  Each has its own coordinates and
+takes only the effects written for it; scenes of free bodies go to the engine
+(:mod:`mechanics.scenes.engine`).  (To be folded into the engine as joint and contact
+effects: issue 14.)
+
+Conventions
+-----------
+- **Models.**  ``tank_outflow`` → :class:`TankModel`; ``fixed_axis`` → :class:`AxisModel`
+  (φ, φ̇); ``fixed_point`` → :class:`PointModel` (attitude ^A R^O and body ω);
+  ``rolling`` → :class:`RollingModel` (s on an incline, ψ in a track);
+  ``coulomb_friction`` → :class:`SlidingModel` (s, v, ω).
+- **Exact flows** (``method = "auto"`` or ``"exact"``): the torque-free top; the heavy
+  symmetric top (:class:`mechanics.tops.HeavySymmetricTop`); the pendulum released from
+  rest (:func:`mechanics.dynamics.pendulum_motion`), also for the cylinder in a track
+  (an equivalent pendulum); uniform acceleration when rolling down an incline, and for
+  each phase of sliding with the switch solved exactly; the carousel (7.39); the
+  draining tank (:func:`mechanics.fluids.tank_level`).
+- **Integration** otherwise (or ``method = "integrate"``): scipy's DOP853 at the
+  scene's ``rtol``/``atol`` with terminal ``events=`` (the switch from sliding to
+  rolling), restarted after them.
+- The result holds the samples (evenly spaced over ``[0, duration]``), a dense
+  ``state_at(t)`` for locating features exactly, the events, and the quantities the
+  effects conserve, each with the segments (between events) over which it is conserved.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import effects as fx
+from .state import ROUND_SHAPES, body_inertia
+from .trajectory import EPS, Event, Trajectory, energy_scale, sample_dense, vectorized
+from .trajectory import dense_from_segments as _dense_from_segments
+
+__all__ = ["CONSTRAINTS", "MODELS", "integrate_segments", "select_model"]
+
+#: events per run before it is declared Zeno (accumulating events)
+MAX_EVENTS = 2000
+
+
+# ------------------------------------------------------------------ integration helper
+
+
+def integrate_segments(rhs, y0, t_end, *, rtol, atol, events=(), on_event=None, t0=0.0):
+    """Integrate with DOP853 from t0 to t_end, restarting after terminal events.
+
+    ``events`` are functions g(t, y) (terminal, direction −1 unless they carry their own
+    ``direction``); ``on_event(k, t, y)`` returns the new state (or None to stop the
+    run) and may record the event.  Returns a list of (t_a, t_b, dense) segments.
+    """
+    from scipy.integrate import solve_ivp
+
+    for ev in events:
+        ev.terminal = True
+        if not hasattr(ev, "direction"):
+            ev.direction = -1
+    segs = []
+    t, y, n = t0, np.asarray(y0, dtype=float), 0
+    while t < t_end:
+        sol = solve_ivp(
+            rhs,
+            (t, t_end),
+            y,
+            method="DOP853",
+            rtol=rtol,
+            atol=atol,
+            dense_output=True,
+            events=list(events) or None,
+        )
+        if sol.status == -1:
+            raise RuntimeError(f"integration failed at t = {t}: {sol.message}")
+        segs.append((t, float(sol.t[-1]), sol.sol))
+        if sol.status != 1:
+            break
+        k = next(i for i, te in enumerate(sol.t_events) if len(te))
+        t = float(sol.t_events[k][0])
+        y = sol.y_events[k][0].copy()
+        n += 1
+        if n > MAX_EVENTS:
+            raise RuntimeError("too many events")
+        y = on_event(k, t, y)
+        if y is None:
+            break
+    return segs
+
+
+# ------------------------------------------------------------------ models
+
+
+class Model:
+    """Base: the scene, its bodies and the effect objects built from the listed effects."""
+
+    name = ""
+    constraint = ""
+    allowed: frozenset[str] = frozenset()
+
+    def __init__(self, scene) -> None:
+        self.scene = scene
+        self.bodies = scene.bodies
+        self.effects = fx.build_effects(scene, None)
+        self.by_type: dict[str, list[fx.Effect]] = {}
+        for e in self.effects:
+            self.by_type.setdefault(e.type, []).append(e)
+
+    @classmethod
+    def validate(cls, scene) -> None:
+        for e in scene.effects:
+            if e.type not in cls.allowed and e.type != cls.constraint:
+                raise scene.error(
+                    f"{e.where}.type",
+                    f"a {e.type!r} effect cannot act in a {cls.name} scene "
+                    f"(it takes: {', '.join(sorted(cls.allowed)) or 'nothing else'})",
+                )
+
+    def one(self, kind):
+        lst = self.by_type.get(kind, [])
+        return lst[0] if lst else None
+
+    def others(self) -> set[str]:
+        return {e.type for e in self.effects} - {self.constraint}
+
+    def exact_flow(self) -> str | None:  # pragma: no cover - overridden
+        return None
+
+    def run(self) -> Trajectory:
+        s = self.scene
+        t = np.linspace(0.0, s.duration, s.samples)
+        exact = self.exact_flow()
+        if s.method == "exact" and exact is None:
+            raise s.error(
+                "scene.method",
+                f"'exact' requested but the effects {sorted(self.others())} of this "
+                f"{self.name} scene have no exact flow here; use 'auto' or 'integrate'",
+            )
+        if exact is not None and s.method != "integrate":
+            return self.run_exact(t, exact)
+        return self.run_integrated(t)
+
+
+def _single(cls, scene) -> None:
+    if len(scene.bodies) != 1:
+        raise scene.error("bodies", f"a {cls.name} scene has exactly one body")
+
+
+def _round_body(scene, e) -> None:
+    """The single body of a rolling or sliding scene must be round."""
+    b = scene.bodies[0]
+    if b.shape not in ROUND_SHAPES:
+        raise scene.error(
+            f"{e.where}.body",
+            f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
+        )
+
+
+def _plane_angle(scene, e) -> None:
+    """An incline's angle must lie in [0, π/2)."""
+    a = e.fields.get("angle", 0.0)
+    if not 0 <= a < math.pi / 2:
+        raise scene.error(f"{e.where}.angle", f"must lie in [0, π/2); got {a!r}")
+
+
+# ---------------------------------------------------------------- fixed axis
+
+
+class AxisModel(Model):
+    """Rotation about a fixed axis: J(t) φ̈ = Σ moments (4.48), J(t) with mass inflow."""
+
+    name = "fixed-axis"
+    constraint = "fixed_axis"
+    allowed = frozenset({"gravity", "torsion", "mass_flow"})
+
+    @classmethod
+    def validate(cls, scene):
+        super().validate(scene)
+        _single(cls, scene)
+        b = scene.bodies[0]
+        if b.shape == "tank":
+            raise scene.error("bodies[0].shape", "a tank cannot turn about an axis")
+        for k in b.initial:
+            if k not in ("angle", "angular_velocity"):
+                raise scene.error(
+                    f"bodies[0].initial.{k}", "a fixed-axis body takes angle and angular_velocity"
+                )
+        ax = scene.effects_of("fixed_axis")
+        if len(ax) > 1:
+            raise scene.error(f"{ax[1].where}.type", "only one fixed_axis per scene")
+        J = fx.FixedAxis(ax[0]).moment_of_inertia(b.mass, np.diag(body_inertia(b)))
+        if J <= 0:
+            raise scene.error(
+                f"{ax[0].where}.body_axis",
+                f"the moment of inertia about this axis is zero for a {b.shape}",
+            )
+
+    def __init__(self, scene):
+        super().__init__(scene)
+        b = self.bodies[0]
+        self.m = b.mass
+        self.axis_fx = self.one("fixed_axis")
+        self.J0 = self.axis_fx.moment_of_inertia(self.m, np.diag(body_inertia(b)))
+        self.h, self.axis = self.axis_fx.h, self.axis_fx.axis
+        self.phi0 = float(b.initial.get("angle", 0.0))
+        self.phidot0 = float(b.initial.get("angular_velocity", 0.0))
+        self.torques = [e for e in self.effects if e.type in ("gravity", "torsion")]
+        self.flows = self.by_type.get("mass_flow", [])
+
+    def J(self, t):
+        return self.J0 + sum(f.inertia_added(t) for f in self.flows)
+
+    def rhs(self, t, y):
+        phi, w = y
+        M = 0.0
+        for e in self.torques:
+            M += e.axis_torque(self.m, self.h, self.axis, phi)
+        for f in self.flows:
+            M += f.axis_torque_flux(w)
+        return [w, M / self.J(t)]
+
+    def exact_flow(self):
+        k = self.others()
+        if not k:
+            return "exact: uniform rotation"
+        if k == {"gravity"} and self.phidot0 == 0 and abs(self.phi0) <= math.pi:
+            g = self.one("gravity")
+            if len(self.by_type["gravity"]) == 1 and g.axis_g_perp(self.axis) > 0 and self.h > 0:
+                return "exact: pendulum released from rest, Jacobi elliptic functions (4.50)"
+        if k == {"torsion"} and len(self.by_type["torsion"]) == 1:
+            return "exact: harmonic torsion oscillation"
+        if k == {"mass_flow"} and len(self.flows) == 1:
+            return "exact: carousel under fire, solution of (7.39)"
+        return None
+
+    def _exact_fn(self, how):
+        phi0, w0, J0 = self.phi0, self.phidot0, self.J0
+        if "uniform" in how:
+            return lambda t: (phi0 + w0 * t, w0 + 0.0 * t)
+        if "pendulum" in how:
+            from mechanics.dynamics import pendulum_motion
+            from mechanics.elliptic import ellipj
+
+            gp = self.one("gravity").axis_g_perp(self.axis)
+            om0 = math.sqrt(self.m * gp * self.h / J0)
+            k, kp = math.sin(abs(phi0) / 2), math.cos(abs(phi0) / 2)
+            sgn = 1.0 if phi0 >= 0 else -1.0
+
+            def f(t):
+                phi = pendulum_motion(t, J0, self.m, gp, self.h, phi0)
+                sn, _, dn, _ = ellipj(om0 * np.asarray(t, float), k * k, m1=kp * kp)
+                return phi, -sgn * 2.0 * k * kp * om0 * sn / dn  # φ̇ = −2kk'ω0 sd(ω0 t)
+
+            return f
+        if "torsion" in how:
+            om = math.sqrt(self.one("torsion").tau_0 / J0)
+            return lambda t: (
+                phi0 * np.cos(om * t) + w0 / om * np.sin(om * t),
+                -phi0 * om * np.sin(om * t) + w0 * np.cos(om * t),
+            )
+        from mechanics.open_systems import carousel_angular_velocity
+
+        f = self.flows[0]
+        c, b = f.q * f.R**2, f.r * f.q * f.v
+
+        def fc(t):
+            t = np.asarray(t, float)
+            w = carousel_angular_velocity(t, J_0=J0, q=f.q, v=f.v, r=f.r, R=f.R, phidot_0=w0)
+            if c == 0:
+                return phi0 + w0 * t, w
+            phi = phi0 - (b / c) * t + (J0 * w0 + b * J0 / c) / c * np.log1p(c * t / J0)
+            return phi, w
+
+        return fc
+
+    def run_exact(self, t, how):
+        f = self._exact_fn(how)
+
+        @vectorized
+        def dense(tt):
+            return np.stack(np.broadcast_arrays(*f(tt)), axis=-1)
+
+        return self._finish(t, dense, [], how)
+
+    def run_integrated(self, t):
+        s = self.scene
+        segs = integrate_segments(
+            self.rhs, [self.phi0, self.phidot0], s.duration, rtol=s.rtol, atol=s.atol
+        )
+        return self._finish(
+            t, _dense_from_segments(segs), [], "integrated: DOP853 (scipy solve_ivp)"
+        )
+
+    def _finish(self, t, dense, events, how):
+        Y = sample_dense(dense, t)
+        phi, w = Y[:, 0], Y[:, 1]
+        series, scales = {"phi": phi, "phidot": w}, {}
+        if self.h > 0:
+            series["x_G"], series["y_G"] = self.h * np.sin(phi), -self.h * np.cos(phi)
+        conserved = {}
+        if not self.flows:
+            E = KE = 0.5 * self.J0 * w * w
+            for e in self.torques:
+                E = E + e.axis_potential(self.m, self.h, self.axis, phi)
+            series["E"] = conserved["E"] = E
+            scales["E"] = energy_scale(KE, E)
+        else:
+            L = self.J(t) * w
+            series["L_axis"] = L
+            if not self.torques:
+                flux = sum(f.r * f.q * f.v for f in self.flows) * t
+                series["L_axis + r q v t"] = conserved["L_axis + r q v t"] = L + flux
+                scales["L_axis + r q v t"] = float(np.max(np.abs(L)) + np.max(np.abs(flux)))
+
+        def state_at(tt):
+            y = dense(tt)
+            return {"phi": float(y[0]), "phidot": float(y[1])}
+
+        traj = Trajectory(t, series, events, how, state_at, conserved)
+        traj.extra["scales"] = scales
+        return traj
+
+
+# ---------------------------------------------------------------- fixed point (tops)
+
+
+def _omega_body_from_euler(theta, phi, theta_dot, psi_dot, phi_dot):
+    """Body components of ω for ^A R^O = R3(φ) R1(θ) R3(ψ) (z-x-z)."""
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
+    return np.stack(
+        [
+            psi_dot * st * sp + theta_dot * cp,
+            psi_dot * st * cp - theta_dot * sp,
+            psi_dot * ct + phi_dot,
+        ],
+        axis=-1,
+    )
+
+
+def _skew(w):
+    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
+
+
+class PointModel(Model):
+    """A body about a fixed point C on its z axis (the top, 5.2)."""
+
+    name = "fixed-point"
+    constraint = "fixed_point"
+    allowed = frozenset({"gravity"})
+
+    @classmethod
+    def validate(cls, scene):
+        super().validate(scene)
+        _single(cls, scene)
+        b = scene.bodies[0]
+        if b.shape in ("tank", "point"):
+            raise scene.error("bodies[0].shape", f"a {b.shape} cannot be a top")
+        for k in b.initial:
+            if k not in ("theta", "psi", "phi", "theta_dot", "psi_dot", "phi_dot"):
+                raise scene.error(
+                    f"bodies[0].initial.{k}",
+                    "a top takes the Euler angles theta, psi, phi and their rates",
+                )
+        th = b.initial.get("theta", 0.0)
+        if not 0 < th < math.pi:
+            raise scene.error("bodies[0].initial.theta", f"must lie in (0, π); got {th!r}")
+        J = fx.FixedPoint(scene.effects_of("fixed_point")[0]).moments(
+            b.mass, np.diag(body_inertia(b))
+        )
+        if min(J) <= 0:
+            raise scene.error("bodies[0].shape", f"a {b.shape} has a zero moment about C")
+
+    def __init__(self, scene):
+        super().__init__(scene)
+        b = self.bodies[0]
+        self.m = b.mass
+        self.fp = self.one("fixed_point")
+        self.ell = self.fp.ell
+        self.Jc = self.fp.moments(self.m, np.diag(body_inertia(b)))
+        ini = b.initial
+        self.eul = {
+            k: float(ini.get(k, 0.0))
+            for k in ("theta", "psi", "phi", "theta_dot", "psi_dot", "phi_dot")
+        }
+        from mechanics.rotation import matrix_from_euler
+
+        e = self.eul
+        self.R0 = matrix_from_euler(e["psi"], e["theta"], e["phi"])
+        self.w0 = _omega_body_from_euler(
+            e["theta"], e["phi"], e["theta_dot"], e["psi_dot"], e["phi_dot"]
+        )
+        self.grav = self.by_type.get("gravity", [])
+
+    def exact_flow(self):
+        k = self.others()
+        if not k:
+            return "exact: torque-free top about C, Jacobi elliptic functions (5.3)"
+        g = self.grav
+        if (
+            k == {"gravity"}
+            and len(g) == 1
+            and self.Jc[0] == self.Jc[1]
+            and self.ell > 0
+            and np.allclose(g[0].direction, [0, 0, -1], rtol=0, atol=4 * EPS)
+        ):
+            return "exact: heavy symmetric top, elliptic integrals (5.2.2–5.2.5)"
+        return None
+
+    def rhs(self, t, y):
+        R = y[:9].reshape(3, 3)
+        w = y[9:]
+        M = np.zeros(3)
+        for e in self.grav:
+            M += e.point_torque(self.m, self.ell, R)
+        J = self.Jc
+        wdot = (M - np.cross(w, J * w)) / J
+        Rdot = -_skew(w) @ R
+        return np.concatenate([Rdot.ravel(), wdot])
+
+    def run_exact(self, t, how):
+        from mechanics.rotation import matrix_from_euler
+
+        if "torque-free" in how:
+            from mechanics.tops import FreeAsymmetricTop
+
+            top = FreeAsymmetricTop(self.Jc, self.w0, self.R0)
+
+            @vectorized
+            def dense(tt):
+                tt = np.asarray(tt, float)
+                R = top.attitude(tt).reshape(*tt.shape, 9)
+                return np.concatenate([R, top.omega(tt)], axis=-1)
+
+            traj = self._finish(t, dense, how)
+            traj.extra["top"] = top
+            return traj
+        from mechanics.tops import HeavySymmetricTop
+
+        e = self.eul
+        top = HeavySymmetricTop(
+            self.Jc[0],
+            self.Jc[2],
+            self.m * self.grav[0].g * self.ell,
+            **e,
+        )
+
+        @vectorized
+        def dense(tt):
+            tt = np.asarray(tt, float)
+            th, ps, ph = top.theta(tt), top.psi(tt), top.phi(tt)
+            thd, psd, phd = top.rates(tt)
+            R = matrix_from_euler(ps, th, ph).reshape(*tt.shape, 9)
+            w = _omega_body_from_euler(th, ph, thd, psd, phd)
+            return np.concatenate([R, w], axis=-1)
+
+        traj = self._finish(t, dense, how)
+        traj.extra["top"] = top
+        return traj
+
+    def run_integrated(self, t):
+        s = self.scene
+        y0 = np.concatenate([self.R0.ravel(), self.w0])
+        segs = integrate_segments(self.rhs, y0, s.duration, rtol=s.rtol, atol=s.atol)
+        return self._finish(t, _dense_from_segments(segs), "integrated: DOP853 (scipy solve_ivp)")
+
+    def _finish(self, t, dense, how):
+        Y = sample_dense(dense, t)
+        R, w = Y[:, :9].reshape(-1, 3, 3), Y[:, 9:]
+        # z-x-z: row 3 of ^A R^O = (sθ sψ, −sθ cψ, cθ), column 3 = (sφ sθ, cφ sθ, cθ)
+        theta = np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2])
+        psi = np.arctan2(R[:, 2, 0], -R[:, 2, 1])
+        phi = np.arctan2(R[:, 0, 2], R[:, 1, 2])
+        J = self.Jc
+        L_O = np.einsum("...ji,...j->...i", R, J * w)
+        E = KE = 0.5 * (J * w * w).sum(-1)
+        for e in self.grav:
+            E = E + e.point_potential(self.m, self.ell, R)
+        axis = R[:, 2, :]
+        series = {
+            "theta": theta,
+            "psi": np.unwrap(psi),
+            "phi": np.unwrap(phi),
+            "omega1": w[:, 0],
+            "omega2": w[:, 1],
+            "omega3": w[:, 2],
+            "axis_x": axis[:, 0],
+            "axis_y": axis[:, 1],
+            "axis_z": axis[:, 2],
+            "L_z": L_O[:, 2],
+            "E": E,
+            "cos_theta": R[:, 2, 2],
+            # d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R
+            "cos_theta_dot": w[:, 1] * R[:, 0, 2] - w[:, 0] * R[:, 1, 2],
+        }
+        conserved = {"E": E, "L_z": L_O[:, 2]}
+        if J[0] == J[1]:
+            series["L_3"] = conserved["L_3"] = J[2] * w[:, 2]
+        if not self.grav:
+            series["L_x"], series["L_y"] = L_O[:, 0], L_O[:, 1]
+            conserved["L_x"], conserved["L_y"] = L_O[:, 0], L_O[:, 1]
+
+        Lnorm = float(np.max(np.linalg.norm(L_O, axis=-1)))
+        scales = {k: Lnorm for k in ("L_x", "L_y", "L_z")}
+        scales["E"] = energy_scale(KE, E)
+
+        def state_at(tt):
+            y = dense(tt)
+            Rm = y[:9].reshape(3, 3)
+            return {
+                "cos_theta": float(Rm[2, 2]),
+                "cos_theta_dot": float(y[10] * Rm[0, 2] - y[9] * Rm[1, 2]),
+                "omega1": float(y[9]),
+                "omega2": float(y[10]),
+                "omega3": float(y[11]),
+            }
+
+        traj = Trajectory(t, series, [], how, state_at, conserved)
+        traj.extra["scales"] = scales
+        return traj
+
+
+# ---------------------------------------------------------------- rolling
+
+
+class RollingModel(Model):
+    """Rolling without slipping on an incline (s) or in a cylindrical track (ψ)."""
+
+    name = "rolling"
+    constraint = "rolling"
+    allowed = frozenset({"gravity"})
+
+    @classmethod
+    def validate(cls, scene):
+        super().validate(scene)
+        _single(cls, scene)
+        b = scene.bodies[0]
+        e = scene.effects_of("rolling")[0]
+        _round_body(scene, e)
+        surf = e.fields["surface"]
+        if surf == "incline":
+            _plane_angle(scene, e)
+            keys = ("distance", "speed")
+        elif surf == "track":
+            R = e.fields.get("track_radius")
+            if R is None:
+                raise scene.error(f"{e.where}.track_radius", "missing required field for a track")
+            if b.dims["radius"] >= R:
+                raise scene.error(
+                    f"{e.where}.track_radius",
+                    f"must exceed the body's radius {b.dims['radius']!r} (R > r); got {R!r}",
+                )
+            keys = ("angle", "angular_velocity")
+        else:
+            raise scene.error(f"{e.where}.surface", f"expected 'incline' or 'track'; got {surf!r}")
+        for k in b.initial:
+            if k not in keys:
+                raise scene.error(f"bodies[0].initial.{k}", f"rolling on a {surf} takes {keys}")
+
+    def __init__(self, scene):
+        super().__init__(scene)
+        b = self.bodies[0]
+        self.m, self.r = b.mass, b.dims["radius"]
+        self.roll = self.one("rolling")
+        self.Jaxis = float(body_inertia(b)[self.roll.body_axis])
+        self.M_eff = self.roll.effective_mass(self.m, np.diag(body_inertia(b)), self.r)
+        self.track = self.roll.surface == "track"
+        if self.track:
+            self.Rr = self.roll.track_radius - self.r
+            self.q0 = float(b.initial.get("angle", 0.0))
+            self.qd0 = float(b.initial.get("angular_velocity", 0.0))
+        else:
+            self.q0 = float(b.initial.get("distance", 0.0))
+            self.qd0 = float(b.initial.get("speed", 0.0))
+        self.grav = self.by_type.get("gravity", [])
+
+    def rhs(self, t, y):
+        q, qd = y
+        if self.track:
+            F = sum(g.track_force(self.m, self.Rr, q) for g in self.grav)
+            return [qd, F / (self.M_eff * self.Rr**2)]
+        F = sum(g.slope_force(self.m, self.roll.alpha) for g in self.grav)
+        return [qd, F / self.M_eff]
+
+    def exact_flow(self):
+        if not self.track:
+            return "exact: uniform acceleration down the incline (3.80)"
+        if not self.grav:
+            return "exact: uniform rolling round the track"
+        if len(self.grav) == 1 and self.qd0 == 0 and abs(self.q0) <= math.pi:
+            return "exact: equivalent pendulum released from rest (4.64), elliptic functions"
+        return None
+
+    def run_exact(self, t, how):
+        q0, qd0 = self.q0, self.qd0
+        if not self.track or not self.grav:
+            a = float(self.rhs(0.0, [q0, qd0])[1]) if not self.track else 0.0
+
+            @vectorized
+            def dense(tt):
+                return np.stack([q0 + qd0 * tt + 0.5 * a * tt * tt, qd0 + a * tt + 0.0 * tt], -1)
+
+            return self._finish(t, dense, how)
+        from mechanics.dynamics import pendulum_motion
+        from mechanics.elliptic import ellipj
+
+        g = self.grav[0].g
+        Jp = self.M_eff * self.Rr**2  # ½ Jp ψ̇² + m g (R − r)(1 − cos ψ)
+        om0 = math.sqrt(self.m * g * self.Rr / Jp)
+        k, kp = math.sin(abs(q0) / 2), math.cos(abs(q0) / 2)
+        sgn = 1.0 if q0 >= 0 else -1.0
+
+        @vectorized
+        def dense(tt):
+            psi = pendulum_motion(tt, Jp, self.m, g, self.Rr, q0)
+            sn, _, dn, _ = ellipj(om0 * np.asarray(tt, float), k * k, m1=kp * kp)
+            return np.stack([psi, -sgn * 2.0 * k * kp * om0 * sn / dn], axis=-1)
+
+        return self._finish(t, dense, how)
+
+    def run_integrated(self, t):
+        s = self.scene
+        segs = integrate_segments(
+            self.rhs, [self.q0, self.qd0], s.duration, rtol=s.rtol, atol=s.atol
+        )
+        return self._finish(t, _dense_from_segments(segs), "integrated: DOP853 (scipy solve_ivp)")
+
+    def _finish(self, t, dense, how):
+        Y = sample_dense(dense, t)
+        q, qd = Y[:, 0], Y[:, 1]
+        if self.track:
+            series = {
+                "psi": q,
+                "psidot": qd,
+                "phi": q * self.roll.track_radius / self.r,
+                "x_G": self.Rr * np.sin(q),
+                "z_G": -self.Rr * np.cos(q),
+            }
+            E = KE = 0.5 * self.M_eff * self.Rr**2 * qd * qd
+            for g in self.grav:
+                E = E + g.track_potential(self.m, self.Rr, q)
+            names = ("psi", "psidot")
+        else:
+            a = self.roll.alpha
+            series = {"s": q, "v": qd, "omega": qd / self.r, "drop": q * math.sin(a)}
+            E = KE = 0.5 * self.M_eff * qd * qd
+            for g in self.grav:
+                E = E + g.slope_potential(self.m, a, q)
+            names = ("s", "v")
+        series["E"] = E
+
+        def state_at(tt):
+            y = dense(tt)
+            return {names[0]: float(y[0]), names[1]: float(y[1])}
+
+        traj = Trajectory(t, series, [], how, state_at, {"E": E})
+        traj.extra["scales"] = {"E": energy_scale(KE, E)}
+        return traj
+
+
+# ---------------------------------------------------------------- sliding
+
+
+class SlidingModel(Model):
+    """A round body on a plane with Coulomb friction: sliding, then rolling."""
+
+    name = "sliding"
+    constraint = "coulomb_friction"
+    allowed = frozenset({"gravity"})
+
+    @classmethod
+    def validate(cls, scene):
+        super().validate(scene)
+        _single(cls, scene)
+        b = scene.bodies[0]
+        e = scene.effects_of("coulomb_friction")[0]
+        _round_body(scene, e)
+        if not scene.effects_of("gravity"):
+            raise scene.error(
+                f"{e.where}.type",
+                "coulomb_friction on a plane needs a gravity effect to press the body on it "
+                "(the normal force); none is listed",
+            )
+        _plane_angle(scene, e)
+        for k in b.initial:
+            if k not in ("distance", "speed", "spin"):
+                raise scene.error(f"bodies[0].initial.{k}", "sliding takes distance, speed, spin")
+
+    def __init__(self, scene):
+        super().__init__(scene)
+        b = self.bodies[0]
+        self.m, self.r = b.mass, b.dims["radius"]
+        self.fr = self.one("coulomb_friction")
+        self.J = float(body_inertia(b)[self.fr.body_axis])
+        self.alpha = self.fr.alpha
+        self.grav = self.by_type["gravity"]
+        self.N = sum(g.normal_force(self.m, self.alpha) for g in self.grav)
+        self.drive = sum(g.slope_force(self.m, self.alpha) for g in self.grav)
+        ini = b.initial
+        self.y0 = np.array([ini.get("distance", 0.0), ini.get("speed", 0.0), ini.get("spin", 0.0)])
+
+    def slip(self, y):
+        return y[1] - y[2] * self.r
+
+    def sliding_rhs(self, t, y):
+        slip = self.slip(y)
+        # at zero slip (and not rolling) the body starts slipping the way the drive pulls
+        F = self.fr.friction(self.N, slip if slip != 0 else self.drive)
+        return np.array([y[1], (self.drive + F) / self.m, -F * self.r / self.J])
+
+    def rolling_rhs(self, t, y):
+        a = self.drive / (self.m + self.J / self.r**2)
+        return np.array([y[1], a, a / self.r])
+
+    def exact_flow(self):
+        return "exact: constant accelerations in each phase, the switch solved exactly"
+
+    def _rolls(self):
+        return self.fr.can_roll(self.N, self.m, self.J, self.r, self.drive)
+
+    def run_exact(self, t, how):
+        y0 = self.y0.copy()
+        s0 = self.slip(y0)
+        events = []
+        if s0 == 0 and self._rolls():
+            segs = [(0.0, math.inf, _const_acc(0.0, y0, self.rolling_rhs(0, y0)))]
+        else:
+            acc = self.sliding_rhs(0.0, y0)
+            rate = acc[1] - acc[2] * self.r  # d(slip)/dt, constant while sliding
+            ts = -s0 / rate if rate * s0 < 0 else math.inf
+            segs = [(0.0, ts, _const_acc(0.0, y0, acc))]
+            if ts < self.scene.duration:
+                y1 = segs[0][2](ts)
+                y1[2] = y1[1] / self.r  # slip = 0 exactly at the event
+                kind = "rolling" if self._rolls() else "slip_zero"
+                events.append(Event(ts, kind, {"speed": float(y1[1])}))
+                nxt = self.rolling_rhs if self._rolls() else self.sliding_rhs
+                segs.append((ts, math.inf, _const_acc(ts, y1, nxt(ts, y1))))
+        return self._finish(t, segs, events, how)
+
+    def run_integrated(self, t):
+        s = self.scene
+        events = []
+
+        def slip_event(tt, y):
+            return self.slip(y)
+
+        y0 = self.y0
+        slip_event.direction = -math.copysign(1.0, self.slip(y0))  # toward zero only
+        if self.slip(y0) == 0:
+            rhs = self.rolling_rhs if self._rolls() else self.sliding_rhs
+            segs = integrate_segments(rhs, y0, s.duration, rtol=s.rtol, atol=s.atol)
+        else:
+
+            def on_event(k, tt, y):
+                kind = "rolling" if self._rolls() else "slip_zero"
+                events.append(Event(tt, kind, {"speed": float(y[1])}))
+                return None
+
+            segs = integrate_segments(
+                self.sliding_rhs,
+                y0,
+                s.duration,
+                rtol=s.rtol,
+                atol=s.atol,
+                events=[slip_event],
+                on_event=on_event,
+            )
+            if events:
+                ts = events[0].t
+                y1 = segs[-1][2](ts)
+                rhs = self.rolling_rhs if self._rolls() else self.sliding_rhs
+                segs += integrate_segments(rhs, y1, s.duration, rtol=s.rtol, atol=s.atol, t0=ts)
+        return self._finish(t, segs, events, "integrated: DOP853 (scipy solve_ivp), slip event")
+
+    def _finish(self, t, segs, events, how):
+        dense = _dense_from_segments(segs)
+        Y = sample_dense(dense, t)
+        s, v, w = Y[:, 0], Y[:, 1], Y[:, 2]
+        E = KE = 0.5 * self.m * v * v + 0.5 * self.J * w * w
+        for g in self.grav:
+            E = E + g.slope_potential(self.m, self.alpha, s)
+        series = {"s": s, "v": v, "omega": w, "slip": v - w * self.r, "E": E}
+        conserved, cfrom = {}, {}
+        if events:
+            conserved["E"] = E
+            cfrom["E"] = events[0].t
+        if self.alpha == 0:
+            series["L_contact"] = conserved["L_contact"] = self.m * self.r * v + self.J * w
+
+        def state_at(tt):
+            y = dense(tt)
+            return {"s": float(y[0]), "v": float(y[1]), "omega": float(y[2])}
+
+        traj = Trajectory(t, series, events, how, state_at, conserved, cfrom)
+        traj.extra["scales"] = {"E": energy_scale(KE, E)}
+        return traj
+
+
+def _const_acc(t0, y0, acc):
+    y0, acc = np.array(y0, float), np.array(acc, float)
+
+    def at(t):
+        tau = t - t0
+        out = y0 + acc * tau
+        out[0] = y0[0] + y0[1] * tau + 0.5 * acc[1] * tau * tau
+        return out
+
+    return at
+
+
+# ---------------------------------------------------------------- tank
+
+
+class TankModel(Model):
+    """A prismatic tank draining through a small hole (Example 8.1)."""
+
+    name = "tank"
+    constraint = "tank_outflow"
+    allowed = frozenset({"gravity"})
+
+    @classmethod
+    def validate(cls, scene):
+        super().validate(scene)
+        _single(cls, scene)
+        b = scene.bodies[0]
+        e = scene.effects_of("tank_outflow")[0]
+        if b.shape != "tank":
+            raise scene.error(f"{e.where}.body", f"tank_outflow needs a tank body; got a {b.shape}")
+        if e.fields["hole_area"] >= b.dims["area"]:
+            raise scene.error(
+                f"{e.where}.hole_area",
+                f"must be smaller than the tank's area {b.dims['area']!r}; "
+                f"got {e.fields['hole_area']!r}",
+            )
+        if not scene.effects_of("gravity"):
+            raise scene.error(
+                f"{e.where}.type", "tank_outflow is driven by gravity: list a gravity effect"
+            )
+        if "level" not in b.initial:
+            raise scene.error("bodies[0].initial.level", "missing required field for a tank")
+        for k in b.initial:
+            if k != "level":
+                raise scene.error(f"bodies[0].initial.{k}", "a tank takes only level")
+
+    def __init__(self, scene):
+        super().__init__(scene)
+        b = self.bodies[0]
+        self.A = b.dims["area"]
+        self.h0 = float(b.initial["level"])
+        self.out = self.one("tank_outflow")
+        self.g = sum(gr.g * -gr.direction[2] for gr in self.by_type["gravity"])
+        if self.g <= 0:
+            raise scene.error("effects", "gravity must point down (−z) to drain the tank")
+
+    def exact_flow(self):
+        return "exact: Torricelli outflow, level (√h0 − c t)² (8.37)"
+
+    def rhs(self, t, y):
+        """State (√h, volume out): the level is integrated as √h (see
+        :meth:`~mechanics.scenes.effects.TankOutflow.sqrt_level_rate`)."""
+        w = y[0]
+        return [
+            self.out.sqrt_level_rate(self.g, self.A),
+            self.out.a * self.out.outflow_speed(w * w, self.g, self.A),
+        ]
+
+    def run_exact(self, t, how):
+        from mechanics.fluids import drain_time, tank_level
+
+        ratio = self.out.a / self.A
+        T = float(drain_time(self.h0, g=self.g, area_ratio=ratio))
+        c = math.sqrt(self.h0) / T
+        k = math.sqrt(2 * self.g / ((1 - ratio) * (1 + ratio)))
+
+        def dense(tt):
+            h = float(tank_level(tt, h_0=self.h0, g=self.g, area_ratio=ratio))
+            tc = min(tt, T)
+            return np.array([h, self.out.a * k * c * (T * tc - 0.5 * tc * tc)])
+
+        events = [Event(T, "empty", {})] if self.scene.duration >= T else []
+        return self._finish(t, dense, events, how)
+
+    def run_integrated(self, t):
+        s = self.scene
+
+        def empty(tt, y):
+            return y[0]
+
+        events = []
+
+        def on_event(k, tt, y):
+            events.append(Event(tt, "empty", {}))
+            return None
+
+        segs = integrate_segments(
+            self.rhs,
+            [math.sqrt(self.h0), 0.0],
+            s.duration,
+            rtol=s.rtol,
+            atol=s.atol,
+            events=[empty],
+            on_event=on_event,
+        )
+        if events:
+            yT = segs[-1][2](events[0].t)
+            empty_state = np.array([0.0, yT[1]])
+            segs.append((events[0].t, math.inf, lambda t: empty_state))
+        dense_w = _dense_from_segments(segs)
+
+        def dense(tt):
+            y = dense_w(tt)
+            return np.array([y[0] * y[0], y[1]])
+
+        return self._finish(t, dense, events, "integrated: DOP853 (scipy solve_ivp), level as √h")
+
+    def _finish(self, t, dense, events, how):
+        Y = sample_dense(dense, t)
+        h, vout = np.maximum(Y[:, 0], 0.0), Y[:, 1]
+        ratio = self.out.a / self.A
+        u = np.sqrt(2 * self.g * h / ((1 - ratio) * (1 + ratio)))
+        vol = self.A * h + vout
+        series = {"h": h, "u": u, "volume_out": vout, "volume_total": vol}
+
+        def state_at(tt):
+            y = dense(tt)
+            return {"h": float(max(y[0], 0.0)), "volume_out": float(y[1])}
+
+        return Trajectory(t, series, events, how, state_at, {"volume_total": vol})
+
+
+MODELS = (TankModel, AxisModel, PointModel, RollingModel, SlidingModel)
+#: the effect types that select a one-degree-of-freedom model
+CONSTRAINTS = tuple(m.constraint for m in MODELS)
+
+
+def select_model(scene):
+    """The model the scene's constraint calls for (validated), or None: free bodies, the
+    engine's (:mod:`mechanics.scenes.engine`)."""
+    cons = [e for e in scene.effects if e.type in CONSTRAINTS]
+    kinds = {e.type for e in cons}
+    if len(kinds) > 1:
+        a, b = cons[0], next(e for e in cons if e.type != cons[0].type)
+        raise scene.error(
+            f"{b.where}.type",
+            f"{b.type!r} cannot be combined with {a.type!r} ({a.where}): list one constraint",
+        )
+    if len(cons) > 1:
+        raise scene.error(f"{cons[1].where}.type", f"{cons[1].type!r} is listed twice")
+    if not kinds:
+        return None
+    cls = next(m for m in MODELS if m.constraint in kinds)
+    cls.validate(scene)
+    return cls

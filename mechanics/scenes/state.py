@@ -1,0 +1,222 @@
+"""One state layout for every scene of free bodies: what a body carries, where it sits in
+the flat state vector, and the geometry of its shape (moments, radius, vertices).
+
+Conventions
+-----------
+- **Kinds of body.**  A *point* (shape ``point``) carries the position r and velocity v
+  of its centre of mass G.  A *rigid* body (any other shape) carries r, v, its angular
+  momentum about G in body components ``L_A`` and its attitude ``R_A_O``, the book's
+  passive matrix ^A R^O (rows: the body's basis vectors e^A_i in the space basis O; a
+  vector with body components x_A has space components ``R_A_O.T @ x_A``), as
+  :mod:`mechanics.integrators` lays out the free rigid body.  A *fixed* body
+  (``fixed = true``) carries nothing: it stays at its initial position, at rest, with
+  the identity attitude, and acts as an immovable partner of contacts.
+- **The flat vector.**  Bodies in file order; a point takes 6 numbers ``(r, v)``, a
+  rigid body 18 ``(r, v, L_A, R_A_O row by row)``, a fixed body 0.  :class:`Layout`
+  gathers the per-body arrays from a state of any leading shape ``(..., size)`` in one
+  indexing (no Python loop over bodies), so the same code serves one right-hand-side
+  evaluation and thousands of samples.
+- **Equations of motion** (:meth:`Layout.derivative`): ṙ = v, v̇ = F/m (forces in O),
+  L̇_A = L_A × ω_A + M_A (Euler's equations (4.47) with the moment M_A about G in body
+  components), Ṙ_A_O = −[ω_A]× R_A_O (the book's (2.52), Ω = −[ω]×).  ω_A = L_A / J
+  componentwise in the principal frame; a zero principal moment (a thin rod about its
+  own axis) has no spin about that axis: its inverse is taken as 0, and no force on the
+  rod's points has a moment about it.
+- **Masses** may vary with time (a rocket's thrust): ``masses(t)``; a rigid body's
+  principal moments then scale with its mass (the fuel is spread like the body).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "ROUND_SHAPES",
+    "SPHERICAL_SHAPES",
+    "Layout",
+    "body_inertia",
+    "body_radius",
+    "body_vertices",
+]
+
+ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere", "hollow_sphere")
+SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
+
+POINT_SIZE = 6
+RIGID_SIZE = 18
+
+
+def body_inertia(body) -> np.ndarray:
+    """Principal moments about G, shape (3,), from the inertia catalogue."""
+    from mechanics import inertia as I
+
+    m, d, s = body.mass, body.dims, body.shape
+    if s in ("point", "tank"):
+        return np.zeros(3)
+    if s == "custom":
+        return np.asarray(d["inertia"], dtype=float)
+    f = {
+        "rod": lambda: I.rod(m, d["length"]),
+        "ring": lambda: I.ring(m, d["radius"]),
+        "disc": lambda: I.disc(m, d["radius"]),
+        "cylinder": lambda: I.cylinder(m, d["radius"], d["height"]),
+        "cylindrical_shell": lambda: I.cylindrical_shell(m, d["radius"], d["height"]),
+        "solid_sphere": lambda: I.solid_sphere(m, d["radius"]),
+        "hollow_sphere": lambda: I.hollow_sphere(m, d["radius"]),
+        "rectangular_plate": lambda: I.rectangular_plate(m, d["a"], d["b"]),
+        "box": lambda: I.box(m, d["a"], d["b"], d["c"]),
+    }[s]
+    return np.diag(f()).astype(float)
+
+
+def body_radius(body) -> float | None:
+    """Radius of a spherical body (0 for a point), None for any other shape."""
+    if body.shape == "point":
+        return 0.0
+    if body.shape in SPHERICAL_SHAPES:
+        return float(body.dims["radius"])
+    return None
+
+
+def body_vertices(body) -> np.ndarray | None:
+    """The corners of a polyhedral body in body components about G, shape (k, 3): the 8
+    corners of a box (edges a, b, c along e1, e2, e3), the 4 of a rectangular plate
+    (a, b in the e1e2-plane), the 2 ends of a rod (along e3); None for other shapes."""
+    d = body.dims
+    if body.shape == "box":
+        h = 0.5 * np.array([d["a"], d["b"], d["c"]])
+        s = np.array([[i, j, k] for i in (-1, 1) for j in (-1, 1) for k in (-1, 1)], float)
+        return s * h
+    if body.shape == "rectangular_plate":
+        h = 0.5 * np.array([d["a"], d["b"], 0.0])
+        s = np.array([[i, j, 0] for i in (-1, 1) for j in (-1, 1)], float)
+        return s * h
+    if body.shape == "rod":
+        return np.array([[0.0, 0.0, -0.5 * d["length"]], [0.0, 0.0, 0.5 * d["length"]]])
+    return None
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where each body's quantities sit in the flat state; gathers and scatters them.
+
+    ``kinds[i]`` is ``"point"``, ``"rigid"`` or ``"fixed"``; ``J`` the principal moments
+    (n, 3) at the initial masses; ``r_fixed`` the positions of the fixed bodies.
+    """
+
+    kinds: tuple[str, ...]
+    J: np.ndarray
+    r_fixed: np.ndarray
+    size: int
+    offsets: tuple[int, ...]
+
+    @classmethod
+    def of(cls, bodies) -> Layout:
+        kinds, offsets, size = [], [], 0
+        J = np.zeros((len(bodies), 3))
+        r_fixed = np.zeros((len(bodies), 3))
+        for i, b in enumerate(bodies):
+            if b.fixed:
+                kind = "fixed"
+                r_fixed[i] = b.initial.get("position", [0.0, 0.0, 0.0])
+            elif b.shape == "point":
+                kind = "point"
+            else:
+                kind = "rigid"
+                J[i] = body_inertia(b)
+            kinds.append(kind)
+            offsets.append(size)
+            size += {"fixed": 0, "point": POINT_SIZE, "rigid": RIGID_SIZE}[kind]
+        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets))
+
+    @property
+    def n(self) -> int:
+        return len(self.kinds)
+
+    def _index(self):
+        """Index arrays into the padded state (state, then the constants block)."""
+        cached = self.__dict__.get("_idx")
+        if cached is not None:
+            return cached
+        n, N = self.n, self.size
+        # constants block: 0, 1, then the fixed positions
+        zero, one = N, N + 1
+        fixed_at = {i: N + 2 + 3 * k for k, i in enumerate(self.fixed_bodies)}
+        ir = np.full((n, 3), zero)
+        iv = np.full((n, 3), zero)
+        iL = np.full((n, 3), zero)
+        iR = np.tile(np.where(np.eye(3, dtype=bool), one, zero), (n, 1, 1))
+        for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
+            if kind == "fixed":
+                ir[i] = fixed_at[i] + np.arange(3)
+                continue
+            ir[i] = o + np.arange(3)
+            iv[i] = o + 3 + np.arange(3)
+            if kind == "rigid":
+                iL[i] = o + 6 + np.arange(3)
+                iR[i] = (o + 9 + np.arange(9)).reshape(3, 3)
+        consts = np.concatenate([[0.0, 1.0], self.r_fixed[list(self.fixed_bodies)].ravel()])
+        idx = (ir, iv, iL, iR, consts)
+        object.__setattr__(self, "_idx", idx)
+        return idx
+
+    @property
+    def fixed_bodies(self) -> tuple[int, ...]:
+        return tuple(i for i, k in enumerate(self.kinds) if k == "fixed")
+
+    @property
+    def rigid_bodies(self) -> tuple[int, ...]:
+        return tuple(i for i, k in enumerate(self.kinds) if k == "rigid")
+
+    @property
+    def moving_bodies(self) -> tuple[int, ...]:
+        return tuple(i for i, k in enumerate(self.kinds) if k != "fixed")
+
+    def gather(self, y):
+        """(r, v, L_A, R_A_O) of every body from states of shape (..., size): shapes
+        (..., n, 3), (..., n, 3), (..., n, 3), (..., n, 3, 3); fixed bodies and points
+        get their constants (rest, zero spin, identity attitude)."""
+        ir, iv, iL, iR, consts = self._index()
+        y = np.asarray(y, dtype=float)
+        yp = np.concatenate([y, np.broadcast_to(consts, (*y.shape[:-1], consts.size))], -1)
+        return yp[..., ir], yp[..., iv], yp[..., iL], yp[..., iR]
+
+    def pack(self, r, v, L_A, R_A_O) -> np.ndarray:
+        """The flat state(s) (..., size) from per-body arrays (..., n, 3) and (..., n, 3, 3)
+        (the inverse of :meth:`gather` on the moving bodies)."""
+        ir, iv, iL, iR, _ = self._index()
+        r = np.asarray(r, dtype=float)
+        lead = r.shape[:-2]
+        y = np.empty((*lead, self.size))
+        mov, rig = list(self.moving_bodies), list(self.rigid_bodies)
+        y[..., ir[mov].ravel()] = r[..., mov, :].reshape(*lead, -1)
+        y[..., iv[mov].ravel()] = np.asarray(v, dtype=float)[..., mov, :].reshape(*lead, -1)
+        if rig:
+            L_A, R_A_O = np.asarray(L_A, dtype=float), np.asarray(R_A_O, dtype=float)
+            y[..., iL[rig].ravel()] = L_A[..., rig, :].reshape(*lead, -1)
+            y[..., iR[rig].ravel()] = R_A_O[..., rig, :, :].reshape(*lead, -1)
+        return y
+
+    def omega(self, L_A, J) -> np.ndarray:
+        """Body components ω_A = L_A / J (0 on a zero moment), any leading shape."""
+        safe = np.where(J > 0, J, 1.0)
+        return np.where(J > 0, L_A / safe, 0.0)
+
+    def derivative(self, y, F, M_A, masses, J) -> np.ndarray:
+        """dy/dt for one state (size,), forces F (n, 3) in O at G and moments M_A (n, 3)
+        about G in body components (see the Conventions)."""
+        out = np.empty(self.size)
+        _, v, L, R = self.gather(y)
+        for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
+            if kind == "fixed":
+                continue
+            out[o : o + 3] = v[i]
+            out[o + 3 : o + 6] = F[i] / masses[i]
+            if kind == "rigid":
+                w = self.omega(L[i], J[i])
+                out[o + 6 : o + 9] = np.cross(L[i], w) + M_A[i]
+                # Ṙ = −[ω]× R, column by column: −ω × R[:, k]
+                out[o + 9 : o + 18] = -np.cross(w, R[i].T).T.ravel()
+        return out

@@ -1,0 +1,109 @@
+"""What a run returns: samples, a dense state, events and the quantities its effects
+conserve.  Shared by the engine and the one-degree-of-freedom models; imports nothing
+from the package.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = [
+    "EPS",
+    "Event",
+    "Trajectory",
+    "dense_from_segments",
+    "energy_scale",
+    "sample_dense",
+    "sample_segments",
+    "vectorized",
+]
+
+EPS = float(np.finfo(float).eps)
+
+
+@dataclass
+class Event:
+    """An event of the run: its time, kind (impact, burn_out, rolling, ...) and details."""
+
+    t: float
+    kind: str
+    detail: dict = field(default_factory=dict)
+
+
+@dataclass
+class Trajectory:
+    """Samples, a dense state, events and the conserved quantities of a run.
+
+    ``conserved`` maps a name to its samples; each is checked within the segments
+    between events, except those in ``conserved_across_events`` (which every impulse
+    keeps too, e.g. the momentum of two bodies that collide), checked over the run.
+    """
+
+    t: np.ndarray
+    series: dict[str, np.ndarray]
+    events: list[Event]
+    method: str
+    state_at: Callable[[float], dict[str, float]]
+    conserved: dict[str, np.ndarray] = field(default_factory=dict)
+    #: time from which a conserved quantity holds (e.g. energy once rolling); default 0
+    conserved_from: dict[str, float] = field(default_factory=dict)
+    extra: dict = field(default_factory=dict)
+    conserved_across_events: frozenset[str] = frozenset()
+
+    def segments(self, name: str = "") -> list[tuple[float, float]]:
+        """The intervals over which ``name`` must be constant: between events, or the
+        whole run for a quantity the events keep too."""
+        if name in self.conserved_across_events:
+            return [(0.0, math.inf)]
+        cuts = [0.0, *sorted(e.t for e in self.events), math.inf]
+        return list(itertools.pairwise(cuts))
+
+
+def dense_from_segments(segs):
+    """One dense function from (t_a, t_b, dense) pieces in time order."""
+    starts = np.array([a for a, _, _ in segs])
+
+    def at(t):
+        k = max(int(np.searchsorted(starts, t, side="right")) - 1, 0)
+        return segs[k][2](t)
+
+    return at
+
+
+def vectorized(f):
+    """Mark a dense function as taking an array of times (one call for all samples)."""
+    f.vectorized = True
+    return f
+
+
+def sample_dense(dense, t) -> np.ndarray:
+    """Samples of a dense solution, shape (len(t), n): one call if it is vectorised."""
+    if getattr(dense, "vectorized", False):
+        return np.asarray(dense(t), dtype=float)
+    return np.array([dense(tt) for tt in t])
+
+
+def sample_segments(segs, t) -> np.ndarray:
+    """Samples (len(t), size) of (t_a, t_b, dense) pieces: each sample from the piece it
+    falls in (the last piece also takes t_b), one call per vectorised piece."""
+    t = np.asarray(t, dtype=float)
+    starts = np.array([a for a, _, _ in segs])
+    which = np.maximum(np.searchsorted(starts, t, side="right") - 1, 0)
+    out = None
+    for k in np.unique(which):
+        sel = np.nonzero(which == k)[0]
+        vals = sample_dense(segs[k][2], t[sel])
+        if out is None:
+            out = np.empty((t.size, vals.shape[-1]))
+        out[sel] = vals
+    return out
+
+
+def energy_scale(KE, E) -> float:
+    """max |T| + max |V|: the size of the terms whose sum is the energy."""
+    return float(np.max(np.abs(KE)) + np.max(np.abs(np.asarray(E) - KE)))

@@ -1,0 +1,493 @@
+"""The free-body engine: each effect against a closed form, the invariants it declares,
+rigid-body contacts and simultaneous impacts, and the combinations it refuses."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from mechanics.impact import RigidBody, rigid_impact
+from mechanics.scenes import SceneError, parse_scene, run_scene
+from mechanics.scenes import effects as fx
+
+EPS = float(np.finfo(float).eps)
+#: DOP853 at rtol = atol = 1e-12 over a few periods of an O(1) motion: the global error
+#: is ~1e-11 relative; 2^20 eps = 2.3e-10 leaves a factor of 20
+INTEGRATED_RTOL = 2**20 * EPS
+#: one impulse in closed form: a handful of roundings of O(1) terms
+IMPULSE_RTOL = 256 * EPS
+
+
+def _scene(bodies, effects, *, duration=1.0, samples=101, method="auto", **kw):
+    return parse_scene(
+        {
+            "scene": {
+                "name": "engine",
+                "duration": duration,
+                "samples": samples,
+                "method": method,
+                **kw,
+            },
+            "bodies": bodies,
+            "effects": effects,
+        },
+        source="engine.toml",
+    )
+
+
+def _point(name, mass=1.0, **initial):
+    return {"name": name, "shape": "point", "mass": mass, "initial": initial}
+
+
+def _conserved(r) -> set[str]:
+    return {c.name for c in r.conserved}
+
+
+# ------------------------------------------------------------------ each effect
+
+
+def test_newton_gravity_closes_a_circular_orbit_in_its_period() -> None:
+    # two unit masses 1 apart, G = 1: μ = G (m1 + m2) = 2, relative speed √(μ/a)
+    w = math.sqrt(2.0) / 2
+    T = 2 * math.pi / math.sqrt(2.0)  # 2π √(a³/μ)
+    r = run_scene(
+        _scene(
+            [
+                _point("a", position=[0.5, 0, 0], velocity=[0, w, 0]),
+                _point("b", position=[-0.5, 0, 0], velocity=[0, -w, 0]),
+            ],
+            [{"type": "newton_gravity", "G": 1.0}],
+            duration=T,
+        )
+    )
+    assert r.passed, r.summary()
+    s = r.trajectory.series
+    end = np.array([s["a.x"][-1], s["a.y"][-1], s["b.x"][-1], s["b.y"][-1]])
+    np.testing.assert_allclose(end, [0.5, 0, -0.5, 0], rtol=0, atol=64 * INTEGRATED_RTOL)
+    half = len(r.trajectory.t) // 2  # half a period: the pair has turned by π
+    assert s["a.x"][half] == pytest.approx(-0.5, abs=64 * INTEGRATED_RTOL)
+    assert _conserved(r) == {"p_x", "p_y", "p_z", "L_x", "L_y", "L_z", "E"}
+
+
+def _box(name="box", mass=1.0, **initial):
+    return {
+        "name": name,
+        "shape": "box",
+        "mass": mass,
+        "a": 0.2,
+        "b": 0.4,
+        "c": 0.6,
+        "initial": initial,
+    }
+
+
+def test_a_spring_attached_off_the_centre_turns_the_body() -> None:
+    spring = {"type": "spring", "body": "box", "at": [0.1, 0.2, 0.0], "stiffness": 5.0}
+    r = run_scene(_scene([_box(position=[1.0, 0.5, 0.2])], [spring], duration=3.0))
+    assert r.passed, r.summary()
+    assert r.method.startswith("integrated")
+    s = r.trajectory.series
+    assert max(np.abs(s["omega1"]).max(), np.abs(s["omega3"]).max()) > 0.1, "it turns"
+    # the anchor is the origin: central force, so L about the origin is kept; energy too
+    assert _conserved(r) == {"L_x", "L_y", "L_z", "E"}
+    # the same spring at G exerts no moment: no rotation at all
+    at_G = {k: v for k, v in spring.items() if k != "at"}
+    r0 = run_scene(_scene([_box(position=[1.0, 0.5, 0.2])], [at_G], duration=3.0))
+    assert r0.passed
+    assert not any(np.abs(r0.trajectory.series[f"omega{k}"]).max() for k in (1, 2, 3))
+
+
+def test_a_damped_spring_between_two_bodies_keeps_the_momentum_and_dissipates() -> None:
+    spring = {
+        "type": "spring",
+        "body": "a",
+        "other": "b",
+        "stiffness": 4.0,
+        "rest_length": 1.0,
+        "damping": 0.5,
+    }
+    r = run_scene(
+        _scene(
+            [
+                _point("a", position=[0, 0, 0], velocity=[1.0, 0.3, 0]),
+                _point("b", 2.0, position=[1.5, 0, 0], velocity=[0, -0.2, 0.1]),
+            ],
+            [spring],
+            duration=10.0,
+        )
+    )
+    assert r.passed, r.summary()
+    assert _conserved(r) == {"p_x", "p_y", "p_z", "L_x", "L_y", "L_z"}
+    E = r.trajectory.series["E"]
+    assert np.all(np.diff(E) <= INTEGRATED_RTOL * E[0]), "a damper never adds energy"
+    assert E[-1] < 0.9 * E[0]
+
+
+def test_drag_follows_the_closed_forms() -> None:
+    m, v0, b, c = 2.0, 3.0, 0.4, 0.3
+    r = run_scene(
+        _scene(
+            [
+                _point("lin", m, velocity=[v0, 0, 0]),
+                _point("quad", m, velocity=[v0, 0, 0]),
+                {
+                    "name": "ball",
+                    "shape": "solid_sphere",
+                    "mass": m,
+                    "radius": 0.5,
+                    "initial": {"omega": [0.0, 0.0, v0]},
+                },
+            ],
+            [
+                {"type": "drag", "body": "lin", "linear": b},
+                {"type": "drag", "body": "quad", "quadratic": c},
+                {"type": "drag", "body": "ball", "angular_linear": b},
+            ],
+            duration=4.0,
+        )
+    )
+    assert r.passed, r.summary()
+    t, s = r.trajectory.t, r.trajectory.series
+    J = 0.4 * m * 0.25
+    tol = 16 * INTEGRATED_RTOL
+    np.testing.assert_allclose(s["lin.vx"], v0 * np.exp(-b * t / m), rtol=tol)
+    np.testing.assert_allclose(s["lin.x"], v0 * m / b * -np.expm1(-b * t / m), rtol=tol, atol=tol)
+    np.testing.assert_allclose(s["quad.vx"], v0 / (1 + c * v0 * t / m), rtol=tol)
+    np.testing.assert_allclose(s["quad.x"], m / c * np.log1p(c * v0 * t / m), rtol=tol, atol=tol)
+    np.testing.assert_allclose(s["ball.omega3"], v0 * np.exp(-b * t / J), rtol=tol)
+    assert "E" not in _conserved(r)
+
+
+def test_a_push_and_a_couple_give_their_impulses() -> None:
+    m, a = 2.0, 0.5
+    J = 0.4 * m * a * a
+    ball = {"name": "ball", "shape": "solid_sphere", "mass": m, "radius": a}
+    effects = [
+        {"type": "force", "body": "ball", "force": [0.0, 4.0, 0.0], "start": 0.1, "end": 0.35},
+        # body-fixed, at a point off G, perpendicular to its arm: a constant moment about e3
+        {
+            "type": "force",
+            "body": "ball",
+            "force": [0.0, 2.0, 0.0],
+            "at": [a, 0.0, 0.0],
+            "frame": "body",
+            "start": 0.5,
+            "end": 0.75,
+        },
+        {"type": "torque", "body": "ball", "torque": [0.5, 0.0, 0.0], "start": 1.0, "end": 1.5},
+    ]
+    r = run_scene(_scene([ball], effects[:1], duration=1.0))
+    assert r.passed, r.summary()
+    assert r.trajectory.state_at(1.0)["vy"] == pytest.approx(4.0 * 0.25 / m, rel=IMPULSE_RTOL)
+    r = run_scene(_scene([{**ball, "initial": {}}], effects[1:2], duration=1.0))
+    assert r.passed, r.summary()
+    # the arm and the force turn together: ω3 grows by (a · 2 N) Δt / J
+    assert r.trajectory.state_at(1.0)["omega3"] == pytest.approx(
+        a * 2.0 * 0.25 / J, rel=INTEGRATED_RTOL
+    )
+    r = run_scene(_scene([ball], effects[2:], duration=2.0))
+    assert r.passed, r.summary()
+    assert r.trajectory.state_at(2.0)["omega1"] == pytest.approx(0.25 / J, rel=INTEGRATED_RTOL)
+    assert r.trajectory.state_at(2.0)["vy"] == 0.0
+
+
+def test_body_frame_thrust_on_a_body_that_does_not_turn_equals_space_thrust() -> None:
+    def rocket(frame):
+        return _scene(
+            [{"name": "r", "shape": "cylinder", "mass": 10.0, "radius": 0.2, "height": 2.0}],
+            [
+                {
+                    "type": "thrust",
+                    "body": "r",
+                    "mass_flow": 1.0,
+                    "exhaust_speed": 50.0,
+                    "fuel_mass": 4.0,
+                    "direction": [0.0, 0.0, 1.0],
+                    "frame": frame,
+                }
+            ],
+            duration=6.0,
+            method="integrate",
+        )
+
+    a, b = run_scene(rocket("space")), run_scene(rocket("body"))
+    assert a.passed
+    assert b.passed
+    np.testing.assert_allclose(a.trajectory.series["vz"], b.trajectory.series["vz"], rtol=0, atol=0)
+    # (7.30) without gravity: v = u ln(m0 / m)
+    assert a.trajectory.state_at(6.0)["vz"] == pytest.approx(
+        50.0 * math.log(10.0 / 6.0), rel=INTEGRATED_RTOL
+    )
+
+
+# ------------------------------------------------------------------ contacts
+
+
+def _dropped_box(e=0.6, duration=0.5, method="auto"):
+    return _scene(
+        [_box(position=[0.0, 0.0, 1.0], psi=0.3, theta=0.7, phi=0.2, omega=[0.5, -1.0, 2.0])],
+        [
+            {"type": "gravity", "g": 9.81},
+            {"type": "impact", "body": "box", "restitution": e},
+        ],
+        duration=duration,
+        samples=501,
+        method=method,
+    )
+
+
+def test_a_box_dropped_on_a_corner_restitutes_at_that_corner() -> None:
+    r = run_scene(_dropped_box())
+    assert r.method.startswith("integrated")
+    assert r.passed, r.summary()
+    ev = r.trajectory.events[0]
+    assert "corner" in ev.detail["feature"]
+    assert ev.detail["normal_speed_after"] == pytest.approx(
+        0.6 * ev.detail["normal_speed_before"], rel=IMPULSE_RTOL
+    )
+    assert min(r.trajectory.extra["gaps"].values(), key=np.min).min() >= -64 * EPS
+
+
+def test_the_corner_impulse_agrees_with_mechanics_impact(monkeypatch) -> None:
+    """Independent route: the engine's impulse against :func:`mechanics.impact.rigid_impact`
+    (a 3 × 3 solve in space components) on the state just before each impact.  The two
+    routes agree up to the rounding and to the integrated attitude's departure from
+    orthogonality (the engine works in body components, the reference with Rᵀ J R)."""
+    seen = []
+    real = fx.Impact._apply
+
+    def spy(self, s, S, n, v_n):
+        i = self.i
+        R = s.R[i]
+        before = RigidBody(
+            s.m[i],
+            R.T @ np.diag(s.J[i]) @ R,
+            s.r[i].copy(),
+            s.v[i].copy(),
+            s.to_space(i, s.omega[i]),
+        )
+        ref = rigid_impact(before, None, r_S=S, n=n, e=self.e).body_1
+        orth = float(np.abs(R @ R.T - np.eye(3)).max())
+        real(self, s, S, n, v_n)
+        seen.append((s.v[i].copy(), s.to_space(i, s.omega[i]), ref, orth))
+
+    monkeypatch.setattr(fx.Impact, "_apply", spy)
+    r = run_scene(_dropped_box(duration=0.45))
+    assert len(r.trajectory.events) == len(seen) >= 2
+    for v, w, ref, orth in seen:
+        # the velocities are O(1)-O(10): a unit of absolute error per unit of speed
+        tol = (IMPULSE_RTOL + 64 * orth) * (1.0 + np.abs(ref.omega).max())
+        np.testing.assert_allclose(v, ref.v_G, rtol=0, atol=tol)
+        np.testing.assert_allclose(w, ref.omega, rtol=0, atol=tol)
+
+
+def test_newtons_cradle_passes_the_momentum_down_the_row() -> None:
+    r_ = 0.1
+    balls = [
+        {
+            "name": f"b{k}",
+            "shape": "solid_sphere",
+            "mass": 1.0,
+            "radius": r_,
+            "initial": {"position": [2 * r_ * k + (0.0 if k else -0.3), 0.0, 0.0]}
+            | ({"velocity": [1.0, 0.0, 0.0]} if k == 0 else {}),
+        }
+        for k in range(5)
+    ]
+    impacts = [
+        {"type": "impact", "body": f"b{k + 1}", "other": f"b{k}", "restitution": 1.0}
+        for k in range(4)
+    ]
+    for method in ("auto", "integrate"):
+        r = run_scene(_scene(balls, impacts, duration=1.0, method=method))
+        assert r.passed, r.summary()
+        ev = r.trajectory.events
+        assert len(ev) == 4
+        assert len({e.t for e in ev}) == 1, "four impacts at one instant"
+        assert ev[0].t == pytest.approx(0.3, rel=IMPULSE_RTOL)
+        end = [r.trajectory.state_at(1.0)[f"b{k}.vx"] for k in range(5)]
+        np.testing.assert_allclose(end, [0, 0, 0, 0, 1.0], rtol=0, atol=IMPULSE_RTOL)
+
+
+def test_exact_and_integrated_flights_of_a_spinning_box_agree() -> None:
+    box = _box(position=[0, 0, 5.0], velocity=[1.0, 0.5, 3.0], omega=[0.3, 2.0, 0.1], theta=0.4)
+    sc = _scene([box], [{"type": "gravity", "g": 9.81}], duration=1.0)
+    ex, it = run_scene(sc), run_scene(dataclasses.replace(sc, method="integrate"))
+    assert ex.method.startswith("exact")
+    assert it.method.startswith("integrated")
+    assert ex.passed, ex.summary()
+    assert it.passed, it.summary()
+    for key in ("x", "z", "vz", "omega1", "omega2", "omega3"):
+        a, b = ex.trajectory.series[key], it.trajectory.series[key]
+        assert np.max(np.abs(a - b)) <= 64 * INTEGRATED_RTOL * max(1.0, np.max(np.abs(a))), key
+    assert {"L_x (spin about G)", "L_z"} <= _conserved(ex)
+
+
+# ------------------------------------------------------------------ invariants
+
+#: effect templates for two bodies a (a sphere) and b (a box), and what each keeps of
+#: p_x p_y p_z L_x L_y L_z E, written from the physics (not read from the code)
+EFFECTS = {
+    "gravity": ({"type": "gravity", "g": 9.81}, {"p_x", "p_y", "L_z", "E"}),
+    "newton": (
+        {"type": "newton_gravity", "G": 0.05},
+        {"p_x", "p_y", "p_z", "L_x", "L_y", "L_z", "E"},
+    ),
+    "spring": (
+        {
+            "type": "spring",
+            "body": "a",
+            "other": "b",
+            "other_at": [0.1, 0.0, 0.3],
+            "stiffness": 3.0,
+        },
+        {"p_x", "p_y", "p_z", "L_x", "L_y", "L_z", "E"},
+    ),
+    "damper": (
+        {"type": "damper", "body": "a", "other": "b", "at": [0.0, 0.2, 0.0], "damping": 0.3},
+        {"p_x", "p_y", "p_z", "L_x", "L_y", "L_z"},
+    ),
+    "anchored": (
+        {"type": "spring", "body": "b", "at": [0.1, 0.1, 0.0], "stiffness": 2.0},
+        {"L_x", "L_y", "L_z", "E"},
+    ),
+    "drag": ({"type": "drag", "body": "a", "quadratic": 0.2, "angular_linear": 0.1}, set()),
+    "couple": ({"type": "torque", "body": "b", "torque": [0.0, 0.3, 0.1]}, {"p_x", "p_y", "p_z"}),
+}
+
+
+@settings(max_examples=25)
+@given(
+    chosen=st.lists(st.sampled_from(sorted(EFFECTS)), min_size=1, max_size=4, unique=True),
+    va=st.tuples(*[st.floats(-1, 1)] * 3),
+    wb=st.tuples(*[st.floats(-2, 2)] * 3),
+)
+def test_random_effect_sets_conserve_what_their_physics_keeps(chosen, va, wb) -> None:
+    bodies = [
+        {
+            "name": "a",
+            "shape": "solid_sphere",
+            "mass": 1.5,
+            "radius": 0.2,
+            "initial": {
+                "position": [0.0, 0.0, 0.0],
+                "velocity": list(va),
+                "omega": [0.0, 0.0, 1.0],
+            },
+        },
+        _box("b", 2.0, position=[1.0, 0.3, -0.2], omega=list(wb)),
+    ]
+    r = run_scene(_scene(bodies, [EFFECTS[k][0] for k in chosen], duration=1.0, samples=41))
+    expected = set.intersection(*(EFFECTS[k][1] for k in chosen))
+    assert {c for c in _conserved(r) if "spin" not in c} == expected
+    assert r.passed, r.summary()
+
+
+def test_an_effect_that_claims_too_much_fails_the_run(monkeypatch) -> None:
+    """Negative control: drag declared energy-keeping is caught by the drift check."""
+    monkeypatch.setattr(fx.Drag, "keeps", lambda self, q: True)
+    r = run_scene(
+        _scene([_point("a", velocity=[1.0, 0, 0])], [{"type": "drag", "body": "a", "linear": 0.5}])
+    )
+    assert "E" in _conserved(r)
+    assert not r.passed
+    assert [c.name for c in r.conserved if not c.ok] == ["p_x", "E"]
+
+
+# ------------------------------------------------------------------ refused
+
+
+@pytest.mark.parametrize(
+    ("bodies", "effects", "where", "match"),
+    [
+        (
+            [_point("a")],
+            [{"type": "torsion", "body": "a", "stiffness": 1.0}],
+            "effects[0].type",
+            "fixed_axis",
+        ),
+        (
+            [_point("a")],
+            [{"type": "spring", "body": "a", "at": [0.1, 0, 0], "stiffness": 1.0}],
+            "effects[0].at",
+            "is a point",
+        ),
+        (
+            [_box("a"), _box("b", position=[2.0, 0, 0])],
+            [{"type": "impact", "body": "a", "other": "b", "restitution": 0.5}],
+            "effects[0].other",
+            "two polyhedral",
+        ),
+        (
+            [{"name": "d", "shape": "disc", "mass": 1.0, "radius": 0.1}],
+            [{"type": "impact", "body": "d", "restitution": 0.5}],
+            "effects[0].body",
+            "contacts of a disc",
+        ),
+        (
+            [_point("a", omega=[0, 0, 1.0])],
+            [],
+            "bodies[0].initial.omega",
+            "no attitude",
+        ),
+        (
+            [
+                {
+                    "name": "rod",
+                    "shape": "rod",
+                    "mass": 1.0,
+                    "length": 1.0,
+                    "initial": {"omega": [0, 0, 1.0]},
+                }
+            ],
+            [],
+            "bodies[0].initial.omega",
+            "zero principal moment",
+        ),
+        (
+            [_point("a", position=[0, 0, 0.05])],
+            [
+                {"type": "impact", "body": "a", "restitution": 0.5},
+                {
+                    "type": "thrust",
+                    "body": "a",
+                    "mass_flow": 1.0,
+                    "exhaust_speed": 1.0,
+                    "fuel_mass": 1.0,
+                },
+            ],
+            "effects[1].fuel_mass",
+            "less than the body's mass",
+        ),
+        (
+            [_box("b", position=[0, 0, 0.1])],
+            [{"type": "impact", "body": "b", "restitution": 0.5}],
+            "effects[0]",
+            "overlap at t = 0",
+        ),
+        (
+            [_point("a", velocity=[1.0, 0, 0]) | {"fixed": True}],
+            [],
+            "bodies[0].initial.velocity",
+            "stays at rest",
+        ),
+        (
+            [_point("a")],
+            [{"type": "force", "body": "a", "force": [1, 0, 0], "start": 2.0, "end": 1.0}],
+            "effects[0].end",
+            "after start",
+        ),
+    ],
+)
+def test_combinations_that_make_no_physical_sense_are_refused(
+    bodies, effects, where, match
+) -> None:
+    with pytest.raises(SceneError, match=match) as info:
+        _scene(bodies, effects)
+    assert info.value.field == where
+    assert str(info.value).startswith(f"engine.toml: {where}: ")

@@ -1,0 +1,98 @@
+"""The scenes' imports point one way: spec → simulate → engine and models → effects →
+state → errors, with no cycle; mechanics never imports the book layer (identities)."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+import mechanics
+import mechanics.scenes
+
+SCENES = Path(mechanics.scenes.__file__).parent
+#: each module of mechanics/scenes with its layer: a module may import only lower layers
+LAYERS = {
+    "errors": 0,
+    "trajectory": 0,
+    "contacts": 0,
+    "state": 1,
+    "effects": 2,
+    "engine": 3,
+    "models": 3,
+    "simulate": 4,
+    "spec": 5,
+    "result": 6,
+    "__init__": 7,
+}
+
+
+def _module_of(path: Path) -> str:
+    rel = path.relative_to(SCENES)
+    return (
+        rel.parts[0].removesuffix(".py")
+        if len(rel.parts) == 1 or rel.parts[0] != "effects"
+        else "effects"
+    )
+
+
+def _scene_imports(path: Path) -> set[str]:
+    """The sibling modules of mechanics/scenes that a file imports (at any depth)."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    inside_effects = path.parent.name == "effects"
+    out = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom):
+            mod = node.module or ""
+            if node.level == 0 and mod.startswith("mechanics.scenes."):
+                out.add(mod.split(".")[2])
+            elif node.level == 1 and not inside_effects:
+                out.update([mod.split(".")[0]] if mod else [a.name for a in node.names])
+            elif node.level == 1 and inside_effects:
+                out.add("effects")
+            elif node.level == 2:
+                out.add(mod.split(".")[0])
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.startswith("mechanics.scenes."):
+                    out.add(a.name.split(".")[2])
+    return out
+
+
+def _graph() -> dict[str, set[str]]:
+    g: dict[str, set[str]] = {}
+    for p in SCENES.rglob("*.py"):
+        m = _module_of(p)
+        g.setdefault(m, set()).update(_scene_imports(p) - {m})
+    return g
+
+
+def test_every_scenes_module_has_a_layer() -> None:
+    assert set(_graph()) == set(LAYERS)
+
+
+@pytest.mark.parametrize("module", sorted(LAYERS))
+def test_scenes_modules_import_only_lower_layers(module) -> None:
+    up = {m for m in _graph()[module] if LAYERS[m] >= LAYERS[module]}
+    assert not up, f"{module} imports {up} (layer {LAYERS[module]})"
+
+
+def test_the_layer_check_sees_an_upward_import(tmp_path) -> None:
+    """Negative control: an effect importing the engine is found."""
+    p = tmp_path / "effects" / "bad.py"
+    p.parent.mkdir()
+    p.write_text("from ..engine import Engine\nfrom .base import Effect\n")
+    assert _scene_imports(p) == {"engine", "effects"}
+
+
+def test_mechanics_never_imports_identities() -> None:
+    root = Path(mechanics.__file__).parent
+    for p in root.rglob("*.py"):
+        for node in ast.walk(ast.parse(p.read_text(encoding="utf-8"))):
+            names = []
+            if isinstance(node, ast.ImportFrom) and node.level == 0:
+                names = [node.module or ""]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            assert not any(n.split(".")[0] == "identities" for n in names), p
