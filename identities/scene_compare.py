@@ -23,6 +23,7 @@ Tolerances (relative) are named multiples of eps with a reason:
 
 from __future__ import annotations
 
+import functools
 import itertools
 import math
 
@@ -353,19 +354,11 @@ def heavy_top(scene: Scene, tr: Trajectory):
 # ------------------------------------------------------------------ 5.3.3 flip
 
 
-def intermediate_axis_flip(scene: Scene, tr: Trajectory):
-    """5.3.3: rotation about the intermediate axis is unstable; ω2 reverses sign twice
-    per period 4K(m)/λ of the Jacobi solution of (5.91) (derived): with L² and 2E from
-    the initial ω and J1 < J2 < J3, for L² < 2EJ2 (ω circulates axis 1)
-    λ² = (J2 − J1)(2EJ3 − L²)/(J1J2J3), m = (J3 − J2)(L² − 2EJ1)/((J2 − J1)(2EJ3 − L²)),
-    and with the indices 1 ↔ 3 exchanged otherwise."""
+def _flip_period(J, w) -> float:
+    """The period 4K(m)/λ of ω2's reversals for body ω (derived; see
+    :func:`intermediate_axis_flip`)."""
     from scipy.special import ellipk
 
-    b = scene.bodies[0]
-    _need(scene, not scene.effects, "a free body without effects")
-    J = np.asarray(body_inertia(b))
-    _need(scene, J[0] < J[1] < J[2], "principal moments J1 < J2 < J3")
-    w = np.asarray(b.initial.get("omega", [0.0, 0.0, 0.0]))
     J1, J2, J3 = J
     E2, L2 = float((J * w * w).sum()), float((J * J * w * w).sum())
     if L2 < E2 * J2:
@@ -374,12 +367,54 @@ def intermediate_axis_flip(scene: Scene, tr: Trajectory):
     else:
         lam2 = (J3 - J2) * (L2 - E2 * J1) / (J1 * J2 * J3)
         m = (J2 - J1) * (E2 * J3 - L2) / ((J3 - J2) * (L2 - E2 * J1))
-    T = 4 * ellipk(m) / math.sqrt(lam2)
+    return 4 * ellipk(m) / math.sqrt(lam2)
+
+
+def intermediate_axis_flip(scene: Scene, tr: Trajectory):
+    """5.3.3: rotation about the intermediate axis is unstable; ω2 reverses sign twice
+    per period 4K(m)/λ of the Jacobi solution of (5.91) (derived): with L² and 2E from
+    the initial ω and J1 < J2 < J3, for L² < 2EJ2 (ω circulates axis 1)
+    λ² = (J2 − J1)(2EJ3 − L²)/(J1J2J3), m = (J3 − J2)(L² − 2EJ1)/((J2 − J1)(2EJ3 − L²)),
+    and with the indices 1 ↔ 3 exchanged otherwise."""
+    b = scene.bodies[0]
+    _need(scene, not scene.effects, "a free body without effects")
+    J = np.asarray(body_inertia(b))
+    _need(scene, J[0] < J[1] < J[2], "principal moments J1 < J2 < J3")
+    w = np.asarray(b.initial.get("omega", [0.0, 0.0, 0.0]))
+    T = _flip_period(J, w)
     tol, why = _tol(tr)
     z = _zeros(tr, "omega2", 3)
     return [
         Comparison(
             "flip period (ω2 back to its sign)",
+            "5.3.3: 4K(m)/λ (derived)",
+            z[2] - z[0],
+            T,
+            max(tol, 2**12 * EPS),
+            why + ", zeros by brentq",
+        )
+    ]
+
+
+def flip_after_push(scene: Scene, tr: Trajectory):
+    """5.3.3 started by a push: after the push's window ends the body is torque-free, so
+    ω2 reverses with the period 4K(m)/λ of the ω it has then (read off the motion at
+    the window's end; :func:`intermediate_axis_flip` for the formula)."""
+    b = scene.bodies[0]
+    pushes = [e for e in scene.effects if e.type in ("force", "torque")]
+    _need(scene, len(pushes) == len(scene.effects) >= 1, "only pushes (force or torque effects)")
+    _need(scene, all("end" in p.fields for p in pushes), "pushes that end")
+    J = np.asarray(body_inertia(b))
+    _need(scene, J[0] < J[1] < J[2], "principal moments J1 < J2 < J3")
+    t_end = max(p.fields["end"] for p in pushes)
+    st = tr.state_at(t_end)
+    w = np.array([st[f"omega{k}"] for k in (1, 2, 3)])
+    T = _flip_period(J, w)
+    tol, why = _tol(tr)
+    z = _zeros(tr, "omega2", 3, t_lo=t_end)
+    return [
+        Comparison(
+            "flip period after the push",
             "5.3.3: 4K(m)/λ (derived)",
             z[2] - z[0],
             T,
@@ -531,6 +566,175 @@ def sliding_ball(scene: Scene, tr: Trajectory):
     ]
 
 
+# ------------------------------------------------------------------ Example 6.2
+
+
+def rod_struck(scene: Scene, tr: Trajectory):
+    """Example 6.2: a rod (the bat) at rest, struck perpendicular to it at its end (x = 0):
+    just after the hit the point at distance 2ℓ/3 from the struck end is at rest (6.28),
+    (6.29), and the rod's kinetic energy is T(0) = (S²/2m)(1 + 12 (0 − 1/2)²) = 2S²/m
+    (6.26), with S the impulse the ball gave (read off the ball's change of momentum)."""
+    rods = [b for b in scene.bodies if b.shape == "rod"]
+    _need(scene, len(rods) == 1 and len(scene.bodies) == 2, "a rod and one striker")
+    rod = rods[0]
+    ball = next(b for b in scene.bodies if b is not rod)
+    hits = [e for e in tr.events if e.kind == "impact"]
+    _need(scene, len(hits) >= 1, "an impact within the duration")
+    t_hit, ell, m = hits[0].t, rod.dims["length"], rod.mass
+    after = tr.state_at(t_hit)  # the piece that starts at the impact: just after it
+    r_before = np.array(rod.initial.get("position", [0.0] * 3))
+    v0_ball = np.array(ball.initial.get("velocity", [0.0] * 3))
+    p = f"{rod.name}."
+    v_G = np.array([after[p + c] for c in ("vx", "vy", "vz")])
+    w = np.array([after[p + c] for c in ("wx", "wy", "wz")])
+    v_ball = np.array([after[f"{ball.name}.{c}"] for c in ("vx", "vy", "vz")])
+    S = ball.mass * float(np.linalg.norm(v_ball - v0_ball))
+    # the struck end and the rod's direction from it, from the contact point of the event
+    end = np.array(hits[0].detail["contact_point"])
+    u = (r_before - end) / np.linalg.norm(r_before - end)
+    # points P = end + ξ u move with v_G + ω × (P − G); along the blow's line they stop at
+    # ξ where the component along the blow vanishes (v_G ⟂ u; ω ⟂ u)
+    n = v_G / np.linalg.norm(v_G)
+    rate = float(np.cross(w, u) @ n)  # d(v·n)/dξ
+    xi = (float(v_G @ n) + rate * (float((end - r_before) @ u))) / -rate
+    T_rod = 0.5 * m * float(v_G @ v_G) + 0.5 * (m * ell * ell / 12.0) * float(w @ w)
+    tol, why = _tol(tr)
+    return [
+        Comparison(
+            "point at rest, from the struck end", "E6.2 (6.29): 2ℓ/3", xi, 2 * ell / 3, tol, why
+        ),
+        Comparison(
+            "kinetic energy of the bat after the hit",
+            "E6.2 (6.26): (S²/2m)(1 + 12(x/ℓ − 1/2)²), x = 0",
+            T_rod,
+            S * S / (2 * m) * (1 + 12 * 0.25),
+            tol,
+            why,
+        ),
+    ]
+
+
+def cradle(scene: Scene, tr: Trajectory):
+    """(6.36)–(6.38) with e = 1 and equal masses: a direct elastic impact exchanges the
+    velocities, so in a row of touching balls the first one's velocity passes down the
+    row and only the last ball moves on."""
+    names = [b.name for b in scene.bodies]
+    _need(scene, len({b.mass for b in scene.bodies}) == 1, "equal masses")
+    _need(
+        scene,
+        all(e.fields["restitution"] == 1.0 for e in scene.effects_of("impact")),
+        "elastic impacts (e = 1)",
+    )
+    v0 = float(scene.bodies[0].initial["velocity"][0])
+    end = tr.state_at(scene.duration)
+    tol, why = _tol(tr)
+    out = [
+        Comparison(
+            f"{names[-1]} leaves with",
+            "(6.38): the first ball's velocity",
+            end[f"{names[-1]}.vx"],
+            v0,
+            tol,
+            why,
+        )
+    ]
+    out += [
+        Comparison(
+            f"{n} at rest after", "(6.38): velocities exchanged", end[f"{n}.vx"], 0.0, tol, why
+        )
+        for n in names[:-1]
+    ]
+    return out
+
+
+def rocket_drag(scene: Scene, tr: Trajectory):
+    """Example 7.2 with quadratic drag: m(t) v' = q u − m(t) g − c v|v|, m(t) = m0 − q t,
+    from rest (the equation of motion (7.24) with the drag added).  No closed form: the
+    reference is mpmath's Taylor-series solver at 30 digits, an independent route."""
+    g = _gravity(scene)
+    th = scene.effects_of("thrust")
+    dr = scene.effects_of("drag")
+    _need(scene, len(th) == 1 and len(dr) == 1, "one thrust and one drag")
+    f, c = th[0].fields, dr[0].fields.get("quadratic", 0.0)
+    _need(scene, not dr[0].fields.get("linear"), "quadratic drag only")
+    b = scene.body(f["body"])
+    _need(scene, not any(b.initial.get("velocity", [0, 0, 0])), "a start from rest")
+    m0, q, u = b.mass, f["mass_flow"], f["exhaust_speed"]
+    T = min(f["fuel_mass"] / q, scene.duration)
+    ref = _rocket_drag_reference(m0, q, u, c, g, (0.25 * T, T))
+    tol, why = _tol(tr)
+    out = []
+    for tt, (z, v) in ref.items():
+        st = tr.state_at(tt)
+        out.append(
+            Comparison(
+                f"v at t = {tt:.6g} s", "7.24 with drag (mpmath Taylor)", st["vz"], v, tol, why
+            )
+        )
+        out.append(
+            Comparison(
+                f"z at t = {tt:.6g} s", "7.24 with drag (mpmath Taylor)", st["z"], z, tol, why
+            )
+        )
+    return out
+
+
+@functools.lru_cache(maxsize=8)
+def _rocket_drag_reference(m0, q, u, c, g, times) -> dict[float, list[float]]:
+    """(z, v) at the times by mpmath's Taylor-series ODE solver at 30 digits (cached: the
+    exact and the integrated run compare with the same reference)."""
+    import mpmath
+
+    with mpmath.workdps(30):
+        sol = mpmath.odefun(
+            lambda t, y: [y[1], (q * u - c * y[1] * abs(y[1])) / (m0 - q * t) - g], 0, [0, 0]
+        )
+        return {tt: [float(x) for x in sol(tt)] for tt in times}
+
+
+def corner_impacts(scene: Scene, tr: Trajectory):
+    """6.2–6.3 at a corner: each impact reverses the corner's normal velocity with the
+    factor e (6.36), and the kinetic energy drops by ½ μ (1 − e²) v_n² (6.41) with the
+    effective mass 1/μ = 1/m + (ρ × n)·J⁻¹(ρ × n) at the contact (6.19), (6.21),
+    computed here by :func:`mechanics.impact.effective_mass` from the body's state."""
+    from mechanics.impact import effective_mass
+
+    imp = scene.effects_of("impact")
+    _need(scene, len(imp) == 1 and "other" not in imp[0].fields, "one impact against a plane")
+    e = imp[0].fields["restitution"]
+    hits = [ev for ev in tr.events if ev.kind == "impact"]
+    _need(scene, len(hits) >= 1, "an impact within the duration")
+    tol, why = _tol(tr)
+    out = []
+    for k, ev in enumerate(hits[:3]):
+        d = ev.detail
+        (bd,) = d["bodies_before"]
+        rho = np.subtract(d["contact_point"], bd["r_G"])
+        mu = float(effective_mass(bd["m"], bd["J_G"], rho, d["normal"]))
+        vn = d["normal_speed_before"]
+        out.append(
+            Comparison(
+                f"impact {k + 1}: e = after/before",
+                "(6.36)",
+                d["normal_speed_after"] / vn,
+                e,
+                tol,
+                why,
+            )
+        )
+        out.append(
+            Comparison(
+                f"impact {k + 1}: energy lost",
+                "(6.41): ½ μ (1 − e²) v_n²",
+                d["kinetic_energy_before"] - d["kinetic_energy_after"],
+                0.5 * mu * (1 - e * e) * vn * vn,
+                max(tol, 2**10 * EPS),
+                why + "; T read off the velocities",
+            )
+        )
+    return out
+
+
 COMPARISONS = {
     "E6.1": bouncing_ball,
     "E3.6": rolling_incline,
@@ -539,6 +743,11 @@ COMPARISONS = {
     "E4.5": cylinder_in_track,
     "5.2": heavy_top,
     "5.3.3": intermediate_axis_flip,
+    "5.3.3-push": flip_after_push,
+    "E6.2": rod_struck,
+    "cradle": cradle,
+    "rocket-drag": rocket_drag,
+    "corner-impacts": corner_impacts,
     "E7.2": rocket,
     "E7.3": carousel,
     "E8.1": tank,

@@ -285,9 +285,10 @@ class FreeAsymmetricTop:
                 self._uniform_rate = float(Fraction(1) / J3)
             self.m, self.m1 = float(m), float(m1)
             if m1 > 0 and self.m1 < 2.0**-1022:
+                e2 = m1.numerator.bit_length() - m1.denominator.bit_length()
                 raise OutOfDomainError(
-                    f"the motion is within m1 = {float(m1.numerator) / 2.0**1074:.3g}·2^1074/"
-                    "… of the separatrix: the complementary parameter m1 underflows float64 "
+                    f"the motion is within m1 ≈ 2^{e2} of the separatrix: the "
+                    "complementary parameter m1 underflows float64 "
                     "(the transverse components are below ~1e-150 of |ω|); set them to zero "
                     "for the steady rotation or scale them up"
                 )

@@ -33,6 +33,10 @@ Conventions
   side, a pair interpenetrating at a step's start, or a pair that comes to rest under a
   pressing force (accumulating impacts, or e = 0) stops the run with a
   :class:`~mechanics.scenes.errors.SceneError` naming the pair and the time.
+- **Series**: per body (prefixed ``name.`` when there are several) x, y, z, vx, vy, vz
+  (space components), mass (with thrust), and for a rigid body omega1..3 (body
+  components) and wx, wy, wz (space components); the totals E, and p_*, L_* (about the
+  origin) for several bodies or a rigid one.
 - **Invariants**: the result names the quantities every listed effect keeps
   (:meth:`~mechanics.scenes.effects.base.Effect.keeps`): the total momentum p_x, p_y,
   p_z, the total angular momentum about the origin L_x, L_y, L_z (orbital r × m v plus
@@ -49,6 +53,8 @@ import math
 
 import numpy as np
 from numpy.polynomial import chebyshev as C
+
+from mechanics.errors import OutOfDomainError
 
 from . import contacts
 from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
@@ -212,6 +218,10 @@ class Engine:
         for i in self.rigid:  # torque-free rotation by elliptic functions needs J > 0
             if self.w0[i].any() and not np.all(self.layout.J[i] > 0):
                 return None
+        try:
+            self._tops = self._rotation()
+        except OutOfDomainError:  # within float64's reach of the separatrix: integrate
+            return None
         spin = "; torque-free rotation (Jacobi elliptic functions)" if self._spinning() else ""
         if kinds <= {"gravity", "impact"} and all(
             ft.at is None for imp in self.impacts for ft in imp.features
@@ -353,7 +363,7 @@ class Engine:
                 "exact flow here; use 'auto' or 'integrate'",
             )
         if exact is not None and s.method != "integrate":
-            tops = self._rotation()
+            tops = self._tops
             if "rocket" in exact:
                 segs, events = self._rocket(tops)
             else:
@@ -580,6 +590,9 @@ class Engine:
             if i in self.rigid:
                 for k in range(3):
                     series[f"{p}omega{k + 1}"] = s.omega[:, i, k]
+                w_O = s.to_space(i, s.omega[:, i])
+                for k, c in enumerate("xyz"):
+                    series[f"{p}w{c}"] = w_O[:, k]
         m = s.m[:, moving]
         v, r = s.v[:, moving], s.r[:, moving]
         KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))
@@ -609,18 +622,31 @@ class Engine:
         if len(moving) > 1 or self.rigid:
             for k, c in enumerate("xyz"):
                 series[f"p_{c}"], series[f"L_{c}"] = P[:, k], L_O[:, k]
+        since: dict[str, float] = {}
+        T = self.scene.duration
         for q in CONSERVED:
-            if self.keeps(q, self.forces) and not (q != "E" and self.losing):
+            # what the effects acting throughout keep; an effect that stops acting (a
+            # push, a burn) breaks it only until then
+            until = max((e.acts_until() for e in self.forces if not e.keeps(q)), default=0.0)
+            if until < T:
                 conserved[q] = values[q]
+                if until > 0:
+                    since[q] = until
                 if self.keeps(q, self.impacts):
                     across.add(q)
         for i in self.rigid:
-            if self.w0[i].any() and not any(e.exerts_moment(i) for e in self.effects):
-                p = pre(i)
-                for k, c in enumerate("xyz"):
-                    name = f"{p}L_{c} (spin about G)"
-                    conserved[name] = spins[:, i, k]
-                    scales[name] = float(np.max(np.linalg.norm(spins[:, i], axis=-1)))
+            until = max((e.acts_until() for e in self.forces if e.exerts_moment(i)), default=0.0)
+            struck = any(imp.exerts_moment(i) for imp in self.impacts)
+            if until >= T or not (self.w0[i].any() or until > 0 or struck):
+                continue  # turned to the end, or never spinning (trivially kept)
+            p = pre(i)
+            for k, c in enumerate("xyz"):
+                name = f"{p}L_{c} (spin about G)"
+                conserved[name] = spins[:, i, k]
+                scales[name] = float(np.max(np.linalg.norm(spins[:, i], axis=-1)))
+                if until > 0:
+                    since[name] = until
+                if not struck:
                     across.add(name)
 
         def state_at(tt):
@@ -632,11 +658,13 @@ class Engine:
                     out[p + c] = float(ss.r[i, k])
                     out[p + "v" + c] = float(ss.v[i, k])
                 if i in self.rigid:
+                    w_O = ss.to_space(i, ss.omega[i])
                     for k in range(3):
                         out[f"{p}omega{k + 1}"] = float(ss.omega[i, k])
+                        out[f"{p}w{'xyz'[k]}"] = float(w_O[k])
             return out
 
-        traj = Trajectory(t, series, events, how, state_at, conserved, {}, {}, frozenset(across))
+        traj = Trajectory(t, series, events, how, state_at, conserved, since, {}, frozenset(across))
         traj.extra["scales"] = scales
         traj.extra["gaps"] = {
             imp.label: np.min([imp.gap(s, ft) for ft in imp.features], axis=0)

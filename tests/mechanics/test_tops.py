@@ -384,3 +384,13 @@ def test_heavy_top_bad_input():
         tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=4.0)
     with pytest.raises(OutOfDomainError):
         tops.steady_precession_rates(1.0, 0.1, 1.0, 0.2)
+
+
+@pytest.mark.parametrize("tiny", [5.33528311524476e-224, 1e-300, 5e-324])
+def test_a_spin_too_close_to_the_separatrix_is_refused_with_a_clear_error(tiny) -> None:
+    """Found by the scene engine's random test: ω = (0, 1, tiny) about the middle axis
+    of a box makes m1 underflow; the refusal must name it (it once overflowed while
+    formatting its own message)."""
+    J = np.array([0.52, 0.40, 0.20]) / 12.0  # a 0.2 × 0.4 × 0.6 m box of 1 kg: ω along e2
+    with pytest.raises(OutOfDomainError, match=r"m1 ≈ 2\^-\d+ of the separatrix"):
+        tops.FreeAsymmetricTop(J, [0.0, 1.0, tiny])

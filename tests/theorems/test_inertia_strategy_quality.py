@@ -23,11 +23,17 @@ from mechanics.rotation import EPS
 #: Regimes are branches of ``st.sampled_from`` among at most eight, some with a
 #: nested boolean branch: reached within a few dozen draws; 2000 leaves room.
 FIND_SETTINGS = settings(max_examples=2000, database=None, phases=[Phase.generate])
+#: A hard moment regime *and* a general basis (every off-diagonal entry ≥ 1e-3 of the
+#: trace) is a joint event: measured over 60 seeds, "flat in a general basis" took a
+#: median of 323 draws (p90 897, max 1818), so 2000 failed about once in 70 runs
+#: (a fresh `make test` did).  At p ≈ 1/470 per draw, 10^4 draws fail with
+#: probability e^-21.
+FIND_SETTINGS_JOINT = settings(max_examples=10_000, database=None, phases=[Phase.generate])
 SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
 
-def _found(strategy, predicate):
-    value = find(strategy, predicate, settings=FIND_SETTINGS)
+def _found(strategy, predicate, find_settings=FIND_SETTINGS):
+    value = find(strategy, predicate, settings=find_settings)
     assert predicate(value)
     return value
 
@@ -91,7 +97,7 @@ def test_rigid_bodies_reach_every_centre_regime(regime, predicate):
 
 @pytest.mark.parametrize(("regime", "predicate"), list(TENSOR_REGIMES.items()))
 def test_inertia_tensors_reach_the_hard_moments_in_a_general_basis(regime, predicate):
-    _found(ms.inertia_tensors(), predicate)
+    _found(ms.inertia_tensors(), predicate, FIND_SETTINGS_JOINT)
 
 
 @pytest.mark.parametrize("regime", ms.PRINCIPAL_MOMENT_REGIMES)

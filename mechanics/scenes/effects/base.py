@@ -21,6 +21,7 @@ Conventions
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any, ClassVar
 
@@ -186,6 +187,11 @@ class Effect:
     def switch_times(self) -> list[float]:
         """Instants where the effect switches on or off (step boundaries)."""
         return []
+
+    def acts_until(self) -> float:
+        """The time after which this effect no longer acts (inf: to the end); what it
+        breaks is conserved from then on."""
+        return math.inf
 
 
 def _axis_index(q: str) -> int:

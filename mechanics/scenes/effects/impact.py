@@ -213,6 +213,8 @@ class Impact(Effect):
         else:
             detail["bodies"] = [self.fields["body"], self.fields["other"]]
         detail["feature"] = ft.label
+        detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
+        detail["bodies_before"] = before[5]
         detail["energy_loss"] = self._loss
         detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
         detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
@@ -267,9 +269,10 @@ def _momentum_size(m, v) -> float:
     return m * float(np.linalg.norm(v))
 
 
-def _totals(s, idx, S) -> tuple[float, list[float], float, list[float], float]:
+def _totals(s, idx, S):
     """Kinetic energy ½ m v² + ½ L_A·ω_A, momentum Σ m v, Σ m|v|, the angular momentum
-    about the point S, Σ (ρ × m v) + Rᵀ L_A, and the size of its terms."""
+    about the point S, Σ (ρ × m v) + Rᵀ L_A, the size of its terms, and each body's
+    mass, centre, inertia tensor about G in space components (Rᵀ J R), v and ω (space)."""
     T, P, Pabs = 0.0, np.zeros(3), 0.0
     L, Labs = np.zeros(3), 0.0
     for k in idx:
@@ -282,4 +285,16 @@ def _totals(s, idx, S) -> tuple[float, list[float], float, list[float], float]:
         L += np.cross(arm, m * v) + spin
         # |ρ| m |v| bounds the orbital term: the size its rounding is relative to
         Labs += float(np.linalg.norm(arm) * _momentum_size(m, v) + np.linalg.norm(spin))
-    return T, P.tolist(), Pabs, L.tolist(), Labs
+    bodies = [
+        {
+            "index": int(k),
+            "m": m_k,
+            "r_G": s.r[k].tolist(),
+            "J_G": (s.R[k].T @ np.diag(s.J[k]) @ s.R[k]).tolist(),
+            "v_G": s.v[k].tolist(),
+            "omega": s.to_space(k, s.omega[k]).tolist(),
+        }
+        for k in idx
+        for m_k in [float(s.m[k])]
+    ]
+    return T, P.tolist(), Pabs, L.tolist(), Labs, bodies

@@ -67,6 +67,9 @@ class Thrust(Effect):
     def switch_times(self) -> list[float]:
         return [self.burn_out]
 
+    def acts_until(self) -> float:
+        return self.burn_out
+
     def loads(self, t, s, out) -> None:
         if s.phase < self.burn_out:
             d = s.to_space(self.i, self.direction) if self.body_frame else self.direction
