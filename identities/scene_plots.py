@@ -33,14 +33,31 @@ _MOTION = (
 )
 
 
+def _bodies(series: dict) -> list[str]:
+    """The prefixes of the free bodies' series ("" for a single body)."""
+    if "x" in series and "vx" in series:
+        return [""]
+    return [k[:-1] for k in series if k.endswith(".x") and k[:-1] + "vx" in series]
+
+
+def _dominant_axes(series: dict, prefixes: list[str]) -> list[str]:
+    """The space axes ordered by how far the bodies move along them."""
+    reach = {c: sum(float(np.ptp(series[f"{p}{c}"])) for p in prefixes) for c in "xyz"}
+    top = max(reach.values())
+    # a reach at the rounding's level (1e-16 of a motion) is no motion: ties keep x, y, z
+    return sorted("xyz", key=lambda c: -reach[c] if reach[c] > 1e-9 * top else 0.0)
+
+
 def _motion_keys(series: dict) -> list[str]:
     if "axis_x" in series:  # a top: nutation and precession (the spin would dwarf them)
         return ["theta", "psi"]
     if "omega1" in series and "vz" in series and not np.ptp(series["vz"]):
         return ["omega1", "omega2", "omega3"]  # a free top: the translation is trivial
+    prefixes = _bodies(series)
+    if len(prefixes) > 1:  # several free bodies: along the axis they move most on
+        c = _dominant_axes(series, prefixes)[0]
+        return [f"{p}{c}" for p in prefixes][:5]
     keys = [k for k in _MOTION if k in series]
-    if not keys:  # several free bodies: their heights
-        keys = [k for k in series if k.endswith(".z")]
     return keys[:3]
 
 
@@ -75,7 +92,7 @@ def plot_result(result, path) -> Path:
         scale = max(float(np.max(np.abs(v))), scales.get(c.name, 0.0), 1e-300)
         # drift relative to the value at the start of each segment between events
         ref = np.empty_like(v)
-        for a, b in tr.segments():
+        for a, b in tr.segments(c.name):
             m = (t >= max(a, c.since)) & (t < b)
             if m.any():
                 ref[m] = v[m][0]
@@ -103,11 +120,18 @@ def plot_result(result, path) -> Path:
         ax.set_ylabel("ω2")
         ax.set_zlabel("ω3")
         ax.set_title("polhode: ω in the body frame [rad/s]")
-    elif "x" in S and np.ptp(S["x"]) > 0:
-        ax.plot(S["x"], S["z"])
-        ax.set_xlabel("x [m]")
-        ax.set_ylabel("z [m]")
-        ax.set_title("trajectory")
+    elif _bodies(S) and any(np.ptp(S[f"{p}{c}"]) > 0 for p in _bodies(S) for c in "xyz"):
+        prefixes = _bodies(S)
+        a, b = sorted(_dominant_axes(S, prefixes)[:2])
+        for p in prefixes:
+            ax.plot(S[f"{p}{a}"], S[f"{p}{b}"], label=p.rstrip(".") or None)
+            ax.plot(S[f"{p}{a}"][:1], S[f"{p}{b}"][:1], "o", color=ax.lines[-1].get_color())
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_xlabel(f"{a} [m]")
+        ax.set_ylabel(f"{b} [m]")
+        ax.set_title("paths of the centres of mass (start: dot)")
+        if len(prefixes) > 1:
+            ax.legend(fontsize=8)
     else:
         keys = _motion_keys(S)
         pairs = {"phi": "phidot", "psi": "psidot", "s": "v", "z": "vz", "h": "u"}

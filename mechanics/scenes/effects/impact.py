@@ -262,7 +262,9 @@ class Impact(Effect):
         return quantity != "E" or self.e == 1.0
 
     def exerts_moment(self, k: int) -> bool:
-        return any(ft.at is not None for ft in self.features) and k in self.bodies()
+        """Only on a body struck at a corner: a sphere's impulse passes through its
+        centre (the normal is along the line from its centre)."""
+        return any(ft.at is not None and ft.body == k for ft in self.features)
 
 
 def _momentum_size(m, v) -> float:
