@@ -34,6 +34,7 @@ SCENES = {
     "flip_after_push": ("eq5.102",),
     "rocket_drag": ("eq7.25",),
     "box_drop": ("eq6.21", "eq6.41"),
+    "box_drop_friction": ("eq6.19", "eq6.21"),
 }
 
 

@@ -735,6 +735,82 @@ def corner_impacts(scene: Scene, tr: Trajectory):
     return out
 
 
+def corner_impacts_friction(scene: Scene, tr: Trajectory):
+    """6.2–6.3 with Coulomb friction at a corner: the corner's normal velocity reverses
+    with the factor e (6.36); the impulse, read off the box's change of momentum
+    S = m Δv_G (6.19), lies in the friction cone; if the corner sticks its tangential
+    velocity after the impact is zero, if it slips |S_t| = μ S_n; and the change of the
+    spin matches the moment of that impulse about G, J Δω = ρ × S (6.21)."""
+    imp = scene.effects_of("impact")
+    _need(scene, len(imp) == 1 and "other" not in imp[0].fields, "one impact against a plane")
+    e, mu = imp[0].fields["restitution"], imp[0].fields.get("friction", 0.0)
+    _need(scene, mu > 0, "friction on the impulse")
+    hits = [ev for ev in tr.events if ev.kind == "impact"]
+    _need(scene, len(hits) >= 1, "an impact within the duration")
+    tol, why = _tol(tr)
+    out = []
+    for k, ev in enumerate(hits[:3]):
+        d = ev.detail
+        (b0,), (b1,) = d["bodies_before"], d["bodies_after"]
+        n, S_pt = np.array(d["normal"]), np.array(d["contact_point"])
+        rho = S_pt - np.array(b1["r_G"])
+        S = b1["m"] * (np.subtract(b1["v_G"], b0["v_G"]))
+        S_n = float(S @ n)
+        S_t = float(np.linalg.norm(S - S_n * n))
+
+        def corner_velocity(b, rho=rho):
+            return np.array(b["v_G"]) + np.cross(b["omega"], rho)
+
+        u0, u1 = corner_velocity(b0), corner_velocity(b1)
+        out.append(
+            Comparison(
+                f"impact {k + 1}: e = after/before", "(6.36)", -(u1 @ n) / (u0 @ n), e, tol, why
+            )
+        )
+        if d["friction"] == "stick":
+            t1 = u1 - (u1 @ n) * n
+            out.append(
+                Comparison(
+                    f"impact {k + 1}: sticks, corner's sliding speed after",
+                    "Coulomb stick: 0 (relative to |u| before)",
+                    float(np.linalg.norm(t1)) / float(np.linalg.norm(u0)),
+                    0.0,
+                    tol,
+                    why,
+                )
+            )
+            out.append(
+                Comparison(
+                    f"impact {k + 1}: sticks, excess over the cone S_t/(μ S_n) − 1",
+                    "Coulomb stick: |S_t| ≤ μ S_n, so ≤ 0",
+                    max(S_t / (mu * S_n) - 1.0, 0.0),
+                    0.0,
+                    tol,
+                    why,
+                )
+            )
+        else:
+            out.append(
+                Comparison(
+                    f"impact {k + 1}: slips, S_t/S_n", "Coulomb slip: μ", S_t / S_n, mu, tol, why
+                )
+            )
+        J0, J1 = np.array(b0["J_G"]), np.array(b1["J_G"])
+        dL = J1 @ np.array(b1["omega"]) - J0 @ np.array(b0["omega"])
+        M = np.cross(rho, S)
+        out.append(
+            Comparison(
+                f"impact {k + 1}: |J Δω − ρ × S| / |ρ × S|",
+                "(6.21)",
+                float(np.linalg.norm(dL - M)) / float(np.linalg.norm(M)),
+                0.0,
+                tol,
+                why,
+            )
+        )
+    return out
+
+
 COMPARISONS = {
     "E6.1": bouncing_ball,
     "E3.6": rolling_incline,
@@ -748,6 +824,7 @@ COMPARISONS = {
     "cradle": cradle,
     "rocket-drag": rocket_drag,
     "corner-impacts": corner_impacts,
+    "corner-impacts-friction": corner_impacts_friction,
     "E7.2": rocket,
     "E7.3": carousel,
     "E8.1": tank,

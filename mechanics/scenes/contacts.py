@@ -147,7 +147,11 @@ def chebyshev_fit(fn, t_a: float, t_b: float, n: int = STEP_NODES) -> np.ndarray
 
 
 def first_downward_crossing(
-    coef: np.ndarray, *, start_tol: float, refine: Callable[[float], float] | None = None
+    coef: np.ndarray,
+    *,
+    start_tol: float,
+    refine: Callable[[float], float] | None = None,
+    after: float | None = None,
 ) -> float | None:
     """First x in [−1, 1] where the Chebyshev series ``coef`` goes below zero.
 
@@ -163,6 +167,11 @@ def first_downward_crossing(
     (a tangential touch whose rounding dips below zero), not a contact.  Returns None
     when the polynomial stays ≥ 0; a cheap bound c₀ − Σ|c_k| > 0 skips most steps
     without finding roots.
+
+    With ``after`` (a point of the step where the gap is within rounding of zero but
+    the pair does not approach: a touch, at the top of a tiny hop), only x > ``after``
+    is searched, and only a fall below ``−start_tol`` counts: its zero crossing (or
+    ``after`` itself if the gap is already below zero there) is the contact.
 
     Raises
     ------
@@ -192,16 +201,22 @@ def first_downward_crossing(
         for r in C.chebroots(C.chebder(coef)):
             if abs(r.imag) <= REAL_ROOT_IMAG and -1.0 < r.real < 1.0:
                 cand.add(float(r.real))
+    if after is not None:
+        cand = {x for x in cand if x > after} | {after}
     xs = sorted(cand)
     vals = C.chebval(np.array(xs), coef)
-    if vals[0] < -start_tol:
+    if after is None and vals[0] < -start_tol:
         raise ContactError(f"the gap is already {vals[0]:.3g} < 0 at the start of the step")
     for k in range(len(xs) - 1):
         v0, v1 = vals[k], vals[k + 1]
+        if after is not None:
+            if not v1 < -start_tol:
+                continue  # no fall beyond the rounding in this piece
+            return _strict_root(coef, refine, xs[k], xs[k + 1])
         if v0 <= start_tol and v1 < v0:
             return xs[k]  # touching within rounding, and closing: the contact is now
         if v0 >= 0 > v1:
-            if v1 >= -start_tol and xs[k + 1] < 1.0:
+            if after is None and v1 >= -start_tol and xs[k + 1] < 1.0:
                 continue  # a graze: a dip below zero within rounding, rising again
             from scipy.optimize import brentq
 
@@ -210,3 +225,27 @@ def first_downward_crossing(
                 f = refine
             return float(brentq(f, xs[k], xs[k + 1], xtol=ROOT_RTOL, rtol=ROOT_RTOL))
     return None
+
+
+def _strict_root(coef, refine, lo: float, hi: float) -> float:
+    """The first zero of the gap in (lo, hi] after a touch at lo, where the gap at hi is
+    below zero beyond rounding: the gap first rises (a hop whose peak may lie closer to
+    lo than any extremum the roots resolve), so a point of positive gap is sought at
+    lo + (hi − lo) 2^−j; none means the gap never left zero: the contact is lo."""
+    from scipy.optimize import brentq
+
+    f = refine if refine is not None else (lambda x: C.chebval(x, coef))
+    if f(hi) >= 0:
+        f = lambda x: C.chebval(x, coef)  # noqa: E731
+    x_pos = lo if f(lo) > 0 else None
+    j = 1
+    while x_pos is None and j <= 60:
+        x = lo + (hi - lo) * 2.0**-j
+        if x <= lo:
+            break
+        if f(x) > 0:
+            x_pos = x
+        j += 1
+    if x_pos is None:
+        return lo
+    return float(brentq(f, x_pos, hi, xtol=ROOT_RTOL, rtol=ROOT_RTOL))

@@ -59,7 +59,7 @@ from mechanics.errors import OutOfDomainError
 from . import contacts
 from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
 from .effects.base import CONSERVED, Effect
-from .effects.impact import Impact
+from .effects.impact import EnergyGainError, Impact
 from .errors import SceneError
 from .state import Layout, body_vertices
 from .trajectory import (
@@ -224,7 +224,7 @@ class Engine:
             return None
         spin = "; torque-free rotation (Jacobi elliptic functions)" if self._spinning() else ""
         if kinds <= {"gravity", "impact"} and all(
-            ft.at is None for imp in self.impacts for ft in imp.features
+            ft.at is None and imp.mu_f == 0 for imp in self.impacts for ft in imp.features
         ):
             what = "free flight under uniform gravity" if "gravity" in kinds else "uniform motion"
             if "impact" in kinds:
@@ -479,23 +479,32 @@ class Engine:
                     tt = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xx
                     return float(imp.gap(self.snapshot(tt, np.asarray(dense(tt))), ft))
 
-                try:
-                    xc = contacts.first_downward_crossing(
-                        p, start_tol=GAP_ROUNDING * self._reach[a, b] * units, refine=gap_at
-                    )
-                except contacts.ContactError as exc:
-                    raise self.scene.error(
-                        imp.where,
-                        f"{ft.label} interpenetrate at t = {t_a:.17g} s ({exc}): "
-                        "a contact was missed before this step",
-                    ) from None
-                if xc is None:
-                    continue
-                tc = t_a if xc == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xc, t_b)
-                if self._touch(imp, ft, self.snapshot(tc, np.asarray(dense(tc), dtype=float))):
-                    continue  # zero approach speed: the pair touches, nothing to resolve
-                if best is None or tc < best[0]:
-                    best = (tc, imp, ft)
+                after = None
+                for _ in range(3):  # a touch (zero approach speed) is searched past once
+                    try:
+                        xc = contacts.first_downward_crossing(
+                            p,
+                            start_tol=GAP_ROUNDING * self._reach[a, b] * units,
+                            refine=gap_at,
+                            after=after,
+                        )
+                    except contacts.ContactError as exc:
+                        raise self.scene.error(
+                            imp.where,
+                            f"{ft.label} interpenetrate at t = {t_a:.17g} s ({exc}): "
+                            "a contact was missed before this step",
+                        ) from None
+                    if xc is None:
+                        break
+                    tc = t_a if xc == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xc, t_b)
+                    s_c = self.snapshot(tc, np.asarray(dense(tc), dtype=float))
+                    if not self._touch(imp, ft, s_c):
+                        if best is None or tc < best[0]:
+                            best = (tc, imp, ft)
+                        break
+                    # zero approach speed: the pair touches here (a plastic pair moving on
+                    # together, the top of a tiny hop); it may still fall in later
+                    after = xc
         return best
 
     def _touch(self, imp, ft, s) -> bool:
@@ -536,6 +545,10 @@ class Engine:
                     imp.where,
                     f"{ft.label}: the contact at t = {t:.17g} s was found on the exit side "
                     f"(the bodies separate there): {exc}",
+                ) from None
+            except EnergyGainError as exc:
+                raise self.scene.error(
+                    f"{imp.where}.friction", f"{ft.label} at t = {t:.6g} s: {exc}"
                 ) from None
             events.append(Event(t, "impact", detail))
             if len(events) > MAX_EVENTS:

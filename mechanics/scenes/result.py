@@ -326,7 +326,16 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
                 f"impact energy loss ({_count(len(impacts), 'impact')})",
                 worst,
                 IMPACT_RTOL,
-                "T_before − T_after = ½ μ (1 − e²) v_n² (6.41)",
+                "T_before − T_after = ½ μ (1 − e²) v_n² (6.41), the impulse's work with friction",
+            )
+        )
+        worst = max(-d["energy_loss"] / max(d["kinetic_energy_before"], 1e-300) for d in impacts)
+        out.append(
+            SelfCheck(
+                f"impacts dissipate ({_count(len(impacts), 'impact')})",
+                max(worst, 0.0),
+                IMPACT_RTOL,
+                "energy lost ≥ 0 at every impact (Newton's e with friction can gain: Kane)",
             )
         )
     pairs = [d for d in impacts if "bodies" in d]

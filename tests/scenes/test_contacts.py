@@ -541,3 +541,25 @@ def test_random_oblique_impacts_obey_the_restitution_law(case, method) -> None:
     got_b = [after[f"b.v{c}"] for c in "xyz"]
     _assert_close(got_a, va, tol, speed, "v_a after")
     _assert_close(got_b, vb, tol, speed / min(ratio, 1.0), "v_b after")
+
+
+def test_after_a_touch_the_gap_is_searched_past_the_hop() -> None:
+    """A contact just resolved with a tiny separation speed (a plastic-like bounce): the
+    gap is 0 at the step's start, hops up by 2.5e-19 and falls.  The first search sees a
+    touch at the start (zero approach speed there); the search ``after`` it must find
+    the fall's zero crossing past the hop, not stop at the touch (a box corner fell
+    through the floor that way, found by the random rough-impact test)."""
+    from numpy.polynomial import polynomial as P
+
+    h = 1e-9  # the hop ends at x + 1 = h
+    coef = C.poly2cheb(P.polymul([1.0, 1.0], [h - 1.0, -1.0]))  # (x + 1)(h − (x + 1))
+    first = ct.first_downward_crossing(coef, start_tol=1e-12)
+    assert -1.0 <= first <= -1.0 + h, "a touch within rounding at the start"
+    x = ct.first_downward_crossing(coef, start_tol=1e-12, after=-1.0)
+    assert x is not None
+    assert -1.0 < x <= -1.0 + 2 * h
+    # the gap there is zero to the polynomial's rounding (its values are ~1e-19)
+    assert abs(C.chebval(x, coef)) <= 4 * EPS * np.abs(coef).sum()
+    # negative control: a gap that only rises after the touch has no contact
+    rising = C.poly2cheb(P.polymul([1.0, 1.0], [1.0]))
+    assert ct.first_downward_crossing(rising, start_tol=1e-12, after=-1.0) is None

@@ -8,7 +8,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from mechanics.impact import RigidBody, rigid_impact
@@ -284,6 +284,124 @@ def test_the_corner_impulse_agrees_with_mechanics_impact(monkeypatch) -> None:
         tol = (IMPULSE_RTOL + 64 * orth) * (1.0 + np.abs(ref.omega).max())
         np.testing.assert_allclose(v, ref.v_G, rtol=0, atol=tol)
         np.testing.assert_allclose(w, ref.omega, rtol=0, atol=tol)
+
+
+def _ball_on_rough_floor(vx, mu, e=0.5, wy=0.0):
+    a, m = 0.1, 2.0
+    return _scene(
+        [
+            {
+                "name": "ball",
+                "shape": "solid_sphere",
+                "mass": m,
+                "radius": a,
+                "initial": {
+                    "position": [0, 0, 0.3],
+                    "velocity": [vx, 0, -2.0],
+                    "omega": [0, wy, 0],
+                },
+            }
+        ],
+        [{"type": "impact", "body": "ball", "restitution": e, "friction": mu}],
+        duration=0.2,
+    )
+
+
+def test_a_ball_that_sticks_on_a_rough_floor_leaves_rolling_at_five_sevenths() -> None:
+    """Stick: the angular momentum about the contact point is kept (the impulse acts
+    there), m v a = m v' a + (2/5) m a² ω', and rolling v' = ω' a gives v' = 5 v / 7."""
+    r = run_scene(_ball_on_rough_floor(vx=1.0, mu=2.0))
+    assert r.passed, r.summary()
+    (ev,) = r.trajectory.events
+    assert ev.detail["friction"] == "stick"
+    after = r.trajectory.state_at(0.2)
+    assert after["vx"] == pytest.approx(5 / 7, rel=IMPULSE_RTOL)
+    assert after["wy"] * 0.1 == pytest.approx(5 / 7, rel=IMPULSE_RTOL)  # rolls: ω a = v
+    assert after["vz"] == pytest.approx(0.5 * 2.0, rel=IMPULSE_RTOL)
+
+
+def test_a_ball_that_slips_on_a_rough_floor_gets_mu_times_the_normal_impulse() -> None:
+    """Slip: S_n = (1 + e) m |v_n|, S_t = μ S_n against the slip, so Δv_x = −μ (1 + e) |v_n|
+    and the spin gains a μ S_n / J = (5/2) μ (1 + e) |v_n| / a."""
+    mu, e, vn, a = 0.05, 0.5, 2.0, 0.1  # sticking needs S_t = (2/7) m v = 0.57 > μ S_n = 0.3
+    r = run_scene(_ball_on_rough_floor(vx=1.0, mu=mu, e=e))
+    assert r.passed, r.summary()
+    (ev,) = r.trajectory.events
+    assert ev.detail["friction"] == "slip"
+    after = r.trajectory.state_at(0.2)
+    assert after["vx"] == pytest.approx(1.0 - mu * (1 + e) * vn, rel=IMPULSE_RTOL)
+    assert after["wy"] == pytest.approx(2.5 * mu * (1 + e) * vn / a, rel=IMPULSE_RTOL)
+
+
+@settings(max_examples=30)
+@example(w=(1.0, 1.0, 0.0), angles=(1.0, 1.0, 1.0), mu=1.0, e=0.0625)  # a missed contact
+@example(w=(0.0, 1.0, 0.0), angles=(1.0, 1.0, 1.0), mu=1.0, e=0.0625)  # after a touch
+@given(
+    w=st.tuples(*[st.floats(-5, 5)] * 3),
+    angles=st.tuples(*[st.floats(0.05, 3.0)] * 3),
+    mu=st.floats(0.0, 2.0),
+    e=st.floats(0.0, 1.0),
+)
+def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -> None:
+    """Any tilt, spin, friction and restitution: every run passes its self-checks (the
+    loss read off the velocities equals the impulse's work, and no impact adds energy)."""
+    psi, theta, phi = angles
+    box = _box(position=[0.0, 0.0, 1.0], psi=psi, theta=theta, phi=phi, omega=list(w))
+    sc = _scene(
+        [box],
+        [
+            {"type": "gravity", "g": 9.81},
+            {"type": "impact", "body": "box", "restitution": e, "friction": mu},
+        ],
+        duration=0.45,
+        samples=46,
+    )
+    try:
+        r = run_scene(sc)
+    except SceneError as exc:
+        refusal = str(exc)
+    else:
+        refusal = None
+    if refusal is not None:
+        # refused, never run half-way: a box coming to rest on the floor, or an impulse
+        # that Newton's e with friction would make gain energy (Kane's paradox)
+        assert "come to rest in contact" in refusal or "would add" in refusal, refusal
+        return
+    assert r.passed, r.summary()
+    for ev in r.trajectory.events:
+        d = ev.detail
+        assert d["normal_speed_after"] == pytest.approx(
+            e * d["normal_speed_before"], rel=IMPULSE_RTOL, abs=IMPULSE_RTOL
+        )
+
+
+def test_an_impulse_that_would_add_energy_is_refused_with_one_line() -> None:
+    """Kane's paradox, found by the random test: a tilted box on a very rough floor,
+    where Newton's e with Coulomb friction would add 18 % of the kinetic energy."""
+    box = _box(position=[0.0, 0.0, 1.0], psi=1.0, theta=1.5, phi=2.0)
+    effects = [
+        {"type": "gravity", "g": 9.81},
+        {"type": "impact", "body": "box", "restitution": 1.0, "friction": 1.0},
+    ]
+    with pytest.raises(SceneError, match=r"would add .* J of kinetic energy") as info:
+        run_scene(_scene([box], effects, duration=0.45))
+    assert info.value.field == "effects[1].friction"
+    effects[1]["friction"] = 0.0  # smooth: the same drop is fine
+    assert run_scene(_scene([box], effects, duration=0.45)).passed
+
+
+def test_an_impact_that_adds_energy_fails_the_dissipation_check(monkeypatch) -> None:
+    """Negative control of the self-check behind the refusal: an impulse whose loss is
+    reported negative (but within the refusal's rounding) is caught by the run."""
+    from mechanics.scenes.result import conserved_tolerance, self_checks
+
+    r = run_scene(_ball_on_rough_floor(vx=1.0, mu=0.1))
+    d = r.trajectory.events[0].detail
+    d["energy_loss"] = -1e-6 * d["kinetic_energy_before"]
+    d["kinetic_energy_after"] = d["kinetic_energy_before"] - d["energy_loss"]
+    tol = conserved_tolerance(r.scene, r.trajectory)
+    bad = {c.name.split(" (")[0] for c in self_checks(r.trajectory, tol) if not c.ok}
+    assert bad == {"impacts dissipate"}
 
 
 def test_newtons_cradle_passes_the_momentum_down_the_row() -> None:

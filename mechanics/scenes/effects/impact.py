@@ -19,9 +19,21 @@ Conventions
   1/μ = Σ_k 1/m_k + (ρ_k × n)·J_k⁻¹(ρ_k × n) (a fixed body or the plane: no term);
   v_n = n·(v_S,body − v_S,other) < 0 while approaching; the impulse S n on ``body``
   (−S n on ``other``) with S = −(1 + e) μ v_n, so that v_n' = −e v_n, and the energy
-  lost ½ μ (1 − e)(1 + e) v_n² (6.41).  Smooth: no tangential impulse.  Where both
-  arms are along n (spheres and points), the impulse passes through the centres and
-  :func:`mechanics.impact.direct_impact` gives the velocities to 2 ulps.
+  lost ½ μ (1 − e)(1 + e) v_n² (6.41).  Smooth by default: no tangential impulse.  Where
+  both arms are along n (spheres and points), the impulse passes through the centres
+  and :func:`mechanics.impact.direct_impact` gives the velocities to 2 ulps.
+- **Friction of the impulse** (``friction = μ``, Coulomb): with the contact's inverse
+  mass matrix K = Σ_k (1/m_k − [ρ_k]× J_k⁻¹ [ρ_k]×) a total impulse P (on ``body``)
+  changes the relative contact velocity u by K P.  *Stick*: P = K⁻¹(−e v_n n − u), the
+  contact point stops sliding and the normal velocity restitutes, accepted when P lies
+  in the friction cone |P_t| ≤ μ P_n.  *Slip* otherwise: P = P_n (n − μ t̂) against the
+  initial slip direction t̂, with P_n fixed by n·(u + K P) = −e v_n.  The energy lost
+  is the impulse's work −(P·u + ½ P·K P).  Newton's kinematic e with friction can
+  *gain* energy where the contact's normal and tangential motions are coupled (Kane's
+  paradox; a tilted box on a very rough floor meets it): such an impulse is refused
+  with :class:`EnergyGainError` (the engine stops with one line) rather than applied.
+  An energetically consistent law (Stronge's energetic coefficient with the slip
+  integrated through the impact) is not modelled yet.
 - A contact found while *separating* is the exit side of an interpenetration: a bug,
   reported as a :class:`~mechanics.scenes.errors.SceneError`, never resolved.
 """
@@ -37,6 +49,13 @@ from ..state import SPHERICAL_SHAPES, body_radius, body_vertices
 from .base import Effect, Schema, keeps_for_force_along, register, unit
 
 POLYHEDRA = ("box", "rectangular_plate", "rod")
+#: an impulse may lose this fraction of the kinetic energy's rounding below zero (the
+#: loss is the work of the impulse, a sum of a dozen products)
+GAIN_RTOL = 64 * float(np.finfo(float).eps)
+
+
+class EnergyGainError(ValueError):
+    """The impact law would add kinetic energy (Newton's e with friction, Kane)."""
 
 
 @dataclass(frozen=True)
@@ -66,6 +85,7 @@ class Impact(Effect):
         "plane_point": ("vector", False),
         "plane_normal": ("vector", False),
         "restitution": ("restitution", True),
+        "friction": ("nonnegative", False),
     }
 
     @classmethod
@@ -107,6 +127,7 @@ class Impact(Effect):
         self.i = ctx.index[f["body"]]
         self.j = ctx.index[f["other"]] if "other" in f else None
         self.e = float(f["restitution"])
+        self.mu_f = float(f.get("friction", 0.0))
         self.point = np.asarray(f.get("plane_point", [0.0, 0.0, 0.0]), dtype=float)
         self.normal = unit(f.get("plane_normal", [0.0, 0.0, 1.0]))
         bodies = ctx.scene.bodies
@@ -205,7 +226,16 @@ class Impact(Effect):
         v_n = -self.approach(s, ft)
         if not v_n < 0:
             raise SeparatingContactError(f"the contact separates (v_n = {v_n!r} ≥ 0)")
+        self._mode = "smooth"
+        saved = (s.v.copy(), s.L_A.copy(), s.omega.copy())
         self._apply(s, S, n, v_n)
+        if self._loss < -GAIN_RTOL * before[0]:
+            s.v[...], s.L_A[...], s.omega[...] = saved
+            raise EnergyGainError(
+                f"the {self._mode} impulse with friction {self.mu_f:g} and e = {self.e:g} "
+                f"would add {-self._loss:.3g} J of kinetic energy (Newton's restitution with "
+                "friction, Kane's paradox); lower the friction or e"
+            )
         after = _totals(s, idx, S)
         detail = {"normal_speed_before": -v_n, "normal_speed_after": self.approach(s, ft) * -1}
         if self.j is None:
@@ -214,7 +244,8 @@ class Impact(Effect):
             detail["bodies"] = [self.fields["body"], self.fields["other"]]
         detail["feature"] = ft.label
         detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
-        detail["bodies_before"] = before[5]
+        detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
+        detail["friction"] = self._mode
         detail["energy_loss"] = self._loss
         detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
         detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
@@ -225,6 +256,9 @@ class Impact(Effect):
 
     def _apply(self, s, S, n, v_n) -> None:
         """The impulse (see the Conventions); sets ``self._loss``."""
+        if self.mu_f > 0:
+            self._apply_with_friction(s, S, n, v_n)
+            return
         e, moving = self.e, self.bodies()
         arms = {k: S - s.r[k] for k in moving}
         u_A = {k: s.to_body(k, np.cross(arms[k], n)) for k in moving}
@@ -253,17 +287,53 @@ class Impact(Effect):
                 s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] * jinv[k], 0.0)
         self._loss = 0.5 * mu * (1.0 - e) * (1.0 + e) * v_n * v_n
 
+    def _apply_with_friction(self, s, S, n, v_n) -> None:
+        """Stick or slip (see the Conventions); sets ``self._loss`` and ``self._mode``."""
+        e, mu, moving = self.e, self.mu_f, self.bodies()
+        sign = {self.i: 1.0, self.j: -1.0}
+        K = np.zeros((3, 3))
+        parts = {}
+        for k in moving:
+            rho = S - s.r[k]
+            X = np.array([[0.0, -rho[2], rho[1]], [rho[2], 0.0, -rho[0]], [-rho[1], rho[0], 0.0]])
+            jinv = np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0)
+            Jinv_O = s.R[k].T @ (jinv[:, None] * s.R[k])  # J⁻¹ in space components
+            K += np.eye(3) / s.m[k] - X @ Jinv_O @ X
+            parts[k] = (rho, jinv)
+        u = self._relative_velocity(s, S)
+        P = np.linalg.solve(K, -e * v_n * n - u)  # stick
+        P_n = float(P @ n)
+        P_t = P - P_n * n
+        self._mode = "stick"
+        if np.linalg.norm(P_t) > mu * P_n:
+            u_t = u - (u @ n) * n
+            t_hat = u_t if np.any(u_t) else -P_t
+            t_hat = t_hat / np.linalg.norm(t_hat)
+            d = n - mu * t_hat
+            P = (-(1.0 + e) * v_n / float(n @ K @ d)) * d
+            self._mode = "slip"
+        for k in moving:
+            rho, jinv = parts[k]
+            s.v[k] += sign[k] * P / s.m[k]
+            s.L_A[k] += sign[k] * s.to_body(k, np.cross(rho, P))
+            s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] * jinv, 0.0)
+        self._loss = -float(P @ u + 0.5 * P @ K @ P)
+
     # ---------------------------------------------------------------- invariants
     def keeps(self, quantity: str) -> bool:
-        if self.j is None:
-            return quantity != "E" and keeps_for_force_along(self.normal, quantity)
+        if self.j is None:  # against the plane: along its normal (with friction: nothing)
+            return (
+                quantity != "E" and self.mu_f == 0 and keeps_for_force_along(self.normal, quantity)
+            )
         if self.fixed:
             return False
-        return quantity != "E" or self.e == 1.0
+        return quantity != "E" or (self.e == 1.0 and self.mu_f == 0)
 
     def exerts_moment(self, k: int) -> bool:
-        """Only on a body struck at a corner: a sphere's impulse passes through its
-        centre (the normal is along the line from its centre)."""
+        """On a body struck at a corner; on a sphere only with friction (a smooth
+        impulse along the normal passes through its centre)."""
+        if self.mu_f > 0:
+            return k in self.bodies()
         return any(ft.at is not None and ft.body == k for ft in self.features)
 
 
