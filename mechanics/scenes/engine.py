@@ -191,21 +191,30 @@ class Engine:
             m -= e.mass_loss(t)
         return m
 
-    def snapshot(self, t, y) -> Snapshot:
-        """The bodies at time(s) t from state(s) y (writable copies)."""
-        r, v, L, R = (np.array(a) for a in self.layout.gather(y))
-        m = self.masses(t)
-        J = self.layout.J * (m / self.m0)[..., None]
+    def snapshot(self, t, y, *, copy: bool = True) -> Snapshot:
+        """The bodies at time(s) t from state(s) y (writable copies unless ``copy`` is
+        False: the right-hand side only reads them)."""
+        r, v, L, R = self.layout.gather(y)
+        if copy:
+            r, v, L, R = (np.array(a) for a in (r, v, L, R))
+        if self.losing:
+            m = self.masses(t)
+            J = self.layout.J * (m / self.m0)[..., None]
+        elif np.ndim(t) == 0 and not copy:  # the right-hand side: the shared constants
+            m, J = self.m0, self.layout.J
+        else:
+            m = np.broadcast_to(self.m0, (*np.shape(t), self.n)).copy()
+            J = np.broadcast_to(self.layout.J, (*np.shape(t), self.n, 3)).copy()
         return Snapshot(t, r, v, L, R, self.layout.omega(L, J), m, J)
 
     def rhs(self, t, y) -> np.ndarray:
-        s = self.snapshot(t, y)
+        s = self.snapshot(t, y, copy=False)
         if self._phase is not None:
             s.phase = self._phase
         out = Loads(self.n, s)
         for e in self.forces:
             e.loads(t, s, out)
-        return self.layout.derivative(y, out.F, out.M_A, s.m, s.J)
+        return self.layout.derivative(s, out.F, out.M_A)
 
     def pack(self, s: Snapshot) -> np.ndarray:
         return self.layout.pack(s.r, s.v, s.L_A, s.R)

@@ -204,19 +204,26 @@ class Layout:
         safe = np.where(J > 0, J, 1.0)
         return np.where(J > 0, L_A / safe, 0.0)
 
-    def derivative(self, y, F, M_A, masses, J) -> np.ndarray:
-        """dy/dt for one state (size,), forces F (n, 3) in O at G and moments M_A (n, 3)
-        about G in body components (see the Conventions)."""
+    def derivative(self, s, F, M_A) -> np.ndarray:
+        """dy/dt for one snapshot ``s`` (its v, L_A, R_A_O, ω_A, masses), forces F (n, 3)
+        in O at G and moments M_A (n, 3) about G in body components (see the
+        Conventions)."""
         out = np.empty(self.size)
-        _, v, L, R = self.gather(y)
+        v, L, R, w, m = s.v, s.L_A, s.R, s.omega, s.m
         for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
             if kind == "fixed":
                 continue
             out[o : o + 3] = v[i]
-            out[o + 3 : o + 6] = F[i] / masses[i]
+            out[o + 3 : o + 6] = F[i] / m[i]
             if kind == "rigid":
-                w = self.omega(L[i], J[i])
-                out[o + 6 : o + 9] = np.cross(L[i], w) + M_A[i]
-                # Ṙ = −[ω]× R, column by column: −ω × R[:, k]
-                out[o + 9 : o + 18] = -np.cross(w, R[i].T).T.ravel()
+                wi, Li = w[i], L[i]
+                # L̇_A = L_A × ω_A + M_A, written out (np.cross costs more than the sums)
+                out[o + 6] = Li[1] * wi[2] - Li[2] * wi[1] + M_A[i, 0]
+                out[o + 7] = Li[2] * wi[0] - Li[0] * wi[2] + M_A[i, 1]
+                out[o + 8] = Li[0] * wi[1] - Li[1] * wi[0] + M_A[i, 2]
+                # Ṙ = −[ω]× R: row k of Ṙ is −(ω × column)ᵀ, i.e. Ṙ[a] = R[a+1] w[a+2] − ...
+                Ri = R[i]
+                out[o + 9 : o + 12] = wi[2] * Ri[1] - wi[1] * Ri[2]
+                out[o + 12 : o + 15] = wi[0] * Ri[2] - wi[2] * Ri[0]
+                out[o + 15 : o + 18] = wi[1] * Ri[0] - wi[0] * Ri[1]
         return out
