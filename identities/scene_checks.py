@@ -35,6 +35,7 @@ SCENES = {
     "rocket_drag": ("eq7.25",),
     "box_drop": ("eq6.21", "eq6.41"),
     "box_drop_friction": ("eq6.19", "eq6.21"),
+    "top_hits_floor": ("eq5.70",),
 }
 
 

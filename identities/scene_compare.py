@@ -811,6 +811,64 @@ def corner_impacts_friction(scene: Scene, tr: Trajectory):
     return out
 
 
+def top_until_floor(scene: Scene, tr: Trajectory):
+    """5.2 until the first contact: on its fixed point, before any impact, the top moves
+    as the heavy symmetric top whose nutation the book solves with elliptic functions;
+    its centre's height over the pivot is ℓ cos θ(t) with θ(t) from
+    :class:`mechanics.tops.HeavySymmetricTop` (J1' = J1 + m ℓ² (5.46), J3, m g ℓ).  Then
+    every impact restitutes the corner's normal velocity by e (6.36)."""
+    from mechanics.tops import HeavySymmetricTop
+
+    fp = scene.effects_of("fixed_point")
+    _need(
+        scene,
+        len(fp) == 1 and not any(fp[0].fields.get("point", [0, 0, 0])),
+        "one fixed point at the origin",
+    )
+    g = _gravity(scene)
+    b = scene.body(fp[0].fields["body"])
+    ell = fp[0].fields["distance"]
+    J = np.asarray(body_inertia(b))
+    _need(scene, J[0] == J[1], "a symmetric body (J1 = J2)")
+    keys = ("theta", "psi", "phi", "theta_dot", "psi_dot", "phi_dot")
+    top = HeavySymmetricTop(
+        J[0] + b.mass * ell**2,
+        J[2],
+        b.mass * g * ell,
+        **{k: float(b.initial.get(k, 0.0)) for k in keys},
+    )
+    hits = [ev for ev in tr.events if ev.kind == "impact"]
+    _need(scene, len(hits) >= 1, "an impact within the duration")
+    tol, why = _tol(tr)
+    out = []
+    for frac in (0.5, 1.0):
+        t = frac * hits[0].t
+        out.append(
+            Comparison(
+                f"z_G/ℓ = cos θ at t = {t:.6g} s (before the floor)",
+                "5.2: the heavy top's θ(t), elliptic functions",
+                tr.state_at(t)["z"] / ell,
+                float(np.cos(top.theta(t))),
+                tol,
+                why,
+            )
+        )
+    e = scene.effects_of("impact")[0].fields["restitution"]
+    for k, ev in enumerate(hits[:3]):
+        d = ev.detail
+        out.append(
+            Comparison(
+                f"impact {k + 1}: e = after/before",
+                "(6.36)",
+                d["normal_speed_after"] / d["normal_speed_before"],
+                e,
+                tol,
+                why,
+            )
+        )
+    return out
+
+
 COMPARISONS = {
     "E6.1": bouncing_ball,
     "E3.6": rolling_incline,
@@ -825,6 +883,7 @@ COMPARISONS = {
     "rocket-drag": rocket_drag,
     "corner-impacts": corner_impacts,
     "corner-impacts-friction": corner_impacts_friction,
+    "top-until-floor": top_until_floor,
     "E7.2": rocket,
     "E7.3": carousel,
     "E8.1": tank,

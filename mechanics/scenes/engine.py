@@ -91,6 +91,8 @@ MAX_EVENTS = 2000
 MAX_SWEEPS = 1000
 
 FREE_INITIAL = ("position", "velocity", "omega", "psi", "theta", "phi")
+#: a pinned body may give its initial ω as the Euler angles' rates instead
+RATES = ("theta_dot", "psi_dot", "phi_dot")
 
 
 def _attitude(initial) -> np.ndarray:
@@ -98,6 +100,29 @@ def _attitude(initial) -> np.ndarray:
 
     e = [float(initial.get(k, 0.0)) for k in ("psi", "theta", "phi")]
     return matrix_from_euler(*e) if any(e) else np.eye(3)
+
+
+def _omega(initial) -> np.ndarray:
+    """Initial body ω: ``omega``, or from the z-x-z Euler rates (2.59): ω_A =
+    (ψ̇ sθ sφ + θ̇ cφ, ψ̇ sθ cφ − θ̇ sφ, ψ̇ cθ + φ̇)."""
+    if "omega" in initial:
+        return np.asarray(initial["omega"], dtype=float)
+    th, ph = float(initial.get("theta", 0.0)), float(initial.get("phi", 0.0))
+    thd, psd, phd = (float(initial.get(k, 0.0)) for k in RATES)
+    st, ct, sp, cp = math.sin(th), math.cos(th), math.sin(ph), math.cos(ph)
+    return np.array([psd * st * sp + thd * cp, psd * st * cp - thd * sp, psd * ct + phd])
+
+
+def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """The pinned bodies (a fixed_point joint) -> (C, g_A)."""
+    out = {}
+    for e in scene.effects_of("fixed_point"):
+        ell = float(e.fields["distance"])
+        out[index[e.fields["body"]]] = (
+            np.asarray(e.fields.get("point", [0.0, 0.0, 0.0]), dtype=float),
+            np.array([0.0, 0.0, ell]),
+        )
+    return out
 
 
 def validate(scene) -> None:
@@ -111,17 +136,18 @@ def validate(scene) -> None:
                 f"a {spec.type!r} effect acts only together with the fixed_axis it turns a "
                 "body about; list a fixed_axis",
             )
+    pinned = _pins(scene, index)
     for i, b in enumerate(scene.bodies):
         where = f"bodies[{i}]"
         if b.shape == "tank":
             raise scene.error(f"{where}.shape", "a tank needs a tank_outflow effect")
+        keys = FREE_INITIAL + (RATES if i in pinned else ())
         for k in b.initial:
-            if k not in FREE_INITIAL:
-                raise scene.error(
-                    f"{where}.initial.{k}",
-                    f"a free body takes {', '.join(FREE_INITIAL)}",
-                )
-        w = np.asarray(b.initial.get("omega", [0.0, 0.0, 0.0]))
+            if k not in keys:
+                raise scene.error(f"{where}.initial.{k}", f"a free body takes {', '.join(keys)}")
+        if "omega" in b.initial and any(k in b.initial for k in RATES):
+            raise scene.error(f"{where}.initial.omega", "give either omega or the Euler rates")
+        w = _omega(b.initial)
         if b.fixed:
             for k in ("velocity", "omega"):
                 if any(b.initial.get(k, [0.0])):
@@ -164,11 +190,12 @@ class Engine:
 
     def __init__(self, scene) -> None:
         self.scene = scene
-        self.layout = Layout.of(scene.bodies)
+        index = {b.name: i for i, b in enumerate(scene.bodies)}
+        self.layout = Layout.of(scene.bodies, _pins(scene, index))
         self.n = self.layout.n
         self.names = [b.name for b in scene.bodies]
-        index = {b.name: i for i, b in enumerate(scene.bodies)}
-        self.effects = build_effects(scene, Context(scene, index, self.layout.kinds))
+        ctx = Context(scene, index, self.layout.kinds, self.layout.pins)
+        self.effects = build_effects(scene, ctx)
         self.impacts: list[Impact] = [e for e in self.effects if e.type == "impact"]
         self.forces = [e for e in self.effects if e.type != "impact"]
         self.potentials = [e for e in self.forces if e.potential is not None]
@@ -177,10 +204,13 @@ class Engine:
         b0 = scene.bodies
         r0 = np.array([b.initial.get("position", [0.0] * 3) for b in b0], float)
         v0 = np.array([b.initial.get("velocity", [0.0] * 3) for b in b0], float)
-        w0 = np.array([b.initial.get("omega", [0.0] * 3) for b in b0], float)
+        w0 = np.array([_omega(b.initial) for b in b0], float)
         R0 = np.array([_attitude(b.initial) for b in b0])
         self.w0, self.R0 = w0, R0
-        self.y0 = self.layout.pack(r0, v0, self.layout.J * w0, R0)
+        L0 = self.layout.J * w0
+        for i, (_, _, JC, _) in self.layout.pins.items():
+            L0[i] = JC @ w0[i]  # a pinned body stores its angular momentum about C
+        self.y0 = self.layout.pack(r0, v0, L0, R0)
         self.rigid = self.layout.rigid_bodies
         self._phase: float | None = None  # see Snapshot.phase
 
@@ -205,7 +235,20 @@ class Engine:
         else:
             m = np.broadcast_to(self.m0, (*np.shape(t), self.n)).copy()
             J = np.broadcast_to(self.layout.J, (*np.shape(t), self.n, 3)).copy()
-        return Snapshot(t, r, v, L, R, self.layout.omega(L, J), m, J)
+        if not self.layout.pins:
+            return Snapshot(t, r, v, L, R, self.layout.omega(L, J), m, J)
+        if not copy:
+            r, v, L = r.copy(), v.copy(), L.copy()
+        w = self.layout.omega(L, J)
+        for i, (pivot, g, _, JCinv) in self.layout.pins.items():
+            # the stored L_C gives ω; G and its velocity follow from the attitude
+            w[..., i, :] = np.einsum("ij,...j->...i", JCinv, L[..., i, :])
+            L[..., i, :] = J[..., i, :] * w[..., i, :]  # about G, as for every body
+            rho = np.einsum("...ji,j->...i", R[..., i, :, :], g)  # r_G − C, space
+            w_O = np.einsum("...ji,...j->...i", R[..., i, :, :], w[..., i, :])
+            r[..., i, :] = pivot + rho
+            v[..., i, :] = np.cross(w_O, rho)
+        return Snapshot(t, r, v, L, R, w, m, J)
 
     def rhs(self, t, y) -> np.ndarray:
         s = self.snapshot(t, y, copy=False)
@@ -217,12 +260,17 @@ class Engine:
         return self.layout.derivative(s, out.F, out.M_A)
 
     def pack(self, s: Snapshot) -> np.ndarray:
-        return self.layout.pack(s.r, s.v, s.L_A, s.R)
+        L = s.L_A
+        if self.layout.pins:
+            L = np.array(L)
+            for i, (_, _, JC, _) in self.layout.pins.items():
+                L[..., i, :] = np.einsum("ij,...j->...i", JC, s.omega[..., i, :])
+        return self.layout.pack(s.r, s.v, L, s.R)
 
     # ------------------------------------------------------------- exact flows
     def exact_flow(self) -> str | None:
         kinds = {e.type for e in self.effects}
-        if self.layout.fixed_bodies:
+        if self.layout.fixed_bodies or self.layout.pins:
             return None
         for i in self.rigid:  # torque-free rotation by elliptic functions needs J > 0
             if self.w0[i].any() and not np.all(self.layout.J[i] > 0):
@@ -425,27 +473,31 @@ class Engine:
     # ---------------------------------------------------------------- contacts
     def _feature_coef(self, coef_y, imp, ft):
         """Chebyshev coefficients (k, 3) of a feature's position along the step."""
-        k = ft.body
+        return self._point_coef(coef_y, ft.body, ft.at)
+
+    def _centre_coef(self, coef_y, k):
+        return self._point_coef(coef_y, k, None)
+
+    def _point_coef(self, coef_y, k, at):
+        """Chebyshev coefficients (k, 3) of the body point ``at`` (body components about
+        G; None: G) along the step: r + R_A_Oᵀ at, linear in the state; for a pinned body
+        C + R_A_Oᵀ (g_A + at)."""
         kind, o = self.layout.kinds[k], self.layout.offsets[k]
         if kind == "fixed":
             c = np.zeros((coef_y.shape[0], 3))
-            c[0] = self.layout.r_fixed[k]
-            if ft.at is not None:
-                c[0] += ft.at
+            c[0] = self.layout.r_fixed[k] + (at if at is not None else 0.0)
+            return c
+        if kind == "pinned":
+            pivot, g, _, _ = self.layout.pins[k]
+            R = coef_y[:, o + 3 : o + 12].reshape(-1, 3, 3)
+            c = np.einsum("kic,i->kc", R, g + (at if at is not None else 0.0))
+            c[0] += pivot
             return c
         c = coef_y[:, o : o + 3].copy()
-        if ft.at is not None:  # x = r + R_A_Oᵀ ρ: linear in the state
+        if at is not None:
             R = coef_y[:, o + 9 : o + 18].reshape(-1, 3, 3)
-            c += np.einsum("kic,i->kc", R, ft.at)
+            c += np.einsum("kic,i->kc", R, at)
         return c
-
-    def _centre_coef(self, coef_y, k):
-        if self.layout.kinds[k] == "fixed":
-            c = np.zeros((coef_y.shape[0], 3))
-            c[0] = self.layout.r_fixed[k]
-            return c
-        o = self.layout.offsets[k]
-        return coef_y[:, o : o + 3]
 
     def _first_contact_on_step(self, dense, t_a, t_b):
         """The earliest contact of any feature within one step, or None.
@@ -467,8 +519,8 @@ class Engine:
             for b, ft in enumerate(imp.features):
                 x = self._feature_coef(coef_y, imp, ft)
                 if ft.sphere is None:
-                    p = (x - imp.point) @ imp.normal
-                    p[0] -= ft.a
+                    p = x @ imp.normal  # the plane's offset is a constant: the 0th term only
+                    p[0] -= imp.point @ imp.normal + ft.a
                     size, units, other = ft.a, 1.0, np.abs(imp.point).sum()
                 else:
                     rel = x - self._centre_coef(coef_y, ft.sphere)
@@ -523,22 +575,49 @@ class Engine:
     def _pressed(self, imp, ft, t, y) -> bool:
         """Do the loads push the pair together (normal relative acceleration inward)?"""
         s = self.snapshot(t, y)
-        dy = self.rhs(t, y)
-        acc = self.snapshot(t, dy)  # the derivative in the same layout: v̇ in r's place
         S, n = imp.contact(s, ft)
+        a = self._point_accelerations(t, y, s, {imp.i: S, imp.j: S})
+        return float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0))) < 0
 
-        def a_point(k):
+    def _point_accelerations(self, t, y, s, points) -> dict[int, np.ndarray]:
+        """Accelerations (space) of the body points ``{body: position}`` at (t, y):
+        a_G + α × ρ + ω × (ω × ρ), ρ from G (from the pivot of a pinned body, whose
+        pivot does not move)."""
+        dy = self.rhs(t, y)
+        _, dv, dL, _ = self.layout.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
+        out = {}
+        for k, S in points.items():
             if k is None or self.layout.kinds[k] == "fixed":
-                return np.zeros(3)
-            a = acc.v[k]
-            if self.layout.kinds[k] == "rigid":
-                rho = S - s.r[k]
-                w = s.to_space(k, s.omega[k])
-                alpha = s.to_space(k, self.layout.omega(acc.L_A[k], s.J[k]))
-                a = a + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
-            return a
+                continue
+            kind = self.layout.kinds[k]
+            if kind == "point":
+                out[k] = dv[k]
+                continue
+            if kind == "pinned":
+                pivot, _, _, JCinv = self.layout.pins[k]
+                base, rho, wdot = np.zeros(3), S - pivot, JCinv @ dL[k]
+            else:
+                safe = np.where(s.J[k] > 0, s.J[k], 1.0)
+                base, rho, wdot = dv[k], S - s.r[k], np.where(s.J[k] > 0, dL[k] / safe, 0.0)
+            w, alpha = s.to_space(k, s.omega[k]), s.to_space(k, wdot)
+            out[k] = base + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
+        return out
 
-        return float(n @ (a_point(imp.i) - a_point(imp.j))) < 0
+    def _reactions(self, t, Y) -> dict[int, np.ndarray]:
+        """The force of each pivot on its pinned body, F_C = m a_G − Σ F (4.4), at the
+        samples (t, Y): the acceleration of G from the equations of motion."""
+        out = {i: np.empty((len(t), 3)) for i in self.layout.pins}
+        if not out:
+            return out
+        for k, (tt, y) in enumerate(zip(t, Y, strict=True)):
+            s = self.snapshot(float(tt), y)
+            loads = Loads(self.n, s)
+            for e in self.forces:
+                e.loads(float(tt), s, loads)
+            acc = self._point_accelerations(float(tt), y, s, {i: s.r[i] for i in out})
+            for i in out:
+                out[i][k] = s.m[i] * acc[i] - loads.F[i]
+        return out
 
     def _resolve(self, t, y, imp, ft, events) -> np.ndarray:
         """Resolve the impact found at t, then every simultaneous one (sequential
@@ -615,6 +694,9 @@ class Engine:
                 w_O = s.to_space(i, s.omega[:, i])
                 for k, c in enumerate("xyz"):
                     series[f"{p}w{c}"] = w_O[:, k]
+        for i, F_C in self._reactions(t, Y).items():
+            for k, c in enumerate("xyz"):
+                series[f"{pre(i)}reaction_{c}"] = F_C[:, k]
         m = s.m[:, moving]
         v, r = s.v[:, moving], s.r[:, moving]
         KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))

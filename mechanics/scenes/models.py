@@ -933,8 +933,9 @@ CONSTRAINTS = tuple(m.constraint for m in MODELS)
 
 
 def select_model(scene):
-    """The model the scene's constraint calls for (validated), or None: free bodies, the
-    engine's (:mod:`mechanics.scenes.engine`)."""
+    """The model the scene's constraint calls for (validated), or None: free bodies, and
+    a fixed point with effects other than gravity, are the engine's
+    (:mod:`mechanics.scenes.engine`)."""
     cons = [e for e in scene.effects if e.type in CONSTRAINTS]
     kinds = {e.type for e in cons}
     if len(kinds) > 1:
@@ -947,6 +948,11 @@ def select_model(scene):
         raise scene.error(f"{cons[1].where}.type", f"{cons[1].type!r} is listed twice")
     if not kinds:
         return None
+    if kinds == {"fixed_point"} and not {e.type for e in scene.effects} <= {
+        "fixed_point",
+        "gravity",
+    }:
+        return None  # a pinned body among other effects: the engine's
     cls = next(m for m in MODELS if m.constraint in kinds)
     cls.validate(scene)
     return cls

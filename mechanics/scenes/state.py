@@ -12,7 +12,8 @@ Conventions
   (``fixed = true``) carries nothing: it stays at its initial position, at rest, with
   the identity attitude, and acts as an immovable partner of contacts.
 - **The flat vector.**  Bodies in file order; a point takes 6 numbers ``(r, v)``, a
-  rigid body 18 ``(r, v, L_A, R_A_O row by row)``, a fixed body 0.  :class:`Layout`
+  rigid body 18 ``(r, v, L_A, R_A_O row by row)``, a pinned body 12 ``(L_C, R_A_O)``, a
+  fixed body 0.  :class:`Layout`
   gathers the per-body arrays from a state of any leading shape ``(..., size)`` in one
   indexing (no Python loop over bodies), so the same code serves one right-hand-side
   evaluation and thousands of samples.
@@ -28,7 +29,7 @@ Conventions
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -46,6 +47,7 @@ SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 
 POINT_SIZE = 6
 RIGID_SIZE = 18
+PINNED_SIZE = 12
 
 
 def body_inertia(body) -> np.ndarray:
@@ -102,8 +104,9 @@ def body_vertices(body) -> np.ndarray | None:
 class Layout:
     """Where each body's quantities sit in the flat state; gathers and scatters them.
 
-    ``kinds[i]`` is ``"point"``, ``"rigid"`` or ``"fixed"``; ``J`` the principal moments
-    (n, 3) at the initial masses; ``r_fixed`` the positions of the fixed bodies.
+    ``kinds[i]`` is ``"point"``, ``"rigid"``, ``"pinned"`` or ``"fixed"``; ``J`` the
+    principal moments about G (n, 3) at the initial masses; ``r_fixed`` the positions of
+    the fixed bodies; ``pins[i]`` = (C, g_A, J_C, J_C⁻¹) of a pinned body.
     """
 
     kinds: tuple[str, ...]
@@ -111,12 +114,17 @@ class Layout:
     r_fixed: np.ndarray
     size: int
     offsets: tuple[int, ...]
+    pins: dict = field(default_factory=dict)
 
     @classmethod
-    def of(cls, bodies) -> Layout:
+    def of(cls, bodies, pins=None) -> Layout:
+        """The layout of ``bodies``; ``pins`` maps a body's index to (C, g_A): the space
+        point it is pinned at and the vector from that point to G in body components."""
+        pins = pins or {}
         kinds, offsets, size = [], [], 0
         J = np.zeros((len(bodies), 3))
         r_fixed = np.zeros((len(bodies), 3))
+        pin_data = {}
         for i, b in enumerate(bodies):
             if b.fixed:
                 kind = "fixed"
@@ -124,12 +132,18 @@ class Layout:
             elif b.shape == "point":
                 kind = "point"
             else:
-                kind = "rigid"
+                kind = "pinned" if i in pins else "rigid"
                 J[i] = body_inertia(b)
+            if kind == "pinned":
+                C, g = (np.asarray(x, dtype=float) for x in pins[i])
+                JC = np.diag(J[i]) + b.mass * ((g @ g) * np.eye(3) - np.outer(g, g))
+                pin_data[i] = (C, g, JC, np.linalg.inv(JC))
             kinds.append(kind)
             offsets.append(size)
-            size += {"fixed": 0, "point": POINT_SIZE, "rigid": RIGID_SIZE}[kind]
-        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets))
+            size += {"fixed": 0, "point": POINT_SIZE, "rigid": RIGID_SIZE, "pinned": PINNED_SIZE}[
+                kind
+            ]
+        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data)
 
     @property
     def n(self) -> int:
@@ -152,6 +166,10 @@ class Layout:
             if kind == "fixed":
                 ir[i] = fixed_at[i] + np.arange(3)
                 continue
+            if kind == "pinned":  # r, v derived (zeros here); L_C and R stored
+                iL[i] = o + np.arange(3)
+                iR[i] = (o + 3 + np.arange(9)).reshape(3, 3)
+                continue
             ir[i] = o + np.arange(3)
             iv[i] = o + 3 + np.arange(3)
             if kind == "rigid":
@@ -168,7 +186,12 @@ class Layout:
 
     @property
     def rigid_bodies(self) -> tuple[int, ...]:
-        return tuple(i for i, k in enumerate(self.kinds) if k == "rigid")
+        """The bodies that turn: free rigid bodies and pinned ones."""
+        return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned"))
+
+    @property
+    def pinned_bodies(self) -> tuple[int, ...]:
+        return tuple(i for i, k in enumerate(self.kinds) if k == "pinned")
 
     @property
     def moving_bodies(self) -> tuple[int, ...]:
@@ -185,12 +208,14 @@ class Layout:
 
     def pack(self, r, v, L_A, R_A_O) -> np.ndarray:
         """The flat state(s) (..., size) from per-body arrays (..., n, 3) and (..., n, 3, 3)
-        (the inverse of :meth:`gather` on the moving bodies)."""
+        (the inverse of :meth:`gather` on the moving bodies; a pinned body's row of
+        ``L_A`` must hold its L_C)."""
         ir, iv, iL, iR, _ = self._index()
         r = np.asarray(r, dtype=float)
         lead = r.shape[:-2]
         y = np.empty((*lead, self.size))
-        mov, rig = list(self.moving_bodies), list(self.rigid_bodies)
+        mov = [i for i, k in enumerate(self.kinds) if k in ("point", "rigid")]
+        rig = list(self.rigid_bodies)  # for a pinned body the caller gives L_C as L_A
         y[..., ir[mov].ravel()] = r[..., mov, :].reshape(*lead, -1)
         y[..., iv[mov].ravel()] = np.asarray(v, dtype=float)[..., mov, :].reshape(*lead, -1)
         if rig:
@@ -213,6 +238,9 @@ class Layout:
         for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
             if kind == "fixed":
                 continue
+            if kind == "pinned":
+                out[o : o + 12] = self.pinned_rate(i, s, F[i], M_A[i])
+                continue
             out[o : o + 3] = v[i]
             out[o + 3 : o + 6] = F[i] / m[i]
             if kind == "rigid":
@@ -226,4 +254,18 @@ class Layout:
                 out[o + 9 : o + 12] = wi[2] * Ri[1] - wi[1] * Ri[2]
                 out[o + 12 : o + 15] = wi[0] * Ri[2] - wi[2] * Ri[0]
                 out[o + 15 : o + 18] = wi[1] * Ri[0] - wi[0] * Ri[1]
+        return out
+
+    def pinned_rate(self, i, s, F_i, M_A_i) -> np.ndarray:
+        """(L̇_C, Ṙ) of a pinned body: L̇_C = L_C × ω + M_C, the moment about the pivot
+        M_C = M_G + g_A × (R F) (body components)."""
+        _, g, JC, _ = self.pins[i]
+        w, Ri = s.omega[i], s.R[i]
+        L = JC @ w
+        M = M_A_i + np.cross(g, Ri @ F_i)
+        out = np.empty(12)
+        out[0:3] = np.cross(L, w) + M
+        out[3:6] = w[2] * Ri[1] - w[1] * Ri[2]
+        out[6:9] = w[0] * Ri[2] - w[2] * Ri[0]
+        out[9:12] = w[1] * Ri[0] - w[0] * Ri[1]
         return out

@@ -609,3 +609,103 @@ def test_combinations_that_make_no_physical_sense_are_refused(
         _scene(bodies, effects)
     assert info.value.field == where
     assert str(info.value).startswith(f"engine.toml: {where}: ")
+
+
+# ------------------------------------------------------------------ pinned bodies
+
+
+def test_a_pinned_top_on_the_engine_moves_as_the_exact_heavy_top() -> None:
+    """The engine's pinned body (L_C and R_A_O integrated) against the fixed-point
+    model's exact elliptic solution of the built-in heavy top: G's height is ℓ cos θ."""
+    from identities.scene_compare import run_book_scene
+    from mechanics.scenes import builtin_path, load_scene
+    from mechanics.scenes.engine import Engine
+
+    scene = load_scene(builtin_path("heavy_top"))
+    exact = run_book_scene(scene).trajectory
+    assert exact.method.startswith("exact")
+    tr = Engine(dataclasses.replace(scene, method="integrate")).run()
+    ell = scene.effects_of("fixed_point")[0].fields["distance"]
+    np.testing.assert_allclose(
+        tr.series["z"], ell * exact.series["cos_theta"], rtol=0, atol=64 * INTEGRATED_RTOL * ell
+    )
+
+
+def test_the_pivot_reaction_is_m_a_G_minus_the_weight() -> None:
+    """(4.4) for the top: F_C = m a_G − m g, with a_G here from central differences of
+    the sampled v_G (an independent route); their truncation, h²/6 max|v‴|, bounds the
+    difference (max|v‴| estimated from the third differences)."""
+    from mechanics.scenes import builtin_path, load_scene
+    from mechanics.scenes.engine import Engine
+
+    scene = dataclasses.replace(
+        load_scene(builtin_path("heavy_top")), method="integrate", samples=3001
+    )
+    tr = Engine(scene).run()
+    t, s = tr.t, tr.series
+    h = t[1] - t[0]
+    v = np.stack([s["vx"], s["vy"], s["vz"]], -1)
+    F = np.stack([s["reaction_x"], s["reaction_y"], s["reaction_z"]], -1)
+    a_fd = (v[2:] - v[:-2]) / (2 * h)
+    jerk = np.abs(np.diff(v, 3, axis=0)).max() / h**3
+    m, g = 1.0, np.array([0.0, 0.0, -9.81])
+    err = np.abs(F[1:-1] + m * g - m * a_fd).max()
+    assert err <= 2 * m * h * h / 6 * jerk + 64 * INTEGRATED_RTOL * np.abs(F).max()
+    assert err > 0, "the routes differ (truncation): not a value compared with itself"
+
+
+def test_a_ball_bounces_on_a_raised_floor_where_the_floor_is() -> None:
+    """A plane through (0.5, −0.3, 1): the integrated run once subtracted the plane's
+    point from every Chebyshev coefficient of a feature's height and struck in mid-air
+    (found with a top 4 cm above its floor); exact and integrated runs must agree."""
+    ball = {
+        "name": "ball",
+        "shape": "solid_sphere",
+        "mass": 0.5,
+        "radius": 0.1,
+        "initial": {"position": [0.0, 0.0, 3.0]},
+    }
+    effects = [
+        {"type": "gravity", "g": 9.81},
+        {"type": "impact", "body": "ball", "plane_point": [0.5, -0.3, 1.0], "restitution": 0.7},
+    ]
+    ex = run_scene(_scene([ball], effects, duration=2.0))
+    it = run_scene(_scene([ball], effects, duration=2.0, method="integrate"))
+    assert ex.method.startswith("exact")
+    for r in (ex, it):
+        assert r.passed, r.summary()
+        assert r.trajectory.events
+    t_first = math.sqrt(2 * 1.9 / 9.81)  # the centre falls from 3 to 1.1
+    assert it.trajectory.events[0].t == pytest.approx(t_first, rel=2**14 * EPS)
+    assert [e.t for e in it.trajectory.events] == pytest.approx(
+        [e.t for e in ex.trajectory.events], rel=2**14 * EPS
+    )
+
+
+def test_an_impulse_away_from_the_contact_fails_the_run() -> None:
+    """Negative control of the 'impacts at contact' self-check."""
+    from mechanics.scenes.result import conserved_tolerance, self_checks
+
+    r = run_scene(_dropped_box())
+    r.trajectory.events[0].detail["gap"] = 1e-3
+    tol = conserved_tolerance(r.scene, r.trajectory)
+    bad = {c.name.split(" (")[0] for c in self_checks(r.trajectory, tol) if not c.ok}
+    assert bad == {"impacts at contact"}
+
+
+@pytest.mark.parametrize(
+    ("extra", "where", "match"),
+    [
+        ({"position": [0.0, 0.0, 1.0]}, "bodies[0].initial.position", "follows from its attitude"),
+        ({"omega": [0.0, 0.0, 1.0], "phi_dot": 1.0}, "bodies[0].initial.omega", "either omega"),
+    ],
+)
+def test_a_pinned_body_refuses_what_its_pivot_decides(extra, where, match) -> None:
+    top = _box("top") | {"initial": {"theta": 0.5, **extra}}
+    effects = [
+        {"type": "fixed_point", "body": "top", "distance": 0.1},
+        {"type": "drag", "body": "top", "angular_linear": 0.1},
+    ]
+    with pytest.raises(SceneError, match=match) as info:
+        _scene([top], effects)
+    assert info.value.field == where

@@ -22,7 +22,7 @@ Conventions
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
@@ -69,6 +69,8 @@ class Context:
     scene: Any
     index: dict[str, int]
     kinds: tuple[str, ...]
+    #: pinned bodies: index -> (C, g_A, J_C, J_C⁻¹), see :class:`~..state.Layout`
+    pins: dict = field(default_factory=dict)
 
     def body(self, name: str):
         return self.scene.bodies[self.index[name]]

@@ -1,4 +1,14 @@
-"""A fixed point on the symmetry axis: the top of 5.2 (its own model)."""
+"""A fixed point (a ball joint): the body's point C, on its symmetry axis e3 at the
+distance ℓ below G, held at a point of space (the top of 5.2).
+
+Scenes with only gravity and the fixed point run on the fixed-point model
+(:mod:`mechanics.scenes.models`, with the heavy symmetric top's exact flow); with any
+other effect (an impact on the floor, a push, drag) on the engine, where the joint makes
+the body *pinned* (:mod:`mechanics.scenes.state`): no force is needed to hold C, the
+reaction is read off the motion, F_C = m a_G − Σ F (the bearing reaction of 4.4).
+The joint does no work (E kept) and its reaction has no moment about C: it keeps the
+angular momentum about the origin when C is the origin; never the momentum.
+"""
 
 from __future__ import annotations
 
@@ -14,15 +24,54 @@ class FixedPoint(Effect):
     """A fixed point C on the body's symmetry (z) axis at distance ℓ from G (5.2)."""
 
     type = "fixed_point"
-    engine = False
-    schema: ClassVar[Schema] = {"body": ("body", True), "distance": ("nonnegative", True)}
+    schema: ClassVar[Schema] = {
+        "body": ("body", True),
+        "distance": ("nonnegative", True),
+        "point": ("vector", False),
+    }
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        b = scene.body(spec.fields["body"])
+        if b.shape in ("point", "tank") or b.fixed:
+            what = "fixed" if b.fixed else f"a {b.shape}"
+            raise scene.error(
+                f"{spec.where}.body", f"body {b.name!r} is {what}: it cannot be pinned"
+            )
+        if [e.fields["body"] for e in scene.effects_of("fixed_point")].count(b.name) > 1:
+            raise scene.error(f"{spec.where}.body", f"body {b.name!r} has two fixed points")
+        for e in scene.effects:
+            if e.type == "thrust" and e.fields["body"] == b.name:
+                raise scene.error(
+                    f"{e.where}.body", f"body {b.name!r} is pinned: its mass cannot change"
+                )
+        for k in ("position", "velocity"):
+            if k in b.initial:
+                raise scene.error(
+                    f"bodies[{index[b.name]}].initial.{k}",
+                    "a pinned body's centre follows from its attitude: give psi, theta, phi",
+                )
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
         self.ell = float(self.fields["distance"])
+        self.point = np.asarray(self.fields.get("point", [0.0, 0.0, 0.0]), dtype=float)
+        self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
 
     def moments(self, m, J_G) -> np.ndarray:
         """Principal moments about C: J'1 = J1 + m ℓ², J'2 = J2 + m ℓ², J3 (5.46)."""
         J = np.diag(J_G).astype(float).copy()
         J[:2] += m * self.ell**2
         return J
+
+    def pin(self) -> tuple[np.ndarray, np.ndarray]:
+        """(C, g_A): the pivot in space and G relative to it in body components."""
+        return self.point, np.array([0.0, 0.0, self.ell])
+
+    def keeps(self, quantity: str) -> bool:
+        if quantity == "E":
+            return True
+        return quantity.startswith("L_") and not self.point.any()
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i

@@ -132,6 +132,7 @@ class Impact(Effect):
         self.normal = unit(f.get("plane_normal", [0.0, 0.0, 1.0]))
         bodies = ctx.scene.bodies
         self.fixed = {k for k, kind in enumerate(ctx.kinds) if kind == "fixed"}
+        self.pins = ctx.pins  # pinned bodies: the pivot takes an impulse too
         self.features = self._features(bodies)
 
     # ----------------------------------------------------------------- geometry
@@ -244,8 +245,20 @@ class Impact(Effect):
             detail["bodies"] = [self.fields["body"], self.fields["other"]]
         detail["feature"] = ft.label
         detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
+        # the gap at the instant of the impact, and the size it is rounded relative to
+        detail["gap"] = float(self.gap(s, ft))
+        detail["gap_scale"] = float(
+            np.abs(self.feature_point(s, ft)).sum() + np.abs(self.point).sum() + ft.a + ft.a_s
+        )
         detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
         detail["friction"] = self._mode
+        # the impulse and the energies use the attitudes: an integrated R_A_O is
+        # orthonormal only to the integration's tolerance
+        detail["attitude_defect"] = max(
+            (float(np.abs(s.R[k] @ s.R[k].T - np.eye(3)).max()) for k in idx), default=0.0
+        )
+        if any(k in self.pins for k in idx):
+            detail["external_impulse"] = "the pivot of a pinned body"
         detail["energy_loss"] = self._loss
         detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
         detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
@@ -260,13 +273,10 @@ class Impact(Effect):
             self._apply_with_friction(s, S, n, v_n)
             return
         e, moving = self.e, self.bodies()
-        arms = {k: S - s.r[k] for k in moving}
-        u_A = {k: s.to_body(k, np.cross(arms[k], n)) for k in moving}
-        jinv = {
-            k: np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0) for k in moving
-        }
-        central = all(not np.any(u_A[k] * jinv[k]) for k in moving)
         sign = {self.i: 1.0, self.j: -1.0}
+        central = not any(k in self.pins for k in moving) and all(
+            not np.any(np.cross(S - s.r[k], n)) for k in moving
+        )
         if central and len(moving) == 2:  # through both centres: the direct impact, 2 ulps
             from mechanics.impact import direct_impact
 
@@ -278,28 +288,46 @@ class Impact(Effect):
             s.v[i] += (float(v2f) - v2) * n
             mu = m_i * m_j / (m_i + m_j)
         else:
-            inv = sum(1.0 / s.m[k] + u_A[k] @ (jinv[k] * u_A[k]) for k in moving)
-            mu = 1.0 / inv
-            P = -(1.0 + e) * mu * v_n
+            K = sum(self._inverse_mass(s, k, S) for k in moving)
+            mu = 1.0 / float(n @ K @ n)
+            P = -(1.0 + e) * mu * v_n * n
             for k in moving:
-                s.v[k] += sign[k] * P / s.m[k] * n
-                s.L_A[k] += sign[k] * P * u_A[k]
-                s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] * jinv[k], 0.0)
+                self._kick(s, k, sign[k] * P, S)
         self._loss = 0.5 * mu * (1.0 - e) * (1.0 + e) * v_n * v_n
+
+    def _inverse_mass(self, s, k, S) -> np.ndarray:
+        """Body k's part of the contact's inverse mass matrix (space components):
+        1/m − [ρ]× J⁻¹ [ρ]× with ρ from G; for a pinned body ρ from the pivot, with its
+        inertia about the pivot and no 1/m (the pivot takes the translation)."""
+        pin = self.pins.get(k)
+        if pin is None:
+            origin, inv_m = s.r[k], 1.0 / s.m[k]
+            Jinv = np.diag(np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0))
+        else:
+            origin, inv_m, Jinv = pin[0], 0.0, pin[3]
+        rho = S - origin
+        X = np.array([[0.0, -rho[2], rho[1]], [rho[2], 0.0, -rho[0]], [-rho[1], rho[0], 0.0]])
+        return inv_m * np.eye(3) - X @ (s.R[k].T @ Jinv @ s.R[k]) @ X
+
+    def _kick(self, s, k, P, S) -> None:
+        """Apply the impulse P (space components) at the point S to body k, in place."""
+        pin = self.pins.get(k)
+        if pin is None:
+            s.v[k] += P / s.m[k]
+            s.L_A[k] += s.to_body(k, np.cross(S - s.r[k], P))
+            safe = np.where(s.J[k] > 0, s.J[k], 1.0)
+            s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] / safe, 0.0)
+            return
+        C, _, _, JCinv = pin  # ΔL_C = (S − C) × P; G's velocity follows from ω
+        s.omega[k] = s.omega[k] + JCinv @ s.to_body(k, np.cross(S - C, P))
+        s.L_A[k] = s.J[k] * s.omega[k]
+        s.v[k] = np.cross(s.to_space(k, s.omega[k]), s.r[k] - C)
 
     def _apply_with_friction(self, s, S, n, v_n) -> None:
         """Stick or slip (see the Conventions); sets ``self._loss`` and ``self._mode``."""
         e, mu, moving = self.e, self.mu_f, self.bodies()
         sign = {self.i: 1.0, self.j: -1.0}
-        K = np.zeros((3, 3))
-        parts = {}
-        for k in moving:
-            rho = S - s.r[k]
-            X = np.array([[0.0, -rho[2], rho[1]], [rho[2], 0.0, -rho[0]], [-rho[1], rho[0], 0.0]])
-            jinv = np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0)
-            Jinv_O = s.R[k].T @ (jinv[:, None] * s.R[k])  # J⁻¹ in space components
-            K += np.eye(3) / s.m[k] - X @ Jinv_O @ X
-            parts[k] = (rho, jinv)
+        K = sum(self._inverse_mass(s, k, S) for k in moving)
         u = self._relative_velocity(s, S)
         P = np.linalg.solve(K, -e * v_n * n - u)  # stick
         P_n = float(P @ n)
@@ -313,10 +341,7 @@ class Impact(Effect):
             P = (-(1.0 + e) * v_n / float(n @ K @ d)) * d
             self._mode = "slip"
         for k in moving:
-            rho, jinv = parts[k]
-            s.v[k] += sign[k] * P / s.m[k]
-            s.L_A[k] += sign[k] * s.to_body(k, np.cross(rho, P))
-            s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] * jinv, 0.0)
+            self._kick(s, k, sign[k] * P, S)
         self._loss = -float(P @ u + 0.5 * P @ K @ P)
 
     # ---------------------------------------------------------------- invariants
