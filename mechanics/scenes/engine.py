@@ -565,6 +565,13 @@ class Engine:
                         break
                     # zero approach speed: the pair touches here (a plastic pair moving on
                     # together, the top of a tiny hop); it may still fall in later
+                    if after is not None and xc <= after:
+                        raise self.scene.error(
+                            imp.where,
+                            f"{ft.label} touch at t = {tc:.17g} s and then fall in, with no "
+                            "separation that float64 can resolve: a resting contact, which "
+                            "no effect provides (shorten the duration)",
+                        )
                     after = xc
         return best
 
@@ -572,12 +579,26 @@ class Engine:
         """Touching with an approach speed that is zero up to rounding: no impact."""
         return imp.approach(s, ft) <= CLOSING_ROUNDING * imp.speed_scale(s, ft)
 
-    def _pressed(self, imp, ft, t, y) -> bool:
-        """Do the loads push the pair together (normal relative acceleration inward)?"""
+    def _pressed(self, imp, ft, t, y) -> float:
+        """How hard the loads push the pair together: the inward normal relative
+        acceleration of the contact points (> 0 pressed, ≤ 0 not)."""
         s = self.snapshot(t, y)
         S, n = imp.contact(s, ft)
         a = self._point_accelerations(t, y, s, {imp.i: S, imp.j: S})
-        return float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0))) < 0
+        return -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))
+
+    def _stalls(self, imp, ft, t, y, detail) -> bool:
+        """Do the impacts accumulate here?  Pressed together, the pair rebounds too slowly
+        to be followed: slower than ``ZENO_SPEED`` (relative), or so slowly that its hop,
+        v²/(2a), stays below the rounding of the gap (``GAP_ROUNDING`` × the positions'
+        size), where no next contact can be told from this one."""
+        a = self._pressed(imp, ft, t, y)
+        if not a > 0:
+            return False
+        v = detail["normal_speed_after"]
+        if v < ZENO_SPEED * (1.0 + abs(detail["normal_speed_before"])):
+            return True
+        return v * v <= 2.0 * a * GAP_ROUNDING * 4 * detail.get("gap_scale", 0.0)
 
     def _point_accelerations(self, t, y, s, points) -> dict[int, np.ndarray]:
         """Accelerations (space) of the body points ``{body: position}`` at (t, y):
@@ -642,9 +663,7 @@ class Engine:
             if len(events) > MAX_EVENTS:
                 raise _zeno(self.scene, t, imp.label)
             y = self.pack(s)
-            if detail["normal_speed_after"] < ZENO_SPEED * (
-                1.0 + abs(detail["normal_speed_before"])
-            ) and self._pressed(imp, ft, t, y):
+            if self._stalls(imp, ft, t, y, detail):
                 raise _zeno(self.scene, t, imp.label)
             nxt = self._closing_now(s)
             if nxt is None:

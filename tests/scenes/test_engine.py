@@ -21,6 +21,9 @@ EPS = float(np.finfo(float).eps)
 INTEGRATED_RTOL = 2**20 * EPS
 #: one impulse in closed form: a handful of roundings of O(1) terms
 IMPULSE_RTOL = 256 * EPS
+#: a random scene is a whole run (~50 ms): 3/10 of the profile's examples (30 under
+#: ci and dev, 300 under explore, which hunts)
+SCENE_EXAMPLES = max(10, settings.default.max_examples * 3 // 10)
 
 
 def _scene(bodies, effects, *, duration=1.0, samples=101, method="auto", **kw):
@@ -333,9 +336,12 @@ def test_a_ball_that_slips_on_a_rough_floor_gets_mu_times_the_normal_impulse() -
     assert after["wy"] == pytest.approx(2.5 * mu * (1 + e) * vn / a, rel=IMPULSE_RTOL)
 
 
-@settings(max_examples=30)
+@settings(max_examples=SCENE_EXAMPLES)
 @example(w=(1.0, 1.0, 0.0), angles=(1.0, 1.0, 1.0), mu=1.0, e=0.0625)  # a missed contact
 @example(w=(0.0, 1.0, 0.0), angles=(1.0, 1.0, 1.0), mu=1.0, e=0.0625)  # after a touch
+# rebounds whose hop stays below the gap's rounding (found by CI's derandomised run)
+@example(w=(1.375, -1.625, 0.0), angles=(1.0, 1.5, 2.96875), mu=1.0, e=0.044921875)
+@example(w=(1.0, 1.5, 2.96875), angles=(1.375, 0.0625, 0.0625), mu=1.0, e=0.044921875)
 @given(
     w=st.tuples(*[st.floats(-5, 5)] * 3),
     angles=st.tuples(*[st.floats(0.05, 3.0)] * 3),
@@ -365,7 +371,8 @@ def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -
     if refusal is not None:
         # refused, never run half-way: a box coming to rest on the floor, or an impulse
         # that Newton's e with friction would make gain energy (Kane's paradox)
-        assert "come to rest in contact" in refusal or "would add" in refusal, refusal
+        refusals = ("come to rest in contact", "would add", "a resting contact")
+        assert any(r in refusal for r in refusals), refusal
         return
     assert r.passed, r.summary()
     for ev in r.trajectory.events:
@@ -479,7 +486,7 @@ EFFECTS = {
 }
 
 
-@settings(max_examples=25)
+@settings(max_examples=SCENE_EXAMPLES)
 @given(
     chosen=st.lists(st.sampled_from(sorted(EFFECTS)), min_size=1, max_size=4, unique=True),
     va=st.tuples(*[st.floats(-1, 1)] * 3),
