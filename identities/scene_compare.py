@@ -381,19 +381,7 @@ def intermediate_axis_flip(scene: Scene, tr: Trajectory):
     J = np.asarray(body_inertia(b))
     _need(scene, J[0] < J[1] < J[2], "principal moments J1 < J2 < J3")
     w = np.asarray(b.initial.get("omega", [0.0, 0.0, 0.0]))
-    T = _flip_period(J, w)
-    tol, why = _tol(tr)
-    z = _zeros(tr, "omega2", 3)
-    return [
-        Comparison(
-            "flip period (ω2 back to its sign)",
-            "5.3.3: 4K(m)/λ (derived)",
-            z[2] - z[0],
-            T,
-            max(tol, 2**12 * EPS),
-            why + ", zeros by brentq",
-        )
-    ]
+    return [_flip_comparison(tr, J, w, "flip period (ω2 back to its sign)", 0.0)]
 
 
 def flip_after_push(scene: Scene, tr: Trajectory):
@@ -409,19 +397,22 @@ def flip_after_push(scene: Scene, tr: Trajectory):
     t_end = max(p.fields["end"] for p in pushes)
     st = tr.state_at(t_end)
     w = np.array([st[f"omega{k}"] for k in (1, 2, 3)])
-    T = _flip_period(J, w)
+    return [_flip_comparison(tr, J, w, "flip period after the push", t_end)]
+
+
+def _flip_comparison(tr: Trajectory, J, w, name: str, t_lo: float) -> Comparison:
+    """The time between the 1st and 3rd zeros of ω2 after t_lo against 4K(m)/λ of the
+    body ω ``w`` (zeros located by brentq: a few thousand eps of the period at most)."""
     tol, why = _tol(tr)
-    z = _zeros(tr, "omega2", 3, t_lo=t_end)
-    return [
-        Comparison(
-            "flip period after the push",
-            "5.3.3: 4K(m)/λ (derived)",
-            z[2] - z[0],
-            T,
-            max(tol, 2**12 * EPS),
-            why + ", zeros by brentq",
-        )
-    ]
+    z = _zeros(tr, "omega2", 3, t_lo=t_lo)
+    return Comparison(
+        name,
+        "5.3.3: 4K(m)/λ (derived)",
+        z[2] - z[0],
+        _flip_period(J, w),
+        max(tol, 2**12 * EPS),
+        why + ", zeros by brentq",
+    )
 
 
 # ------------------------------------------------------------------ Example 7.2

@@ -357,37 +357,26 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
             )
         )
     pairs = [d for d in impacts if "bodies" in d and "external_impulse" not in d]
-    if pairs:
-        worst = max(
-            float(np.linalg.norm(np.subtract(d["momentum_after"], d["momentum_before"])))
-            / max(d["momentum_scale"], 1e-300)
-            for d in pairs
-        )
-        out.append(
-            SelfCheck(
-                f"momentum across two-body impacts ({_count(len(pairs), 'impact')})",
-                worst,
-                IMPACT_RTOL,
-                "Σ m v unchanged by the impulses (6.37)",
-            )
-        )
-        with_L = [d for d in pairs if "angular_momentum_before" in d]
-        if with_L:
+    for what, key, law in (
+        ("momentum", "momentum", "Σ m v unchanged by the impulses (6.37)"),
+        (
+            "angular momentum",
+            "angular_momentum",
+            "Σ (ρ × m v + Rᵀ L_A) about the contact point unchanged (6.21)",
+        ),
+    ):
+        if pairs:
             worst = max(
-                float(
-                    np.linalg.norm(
-                        np.subtract(d["angular_momentum_after"], d["angular_momentum_before"])
-                    )
-                )
-                / max(d["angular_momentum_scale"], 1e-300)
-                for d in with_L
+                float(np.linalg.norm(np.subtract(d[f"{key}_after"], d[f"{key}_before"])))
+                / max(d[f"{key}_scale"], 1e-300)
+                for d in pairs
             )
             out.append(
                 SelfCheck(
-                    f"angular momentum across two-body impacts ({_count(len(with_L), 'impact')})",
+                    f"{what} across two-body impacts ({_count(len(pairs), 'impact')})",
                     worst,
                     IMPACT_RTOL,
-                    "Σ (ρ × m v + Rᵀ L_A) about the contact point unchanged (6.21)",
+                    law,
                 )
             )
     return out
