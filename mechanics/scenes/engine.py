@@ -4,9 +4,10 @@ exact flow where their set has one, integrates otherwise, and finds every contac
 Conventions
 -----------
 - **State**: :mod:`mechanics.scenes.state` (points, rigid bodies with L_A and ^A R^O,
-  fixed bodies).  A rigid body starts with the attitude ^A R^O = R3(φ) R1(θ) R3(ψ) of
-  its initial Euler angles ``psi``, ``theta``, ``phi`` (z-x-z, default 0: the body axes
-  along the space axes) and the angular velocity ``omega`` in body components.
+  pinned bodies with L_C and ^A R^O, fixed bodies).  A rigid body starts with the
+  attitude ^A R^O = R3(φ) R1(θ) R3(ψ) of its initial Euler angles ``psi``, ``theta``,
+  ``phi`` (z-x-z, default 0: the body axes along the space axes) and the angular
+  velocity ``omega`` in body components (a pinned body: or the Euler rates).
 - **Effects**: :mod:`mechanics.scenes.effects`; the right-hand side sums the
   :meth:`~mechanics.scenes.effects.base.Effect.loads` of the listed effects and
   nothing else (no default gravity, no damping, no position correction).
@@ -16,7 +17,10 @@ Conventions
   spheres, whose relative motion is uniform, a quadratic formed without cancellation,
   :func:`contacts.sphere_contact_time`); with only gravity and space-fixed thrust: the
   rocket (7.30); in both, each spinning rigid body turns by the torque-free
-  Jacobi-elliptic flow of :class:`mechanics.tops.FreeAsymmetricTop`.
+  Jacobi-elliptic flow of :class:`mechanics.tops.FreeAsymmetricTop`.  A lone pinned
+  body (a top on a ``fixed_point``) with nothing else: the torque-free top about C;
+  with gravity along −z, J1 = J2 and 0 < θ0 < π: the heavy symmetric top
+  (:class:`mechanics.tops.HeavySymmetricTop`, 5.2).
 - **Integration** otherwise (or ``method = "integrate"``): the project's adaptive
   Dormand–Prince 8(5,3) stepper (:class:`mechanics.integrators.DOP853Stepper`) at the
   scene's ``rtol``/``atol``.  After every step each contact feature's gap is searched
@@ -108,9 +112,27 @@ def _omega(initial) -> np.ndarray:
     if "omega" in initial:
         return np.asarray(initial["omega"], dtype=float)
     th, ph = float(initial.get("theta", 0.0)), float(initial.get("phi", 0.0))
-    thd, psd, phd = (float(initial.get(k, 0.0)) for k in RATES)
-    st, ct, sp, cp = math.sin(th), math.cos(th), math.sin(ph), math.cos(ph)
-    return np.array([psd * st * sp + thd * cp, psd * st * cp - thd * sp, psd * ct + phd])
+    return _omega_from_rates(th, ph, *(float(initial.get(k, 0.0)) for k in RATES))
+
+
+def _omega_from_rates(theta, phi, theta_dot, psi_dot, phi_dot):
+    """Body ω of ^A R^O = R3(φ) R1(θ) R3(ψ) from the Euler rates (2.59), any shape."""
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
+    return np.stack(
+        [
+            psi_dot * st * sp + theta_dot * cp,
+            psi_dot * st * cp - theta_dot * sp,
+            psi_dot * ct + phi_dot,
+        ],
+        axis=-1,
+    )
+
+
+def _rates_from_omega(theta, phi, w) -> tuple[float, float, float]:
+    """(θ̇, ψ̇, φ̇) from body ω (the inverse of (2.59); sin θ ≠ 0)."""
+    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(phi), math.cos(phi)
+    psi_dot = (w[0] * sp + w[1] * cp) / st
+    return w[0] * cp - w[1] * sp, psi_dot, w[2] - psi_dot * ct
 
 
 def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
@@ -270,7 +292,9 @@ class Engine:
     # ------------------------------------------------------------- exact flows
     def exact_flow(self) -> str | None:
         kinds = {e.type for e in self.effects}
-        if self.layout.fixed_bodies or self.layout.pins:
+        if self.layout.pins:
+            return self._pinned_exact_flow(kinds)
+        if self.layout.fixed_bodies:
             return None
         for i in self.rigid:  # torque-free rotation by elliptic functions needs J > 0
             if self.w0[i].any() and not np.all(self.layout.J[i] > 0):
@@ -292,6 +316,71 @@ class Engine:
         ):
             return f"exact: rocket flight (7.30) with uniform gravity{spin}"
         return None
+
+    def _pinned_exact_flow(self, kinds) -> str | None:
+        """A lone top on its fixed point: torque-free (the elliptic flow about C), or the
+        heavy symmetric top (J1 = J2 about C, gravity along −z, θ0 in (0, π))."""
+        from mechanics.tops import FreeAsymmetricTop, HeavySymmetricTop
+
+        if self.n != 1 or not kinds <= {"fixed_point", "gravity"}:
+            return None
+        ((i, (_, g, JC, _)),) = self.layout.pins.items()
+        Jc = np.diag(JC).copy()  # diagonal: the pivot lies on the principal axis e3
+        if kinds == {"fixed_point"}:
+            try:
+                self._top = ("free", FreeAsymmetricTop(Jc, self.w0[i], self.R0[i]))
+            except OutOfDomainError:
+                return None
+            return "exact: torque-free top about C, Jacobi elliptic functions (5.3)"
+        grav = [e for e in self.effects if e.type == "gravity"]
+        ini = self.scene.bodies[i].initial
+        th, ph = float(ini.get("theta", 0.0)), float(ini.get("phi", 0.0))
+        if not (
+            len(grav) == 1
+            and Jc[0] == Jc[1]
+            and g[2] > 0
+            and np.array_equal(grav[0].direction, [0.0, 0.0, -1.0])
+            and 0.0 < th < math.pi
+        ):
+            return None
+        thd, psd, phd = _rates_from_omega(th, ph, self.w0[i])
+        top = HeavySymmetricTop(
+            Jc[0],
+            Jc[2],
+            self.m0[i] * grav[0].g * g[2],
+            theta=th,
+            psi=float(ini.get("psi", 0.0)),
+            phi=ph,
+            theta_dot=thd,
+            psi_dot=psd,
+            phi_dot=phd,
+        )
+        self._top = ("heavy", top)
+        return "exact: heavy symmetric top, elliptic integrals (5.2.2–5.2.5)"
+
+    def _pinned_exact(self):
+        """The lone top's exact flow as flat states (L_C, R_A_O) at any times."""
+        from mechanics.rotation import matrix_from_euler
+
+        kind, top = self._top
+        ((i, (_, _, JC, _)),) = self.layout.pins.items()
+        o = self.layout.offsets[i]
+
+        @vectorized
+        def at(t):
+            tt = np.asarray(t, dtype=float)
+            if kind == "free":
+                R, w = top.attitude(tt), top.omega(tt)
+            else:
+                th, ps, ph = top.theta(tt), top.psi(tt), top.phi(tt)
+                thd, psd, phd = top.rates(tt)
+                R, w = matrix_from_euler(ps, th, ph), _omega_from_rates(th, ph, thd, psd, phd)
+            y = np.zeros((*tt.shape, self.layout.size))
+            y[..., o : o + 3] = np.einsum("ij,...j->...i", JC, w)
+            y[..., o + 3 : o + 12] = np.asarray(R).reshape(*tt.shape, 9)
+            return y
+
+        return [(0.0, self.scene.duration, at)], []
 
     def _spinning(self) -> list[int]:
         return [i for i in self.rigid if self.w0[i].any()]
@@ -420,6 +509,9 @@ class Engine:
                 "exact flow here; use 'auto' or 'integrate'",
             )
         if exact is not None and s.method != "integrate":
+            if self.layout.pins:
+                segs, events = self._pinned_exact()
+                return self._finish(t, segs, events, exact)
             tops = self._tops
             if "rocket" in exact:
                 segs, events = self._rocket(tops)
@@ -716,6 +808,7 @@ class Engine:
         for i, F_C in self._reactions(t, Y).items():
             for k, c in enumerate("xyz"):
                 series[f"{pre(i)}reaction_{c}"] = F_C[:, k]
+            series.update({pre(i) + k: v for k, v in _top_angles(s.R[:, i], s.omega[:, i]).items()})
         m = s.m[:, moving]
         v, r = s.v[:, moving], s.r[:, moving]
         KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))
@@ -757,6 +850,14 @@ class Engine:
                     since[q] = until
                 if self.keeps(q, self.impacts):
                     across.add(q)
+        kinds = {e.type for e in self.effects}
+        for i in lay.pins:
+            if lay.J[i, 0] == lay.J[i, 1] and kinds <= {"fixed_point", "gravity"}:
+                # the moments of gravity and of the pivot about C are ⟂ to e3 (C on e3)
+                name = pre(i) + "L_3"
+                series[name] = conserved[name] = lay.J[i, 2] * s.omega[:, i, 2]
+                scales[name] = float(np.max(np.linalg.norm(s.L_A[:, i], axis=-1)))
+                across.add(name)
         for i in self.rigid:
             until = max((e.acts_until() for e in self.forces if e.exerts_moment(i)), default=0.0)
             struck = any(imp.exerts_moment(i) for imp in self.impacts)
@@ -785,6 +886,10 @@ class Engine:
                     for k in range(3):
                         out[f"{p}omega{k + 1}"] = float(ss.omega[i, k])
                         out[f"{p}w{'xyz'[k]}"] = float(w_O[k])
+                if i in lay.pins:
+                    R, w = ss.R[i], ss.omega[i]
+                    out[p + "cos_theta"] = float(R[2, 2])
+                    out[p + "cos_theta_dot"] = float(w[1] * R[0, 2] - w[0] * R[1, 2])
             return out
 
         traj = Trajectory(t, series, events, how, state_at, conserved, since, {}, frozenset(across))
@@ -827,3 +932,19 @@ def _rows(dense):
         return np.asarray(dense(t)).T
 
     return at
+
+
+def _top_angles(R, w) -> dict[str, np.ndarray]:
+    """The series of a top (samples of R_A_O and body ω): the Euler angles z-x-z (row 3
+    of ^A R^O is (sθ sψ, −sθ cψ, cθ), column 3 is (sφ sθ, cφ sθ, cθ)), the symmetry axis
+    e3 in space components, cos θ and its rate d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R."""
+    return {
+        "theta": np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2]),
+        "psi": np.unwrap(np.arctan2(R[:, 2, 0], -R[:, 2, 1])),
+        "phi": np.unwrap(np.arctan2(R[:, 0, 2], R[:, 1, 2])),
+        "axis_x": R[:, 2, 0],
+        "axis_y": R[:, 2, 1],
+        "axis_z": R[:, 2, 2],
+        "cos_theta": R[:, 2, 2],
+        "cos_theta_dot": w[:, 1] * R[:, 0, 2] - w[:, 0] * R[:, 1, 2],
+    }

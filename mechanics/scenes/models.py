@@ -1,5 +1,5 @@
-"""The one-degree-of-freedom models: a body on a fixed axis, about a fixed point, rolling,
-sliding with Coulomb friction, and the draining tank.  Each has its own coordinates and
+"""The one-degree-of-freedom models: a body on a fixed axis, rolling, sliding with Coulomb
+friction, and the draining tank.  Each has its own coordinates and
 takes only the effects written for it; scenes of free bodies go to the engine
 (:mod:`mechanics.scenes.engine`).  (To be folded into the engine as joint and contact
 effects: issue 14.)
@@ -7,11 +7,10 @@ effects: issue 14.)
 Conventions
 -----------
 - **Models.**  ``tank_outflow`` → :class:`TankModel`; ``fixed_axis`` → :class:`AxisModel`
-  (φ, φ̇); ``fixed_point`` → :class:`PointModel` (attitude ^A R^O and body ω);
+  (φ, φ̇); (a ``fixed_point`` is a joint of the engine, which has the tops' exact flows);
   ``rolling`` → :class:`RollingModel` (s on an incline, ψ in a track);
   ``coulomb_friction`` → :class:`SlidingModel` (s, v, ω).
-- **Exact flows** (``method = "auto"`` or ``"exact"``): the torque-free top; the heavy
-  symmetric top (:class:`mechanics.tops.HeavySymmetricTop`); the pendulum released from
+- **Exact flows** (``method = "auto"`` or ``"exact"``): the pendulum released from
   rest (:func:`mechanics.dynamics.pendulum_motion`), also for the cylinder in a track
   (an equivalent pendulum); uniform acceleration when rolling down an incline, and for
   each phase of sliding with the switch solved exactly; the carousel (7.39); the
@@ -32,7 +31,7 @@ import numpy as np
 
 from . import effects as fx
 from .state import ROUND_SHAPES, body_inertia
-from .trajectory import EPS, Event, Trajectory, energy_scale, sample_dense, vectorized
+from .trajectory import Event, Trajectory, energy_scale, sample_dense, vectorized
 from .trajectory import dense_from_segments as _dense_from_segments
 
 __all__ = ["CONSTRAINTS", "MODELS", "integrate_segments", "select_model"]
@@ -316,204 +315,6 @@ class AxisModel(Model):
             return {"phi": float(y[0]), "phidot": float(y[1])}
 
         traj = Trajectory(t, series, events, how, state_at, conserved)
-        traj.extra["scales"] = scales
-        return traj
-
-
-# ---------------------------------------------------------------- fixed point (tops)
-
-
-def _omega_body_from_euler(theta, phi, theta_dot, psi_dot, phi_dot):
-    """Body components of ω for ^A R^O = R3(φ) R1(θ) R3(ψ) (z-x-z)."""
-    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
-    return np.stack(
-        [
-            psi_dot * st * sp + theta_dot * cp,
-            psi_dot * st * cp - theta_dot * sp,
-            psi_dot * ct + phi_dot,
-        ],
-        axis=-1,
-    )
-
-
-def _skew(w):
-    return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
-
-
-class PointModel(Model):
-    """A body about a fixed point C on its z axis (the top, 5.2)."""
-
-    name = "fixed-point"
-    constraint = "fixed_point"
-    allowed = frozenset({"gravity"})
-
-    @classmethod
-    def validate(cls, scene):
-        super().validate(scene)
-        _single(cls, scene)
-        b = scene.bodies[0]
-        if b.shape in ("tank", "point"):
-            raise scene.error("bodies[0].shape", f"a {b.shape} cannot be a top")
-        for k in b.initial:
-            if k not in ("theta", "psi", "phi", "theta_dot", "psi_dot", "phi_dot"):
-                raise scene.error(
-                    f"bodies[0].initial.{k}",
-                    "a top takes the Euler angles theta, psi, phi and their rates",
-                )
-        th = b.initial.get("theta", 0.0)
-        if not 0 < th < math.pi:
-            raise scene.error("bodies[0].initial.theta", f"must lie in (0, π); got {th!r}")
-        J = fx.FixedPoint(scene.effects_of("fixed_point")[0]).moments(
-            b.mass, np.diag(body_inertia(b))
-        )
-        if min(J) <= 0:
-            raise scene.error("bodies[0].shape", f"a {b.shape} has a zero moment about C")
-
-    def __init__(self, scene):
-        super().__init__(scene)
-        b = self.bodies[0]
-        self.m = b.mass
-        self.fp = self.one("fixed_point")
-        self.ell = self.fp.ell
-        self.Jc = self.fp.moments(self.m, np.diag(body_inertia(b)))
-        ini = b.initial
-        self.eul = {
-            k: float(ini.get(k, 0.0))
-            for k in ("theta", "psi", "phi", "theta_dot", "psi_dot", "phi_dot")
-        }
-        from mechanics.rotation import matrix_from_euler
-
-        e = self.eul
-        self.R0 = matrix_from_euler(e["psi"], e["theta"], e["phi"])
-        self.w0 = _omega_body_from_euler(
-            e["theta"], e["phi"], e["theta_dot"], e["psi_dot"], e["phi_dot"]
-        )
-        self.grav = self.by_type.get("gravity", [])
-
-    def exact_flow(self):
-        k = self.others()
-        if not k:
-            return "exact: torque-free top about C, Jacobi elliptic functions (5.3)"
-        g = self.grav
-        if (
-            k == {"gravity"}
-            and len(g) == 1
-            and self.Jc[0] == self.Jc[1]
-            and self.ell > 0
-            and np.allclose(g[0].direction, [0, 0, -1], rtol=0, atol=4 * EPS)
-        ):
-            return "exact: heavy symmetric top, elliptic integrals (5.2.2–5.2.5)"
-        return None
-
-    def rhs(self, t, y):
-        R = y[:9].reshape(3, 3)
-        w = y[9:]
-        M = np.zeros(3)
-        for e in self.grav:
-            M += e.point_torque(self.m, self.ell, R)
-        J = self.Jc
-        wdot = (M - np.cross(w, J * w)) / J
-        Rdot = -_skew(w) @ R
-        return np.concatenate([Rdot.ravel(), wdot])
-
-    def run_exact(self, t, how):
-        from mechanics.rotation import matrix_from_euler
-
-        if "torque-free" in how:
-            from mechanics.tops import FreeAsymmetricTop
-
-            top = FreeAsymmetricTop(self.Jc, self.w0, self.R0)
-
-            @vectorized
-            def dense(tt):
-                tt = np.asarray(tt, float)
-                R = top.attitude(tt).reshape(*tt.shape, 9)
-                return np.concatenate([R, top.omega(tt)], axis=-1)
-
-            traj = self._finish(t, dense, how)
-            traj.extra["top"] = top
-            return traj
-        from mechanics.tops import HeavySymmetricTop
-
-        e = self.eul
-        top = HeavySymmetricTop(
-            self.Jc[0],
-            self.Jc[2],
-            self.m * self.grav[0].g * self.ell,
-            **e,
-        )
-
-        @vectorized
-        def dense(tt):
-            tt = np.asarray(tt, float)
-            th, ps, ph = top.theta(tt), top.psi(tt), top.phi(tt)
-            thd, psd, phd = top.rates(tt)
-            R = matrix_from_euler(ps, th, ph).reshape(*tt.shape, 9)
-            w = _omega_body_from_euler(th, ph, thd, psd, phd)
-            return np.concatenate([R, w], axis=-1)
-
-        traj = self._finish(t, dense, how)
-        traj.extra["top"] = top
-        return traj
-
-    def run_integrated(self, t):
-        s = self.scene
-        y0 = np.concatenate([self.R0.ravel(), self.w0])
-        segs = integrate_segments(self.rhs, y0, s.duration, rtol=s.rtol, atol=s.atol)
-        return self._finish(t, _dense_from_segments(segs), "integrated: DOP853 (scipy solve_ivp)")
-
-    def _finish(self, t, dense, how):
-        Y = sample_dense(dense, t)
-        R, w = Y[:, :9].reshape(-1, 3, 3), Y[:, 9:]
-        # z-x-z: row 3 of ^A R^O = (sθ sψ, −sθ cψ, cθ), column 3 = (sφ sθ, cφ sθ, cθ)
-        theta = np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2])
-        psi = np.arctan2(R[:, 2, 0], -R[:, 2, 1])
-        phi = np.arctan2(R[:, 0, 2], R[:, 1, 2])
-        J = self.Jc
-        L_O = np.einsum("...ji,...j->...i", R, J * w)
-        E = KE = 0.5 * (J * w * w).sum(-1)
-        for e in self.grav:
-            E = E + e.point_potential(self.m, self.ell, R)
-        axis = R[:, 2, :]
-        series = {
-            "theta": theta,
-            "psi": np.unwrap(psi),
-            "phi": np.unwrap(phi),
-            "omega1": w[:, 0],
-            "omega2": w[:, 1],
-            "omega3": w[:, 2],
-            "axis_x": axis[:, 0],
-            "axis_y": axis[:, 1],
-            "axis_z": axis[:, 2],
-            "L_z": L_O[:, 2],
-            "E": E,
-            "cos_theta": R[:, 2, 2],
-            # d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R
-            "cos_theta_dot": w[:, 1] * R[:, 0, 2] - w[:, 0] * R[:, 1, 2],
-        }
-        conserved = {"E": E, "L_z": L_O[:, 2]}
-        if J[0] == J[1]:
-            series["L_3"] = conserved["L_3"] = J[2] * w[:, 2]
-        if not self.grav:
-            series["L_x"], series["L_y"] = L_O[:, 0], L_O[:, 1]
-            conserved["L_x"], conserved["L_y"] = L_O[:, 0], L_O[:, 1]
-
-        Lnorm = float(np.max(np.linalg.norm(L_O, axis=-1)))
-        scales = {k: Lnorm for k in ("L_x", "L_y", "L_z")}
-        scales["E"] = energy_scale(KE, E)
-
-        def state_at(tt):
-            y = dense(tt)
-            Rm = y[:9].reshape(3, 3)
-            return {
-                "cos_theta": float(Rm[2, 2]),
-                "cos_theta_dot": float(y[10] * Rm[0, 2] - y[9] * Rm[1, 2]),
-                "omega1": float(y[9]),
-                "omega2": float(y[10]),
-                "omega3": float(y[11]),
-            }
-
-        traj = Trajectory(t, series, [], how, state_at, conserved)
         traj.extra["scales"] = scales
         return traj
 
@@ -927,15 +728,16 @@ class TankModel(Model):
         return Trajectory(t, series, events, how, state_at, {"volume_total": vol})
 
 
-MODELS = (TankModel, AxisModel, PointModel, RollingModel, SlidingModel)
+MODELS = (TankModel, AxisModel, RollingModel, SlidingModel)
+#: the fixed point is the engine's joint (:mod:`mechanics.scenes.effects.fixed_point`)
+CONSTRAINT_JOINTS = ("fixed_point",)
 #: the effect types that select a one-degree-of-freedom model
-CONSTRAINTS = tuple(m.constraint for m in MODELS)
+CONSTRAINTS = (*(m.constraint for m in MODELS), *CONSTRAINT_JOINTS)
 
 
 def select_model(scene):
-    """The model the scene's constraint calls for (validated), or None: free bodies, and
-    a fixed point with effects other than gravity, are the engine's
-    (:mod:`mechanics.scenes.engine`)."""
+    """The model the scene's constraint calls for (validated), or None: free bodies and
+    pinned ones (a fixed point) are the engine's (:mod:`mechanics.scenes.engine`)."""
     cons = [e for e in scene.effects if e.type in CONSTRAINTS]
     kinds = {e.type for e in cons}
     if len(kinds) > 1:
@@ -948,11 +750,8 @@ def select_model(scene):
         raise scene.error(f"{cons[1].where}.type", f"{cons[1].type!r} is listed twice")
     if not kinds:
         return None
-    if kinds == {"fixed_point"} and not {e.type for e in scene.effects} <= {
-        "fixed_point",
-        "gravity",
-    }:
-        return None  # a pinned body among other effects: the engine's
+    if kinds == {"fixed_point"}:
+        return None  # a pinned body: the engine's
     cls = next(m for m in MODELS if m.constraint in kinds)
     cls.validate(scene)
     return cls

@@ -622,8 +622,9 @@ def test_combinations_that_make_no_physical_sense_are_refused(
 
 
 def test_a_pinned_top_on_the_engine_moves_as_the_exact_heavy_top() -> None:
-    """The engine's pinned body (L_C and R_A_O integrated) against the fixed-point
-    model's exact elliptic solution of the built-in heavy top: G's height is ℓ cos θ."""
+    """The engine's pinned body (L_C and R_A_O integrated) against its exact flow for
+    the built-in heavy top (:class:`mechanics.tops.HeavySymmetricTop`, elliptic
+    functions): G's height is ℓ cos θ."""
     from identities.scene_compare import run_book_scene
     from mechanics.scenes import builtin_path, load_scene
     from mechanics.scenes.engine import Engine

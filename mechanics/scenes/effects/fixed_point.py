@@ -1,11 +1,10 @@
 """A fixed point (a ball joint): the body's point C, on its symmetry axis e3 at the
 distance ℓ below G, held at a point of space (the top of 5.2).
 
-Scenes with only gravity and the fixed point run on the fixed-point model
-(:mod:`mechanics.scenes.models`, with the heavy symmetric top's exact flow); with any
-other effect (an impact on the floor, a push, drag) on the engine, where the joint makes
-the body *pinned* (:mod:`mechanics.scenes.state`): no force is needed to hold C, the
-reaction is read off the motion, F_C = m a_G − Σ F (the bearing reaction of 4.4).
+The joint makes the body *pinned* (:mod:`mechanics.scenes.state`): no force is needed to
+hold C, the reaction is read off the motion, F_C = m a_G − Σ F (the bearing reaction of
+4.4).  A lone top with no effect but gravity has an exact flow in the engine: the
+torque-free top about C, or the heavy symmetric top (5.2).
 The joint does no work (E kept) and its reaction has no moment about C: it keeps the
 angular momentum about the origin when C is the origin; never the momentum.
 """
@@ -57,12 +56,6 @@ class FixedPoint(Effect):
         self.ell = float(self.fields["distance"])
         self.point = np.asarray(self.fields.get("point", [0.0, 0.0, 0.0]), dtype=float)
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
-
-    def moments(self, m, J_G) -> np.ndarray:
-        """Principal moments about C: J'1 = J1 + m ℓ², J'2 = J2 + m ℓ², J3 (5.46)."""
-        J = np.diag(J_G).astype(float).copy()
-        J[:2] += m * self.ell**2
-        return J
 
     def pin(self) -> tuple[np.ndarray, np.ndarray]:
         """(C, g_A): the pivot in space and G relative to it in body components."""
