@@ -20,7 +20,7 @@ from .scene_compare import run_book_scene
 SCENES = {
     "bouncing_ball": ("E6.1",),
     "rolling_incline": ("E3.6",),
-    "physical_pendulum": ("E4.4",),
+    "physical_pendulum": ("E4.4", "eq4.71"),
     "physical_pendulum_small": ("E4.3",),
     "cylinder_in_track": ("E4.5",),
     "heavy_top": ("eq5.70",),

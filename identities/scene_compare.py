@@ -226,6 +226,21 @@ def pendulum_horizontal(scene: Scene, tr: Trajectory):
     out.append(
         Comparison("period (large amplitude)", "from (4.57): 4K√(2ℓ/3g)", z[2] - z[0], T, tol, why)
     )
+    st = tr.state_at(z[0])
+    if "reaction_z" in st and abs(phi0) == math.pi / 2:
+        # (4.71) at the vertical: R_ρ = −m h φ̇² − F_ρ with F_ρ = m g (down, outward) and
+        # φ̇² = 3g/ℓ (4.59), h = ℓ/2: the axis pulls up with m g + 3mg/2 = 5mg/2 (derived)
+        m = scene.bodies[0].mass
+        out.append(
+            Comparison(
+                "axis force at the vertical (up)",
+                "(4.71) with (4.59): 5mg/2 (derived)",
+                st["reaction_z"],
+                2.5 * m * g,
+                tol,
+                why + ", the engine's bearing reaction",
+            )
+        )
     return out
 
 

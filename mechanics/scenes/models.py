@@ -1,13 +1,14 @@
-"""The one-degree-of-freedom models: a body on a fixed axis, rolling, sliding with Coulomb
-friction, and the draining tank.  Each has its own coordinates and
-takes only the effects written for it; scenes of free bodies go to the engine
-(:mod:`mechanics.scenes.engine`).  (To be folded into the engine as joint and contact
-effects: issue 14.)
+"""The one-degree-of-freedom models: a body on a fixed axis with mass flowing onto it (the
+carousel), rolling, sliding with Coulomb friction, and the draining tank.  Each has its
+own coordinates and takes only the effects written for it; scenes of free, pinned and
+hinged bodies go to the engine (:mod:`mechanics.scenes.engine`).  (To be folded into
+the engine as contact and mass-flow effects: issue 14.)
 
 Conventions
 -----------
-- **Models.**  ``tank_outflow`` → :class:`TankModel`; ``fixed_axis`` → :class:`AxisModel`
-  (φ, φ̇); (a ``fixed_point`` is a joint of the engine, which has the tops' exact flows);
+- **Models.**  ``tank_outflow`` → :class:`TankModel`; ``fixed_axis`` with ``mass_flow``
+  → :class:`AxisModel` (φ, φ̇; a fixed axis or point otherwise is a joint of the engine,
+  which has the pendulum's and the tops' exact flows);
   ``rolling`` → :class:`RollingModel` (s on an incline, ψ in a track);
   ``coulomb_friction`` → :class:`SlidingModel` (s, v, ω).
 - **Exact flows** (``method = "auto"`` or ``"exact"``): the pendulum released from
@@ -750,8 +751,8 @@ def select_model(scene):
         raise scene.error(f"{cons[1].where}.type", f"{cons[1].type!r} is listed twice")
     if not kinds:
         return None
-    if kinds == {"fixed_point"}:
-        return None  # a pinned body: the engine's
+    if kinds == {"fixed_point"} or (kinds == {"fixed_axis"} and not scene.effects_of("mass_flow")):
+        return None  # a pinned or hinged body: the engine's (the carousel's inflow is not)
     cls = next(m for m in MODELS if m.constraint in kinds)
     cls.validate(scene)
     return cls

@@ -13,7 +13,7 @@ Conventions
   the identity attitude, and acts as an immovable partner of contacts.
 - **The flat vector.**  Bodies in file order; a point takes 6 numbers ``(r, v)``, a
   rigid body 18 ``(r, v, L_A, R_A_O row by row)``, a pinned body 12 ``(L_C, R_A_O)``, a
-  fixed body 0.  :class:`Layout`
+  hinged body 2 ``(φ, φ̇)``, a fixed body 0.  :class:`Layout`
   gathers the per-body arrays from a state of any leading shape ``(..., size)`` in one
   indexing (no Python loop over bodies), so the same code serves one right-hand-side
   evaluation and thousands of samples.
@@ -48,6 +48,35 @@ SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 POINT_SIZE = 6
 RIGID_SIZE = 18
 PINNED_SIZE = 12
+HINGED_SIZE = 2
+
+
+@dataclass(frozen=True)
+class Hinge:
+    """A hinged body's axis: the point C and unit axis a in space, the reference u0 and
+    u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G from the
+    axis and the moment of inertia J_a about it."""
+
+    C: np.ndarray
+    a: np.ndarray
+    u0: np.ndarray
+    u1: np.ndarray
+    k: int
+    j: int
+    l: int
+    h: float
+    J_a: float
+
+    def frame(self, phi):
+        """r̂, a × r̂ and the rows of R_A_O at the angle(s) φ: shapes (..., 3), (..., 3, 3)."""
+        c, s = np.cos(phi)[..., None], np.sin(phi)[..., None]
+        rhat = c * self.u0 + s * self.u1
+        tang = c * self.u1 - s * self.u0  # a × r̂
+        R = np.empty((*np.shape(phi), 3, 3))
+        R[..., self.k, :] = self.a
+        R[..., self.j, :] = rhat
+        R[..., self.l, :] = tang
+        return rhat, tang, R
 
 
 def body_inertia(body) -> np.ndarray:
@@ -115,12 +144,15 @@ class Layout:
     size: int
     offsets: tuple[int, ...]
     pins: dict = field(default_factory=dict)
+    hinges: dict = field(default_factory=dict)
 
     @classmethod
-    def of(cls, bodies, pins=None) -> Layout:
+    def of(cls, bodies, pins=None, hinges=None) -> Layout:
         """The layout of ``bodies``; ``pins`` maps a body's index to (C, g_A): the space
-        point it is pinned at and the vector from that point to G in body components."""
-        pins = pins or {}
+        point it is pinned at and the vector from that point to G in body components;
+        ``hinges`` to (C, a, u0, k, h) of its fixed axis (see :class:`Hinge`)."""
+        pins, hinges = pins or {}, hinges or {}
+        hinge_data = {}
         kinds, offsets, size = [], [], 0
         J = np.zeros((len(bodies), 3))
         r_fixed = np.zeros((len(bodies), 3))
@@ -132,18 +164,29 @@ class Layout:
             elif b.shape == "point":
                 kind = "point"
             else:
-                kind = "pinned" if i in pins else "rigid"
+                kind = "pinned" if i in pins else "hinged" if i in hinges else "rigid"
                 J[i] = body_inertia(b)
+            if kind == "hinged":
+                C, a, u0, k, h = hinges[i]
+                C, a, u0 = (np.asarray(x, dtype=float) for x in (C, a, u0))
+                j, l = (k + 1) % 3, (k + 2) % 3
+                hinge_data[i] = Hinge(
+                    C, a, u0, np.cross(a, u0), k, j, l, h, J[i, k] + b.mass * h * h
+                )
             if kind == "pinned":
                 C, g = (np.asarray(x, dtype=float) for x in pins[i])
                 JC = np.diag(J[i]) + b.mass * ((g @ g) * np.eye(3) - np.outer(g, g))
                 pin_data[i] = (C, g, JC, np.linalg.inv(JC))
             kinds.append(kind)
             offsets.append(size)
-            size += {"fixed": 0, "point": POINT_SIZE, "rigid": RIGID_SIZE, "pinned": PINNED_SIZE}[
-                kind
-            ]
-        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data)
+            size += {
+                "fixed": 0,
+                "point": POINT_SIZE,
+                "rigid": RIGID_SIZE,
+                "pinned": PINNED_SIZE,
+                "hinged": HINGED_SIZE,
+            }[kind]
+        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data, hinge_data)
 
     @property
     def n(self) -> int:
@@ -170,6 +213,8 @@ class Layout:
                 iL[i] = o + np.arange(3)
                 iR[i] = (o + 3 + np.arange(9)).reshape(3, 3)
                 continue
+            if kind == "hinged":  # everything derived from (φ, φ̇) by the engine
+                continue
             ir[i] = o + np.arange(3)
             iv[i] = o + 3 + np.arange(3)
             if kind == "rigid":
@@ -186,8 +231,8 @@ class Layout:
 
     @property
     def rigid_bodies(self) -> tuple[int, ...]:
-        """The bodies that turn: free rigid bodies and pinned ones."""
-        return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned"))
+        """The bodies that turn: free rigid bodies, pinned and hinged ones."""
+        return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned", "hinged"))
 
     @property
     def pinned_bodies(self) -> tuple[int, ...]:
@@ -215,7 +260,8 @@ class Layout:
         lead = r.shape[:-2]
         y = np.empty((*lead, self.size))
         mov = [i for i, k in enumerate(self.kinds) if k in ("point", "rigid")]
-        rig = list(self.rigid_bodies)  # for a pinned body the caller gives L_C as L_A
+        rig = [i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned")]
+        # (for a pinned body the caller gives L_C as L_A; a hinged one: Engine.pack)
         y[..., ir[mov].ravel()] = r[..., mov, :].reshape(*lead, -1)
         y[..., iv[mov].ravel()] = np.asarray(v, dtype=float)[..., mov, :].reshape(*lead, -1)
         if rig:
@@ -240,6 +286,12 @@ class Layout:
                 continue
             if kind == "pinned":
                 out[o : o + 12] = self.pinned_rate(i, s, F[i], M_A[i])
+                continue
+            if kind == "hinged":
+                hg = self.hinges[i]
+                M_C = space_moment(R[i], M_A[i]) + np.cross(s.r[i] - hg.C, F[i])
+                out[o] = w[i, hg.k]
+                out[o + 1] = float(hg.a @ M_C) / hg.J_a
                 continue
             out[o : o + 3] = v[i]
             out[o + 3 : o + 6] = F[i] / m[i]
@@ -269,3 +321,8 @@ class Layout:
         out[6:9] = w[0] * Ri[2] - w[2] * Ri[0]
         out[9:12] = w[1] * Ri[0] - w[0] * Ri[1]
         return out
+
+
+def space_moment(R, M_A) -> np.ndarray:
+    """Space components R_A_Oᵀ M_A of a moment given in body components."""
+    return R.T @ M_A

@@ -717,3 +717,57 @@ def test_a_pinned_body_refuses_what_its_pivot_decides(extra, where, match) -> No
     with pytest.raises(SceneError, match=match) as info:
         _scene([top], effects)
     assert info.value.field == where
+
+
+# ------------------------------------------------------------------ hinged bodies
+
+
+def _rod_on_a_hinge(extra_effects, **initial):
+    rod = {"name": "rod", "shape": "rod", "mass": 1.0, "length": 1.0, "initial": initial}
+    hinge = {
+        "type": "fixed_axis",
+        "body": "rod",
+        "axis": [0.0, 1.0, 0.0],
+        "body_axis": "y",
+        "distance": 0.5,
+    }
+    return [rod], [{"type": "gravity", "g": 9.81}, hinge, *extra_effects]
+
+
+def test_a_pendulum_striking_a_wall_rebounds_with_e_times_its_angular_velocity() -> None:
+    """A rod hinged at its end (body y along the axis, its length toward G), released
+    from the horizontal, strikes a wall 0.1 m past the vertical with its end: one degree
+    of freedom, so the impulse only scales φ̇: φ̇' = −e φ̇, with φ̇² = 3 g cos φ_c from the
+    energy (4.57) at the contact angle sin φ_c = −0.1."""
+    wall = {
+        "type": "impact",
+        "body": "rod",
+        "plane_point": [0.1, 0.0, 0.0],
+        "plane_normal": [-1.0, 0.0, 0.0],
+        "restitution": 0.6,
+    }
+    bodies, effects = _rod_on_a_hinge([wall], angle=math.pi / 2)
+    r = run_scene(_scene(bodies, effects, duration=1.0, samples=401))
+    assert r.passed, r.summary()
+    ev = r.trajectory.events[0]
+    w_before = math.sqrt(3 * 9.81 * math.sqrt(0.99))
+    # the end's normal speed is |φ̇| ℓ cos φ_c toward the wall (ℓ = 1)
+    assert ev.detail["normal_speed_before"] == pytest.approx(
+        w_before * math.sqrt(0.99), rel=2**14 * EPS
+    )
+    after = r.trajectory.state_at(ev.t)["phidot"]  # the piece after the impact
+    assert after == pytest.approx(0.6 * w_before, rel=2**14 * EPS)  # reversed: now > 0
+    assert r.trajectory.state_at(ev.t)["phi"] == pytest.approx(math.asin(-0.1), rel=2**14 * EPS)
+
+
+def test_the_bearing_moment_of_a_hinge_is_perpendicular_to_its_axis() -> None:
+    """(4.4) with an off-centre push along the axis: the bearings hold a moment, never
+    about the axis itself (the hinge turns freely)."""
+    push = {"type": "force", "body": "rod", "force": [0.0, 2.0, 0.0], "at": [0.3, 0.0, 0.2]}
+    bodies, effects = _rod_on_a_hinge([push], angle=0.3)
+    r = run_scene(_scene(bodies, effects, duration=1.0, samples=101))
+    assert r.passed, r.summary()
+    s = r.trajectory.series
+    M = np.stack([s["bearing_moment_x"], s["bearing_moment_y"], s["bearing_moment_z"]], -1)
+    assert np.abs(M[:, 1]).max() <= 64 * EPS * np.abs(M).max()
+    assert np.abs(M).max() > 0.1, "the push along the axis at an arm needs a bearing moment"

@@ -134,9 +134,10 @@ CASES = [
         "incompatible effects",
         BALL,
         "restitution = 0.8333333333333334\n",
-        'restitution = 0.8333333333333334\n\n[[effects]]\ntype = "fixed_axis"\nbody = "ball"\n',
-        "effects[1].type",
-        "cannot act in a fixed-axis scene",
+        'restitution = 0.8333333333333334\n\n[[effects]]\ntype = "fixed_axis"\nbody = "ball"\n'
+        '\n[[effects]]\ntype = "fixed_point"\nbody = "ball"\ndistance = 0.1\n',
+        "effects[3].type",
+        "cannot be combined with 'fixed_axis'",
     ),
     (
         "non-physical inertia",

@@ -71,6 +71,8 @@ class Context:
     kinds: tuple[str, ...]
     #: pinned bodies: index -> (C, g_A, J_C, J_C⁻¹), see :class:`~..state.Layout`
     pins: dict = field(default_factory=dict)
+    #: hinged bodies: index -> :class:`~..state.Hinge`
+    hinges: dict = field(default_factory=dict)
 
     def body(self, name: str):
         return self.scene.bodies[self.index[name]]
@@ -81,11 +83,13 @@ class Snapshot:
     components), R_A_O, masses m and principal moments J.  Shapes (..., n, 3),
     (..., n, 3, 3), (..., n).  Loads that switch on or off read ``phase``, not t."""
 
-    __slots__ = ("J", "L_A", "R", "m", "omega", "phase", "r", "t", "v")
+    __slots__ = ("J", "L_A", "R", "angle", "m", "omega", "phase", "r", "t", "v")
 
-    def __init__(self, t, r, v, L_A, R, omega, m, J, phase=None) -> None:
+    def __init__(self, t, r, v, L_A, R, omega, m, J, phase=None, angle=None) -> None:
         self.t, self.r, self.v, self.L_A, self.R = t, r, v, L_A, R
         self.omega, self.m, self.J = omega, m, J
+        #: a hinged body's angle φ about its axis (0 for the others), shape (..., n)
+        self.angle = np.zeros(np.shape(m)) if angle is None else angle
         #: the time that decides which loads are switched on: inside an integration
         #: segment between switch times, its midpoint (a stage at the segment's end
         #: still belongs to it); else t

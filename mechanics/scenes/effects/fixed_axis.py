@@ -1,8 +1,22 @@
-"""A fixed axis (hinge): the one-degree-of-freedom model of 4.3."""
+"""A fixed axis (a hinge, 4.3): the body turns about a space axis a through the origin
+(or ``point``), its principal axis ``body_axis`` along it, G at the distance h from it.
+
+The joint makes the body *hinged* (:mod:`mechanics.scenes.state`): one coordinate, the
+angle φ, measured from the direction of gravity's component across the axis (the
+book's ϕ of the physical pendulum).  The bearings' reaction is read off the motion:
+the force F_R = m a_G − Σ F and the moment about C, perpendicular to the axis,
+M_R = J_a φ̈ a − M_C (the bearing reactions of 4.4).  The joint does no work (E kept);
+its reaction has no moment about C along a: it keeps the angular momentum about the
+origin along its axis when C is the origin and a is a coordinate axis; never the
+momentum.  Scenes with mass flowing onto the body (``mass_flow``, the carousel of
+Example 7.3) run on the fixed-axis model of :mod:`mechanics.scenes.models`.
+"""
 
 from __future__ import annotations
 
 from typing import ClassVar
+
+import numpy as np
 
 from .base import Effect, Schema, register, unit
 
@@ -12,20 +26,74 @@ class FixedAxis(Effect):
     """A fixed axis (a hinge) through the body: one degree of freedom φ (4.3)."""
 
     type = "fixed_axis"
-    engine = False
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "axis": ("vector", False),
         "distance": ("nonnegative", False),
         "body_axis": ("axis_name", False),
+        "point": ("vector", False),
     }
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        from ..state import body_inertia
+
+        b = scene.body(spec.fields["body"])
+        if b.shape in ("point", "tank") or b.fixed:
+            what = "fixed" if b.fixed else f"a {b.shape}"
+            raise scene.error(
+                f"{spec.where}.body", f"body {b.name!r} is {what}: it cannot turn on an axis"
+            )
+        if [e.fields["body"] for e in scene.effects_of("fixed_axis")].count(b.name) > 1:
+            raise scene.error(f"{spec.where}.body", f"body {b.name!r} has two fixed axes")
+        ax = cls(spec)
+        if ax.moment_of_inertia(b.mass, np.diag(body_inertia(b))) <= 0:
+            raise scene.error(
+                f"{spec.where}.body_axis",
+                f"the moment of inertia about this axis is zero for a {b.shape}",
+            )
+        for k in b.initial:
+            if k not in ("angle", "angular_velocity"):
+                raise scene.error(
+                    f"bodies[{index[b.name]}].initial.{k}",
+                    "a fixed-axis body takes angle and angular_velocity",
+                )
+        for e in scene.effects:
+            if e.type == "thrust" and e.fields["body"] == b.name:
+                raise scene.error(
+                    f"{e.where}.body", f"body {b.name!r} turns on an axis: its mass cannot change"
+                )
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
         self.axis = unit(self.fields.get("axis", [0.0, 0.0, 1.0]))
         self.h = float(self.fields.get("distance", 0.0))
         self.body_axis = "xyz".index(self.fields.get("body_axis", "z"))
+        self.point = np.asarray(self.fields.get("point", [0.0, 0.0, 0.0]), dtype=float)
+        self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
 
     def moment_of_inertia(self, m, J_G) -> float:
         """J_z = J_G + m h² (parallel axes, 4.54)."""
         return float(J_G[self.body_axis, self.body_axis]) + m * self.h**2
+
+    def reference(self, g_vector) -> np.ndarray:
+        """u0: the unit direction across the axis where φ = 0, gravity's component
+        across it (4.3), else the axis' first perpendicular among e_x, e_y."""
+        a = self.axis
+        for d in (np.asarray(g_vector, dtype=float), np.array([1.0, 0, 0]), np.array([0, 1.0, 0])):
+            across = d - (d @ a) * a
+            n = float(np.linalg.norm(across))
+            if n > 1e-8 * max(float(np.linalg.norm(d)), 1e-300):  # not along the axis
+                return across / n
+        raise AssertionError("no direction across the axis")  # pragma: no cover
+
+    def keeps(self, quantity: str) -> bool:
+        if quantity == "E":
+            return True
+        if quantity.startswith("L_") and not self.point.any():
+            k = "xyz".index(quantity[-1])
+            return bool(np.all(np.delete(self.axis, k) == 0.0))
+        return False
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i

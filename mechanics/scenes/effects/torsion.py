@@ -1,4 +1,5 @@
-"""A torsion spring on a fixed axis (3.76): an effect of the fixed-axis model."""
+"""A torsion spring on a fixed axis (3.76): the couple −τ0 φ about the axis of a hinged
+body (its angle φ from the engine's hinge), with the potential ½ τ0 φ²."""
 
 from __future__ import annotations
 
@@ -14,13 +15,36 @@ class Torsion(Effect):
     """A torsion spring on a fixed axis: moment −τ0 φ (3.1, the torsion pendulum)."""
 
     type = "torsion"
-    engine = False
     schema: ClassVar[Schema] = {"body": ("body", True), "stiffness": ("positive", True)}
+
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        name = spec.fields["body"]
+        if not any(e.fields["body"] == name for e in scene.effects_of("fixed_axis")):
+            raise scene.error(
+                f"{spec.where}.type",
+                f"a torsion spring twists a body about its fixed_axis: list one for {name!r}",
+            )
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
         self.tau_0 = float(self.fields["stiffness"])
+        self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
+        self.hinge = ctx.hinges.get(self.i) if ctx is not None else None
 
+    def loads(self, t, s, out) -> None:
+        out.moment(self.i, -self.tau_0 * s.angle[self.i] * self.hinge.a)
+
+    def potential(self, s) -> np.ndarray:
+        return 0.5 * self.tau_0 * s.angle[..., self.i] ** 2
+
+    def keeps(self, quantity: str) -> bool:
+        return quantity == "E" or quantity.startswith("p_")  # a couple: no force
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i
+
+    # the fixed-axis model (the carousel) reads these
     def axis_torque(self, m, h, axis, phi) -> np.ndarray:
         return -self.tau_0 * phi
 
