@@ -334,7 +334,9 @@ class FreeAsymmetricTop:
         return np.stack(w, axis=-1)
 
     def _pole_vector(self, ws):
-        """L in the pole frame (third axis = the axis ω does not circulate), normalised."""
+        """L in the pole frame (third axis = the axis ω does not circulate), normalised;
+        ω is scaled by its largest component first (J ω of a subnormal ω underflows)."""
+        ws = ws / np.abs(ws).max(axis=-1, keepdims=True)
         L = self._Js * ws
         if self._pole_first:
             L = L[..., [1, 2, 0]]

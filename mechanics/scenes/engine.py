@@ -335,6 +335,14 @@ class Engine:
             return self._pinned_exact_flow(kinds)
         if self.layout.fixed_bodies:
             return None
+        ballistic = kinds <= {"gravity", "impact"} and all(
+            ft.at is None and imp.mu_f == 0 for imp in self.impacts for ft in imp.features
+        )
+        rocket = kinds <= {"gravity", "thrust"} and not any(
+            e.body_frame for e in self.effects if e.type == "thrust"
+        )
+        if not (ballistic or rocket):
+            return None
         for i in self.rigid:  # torque-free rotation by elliptic functions needs J > 0
             if self.w0[i].any() and not np.all(self.layout.J[i] > 0):
                 return None
@@ -343,18 +351,12 @@ class Engine:
         except OutOfDomainError:  # within float64's reach of the separatrix: integrate
             return None
         spin = "; torque-free rotation (Jacobi elliptic functions)" if self._spinning() else ""
-        if kinds <= {"gravity", "impact"} and all(
-            ft.at is None and imp.mu_f == 0 for imp in self.impacts for ft in imp.features
-        ):
+        if ballistic:
             what = "free flight under uniform gravity" if "gravity" in kinds else "uniform motion"
             if "impact" in kinds:
                 what += ", impacts solved in closed form"
             return f"exact: {what}{spin}"
-        if kinds <= {"gravity", "thrust"} and not any(
-            e.body_frame for e in self.effects if e.type == "thrust"
-        ):
-            return f"exact: rocket flight (7.30) with uniform gravity{spin}"
-        return None
+        return f"exact: rocket flight (7.30) with uniform gravity{spin}"
 
     def _hinged_exact_flow(self, kinds) -> str | None:
         """A lone body on its fixed axis: uniform rotation; the pendulum released from rest

@@ -526,3 +526,18 @@ def test_a_non_finite_rate_in_an_extra_stage_of_the_dense_output_names_its_time(
     assert s.t == 1.0
     with pytest.raises(NonFiniteError, match=r"non-finite value at t=0\.1:"):
         s.dense_output()
+
+
+def test_an_error_norm_whose_parts_underflow_is_zero_not_nan() -> None:
+    """Stages whose 5th-order error estimate is 0 and whose 3rd-order one squares to a
+    subnormal: 0.01 e3² underflows, and 0/0 made the step look like an overflow (a
+    pinned top with a spin of 1e-167, found by the scene engine's random test)."""
+    from mechanics import integrators as I
+
+    E5, E3 = np.asarray(I._E5, float), np.asarray(I._E3, float)
+    k = E3 - (E3 @ E5) / (E5 @ E5) * E5  # along E3, across E5
+    K = (1e-174 * k)[:, None]  # one component, 13 stages
+    err = I._dop853_error(K, 0.01, np.zeros(1), np.zeros(1), 1e-12, 1e-12, 1)
+    e3 = float(np.dot(K.T, E3)[0]) / 1e-12
+    assert 0.0 < e3 * e3 < 2.4e-322, "the case: e3² subnormal, 0.01 e3² rounds to 0"
+    assert err == 0.0

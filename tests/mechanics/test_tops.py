@@ -394,3 +394,14 @@ def test_a_spin_too_close_to_the_separatrix_is_refused_with_a_clear_error(tiny) 
     J = np.array([0.52, 0.40, 0.20]) / 12.0  # a 0.2 × 0.4 × 0.6 m box of 1 kg: ω along e2
     with pytest.raises(OutOfDomainError, match=r"m1 ≈ 2\^-\d+ of the separatrix"):
         tops.FreeAsymmetricTop(J, [0.0, 1.0, tiny])
+
+
+def test_a_subnormal_spin_keeps_its_direction() -> None:
+    """J ω of ω = (0, 5e-324, 5e-324) underflows to 0 in float64; the pole vector is the
+    direction of L and must be formed on ω scaled first (found by the scene engine's
+    random test: the attitude was NaN)."""
+    J = np.array([0.52, 0.40, 0.20]) / 12.0
+    top = tops.FreeAsymmetricTop(J, [0.0, 5e-324, 5e-324])
+    R = top.attitude(np.array([0.0, 1.0]))
+    assert np.all(np.isfinite(R))
+    np.testing.assert_allclose(R[1] @ R[1].T, np.eye(3), rtol=0, atol=8 * 2.0**-52)

@@ -345,9 +345,9 @@ class Impact(Effect):
         P_t = P - P_n * n
         self._mode = "stick"
         if np.linalg.norm(P_t) > mu * P_n:
-            u_t = u - (u @ n) * n
-            t_hat = u_t if np.any(u_t) else -P_t
-            t_hat = t_hat / np.linalg.norm(t_hat)
+            t_hat = _direction(u - (u @ n) * n)  # the slip, or where sticking would push
+            if t_hat is None:
+                t_hat = _direction(-P_t)
             d = n - mu * t_hat
             P = (-(1.0 + e) * v_n / float(n @ K @ d)) * d
             self._mode = "slip"
@@ -371,6 +371,16 @@ class Impact(Effect):
         if self.mu_f > 0:
             return k in self.bodies()
         return any(ft.at is not None and ft.body == k for ft in self.features)
+
+
+def _direction(x) -> np.ndarray | None:
+    """x/|x|, formed on x scaled by its largest component (|x| of a subnormal vector
+    underflows to 0); None for the zero vector."""
+    big = float(np.abs(x).max())
+    if big == 0.0:
+        return None
+    y = x / big
+    return y / np.linalg.norm(y)
 
 
 def _momentum_size(m, v) -> float:
