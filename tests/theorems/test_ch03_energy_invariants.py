@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
@@ -72,10 +72,15 @@ vectors = st.tuples(*(st.floats(-10.0, 10.0, allow_subnormal=False),) * 3).map(n
 
 
 def _inertia_tensor(m, r, about):
-    """J about a point by the book's definitions (3.16), (3.17), (3.23)."""
+    """J about a point by the book's definitions (3.16), (3.17), (3.23).
+
+    Both terms are sums of the same products (m d_i) d_j: formed as m (d·d) the trace
+    term underflowed where (m d_z) d_z did not (d ~ 1e-163, m = 1e6), and J_zz came out
+    −2e-319 (found by a random run)."""
     d = r - about
-    d2 = np.einsum("ni,ni->n", d, d)
-    return np.einsum("n,ij->ij", m * d2, np.eye(3)) - np.einsum("n,ni,nj->ij", m, d, d)
+    md = m[:, None] * d
+    trace = np.einsum("ni,ni->", md, d)
+    return trace * np.eye(3) - np.einsum("ni,nj->ij", md, d)
 
 
 # ------------------------------------------------------------ kinetic energy
@@ -138,6 +143,10 @@ def test_rigid_body_kinetic_energy_is_the_quadratic_form_in_omega_plus_translati
 
 
 @given(rigid_motions(), vectors)
+@example(  # the helper's J about C had a trace term that underflowed (see _inertia_tensor)
+    data=(np.array([1e-6, 1e6]), *(np.zeros((2, 3)),) * 2, *(np.zeros(3),) * 3),
+    C=np.array([0.0, 0.0, 4.6052096092334834e-163]),
+)
 def test_pure_rotation_about_a_fixed_point_has_kinetic_energy_half_omega_J_C_omega(data, C):
     # (3.18)–(3.21): v_k = ω × CP_k gives T = ½ ωᵀ J_C ω.
     m, r, _, _, _, omega = data
