@@ -65,6 +65,13 @@ def _gravity(scene: Scene) -> float:
     return float(gs[0].fields["g"])
 
 
+def _plane_impact(scene: Scene) -> dict:
+    """The fields of the scene's one impact, which must be against a plane."""
+    imp = scene.effects_of("impact")
+    _need(scene, len(imp) == 1 and "other" not in imp[0].fields, "one impact against a plane")
+    return imp[0].fields
+
+
 def _zeros(tr: Trajectory, key: str, n: int, t_lo: float = 0.0, down: bool = False) -> list[float]:
     """The first n zero crossings of state_at(t)[key] after t_lo (only from + to − if
     ``down``), bracketed by the samples and located by brentq on the dense solution."""
@@ -98,9 +105,7 @@ def bouncing_ball(scene: Scene, tr: Trajectory):
     hence H_{k+1}/H_k = e² and the flight time 2 e v/g.
     """
     g = _gravity(scene)
-    imp = scene.effects_of("impact")
-    _need(scene, len(imp) == 1 and "other" not in imp[0].fields, "one impact against a plane")
-    e = imp[0].fields["restitution"]
+    e = _plane_impact(scene)["restitution"]
     impacts = [ev for ev in tr.events if ev.kind == "impact"]
     _need(scene, len(impacts) >= 3, "at least three impacts within the duration")
     tol, why = _tol(tr)
@@ -705,9 +710,7 @@ def corner_impacts(scene: Scene, tr: Trajectory):
     computed here by :func:`mechanics.impact.effective_mass` from the body's state."""
     from mechanics.impact import effective_mass
 
-    imp = scene.effects_of("impact")
-    _need(scene, len(imp) == 1 and "other" not in imp[0].fields, "one impact against a plane")
-    e = imp[0].fields["restitution"]
+    e = _plane_impact(scene)["restitution"]
     hits = [ev for ev in tr.events if ev.kind == "impact"]
     _need(scene, len(hits) >= 1, "an impact within the duration")
     tol, why = _tol(tr)
@@ -747,9 +750,8 @@ def corner_impacts_friction(scene: Scene, tr: Trajectory):
     S = m Δv_G (6.19), lies in the friction cone; if the corner sticks its tangential
     velocity after the impact is zero, if it slips |S_t| = μ S_n; and the change of the
     spin matches the moment of that impulse about G, J Δω = ρ × S (6.21)."""
-    imp = scene.effects_of("impact")
-    _need(scene, len(imp) == 1 and "other" not in imp[0].fields, "one impact against a plane")
-    e, mu = imp[0].fields["restitution"], imp[0].fields.get("friction", 0.0)
+    imp = _plane_impact(scene)
+    e, mu = imp["restitution"], imp.get("friction", 0.0)
     _need(scene, mu > 0, "friction on the impulse")
     hits = [ev for ev in tr.events if ev.kind == "impact"]
     _need(scene, len(hits) >= 1, "an impact within the duration")

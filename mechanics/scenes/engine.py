@@ -137,14 +137,12 @@ def _rates_from_omega(theta, phi, w) -> tuple[float, float, float]:
 
 def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
     """The pinned bodies (a fixed_point joint) -> (C, g_A)."""
-    out = {}
-    for e in scene.effects_of("fixed_point"):
-        ell = float(e.fields["distance"])
-        out[index[e.fields["body"]]] = (
-            np.asarray(e.fields.get("point", [0.0, 0.0, 0.0]), dtype=float),
-            np.array([0.0, 0.0, ell]),
-        )
-    return out
+    from .effects.fixed_point import FixedPoint
+
+    return {
+        index[spec.fields["body"]]: FixedPoint(spec).pin()
+        for spec in scene.effects_of("fixed_point")
+    }
 
 
 def _hinges(scene, index) -> dict[int, tuple]:
@@ -857,7 +855,7 @@ class Engine:
                     float(np.linalg.norm(s.m[i] * acc[i]) + np.linalg.norm(loads.F[i])),
                 )
             for i, hg in self.layout.hinges.items():
-                M_C = s.R[i].T @ loads.M_A[i] + np.cross(s.r[i] - hg.C, loads.F[i])
+                M_C = hg.moment(s.R[i], s.r[i], loads.F[i], loads.M_A[i])
                 phidd = float(hg.a @ M_C) / hg.J_a
                 out[i]["bearing_moment"][k] = hg.J_a * phidd * hg.a - M_C
                 size[i]["bearing_moment"] = max(

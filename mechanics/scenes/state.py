@@ -78,6 +78,11 @@ class Hinge:
         R[..., self.l, :] = tang
         return rhat, tang, R
 
+    def moment(self, R, r, F, M_A) -> np.ndarray:
+        """The loads' moment about C in space components: R_A_Oᵀ M_A + (r_G − C) × F, for a
+        force F at G and a moment M_A about G in body components."""
+        return R.T @ M_A + np.cross(r - self.C, F)
+
 
 def body_inertia(body) -> np.ndarray:
     """Principal moments about G, shape (3,), from the inertia catalogue."""
@@ -235,10 +240,6 @@ class Layout:
         return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned", "hinged"))
 
     @property
-    def pinned_bodies(self) -> tuple[int, ...]:
-        return tuple(i for i, k in enumerate(self.kinds) if k == "pinned")
-
-    @property
     def moving_bodies(self) -> tuple[int, ...]:
         return tuple(i for i, k in enumerate(self.kinds) if k != "fixed")
 
@@ -289,7 +290,7 @@ class Layout:
                 continue
             if kind == "hinged":
                 hg = self.hinges[i]
-                M_C = space_moment(R[i], M_A[i]) + np.cross(s.r[i] - hg.C, F[i])
+                M_C = hg.moment(R[i], s.r[i], F[i], M_A[i])
                 out[o] = w[i, hg.k]
                 out[o + 1] = float(hg.a @ M_C) / hg.J_a
                 continue
@@ -321,8 +322,3 @@ class Layout:
         out[6:9] = w[0] * Ri[2] - w[2] * Ri[0]
         out[9:12] = w[1] * Ri[0] - w[0] * Ri[1]
         return out
-
-
-def space_moment(R, M_A) -> np.ndarray:
-    """Space components R_A_Oᵀ M_A of a moment given in body components."""
-    return R.T @ M_A

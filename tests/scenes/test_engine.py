@@ -820,3 +820,44 @@ def test_random_joints_with_random_loads_pass_their_self_checks(joint, chosen, a
     assert all(np.all(np.isfinite(v)) for v in reactions)
     # energy is kept by gravity and the joints, and after the push's window ends
     assert ("E" in _conserved(r)) == (set(chosen) <= {"gravity", "push"})
+
+
+@pytest.mark.parametrize("joint", ["fixed_point", "fixed_axis"])
+@pytest.mark.parametrize(
+    ("case", "where", "match"),
+    [
+        ("point", "effects[0].body", "is a point: it cannot"),
+        ("fixed", "effects[0].body", "is fixed: it cannot"),
+        ("twice", "effects[1].type", "is listed twice"),
+        ("thrust", "effects[1].body", "held by a joint: its mass cannot change"),
+    ],
+)
+def test_every_joint_refuses_a_body_it_cannot_hold(joint, case, where, match) -> None:
+    spec = {"type": joint, "body": "b", "distance": 0.1}
+    body = _box("b")
+    effects = [spec]
+    if case == "point":
+        body = _point("b")
+    elif case == "fixed":
+        body = _box("b") | {"fixed": True}
+    elif case == "twice":
+        effects = [spec, dict(spec)]
+    else:
+        thrust = {
+            "type": "thrust",
+            "body": "b",
+            "mass_flow": 0.1,
+            "exhaust_speed": 1.0,
+            "fuel_mass": 0.5,
+        }
+        effects = [spec, thrust]
+    with pytest.raises(SceneError, match=match) as info:
+        _scene([body], effects)
+    assert info.value.field == where
+
+
+def test_a_hinged_body_takes_only_its_angle_and_rate() -> None:
+    hinge = {"type": "fixed_axis", "body": "b", "distance": 0.1}
+    with pytest.raises(SceneError, match="takes angle, angular_velocity") as info:
+        _scene([_box("b", omega=[0.0, 0.0, 1.0])], [hinge])
+    assert info.value.field == "bodies[0].initial.omega"

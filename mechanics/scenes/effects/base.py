@@ -35,6 +35,7 @@ __all__ = [
     "Loads",
     "Schema",
     "Snapshot",
+    "check_joint_body",
     "keeps_for_force_along",
     "register",
     "unit",
@@ -198,6 +199,28 @@ class Effect:
         """The time after which this effect no longer acts (inf: to the end); what it
         breaks is conserved from then on."""
         return math.inf
+
+
+def check_joint_body(spec, scene, index, *, what: str, keys: tuple[str, ...] | None) -> None:
+    """The checks every joint makes of its body: a rigid, moving body; no thrust (its
+    mass cannot change); and, when ``keys`` is given, only those initial keys (the joint
+    decides the rest).  (A joint listed twice is refused with the other constraints, in
+    :func:`mechanics.scenes.models.select_model`.)"""
+    b = scene.body(spec.fields["body"])
+    if b.shape in ("point", "tank") or b.fixed:
+        kind = "fixed" if b.fixed else f"a {b.shape}"
+        raise scene.error(f"{spec.where}.body", f"body {b.name!r} is {kind}: {what}")
+    for e in scene.effects:
+        if e.type == "thrust" and e.fields["body"] == b.name:
+            raise scene.error(
+                f"{e.where}.body", f"body {b.name!r} is held by a joint: its mass cannot change"
+            )
+    for k in b.initial if keys is not None else ():
+        if k not in keys:
+            raise scene.error(
+                f"bodies[{index[b.name]}].initial.{k}",
+                f"a body on a {spec.type} takes {', '.join(keys)}",
+            )
 
 
 def _axis_index(q: str) -> int:

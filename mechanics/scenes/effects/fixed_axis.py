@@ -18,7 +18,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register, unit
+from .base import Effect, Schema, check_joint_body, register, unit
 
 
 @register
@@ -38,31 +38,15 @@ class FixedAxis(Effect):
     def check(cls, spec, scene, index) -> None:
         from ..state import body_inertia
 
+        check_joint_body(
+            spec, scene, index, what="it cannot turn on an axis", keys=("angle", "angular_velocity")
+        )
         b = scene.body(spec.fields["body"])
-        if b.shape in ("point", "tank") or b.fixed:
-            what = "fixed" if b.fixed else f"a {b.shape}"
-            raise scene.error(
-                f"{spec.where}.body", f"body {b.name!r} is {what}: it cannot turn on an axis"
-            )
-        if [e.fields["body"] for e in scene.effects_of("fixed_axis")].count(b.name) > 1:
-            raise scene.error(f"{spec.where}.body", f"body {b.name!r} has two fixed axes")
-        ax = cls(spec)
-        if ax.moment_of_inertia(b.mass, np.diag(body_inertia(b))) <= 0:
+        if cls(spec).moment_of_inertia(b.mass, np.diag(body_inertia(b))) <= 0:
             raise scene.error(
                 f"{spec.where}.body_axis",
                 f"the moment of inertia about this axis is zero for a {b.shape}",
             )
-        for k in b.initial:
-            if k not in ("angle", "angular_velocity"):
-                raise scene.error(
-                    f"bodies[{index[b.name]}].initial.{k}",
-                    "a fixed-axis body takes angle and angular_velocity",
-                )
-        for e in scene.effects:
-            if e.type == "thrust" and e.fields["body"] == b.name:
-                raise scene.error(
-                    f"{e.where}.body", f"body {b.name!r} turns on an axis: its mass cannot change"
-                )
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)

@@ -15,7 +15,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register
+from .base import Effect, Schema, check_joint_body, register
 
 
 @register
@@ -31,19 +31,8 @@ class FixedPoint(Effect):
 
     @classmethod
     def check(cls, spec, scene, index) -> None:
+        check_joint_body(spec, scene, index, what="it cannot be pinned", keys=None)
         b = scene.body(spec.fields["body"])
-        if b.shape in ("point", "tank") or b.fixed:
-            what = "fixed" if b.fixed else f"a {b.shape}"
-            raise scene.error(
-                f"{spec.where}.body", f"body {b.name!r} is {what}: it cannot be pinned"
-            )
-        if [e.fields["body"] for e in scene.effects_of("fixed_point")].count(b.name) > 1:
-            raise scene.error(f"{spec.where}.body", f"body {b.name!r} has two fixed points")
-        for e in scene.effects:
-            if e.type == "thrust" and e.fields["body"] == b.name:
-                raise scene.error(
-                    f"{e.where}.body", f"body {b.name!r} is pinned: its mass cannot change"
-                )
         for k in ("position", "velocity"):
             if k in b.initial:
                 raise scene.error(

@@ -383,10 +383,6 @@ def _direction(x) -> np.ndarray | None:
     return y / np.linalg.norm(y)
 
 
-def _momentum_size(m, v) -> float:
-    return m * float(np.linalg.norm(v))
-
-
 def _totals(s, idx, S):
     """Kinetic energy ½ m v² + ½ L_A·ω_A, momentum Σ m v, Σ m|v|, the angular momentum
     about the point S, Σ (ρ × m v) + Rᵀ L_A, the size of its terms, and each body's
@@ -402,7 +398,7 @@ def _totals(s, idx, S):
         spin = s.to_space(k, s.L_A[k])
         L += np.cross(arm, m * v) + spin
         # |ρ| m |v| bounds the orbital term: the size its rounding is relative to
-        Labs += float(np.linalg.norm(arm) * _momentum_size(m, v) + np.linalg.norm(spin))
+        Labs += float(np.linalg.norm(arm) * m * np.linalg.norm(v) + np.linalg.norm(spin))
     bodies = [
         {
             "index": int(k),
