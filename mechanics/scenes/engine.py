@@ -65,7 +65,7 @@ from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
 from .effects.base import CONSERVED, Effect
 from .effects.impact import EnergyGainError, Impact
 from .errors import SceneError
-from .state import Layout, body_vertices
+from .state import Guide, Hinge, Layout, body_vertices
 from .trajectory import (
     EPS,
     Event,
@@ -145,18 +145,17 @@ def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
     }
 
 
-def _hinges(scene, index) -> dict[int, tuple]:
-    """The hinged bodies (a fixed_axis joint) -> (C, a, u0, k, h)."""
-    from .effects.fixed_axis import FixedAxis
-
+def _guides(scene, index) -> dict[int, Guide]:
+    """The guided bodies (a fixed axis, rolling, sliding on a plane) -> their Guide."""
     g = np.zeros(3)
     for e in scene.effects_of("gravity"):
         d = np.asarray(e.fields.get("direction", [0.0, 0.0, -1.0]), dtype=float)
         g = g + float(e.fields["g"]) * d / np.linalg.norm(d)
     out = {}
-    for spec in scene.effects_of("fixed_axis"):
-        ax = FixedAxis(spec)
-        out[index[spec.fields["body"]]] = (ax.point, ax.axis, ax.reference(g), ax.body_axis, ax.h)
+    for spec in scene.effects:
+        make = REGISTRY[spec.type].make_guide
+        if make is not None:
+            out[index[spec.fields["body"]]] = make(spec, scene, g)
     return out
 
 
@@ -171,13 +170,13 @@ def validate(scene) -> None:
                 f"a {spec.type!r} effect acts only together with the fixed_axis it turns a "
                 "body about; list a fixed_axis",
             )
-    pinned, hinged = _pins(scene, index), _hinges(scene, index)
+    pinned, guided = _pins(scene, index), _guides(scene, index)
     for i, b in enumerate(scene.bodies):
         where = f"bodies[{i}]"
         if b.shape == "tank":
             raise scene.error(f"{where}.shape", "a tank needs a tank_outflow effect")
-        if i in hinged:
-            continue  # its initial keys: the fixed_axis effect's check
+        if i in guided:
+            continue  # its initial keys: its joint's check
         keys = FREE_INITIAL + (RATES if i in pinned else ())
         for k in b.initial:
             if k not in keys:
@@ -228,15 +227,16 @@ class Engine:
     def __init__(self, scene) -> None:
         self.scene = scene
         index = {b.name: i for i, b in enumerate(scene.bodies)}
-        self.layout = Layout.of(scene.bodies, _pins(scene, index), _hinges(scene, index))
+        self.layout = Layout.of(scene.bodies, _pins(scene, index), _guides(scene, index))
         self.n = self.layout.n
         self.names = [b.name for b in scene.bodies]
-        ctx = Context(scene, index, self.layout.kinds, self.layout.pins, self.layout.hinges)
+        ctx = Context(scene, index, self.layout.kinds, self.layout.pins, self.layout.guides)
         self.effects = build_effects(scene, ctx)
         self.impacts: list[Impact] = [e for e in self.effects if e.type == "impact"]
         self.forces = [e for e in self.effects if e.type != "impact"]
         self.potentials = [e for e in self.forces if e.potential is not None]
         self.losing = [e for e in self.forces if type(e).mass_loss is not Effect.mass_loss]
+        self.growing = [e for e in self.forces if hasattr(e, "inertia_added")]
         self.m0 = np.array([b.mass for b in scene.bodies], dtype=float)
         b0 = scene.bodies
         r0 = np.array([b.initial.get("position", [0.0] * 3) for b in b0], float)
@@ -248,9 +248,9 @@ class Engine:
         for i, (_, _, JC, _) in self.layout.pins.items():
             L0[i] = JC @ w0[i]  # a pinned body stores its angular momentum about C
         self.y0 = self.layout.pack(r0, v0, L0, R0)
-        for i in self.layout.hinges:
-            ini, o = b0[i].initial, self.layout.offsets[i]
-            self.y0[o : o + 2] = ini.get("angle", 0.0), ini.get("angular_velocity", 0.0)
+        for i, gd in self.layout.guides.items():
+            o = self.layout.offsets[i]
+            self.y0[o : o + 2 * gd.nq] = np.concatenate(gd.start(b0[i].initial))
         self.rigid = self.layout.rigid_bodies
         self._phase: float | None = None  # see Snapshot.phase
 
@@ -275,24 +275,28 @@ class Engine:
         else:
             m = np.broadcast_to(self.m0, (*np.shape(t), self.n)).copy()
             J = np.broadcast_to(self.layout.J, (*np.shape(t), self.n, 3)).copy()
-        if not self.layout.pins and not self.layout.hinges:
+        if not self.layout.pins and not self.layout.guides:
             return Snapshot(t, r, v, L, R, self.layout.omega(L, J), m, J)
         if not copy:
             r, v, L, R = r.copy(), v.copy(), L.copy(), R.copy()
         w = self.layout.omega(L, J)
         angle = np.zeros(np.shape(m))
         y = np.asarray(y, dtype=float)
-        for i, hg in self.layout.hinges.items():
-            o = self.layout.offsets[i]
-            phi, phid = y[..., o], y[..., o + 1]
-            rhat, tang, Ri = hg.frame(phi)
-            angle[..., i] = phi
+        coords, inertia = {}, {}
+        for i, gd in self.layout.guides.items():
+            o, nq = self.layout.offsets[i], gd.nq
+            q, qd = y[..., o : o + nq].copy(), y[..., o + nq : o + 2 * nq].copy()
+            G, E, Ri = gd.place(q)
+            angle[..., i] = q[..., 0]
             R[..., i, :, :] = Ri
-            r[..., i, :] = hg.C + hg.h * rhat
-            v[..., i, :] = (hg.h * phid)[..., None] * tang
-            w[..., i, :] = 0.0
-            w[..., i, hg.k] = phid
+            r[..., i, :] = G
+            v[..., i, :] = np.einsum("...k,...kc->...c", qd, E)
+            w[..., i, :] = np.einsum("...ij,...j->...i", Ri, qd @ gd.W)
             L[..., i, :] = J[..., i, :] * w[..., i, :]
+            coords[i] = (q, qd)
+            grown = [e.inertia_added(t, i) for e in self.growing]
+            if grown:
+                inertia[i] = gd.M + sum(grown)
         for i, (pivot, g, _, JCinv) in self.layout.pins.items():
             # the stored L_C gives ω; G and its velocity follow from the attitude
             w[..., i, :] = np.einsum("ij,...j->...i", JCinv, L[..., i, :])
@@ -301,7 +305,9 @@ class Engine:
             w_O = np.einsum("...ji,...j->...i", R[..., i, :, :], w[..., i, :])
             r[..., i, :] = pivot + rho
             v[..., i, :] = np.cross(w_O, rho)
-        return Snapshot(t, r, v, L, R, w, m, J, angle=angle)
+        out = Snapshot(t, r, v, L, R, w, m, J, angle=angle)
+        out.coords, out.inertia = coords, inertia
+        return out
 
     def rhs(self, t, y) -> np.ndarray:
         s = self.snapshot(t, y, copy=False)
@@ -319,16 +325,16 @@ class Engine:
             for i, (_, _, JC, _) in self.layout.pins.items():
                 L[..., i, :] = np.einsum("ij,...j->...i", JC, s.omega[..., i, :])
         y = self.layout.pack(s.r, s.v, L, s.R)
-        for i, hg in self.layout.hinges.items():
-            o = self.layout.offsets[i]
-            y[..., o], y[..., o + 1] = s.angle[..., i], s.omega[..., i, hg.k]
+        for i, gd in self.layout.guides.items():
+            o, (q, qd) = self.layout.offsets[i], s.coords[i]
+            y[..., o : o + gd.nq], y[..., o + gd.nq : o + 2 * gd.nq] = q, qd
         return y
 
     # ------------------------------------------------------------- exact flows
     def exact_flow(self) -> str | None:
         kinds = {e.type for e in self.effects}
-        if self.layout.hinges:
-            return self._hinged_exact_flow(kinds)
+        if self.layout.guides:
+            return self._guided_exact_flow(kinds)
         if self.layout.pins:
             return self._pinned_exact_flow(kinds)
         if self.layout.fixed_bodies:
@@ -356,61 +362,35 @@ class Engine:
             return f"exact: {what}{spin}"
         return f"exact: rocket flight (7.30) with uniform gravity{spin}"
 
-    def _hinged_exact_flow(self, kinds) -> str | None:
-        """A lone body on its fixed axis: uniform rotation; the pendulum released from rest
-        (gravity across the axis, G off it, |φ0| ≤ π: Jacobi elliptic functions, 4.50);
-        the harmonic torsion pendulum (3.76)."""
-        if self.n != 1 or not kinds <= {"fixed_axis", "gravity", "torsion"}:
+    def _guided_exact_flow(self, kinds) -> str | None:
+        """A lone guided body: its guide's exact flow for the listed effects, if any
+        (:meth:`~mechanics.scenes.state.Guide.exact`)."""
+        if self.n != 1:
             return None
-        ((i, hg),) = self.layout.hinges.items()
+        ((i, gd),) = self.layout.guides.items()
         o = self.layout.offsets[i]
-        phi0, w0 = float(self.y0[o]), float(self.y0[o + 1])
-        others = kinds - {"fixed_axis"}
-        if not others:
-            self._axis = lambda t: (phi0 + w0 * t, w0 + 0.0 * t)
-            return "exact: uniform rotation"
-        grav = [e for e in self.effects if e.type == "gravity"]
-        tors = [e for e in self.effects if e.type == "torsion"]
-        if others == {"torsion"} and len(tors) == 1:
-            om = math.sqrt(tors[0].tau_0 / hg.J_a)
-            self._axis = lambda t: (
-                phi0 * np.cos(om * t) + w0 / om * np.sin(om * t),
-                -phi0 * om * np.sin(om * t) + w0 * np.cos(om * t),
-            )
-            return "exact: harmonic torsion oscillation"
-        if others == {"gravity"} and len(grav) == 1 and w0 == 0 and abs(phi0) <= math.pi:
-            gp = grav[0].axis_g_perp(hg.a)
-            if gp > 0 and hg.h > 0:
-                from mechanics.dynamics import pendulum_motion
-                from mechanics.elliptic import ellipj
+        q0, qd0 = self.y0[o : o + gd.nq].copy(), self.y0[o + gd.nq : o + 2 * gd.nq].copy()
+        others = [e for e in self.effects if e.make_guide is None]
+        found = gd.exact(others, float(self.m0[i]), q0, qd0, self.scene.duration)
+        if found is None:
+            return None
+        how, self._axis, self._axis_events = found
+        return how
 
-                m, J = float(self.m0[i]), hg.J_a
-                om0 = math.sqrt(m * gp * hg.h / J)
-                k, kp = math.sin(abs(phi0) / 2), math.cos(abs(phi0) / 2)
-                sgn = 1.0 if phi0 >= 0 else -1.0
-
-                def f(t):
-                    phi = pendulum_motion(t, J, m, gp, hg.h, phi0)
-                    sn, _, dn, _ = ellipj(om0 * np.asarray(t, float), k * k, m1=kp * kp)
-                    return phi, -sgn * 2.0 * k * kp * om0 * sn / dn  # φ̇ = −2kk'ω0 sd(ω0 t)
-
-                self._axis = f
-                return "exact: pendulum released from rest, Jacobi elliptic functions (4.50)"
-        return None
-
-    def _hinged_exact(self):
-        ((i, _),) = self.layout.hinges.items()
-        o, f = self.layout.offsets[i], self._axis
+    def _guided_exact(self):
+        ((i, gd),) = self.layout.guides.items()
+        o, f, nq = self.layout.offsets[i], self._axis, gd.nq
 
         @vectorized
         def at(t):
             tt = np.asarray(t, dtype=float)
             y = np.zeros((*tt.shape, self.layout.size))
-            phi, w = np.broadcast_arrays(*f(tt))
-            y[..., o], y[..., o + 1] = phi, w
+            q, qd = f(tt)
+            y[..., o : o + nq] = np.broadcast_to(q, (*tt.shape, nq))
+            y[..., o + nq : o + 2 * nq] = np.broadcast_to(qd, (*tt.shape, nq))
             return y
 
-        return [(0.0, self.scene.duration, at)], []
+        return [(0.0, self.scene.duration, at)], list(self._axis_events)
 
     def _pinned_exact_flow(self, kinds) -> str | None:
         """A lone top on its fixed point: torque-free (the elliptic flow about C), or the
@@ -604,8 +584,8 @@ class Engine:
                 "exact flow here; use 'auto' or 'integrate'",
             )
         if exact is not None and s.method != "integrate":
-            if self.layout.hinges:
-                segs, events = self._hinged_exact()
+            if self.layout.guides:
+                segs, events = self._guided_exact()
                 return self._finish(t, segs, events, exact)
             if self.layout.pins:
                 segs, events = self._pinned_exact()
@@ -671,11 +651,11 @@ class Engine:
     def _point_coef(self, coef_y, k, at):
         """Chebyshev coefficients (k, 3) of the body point ``at`` (body components about
         G; None: G) along the step: r + R_A_Oᵀ at, linear in the state; for a pinned body
-        C + R_A_Oᵀ (g_A + at); a hinged body's points are trigonometric in φ: fitted at
-        the step's Chebyshev nodes (for a turn of 0.3 rad per step the fit's error is
+        C + R_A_Oᵀ (g_A + at); a guided body's points (a hinge's are trigonometric in φ)
+        are fitted at the step's Chebyshev nodes (for a turn of 0.3 rad per step the fit's error is
         ~(0.15)⁹/9! ≈ 1e-13 of the arm; the crossing is refined on the exact gap)."""
         kind, o = self.layout.kinds[k], self.layout.offsets[k]
-        if kind == "hinged":
+        if kind == "guided":
             dense, t_a, t_b = self._step
 
             def pos(tt):
@@ -815,10 +795,14 @@ class Engine:
             if kind == "point":
                 out[k] = dv[k]
                 continue
-            if kind == "hinged":
-                hg, o = self.layout.hinges[k], self.layout.offsets[k]
-                rho, w, alpha = S - hg.C, dy[o] * hg.a, dy[o + 1] * hg.a
-                out[k] = np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
+            if kind == "guided":  # a_G = Σ E_k q̈_k + the bend; ω = Σ W_k q̇_k, α = Σ W_k q̈_k
+                gd, o = self.layout.guides[k], self.layout.offsets[k]
+                q, qd = s.coords[k]
+                qdd = dy[o + gd.nq : o + 2 * gd.nq]
+                _, E, _ = gd.place(q)
+                rho, w, alpha = S - s.r[k], qd @ gd.W, qdd @ gd.W
+                a_G = qdd @ E + gd.bend(q, qd)
+                out[k] = a_G + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
                 continue
             if kind == "pinned":
                 pivot, _, _, JCinv = self.layout.pins[k]
@@ -831,14 +815,17 @@ class Engine:
         return out
 
     def _reactions(self, t, Y):
-        """The joints' reactions at the samples (t, Y): the force of a pivot or of the
-        bearings on its body, F = m a_G − Σ F (4.4, 4.71), and for a fixed axis the
-        bearings' moment about C, M = J_a φ̈ a − M_C, perpendicular to the axis; with the
-        size of their terms (what their rounding is relative to)."""
-        joints = [*self.layout.pins, *self.layout.hinges]
+        """The joints' reactions at the samples (t, Y): the force of a pivot, of the
+        bearings or of the surface a body rolls or slides on, F = m a_G − Σ F (4.4,
+        4.71), and for a fixed axis the bearings' moment about C, M = J_a φ̈ a − M_C,
+        perpendicular to the axis; with the size of their terms (what their rounding is
+        relative to).  None where mass flows onto a body (the inflow's momentum is not
+        among the loads)."""
+        joints = [] if self.growing else [*self.layout.pins, *self.layout.guides]
+        hinges = {i: g for i, g in self.layout.guides.items() if isinstance(g, Hinge)}
         out = {i: {"reaction": np.empty((len(t), 3))} for i in joints}
         size = {i: {"reaction": 0.0, "bearing_moment": 0.0} for i in joints}
-        for i in self.layout.hinges:
+        for i in hinges if joints else ():
             out[i]["bearing_moment"] = np.empty((len(t), 3))
         if not out:
             return out, size
@@ -854,7 +841,7 @@ class Engine:
                     size[i]["reaction"],
                     float(np.linalg.norm(s.m[i] * acc[i]) + np.linalg.norm(loads.F[i])),
                 )
-            for i, hg in self.layout.hinges.items():
+            for i, hg in hinges.items():
                 M_C = hg.moment(s.R[i], s.r[i], loads.F[i], loads.M_A[i])
                 phidd = float(hg.a @ M_C) / hg.J_a
                 out[i]["bearing_moment"][k] = hg.J_a * phidd * hg.a - M_C
@@ -943,12 +930,8 @@ class Engine:
                     series[f"{pre(i)}{what}_{c}"] = F[:, k]
         for i in lay.pins:
             series.update({pre(i) + k: v for k, v in _top_angles(s.R[:, i], s.omega[:, i]).items()})
-        for i, hg in lay.hinges.items():
-            phi = s.angle[:, i]
-            series[pre(i) + "phi"], series[pre(i) + "phidot"] = phi, s.omega[:, i, hg.k]
-            if hg.h > 0:  # the book's picture: G at h (sin φ, −cos φ) in the plane ⟂ a
-                series[pre(i) + "x_G"] = hg.h * np.sin(phi)
-                series[pre(i) + "y_G"] = -hg.h * np.cos(phi)
+        for i, gd in lay.guides.items():
+            series.update({pre(i) + k: v for k, v in gd.series(*s.coords[i]).items()})
         m = s.m[:, moving]
         v, r = s.v[:, moving], s.r[:, moving]
         KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))
@@ -1030,9 +1013,9 @@ class Engine:
                     R, w = ss.R[i], ss.omega[i]
                     out[p + "cos_theta"] = float(R[2, 2])
                     out[p + "cos_theta_dot"] = float(w[1] * R[0, 2] - w[0] * R[1, 2])
-                if i in lay.hinges:
-                    out[p + "phi"] = float(ss.angle[i])
-                    out[p + "phidot"] = float(ss.omega[i, lay.hinges[i].k])
+                if i in lay.guides:
+                    for k, x in lay.guides[i].series(*ss.coords[i]).items():
+                        out[p + k] = float(x)
             y = np.asarray(dense(tt), dtype=float)
             for i, parts in self._reactions(np.array([tt]), y[None])[0].items():
                 for what, F in parts.items():

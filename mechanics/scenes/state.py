@@ -13,7 +13,8 @@ Conventions
   the identity attitude, and acts as an immovable partner of contacts.
 - **The flat vector.**  Bodies in file order; a point takes 6 numbers ``(r, v)``, a
   rigid body 18 ``(r, v, L_A, R_A_O row by row)``, a pinned body 12 ``(L_C, R_A_O)``, a
-  hinged body 2 ``(φ, φ̇)``, a fixed body 0.  :class:`Layout`
+  *guided* body 2 nq ``(q, q̇)`` (a :class:`Guide`: a fixed axis, rolling, sliding on a
+  plane), a fixed body 0.  :class:`Layout`
   gathers the per-body arrays from a state of any leading shape ``(..., size)`` in one
   indexing (no Python loop over bodies), so the same code serves one right-hand-side
   evaluation and thousands of samples.
@@ -29,6 +30,7 @@ Conventions
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -36,10 +38,13 @@ import numpy as np
 __all__ = [
     "ROUND_SHAPES",
     "SPHERICAL_SHAPES",
+    "Guide",
+    "Hinge",
     "Layout",
     "body_inertia",
     "body_radius",
     "body_vertices",
+    "turned",
 ]
 
 ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere", "hollow_sphere")
@@ -48,14 +53,76 @@ SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 POINT_SIZE = 6
 RIGID_SIZE = 18
 PINNED_SIZE = 12
-HINGED_SIZE = 2
 
 
-@dataclass(frozen=True)
-class Hinge:
-    """A hinged body's axis: the point C and unit axis a in space, the reference u0 and
-    u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G from the
-    axis and the moment of inertia J_a about it."""
+def turned(a, u0, k, theta):
+    """The rows of R_A_O of a body turned by θ about the space axis a (any shape of θ):
+    body axis k along a, axis j = (k + 1) % 3 along u0 at θ = 0 and axis l = (k + 2) % 3
+    along u1 = a × u0; at θ, e_j = cos θ u0 + sin θ u1, e_l = cos θ u1 − sin θ u0."""
+    u1 = np.cross(a, u0)
+    c, s = np.cos(theta)[..., None], np.sin(theta)[..., None]
+    R = np.empty((*np.shape(theta), 3, 3))
+    R[..., k, :] = a
+    R[..., (k + 1) % 3, :] = c * u0 + s * u1
+    R[..., (k + 2) % 3, :] = c * u1 - s * u0
+    return R
+
+
+class Guide:
+    """What a joint makes of a body it guides: ``nq`` coordinates q (the state holds q,
+    then q̇), the centre G(q) and attitude R_A_O(q), the derivatives E_k = ∂G/∂q_k, the
+    angular velocity W_k (space) per unit q̇_k (constant), and the constant inertias
+    M_k of the kinetic energy T = ½ Σ M_k q̇_k² (m E_j·E_k + W_jᵀ J W_k = 0 for j ≠ k and
+    |E_k| constant along the path, so Lagrange's equations read M_k q̈_k = Q_k, with the
+    generalised force Q_k = F·E_k + M·W_k of a force F at G and a moment M about G).
+
+    Subclasses set ``nq``, ``W`` (nq, 3), ``M`` (nq,), ``k`` (the body axis the turn is
+    about, for the series) and give :meth:`place` and :meth:`bend`."""
+
+    nq = 1
+    W: np.ndarray
+    M: np.ndarray
+    k: int
+
+    def place(self, q):
+        """G (..., 3), E (..., nq, 3) and R_A_O (..., 3, 3) at the coordinates q (..., nq)."""
+        raise NotImplementedError
+
+    def bend(self, q, qd):
+        """The part of a_G that the rates make on a curved path, a_G − Σ E_k q̈_k (..., 3)."""
+        return np.zeros((*np.shape(q)[:-1], 3))
+
+    def start(self, initial) -> tuple[np.ndarray, np.ndarray]:
+        """(q0, q̇0) from a body's ``initial`` table."""
+        raise NotImplementedError
+
+    def exact(self, effects, m, q0, qd0, duration):
+        """For a lone guided body under ``effects`` (the other listed effects): (how,
+        f, events) with f(t) -> (q, q̇) of shapes (..., nq) where the motion has an
+        exact flow, else None."""
+        return None
+
+    def series(self, q, qd) -> dict[str, np.ndarray]:
+        """The named series of the coordinates (samples q, q̇ of shape (k, nq))."""
+        return {}
+
+    def rate(self, q, F, M_O, M=None) -> np.ndarray:
+        """q̈ (nq,) from the force F at G and the moment M_O about G (space components);
+        ``M`` replaces the inertias (a body whose inertia grows, 7.39)."""
+        _, E, _ = self.place(q)
+        return (E @ F + self.W @ M_O) / (self.M if M is None else M)
+
+    def point_rate(self, q, S) -> np.ndarray:
+        """u_k (nq, 3): the velocity of the body point at S per unit q̇_k, E_k + W_k × (S − G)."""
+        G, E, _ = self.place(q)
+        return E + np.cross(self.W, S - G)
+
+
+@dataclass(frozen=True, eq=False)
+class Hinge(Guide):
+    """A fixed axis (4.3): the point C and unit axis a in space, the reference u0 (where
+    φ = 0) and u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G
+    from the axis and the moment of inertia J_a about it; q = (φ,)."""
 
     C: np.ndarray
     a: np.ndarray
@@ -67,21 +134,113 @@ class Hinge:
     h: float
     J_a: float
 
+    @property
+    def W(self):
+        return self.a[None, :]
+
+    @property
+    def M(self):
+        return np.array([self.J_a])
+
     def frame(self, phi):
         """r̂, a × r̂ and the rows of R_A_O at the angle(s) φ: shapes (..., 3), (..., 3, 3)."""
-        c, s = np.cos(phi)[..., None], np.sin(phi)[..., None]
-        rhat = c * self.u0 + s * self.u1
-        tang = c * self.u1 - s * self.u0  # a × r̂
-        R = np.empty((*np.shape(phi), 3, 3))
-        R[..., self.k, :] = self.a
-        R[..., self.j, :] = rhat
-        R[..., self.l, :] = tang
-        return rhat, tang, R
+        R = turned(self.a, self.u0, self.k, phi)
+        return R[..., self.j, :], R[..., self.l, :], R
+
+    def place(self, q):
+        rhat, tang, R = self.frame(q[..., 0])
+        return self.C + self.h * rhat, (self.h * tang)[..., None, :], R
+
+    def bend(self, q, qd):
+        rhat = self.frame(q[..., 0])[0]
+        return -self.h * (qd[..., 0] ** 2)[..., None] * rhat
+
+    def start(self, initial):
+        return (
+            np.array([float(initial.get("angle", 0.0))]),
+            np.array([float(initial.get("angular_velocity", 0.0))]),
+        )
+
+    def series(self, q, qd):
+        phi = q[..., 0]
+        out = {"phi": phi, "phidot": qd[..., 0]}
+        if self.h > 0:  # the book's picture: G at h (sin φ, −cos φ) in the plane ⟂ a
+            out["x_G"], out["y_G"] = self.h * np.sin(phi), -self.h * np.cos(phi)
+        return out
+
+    def exact(self, effects, m, q0, qd0, duration):
+        """Uniform rotation; the pendulum released from rest (gravity across the axis, G
+        off it, |φ0| ≤ π: Jacobi elliptic functions, 4.50); the harmonic torsion
+        pendulum (3.76); the carousel under fire (mass flowing in, 7.39)."""
+        phi0, w0 = float(q0[0]), float(qd0[0])
+        kinds = [e.type for e in effects]
+        if not kinds:
+            return "exact: uniform rotation", lambda t: _col(phi0 + w0 * t, w0 + 0.0 * t), []
+        if kinds == ["torsion"]:
+            om = math.sqrt(effects[0].tau_0 / self.J_a)
+
+            def f(t):
+                c, s = np.cos(om * t), np.sin(om * t)
+                return _col(phi0 * c + w0 / om * s, -phi0 * om * s + w0 * c)
+
+            return "exact: harmonic torsion oscillation", f, []
+        if kinds == ["mass_flow"]:
+            return _carousel(effects[0], self.J_a, phi0, w0)
+        if kinds == ["gravity"] and w0 == 0 and abs(phi0) <= math.pi:
+            gp = effects[0].axis_g_perp(self.a)
+            if gp > 0 and self.h > 0:
+                f = pendulum_from_rest(self.J_a, m, gp, self.h, phi0)
+                return "exact: pendulum released from rest, Jacobi elliptic functions (4.50)", f, []
+        return None
 
     def moment(self, R, r, F, M_A) -> np.ndarray:
         """The loads' moment about C in space components: R_A_Oᵀ M_A + (r_G − C) × F, for a
         force F at G and a moment M_A about G in body components."""
         return R.T @ M_A + np.cross(r - self.C, F)
+
+
+def _col(q, qd):
+    """(q, q̇) of a one-coordinate guide as shapes (..., 1)."""
+    return np.asarray(q, dtype=float)[..., None], np.asarray(qd, dtype=float)[..., None]
+
+
+def pendulum_from_rest(J, m, g, h, q0):
+    """t -> (q, q̇) of J q̈ = −m g h sin q released from rest at |q0| ≤ π (4.50):
+    :func:`mechanics.dynamics.pendulum_motion`, and q̇ = −2 k k' ω0 sd(ω0 t) with
+    k = sin(|q0|/2), ω0 = √(m g h/J)."""
+    from mechanics.dynamics import pendulum_motion
+    from mechanics.elliptic import ellipj
+
+    om0 = math.sqrt(m * g * h / J)
+    k, kp = math.sin(abs(q0) / 2), math.cos(abs(q0) / 2)
+    sgn = 1.0 if q0 >= 0 else -1.0
+
+    def f(t):
+        q = pendulum_motion(t, J, m, g, h, q0)
+        sn, _, dn, _ = ellipj(om0 * np.asarray(t, float), k * k, m1=kp * kp)
+        return _col(q, -sgn * 2.0 * k * kp * om0 * sn / dn)
+
+    return f
+
+
+def _carousel(flow, J0, phi0, w0):
+    """The carousel under fire (7.39): J(t) = J0 + q R² t, d(J φ̇)/dt = −r q v, so
+    φ̇ = (J0 φ̇0 − r q v t)/J(t) (:func:`mechanics.open_systems.carousel_angular_velocity`)
+    and φ = φ0 − (b/c) t + (J0 φ̇0 + b J0/c)/c · ln(1 + c t/J0), c = q R², b = r q v."""
+    from mechanics.open_systems import carousel_angular_velocity
+
+    c, b = flow.q * flow.R**2, flow.r * flow.q * flow.v
+
+    def f(t):
+        t = np.asarray(t, float)
+        kw = dict(J_0=J0, q=flow.q, v=flow.v, r=flow.r, R=flow.R, phidot_0=w0)
+        w = carousel_angular_velocity(t, **kw)
+        if c == 0:
+            return _col(phi0 + w0 * t, w)
+        phi = phi0 - (b / c) * t + (J0 * w0 + b * J0 / c) / c * np.log1p(c * t / J0)
+        return _col(phi, w)
+
+    return "exact: carousel under fire, solution of (7.39)", f, []
 
 
 def body_inertia(body) -> np.ndarray:
@@ -138,9 +297,10 @@ def body_vertices(body) -> np.ndarray | None:
 class Layout:
     """Where each body's quantities sit in the flat state; gathers and scatters them.
 
-    ``kinds[i]`` is ``"point"``, ``"rigid"``, ``"pinned"`` or ``"fixed"``; ``J`` the
-    principal moments about G (n, 3) at the initial masses; ``r_fixed`` the positions of
-    the fixed bodies; ``pins[i]`` = (C, g_A, J_C, J_C⁻¹) of a pinned body.
+    ``kinds[i]`` is ``"point"``, ``"rigid"``, ``"pinned"``, ``"guided"`` or ``"fixed"``;
+    ``J`` the principal moments about G (n, 3) at the initial masses; ``r_fixed`` the
+    positions of the fixed bodies; ``pins[i]`` = (C, g_A, J_C, J_C⁻¹) of a pinned body;
+    ``guides[i]`` the :class:`Guide` of a guided one.
     """
 
     kinds: tuple[str, ...]
@@ -149,15 +309,14 @@ class Layout:
     size: int
     offsets: tuple[int, ...]
     pins: dict = field(default_factory=dict)
-    hinges: dict = field(default_factory=dict)
+    guides: dict = field(default_factory=dict)
 
     @classmethod
-    def of(cls, bodies, pins=None, hinges=None) -> Layout:
+    def of(cls, bodies, pins=None, guides=None) -> Layout:
         """The layout of ``bodies``; ``pins`` maps a body's index to (C, g_A): the space
         point it is pinned at and the vector from that point to G in body components;
-        ``hinges`` to (C, a, u0, k, h) of its fixed axis (see :class:`Hinge`)."""
-        pins, hinges = pins or {}, hinges or {}
-        hinge_data = {}
+        ``guides`` to the :class:`Guide` its joint makes of it (a fixed axis, rolling)."""
+        pins, guides = pins or {}, guides or {}
         kinds, offsets, size = [], [], 0
         J = np.zeros((len(bodies), 3))
         r_fixed = np.zeros((len(bodies), 3))
@@ -169,15 +328,8 @@ class Layout:
             elif b.shape == "point":
                 kind = "point"
             else:
-                kind = "pinned" if i in pins else "hinged" if i in hinges else "rigid"
+                kind = "pinned" if i in pins else "guided" if i in guides else "rigid"
                 J[i] = body_inertia(b)
-            if kind == "hinged":
-                C, a, u0, k, h = hinges[i]
-                C, a, u0 = (np.asarray(x, dtype=float) for x in (C, a, u0))
-                j, l = (k + 1) % 3, (k + 2) % 3
-                hinge_data[i] = Hinge(
-                    C, a, u0, np.cross(a, u0), k, j, l, h, J[i, k] + b.mass * h * h
-                )
             if kind == "pinned":
                 C, g = (np.asarray(x, dtype=float) for x in pins[i])
                 JC = np.diag(J[i]) + b.mass * ((g @ g) * np.eye(3) - np.outer(g, g))
@@ -189,9 +341,9 @@ class Layout:
                 "point": POINT_SIZE,
                 "rigid": RIGID_SIZE,
                 "pinned": PINNED_SIZE,
-                "hinged": HINGED_SIZE,
+                "guided": 2 * guides[i].nq if kind == "guided" else 0,
             }[kind]
-        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data, hinge_data)
+        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data, dict(guides))
 
     @property
     def n(self) -> int:
@@ -218,7 +370,7 @@ class Layout:
                 iL[i] = o + np.arange(3)
                 iR[i] = (o + 3 + np.arange(9)).reshape(3, 3)
                 continue
-            if kind == "hinged":  # everything derived from (φ, φ̇) by the engine
+            if kind == "guided":  # everything derived from (q, q̇) by the engine
                 continue
             ir[i] = o + np.arange(3)
             iv[i] = o + 3 + np.arange(3)
@@ -236,8 +388,8 @@ class Layout:
 
     @property
     def rigid_bodies(self) -> tuple[int, ...]:
-        """The bodies that turn: free rigid bodies, pinned and hinged ones."""
-        return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned", "hinged"))
+        """The bodies that turn: free rigid bodies, pinned and guided ones."""
+        return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned", "guided"))
 
     @property
     def moving_bodies(self) -> tuple[int, ...]:
@@ -262,7 +414,7 @@ class Layout:
         y = np.empty((*lead, self.size))
         mov = [i for i, k in enumerate(self.kinds) if k in ("point", "rigid")]
         rig = [i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned")]
-        # (for a pinned body the caller gives L_C as L_A; a hinged one: Engine.pack)
+        # (for a pinned body the caller gives L_C as L_A; a guided one: Engine.pack)
         y[..., ir[mov].ravel()] = r[..., mov, :].reshape(*lead, -1)
         y[..., iv[mov].ravel()] = np.asarray(v, dtype=float)[..., mov, :].reshape(*lead, -1)
         if rig:
@@ -288,11 +440,11 @@ class Layout:
             if kind == "pinned":
                 out[o : o + 12] = self.pinned_rate(i, s, F[i], M_A[i])
                 continue
-            if kind == "hinged":
-                hg = self.hinges[i]
-                M_C = hg.moment(R[i], s.r[i], F[i], M_A[i])
-                out[o] = w[i, hg.k]
-                out[o + 1] = float(hg.a @ M_C) / hg.J_a
+            if kind == "guided":
+                gd = self.guides[i]
+                q, qd = s.coords[i]
+                out[o : o + gd.nq] = qd
+                out[o + gd.nq : o + 2 * gd.nq] = gd.rate(q, F[i], R[i].T @ M_A[i], s.inertia.get(i))
                 continue
             out[o : o + 3] = v[i]
             out[o + 3 : o + 6] = F[i] / m[i]

@@ -72,8 +72,8 @@ class Context:
     kinds: tuple[str, ...]
     #: pinned bodies: index -> (C, g_A, J_C, J_C⁻¹), see :class:`~..state.Layout`
     pins: dict = field(default_factory=dict)
-    #: hinged bodies: index -> :class:`~..state.Hinge`
-    hinges: dict = field(default_factory=dict)
+    #: guided bodies (a fixed axis, rolling, sliding): index -> :class:`~..state.Guide`
+    guides: dict = field(default_factory=dict)
 
     def body(self, name: str):
         return self.scene.bodies[self.index[name]]
@@ -84,13 +84,31 @@ class Snapshot:
     components), R_A_O, masses m and principal moments J.  Shapes (..., n, 3),
     (..., n, 3, 3), (..., n).  Loads that switch on or off read ``phase``, not t."""
 
-    __slots__ = ("J", "L_A", "R", "angle", "m", "omega", "phase", "r", "t", "v")
+    __slots__ = (
+        "J",
+        "L_A",
+        "R",
+        "angle",
+        "coords",
+        "inertia",
+        "m",
+        "omega",
+        "phase",
+        "r",
+        "t",
+        "v",
+    )
 
     def __init__(self, t, r, v, L_A, R, omega, m, J, phase=None, angle=None) -> None:
         self.t, self.r, self.v, self.L_A, self.R = t, r, v, L_A, R
         self.omega, self.m, self.J = omega, m, J
-        #: a hinged body's angle φ about its axis (0 for the others), shape (..., n)
+        #: a guided body's first coordinate (a hinged body's angle φ about its axis; 0
+        #: for the others), shape (..., n)
         self.angle = np.zeros(np.shape(m)) if angle is None else angle
+        #: guided bodies: index -> (q, q̇), shapes (..., nq)
+        self.coords: dict = {}
+        #: guided bodies whose inertias M_k vary (mass flowing in): index -> M (..., nq)
+        self.inertia: dict = {}
         #: the time that decides which loads are switched on: inside an integration
         #: segment between switch times, its midpoint (a stage at the segment's end
         #: still belongs to it); else t
@@ -170,6 +188,11 @@ class Effect:
     def check(cls, spec, scene, index: dict[str, int]) -> None:
         """Validate the combination of this effect with the scene (fields are checked
         one by one by the parser); raise ``scene.error(field, reason)``."""
+
+    #: a joint that guides its body (a fixed axis, rolling, sliding on a plane) defines a
+    #: classmethod ``make_guide(spec, scene, g_vector)`` returning its
+    #: :class:`~mechanics.scenes.state.Guide`; the body's state is then the guide's (q, q̇)
+    make_guide = None
 
     # contributions (the engine calls them only on listed effects)
     def loads(self, t: float, s: Snapshot, out: Loads) -> None:

@@ -56,6 +56,20 @@ class FixedAxis(Effect):
         self.point = np.asarray(self.fields.get("point", [0.0, 0.0, 0.0]), dtype=float)
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
 
+    @classmethod
+    def make_guide(cls, spec, scene, g_vector):
+        """The :class:`~mechanics.scenes.state.Hinge` of the body on this axis."""
+        from ..state import Hinge, body_inertia
+
+        ax = cls(spec)
+        b = scene.body(spec.fields["body"])
+        k = ax.body_axis
+        u0 = ax.reference(g_vector)
+        J_a = ax.moment_of_inertia(b.mass, np.diag(body_inertia(b)))
+        return Hinge(
+            ax.point, ax.axis, u0, np.cross(ax.axis, u0), k, (k + 1) % 3, (k + 2) % 3, ax.h, J_a
+        )
+
     def moment_of_inertia(self, m, J_G) -> float:
         """J_z = J_G + m h² (parallel axes, 4.54)."""
         return float(J_G[self.body_axis, self.body_axis]) + m * self.h**2

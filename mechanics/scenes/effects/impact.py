@@ -133,7 +133,7 @@ class Impact(Effect):
         bodies = ctx.scene.bodies
         self.fixed = {k for k, kind in enumerate(ctx.kinds) if kind == "fixed"}
         self.pins = ctx.pins  # pinned bodies: the pivot takes an impulse too
-        self.hinges = ctx.hinges  # hinged ones: the bearings do
+        self.guides = ctx.guides  # guided ones: the bearings or the track do
         self.features = self._features(bodies)
 
     # ----------------------------------------------------------------- geometry
@@ -258,8 +258,8 @@ class Impact(Effect):
         detail["attitude_defect"] = max(
             (float(np.abs(s.R[k] @ s.R[k].T - np.eye(3)).max()) for k in idx), default=0.0
         )
-        if any(k in self.pins or k in self.hinges for k in idx):
-            detail["external_impulse"] = "the pivot or bearings of a joint"
+        if any(k in self.pins or k in self.guides for k in idx):
+            detail["external_impulse"] = "the pivot, bearings or track of a joint"
         detail["energy_loss"] = self._loss
         detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
         detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
@@ -275,7 +275,7 @@ class Impact(Effect):
             return
         e, moving = self.e, self.bodies()
         sign = {self.i: 1.0, self.j: -1.0}
-        central = not any(k in self.pins or k in self.hinges for k in moving) and all(
+        central = not any(k in self.pins or k in self.guides for k in moving) and all(
             not np.any(np.cross(S - s.r[k], n)) for k in moving
         )
         if central and len(moving) == 2:  # through both centres: the direct impact, 2 ulps
@@ -300,10 +300,10 @@ class Impact(Effect):
         """Body k's part of the contact's inverse mass matrix (space components):
         1/m − [ρ]× J⁻¹ [ρ]× with ρ from G; for a pinned body ρ from the pivot, with its
         inertia about the pivot and no 1/m (the pivot takes the translation)."""
-        hg = self.hinges.get(k)
-        if hg is not None:  # only the turn about the axis: Δv_S = u (u·P)/J_a, u = a × ρ
-            u = np.cross(hg.a, S - hg.C)
-            return np.outer(u, u) / hg.J_a
+        gd = self.guides.get(k)
+        if gd is not None:  # only along the guide: Δv_S = Σ u_k (u_k·P)/M_k
+            u = gd.point_rate(s.coords[k][0], S)
+            return (u.T / s.inertia.get(k, gd.M)) @ u
         pin = self.pins.get(k)
         if pin is None:
             origin, inv_m = s.r[k], 1.0 / s.m[k]
@@ -316,11 +316,15 @@ class Impact(Effect):
 
     def _kick(self, s, k, P, S) -> None:
         """Apply the impulse P (space components) at the point S to body k, in place."""
-        hg = self.hinges.get(k)
-        if hg is not None:  # J_a Δφ̇ = a·((S − C) × P); G turns with it
-            s.omega[k, hg.k] += float(hg.a @ np.cross(S - hg.C, P)) / hg.J_a
+        gd = self.guides.get(k)
+        if gd is not None:  # M_k Δq̇_k = u_k·P (a hinge: J_a Δφ̇ = a·((S − C) × P))
+            q, qd = s.coords[k]
+            _, E, _ = gd.place(q)
+            qd = qd + gd.point_rate(q, S) @ P / s.inertia.get(k, gd.M)
+            s.coords[k] = (q, qd)
+            s.v[k] = qd @ E
+            s.omega[k] = s.R[k] @ (qd @ gd.W)
             s.L_A[k] = s.J[k] * s.omega[k]
-            s.v[k] = np.cross(s.omega[k, hg.k] * hg.a, s.r[k] - hg.C)
             return
         pin = self.pins.get(k)
         if pin is None:

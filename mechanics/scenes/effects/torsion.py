@@ -30,7 +30,7 @@ class Torsion(Effect):
         super().__init__(spec, ctx)
         self.tau_0 = float(self.fields["stiffness"])
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
-        self.hinge = ctx.hinges.get(self.i) if ctx is not None else None
+        self.hinge = ctx.guides.get(self.i) if ctx is not None else None
 
     def loads(self, t, s, out) -> None:
         out.moment(self.i, -self.tau_0 * s.angle[self.i] * self.hinge.a)
