@@ -170,7 +170,8 @@ def validate(scene) -> None:
                 f"a {spec.type!r} effect acts only together with the fixed_axis it turns a "
                 "body about; list a fixed_axis",
             )
-    pinned, guided = _pins(scene, index), _guides(scene, index)
+    pinned = _pins(scene, index)
+    guided = {index[e.fields["body"]] for e in scene.effects if REGISTRY[e.type].make_guide}
     for i, b in enumerate(scene.bodies):
         where = f"bodies[{i}]"
         if b.shape == "tank":
@@ -824,9 +825,10 @@ class Engine:
         joints = [] if self.growing else [*self.layout.pins, *self.layout.guides]
         hinges = {i: g for i, g in self.layout.guides.items() if isinstance(g, Hinge)}
         out = {i: {"reaction": np.empty((len(t), 3))} for i in joints}
-        size = {i: {"reaction": 0.0, "bearing_moment": 0.0} for i in joints}
+        size = {i: {"reaction": 0.0} for i in joints}
         for i in hinges if joints else ():
             out[i]["bearing_moment"] = np.empty((len(t), 3))
+            size[i]["bearing_moment"] = 0.0
         if not out:
             return out, size
         for k, (tt, y) in enumerate(zip(t, Y, strict=True)):

@@ -320,144 +320,6 @@ class AxisModel(Model):
         return traj
 
 
-# ---------------------------------------------------------------- rolling
-
-
-class RollingModel(Model):
-    """Rolling without slipping on an incline (s) or in a cylindrical track (ψ)."""
-
-    name = "rolling"
-    constraint = "rolling"
-    allowed = frozenset({"gravity"})
-
-    @classmethod
-    def validate(cls, scene):
-        super().validate(scene)
-        _single(cls, scene)
-        b = scene.bodies[0]
-        e = scene.effects_of("rolling")[0]
-        _round_body(scene, e)
-        surf = e.fields["surface"]
-        if surf == "incline":
-            _plane_angle(scene, e)
-            keys = ("distance", "speed")
-        elif surf == "track":
-            R = e.fields.get("track_radius")
-            if R is None:
-                raise scene.error(f"{e.where}.track_radius", "missing required field for a track")
-            if b.dims["radius"] >= R:
-                raise scene.error(
-                    f"{e.where}.track_radius",
-                    f"must exceed the body's radius {b.dims['radius']!r} (R > r); got {R!r}",
-                )
-            keys = ("angle", "angular_velocity")
-        else:
-            raise scene.error(f"{e.where}.surface", f"expected 'incline' or 'track'; got {surf!r}")
-        for k in b.initial:
-            if k not in keys:
-                raise scene.error(f"bodies[0].initial.{k}", f"rolling on a {surf} takes {keys}")
-
-    def __init__(self, scene):
-        super().__init__(scene)
-        b = self.bodies[0]
-        self.m, self.r = b.mass, b.dims["radius"]
-        self.roll = self.one("rolling")
-        self.Jaxis = float(body_inertia(b)[self.roll.body_axis])
-        self.M_eff = self.roll.effective_mass(self.m, np.diag(body_inertia(b)), self.r)
-        self.track = self.roll.surface == "track"
-        if self.track:
-            self.Rr = self.roll.track_radius - self.r
-            self.q0 = float(b.initial.get("angle", 0.0))
-            self.qd0 = float(b.initial.get("angular_velocity", 0.0))
-        else:
-            self.q0 = float(b.initial.get("distance", 0.0))
-            self.qd0 = float(b.initial.get("speed", 0.0))
-        self.grav = self.by_type.get("gravity", [])
-
-    def rhs(self, t, y):
-        q, qd = y
-        if self.track:
-            F = sum(g.track_force(self.m, self.Rr, q) for g in self.grav)
-            return [qd, F / (self.M_eff * self.Rr**2)]
-        F = sum(g.slope_force(self.m, self.roll.alpha) for g in self.grav)
-        return [qd, F / self.M_eff]
-
-    def exact_flow(self):
-        if not self.track:
-            return "exact: uniform acceleration down the incline (3.80)"
-        if not self.grav:
-            return "exact: uniform rolling round the track"
-        if len(self.grav) == 1 and self.qd0 == 0 and abs(self.q0) <= math.pi:
-            return "exact: equivalent pendulum released from rest (4.64), elliptic functions"
-        return None
-
-    def run_exact(self, t, how):
-        q0, qd0 = self.q0, self.qd0
-        if not self.track or not self.grav:
-            a = float(self.rhs(0.0, [q0, qd0])[1]) if not self.track else 0.0
-
-            @vectorized
-            def dense(tt):
-                return np.stack([q0 + qd0 * tt + 0.5 * a * tt * tt, qd0 + a * tt + 0.0 * tt], -1)
-
-            return self._finish(t, dense, how)
-        from mechanics.dynamics import pendulum_motion
-        from mechanics.elliptic import ellipj
-
-        g = self.grav[0].g
-        Jp = self.M_eff * self.Rr**2  # ½ Jp ψ̇² + m g (R − r)(1 − cos ψ)
-        om0 = math.sqrt(self.m * g * self.Rr / Jp)
-        k, kp = math.sin(abs(q0) / 2), math.cos(abs(q0) / 2)
-        sgn = 1.0 if q0 >= 0 else -1.0
-
-        @vectorized
-        def dense(tt):
-            psi = pendulum_motion(tt, Jp, self.m, g, self.Rr, q0)
-            sn, _, dn, _ = ellipj(om0 * np.asarray(tt, float), k * k, m1=kp * kp)
-            return np.stack([psi, -sgn * 2.0 * k * kp * om0 * sn / dn], axis=-1)
-
-        return self._finish(t, dense, how)
-
-    def run_integrated(self, t):
-        s = self.scene
-        segs = integrate_segments(
-            self.rhs, [self.q0, self.qd0], s.duration, rtol=s.rtol, atol=s.atol
-        )
-        return self._finish(t, _dense_from_segments(segs), "integrated: DOP853 (scipy solve_ivp)")
-
-    def _finish(self, t, dense, how):
-        Y = sample_dense(dense, t)
-        q, qd = Y[:, 0], Y[:, 1]
-        if self.track:
-            series = {
-                "psi": q,
-                "psidot": qd,
-                "phi": q * self.roll.track_radius / self.r,
-                "x_G": self.Rr * np.sin(q),
-                "z_G": -self.Rr * np.cos(q),
-            }
-            E = KE = 0.5 * self.M_eff * self.Rr**2 * qd * qd
-            for g in self.grav:
-                E = E + g.track_potential(self.m, self.Rr, q)
-            names = ("psi", "psidot")
-        else:
-            a = self.roll.alpha
-            series = {"s": q, "v": qd, "omega": qd / self.r, "drop": q * math.sin(a)}
-            E = KE = 0.5 * self.M_eff * qd * qd
-            for g in self.grav:
-                E = E + g.slope_potential(self.m, a, q)
-            names = ("s", "v")
-        series["E"] = E
-
-        def state_at(tt):
-            y = dense(tt)
-            return {names[0]: float(y[0]), names[1]: float(y[1])}
-
-        traj = Trajectory(t, series, [], how, state_at, {"E": E})
-        traj.extra["scales"] = {"E": energy_scale(KE, E)}
-        return traj
-
-
 # ---------------------------------------------------------------- sliding
 
 
@@ -729,9 +591,9 @@ class TankModel(Model):
         return Trajectory(t, series, events, how, state_at, {"volume_total": vol})
 
 
-MODELS = (TankModel, AxisModel, RollingModel, SlidingModel)
-#: the fixed point is the engine's joint (:mod:`mechanics.scenes.effects.fixed_point`)
-CONSTRAINT_JOINTS = ("fixed_point",)
+MODELS = (TankModel, AxisModel, SlidingModel)
+#: the engine's joints (:mod:`mechanics.scenes.effects`)
+CONSTRAINT_JOINTS = ("fixed_point", "rolling")
 #: the effect types that select a one-degree-of-freedom model
 CONSTRAINTS = (*(m.constraint for m in MODELS), *CONSTRAINT_JOINTS)
 
@@ -751,7 +613,9 @@ def select_model(scene):
         raise scene.error(f"{cons[1].where}.type", f"{cons[1].type!r} is listed twice")
     if not kinds:
         return None
-    if kinds == {"fixed_point"} or (kinds == {"fixed_axis"} and not scene.effects_of("mass_flow")):
+    if kinds <= set(CONSTRAINT_JOINTS) or (
+        kinds == {"fixed_axis"} and not scene.effects_of("mass_flow")
+    ):
         return None  # a pinned or hinged body: the engine's (the carousel's inflow is not)
     cls = next(m for m in MODELS if m.constraint in kinds)
     cls.validate(scene)

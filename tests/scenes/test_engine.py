@@ -795,22 +795,31 @@ JOINT_EFFECTS = {
 # a spin of 1e-167: the integrator's error norm was 0/0 (found by the explore profile)
 @example(joint="fixed_point", chosen=["drag"], angle=1.0, rate=1.8205667230444146e-168)
 @given(
-    joint=st.sampled_from(["fixed_point", "fixed_axis"]),
+    joint=st.sampled_from(["fixed_point", "fixed_axis", "incline", "track"]),
     chosen=st.lists(st.sampled_from(sorted(JOINT_EFFECTS)), max_size=3, unique=True),
     angle=st.floats(0.05, 3.0),
     rate=st.floats(-5.0, 5.0),
 )
 def test_random_joints_with_random_loads_pass_their_self_checks(joint, chosen, angle, rate) -> None:
-    """A body on a fixed point or a fixed axis under random loads: the run passes its
-    checks (energy where the loads keep it, orthonormal attitudes), and the joint's
-    reaction is finite everywhere."""
+    """A body on a fixed point or a fixed axis, or rolling on an incline or in a track,
+    under random loads: the run passes its checks (energy where the loads keep it,
+    orthonormal attitudes), and the joint's reaction is finite everywhere."""
+    body = _box("b")
     if joint == "fixed_point":
         initial = {"theta": angle, "phi_dot": 10.0 * rate}
         jeff = {"type": "fixed_point", "body": "b", "distance": 0.1}
-    else:
+    elif joint == "fixed_axis":
         initial = {"angle": angle, "angular_velocity": rate}
         jeff = {"type": "fixed_axis", "body": "b", "axis": [0.3, 1.0, 0.2], "distance": 0.2}
-    body = _box("b") | {"initial": initial}
+    else:
+        body = _cylinder("b")
+        if joint == "incline":
+            initial = {"distance": angle, "speed": rate}
+            jeff = {"type": "rolling", "body": "b", "surface": "incline", "angle": angle / 4}
+        else:
+            initial = {"angle": angle, "angular_velocity": rate}
+            jeff = {"type": "rolling", "body": "b", "surface": "track", "track_radius": 0.5}
+    body = body | {"initial": initial}
     r = run_scene(
         _scene([body], [jeff, *(JOINT_EFFECTS[k] for k in chosen)], duration=0.5, samples=51)
     )
@@ -861,3 +870,50 @@ def test_a_hinged_body_takes_only_its_angle_and_rate() -> None:
     with pytest.raises(SceneError, match="takes angle, angular_velocity") as info:
         _scene([_box("b", omega=[0.0, 0.0, 1.0])], [hinge])
     assert info.value.field == "bodies[0].initial.omega"
+
+
+def _cylinder(name="c", mass=2.0, radius=0.1, **initial):
+    return {
+        "name": name,
+        "shape": "cylinder",
+        "mass": mass,
+        "radius": radius,
+        "height": 0.2,
+        "initial": initial,
+    }
+
+
+def test_the_contact_force_of_a_body_rolling_down_an_incline() -> None:
+    """m a = m g sin α + F and J a/r² = −F (the moment of F about G) give the friction
+    F = −m g sin α J/(J + m r²) up the slope; the normal force is m g cos α (derived by
+    hand, not read off the engine)."""
+    alpha, g, m, r = 0.4, 9.81, 2.0, 0.1
+    J = 0.5 * m * r * r  # a homogeneous cylinder about its axis
+    roll = {"type": "rolling", "body": "c", "surface": "incline", "angle": alpha}
+    res = run_scene(_scene([_cylinder(mass=m, radius=r)], [{"type": "gravity", "g": g}, roll]))
+    assert res.passed, res.summary()
+    s = res.trajectory.series
+    n = np.array([math.sin(alpha), 0.0, math.cos(alpha)])
+    t = np.array([math.cos(alpha), 0.0, -math.sin(alpha)])
+    F = np.stack([s["reaction_x"], s["reaction_y"], s["reaction_z"]], -1)
+    want = m * g * math.cos(alpha) * n - m * g * math.sin(alpha) * J / (J + m * r * r) * t
+    np.testing.assert_allclose(F, np.broadcast_to(want, F.shape), rtol=0, atol=64 * EPS * m * g)
+    assert s["v"][-1] == pytest.approx(g * math.sin(alpha) / (1 + J / (m * r * r)), rel=64 * EPS)
+
+
+@pytest.mark.parametrize(
+    ("body", "extra", "where", "match"),
+    [
+        (_box("c"), {}, "effects[0].body", "only round bodies roll"),
+        (_cylinder() | {"fixed": True}, {}, "effects[0].body", "is fixed: it cannot roll"),
+        (_cylinder(speed=1.0), {"surface": "track"}, "effects[0].track_radius", "missing"),
+        (_cylinder(angle=1.0), {}, "bodies[0].initial.angle", "takes distance, speed"),
+        (_cylinder(), {"surface": "ramp"}, "effects[0].surface", "'incline' or 'track'"),
+        (_cylinder(), {"angle": 1.6}, "effects[0].angle", r"must lie in \[0, π/2\)"),
+    ],
+)
+def test_rolling_refuses_what_cannot_roll(body, extra, where, match) -> None:
+    roll = {"type": "rolling", "body": "c", "surface": "incline", "angle": 0.3} | extra
+    with pytest.raises(SceneError, match=match) as info:
+        _scene([body], [roll])
+    assert info.value.field == where

@@ -138,6 +138,25 @@ def test_large_amplitude_track_motion_exact_vs_integrated() -> None:
     _both(_scene([cyl], eff))
 
 
+@pytest.mark.parametrize("speed", [0.0, -1.5])
+def test_rolling_down_an_incline_exact_vs_integrated(speed) -> None:
+    disc = {
+        "name": "d",
+        "shape": "disc",
+        "mass": 1.0,
+        "radius": 0.2,
+        "initial": {"distance": 0.5, "speed": speed},
+    }
+    eff = [
+        {"type": "gravity", "g": 9.81},
+        {"type": "rolling", "body": "d", "surface": "incline", "angle": 0.3},
+    ]
+    a, _ = _both(_scene([disc], eff))
+    # a disc: J = m r²/2, so a = g sin α / (1 + 1/2) (3.80)
+    v = a.trajectory.series["v"]
+    assert v[-1] - v[0] == pytest.approx(9.81 * math.sin(0.3) / 1.5 * 3.0, rel=EXACT_ATOL)
+
+
 @pytest.mark.parametrize(
     ("alpha", "mu", "spin", "rolls"),
     [

@@ -71,9 +71,3 @@ class Gravity(Effect):
 
     def normal_force(self, m, alpha) -> float:
         return m * self.g * math.cos(alpha)
-
-    def track_force(self, m, R_minus_r, psi) -> np.ndarray:
-        return -m * self.g * R_minus_r * np.sin(psi)
-
-    def track_potential(self, m, R_minus_r, psi) -> np.ndarray:
-        return m * self.g * R_minus_r * 2.0 * np.sin(0.5 * psi) ** 2

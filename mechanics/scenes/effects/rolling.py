@@ -1,10 +1,171 @@
-"""Rolling without slipping on an incline or in a track (3.77, 4.60): its own model."""
+"""Rolling without slipping (3.77, 4.60): a round body on an incline or inside a
+cylindrical track, a joint that guides its body (one coordinate).
+
+Conventions
+-----------
+- **Incline** (``surface = "incline"``, slope ``angle`` α in [0, π/2)): the plane
+  through the origin with the outward normal n = (sin α, 0, cos α), descending along
+  t̂ = (cos α, 0, −sin α); the coordinate s is the distance rolled down the slope, G at
+  r n + s t̂.  The body's ``body_axis`` (default z) lies along a = n × t̂ = e_y and turns
+  by s/r about it (ω = (ṡ/r) a: the contact point is at rest, v_G + ω × (−r n) = 0).
+  Initial keys ``distance`` and ``speed``.  Series s, v, omega (= v/r), drop (s sin α).
+- **Track** (``surface = "track"``, radius R > r): the inside of a cylinder about the
+  horizontal axis a = −e_y through the origin; the coordinate ψ is the angle of G from
+  the direction u0 of gravity across the axis (the lowest line), G at (R − r) ρ̂(ψ),
+  ρ̂ = cos ψ u0 + sin ψ (a × u0) (with gravity along −z: x_G = (R − r) sin ψ,
+  z_G = −(R − r) cos ψ).  The body turns by −((R − r)/r) ψ about a (the contact point
+  G + r ρ̂ is at rest).  Initial keys ``angle`` and ``angular_velocity``.  Series psi,
+  psidot, phi (= ψ R/r), x_G, z_G.
+- **Equation of motion**: T = ½ (m + J/r²) ẋ² with x the distance G travels (3.79),
+  J the moment about ``body_axis``; every load enters through its generalised force
+  (:class:`~mechanics.scenes.state.Guide`).  The contact force (normal and friction)
+  is the reaction m a_G − Σ F (series ``reaction_*``); it does no work (E is kept).
+- **Exact flows**: under uniform gravity alone, uniform acceleration down the incline
+  (3.80); in a track, released from rest at |ψ0| ≤ π, the equivalent pendulum (4.64,
+  Jacobi elliptic functions); uniform rolling with no other effect.
+"""
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
 from typing import ClassVar
 
-from .base import Effect, Schema, register
+import numpy as np
+
+from ..state import ROUND_SHAPES, Guide, body_inertia, pendulum_from_rest, turned
+from .base import Effect, Schema, check_joint_body, register
+
+__all__ = ["Incline", "Rolling", "Track", "slope_frame"]
+
+E_Y = np.array([0.0, 1.0, 0.0])
+
+
+def slope_frame(alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(n, t̂, a) of the incline of slope α: outward normal, down-slope direction and the
+    horizontal a = n × t̂ = e_y."""
+    n = np.array([math.sin(alpha), 0.0, math.cos(alpha)])
+    t = np.array([math.cos(alpha), 0.0, -math.sin(alpha)])
+    return n, t, E_Y.copy()
+
+
+def _uniform(q0, qd0, acc):
+    def f(t):
+        t = np.asarray(t, dtype=float)[..., None]
+        return q0 + qd0 * t + 0.5 * acc * t * t, qd0 + acc * t
+
+    return f
+
+
+def _gravity_only(effects) -> bool:
+    return bool(effects) and all(e.type == "gravity" for e in effects)
+
+
+@dataclass(frozen=True, eq=False)
+class Incline(Guide):
+    """A round body of radius r rolling on the incline (n, t̂, a); q = (s,)."""
+
+    n: np.ndarray
+    t: np.ndarray
+    a: np.ndarray
+    r: float
+    m: float
+    k: int
+    M: np.ndarray
+    alpha: float
+
+    @property
+    def W(self):
+        return (self.a / self.r)[None, :]
+
+    def place(self, q):
+        s = q[..., 0]
+        G = self.r * self.n + s[..., None] * self.t
+        E = np.broadcast_to(self.t, (*s.shape, 1, 3))
+        return G, E, turned(self.a, self.n, self.k, s / self.r)
+
+    def start(self, initial):
+        return (
+            np.array([float(initial.get("distance", 0.0))]),
+            np.array([float(initial.get("speed", 0.0))]),
+        )
+
+    def series(self, q, qd):
+        s, v = q[..., 0], qd[..., 0]
+        return {"s": s, "v": v, "omega": v / self.r, "drop": s * math.sin(self.alpha)}
+
+    def exact(self, effects, m, q0, qd0, duration):
+        if not effects:
+            return "exact: uniform rolling", _uniform(q0, qd0, 0.0), []
+        if _gravity_only(effects):
+            acc = sum(m * float(e.vector @ self.t) for e in effects) / self.M
+            return "exact: uniform acceleration down the incline (3.80)", _uniform(q0, qd0, acc), []
+        return None
+
+
+@dataclass(frozen=True, eq=False)
+class Track(Guide):
+    """A round body of radius r rolling inside a track of radius R about the axis a
+    through the origin, ψ from u0 (u1 = a × u0); q = (ψ,)."""
+
+    a: np.ndarray
+    u0: np.ndarray
+    u1: np.ndarray
+    r: float
+    R: float
+    m: float
+    k: int
+    M: np.ndarray
+    M_eff: float
+
+    @property
+    def W(self):
+        return (-(self.R - self.r) / self.r * self.a)[None, :]
+
+    def _rho(self, psi):
+        c, s = np.cos(psi)[..., None], np.sin(psi)[..., None]
+        return c * self.u0 + s * self.u1, c * self.u1 - s * self.u0
+
+    def place(self, q):
+        psi = q[..., 0]
+        rho, tau = self._rho(psi)
+        d = self.R - self.r
+        return d * rho, (d * tau)[..., None, :], turned(self.a, self.u0, self.k, -d / self.r * psi)
+
+    def bend(self, q, qd):
+        rho, _ = self._rho(q[..., 0])
+        return -(self.R - self.r) * (qd[..., 0] ** 2)[..., None] * rho
+
+    def start(self, initial):
+        return (
+            np.array([float(initial.get("angle", 0.0))]),
+            np.array([float(initial.get("angular_velocity", 0.0))]),
+        )
+
+    def series(self, q, qd):
+        psi, d = q[..., 0], self.R - self.r
+        return {
+            "psi": psi,
+            "psidot": qd[..., 0],
+            "phi": psi * self.R / self.r,
+            "x_G": d * np.sin(psi),
+            "z_G": -d * np.cos(psi),
+        }
+
+    def exact(self, effects, m, q0, qd0, duration):
+        psi0, w0 = float(q0[0]), float(qd0[0])
+        if not effects:
+            return "exact: uniform rolling round the track", _uniform(q0, qd0, 0.0), []
+        if len(effects) == 1 and _gravity_only(effects) and w0 == 0 and abs(psi0) <= math.pi:
+            g = effects[0].vector
+            gp = float(np.linalg.norm(g - (g @ self.a) * self.a))
+            if gp > 0 and float(g @ self.u0) > 0:
+                f = pendulum_from_rest(
+                    self.M_eff * (self.R - self.r) ** 2, m, gp, self.R - self.r, psi0
+                )
+                how = "exact: equivalent pendulum released from rest (4.64), elliptic functions"
+                return how, f, []
+        return None
 
 
 @register
@@ -13,7 +174,6 @@ class Rolling(Effect):
     track (3.77, 4.60): one degree of freedom; the contact force does no work."""
 
     type = "rolling"
-    engine = False
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "surface": ("str", True),
@@ -22,13 +182,65 @@ class Rolling(Effect):
         "body_axis": ("axis_name", False),
     }
 
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        f, b = spec.fields, scene.body(spec.fields["body"])
+        if b.shape not in ROUND_SHAPES:
+            raise scene.error(
+                f"{spec.where}.body",
+                f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
+            )
+        surf = f["surface"]
+        if surf == "incline":
+            a = f.get("angle", 0.0)
+            if not 0 <= a < math.pi / 2:
+                raise scene.error(f"{spec.where}.angle", f"must lie in [0, π/2); got {a!r}")
+            keys = ("distance", "speed")
+        elif surf == "track":
+            R = f.get("track_radius")
+            if R is None:
+                raise scene.error(
+                    f"{spec.where}.track_radius", "missing required field for a track"
+                )
+            if b.dims["radius"] >= R:
+                raise scene.error(
+                    f"{spec.where}.track_radius",
+                    f"must exceed the body's radius {b.dims['radius']!r} (R > r); got {R!r}",
+                )
+            keys = ("angle", "angular_velocity")
+        else:
+            raise scene.error(
+                f"{spec.where}.surface", f"expected 'incline' or 'track'; got {surf!r}"
+            )
+        check_joint_body(spec, scene, index, what="it cannot roll", keys=keys)
+
+    @classmethod
+    def make_guide(cls, spec, scene, g_vector):
+        f, b = spec.fields, scene.body(spec.fields["body"])
+        k = "xyz".index(f.get("body_axis", "z"))
+        r, m = float(b.dims["radius"]), float(b.mass)
+        M_eff = cls(spec).effective_mass(m, np.diag(body_inertia(b)), r)
+        if f["surface"] == "incline":
+            alpha = float(f.get("angle", 0.0))
+            n, t, a = slope_frame(alpha)
+            return Incline(n, t, a, r, m, k, np.array([M_eff]), alpha)
+        a = -E_Y
+        g = np.asarray(g_vector, dtype=float)
+        across = g - (g @ a) * a
+        u0 = across / np.linalg.norm(across) if across.any() else np.array([0.0, 0.0, -1.0])
+        R = float(f["track_radius"])
+        return Track(a, u0, np.cross(a, u0), r, R, m, k, np.array([M_eff * (R - r) ** 2]), M_eff)
+
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
-        self.surface = self.fields["surface"]
-        self.alpha = float(self.fields.get("angle", 0.0))
-        self.track_radius = self.fields.get("track_radius")
         self.body_axis = "xyz".index(self.fields.get("body_axis", "z"))
 
     def effective_mass(self, m, J_G, r) -> float:
         """m + J/r²: the kinetic energy is ½ (m + J/r²) v² when v = ω r (3.79)."""
         return m + float(J_G[self.body_axis, self.body_axis]) / r**2
+
+    def keeps(self, quantity: str) -> bool:
+        return quantity == "E"  # the contact point is at rest: the contact force does no work
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.ctx.index[self.fields["body"]] if self.ctx else True
