@@ -93,6 +93,9 @@ ZENO_SPEED = 1e-9
 MAX_EVENTS = 2000
 #: rounds of sequential impulses at one instant (a row of k touching bodies needs k)
 MAX_SWEEPS = 1000
+#: a switch function (stick and slip) within this multiple of eps × the size of its
+#: terms at a step's start is zero: the rounding of the switch just made there
+SWITCH_ROUNDING = 64 * EPS
 
 FREE_INITIAL = ("position", "velocity", "omega", "psi", "theta", "phi")
 #: a pinned body may give its initial ω as the Euler angles' rates instead
@@ -234,7 +237,11 @@ class Engine:
         ctx = Context(scene, index, self.layout.kinds, self.layout.pins, self.layout.guides)
         self.effects = build_effects(scene, ctx)
         self.impacts: list[Impact] = [e for e in self.effects if e.type == "impact"]
-        self.forces = [e for e in self.effects if e.type != "impact"]
+        # an effect that reads the others' loads comes after them (a stable sort)
+        self.forces = sorted(
+            (e for e in self.effects if e.type != "impact"), key=lambda e: e.after_loads
+        )
+        self.switching = [e for e in self.forces if e.switch_function is not None]
         self.potentials = [e for e in self.forces if e.potential is not None]
         self.losing = [e for e in self.forces if type(e).mass_loss is not Effect.mass_loss]
         self.growing = [e for e in self.forces if hasattr(e, "inertia_added")]
@@ -576,6 +583,7 @@ class Engine:
     def run(self) -> Trajectory:
         s = self.scene
         t = np.linspace(0.0, s.duration, s.samples)
+        self._begin()
         exact = self.exact_flow()
         if s.method == "exact" and exact is None:
             kinds = sorted({e.type for e in self.effects})
@@ -615,6 +623,8 @@ class Engine:
         t, y = 0.0, self.y0.copy()
         for start, stop in itertools.pairwise([0.0, *switches, t_end]):
             self._phase = 0.5 * (start + stop)
+            if start > 0:  # a load switched on or off: a mode may have to switch with it
+                y = self._switch_now(t, y, events)
             while t < stop:
                 solver = DOP853Stepper(self.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
                 hit = None
@@ -629,17 +639,95 @@ class Engine:
                         ) from None
                     dense = solver.dense_output()
                     hit = self._first_contact_on_step(dense, solver.t_old, solver.t)
+                    sw = self._first_switch_on_step(dense, solver.t_old, solver.t)
+                    if sw is not None and (hit is None or sw[0] < hit[0]):
+                        hit = sw
                     segs.append((solver.t_old, solver.t if hit is None else hit[0], _rows(dense)))
                 if hit is None:
                     t, y = float(solver.t), np.array(solver.y, dtype=float)
                     break
-                t, imp, ft = hit
-                y = self._resolve(t, np.asarray(dense(t), dtype=float), imp, ft, events)
+                t, what, ft = hit
+                y = np.asarray(dense(t), dtype=float)
+                if ft is None:  # an effect switches its mode (stick and slip)
+                    sn = self.snapshot(t, y)
+                    events.append(what.switch(t, sn, self._loads_before(t, sn, what)))
+                    if len(events) > MAX_EVENTS:
+                        raise _zeno(self.scene, t, what.where)
+                    y = self.pack(sn)
+                    continue
+                y = self._resolve(t, y, what, ft, events)
             for e in self.forces:
                 if e.type == "thrust" and e.burn_out == stop and stop < t_end:
                     events.append(Event(stop, "burn_out", {"body": self.names[e.i]}))
         self._phase = None
         return segs, events
+
+    # ---------------------------------------------------------------- switches
+    def _loads_before(self, t, s, effect) -> Loads:
+        """The loads of the effects summed before ``effect`` (all the others, for one
+        that comes after the loads)."""
+        out = Loads(self.n, s)
+        for e in self.forces:
+            if e is effect:
+                break
+            e.loads(t, s, out)
+        return out
+
+    def _begin(self) -> None:
+        """Let the effects with modes choose theirs from the initial state."""
+        if self.switching:
+            s = self.snapshot(0.0, self.y0)
+            for e in self.switching:
+                e.begin(0.0, s, self._loads_before(0.0, s, e))
+
+    def _switch_now(self, t, y, events) -> np.ndarray:
+        """At a switch time of the loads: switch every mode whose switch function is
+        below zero beyond its rounding (a push that starts makes a rolling body slip)."""
+        for e in self.switching:
+            g, size = self._switch_value(e, t, y)
+            if g < -SWITCH_ROUNDING * size:
+                sn = self.snapshot(t, y)
+                events.append(e.switch(t, sn, self._loads_before(t, sn, e)))
+                y = self.pack(sn)
+        return y
+
+    def _switch_value(self, e, t, y) -> tuple[float, float]:
+        s = self.snapshot(t, np.asarray(y, dtype=float))
+        return e.switch_function(t, s, self._loads_before(t, s, e))
+
+    def _first_switch_on_step(self, dense, t_a, t_b):
+        """The earliest switch of an effect's mode within one step, (t, effect, None), or
+        None: its switch function along the step's dense output, fitted at the
+        Chebyshev nodes, searched for a fall through zero as a gap is
+        (:func:`contacts.first_downward_crossing`, refined on the function itself); a
+        value within ``SWITCH_ROUNDING`` × its terms' size at the step's start is zero."""
+        best = None
+        for e in self.switching if t_b > t_a else ():
+            sizes: list[float] = []
+
+            def g(tt, e=e, sizes=sizes):
+                vals = [self._switch_value(e, float(x), dense(float(x))) for x in tt]
+                sizes.extend(size for _, size in vals)
+                return np.array([[v] for v, _ in vals])
+
+            def refine(xx, e=e):
+                tt = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xx
+                return self._switch_value(e, tt, dense(tt))[0]
+
+            coef = contacts.chebyshev_fit(g, t_a, t_b)[:, 0]
+            try:
+                xc = contacts.first_downward_crossing(
+                    coef, start_tol=SWITCH_ROUNDING * max(sizes), refine=refine
+                )
+            except contacts.ContactError as exc:  # pragma: no cover - a switch was missed
+                raise self.scene.error(
+                    e.where, f"a switch of its mode was missed before t = {t_a:.17g} s ({exc})"
+                ) from None
+            if xc is not None:
+                tc = t_a if xc == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xc, t_b)
+                if best is None or tc < best[0]:
+                    best = (tc, e, None)
+        return best
 
     # ---------------------------------------------------------------- contacts
     def _feature_coef(self, coef_y, imp, ft):
@@ -968,13 +1056,20 @@ class Engine:
         for q in CONSERVED:
             # what the effects acting throughout keep; an effect that stops acting (a
             # push, a burn) breaks it only until then
-            until = max((e.acts_until() for e in self.forces if not e.keeps(q)), default=0.0)
+            until = max(
+                (e.acts_until(events, q) for e in self.forces if not e.keeps(q)), default=0.0
+            )
             if until < T:
                 conserved[q] = values[q]
                 if until > 0:
                     since[q] = until
                 if self.keeps(q, self.impacts):
                     across.add(q)
+        for e in self.forces:  # what an effect's own physics keeps
+            for name, (vals, size) in e.conserved(s).items():
+                series[name] = conserved[name] = vals
+                scales[name] = size
+                across.add(name)
         kinds = {e.type for e in self.effects}
         for i in lay.pins:
             if lay.J[i, 0] == lay.J[i, 1] and kinds <= {"fixed_point", "gravity"}:
@@ -984,7 +1079,9 @@ class Engine:
                 scales[name] = float(np.max(np.linalg.norm(s.L_A[:, i], axis=-1)))
                 across.add(name)
         for i in self.rigid:
-            until = max((e.acts_until() for e in self.forces if e.exerts_moment(i)), default=0.0)
+            until = max(
+                (e.acts_until(events) for e in self.forces if e.exerts_moment(i)), default=0.0
+            )
             struck = any(imp.exerts_moment(i) for imp in self.impacts)
             if until >= T or not (self.w0[i].any() or until > 0 or struck):
                 continue  # turned to the end, or never spinning (trivially kept)

@@ -320,157 +320,6 @@ class AxisModel(Model):
         return traj
 
 
-# ---------------------------------------------------------------- sliding
-
-
-class SlidingModel(Model):
-    """A round body on a plane with Coulomb friction: sliding, then rolling."""
-
-    name = "sliding"
-    constraint = "coulomb_friction"
-    allowed = frozenset({"gravity"})
-
-    @classmethod
-    def validate(cls, scene):
-        super().validate(scene)
-        _single(cls, scene)
-        b = scene.bodies[0]
-        e = scene.effects_of("coulomb_friction")[0]
-        _round_body(scene, e)
-        if not scene.effects_of("gravity"):
-            raise scene.error(
-                f"{e.where}.type",
-                "coulomb_friction on a plane needs a gravity effect to press the body on it "
-                "(the normal force); none is listed",
-            )
-        _plane_angle(scene, e)
-        for k in b.initial:
-            if k not in ("distance", "speed", "spin"):
-                raise scene.error(f"bodies[0].initial.{k}", "sliding takes distance, speed, spin")
-
-    def __init__(self, scene):
-        super().__init__(scene)
-        b = self.bodies[0]
-        self.m, self.r = b.mass, b.dims["radius"]
-        self.fr = self.one("coulomb_friction")
-        self.J = float(body_inertia(b)[self.fr.body_axis])
-        self.alpha = self.fr.alpha
-        self.grav = self.by_type["gravity"]
-        self.N = sum(g.normal_force(self.m, self.alpha) for g in self.grav)
-        self.drive = sum(g.slope_force(self.m, self.alpha) for g in self.grav)
-        ini = b.initial
-        self.y0 = np.array([ini.get("distance", 0.0), ini.get("speed", 0.0), ini.get("spin", 0.0)])
-
-    def slip(self, y):
-        return y[1] - y[2] * self.r
-
-    def sliding_rhs(self, t, y):
-        slip = self.slip(y)
-        # at zero slip (and not rolling) the body starts slipping the way the drive pulls
-        F = self.fr.friction(self.N, slip if slip != 0 else self.drive)
-        return np.array([y[1], (self.drive + F) / self.m, -F * self.r / self.J])
-
-    def rolling_rhs(self, t, y):
-        a = self.drive / (self.m + self.J / self.r**2)
-        return np.array([y[1], a, a / self.r])
-
-    def exact_flow(self):
-        return "exact: constant accelerations in each phase, the switch solved exactly"
-
-    def _rolls(self):
-        return self.fr.can_roll(self.N, self.m, self.J, self.r, self.drive)
-
-    def run_exact(self, t, how):
-        y0 = self.y0.copy()
-        s0 = self.slip(y0)
-        events = []
-        if s0 == 0 and self._rolls():
-            segs = [(0.0, math.inf, _const_acc(0.0, y0, self.rolling_rhs(0, y0)))]
-        else:
-            acc = self.sliding_rhs(0.0, y0)
-            rate = acc[1] - acc[2] * self.r  # d(slip)/dt, constant while sliding
-            ts = -s0 / rate if rate * s0 < 0 else math.inf
-            segs = [(0.0, ts, _const_acc(0.0, y0, acc))]
-            if ts < self.scene.duration:
-                y1 = segs[0][2](ts)
-                y1[2] = y1[1] / self.r  # slip = 0 exactly at the event
-                kind = "rolling" if self._rolls() else "slip_zero"
-                events.append(Event(ts, kind, {"speed": float(y1[1])}))
-                nxt = self.rolling_rhs if self._rolls() else self.sliding_rhs
-                segs.append((ts, math.inf, _const_acc(ts, y1, nxt(ts, y1))))
-        return self._finish(t, segs, events, how)
-
-    def run_integrated(self, t):
-        s = self.scene
-        events = []
-
-        def slip_event(tt, y):
-            return self.slip(y)
-
-        y0 = self.y0
-        slip_event.direction = -math.copysign(1.0, self.slip(y0))  # toward zero only
-        if self.slip(y0) == 0:
-            rhs = self.rolling_rhs if self._rolls() else self.sliding_rhs
-            segs = integrate_segments(rhs, y0, s.duration, rtol=s.rtol, atol=s.atol)
-        else:
-
-            def on_event(k, tt, y):
-                kind = "rolling" if self._rolls() else "slip_zero"
-                events.append(Event(tt, kind, {"speed": float(y[1])}))
-                return None
-
-            segs = integrate_segments(
-                self.sliding_rhs,
-                y0,
-                s.duration,
-                rtol=s.rtol,
-                atol=s.atol,
-                events=[slip_event],
-                on_event=on_event,
-            )
-            if events:
-                ts = events[0].t
-                y1 = segs[-1][2](ts)
-                rhs = self.rolling_rhs if self._rolls() else self.sliding_rhs
-                segs += integrate_segments(rhs, y1, s.duration, rtol=s.rtol, atol=s.atol, t0=ts)
-        return self._finish(t, segs, events, "integrated: DOP853 (scipy solve_ivp), slip event")
-
-    def _finish(self, t, segs, events, how):
-        dense = _dense_from_segments(segs)
-        Y = sample_dense(dense, t)
-        s, v, w = Y[:, 0], Y[:, 1], Y[:, 2]
-        E = KE = 0.5 * self.m * v * v + 0.5 * self.J * w * w
-        for g in self.grav:
-            E = E + g.slope_potential(self.m, self.alpha, s)
-        series = {"s": s, "v": v, "omega": w, "slip": v - w * self.r, "E": E}
-        conserved, cfrom = {}, {}
-        if events:
-            conserved["E"] = E
-            cfrom["E"] = events[0].t
-        if self.alpha == 0:
-            series["L_contact"] = conserved["L_contact"] = self.m * self.r * v + self.J * w
-
-        def state_at(tt):
-            y = dense(tt)
-            return {"s": float(y[0]), "v": float(y[1]), "omega": float(y[2])}
-
-        traj = Trajectory(t, series, events, how, state_at, conserved, cfrom)
-        traj.extra["scales"] = {"E": energy_scale(KE, E)}
-        return traj
-
-
-def _const_acc(t0, y0, acc):
-    y0, acc = np.array(y0, float), np.array(acc, float)
-
-    def at(t):
-        tau = t - t0
-        out = y0 + acc * tau
-        out[0] = y0[0] + y0[1] * tau + 0.5 * acc[1] * tau * tau
-        return out
-
-    return at
-
-
 # ---------------------------------------------------------------- tank
 
 
@@ -591,9 +440,9 @@ class TankModel(Model):
         return Trajectory(t, series, events, how, state_at, {"volume_total": vol})
 
 
-MODELS = (TankModel, AxisModel, SlidingModel)
+MODELS = (TankModel, AxisModel)
 #: the engine's joints (:mod:`mechanics.scenes.effects`)
-CONSTRAINT_JOINTS = ("fixed_point", "rolling")
+CONSTRAINT_JOINTS = ("fixed_point", "rolling", "coulomb_friction")
 #: the effect types that select a one-degree-of-freedom model
 CONSTRAINTS = (*(m.constraint for m in MODELS), *CONSTRAINT_JOINTS)
 

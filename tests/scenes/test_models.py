@@ -184,6 +184,27 @@ def test_sliding_on_a_plane_exact_vs_integrated(alpha, mu, spin, rolls) -> None:
         assert "L_contact" in {c.name for c in a.conserved}
 
 
+def test_a_ball_thrown_up_a_slippery_incline_slips_on_the_other_way() -> None:
+    """Up a steep slope with μ too small to roll (J D/(J + m r²) > μ N): the slip
+    vanishes once and the ball slips on downward (a ``slip_zero`` event, no rolling)."""
+    ball = {
+        "name": "b",
+        "shape": "solid_sphere",
+        "mass": 1.0,
+        "radius": 0.1,
+        "initial": {"speed": -2.0},
+    }
+    eff = [
+        {"type": "gravity", "g": 9.81},
+        {"type": "coulomb_friction", "body": "b", "mu": 0.05, "angle": 0.6},
+    ]
+    a, b = _both(_scene([ball], eff, duration=2.0))
+    (ea,), (eb,) = a.trajectory.events, b.trajectory.events
+    assert ea.kind == eb.kind == "slip_zero"
+    assert eb.t == pytest.approx(ea.t, rel=EVENT_RTOL)
+    assert a.trajectory.series["slip"][-1] > 0
+
+
 def test_tank_integrated_reaches_empty_as_an_event() -> None:
     tank = {"name": "t", "shape": "tank", "area": 1.0, "initial": {"level": 1.0}}
     eff = [{"type": "gravity", "g": 9.81}, {"type": "tank_outflow", "body": "t", "hole_area": 0.05}]

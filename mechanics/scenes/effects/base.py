@@ -193,6 +193,19 @@ class Effect:
     #: classmethod ``make_guide(spec, scene, g_vector)`` returning its
     #: :class:`~mechanics.scenes.state.Guide`; the body's state is then the guide's (q, q̇)
     make_guide = None
+    #: an effect that reads the other effects' loads (a friction that needs the normal
+    #: force) sets this: the engine sums it after all the others
+    after_loads: ClassVar[bool] = False
+    #: an effect with modes (stick and slip) defines ``begin(t, s, loads)``,
+    #: ``switch_function(t, s, loads) -> (g, size)`` (its next switch is where g falls
+    #: through zero; ``loads`` holds the loads of the effects summed before it) and
+    #: ``switch(t, s, loads) -> Event``; the engine locates the switches on each step
+    switch_function = None
+
+    def conserved(self, s) -> dict:
+        """Quantities of this effect's own physics that the run conserves: name ->
+        (samples, the size of their terms)."""
+        return {}
 
     # contributions (the engine calls them only on listed effects)
     def loads(self, t: float, s: Snapshot, out: Loads) -> None:
@@ -218,9 +231,11 @@ class Effect:
         """Instants where the effect switches on or off (step boundaries)."""
         return []
 
-    def acts_until(self) -> float:
-        """The time after which this effect no longer acts (inf: to the end); what it
-        breaks is conserved from then on."""
+    def acts_until(self, events=(), quantity=None) -> float:
+        """The time after which this effect no longer acts (inf: to the end), given the
+        run's ``events``; what it breaks is conserved from then on.  With ``quantity``:
+        after which it no longer changes that quantity (a friction that sticks still
+        pushes, but does no work)."""
         return math.inf
 
 

@@ -1,11 +1,139 @@
-"""Coulomb friction of a round body sliding on a plane: its own model."""
+"""Coulomb friction of a round body on a plane: it slides, and rolls once the slip
+vanishes where static friction suffices (chapter 3, the sliding ball).
+
+Conventions
+-----------
+- **The joint.**  The body is guided on the incline of slope ``angle`` α
+  (:func:`~mechanics.scenes.effects.rolling.slope_frame`: normal n, down-slope t̂,
+  a = n × t̂ = e_y) with two coordinates: the distance s down the slope (G at
+  r n + s t̂) and the angle θ its ``body_axis`` (default z, along a) has turned; the
+  spin is ω = θ̇ and the slip, the velocity of the contact point along t̂, is
+  ṡ − r θ̇.  Initial keys ``distance``, ``speed``, ``spin``.  Series s, v, omega, slip.
+- **The normal force** N = −n·Σ F of the other loads (the plane holds G at height r);
+  N ≤ 0 (the body would leave the plane: no lift-off is modelled) stops the run with
+  a :class:`~mechanics.scenes.errors.SceneError`.
+- **The friction** F t̂ acts at the contact point −r n.  *Slipping* (mode σ = ±1, the
+  sign of the slip): F = −μ N σ.  *Rolling* (stick): F is what keeps the slip zero,
+  F = (m r Q_θ − J Q_s)/(J + m r²) with the other loads' generalised forces Q_s along
+  t̂ and Q_θ about a, J the moment about ``body_axis``; it holds while |F| ≤ μ N.
+- **Switches** (events, located on each step's dense output): slipping, the slip
+  reaches zero: ``rolling`` when |F_stick| ≤ μ N there, else ``slip_zero`` and it
+  slips on the other way, in the direction the loads drive it (σ = −sign F_stick);
+  rolling, |F_stick| reaches μ N: ``slip``.  At the start with zero slip the same rule
+  decides.  The state is projected onto zero slip (θ̇ = ṡ/r) at a switch to rolling.
+- **Exact flow** under uniform gravity alone: constant accelerations in each phase,
+  the switch time solved exactly.
+- **Invariants**: the energy from the last switch to rolling on (stick friction does
+  no work); on a level plane with only gravity, the angular momentum about the contact
+  line, m r v + J ω (friction and the normal force pass through that line, the weight
+  through G above it).
+"""
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import ClassVar
 
-from .base import Effect, Schema, register
+import numpy as np
+
+from ..state import ROUND_SHAPES, Guide, body_inertia, turned
+from ..trajectory import Event
+from .base import Effect, Schema, check_joint_body, register
+from .rolling import slope_frame
+
+__all__ = ["CoulombFriction", "Slide"]
+
+
+@dataclass(frozen=True, eq=False)
+class Slide(Guide):
+    """A round body of radius r on the incline (n, t̂, a) with friction μ: q = (s, θ)."""
+
+    n: np.ndarray
+    t: np.ndarray
+    a: np.ndarray
+    r: float
+    m: float
+    k: int
+    M: np.ndarray  # (m, J)
+    mu: float
+    nq = 2
+
+    @property
+    def W(self):
+        return np.stack([np.zeros(3), self.a])
+
+    def place(self, q):
+        s, th = q[..., 0], q[..., 1]
+        G = self.r * self.n + s[..., None] * self.t
+        E = np.zeros((*s.shape, 2, 3))
+        E[..., 0, :] = self.t
+        return G, E, turned(self.a, self.n, self.k, th)
+
+    def start(self, initial):
+        return (
+            np.array([float(initial.get("distance", 0.0)), 0.0]),
+            np.array([float(initial.get("speed", 0.0)), float(initial.get("spin", 0.0))]),
+        )
+
+    def series(self, q, qd):
+        v, w = qd[..., 0], qd[..., 1]
+        return {"s": q[..., 0], "v": v, "omega": w, "slip": v - w * self.r}
+
+    def stick_force(self, Q_s, Q_th):
+        """The friction that keeps the slip zero against the generalised forces Q_s, Q_θ."""
+        m, J = self.M
+        return (m * self.r * Q_th - J * Q_s) / (J + m * self.r * self.r)
+
+    def exact(self, effects, m, q0, qd0, duration):
+        """Under uniform gravity alone the loads are constant: each phase has constant
+        accelerations, and the slip, linear in t, vanishes at a time solved exactly."""
+        if not effects or any(e.type != "gravity" for e in effects):
+            return None
+        g = sum(e.vector for e in effects)
+        N, D = -m * float(g @ self.n), m * float(g @ self.t)
+        if not N > 0:
+            return None  # the engine's run reports the lift-off
+        mJ = self.M
+        F_stick = self.stick_force(D, 0.0)
+
+        def acc(mode):  # (s̈, θ̈) with friction F: Q_s = D + F, Q_θ = −r F
+            F = F_stick if mode == 0 else -self.mu * N * mode
+            return np.array([(D + F) / mJ[0], -self.r * F / mJ[1]])
+
+        def decide():  # at zero slip: roll, or slip the way the loads drive
+            return 0 if abs(F_stick) <= self.mu * N else -math.copysign(1.0, F_stick)
+
+        slip0 = float(qd0[0] - self.r * qd0[1])
+        mode = decide() if slip0 == 0 else math.copysign(1.0, slip0)
+        phases, events = [(0.0, np.array(q0, float), np.array(qd0, float), acc(mode))], []
+        if mode != 0:
+            a = acc(mode)
+            rate = a[0] - self.r * a[1]
+            ts = -slip0 / rate if rate * slip0 < 0 else math.inf
+            if ts <= duration:
+                q1 = q0 + qd0 * ts + 0.5 * a * ts * ts
+                qd1 = qd0 + a * ts
+                qd1[1] = qd1[0] / self.r  # the slip is zero exactly at the switch
+                mode = decide()
+                events.append(_event(ts, mode, float(qd1[0])))
+                phases.append((ts, q1, qd1, acc(mode)))
+        starts = np.array([p[0] for p in phases])
+
+        def f(t):
+            t = np.asarray(t, dtype=float)
+            k = np.maximum(np.searchsorted(starts, t, side="right") - 1, 0)
+            t0 = starts[k][..., None]
+            Q0, QD0, A = (np.stack([p[j] for p in phases])[k] for j in (1, 2, 3))
+            tau = t[..., None] - t0
+            return Q0 + QD0 * tau + 0.5 * A * tau * tau, QD0 + A * tau
+
+        return "exact: constant accelerations in each phase, the switch solved exactly", f, events
+
+
+def _event(t, mode, speed) -> Event:
+    kind = "rolling" if mode == 0 else "slip_zero"
+    return Event(t, kind, {"speed": speed})
 
 
 @register
@@ -15,7 +143,8 @@ class CoulombFriction(Effect):
     reaches zero (an event) the body rolls if static friction suffices."""
 
     type = "coulomb_friction"
-    engine = False
+    #: it reads the other loads (the normal force, the force that keeps it rolling)
+    after_loads = True
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "mu": ("positive", True),
@@ -23,16 +152,128 @@ class CoulombFriction(Effect):
         "body_axis": ("axis_name", False),
     }
 
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        b = scene.body(spec.fields["body"])
+        if b.shape not in ROUND_SHAPES:
+            raise scene.error(
+                f"{spec.where}.body",
+                f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
+            )
+        if not scene.effects_of("gravity"):
+            raise scene.error(
+                f"{spec.where}.type",
+                "coulomb_friction on a plane needs a gravity effect to press the body on it "
+                "(the normal force); none is listed",
+            )
+        a = spec.fields.get("angle", 0.0)
+        if not 0 <= a < math.pi / 2:
+            raise scene.error(f"{spec.where}.angle", f"must lie in [0, π/2); got {a!r}")
+        check_joint_body(
+            spec, scene, index, what="it cannot slide", keys=("distance", "speed", "spin")
+        )
+
+    @classmethod
+    def make_guide(cls, spec, scene, g_vector):
+        f, b = spec.fields, scene.body(spec.fields["body"])
+        k = "xyz".index(f.get("body_axis", "z"))
+        n, t, a = slope_frame(float(f.get("angle", 0.0)))
+        M = np.array([float(b.mass), float(body_inertia(b)[k])])
+        return Slide(n, t, a, float(b.dims["radius"]), float(b.mass), k, M, float(f["mu"]))
+
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
         self.mu = float(self.fields["mu"])
         self.alpha = float(self.fields.get("angle", 0.0))
-        self.body_axis = "xyz".index(self.fields.get("body_axis", "z"))
+        self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
+        self.guide = ctx.guides.get(self.i) if ctx is not None else None
+        #: 0 rolling, ±1 slipping that way; set by :meth:`begin` and :meth:`switch`
+        self.mode = 0.0
+        self.mode0 = 0.0
+        others = {e.type for e in ctx.scene.effects} if ctx is not None else set()
+        self._flat = self.alpha == 0 and others <= {"gravity", self.type}
 
-    def friction(self, N, slip) -> float:
-        """Friction force on G along the slope: −μ N sign(slip)."""
-        return -self.mu * N * math.copysign(1.0, slip) if slip != 0 else 0.0
+    # ------------------------------------------------------------------ the forces
+    def _parts(self, t, s, out):
+        """(N, F_stick, Q scale) from the other loads already in ``out``."""
+        i, gd = self.i, self.guide
+        F_o = out.F[i]
+        N = -float(F_o @ gd.n)
+        Q_s = float(F_o @ gd.t)
+        Q_th = float(gd.a @ s.to_space(i, out.M_A[i]))
+        return N, gd.stick_force(Q_s, Q_th), abs(Q_s) + abs(Q_th) / gd.r
 
-    def can_roll(self, N, m, J, r, drive) -> bool:
-        """Rolling needs |F| = |drive| J/(J + m r²) ≤ μ N (drive: force along the slope)."""
-        return abs(drive) * J / (J + m * r * r) <= self.mu * N
+    def loads(self, t, s, out) -> None:
+        N, F_stick, _ = self._parts(t, s, out)
+        if not N > 0:
+            raise self.ctx.scene.error(
+                f"{self.where}.body",
+                f"body {self.fields['body']!r} would leave the plane at t = {float(t):.6g} s "
+                f"(the normal force {N:.3g} N ≤ 0; no lift-off is modelled)",
+            )
+        F = F_stick if self.mode == 0 else -self.mu * N * self.mode
+        at = s.to_body(self.i, -self.guide.r * self.guide.n)
+        out.force(self.i, F * self.guide.t, at)
+
+    # ------------------------------------------------------------------ the switches
+    def _slip(self, s):
+        qd = s.coords[self.i][1]
+        return float(qd[0] - self.guide.r * qd[1]), abs(float(qd[0])) + abs(self.guide.r * qd[1])
+
+    def _decide(self, t, s, out) -> float:
+        N, F_stick, _ = self._parts(t, s, out)
+        return 0.0 if abs(F_stick) <= self.mu * N else -math.copysign(1.0, F_stick)
+
+    def begin(self, t, s, out) -> None:
+        """The mode at the start: the sign of the slip, or at zero slip the rule."""
+        slip, _ = self._slip(s)
+        self.mode = self._decide(t, s, out) if slip == 0 else math.copysign(1.0, slip)
+        self.mode0 = self.mode
+
+    def switch_function(self, t, s, out) -> tuple[float, float]:
+        """(g, size): g falls through zero at the next switch; size is its terms'."""
+        if self.mode != 0:
+            slip, size = self._slip(s)
+            return self.mode * slip, size
+        N, F_stick, Q = self._parts(t, s, out)
+        return self.mu * N - abs(F_stick), self.mu * abs(N) + Q
+
+    def switch(self, t, s, out) -> Event:
+        """Change the mode at a switch found at t; project onto zero slip on rolling."""
+        if self.mode != 0:
+            q, qd = s.coords[self.i]
+            qd = qd.copy()
+            qd[1] = qd[0] / self.guide.r
+            s.coords[self.i] = (q, qd)
+            self.mode = self._decide(t, s, out)
+            return _event(t, self.mode, float(qd[0]))
+        _, F_stick, _ = self._parts(t, s, out)
+        self.mode = -math.copysign(1.0, F_stick)
+        return Event(t, "slip", {"speed": float(s.coords[self.i][1][0])})
+
+    # ------------------------------------------------------------------ invariants
+    def acts_until(self, events=(), quantity=None) -> float:
+        """Friction pushes to the end; it does work (changes E) until the last switch to
+        rolling, if it rolls from then on."""
+        if quantity != "E":
+            return math.inf
+        last = None
+        for ev in events:
+            if ev.kind in ("rolling", "slip_zero", "slip"):
+                last = ev
+        if last is None:
+            return 0.0 if self.mode0 == 0 else math.inf
+        return last.t if last.kind == "rolling" else math.inf
+
+    def conserved(self, s) -> dict[str, tuple[np.ndarray, float]]:
+        """On a level plane under gravity alone: m r v + J ω about the contact line."""
+        if not self._flat:
+            return {}
+        _, qd = s.coords[self.i]
+        m, J = self.guide.M
+        L = m * self.guide.r * qd[..., 0] + J * qd[..., 1]
+        scale = float(np.max(m * self.guide.r * np.abs(qd[..., 0]) + J * np.abs(qd[..., 1])))
+        return {"L_contact": (L, scale)}
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i

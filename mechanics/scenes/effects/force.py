@@ -56,7 +56,7 @@ class _Applied(Effect):
         """The instants where the load switches on or off: step boundaries."""
         return [x for x in (self.start, self.end) if 0 < x < math.inf]
 
-    def acts_until(self) -> float:
+    def acts_until(self, events=(), quantity=None) -> float:
         return self.end
 
 

@@ -67,7 +67,7 @@ class Thrust(Effect):
     def switch_times(self) -> list[float]:
         return [self.burn_out]
 
-    def acts_until(self) -> float:
+    def acts_until(self, events=(), quantity=None) -> float:
         return self.burn_out
 
     def loads(self, t, s, out) -> None:
