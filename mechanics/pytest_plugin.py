@@ -10,22 +10,23 @@ Conventions
   (derandomised, the same examples every run, a ``@reproduce_failure`` blob on
   failure), ``bodycheck-dev`` (random) and ``bodycheck-explore`` (ten times the
   examples, random) are loaded only by ``--bodycheck-profile NAME`` or the ini setting
-  ``bodycheck_profile = NAME``; the command line wins over the ini, and hypothesis' own
-  ``--hypothesis-profile`` wins over the ini too.  Without either the project's own
-  hypothesis settings stand.
+  ``bodycheck_profile = NAME``; the command line wins over the ini (hypothesis' own
+  ``--hypothesis-profile`` too; with ``--bodycheck-profile`` it is a usage error).
+  Without either the project's own hypothesis settings stand.
 - The profiles derive from hypothesis' ``default`` profile, not from whatever is
   loaded, so a name means the same in every project.  None has a deadline or the
-  ``too_slow`` health check: first calls into scipy are slow.
+  ``too_slow`` health check: a first call that imports or sets up something is slow.
 - Importing the plugin imports neither hypothesis nor numpy (as hypothesis' own plugin
   takes care not to), so a pytest run that uses neither pays nothing.  The profiles are
   registered when one is asked for, or at configure time when hypothesis is already
   imported (by a conftest, say); :func:`register_profiles` registers them from
   anywhere.  Never sympy, matplotlib or :mod:`identities`.
-- ``bodycheck_rng``: a ``numpy.random.Generator`` seeded from the test's node id and
-  ``--bodycheck-seed`` (default 0): the same numbers for the same test on every run, on
-  every xdist worker and in any order, different ones for different tests (each
-  parametrisation is a test).  Its seed is printed, so a failure shows
-  ``numpy.random.default_rng(<seed>)`` to reproduce it anywhere.
+- ``bodycheck_rng``: a ``numpy.random.Generator`` seeded from the test's node id
+  (relative to the rootdir) and ``--bodycheck-seed`` (default 0): the same numbers for
+  the same test on every run, on every xdist worker and in any order, different ones
+  for different tests (each parametrisation is a test).  Its seed is printed, so a
+  failure shows ``numpy.random.default_rng(<seed>)`` to reproduce it anywhere.  It is
+  for plain tests (function-scoped); in a ``@given`` test, let hypothesis draw.
 - ``eps_close``: the assertions of :mod:`mechanics.testing`, tolerances as multiples of
   float64 eps, failures naming the worst index and its error in eps.
 """
