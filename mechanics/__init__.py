@@ -28,6 +28,8 @@ Modules, one concept each (Essén 1996, chapter in brackets):
 - :mod:`mechanics.strategies` and :mod:`mechanics.testing`: public hypothesis
   strategies and assertions for anyone testing mechanics code (import them
   explicitly; they pull in hypothesis).
+- :mod:`mechanics.pytest_plugin`: the pytest plugin (entry point ``bodycheck``): the
+  ``bodycheck-*`` hypothesis profiles, the ``bodycheck_rng`` and ``eps_close`` fixtures.
 """
 
 __version__ = "0.1.0"

@@ -114,6 +114,7 @@ def assert_rotations_close(R1, R2, *, atol: float = ROTATIONS_CLOSE_ATOL, err_ms
     >>> assert_rotations_close(matrix_from_euler(0.3, 0.0, 0.5),
     ...                        matrix_from_euler(0.8, 0.0, 0.0))
     """
+    __tracebackhide__ = True  # under pytest, a failure points at the caller
     tol = _check_tolerance(atol, "atol")
     a, b = _broadcast(R1, R2, (3, 3), ("R1", "R2"))
     err = np.abs(a - b)
@@ -146,6 +147,7 @@ def assert_quaternions_close(
     ...
     AssertionError: quaternions differ by 4.5e+15 eps (up to sign, closer with q2) at index ()...
     """
+    __tracebackhide__ = True  # under pytest, a failure points at the caller
     tol = _check_tolerance(atol, "atol")
     a, b = _broadcast(q1, q2, (4,), ("q1", "q2"))
     plus = np.abs(a - b).max(axis=-1)
@@ -193,6 +195,7 @@ def assert_allclose_eps(
         Naming the worst entry, its error in eps (relative or scaled), and the
         two values.
     """
+    __tracebackhide__ = True  # under pytest, a failure points at the caller
     k = _check_tolerance(eps_multiple, "eps_multiple")
     a, d = _broadcast(actual, desired, ())
     if scale is None:
