@@ -133,15 +133,27 @@ def sphere_contact_time(d: np.ndarray, w: np.ndarray, size: float) -> float:
     return max(c / (-dw + math.sqrt(disc)), 0.0)  # a pair touching within rounding: now
 
 
-def chebyshev_fit(fn, t_a: float, t_b: float, n: int = STEP_NODES) -> np.ndarray:
+def chebyshev_fit(
+    fn, t_a: float, t_b: float, n: int = STEP_NODES, *, ends: bool = False
+) -> np.ndarray:
     """Chebyshev coefficients on [t_a, t_b] (variable x ∈ [−1, 1]) interpolating
     ``fn(t)`` (``t`` of shape ``(n,)`` → shape ``(n, m)``); exact for degree < n.
+
+    At the Chebyshev points of the first kind (interior); with ``ends``, at the
+    Chebyshev–Lobatto points cos(πk/(n − 1)), which include both ends: a fit of a
+    function that is not a polynomial along the step (a point of a turning hinge, a
+    support point, a switch function) then equals it at the step's ends, where one step
+    hands over to the next (a crossing at the very end is not lost to the fit's error).
 
     >>> c = chebyshev_fit(lambda t: np.stack([t * t], axis=-1), 0.0, 2.0)
     >>> bool(np.allclose(C.chebval(0.0, c[:, 0]), 1.0, rtol=0, atol=8 * EPS))
     True
+    >>> c = chebyshev_fit(lambda t: np.stack([np.sin(t)], axis=-1), 0.0, 2.0, ends=True)
+    >>> bool(abs(C.chebval(1.0, c[:, 0]) - np.sin(2.0)) <= 8 * EPS)
+    True
     """
-    x = np.cos(np.pi * (np.arange(n) + 0.5) / n)
+    k = np.arange(n)
+    x = np.cos(np.pi * k / (n - 1)) if ends else np.cos(np.pi * (k + 0.5) / n)
     t = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * x
     return C.chebfit(x, np.asarray(fn(t), dtype=float), n - 1)
 

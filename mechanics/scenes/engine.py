@@ -1,13 +1,15 @@
-"""The engine for scenes of free bodies: it assembles exactly the listed effects, uses the
-exact flow where their set has one, integrates otherwise, and finds every contact.
+"""The one engine of every scene: it assembles exactly the listed effects, uses the exact
+flow where their set has one, integrates otherwise, and finds every contact and switch.
 
 Conventions
 -----------
 - **State**: :mod:`mechanics.scenes.state` (points, rigid bodies with L_A and ^A R^O,
-  pinned bodies with L_C and ^A R^O, fixed bodies).  A rigid body starts with the
-  attitude ^A R^O = R3(φ) R1(θ) R3(ψ) of its initial Euler angles ``psi``, ``theta``,
-  ``phi`` (z-x-z, default 0: the body axes along the space axes) and the angular
-  velocity ``omega`` in body components (a pinned body: or the Euler rates).
+  pinned bodies with L_C and ^A R^O, guided bodies with the coordinates (q, q̇) of
+  their joint's :class:`~mechanics.scenes.state.Guide`, tanks, fixed bodies).  A rigid
+  body starts with the attitude ^A R^O = R3(φ) R1(θ) R3(ψ) of its initial Euler angles
+  ``psi``, ``theta``, ``phi`` (z-x-z, default 0: the body axes along the space axes)
+  and the angular velocity ``omega`` in body components (a pinned body: or the Euler
+  rates).
 - **Effects**: :mod:`mechanics.scenes.effects`; the right-hand side sums the
   :meth:`~mechanics.scenes.effects.base.Effect.loads` of the listed effects and
   nothing else (no default gravity, no damping, no position correction).
@@ -20,13 +22,18 @@ Conventions
   Jacobi-elliptic flow of :class:`mechanics.tops.FreeAsymmetricTop`.  A lone pinned
   body (a top on a ``fixed_point``) with nothing else: the torque-free top about C;
   with gravity along −z, J1 = J2 and 0 < θ0 < π: the heavy symmetric top
-  (:class:`mechanics.tops.HeavySymmetricTop`, 5.2).
+  (:class:`mechanics.tops.HeavySymmetricTop`, 5.2).  A lone guided body: its guide's
+  (:meth:`~mechanics.scenes.state.Guide.exact`: the pendulum from rest, the torsion
+  pendulum, the carousel, rolling, the sliding phases).  A lone tank: Torricelli.
 - **Integration** otherwise (or ``method = "integrate"``): the project's adaptive
   Dormand–Prince 8(5,3) stepper (:class:`mechanics.integrators.DOP853Stepper`) at the
   scene's ``rtol``/``atol``.  After every step each contact feature's gap is searched
   along the step's dense polynomial (:func:`contacts.first_downward_crossing`), so a
   contact is found whatever the step size; switch times (burn-out, the window of an
-  applied load) are step boundaries.
+  applied load) are step boundaries.  An effect with modes (stick and slip, a tank that
+  empties) has a switch function, searched along each step's dense output like a gap;
+  at its zero the effect switches (an event) and the integration restarts; at a step
+  boundary where a load switches, a mode beyond its limit switches at once.
 - **Contacts**: a contact is a gap reaching zero while closing, resolved by the
   Chapter 6 impulse (:mod:`mechanics.scenes.effects.impact`).  *Simultaneous
   contacts* (a Newton's cradle) are resolved by sequential impulses: after each
@@ -98,6 +105,8 @@ MAX_SWEEPS = 1000
 SWITCH_ROUNDING = 64 * EPS
 
 FREE_INITIAL = ("position", "velocity", "omega", "psi", "theta", "phi")
+#: the effects that hold a body (one per body)
+JOINTS = ("fixed_point", "fixed_axis", "rolling", "coulomb_friction")
 #: a pinned body may give its initial ω as the Euler angles' rates instead
 RATES = ("theta_dot", "psi_dot", "phi_dot")
 
@@ -165,20 +174,36 @@ def _guides(scene, index) -> dict[int, Guide]:
 def validate(scene) -> None:
     """Check a scene of free bodies as a whole (each field is checked by the parser)."""
     index = {b.name: i for i, b in enumerate(scene.bodies)}
+    held: dict[str, object] = {}  # body -> the joint that holds it
     for spec in scene.effects:
-        cls = REGISTRY[spec.type]
-        if not cls.engine:
+        if spec.type not in JOINTS:
+            continue
+        other = held.setdefault(spec.fields["body"], spec)
+        if other is not spec:
+            why = (
+                f"{spec.type!r} is listed twice for body {spec.fields['body']!r}"
+                if other.type == spec.type
+                else f"{spec.type!r} cannot be combined with {other.type!r} ({other.where}) "
+                f"on body {spec.fields['body']!r}: one joint per body"
+            )
+            raise scene.error(f"{spec.where}.type", why)
+    tanks = {b.name for b in scene.bodies if b.shape == "tank"}
+    for spec in scene.effects:
+        named = [spec.fields.get(k) for k in ("body", "other")]
+        if spec.type != "tank_outflow" and tanks.intersection(named):
             raise scene.error(
                 f"{spec.where}.type",
-                f"a {spec.type!r} effect acts only together with the fixed_axis it turns a "
-                "body about; list a fixed_axis",
+                f"a tank's only effect is its tank_outflow; a {spec.type!r} cannot act on it",
             )
     pinned = _pins(scene, index)
     guided = {index[e.fields["body"]] for e in scene.effects if REGISTRY[e.type].make_guide}
+    drained = {e.fields["body"] for e in scene.effects_of("tank_outflow")}
     for i, b in enumerate(scene.bodies):
         where = f"bodies[{i}]"
         if b.shape == "tank":
-            raise scene.error(f"{where}.shape", "a tank needs a tank_outflow effect")
+            if b.name not in drained:
+                raise scene.error(f"{where}.shape", "a tank needs a tank_outflow effect")
+            continue  # its initial keys: the outflow's check
         if i in guided:
             continue  # its initial keys: its joint's check
         keys = FREE_INITIAL + (RATES if i in pinned else ())
@@ -224,9 +249,7 @@ def validate(scene) -> None:
 
 
 class Engine:
-    """A scene of free bodies, assembled from its listed effects."""
-
-    name = "free-body"
+    """A scene, assembled from its listed effects."""
 
     def __init__(self, scene) -> None:
         self.scene = scene
@@ -259,6 +282,10 @@ class Engine:
         for i, gd in self.layout.guides.items():
             o = self.layout.offsets[i]
             self.y0[o : o + 2 * gd.nq] = np.concatenate(gd.start(b0[i].initial))
+        self.outflows = [e for e in self.effects if e.type == "tank_outflow"]
+        for e in self.outflows:
+            o = self.layout.offsets[e.i]
+            self.y0[o : o + 2] = e.start()
         self.rigid = self.layout.rigid_bodies
         self._phase: float | None = None  # see Snapshot.phase
 
@@ -283,7 +310,8 @@ class Engine:
         else:
             m = np.broadcast_to(self.m0, (*np.shape(t), self.n)).copy()
             J = np.broadcast_to(self.layout.J, (*np.shape(t), self.n, 3)).copy()
-        if not self.layout.pins and not self.layout.guides:
+        tanks = self.layout.tanks
+        if not self.layout.pins and not self.layout.guides and not tanks:
             return Snapshot(t, r, v, L, R, self.layout.omega(L, J), m, J)
         if not copy:
             r, v, L, R = r.copy(), v.copy(), L.copy(), R.copy()
@@ -315,6 +343,9 @@ class Engine:
             v[..., i, :] = np.cross(w_O, rho)
         out = Snapshot(t, r, v, L, R, w, m, J, angle=angle)
         out.coords, out.inertia = coords, inertia
+        for i in tanks:
+            o = self.layout.offsets[i]
+            out.fluid[i] = y[..., o : o + 2].copy()
         return out
 
     def rhs(self, t, y) -> np.ndarray:
@@ -324,7 +355,7 @@ class Engine:
         out = Loads(self.n, s)
         for e in self.forces:
             e.loads(t, s, out)
-        return self.layout.derivative(s, out.F, out.M_A)
+        return self.layout.derivative(s, out.F, out.M_A, out.rates)
 
     def pack(self, s: Snapshot) -> np.ndarray:
         L = s.L_A
@@ -336,11 +367,20 @@ class Engine:
         for i, gd in self.layout.guides.items():
             o, (q, qd) = self.layout.offsets[i], s.coords[i]
             y[..., o : o + gd.nq], y[..., o + gd.nq : o + 2 * gd.nq] = q, qd
+        for i, w in s.fluid.items():
+            o = self.layout.offsets[i]
+            y[..., o : o + 2] = w
         return y
 
     # ------------------------------------------------------------- exact flows
     def exact_flow(self) -> str | None:
         kinds = {e.type for e in self.effects}
+        if self.layout.tanks:
+            if self.n != 1 or not kinds <= {"gravity", "tank_outflow"}:
+                return None
+            how, f, self._tank_events = self.outflows[0].exact(self.scene.duration)
+            self._tank = vectorized(f)
+            return how
         if self.layout.guides:
             return self._guided_exact_flow(kinds)
         if self.layout.pins:
@@ -348,7 +388,9 @@ class Engine:
         if self.layout.fixed_bodies:
             return None
         ballistic = kinds <= {"gravity", "impact"} and all(
-            ft.at is None and imp.mu_f == 0 for imp in self.impacts for ft in imp.features
+            ft.at is None and ft.support is None and imp.mu_f == 0
+            for imp in self.impacts
+            for ft in imp.features
         )
         rocket = kinds <= {"gravity", "thrust"} and not any(
             e.body_frame for e in self.effects if e.type == "thrust"
@@ -589,10 +631,12 @@ class Engine:
             kinds = sorted({e.type for e in self.effects})
             raise s.error(
                 "scene.method",
-                f"'exact' requested but the effects {kinds} of this free-body scene have no "
+                f"'exact' requested but the effects {kinds} of this scene have no "
                 "exact flow here; use 'auto' or 'integrate'",
             )
         if exact is not None and s.method != "integrate":
+            if self.layout.tanks:
+                return self._finish(t, [(0.0, s.duration, self._tank)], self._tank_events, exact)
             if self.layout.guides:
                 segs, events = self._guided_exact()
                 return self._finish(t, segs, events, exact)
@@ -618,6 +662,7 @@ class Engine:
 
         s = self.scene
         self._reach: dict[tuple[int, int], float] = {}
+        self._switched: dict = {}  # effect -> the time of its last switch
         switches = sorted({x for e in self.forces for x in e.switch_times() if 0 < x < t_end})
         segs, events = [], []
         t, y = 0.0, self.y0.copy()
@@ -650,7 +695,9 @@ class Engine:
                 y = np.asarray(dense(t), dtype=float)
                 if ft is None:  # an effect switches its mode (stick and slip)
                     sn = self.snapshot(t, y)
+                    sn.phase = self._phase
                     events.append(what.switch(t, sn, self._loads_before(t, sn, what)))
+                    self._switched[what] = t
                     if len(events) > MAX_EVENTS:
                         raise _zeno(self.scene, t, what.where)
                     y = self.pack(sn)
@@ -687,12 +734,16 @@ class Engine:
             g, size = self._switch_value(e, t, y)
             if g < -SWITCH_ROUNDING * size:
                 sn = self.snapshot(t, y)
+                sn.phase = self._phase
                 events.append(e.switch(t, sn, self._loads_before(t, sn, e)))
+                self._switched[e] = t
                 y = self.pack(sn)
         return y
 
     def _switch_value(self, e, t, y) -> tuple[float, float]:
         s = self.snapshot(t, np.asarray(y, dtype=float))
+        if self._phase is not None:  # the loads of the segment being integrated
+            s.phase = self._phase
         return e.switch_function(t, s, self._loads_before(t, s, e))
 
     def _first_switch_on_step(self, dense, t_a, t_b):
@@ -714,10 +765,13 @@ class Engine:
                 tt = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xx
                 return self._switch_value(e, tt, dense(tt))[0]
 
-            coef = contacts.chebyshev_fit(g, t_a, t_b)[:, 0]
+            coef = contacts.chebyshev_fit(g, t_a, t_b, ends=True)[:, 0]
+            # just switched here: the new mode starts at its limit (a slip that starts
+            # from zero speed), so only a fall beyond the rounding switches it back
+            after = -1.0 if self._switched.get(e) == t_a else None
             try:
                 xc = contacts.first_downward_crossing(
-                    coef, start_tol=SWITCH_ROUNDING * max(sizes), refine=refine
+                    coef, start_tol=SWITCH_ROUNDING * max(sizes), refine=refine, after=after
                 )
             except contacts.ContactError as exc:  # pragma: no cover - a switch was missed
                 raise self.scene.error(
@@ -733,6 +787,36 @@ class Engine:
     def _feature_coef(self, coef_y, imp, ft):
         """Chebyshev coefficients (k, 3) of a feature's position along the step."""
         return self._point_coef(coef_y, ft.body, ft.at)
+
+    def _frame_coef(self, coef_y, k):
+        """Chebyshev coefficients of body k's centre (K, 3) and R_A_O (K, 3, 3) along
+        the step (a guided body's fitted at the step's nodes)."""
+        kind, o = self.layout.kinds[k], self.layout.offsets[k]
+        if kind == "rigid":
+            return coef_y[:, o : o + 3], coef_y[:, o + 9 : o + 18].reshape(-1, 3, 3)
+        if kind == "pinned":
+            return self._point_coef(coef_y, k, None), coef_y[:, o + 3 : o + 12].reshape(-1, 3, 3)
+        dense, t_a, t_b = self._step
+
+        def frame(tt):
+            ss = self.snapshot(tt, np.asarray(dense(tt)).T)
+            return np.concatenate([ss.r[:, k], ss.R[:, k].reshape(-1, 9)], axis=-1)
+
+        c = contacts.chebyshev_fit(frame, t_a, t_b, ends=True)
+        return c[:, :3], c[:, 3:].reshape(-1, 3, 3)
+
+    def _rim_poly(self, coef_y, imp, ft):
+        """w² − a² (d₁² + d₂²) along the step, with the sign of the rim circle's gap
+        w − a |(d₁, d₂)| where w ≥ 0 (see :mod:`.effects.impact`), w itself (the gap
+        is negative where w is), and the centre's coefficients."""
+        r, R = self._frame_coef(coef_y, ft.body)
+        a, zc = ft.support
+        n = imp.normal
+        d = -np.einsum("kij,j->ki", R, n)  # R_A_O (−n): body components, linear in R
+        w = r @ n - zc * d[:, 2]
+        w[0] -= imp.point @ n
+        rho2 = C.chebadd(C.chebmul(d[:, 0], d[:, 0]), C.chebmul(d[:, 1], d[:, 1]))
+        return C.chebsub(C.chebmul(w, w), a * a * rho2), w, r
 
     def _centre_coef(self, coef_y, k):
         return self._point_coef(coef_y, k, None)
@@ -751,7 +835,7 @@ class Engine:
                 ss = self.snapshot(tt, np.asarray(dense(tt)).T)
                 return ss.point(k, at)
 
-            return contacts.chebyshev_fit(pos, t_a, t_b)
+            return contacts.chebyshev_fit(pos, t_a, t_b, ends=True)
         if kind == "fixed":
             c = np.zeros((coef_y.shape[0], 3))
             c[0] = self.layout.r_fixed[k] + (at if at is not None else 0.0)
@@ -787,12 +871,25 @@ class Engine:
         best = None
         for a, imp in enumerate(self.impacts):
             for b, ft in enumerate(imp.features):
-                x = self._feature_coef(coef_y, imp, ft)
-                if ft.sphere is None:
+                if ft.support is not None:  # a rim circle: w² − a² ρ², as a sphere pair
+                    q, w, x = self._rim_poly(coef_y, imp, ft)
+                    size, other = ft.support[0] + abs(ft.support[1]), np.abs(imp.point).sum()
+                    # q = (w − a ρ)(w + a ρ): the gap's rounding at the step's start
+                    # (a contact just resolved) times w + a ρ there (plus its own
+                    # rounding); q ≥ 0 where w < 0 too, so w's own fall below zero (a face
+                    # landing flat) is searched as well
+                    w0 = float(C.chebval(-1.0, w))
+                    units = max(w0, 0.0) + math.sqrt(max(w0 * w0 - float(C.chebval(-1.0, q)), 0.0))
+                    # (q's own rounding is relative to its terms, Σ|q_k|, as w → 0 too)
+                    polys = [(q, units + GAP_ROUNDING * size, np.abs(q).sum()), (w, 1.0, 0.0)]
+                elif ft.sphere is None:
+                    x = self._feature_coef(coef_y, imp, ft)
                     p = x @ imp.normal  # the plane's offset is a constant: the 0th term only
                     p[0] -= imp.point @ imp.normal + ft.a
                     size, units, other = ft.a, 1.0, np.abs(imp.point).sum()
+                    polys = [(p, units, 0.0)]
                 else:
+                    x = self._feature_coef(coef_y, imp, ft)
                     rel = x - self._centre_coef(coef_y, ft.sphere)
                     p = C.chebadd(
                         C.chebadd(*(C.chebmul(rel[:, c], rel[:, c]) for c in (0, 1))),
@@ -802,6 +899,7 @@ class Engine:
                     p[0] -= size * size
                     units = 2.0 * size  # |d|² − s² ≈ 2 s × gap near contact
                     other = np.abs(self._centre_coef(coef_y, ft.sphere)).sum()
+                    polys = [(p, units, 0.0)]
                 # positions round relative to their own size, not to their difference
                 reach = np.abs(x).sum() + other + size
                 self._reach[a, b] = max(self._reach.get((a, b), 0.0), reach)
@@ -810,39 +908,41 @@ class Engine:
                     tt = 0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xx
                     return float(imp.gap(self.snapshot(tt, np.asarray(dense(tt))), ft))
 
-                after = None
-                for _ in range(3):  # a touch (zero approach speed) is searched past once
-                    try:
-                        xc = contacts.first_downward_crossing(
-                            p,
-                            start_tol=GAP_ROUNDING * self._reach[a, b] * units,
-                            refine=gap_at,
-                            after=after,
+                for p, units, terms in polys:  # a rim circle: q, and w for a face flat
+                    after = None
+                    for _ in range(3):  # a touch (zero approach speed) is searched past once
+                        try:
+                            xc = contacts.first_downward_crossing(
+                                p,
+                                start_tol=GAP_ROUNDING * (self._reach[a, b] * units + terms),
+                                refine=gap_at,
+                                after=after,
+                            )
+                        except contacts.ContactError as exc:
+                            raise self.scene.error(
+                                imp.where,
+                                f"{ft.label} interpenetrate at t = {t_a:.17g} s ({exc}): "
+                                "a contact was missed before this step",
+                            ) from None
+                        if xc is None:
+                            break
+                        tc = (
+                            t_a
+                            if xc == -1.0
+                            else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xc, t_b)
                         )
-                    except contacts.ContactError as exc:
-                        raise self.scene.error(
-                            imp.where,
-                            f"{ft.label} interpenetrate at t = {t_a:.17g} s ({exc}): "
-                            "a contact was missed before this step",
-                        ) from None
-                    if xc is None:
-                        break
-                    tc = t_a if xc == -1.0 else min(0.5 * (t_a + t_b) + 0.5 * (t_b - t_a) * xc, t_b)
-                    s_c = self.snapshot(tc, np.asarray(dense(tc), dtype=float))
-                    if not self._touch(imp, ft, s_c):
-                        if best is None or tc < best[0]:
-                            best = (tc, imp, ft)
-                        break
-                    # zero approach speed: the pair touches here (a plastic pair moving on
-                    # together, the top of a tiny hop); it may still fall in later
-                    if after is not None and xc <= after:
-                        raise self.scene.error(
-                            imp.where,
-                            f"{ft.label} touch at t = {tc:.17g} s and then fall in, with no "
-                            "separation that float64 can resolve: a resting contact, which "
-                            "no effect provides (shorten the duration)",
-                        )
-                    after = xc
+                        s_c = self.snapshot(tc, np.asarray(dense(tc), dtype=float))
+                        if not self._touch(imp, ft, s_c):
+                            if best is None or tc < best[0]:
+                                best = (tc, imp, ft)
+                            break
+                        # zero approach speed: the pair touches here (a plastic pair moving on
+                        # together, the top of a tiny hop); it may still fall in later
+                        if after is not None and xc <= after:
+                            raise _falls_in(self.scene, imp, ft, tc)
+                        after = xc
+                    else:  # touch after touch within one step: never passed over silently
+                        raise _falls_in(self.scene, imp, ft, tc)
         return best
 
     def _touch(self, imp, ft, s) -> bool:
@@ -853,6 +953,10 @@ class Engine:
         """How hard the loads push the pair together: the inward normal relative
         acceleration of the contact points (> 0 pressed, ≤ 0 not)."""
         s = self.snapshot(t, y)
+        if ft.support is not None:  # the gap of a rim circle against the plane
+            g2 = self._rim_gap_acceleration(t, y, s, imp, ft)
+            if g2 is not None:
+                return -g2
         S, n = imp.contact(s, ft)
         a = self._point_accelerations(t, y, s, {imp.i: S, imp.j: S})
         return -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))
@@ -870,38 +974,62 @@ class Engine:
             return True
         return v * v <= 2.0 * a * GAP_ROUNDING * 4 * detail.get("gap_scale", 0.0)
 
+    def _kinematics(self, s, dy, k):
+        """(origin, its acceleration, ω, α), space components, of body k at the snapshot
+        s whose state rates are dy: the origin is G (a pinned body's pivot, which does
+        not move); a point has no ω, α."""
+        _, dv, dL, _ = self.layout.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
+        kind, zero = self.layout.kinds[k], np.zeros(3)
+        if kind == "point":
+            return s.r[k], dv[k], zero, zero
+        if kind == "guided":  # a_G = Σ E_k q̈_k + the bend; ω = Σ W_k q̇_k, α = Σ W_k q̈_k
+            gd, o = self.layout.guides[k], self.layout.offsets[k]
+            q, qd = s.coords[k]
+            qdd = dy[o + gd.nq : o + 2 * gd.nq]
+            _, E, _ = gd.place(q)
+            return s.r[k], qdd @ E + gd.bend(q, qd), qd @ gd.W, qdd @ gd.W
+        if kind == "pinned":
+            pivot, _, _, JCinv = self.layout.pins[k]
+            origin, base, wdot = pivot, zero, JCinv @ dL[k]
+        else:
+            safe = np.where(s.J[k] > 0, s.J[k], 1.0)
+            origin, base, wdot = s.r[k], dv[k], np.where(s.J[k] > 0, dL[k] / safe, 0.0)
+        return origin, base, s.to_space(k, s.omega[k]), s.to_space(k, wdot)
+
     def _point_accelerations(self, t, y, s, points) -> dict[int, np.ndarray]:
         """Accelerations (space) of the body points ``{body: position}`` at (t, y):
         a_G + α × ρ + ω × (ω × ρ), ρ from G (from the pivot of a pinned body, whose
         pivot does not move)."""
         dy = self.rhs(t, y)
-        _, dv, dL, _ = self.layout.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
         out = {}
         for k, S in points.items():
             if k is None or self.layout.kinds[k] == "fixed":
                 continue
-            kind = self.layout.kinds[k]
-            if kind == "point":
-                out[k] = dv[k]
-                continue
-            if kind == "guided":  # a_G = Σ E_k q̈_k + the bend; ω = Σ W_k q̇_k, α = Σ W_k q̈_k
-                gd, o = self.layout.guides[k], self.layout.offsets[k]
-                q, qd = s.coords[k]
-                qdd = dy[o + gd.nq : o + 2 * gd.nq]
-                _, E, _ = gd.place(q)
-                rho, w, alpha = S - s.r[k], qd @ gd.W, qdd @ gd.W
-                a_G = qdd @ E + gd.bend(q, qd)
-                out[k] = a_G + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
-                continue
-            if kind == "pinned":
-                pivot, _, _, JCinv = self.layout.pins[k]
-                base, rho, wdot = np.zeros(3), S - pivot, JCinv @ dL[k]
-            else:
-                safe = np.where(s.J[k] > 0, s.J[k], 1.0)
-                base, rho, wdot = dv[k], S - s.r[k], np.where(s.J[k] > 0, dL[k] / safe, 0.0)
-            w, alpha = s.to_space(k, s.omega[k]), s.to_space(k, wdot)
+            origin, base, w, alpha = self._kinematics(s, dy, k)
+            rho = S - origin
             out[k] = base + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
         return out
+
+    def _rim_gap_acceleration(self, t, y, s, imp, ft) -> float | None:
+        """d²/dt² of a rim circle's gap w − a ρ (see :mod:`.effects.impact`) at (t, y),
+        or None where the face is flat (ρ = 0).  With c = n·e3 (e3 the circle's axis in
+        space, ė3 = ω × e3, ë3 = α × e3 + ω × (ω × e3)): w = (r_G − p)·n + z_c c and
+        ρ = √(1 − c²), so w'' = a_G·n + z_c c̈ and ρ'' = −(ċ² + c c̈)/ρ − c² ċ²/ρ³.  The
+        support point slides round the rim as the body turns, so this is not the
+        acceleration of the material point there."""
+        k, (a, zc), n = ft.body, ft.support, imp.normal
+        origin, base, w, alpha = self._kinematics(s, self.rhs(t, y), k)
+        rho_G = s.r[k] - origin
+        a_G = base + np.cross(alpha, rho_G) + np.cross(w, np.cross(w, rho_G))
+        e3 = s.R[k, 2]
+        c = float(n @ e3)
+        rho = math.sqrt(max(1.0 - c * c, 0.0))
+        if rho == 0.0:
+            return None
+        c1 = float(n @ np.cross(w, e3))
+        c2 = float(n @ (np.cross(alpha, e3) + np.cross(w, np.cross(w, e3))))
+        rho2 = -(c1 * c1 + c * c2) / rho - c * c * c1 * c1 / rho**3
+        return float(a_G @ n) + zc * c2 - a * rho2
 
     def _reactions(self, t, Y):
         """The joints' reactions at the samples (t, Y): the force of a pivot, of the
@@ -1025,10 +1153,14 @@ class Engine:
         m = s.m[:, moving]
         v, r = s.v[:, moving], s.r[:, moving]
         KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))
+        for i, M in s.inertia.items():  # the inertia mass flowing in has added
+            qd = s.coords[i][1]
+            KE = KE + 0.5 * ((M - lay.guides[i].M) * qd * qd).sum(-1)
         E = KE.copy()
         for e in self.potentials:
             E = E + e.potential(s)
-        series["E"] = E
+        if moving:
+            series["E"] = E
         P = (m[..., None] * v).sum(-2)
         orb = np.cross(r, m[..., None] * v)
         spins = np.einsum("...ji,...j->...i", s.R, s.L_A)
@@ -1053,7 +1185,7 @@ class Engine:
                 series[f"p_{c}"], series[f"L_{c}"] = P[:, k], L_O[:, k]
         since: dict[str, float] = {}
         T = self.scene.duration
-        for q in CONSERVED:
+        for q in CONSERVED if moving else ():
             # what the effects acting throughout keep; an effect that stops acting (a
             # push, a burn) breaks it only until then
             until = max(
@@ -1065,7 +1197,8 @@ class Engine:
                     since[q] = until
                 if self.keeps(q, self.impacts):
                     across.add(q)
-        for e in self.forces:  # what an effect's own physics keeps
+        for e in self.forces:  # what an effect's own physics keeps, and its series
+            series.update(e.series(s))
             for name, (vals, size) in e.conserved(s).items():
                 series[name] = conserved[name] = vals
                 scales[name] = size
@@ -1115,6 +1248,8 @@ class Engine:
                 if i in lay.guides:
                     for k, x in lay.guides[i].series(*ss.coords[i]).items():
                         out[p + k] = float(x)
+            for e in self.forces:
+                out.update({k: float(x) for k, x in e.series(ss).items()})
             y = np.asarray(dense(tt), dtype=float)
             for i, parts in self._reactions(np.array([tt]), y[None])[0].items():
                 for what, F in parts.items():
@@ -1148,12 +1283,22 @@ class Engine:
         return traj
 
 
+def _falls_in(scene, imp, ft, t) -> SceneError:
+    return scene.error(
+        imp.where,
+        f"{ft.label} touch at t = {t:.17g} s and then fall in, with no separation that "
+        "float64 can resolve: a resting contact, which no effect provides (shorten the "
+        "duration)",
+    )
+
+
 def _zeno(scene, t, who="the bodies") -> SceneError:
     return scene.error(
         "scene.duration",
         f"{who} come to rest in contact (the impacts accumulate, or e = 0) near "
         f"t = {t:.6g} s before the end {scene.duration:g} s: shorten the duration "
-        "(there is no resting contact effect)",
+        "(impacts do not become a resting contact; a round body resting or rolling on a "
+        "plane is the coulomb_friction joint's)",
     )
 
 

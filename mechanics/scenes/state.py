@@ -14,7 +14,7 @@ Conventions
 - **The flat vector.**  Bodies in file order; a point takes 6 numbers ``(r, v)``, a
   rigid body 18 ``(r, v, L_A, R_A_O row by row)``, a pinned body 12 ``(L_C, R_A_O)``, a
   *guided* body 2 nq ``(q, q̇)`` (a :class:`Guide`: a fixed axis, rolling, sliding on a
-  plane), a fixed body 0.  :class:`Layout`
+  plane), a tank 2 ``(√h, volume out)``, a fixed body 0.  :class:`Layout`
   gathers the per-body arrays from a state of any leading shape ``(..., size)`` in one
   indexing (no Python loop over bodies), so the same code serves one right-hand-side
   evaluation and thousands of samples.
@@ -53,6 +53,8 @@ SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 POINT_SIZE = 6
 RIGID_SIZE = 18
 PINNED_SIZE = 12
+#: a tank's state: √h (its water level's square root) and the volume run out
+TANK_SIZE = 2
 
 
 def turned(a, u0, k, theta):
@@ -325,6 +327,8 @@ class Layout:
             if b.fixed:
                 kind = "fixed"
                 r_fixed[i] = b.initial.get("position", [0.0, 0.0, 0.0])
+            elif b.shape == "tank":
+                kind = "tank"
             elif b.shape == "point":
                 kind = "point"
             else:
@@ -342,6 +346,7 @@ class Layout:
                 "rigid": RIGID_SIZE,
                 "pinned": PINNED_SIZE,
                 "guided": 2 * guides[i].nq if kind == "guided" else 0,
+                "tank": TANK_SIZE,
             }[kind]
         return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data, dict(guides))
 
@@ -370,7 +375,7 @@ class Layout:
                 iL[i] = o + np.arange(3)
                 iR[i] = (o + 3 + np.arange(9)).reshape(3, 3)
                 continue
-            if kind == "guided":  # everything derived from (q, q̇) by the engine
+            if kind in ("guided", "tank"):  # derived from (q, q̇) by the engine; a tank rests
                 continue
             ir[i] = o + np.arange(3)
             iv[i] = o + 3 + np.arange(3)
@@ -393,7 +398,12 @@ class Layout:
 
     @property
     def moving_bodies(self) -> tuple[int, ...]:
-        return tuple(i for i, k in enumerate(self.kinds) if k != "fixed")
+        """The bodies that move (not fixed ones, nor tanks, whose water level is all)."""
+        return tuple(i for i, k in enumerate(self.kinds) if k not in ("fixed", "tank"))
+
+    @property
+    def tanks(self) -> tuple[int, ...]:
+        return tuple(i for i, k in enumerate(self.kinds) if k == "tank")
 
     def gather(self, y):
         """(r, v, L_A, R_A_O) of every body from states of shape (..., size): shapes
@@ -428,14 +438,17 @@ class Layout:
         safe = np.where(J > 0, J, 1.0)
         return np.where(J > 0, L_A / safe, 0.0)
 
-    def derivative(self, s, F, M_A) -> np.ndarray:
+    def derivative(self, s, F, M_A, rates=None) -> np.ndarray:
         """dy/dt for one snapshot ``s`` (its v, L_A, R_A_O, ω_A, masses), forces F (n, 3)
         in O at G and moments M_A (n, 3) about G in body components (see the
-        Conventions)."""
+        Conventions); a tank's state changes at ``rates[i]``."""
         out = np.empty(self.size)
         v, L, R, w, m = s.v, s.L_A, s.R, s.omega, s.m
         for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
             if kind == "fixed":
+                continue
+            if kind == "tank":
+                out[o : o + TANK_SIZE] = rates[i]
                 continue
             if kind == "pinned":
                 out[o : o + 12] = self.pinned_rate(i, s, F[i], M_A[i])

@@ -1,5 +1,5 @@
 """What a run returns: samples, a dense state, events and the quantities its effects
-conserve.  Shared by the engine and the one-degree-of-freedom models; imports nothing
+conserve.  Used by the engine and the effects; imports nothing
 from the package.
 """
 

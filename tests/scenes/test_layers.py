@@ -1,4 +1,4 @@
-"""The scenes' imports point one way: spec → simulate → engine and models → effects →
+"""The scenes' imports point one way: spec → simulate → engine → effects →
 state → errors, with no cycle; mechanics never imports the book layer (identities)."""
 
 from __future__ import annotations
@@ -20,7 +20,6 @@ LAYERS = {
     "state": 1,
     "effects": 2,
     "engine": 3,
-    "models": 3,
     "simulate": 4,
     "spec": 5,
     "result": 6,

@@ -1,10 +1,11 @@
 """The effects a scene may list, one module per effect type, registered by name.
 
-Free-body effects (the engine, :mod:`mechanics.scenes.engine`): ``gravity``,
-``newton_gravity``, ``spring``, ``damper``, ``drag``, ``force``, ``torque``,
-``thrust``, ``impact``.  Effects of the one-degree-of-freedom models
-(:mod:`mechanics.scenes.models`): ``fixed_axis``, ``fixed_point``, ``rolling``,
-``coulomb_friction``, ``torsion``, ``mass_flow``, ``tank_outflow``.
+Every effect acts in the one engine (:mod:`mechanics.scenes.engine`).  Loads:
+``gravity``, ``newton_gravity``, ``spring``, ``damper``, ``drag``, ``force``,
+``torque``, ``thrust``, ``torsion`` (on a fixed axis), ``mass_flow`` (onto a body on a
+fixed axis).  Contacts: ``impact``.  Joints, one per body: ``fixed_point``,
+``fixed_axis``, ``rolling``, ``coulomb_friction`` (sliding and rolling on a plane).
+A tank's outflow: ``tank_outflow``.
 
 Adding an effect: one module here with one class (``type``, ``schema``, the
 contributions it makes; see :mod:`.base`), imported below, and its tests.

@@ -15,8 +15,12 @@ Conventions
   p_z, the total angular momentum about the origin L_x, L_y, L_z and the total energy
   E it leaves unchanged (the engine reports as conserved exactly the quantities every
   listed effect keeps).  Contacts (the ``impact`` effect) add events instead.
-- ``engine = False`` marks the effects of the one-degree-of-freedom models (fixed axis,
-  fixed point, rolling, sliding, tank), which have their own coordinates.
+- **Joints** (a fixed point, a fixed axis, rolling, sliding on a plane) hold a body;
+  a joint that guides its body gives the :class:`~mechanics.scenes.state.Guide` whose
+  coordinates are the body's state (``make_guide``).  Effects with **modes** (stick
+  and slip, a tank that empties) switch them at events the engine locates
+  (``switch_function``); an effect may report **series** and **conserved** quantities
+  of its own physics.
 """
 
 from __future__ import annotations
@@ -90,6 +94,7 @@ class Snapshot:
         "R",
         "angle",
         "coords",
+        "fluid",
         "inertia",
         "m",
         "omega",
@@ -109,6 +114,8 @@ class Snapshot:
         self.coords: dict = {}
         #: guided bodies whose inertias M_k vary (mass flowing in): index -> M (..., nq)
         self.inertia: dict = {}
+        #: tanks: index -> their state (√h, volume out), shape (..., 2)
+        self.fluid: dict = {}
         #: the time that decides which loads are switched on: inside an integration
         #: segment between switch times, its midpoint (a stage at the segment's end
         #: still belongs to it); else t
@@ -140,12 +147,14 @@ class Loads:
     """Forces at G in O (n, 3) and moments about G in body components (n, 3), summed
     over the listed effects for one time."""
 
-    __slots__ = ("F", "M_A", "snap")
+    __slots__ = ("F", "M_A", "rates", "snap")
 
     def __init__(self, n: int, snap: Snapshot) -> None:
         self.F = np.zeros((n, 3))
         self.M_A = np.zeros((n, 3))
         self.snap = snap
+        #: a tank's state rates: index -> (d√h/dt, d(volume out)/dt)
+        self.rates: dict = {}
 
     def force(self, i: int, F_O, at_A=None) -> None:
         """Add the force F_O (space components) on body i, at the body point at_A (body
@@ -170,7 +179,6 @@ class Effect:
 
     type: ClassVar[str] = ""
     schema: ClassVar[Schema] = {}
-    engine: ClassVar[bool] = True
 
     def __init__(self, spec, ctx: Context | None = None) -> None:
         self.spec = spec
@@ -201,6 +209,10 @@ class Effect:
     #: through zero; ``loads`` holds the loads of the effects summed before it) and
     #: ``switch(t, s, loads) -> Event``; the engine locates the switches on each step
     switch_function = None
+
+    def series(self, s) -> dict:
+        """Named series of this effect's own state (a tank's level), from snapshots."""
+        return {}
 
     def conserved(self, s) -> dict:
         """Quantities of this effect's own physics that the run conserves: name ->
@@ -243,7 +255,7 @@ def check_joint_body(spec, scene, index, *, what: str, keys: tuple[str, ...] | N
     """The checks every joint makes of its body: a rigid, moving body; no thrust (its
     mass cannot change); and, when ``keys`` is given, only those initial keys (the joint
     decides the rest).  (A joint listed twice is refused with the other constraints, in
-    :func:`mechanics.scenes.models.select_model`.)"""
+    :func:`mechanics.scenes.engine.validate`.)"""
     b = scene.body(spec.fields["body"])
     if b.shape in ("point", "tank") or b.fixed:
         kind = "fixed" if b.fixed else f"a {b.shape}"

@@ -8,8 +8,8 @@ the force F_R = m a_G − Σ F and the moment about C, perpendicular to the axis
 M_R = J_a φ̈ a − M_C (the bearing reactions of 4.4).  The joint does no work (E kept);
 its reaction has no moment about C along a: it keeps the angular momentum about the
 origin along its axis when C is the origin and a is a coordinate axis; never the
-momentum.  Scenes with mass flowing onto the body (``mass_flow``, the carousel of
-Example 7.3) run on the fixed-axis model of :mod:`mechanics.scenes.models`.
+momentum.  Mass flowing onto the body (``mass_flow``, the carousel of Example 7.3)
+makes its moment of inertia grow (:mod:`.mass_flow`).
 """
 
 from __future__ import annotations

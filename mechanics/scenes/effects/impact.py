@@ -6,14 +6,24 @@ Conventions
 - **Contact features.**  A spherical body (``point``, ``solid_sphere``,
   ``hollow_sphere``) touches with its surface about G (radius a; 0 for a point); a
   polyhedral body (``box``, ``rectangular_plate``, ``rod``) with its corners (the rod's
-  two ends), :func:`mechanics.scenes.state.body_vertices`.  A plane is given by a point
-  p and a normal n (toward the side the body is on).  Pairs: sphere–sphere and
-  sphere–corner; two polyhedra, and round bodies that are not spheres (discs,
-  cylinders, rings), are not modelled and are refused when the scene is read.
+  two ends), :func:`mechanics.scenes.state.body_vertices`; a round body that is not a
+  sphere with its rim circles (``disc``, ``ring``: one, radius a in the e1e2-plane;
+  ``cylinder``, ``cylindrical_shell`` of height h: two, at ±(h/2) e3), each touching
+  with its *support point* toward the plane, the point of the circle furthest along
+  −n: a (d₁, d₂)/|(d₁, d₂)| + z_c e3 for d = −n in body components (lying flat,
+  d₁ = d₂ = 0, the whole face is lowest: the point that approaches fastest stands for
+  it, along ω × n, or the face's centre z_c e3 if the body does not turn so).  A
+  plane is given by a point p and a normal n (toward the side the body is on).
+  Pairs: sphere–sphere and sphere–corner; two polyhedra, and a rim against a body (not
+  a plane), are not modelled and are refused when the scene is read.
 - **Gaps** (positive apart): plane: (x − p)·n − a for a feature at x of radius a; pair:
   |x_f − r_s| − a_s − a_f for a sphere s and a feature f (a corner has a_f = 0).  Each
   is linear in the state (plane) or the square root of a quadratic (pair), so along a
-  step's dense polynomial it is searched exactly (:mod:`mechanics.scenes.contacts`).
+  step's dense polynomial it is searched exactly (:mod:`mechanics.scenes.contacts`).  A
+  rim circle's gap is w − a |(d₁, d₂)| with the height w = (r_G − p)·n − z_c d₃ of its
+  centre: it has a kink where the face is flat, so its sign is searched as that of
+  w² − a² (d₁² + d₂²), a polynomial along the step (d is linear in R_A_O), as a
+  sphere pair's is.
 - **The impulse** (6.16)–(6.21), (6.36): the normal n points into ``body`` (from the
   plane or ``other``); the contact point S; the arms ρ_k = S − r_Gk; the effective mass
   1/μ = Σ_k 1/m_k + (ρ_k × n)·J_k⁻¹(ρ_k × n) (a fixed body or the plane: no term);
@@ -49,6 +59,8 @@ from ..state import SPHERICAL_SHAPES, body_radius, body_vertices
 from .base import Effect, Schema, keeps_for_force_along, register, unit
 
 POLYHEDRA = ("box", "rectangular_plate", "rod")
+#: round bodies that touch a plane with a point of their rim (support point)
+RIMS = ("disc", "ring", "cylinder", "cylindrical_shell")
 #: an impulse may lose this fraction of the kinetic energy's rounding below zero (the
 #: loss is the work of the impulse, a sum of a dozen products)
 GAIN_RTOL = 64 * float(np.finfo(float).eps)
@@ -72,6 +84,8 @@ class Feature:
     a_s: float
     flip: bool
     label: str
+    #: a rim circle's (radius a, height z_c on e3): its point is the support point
+    support: tuple[float, float] | None = None
 
 
 @register
@@ -101,11 +115,16 @@ class Impact(Effect):
         for key in ("body", "other"):
             if key in f:
                 b = scene.body(f[key])
-                if b.shape not in SPHERICAL_SHAPES + POLYHEDRA:
+                if b.shape not in SPHERICAL_SHAPES + POLYHEDRA + RIMS:
                     raise scene.error(
                         f"{spec.where}.{key}",
                         f"contacts of a {b.shape} are not modelled (only "
-                        f"{', '.join(SPHERICAL_SHAPES + POLYHEDRA)}); body {b.name!r}",
+                        f"{', '.join(SPHERICAL_SHAPES + POLYHEDRA + RIMS)}); body {b.name!r}",
+                    )
+                if b.shape in RIMS and "other" in f:
+                    raise scene.error(
+                        f"{spec.where}.{key}",
+                        f"the rim of a {b.shape} ({b.name!r}) meets only a plane, not a body",
                     )
                 shapes.append(b.shape)
         if len(shapes) == 2 and all(s in POLYHEDRA for s in shapes):
@@ -150,6 +169,23 @@ class Impact(Effect):
                 for c, v in enumerate(body_vertices(bodies[k]))
             ]
 
+        b = bodies[self.i]
+        if b.shape in RIMS:  # against a plane (the check refuses a rim against a body)
+            a, hh = float(b.dims["radius"]), 0.5 * float(b.dims.get("height", 0.0))
+            ends = [(0.0, "")] if hh == 0 else [(hh, ", its +e3 end"), (-hh, ", its −e3 end")]
+            return [
+                Feature(
+                    self.i,
+                    None,
+                    0.0,
+                    None,
+                    0.0,
+                    False,
+                    f"{label} (the rim of {b.name!r}{w})",
+                    (a, z),
+                )
+                for z, w in ends
+            ]
         if self.j is None:
             return [Feature(self.i, at, a, None, 0.0, False, lab) for at, a, lab in feats(self.i)]
         if body_radius(bodies[self.j]) is not None:  # other is the sphere
@@ -172,8 +208,23 @@ class Impact(Effect):
         return [k for k in ks if k not in self.fixed]
 
     def feature_point(self, s, ft: Feature) -> np.ndarray:
-        """World position of the feature's centre or corner (any leading shape)."""
-        return s.point(ft.body, ft.at)
+        """World position of the feature's centre, corner or support point (any leading
+        shape)."""
+        if ft.support is None:
+            return s.point(ft.body, ft.at)
+        a, zc = ft.support
+        d = s.to_body(ft.body, -self.normal)  # toward the plane, body components
+        across = np.sqrt(d[..., 0] ** 2 + d[..., 1] ** 2)
+        flat = across == 0.0
+        # lying flat, every point of the circle is lowest: the one that approaches
+        # fastest, along ω × n (the face's centre if it does not turn that way)
+        turn = np.cross(s.omega[..., ft.body, :], -d)
+        spin = np.sqrt(turn[..., 0] ** 2 + turn[..., 1] ** 2)
+        u = np.where(flat[..., None], turn, d)[..., :2]
+        size = np.where(flat, spin, across)
+        safe = np.where(size == 0.0, 1.0, size)
+        at = np.concatenate([a * u / safe[..., None], np.full((*np.shape(across), 1), zc)], axis=-1)
+        return s.point(ft.body, at)
 
     def gap(self, s, ft: Feature) -> np.ndarray:
         x = self.feature_point(s, ft)
@@ -248,8 +299,19 @@ class Impact(Effect):
         detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
         # the gap at the instant of the impact, and the size it is rounded relative to
         detail["gap"] = float(self.gap(s, ft))
+        # (a corner's or a rim's position is G plus an arm: it rounds relative to both)
+        arm = (
+            sum(abs(x) for x in ft.support)
+            if ft.support is not None
+            else (float(np.abs(ft.at).sum()) if ft.at is not None else 0.0)
+        )
         detail["gap_scale"] = float(
-            np.abs(self.feature_point(s, ft)).sum() + np.abs(self.point).sum() + ft.a + ft.a_s
+            np.abs(self.feature_point(s, ft)).sum()
+            + np.abs(s.r[ft.body]).sum()
+            + arm
+            + np.abs(self.point).sum()
+            + ft.a
+            + ft.a_s
         )
         detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
         detail["friction"] = self._mode
@@ -374,7 +436,9 @@ class Impact(Effect):
         impulse along the normal passes through its centre)."""
         if self.mu_f > 0:
             return k in self.bodies()
-        return any(ft.at is not None and ft.body == k for ft in self.features)
+        return any(
+            (ft.at is not None or ft.support is not None) and ft.body == k for ft in self.features
+        )
 
 
 def _direction(x) -> np.ndarray | None:

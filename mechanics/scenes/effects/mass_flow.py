@@ -1,4 +1,14 @@
-"""Mass flow into a body on a fixed axis (Example 7.3): the fixed-axis model."""
+"""Mass flowing onto a body on a fixed axis (Example 7.3, the carousel under fire).
+
+Bullets of mass flow q ≥ 0 and speed v, along a line at the signed distance r from the
+axis, stick at the radius R.  The body's moment of inertia about its axis grows,
+J(t) = J_a + q R² t, and the angular momentum about the axis changes by the flux the
+bullets bring, d(J φ̇)/dt = −r q v + (the other loads' moment) (7.36–7.39): the effect
+adds the moment (−r q v − q R² φ̇) a, and :meth:`MassFlow.inertia_added` the growth of
+J.  The mass of the body (and so its weight and the bearings' force) is its own: the
+bullets' momentum along their line is not among the loads, so no bearing reaction is
+reported.  With no other moment about the axis, L_a + r q v t = J φ̇ + r q v t is kept.
+"""
 
 from __future__ import annotations
 
@@ -15,7 +25,6 @@ class MassFlow(Effect):
     signed distance r from the axis, stuck at radius R): Example 7.3, (7.36)–(7.39)."""
 
     type = "mass_flow"
-    engine = False
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "rate": ("nonnegative", True),
@@ -24,16 +33,44 @@ class MassFlow(Effect):
         "radius": ("positive", True),
     }
 
+    @classmethod
+    def check(cls, spec, scene, index) -> None:
+        name = spec.fields["body"]
+        if not any(e.fields["body"] == name for e in scene.effects_of("fixed_axis")):
+            raise scene.error(
+                f"{spec.where}.type",
+                f"mass flows onto a body turning on a fixed_axis: list one for {name!r}",
+            )
+
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
         self.q = float(self.fields["rate"])
         self.v = float(self.fields["speed"])
         self.r = float(self.fields["offset"])
         self.R = float(self.fields["radius"])
+        self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
+        self.hinge = ctx.guides.get(self.i) if ctx is not None else None
+        others = {e.type for e in ctx.scene.effects} if ctx is not None else set()
+        self._alone = others <= {"fixed_axis", self.type}
 
-    def inertia_added(self, t) -> np.ndarray:
-        return self.q * self.R**2 * np.asarray(t, dtype=float)
+    def inertia_added(self, t, i) -> np.ndarray | float:
+        """q R² t, shape (..., 1), added to the axis inertia of body i (0 for the others)."""
+        if i != self.i:
+            return 0.0
+        return self.q * self.R**2 * np.asarray(t, dtype=float)[..., None]
 
-    def axis_torque_flux(self, phidot) -> np.ndarray:
-        """−r q v − q R² φ̇: the angular momentum flux in, minus the spin-up of new mass."""
-        return -self.r * self.q * self.v - self.q * self.R**2 * phidot
+    def loads(self, t, s, out) -> None:
+        phidot = float(s.coords[self.i][1][0])
+        out.moment(self.i, (-self.r * self.q * self.v - self.q * self.R**2 * phidot) * self.hinge.a)
+
+    def exerts_moment(self, k: int) -> bool:
+        return k == self.i
+
+    def conserved(self, s) -> dict:
+        """J(t) φ̇ + r q v t, with no other moment about the axis (7.39 integrated)."""
+        if not self._alone:
+            return {}
+        t = np.asarray(s.t, dtype=float)
+        L = s.inertia[self.i][..., 0] * s.coords[self.i][1][..., 0]
+        flux = self.r * self.q * self.v * t
+        return {"L_axis + r q v t": (L + flux, float(np.max(np.abs(L)) + np.max(np.abs(flux))))}

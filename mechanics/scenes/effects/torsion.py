@@ -43,10 +43,3 @@ class Torsion(Effect):
 
     def exerts_moment(self, k: int) -> bool:
         return k == self.i
-
-    # the fixed-axis model (the carousel) reads these
-    def axis_torque(self, m, h, axis, phi) -> np.ndarray:
-        return -self.tau_0 * phi
-
-    def axis_potential(self, m, h, axis, phi) -> np.ndarray:
-        return 0.5 * self.tau_0 * phi**2
