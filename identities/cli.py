@@ -39,6 +39,8 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _parser() -> argparse.ArgumentParser:
+    from mechanics.scenes.spec import METHODS
+
     p = _Parser(prog="bodycheck", description="Essén, Dynamics of Bodies: executable and checked.")
     sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
     c = sub.add_parser("check", help="run catalogue checks")
@@ -81,8 +83,10 @@ def _parser() -> argparse.ArgumentParser:
         q.add_argument("--json", action="store_true", help="print the result as JSON")
         q.add_argument(
             "--method",
-            choices=("auto", "exact", "integrate"),
-            help="override the scene's method (auto: the exact flow where there is one)",
+            choices=METHODS,
+            help="override the scene's method (auto: the exact flow where there is one; "
+            "splitting: the symplectic splitting of a conservative scene, at the sample "
+            "interval and order 4)",
         )
     b = sub.add_parser("bench", help="the work-precision study: what accuracy costs in time")
     b.add_argument("--quick", action="store_true", help="short horizons, few points (< 30 s)")

@@ -19,7 +19,10 @@ Schema
 ``[scene]``: ``name`` (str), ``title`` (str, optional), ``book`` (str, optional),
 ``duration`` (> 0), ``samples`` (int ≥ 2, default 201), ``method`` (``"auto"``: the exact
 flow where the effects have one, else integration; ``"exact"``: fail if there is none;
-``"integrate"``: always integrate), ``rtol``/``atol`` of the integrator (default 1e-12),
+``"integrate"``: always integrate; ``"splitting"``: the symplectic splitting of a
+conservative scene, :mod:`mechanics.scenes.splitting`, with ``step`` (> 0, default the
+sample interval) and ``order`` (2, 4 or 6, default 4)), ``rtol``/``atol`` of the
+integrator (default 1e-12),
 ``compare`` (optional: the name of a book comparison; :mod:`mechanics` carries it as
 a label, the book layer :mod:`identities.scene_compare` knows the comparisons).
 
@@ -107,7 +110,9 @@ EFFECT_FIELDS: dict[str, dict[str, tuple[str, bool]]] = {
     t: cls.schema for t, cls in EFFECT_CLASSES.items()
 }
 
-METHODS = ("auto", "exact", "integrate")
+METHODS = ("auto", "exact", "integrate", "splitting")
+#: the orders of the splitting (:mod:`mechanics.scenes.splitting`)
+SPLITTING_ORDERS = (2, 4, 6)
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_\-]*$")
 
 
@@ -153,6 +158,9 @@ class Scene:
     book: str = ""
     compare: str = ""
     raw: dict = field(default_factory=dict, compare=False, repr=False)
+    #: the splitting's step (None: the sample interval) and order
+    step: float | None = None
+    order: int = 4
 
     def body(self, name: str) -> Body:
         return next(b for b in self.bodies if b.name == name)
@@ -374,7 +382,19 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         src,
         "scene",
         s,
-        {"name", "title", "book", "duration", "samples", "method", "rtol", "atol", "compare"},
+        {
+            "name",
+            "title",
+            "book",
+            "duration",
+            "samples",
+            "method",
+            "rtol",
+            "atol",
+            "compare",
+            "step",
+            "order",
+        },
     )
     for req in ("name", "duration"):
         if req not in s:
@@ -387,6 +407,19 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
     method = _check(src, "scene.method", "str", s.get("method", "auto"))
     if method not in METHODS:
         raise SceneError(src, "scene.method", f"expected one of {METHODS}; got {method!r}")
+    split = {}
+    for k in ("step", "order"):
+        if k in s and method != "splitting":
+            raise SceneError(src, f"scene.{k}", f"only with method 'splitting'; got {method!r}")
+    if "step" in s:
+        split["step"] = _check(src, "scene.step", "positive", s["step"])
+    if "order" in s:
+        order = s["order"]
+        if isinstance(order, bool) or order not in SPLITTING_ORDERS:
+            raise SceneError(
+                src, "scene.order", f"expected one of {SPLITTING_ORDERS}; got {order!r}"
+            )
+        split["order"] = int(order)
     tols = {}
     for k in ("rtol", "atol"):
         tols[k] = _check(src, f"scene.{k}", "positive", s.get(k, DEFAULT_TOL))
@@ -420,6 +453,7 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         compare=compare,
         raw=data,
         **tols,
+        **split,
     )
     from .simulate import validate  # the combination of bodies and effects must make sense
 

@@ -19,11 +19,12 @@ LAYERS = {
     "contacts": 0,
     "state": 1,
     "effects": 2,
-    "engine": 3,
-    "simulate": 4,
-    "spec": 5,
-    "result": 6,
-    "__init__": 7,
+    "splitting": 3,
+    "engine": 4,
+    "simulate": 5,
+    "spec": 6,
+    "result": 7,
+    "__init__": 8,
 }
 
 
