@@ -11,8 +11,8 @@ from pathlib import Path
 import pytest
 import sympy as sp
 
-from identities import catalogue
-from identities.catalogue import (
+from identities.verify import catalogue
+from identities.verify.catalogue import (
     DONE_CHAPTERS,
     Check,
     check,
@@ -21,8 +21,8 @@ from identities.catalogue import (
     load_all,
     run_check,
 )
-from identities.proof import CheckFailure, Derivation, is_zero
-from identities.render import render_checks_md
+from identities.verify.proof import CheckFailure, Derivation, is_zero
+from identities.verify.render import render_checks_md
 
 ROOT = Path(__file__).resolve().parents[1]
 BOOK = ROOT.parent / "shared" / "book" / "dynamics-of-bodies.txt"

@@ -7,8 +7,8 @@ import json
 
 import pytest
 
-from identities import catalogue
-from identities.cli import main
+from identities.cli.main import main
+from identities.verify import catalogue
 
 
 @pytest.fixture

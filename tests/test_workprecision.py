@@ -16,7 +16,7 @@ import struct
 import numpy as np
 import pytest
 
-from identities import workprecision as wp
+from bench import workprecision as wp
 from mechanics.integrators import free_rigid_body_rhs, integrate
 from mechanics.rotation import EPS
 from mechanics.tops import HeavySymmetricTop

@@ -12,7 +12,7 @@ re-running the script gives the same file byte for byte
 Each case holds float64 inputs as ``repr`` strings (they round-trip exactly)
 and the exact passive matrix ^A R^O of those inputs, taken as exact binary
 numbers, as decimal strings of 48 significant digits.  The route here is
-deliberately not the one of the test oracle in :mod:`identities.stability`
+deliberately not the one of the test oracle in :mod:`identities.stability.rotation`
 (Rodrigues and a product of basic matrices): rotation vectors and quaternions
 go through the unit quaternion's quadratic form, Euler angles through the
 written-out matrix (2.36), so that two independent computations must agree.

@@ -1,5 +1,5 @@
 """The result of a scene run: samples, events, conserved quantities, self-checks, and the
-comparisons a caller asks for (the book layer's, :mod:`identities.scene_compare`).
+comparisons a caller asks for (the book layer's, :mod:`identities.book.scenes.compare`).
 
 Conventions
 -----------
@@ -268,7 +268,7 @@ def _drift(values: np.ndarray, t: np.ndarray, segments, since: float, scale=0.0)
 def run_scene(scene: Scene, compare=None) -> SceneResult:
     """Simulate the scene and report its conserved quantities and self-checks; with
     ``compare`` (a function ``(scene, trajectory) -> list[Comparison]``), also the
-    comparisons it makes (the book's: :func:`identities.scene_compare.run_book_scene`)."""
+    comparisons it makes (the book's: :func:`identities.book.scenes.compare.run_book_scene`)."""
     tr = simulate(scene)
     tol = conserved_tolerance(scene, tr)
     conserved = []

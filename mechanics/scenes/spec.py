@@ -24,7 +24,7 @@ conservative scene, :mod:`mechanics.scenes.splitting`, with ``step`` (> 0, defau
 sample interval) and ``order`` (2, 4 or 6, default 4)), ``rtol``/``atol`` of the
 integrator (default 1e-12),
 ``compare`` (optional: the name of a book comparison; :mod:`mechanics` carries it as
-a label, the book layer :mod:`identities.scene_compare` knows the comparisons).
+a label, the book layer :mod:`identities.book.scenes.compare` knows the comparisons).
 
 ``[[bodies]]``: ``name``, ``shape`` (one of :data:`SHAPES`) with its dimensions, ``mass``
 (not for a tank), ``fixed`` (optional boolean: the body stays where it is, an immovable

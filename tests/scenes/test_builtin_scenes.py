@@ -1,6 +1,6 @@
 """Every built-in scene reproduces the book's closed form within its stated tolerance,
 by the exact flow and by integration, and conserves what its effects imply (the
-comparisons are the book layer's, :mod:`identities.scene_compare`)."""
+comparisons are the book layer's, :mod:`identities.book.scenes.compare`)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import itertools
 import numpy as np
 import pytest
 
-from identities.scene_compare import INTEGRATED_RTOL, run_book_scene
+from identities.book.scenes.compare import INTEGRATED_RTOL, run_book_scene
 from mechanics.scenes import builtin_scenes, load_scene
 from mechanics.scenes import effects as fx
 

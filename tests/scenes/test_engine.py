@@ -629,7 +629,7 @@ def test_a_pinned_top_on_the_engine_moves_as_the_exact_heavy_top() -> None:
     """The engine's pinned body (L_C and R_A_O integrated) against its exact flow for
     the built-in heavy top (:class:`mechanics.tops.HeavySymmetricTop`, elliptic
     functions): G's height is ℓ cos θ."""
-    from identities.scene_compare import run_book_scene
+    from identities.book.scenes.compare import run_book_scene
     from mechanics.scenes import builtin_path, load_scene
     from mechanics.scenes.engine import Engine
 

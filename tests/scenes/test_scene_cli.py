@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from identities.cli import main
+from identities.cli.main import main
 from mechanics.scenes import builtin_scenes
 
 EPS = 2.0**-52

@@ -2,7 +2,7 @@
 
 How the errors are measured
 ---------------------------
-The oracle (:mod:`identities.stability`) takes float64 inputs as exact binary
+The oracle (:mod:`identities.stability.rotation`) takes float64 inputs as exact binary
 numbers and computes their exact matrix ^A R^O at 50 digits: Rodrigues' form
 for rotation vectors and quaternions, the product R3(φ) R1(θ) R3(ψ) for Euler
 angles.  Errors are max-abs over the nine entries, in units of eps:
@@ -53,7 +53,7 @@ import pytest
 from hypothesis import example, given, target
 from scipy.spatial.transform import Rotation
 
-from identities.stability import (
+from identities.stability.rotation import (
     ANGLE_RTOL_ULPS,
     MP_DPS,
     angle_error_ulps,
@@ -519,8 +519,8 @@ def test_reference_cases_forward_and_backward_within_4_eps(reference):
     ],
 )
 def test_catalogue_stability_checks_pass(check_id):
-    import identities.stability  # noqa: F401  (registers the checks)
-    from identities.catalogue import REGISTRY, run_check
+    import identities.stability.rotation  # noqa: F401  (registers the checks)
+    from identities.verify.catalogue import REGISTRY, run_check
 
     outcome, _ = run_check(REGISTRY[check_id])
     assert outcome.passed, outcome.message

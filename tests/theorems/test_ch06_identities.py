@@ -1,7 +1,7 @@
 """Chapter 6 of Essén (1996): the closed forms of the catalogue checks against an
 independent mechanical model, for inputs hypothesis draws.
 
-The model is :func:`identities.ch06_restitution.spring_dashpot_collision`: scipy
+The model is :func:`identities.book.ch06.restitution.spring_dashpot_collision`: scipy
 integrates Newton's equations of two bodies through a linear spring–dashpot contact
 whose damping is set to give e from the theory of the damped oscillator only.  The
 closed forms are the symbolic results of the checks (6.37)-(6.38), (6.41), (6.42),
@@ -17,7 +17,7 @@ import sympy as sp
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
-from identities import ch06_restitution as r6
+from identities.book.ch06 import restitution as r6
 
 # The integration runs at rtol 1e-12; velocities come out within ~1e-11 of the velocity
 # scale (measured ≤ 1e-13 on the pinned examples): the checks' own bound.

@@ -1,0 +1,1 @@
+"""Chapter 7 of the book: examples, open_systems, problems."""

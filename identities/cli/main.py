@@ -1,0 +1,435 @@
+"""The ``bodycheck`` command.
+
+    bodycheck check [--chapter N] [--id ID ...] [--kind KIND] [--json] [-j N] [--timings N]
+    bodycheck explain ID [--json]
+    bodycheck catalogue [--write PATH]
+    bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
+    bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
+    bodycheck demo --list
+    bodycheck bench [--quick] [--out DIR] [--repeats N]
+
+Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale, or a scene missed the
+book), 2 bad usage (including a bad scene file: one line naming file, field and reason).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from collections import defaultdict
+from concurrent.futures import ProcessPoolExecutor, as_completed
+from pathlib import Path
+
+from identities.verify import catalogue
+from identities.verify.catalogue import KINDS, Outcome
+
+__all__ = ["main"]
+
+
+class UsageError(Exception):
+    """Bad command-line input: reported in one line, exit code 2."""
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str):  # one line, exit 2 (argparse prints usage too)
+        raise UsageError(message)
+
+
+def _parser() -> argparse.ArgumentParser:
+    from mechanics.scenes.spec import METHODS
+
+    p = _Parser(prog="bodycheck", description="Essén, Dynamics of Bodies: executable and checked.")
+    sub = p.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    c = sub.add_parser("check", help="run catalogue checks")
+    c.add_argument(
+        "--chapter", type=int, choices=range(1, 9), metavar="N", help="only chapter N (1-8)"
+    )
+    c.add_argument(
+        "--id",
+        dest="ids",
+        nargs="+",
+        metavar="ID",
+        help="check ids or book items (eq2.36, E2.3, P2.4)",
+    )
+    c.add_argument("--kind", choices=KINDS, help="only checks of this kind")
+    c.add_argument("--json", action="store_true", help="print the results as JSON")
+    c.add_argument(
+        "-j", "--jobs", type=int, default=1, metavar="N", help="run N checks in parallel"
+    )
+    c.add_argument(
+        "--timings",
+        type=int,
+        nargs="?",
+        const=15,
+        default=0,
+        metavar="N",
+        help="after the table, list the N slowest checks (default 15) with their strategies",
+    )
+    e = sub.add_parser("explain", help="show a check's statement and its proof step by step")
+    e.add_argument("id", metavar="ID")
+    e.add_argument("--json", action="store_true", help="print id, status and quantities (srepr)")
+    g = sub.add_parser("catalogue", help="render CHECKS.md from the registry")
+    g.add_argument("--write", metavar="PATH", help="write to PATH instead of stdout")
+    sc = sub.add_parser("scene", help="run a scene file (TOML) and compare it with the book")
+    sc.add_argument("file", metavar="FILE.toml")
+    dm = sub.add_parser("demo", help="run a built-in scene (--list lists them)")
+    dm.add_argument("name", metavar="NAME", nargs="?")
+    dm.add_argument("--list", action="store_true", help="list the built-in scenes")
+    for q in (sc, dm):
+        q.add_argument("--plot", metavar="OUT.png", help="write a plot of the run")
+        q.add_argument("--json", action="store_true", help="print the result as JSON")
+        q.add_argument(
+            "--method",
+            choices=METHODS,
+            help="override the scene's method (auto: the exact flow where there is one; "
+            "splitting: the symplectic splitting of a conservative scene, at the sample "
+            "interval and order 4)",
+        )
+    b = sub.add_parser("bench", help="the work-precision study: what accuracy costs in time")
+    b.add_argument("--quick", action="store_true", help="short horizons, few points (< 30 s)")
+    b.add_argument("--out", default="bench-results", metavar="DIR", help="output directory")
+    b.add_argument(
+        "--repeats",
+        type=int,
+        default=None,
+        metavar="N",
+        help="timing repeats, the median is taken (default 3; 1 with --quick)",
+    )
+    return p
+
+
+def _resolve(ids: list[str]) -> list[str]:
+    """Check ids for the given check ids or book items; UsageError for unknown ones."""
+    reg = catalogue.load_all()
+    inv = catalogue.inventory()
+    out: list[str] = []
+    for i in ids:
+        if i in reg:
+            found = [i]
+        elif i in inv:
+            found = [c.id for c in reg.values() if i in c.items]
+            if not found:
+                raise UsageError(f"{i} is a book item without a check yet (pending)")
+        else:
+            raise UsageError(
+                f"unknown id {i!r}: expected a check id or a book item such as eq2.36, E2.3, P2.4"
+            )
+        out += [f for f in found if f not in out]
+    return out
+
+
+class _Progress:
+    """A progress bar on stderr: redrawn in place on a terminal, every 10% otherwise."""
+
+    def __init__(self, total: int, stream=None) -> None:
+        self.total, self.done = total, 0
+        self.stream = stream if stream is not None else sys.stderr
+        self.tty = self.stream.isatty()
+        self._last_decile = -1
+
+    def step(self, label: str) -> None:
+        self.done += 1
+        width = 30
+        filled = int(width * self.done / max(self.total, 1))
+        line = f"[{'#' * filled}{'.' * (width - filled)}] {self.done}/{self.total} {label}"
+        if self.tty:
+            self.stream.write("\r\033[K" + line)
+            if self.done == self.total:
+                self.stream.write("\n")
+        else:
+            decile = 10 * self.done // max(self.total, 1)
+            if decile != self._last_decile:
+                self._last_decile = decile
+                self.stream.write(line + "\n")
+        self.stream.flush()
+
+
+def _run(ids: list[str], jobs: int) -> list[Outcome]:
+    progress = _Progress(len(ids))
+    results: dict[str, Outcome] = {}
+    if jobs <= 1:
+        reg = catalogue.load_all()
+        for i in ids:
+            results[i] = catalogue.run_check(reg[i])[0]
+            progress.step(i)
+    else:
+        with ProcessPoolExecutor(max_workers=jobs) as pool:
+            futures = {pool.submit(catalogue.run_by_id, i): i for i in ids}
+            for f in as_completed(futures):
+                o = f.result()
+                results[o.id] = o
+                progress.step(o.id)
+    return [results[i] for i in ids]
+
+
+def _summary_table(outcomes: list[Outcome], wall: float) -> str:
+    by_ch: dict[str, list[Outcome]] = defaultdict(list)
+    for o in outcomes:
+        by_ch[str(o.chapter) if o.chapter else "named"].append(o)
+    lines = [
+        f"{'chapter':>7}  {'checks':>6}  {'passed':>6}  {'failed':>6}  {'erratum':>7}  {'time':>8}",
+        "-" * 50,
+    ]
+    for ch in sorted(by_ch):
+        os_ = by_ch[ch]
+        lines.append(
+            f"{ch:>7}  {len(os_):>6}  {sum(o.passed for o in os_):>6}  {sum(not o.passed for o in os_):>6}  "
+            f"{sum(o.status == 'erratum' for o in os_):>7}  {sum(o.seconds for o in os_):>7.2f}s"
+        )
+    lines.append("-" * 50)
+    lines.append(
+        f"{'all':>7}  {len(outcomes):>6}  {sum(o.passed for o in outcomes):>6}  "
+        f"{sum(not o.passed for o in outcomes):>6}  {sum(o.status == 'erratum' for o in outcomes):>7}  "
+        f"{wall:>7.2f}s wall"
+    )
+    return "\n".join(lines)
+
+
+def _cmd_check(args) -> int:
+    if args.jobs < 1:
+        raise UsageError(f"-j must be at least 1; got {args.jobs}")
+    ids = _resolve(args.ids) if args.ids else [c.id for c in catalogue.checks()]
+    sel = {c.id for c in catalogue.checks(chapter=args.chapter, kind=args.kind)}
+    ids = [i for i in ids if i in sel]
+    if not ids:
+        raise UsageError("no check matches the given --chapter/--id/--kind")
+    t0 = time.perf_counter()
+    outcomes = _run(ids, args.jobs)
+    wall = time.perf_counter() - t0
+    failed = [o for o in outcomes if not o.passed]
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "passed": len(outcomes) - len(failed),
+                    "failed": len(failed),
+                    "wall_seconds": round(wall, 3),
+                    "checks": [
+                        {
+                            "id": o.id,
+                            "passed": o.passed,
+                            "label": o.label,
+                            "status": o.status,
+                            "chapter": o.chapter,
+                            "seconds": round(o.seconds, 4),
+                            "message": o.message,
+                            "strategies": list(o.strategies),
+                        }
+                        for o in outcomes
+                    ],
+                },
+                indent=1,
+            )
+        )
+    else:
+        for o in outcomes:
+            mark = "ok  " if o.passed else "FAIL"
+            print(
+                f"{mark} {o.id:<34} {o.label or '-':<14} {o.status:<9} {o.seconds:7.2f}s"
+                + (f"  {o.message}" if o.message else "")
+            )
+        print()
+        print(_summary_table(outcomes, wall))
+        if args.timings:
+            print()
+            print(_timings_table(outcomes, args.timings))
+    return 1 if failed else 0
+
+
+def _timings_table(outcomes: list[Outcome], n: int) -> str:
+    """The ``n`` slowest checks: time, the strategies used, the slowest proof step."""
+    total = sum(o.seconds for o in outcomes)
+    lines = [
+        f"slowest {min(n, len(outcomes))} of {len(outcomes)} checks "
+        f"(all checks: {total:.2f} s of proving time)",
+        f"{'check':<26} {'time':>8} {'share':>6}  {'strategies':<28} slowest step",
+    ]
+    for o in sorted(outcomes, key=lambda o: -o.seconds)[:n]:
+        text, sec = o.slowest_step
+        step = f"{sec:.2f} s: {text[:70]}" if text else "-"
+        lines.append(
+            f"{o.id:<26} {o.seconds:>7.2f}s {o.seconds / max(total, 1e-12):>6.1%}  "
+            f"{', '.join(o.strategies) or '-':<28} {step}"
+        )
+    return "\n".join(lines)
+
+
+def _pretty(expr) -> str:
+    import sympy as sp
+
+    return sp.pretty(expr, use_unicode=True, wrap_line=False)
+
+
+def _cmd_explain(args) -> int:
+    import sympy as sp
+
+    reg = catalogue.load_all()
+    inv = catalogue.inventory()
+    if args.id not in reg and args.id in inv and not _covering(args.id):
+        item = inv[args.id]
+        if args.json:
+            print(json.dumps({"id": args.id, "status": "pending", "quantities": {}}))
+        else:
+            print(
+                f"{args.id}: chapter {item.chapter}, section {item.section}, page {item.page}: pending (no check yet)"
+            )
+        return 0
+    check_id = _resolve([args.id])[0]
+    c = reg[check_id]
+    outcome, d = catalogue.run_check(c)
+    status = next((r.status for r in catalogue.item_rows() if r.item.id == args.id), c.status)
+    if args.json:
+        print(
+            json.dumps(
+                {
+                    "id": args.id,
+                    "check": c.id,
+                    "status": status,
+                    "label": outcome.label,
+                    "passed": outcome.passed,
+                    "quantities": {k: sp.srepr(v) for k, v in d.quantities.items()},
+                },
+                indent=1,
+            )
+        )
+        return 0 if outcome.passed else 1
+    item = inv.get(args.id) or c.item
+    ref = (
+        f"chapter {item.chapter}, section {item.section}, page {item.page}"
+        if item
+        else "named result"
+    )
+    print(f"{c.id}: {c.title}")
+    if check_id != args.id:
+        print(f"({args.id} is covered by check {c.id})")
+    print(
+        f"book: Essén (1996), {ref}; covers {', '.join(c.covers) or '-'}"
+        + (f"; uses definitions {', '.join(c.defines)}" if c.defines else "")
+    )
+    print(f"kind: {c.kind}; status: {status}; label: {outcome.label or '-'}; where: {c.where}")
+    if c.statement:
+        print(f"statement: {c.statement}")
+    if c.reading:
+        print(f"reading of the text: {c.reading}")
+    if c.errata:
+        print(f"printed (false): {c.printed}\ncorrected: {c.corrected}")
+    print()
+    for n, step in enumerate(d.steps, 1):
+        print(f"{n:>2}. {step.text}")
+        if step.expr is not None:
+            print("\n".join("     " + line for line in _pretty(step.expr).splitlines()))
+    print()
+    print("PASSED" if outcome.passed else f"FAILED: {outcome.message}")
+    return 0 if outcome.passed else 1
+
+
+def _covering(item_id: str) -> list[str]:
+    return [c.id for c in catalogue.load_all().values() if item_id in c.items]
+
+
+def _cmd_catalogue(args) -> int:
+    from identities.verify.render import render_checks_md
+
+    text = render_checks_md()
+    if args.write:
+        Path(args.write).write_text(text, encoding="utf-8")
+        print(f"wrote {args.write} ({text.count(chr(10))} lines)", file=sys.stderr)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+def _run_scene_file(path, args) -> int:
+    import dataclasses
+
+    from identities.book.scenes.compare import load_book_scene, run_book_scene
+    from mechanics.scenes import SceneError
+
+    try:
+        scene = load_book_scene(path)
+        if args.method:
+            scene = dataclasses.replace(scene, method=args.method)
+        result = run_book_scene(scene)
+    except SceneError as exc:
+        raise UsageError(str(exc)) from None
+    if args.plot:
+        from identities.cli.scene_plots import plot_result
+
+        plot_result(result, args.plot)
+    if args.json:
+        print(result.to_json())
+    else:
+        print(result.summary())
+        if args.plot:
+            print(f"plot: {args.plot}")
+    return 0 if result.passed else 1
+
+
+def _cmd_scene(args) -> int:
+    return _run_scene_file(args.file, args)
+
+
+def _cmd_demo(args) -> int:
+    from mechanics.scenes import builtin_scenes, load_scene
+
+    scenes = builtin_scenes()
+    if args.list:
+        if args.json:
+            print(json.dumps({n: load_scene(p).title for n, p in scenes.items()}, indent=1))
+        else:
+            for n, p in scenes.items():
+                sc = load_scene(p)
+                print(f"{n:<26} {sc.book:<18} {sc.title}")
+        return 0
+    if not args.name:
+        raise UsageError("demo needs a NAME or --list")
+    if args.name not in scenes:
+        raise UsageError(f"unknown demo {args.name!r} (known: {', '.join(scenes)})")
+    return _run_scene_file(scenes[args.name], args)
+
+
+def _cmd_bench(args) -> int:
+    from bench.workprecision import format_value, run_study
+
+    repeats = args.repeats if args.repeats is not None else (1 if args.quick else 3)
+    if repeats < 1:
+        raise UsageError(f"--repeats must be at least 1; got {repeats}")
+    study = run_study(quick=args.quick, out_dir=Path(args.out), repeats=repeats, progress=True)
+    h = study["headline"]
+    print(
+        f"wrote {args.out}/workprecision.{{json,md,png}} and energy_drift.png "
+        f"in {study['total_time_s']:.1f} s"
+    )
+    print(
+        f"time of scipy DOP853 / our best stepper at equal error: "
+        f"{format_value(h['best_stepper_vs_scipy_dop853'], '.2f')}; "
+        f"scipy DOP853 / exact solution: {format_value(h['exact_vs_scipy_dop853'], '.3g')}"
+    )
+    return 0
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Entry point of the ``bodycheck`` console script."""
+    try:
+        args = _parser().parse_args(argv)
+        handler = {
+            "check": _cmd_check,
+            "explain": _cmd_explain,
+            "catalogue": _cmd_catalogue,
+            "scene": _cmd_scene,
+            "demo": _cmd_demo,
+            "bench": _cmd_bench,
+        }[args.command]
+        return handler(args)
+    except UsageError as exc:
+        print(f"bodycheck: error: {exc}", file=sys.stderr)
+        return 2
+    except KeyboardInterrupt:
+        return 130
+    except BrokenPipeError:  # e.g. `bodycheck explain ID | head`: stop quietly
+        devnull = os.open(os.devnull, os.O_WRONLY)
+        os.dup2(devnull, sys.stdout.fileno())
+        return 0
