@@ -1224,3 +1224,86 @@ def test_a_rim_meets_only_a_plane() -> None:
     with pytest.raises(SceneError, match="meets only a plane") as info:
         _scene([disc, ball], [{"type": "impact", "body": "d", "other": "b", "restitution": 0.5}])
     assert info.value.field == "effects[0].body"
+
+
+# ------------------------------------------------------------------ buoyancy
+
+
+def _floating(z0, rho_ball=500.0, duration=1.0, samples=101):
+    a = 0.1
+    m = rho_ball * 4.0 / 3.0 * math.pi * a**3
+    ball = _ball(mass=m, radius=a, position=[0.0, 0.0, z0])
+    eff = [
+        {"type": "gravity", "g": 9.81},
+        {"type": "buoyancy", "body": "b", "density": 1000.0},
+    ]
+    return _scene([ball], eff, duration=duration, samples=samples)
+
+
+def test_a_ball_of_half_the_liquids_density_floats_half_immersed() -> None:
+    """Archimedes: the lift ρ g (2/3)π a³ of the half ball equals the weight (ρ/2)(4/3)π
+    a³ g, so a ball released at rest with its centre on the level stays there."""
+    r = run_scene(_floating(0.0))
+    assert r.passed, r.summary()
+    # integrated at atol 1e-12 about z = 0: the integration's error, relative to a
+    assert np.abs(r.trajectory.series["z"]).max() <= INTEGRATED_RTOL * 0.1
+    assert {"E", "p_x", "p_y", "L_z"} <= _conserved(r)
+
+
+def test_a_floating_ball_bobs_with_the_period_of_its_waterline() -> None:
+    """Small oscillations about half immersion: the lift changes by ρ g π a² per unit
+    depth (the waterline's area), so ω² = ρ g π a²/m = 3g/(2a) (derived by hand); the
+    lift is odd in the displacement x (π(a²x − x³/3)), so the period differs by
+    O((x/a)²) = 1e-6 at x = a/1000."""
+    a, g = 0.1, 9.81
+    T = 2 * math.pi / math.sqrt(1.5 * g / a)
+    r = run_scene(_floating(-a / 1000, duration=3 * T, samples=601))
+    assert r.passed, r.summary()
+    t, z = r.trajectory.t, r.trajectory.series["z"]
+    up = [i for i in range(1, len(z)) if z[i - 1] < 0 <= z[i]]
+    crossings = [t[i - 1] - z[i - 1] * (t[i] - t[i - 1]) / (z[i] - z[i - 1]) for i in up]
+    assert np.mean(np.diff(crossings)) == pytest.approx(T, rel=1e-5)
+
+
+@pytest.mark.parametrize(
+    ("body", "gravity", "where", "match"),
+    [
+        (_box("b"), {"g": 9.81}, "effects[1].body", "modelled for spheres"),
+        (_ball(), {"g": 9.81, "direction": [1.0, 0.0, 0.0]}, "effects[1].type", "along −z"),
+    ],
+)
+def test_buoyancy_refuses_what_it_does_not_model(body, gravity, where, match) -> None:
+    eff = [{"type": "gravity", **gravity}, {"type": "buoyancy", "body": "b", "density": 1000.0}]
+    with pytest.raises(SceneError, match=match) as info:
+        _scene([body], eff)
+    assert info.value.field == where
+
+
+def test_a_ball_rolling_into_a_wall_rebounds_rolling() -> None:
+    """Rolling on a level floor into a wall, e = 1/2: the floor keeps the contact point at
+    rest, so the impulse acts on the rolling coordinate with the effective mass
+    M = m + J/r² = 7m/5: it rebounds at e v, losing ½ M (1 − e²) v² (6.41 with the
+    guide's mass; derived by hand)."""
+    m, v, e = 1.0, 2.0, 0.5
+    ball = _ball(mass=m, distance=0.0, speed=v)
+    eff = [
+        {"type": "gravity", "g": 9.81},
+        {"type": "rolling", "body": "b", "surface": "incline", "angle": 0.0},
+        {
+            "type": "impact",
+            "body": "b",
+            "restitution": e,
+            "plane_point": [1.0, 0, 0],
+            "plane_normal": [-1.0, 0, 0],
+        },
+    ]
+    r = run_scene(_scene([ball], eff, duration=1.5, samples=151))
+    assert r.passed, r.summary()
+    (ev,) = r.trajectory.events
+    assert ev.t == pytest.approx((1.0 - 0.1) / v, rel=EVENT_RTOL)
+    assert ev.detail["normal_speed_after"] == pytest.approx(e * v, rel=IMPULSE_RTOL)
+    want = 0.5 * 1.4 * m * (1 - e * e) * v * v
+    assert ev.detail["kinetic_energy_before"] - ev.detail["kinetic_energy_after"] == pytest.approx(
+        want, rel=IMPULSE_RTOL
+    )
+    assert r.trajectory.series["v"][-1] == pytest.approx(-e * v, rel=IMPULSE_RTOL)

@@ -3,8 +3,9 @@
 Every effect acts in the one engine (:mod:`mechanics.scenes.engine`).  Loads:
 ``gravity``, ``newton_gravity``, ``spring``, ``damper``, ``drag``, ``force``,
 ``torque``, ``thrust``, ``torsion`` (on a fixed axis), ``mass_flow`` (onto a body on a
-fixed axis).  Contacts: ``impact``.  Joints, one per body: ``fixed_point``,
-``fixed_axis``, ``rolling``, ``coulomb_friction`` (sliding and rolling on a plane).
+fixed axis), ``buoyancy`` (of a sphere in a liquid).  Contacts: ``impact``.  Joints,
+one per body: ``fixed_point``, ``fixed_axis``, ``rolling``, ``coulomb_friction``
+(sliding and rolling on a plane).
 A tank's outflow: ``tank_outflow``.
 
 Adding an effect: one module here with one class (``type``, ``schema``, the
@@ -14,6 +15,7 @@ contributions it makes; see :mod:`.base`), imported below, and its tests.
 from __future__ import annotations
 
 from . import (  # noqa: F401  (each import registers its effect)
+    buoyancy,
     coulomb_friction,
     drag,
     fixed_axis,
