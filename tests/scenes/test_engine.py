@@ -256,11 +256,10 @@ def test_a_box_dropped_on_a_corner_restitutes_at_that_corner() -> None:
     assert min(r.trajectory.extra["gaps"].values(), key=np.min).min() >= -64 * EPS
 
 
-def test_the_corner_impulse_agrees_with_mechanics_impact(monkeypatch) -> None:
-    """Independent route: the engine's impulse against :func:`mechanics.impact.rigid_impact`
-    (a 3 × 3 solve in space components) on the state just before each impact.  The two
-    routes agree up to the rounding and to the integrated attitude's departure from
-    orthogonality (the engine works in body components, the reference with Rᵀ J R)."""
+def _spy_on_impulses(monkeypatch) -> list:
+    """Record, at each impulse of a body against a plane, (the arm S − r_G, v_G and ω
+    after, :func:`mechanics.impact.rigid_impact`'s result on the state before, the
+    attitude's departure from orthogonality)."""
     seen = []
     real = fx.Impact._apply
 
@@ -277,12 +276,21 @@ def test_the_corner_impulse_agrees_with_mechanics_impact(monkeypatch) -> None:
         ref = rigid_impact(before, None, r_S=S, n=n, e=self.e).body_1
         orth = float(np.abs(R @ R.T - np.eye(3)).max())
         real(self, s, S, n, v_n)
-        seen.append((s.v[i].copy(), s.to_space(i, s.omega[i]), ref, orth))
+        seen.append((S - s.r[i], s.v[i].copy(), s.to_space(i, s.omega[i]), ref, orth))
 
     monkeypatch.setattr(fx.Impact, "_apply", spy)
+    return seen
+
+
+def test_the_corner_impulse_agrees_with_mechanics_impact(monkeypatch) -> None:
+    """Independent route: the engine's impulse against :func:`mechanics.impact.rigid_impact`
+    (a 3 × 3 solve in space components) on the state just before each impact.  The two
+    routes agree up to the rounding and to the integrated attitude's departure from
+    orthogonality (the engine works in body components, the reference with Rᵀ J R)."""
+    seen = _spy_on_impulses(monkeypatch)
     r = run_scene(_dropped_box(duration=0.45))
     assert len(r.trajectory.events) == len(seen) >= 2
-    for v, w, ref, orth in seen:
+    for _, v, w, ref, orth in seen:
         # the velocities are O(1)-O(10): a unit of absolute error per unit of speed
         tol = (IMPULSE_RTOL + 64 * orth) * (1.0 + np.abs(ref.omega).max())
         np.testing.assert_allclose(v, ref.v_G, rtol=0, atol=tol)
@@ -1141,24 +1149,7 @@ def test_a_tilted_spinning_cylinder_lands_on_its_lowest_rim_point(monkeypatch) -
     t* = √(2 (z0 − d)/g) there (derived by hand).  The impulse there agrees with
     :func:`mechanics.impact.rigid_impact`."""
     a, h, th, g, z0 = 0.1, 0.3, 0.6, 9.81, 1.0
-    seen = []
-    real = fx.Impact._apply
-
-    def spy(self, s, S, n, v_n):
-        i = self.i
-        R = s.R[i]
-        before = RigidBody(
-            s.m[i],
-            R.T @ np.diag(s.J[i]) @ R,
-            s.r[i].copy(),
-            s.v[i].copy(),
-            s.to_space(i, s.omega[i]),
-        )
-        ref = rigid_impact(before, None, r_S=S, n=n, e=self.e).body_1
-        real(self, s, S, n, v_n)
-        seen.append((S - s.r[i], s.v[i].copy(), s.to_space(i, s.omega[i]), ref))
-
-    monkeypatch.setattr(fx.Impact, "_apply", spy)
+    seen = _spy_on_impulses(monkeypatch)
     cyl = {
         "name": "c",
         "shape": "cylinder",
@@ -1174,7 +1165,7 @@ def test_a_tilted_spinning_cylinder_lands_on_its_lowest_rim_point(monkeypatch) -
     ev = r.trajectory.events[0]
     assert "rim" in ev.detail["feature"]
     assert ev.t == pytest.approx(math.sqrt(2 * (z0 - d) / g), rel=EVENT_RTOL)
-    arm, v, w, ref = seen[0]
+    arm, v, w, ref, _ = seen[0]
     want = [0.0, 0.5 * h * math.sin(th) - a * math.cos(th), -d]
     np.testing.assert_allclose(arm, want, rtol=0, atol=INTEGRATED_RTOL)
     tol = IMPULSE_RTOL * (1.0 + np.abs(ref.omega).max())

@@ -40,6 +40,7 @@ __all__ = [
     "Schema",
     "Snapshot",
     "check_joint_body",
+    "check_on_fixed_axis",
     "keeps_for_force_along",
     "register",
     "unit",
@@ -271,6 +272,14 @@ def check_joint_body(spec, scene, index, *, what: str, keys: tuple[str, ...] | N
                 f"bodies[{index[b.name]}].initial.{k}",
                 f"a body on a {spec.type} takes {', '.join(keys)}",
             )
+
+
+def check_on_fixed_axis(spec, scene, *, what: str) -> None:
+    """An effect that acts on a body turning on a fixed axis (a torsion spring, mass
+    flowing in) needs a ``fixed_axis`` for that body; ``what`` says what it does."""
+    name = spec.fields["body"]
+    if not any(e.fields["body"] == name for e in scene.effects_of("fixed_axis")):
+        raise scene.error(f"{spec.where}.type", f"{what}: list a fixed_axis for {name!r}")
 
 
 def _axis_index(q: str) -> int:

@@ -16,7 +16,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register
+from .base import Effect, Schema, check_on_fixed_axis, register
 
 
 @register
@@ -35,12 +35,7 @@ class MassFlow(Effect):
 
     @classmethod
     def check(cls, spec, scene, index) -> None:
-        name = spec.fields["body"]
-        if not any(e.fields["body"] == name for e in scene.effects_of("fixed_axis")):
-            raise scene.error(
-                f"{spec.where}.type",
-                f"mass flows onto a body turning on a fixed_axis: list one for {name!r}",
-            )
+        check_on_fixed_axis(spec, scene, what="mass flows onto a body turning on a fixed axis")
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)

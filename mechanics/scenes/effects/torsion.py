@@ -7,7 +7,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register
+from .base import Effect, Schema, check_on_fixed_axis, register
 
 
 @register
@@ -19,12 +19,7 @@ class Torsion(Effect):
 
     @classmethod
     def check(cls, spec, scene, index) -> None:
-        name = spec.fields["body"]
-        if not any(e.fields["body"] == name for e in scene.effects_of("fixed_axis")):
-            raise scene.error(
-                f"{spec.where}.type",
-                f"a torsion spring twists a body about its fixed_axis: list one for {name!r}",
-            )
+        check_on_fixed_axis(spec, scene, what="a torsion spring twists a body about its axis")
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
