@@ -6,8 +6,9 @@ Run from the repository root::
 
 It writes ``identities/data/book_inventory.json``, which the catalogue reads, so
 that the registry knows every numbered item of the book without the book being
-present (CI clones only this repository).  Deterministic: re-running it on the
-same text gives the same file.
+present (CI clones only this repository), and ``identities/data/book_sections.json``,
+the headings of the chapters' sections (the topic words ``bodycheck search`` uses).
+Deterministic: re-running it on the same text gives the same files.
 
 Pages come from the running heads of the extracted text ("22 CHAPTER 2. ..." on
 even pages, "2.2. ROTATION MATRICES 23" on odd ones); an item belongs to the page
@@ -59,6 +60,18 @@ def inventory(text: str) -> dict[str, dict[str, object]]:
     return items
 
 
+def sections(text: str) -> dict[str, str]:
+    """The book's section headings in the body, {"4.3.1": "The Physical Pendulum"}."""
+    lines = text.splitlines()
+    start = next(i for i, line in enumerate(lines) if BODY_START.match(line))
+    out: dict[str, str] = {}
+    for line in lines[start:]:
+        if m := SECTION.match(line.strip()):
+            key = ".".join(g for g in m.groups()[:3] if g)
+            out.setdefault(key, m.group(4).strip())
+    return out
+
+
 def main(argv: list[str]) -> int:
     if len(argv) != 2:
         print("usage: python tools/book_inventory.py BOOK.txt", file=sys.stderr)
@@ -67,6 +80,10 @@ def main(argv: list[str]) -> int:
     out = Path("identities/data/book_inventory.json")
     out.write_text(json.dumps(items, indent=1, sort_keys=False) + "\n", encoding="utf-8")
     print(f"wrote {len(items)} items to {out}")
+    heads = sections(Path(argv[1]).read_text(encoding="utf-8"))
+    out = Path("identities/data/book_sections.json")
+    out.write_text(json.dumps(heads, indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+    print(f"wrote {len(heads)} section headings to {out}")
     return 0
 
 

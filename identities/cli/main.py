@@ -1,7 +1,8 @@
 """The ``bodycheck`` command.
 
     bodycheck check [--chapter N] [--id ID ...] [--kind KIND] [--json] [-j N] [--timings N]
-    bodycheck explain ID [--json]
+    bodycheck explain ID|TOPIC [--json]
+    bodycheck search TOPIC [--json]
     bodycheck catalogue [--write PATH]
     bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
     bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
@@ -69,8 +70,17 @@ def _parser() -> argparse.ArgumentParser:
         help="after the table, list the N slowest checks (default 15) with their strategies",
     )
     e = sub.add_parser("explain", help="show a check's statement and its proof step by step")
-    e.add_argument("id", metavar="ID")
+    e.add_argument(
+        "id",
+        metavar="ID|TOPIC",
+        help="a check id, a book item (eq4.38, E6.1, P2.6) or a topic (parallel-axis)",
+    )
     e.add_argument("--json", action="store_true", help="print id, status and quantities (srepr)")
+    f = sub.add_parser("search", help="find checks by topic words or a theorem's name")
+    f.add_argument(
+        "topic", nargs="+", metavar="TOPIC", help='e.g. restitution, "Euler\'s equations"'
+    )
+    f.add_argument("--json", action="store_true", help="print [{id, kind, title}, ...]")
     g = sub.add_parser("catalogue", help="render CHECKS.md from the registry")
     g.add_argument("--write", metavar="PATH", help="write to PATH instead of stdout")
     sc = sub.add_parser("scene", help="run a scene file (TOML) and compare it with the book")
@@ -263,11 +273,41 @@ def _pretty(expr) -> str:
     return sp.pretty(expr, use_unicode=True, wrap_line=False)
 
 
+def _topic_matches(query: str) -> list:
+    """The checks a topic names; UsageError with the nearest names when there are none."""
+    from identities.verify import topics
+
+    found = topics.search(query)
+    if not found:
+        near = topics.nearest(query)
+        hint = f"; nearest: {', '.join(near)}" if near else ""
+        raise UsageError(f"unknown id or topic {query!r}{hint}")
+    return found
+
+
+def _cmd_search(args) -> int:
+    found = _topic_matches(" ".join(args.topic))
+    if args.json:
+        print(json.dumps([{"id": c.id, "kind": c.kind, "title": c.title} for c in found], indent=1))
+        return 0
+    for c in found:
+        print(f"{c.id:32s} {c.kind:10s} {c.title}")
+    return 0
+
+
 def _cmd_explain(args) -> int:
     import sympy as sp
 
     reg = catalogue.load_all()
     inv = catalogue.inventory()
+    if args.id not in reg and args.id not in inv:  # a topic: one match is explained
+        found = _topic_matches(args.id)
+        if len(found) > 1:
+            print(f"{len(found)} checks match {args.id!r}; explain one by its id:")
+            for c in found:
+                print(f"  {c.id:32s} {c.title}")
+            return 0
+        args.id = found[0].id
     if args.id not in reg and args.id in inv and not _covering(args.id):
         item = inv[args.id]
         if args.json:
@@ -418,6 +458,7 @@ def main(argv: list[str] | None = None) -> int:
         handler = {
             "check": _cmd_check,
             "explain": _cmd_explain,
+            "search": _cmd_search,
             "catalogue": _cmd_catalogue,
             "scene": _cmd_scene,
             "demo": _cmd_demo,
