@@ -35,9 +35,10 @@ test: $(STAMP)
 	$(BIN)/ruff format --check .
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
-## make checks: regenerate CHECKS.md from the registry
+## make checks: regenerate CHECKS.md from the registry and docs/scene-files.md from the schema
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
+	$(BIN)/bodycheck scene --schema > docs/scene-files.md
 
 ## make lock: re-resolve every dependency to the newest allowed versions and rewrite the lock
 ## (it works on a stale lock: only the lock's uv pin is read, to bootstrap uv)

@@ -5,6 +5,7 @@
     bodycheck search TOPIC [--json]
     bodycheck catalogue [--write PATH]
     bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
+    bodycheck scene --schema
     bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
     bodycheck demo --list
     bodycheck bench [--quick] [--out DIR] [--repeats N]
@@ -84,7 +85,12 @@ def _parser() -> argparse.ArgumentParser:
     g = sub.add_parser("catalogue", help="render CHECKS.md from the registry")
     g.add_argument("--write", metavar="PATH", help="write to PATH instead of stdout")
     sc = sub.add_parser("scene", help="run a scene file (TOML) and compare it with the book")
-    sc.add_argument("file", metavar="FILE.toml")
+    sc.add_argument("file", metavar="FILE.toml", nargs="?")
+    sc.add_argument(
+        "--schema",
+        action="store_true",
+        help="print the scene-file reference (every field, kind and unit), generated from the schema",
+    )
     dm = sub.add_parser("demo", help="run a built-in scene (--list lists them)")
     dm.add_argument("name", metavar="NAME", nargs="?")
     dm.add_argument("--list", action="store_true", help="list the built-in scenes")
@@ -409,6 +415,13 @@ def _run_scene_file(path, args) -> int:
 
 
 def _cmd_scene(args) -> int:
+    if args.schema:
+        from mechanics.scenes.reference import scene_file_reference
+
+        print(scene_file_reference(), end="")
+        return 0
+    if args.file is None:
+        raise UsageError("give a scene file FILE.toml (or --schema for the reference)")
     return _run_scene_file(args.file, args)
 
 

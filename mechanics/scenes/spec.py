@@ -84,7 +84,53 @@ SHAPES: dict[str, tuple[str, ...]] = {
     "tank": ("area",),
 }
 
-#: initial-state keys: name -> (kind, meaning)
+#: the SI unit of each body dimension
+DIMENSION_UNITS = {
+    "length": "m",
+    "radius": "m",
+    "height": "m",
+    "a": "m",
+    "b": "m",
+    "c": "m",
+    "inertia": "kg m²",
+    "area": "m²",
+}
+
+#: the [scene] table's fields: name -> (kind, unit, meaning)
+SCENE_FIELDS: dict[str, tuple[str, str, str]] = {
+    "name": ("str", "", "required: the scene's name"),
+    "title": ("str", "", "a title for plots and reports"),
+    "book": ("str", "", "the book reference it illustrates"),
+    "compare": ("str", "", "the book comparison to run (identities.book.scenes.compare)"),
+    "duration": ("positive", "s", "required: the simulated time"),
+    "samples": ("integer ≥ 2", "1", "samples over [0, duration] (default 201)"),
+    "method": ("str", "", "auto (default), exact, integrate or splitting"),
+    "rtol": ("positive", "1", "the integrator's relative tolerance (default 1e-12)"),
+    "atol": ("positive", "(state units)", "its absolute tolerance (default 1e-12)"),
+    "step": ("positive", "s", "the splitting's step (default: the sample interval)"),
+    "order": ("2, 4 or 6", "1", "the splitting's order (default 4)"),
+}
+
+#: initial-state keys: name -> (unit, meaning)
+INITIAL_DOC: dict[str, tuple[str, str]] = {
+    "position": ("m", "a free body: its centre of mass"),
+    "velocity": ("m/s", "a free body: the velocity of its centre of mass"),
+    "omega": ("rad/s", "a free rigid body: angular velocity, body components"),
+    "angle": ("rad", "a fixed axis: φ from gravity's direction; a track: ψ"),
+    "angular_velocity": ("rad/s", "a fixed axis: φ̇; a track: ψ̇"),
+    "distance": ("m", "rolling or sliding: along the plane"),
+    "speed": ("m/s", "rolling or sliding: of G along the plane"),
+    "spin": ("rad/s", "sliding: ω (positive: the rolling sense)"),
+    "theta": ("rad", "Euler angles z-x-z of a rigid body (a top: from the vertical)"),
+    "psi": ("rad", "Euler angle ψ"),
+    "phi": ("rad", "Euler angle φ"),
+    "theta_dot": ("rad/s", "a top's Euler rate θ̇ (instead of omega)"),
+    "psi_dot": ("rad/s", "a top's Euler rate ψ̇"),
+    "phi_dot": ("rad/s", "a top's Euler rate φ̇"),
+    "level": ("m", "a tank: the surface's height above the hole"),
+}
+
+#: initial-state keys: name -> kind
 INITIAL_KEYS: dict[str, str] = {
     "position": "vector",  # free body: centre of mass, m
     "velocity": "vector",  # free body: m/s

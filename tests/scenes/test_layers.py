@@ -24,6 +24,7 @@ LAYERS = {
     "simulate": 5,
     "spec": 6,
     "result": 7,
+    "reference": 7,
     "__init__": 8,
 }
 

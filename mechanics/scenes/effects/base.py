@@ -180,6 +180,11 @@ class Effect:
 
     type: ClassVar[str] = ""
     schema: ClassVar[Schema] = {}
+    #: the SI unit of each field ("1": a pure number; "": a name or a word), and a
+    #: minimal valid effect table: the scene-file reference is generated from these
+    #: (:func:`mechanics.scenes.reference.scene_file_reference`)
+    units: ClassVar[dict[str, str]] = {}
+    example: ClassVar[dict] = {}
 
     def __init__(self, spec, ctx: Context | None = None) -> None:
         self.spec = spec

@@ -39,6 +39,8 @@ class Buoyancy(Effect):
         "density": ("positive", True),
         "level": ("number", False),
     }
+    units: ClassVar[dict[str, str]] = {"body": "", "density": "kg/m³", "level": "m"}
+    example: ClassVar[dict] = {"type": "buoyancy", "body": "ball", "density": 1000.0}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

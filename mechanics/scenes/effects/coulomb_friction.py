@@ -151,6 +151,8 @@ class CoulombFriction(Effect):
         "angle": ("number", False),
         "body_axis": ("axis_name", False),
     }
+    units: ClassVar[dict[str, str]] = {"body": "", "mu": "1", "angle": "rad", "body_axis": ""}
+    example: ClassVar[dict] = {"type": "coulomb_friction", "body": "ball", "mu": 0.2}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

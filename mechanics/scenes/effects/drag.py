@@ -26,6 +26,14 @@ class Drag(Effect):
         "angular_linear": ("nonnegative", False),
         "angular_quadratic": ("nonnegative", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "linear": "N s/m",
+        "quadratic": "N s²/m²",
+        "angular_linear": "N m s",
+        "angular_quadratic": "N m s²",
+    }
+    example: ClassVar[dict] = {"type": "drag", "body": "ball", "quadratic": 0.01}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

@@ -33,6 +33,20 @@ class FixedAxis(Effect):
         "body_axis": ("axis_name", False),
         "point": ("vector", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "axis": "1",
+        "distance": "m",
+        "body_axis": "",
+        "point": "m",
+    }
+    example: ClassVar[dict] = {
+        "type": "fixed_axis",
+        "body": "rod",
+        "axis": [0.0, 1.0, 0.0],
+        "distance": 0.5,
+        "body_axis": "y",
+    }
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

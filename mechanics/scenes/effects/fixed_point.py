@@ -28,6 +28,8 @@ class FixedPoint(Effect):
         "distance": ("nonnegative", True),
         "point": ("vector", False),
     }
+    units: ClassVar[dict[str, str]] = {"body": "", "distance": "m", "point": "m"}
+    example: ClassVar[dict] = {"type": "fixed_point", "body": "top", "distance": 0.1}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

@@ -70,6 +70,20 @@ class Force(_Applied):
         "force": ("vector", True),
         "at": ("vector", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "frame": "",
+        "start": "s",
+        "end": "s",
+        "force": "N",
+        "at": "m",
+    }
+    example: ClassVar[dict] = {
+        "type": "force",
+        "body": "ball",
+        "force": [1.0, 0.0, 0.0],
+        "end": 0.1,
+    }
 
     def __init__(self, spec, ctx) -> None:
         super().__init__(spec, ctx)
@@ -99,6 +113,19 @@ class Torque(_Applied):
 
     type = "torque"
     schema: ClassVar[Schema] = {**_Applied.schema, "torque": ("vector", True)}
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "frame": "",
+        "start": "s",
+        "end": "s",
+        "torque": "N m",
+    }
+    example: ClassVar[dict] = {
+        "type": "torque",
+        "body": "rod",
+        "torque": [0.0, 0.0, 0.1],
+        "frame": "body",
+    }
 
     def __init__(self, spec, ctx) -> None:
         super().__init__(spec, ctx)

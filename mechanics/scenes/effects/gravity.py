@@ -20,6 +20,8 @@ class Gravity(Effect):
 
     type = "gravity"
     schema: ClassVar[Schema] = {"g": ("positive", True), "direction": ("vector", False)}
+    units: ClassVar[dict[str, str]] = {"g": "m/s²", "direction": "1"}
+    example: ClassVar[dict] = {"type": "gravity", "g": 9.81}
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)

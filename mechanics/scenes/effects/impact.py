@@ -101,6 +101,15 @@ class Impact(Effect):
         "restitution": ("restitution", True),
         "friction": ("nonnegative", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "other": "",
+        "plane_point": "m",
+        "plane_normal": "1",
+        "restitution": "1",
+        "friction": "1",
+    }
+    example: ClassVar[dict] = {"type": "impact", "body": "ball", "restitution": 0.8}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

@@ -32,6 +32,21 @@ class MassFlow(Effect):
         "offset": ("number", True),
         "radius": ("positive", True),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "rate": "kg/s",
+        "speed": "m/s",
+        "offset": "m",
+        "radius": "m",
+    }
+    example: ClassVar[dict] = {
+        "type": "mass_flow",
+        "body": "rod",
+        "rate": 0.1,
+        "speed": 400.0,
+        "offset": 0.3,
+        "radius": 0.5,
+    }
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

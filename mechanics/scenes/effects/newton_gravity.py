@@ -24,6 +24,8 @@ class NewtonGravity(Effect):
 
     type = "newton_gravity"
     schema: ClassVar[Schema] = {"G": ("positive", False), "bodies": ("bodies", False)}
+    units: ClassVar[dict[str, str]] = {"G": "m³/(kg s²)", "bodies": ""}
+    example: ClassVar[dict] = {"type": "newton_gravity", "G": 1.0}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

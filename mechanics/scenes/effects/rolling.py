@@ -181,6 +181,19 @@ class Rolling(Effect):
         "track_radius": ("positive", False),
         "body_axis": ("axis_name", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "surface": "",
+        "angle": "rad",
+        "track_radius": "m",
+        "body_axis": "",
+    }
+    example: ClassVar[dict] = {
+        "type": "rolling",
+        "body": "ball",
+        "surface": "incline",
+        "angle": 0.3,
+    }
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

@@ -92,6 +92,23 @@ class Spring(_TwoPoint):
         "rest_length": ("nonnegative", False),
         "damping": ("nonnegative", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "at": "m",
+        "other": "",
+        "other_at": "m",
+        "anchor": "m",
+        "stiffness": "N/m",
+        "rest_length": "m",
+        "damping": "N s/m",
+    }
+    example: ClassVar[dict] = {
+        "type": "spring",
+        "body": "ball",
+        "anchor": [0.0, 0.0, 2.0],
+        "stiffness": 10.0,
+        "rest_length": 0.5,
+    }
 
     def __init__(self, spec, ctx) -> None:
         super().__init__(spec, ctx)
@@ -127,6 +144,20 @@ class Damper(_TwoPoint):
 
     type = "damper"
     schema: ClassVar[Schema] = {**_TwoPoint.schema, "damping": ("positive", True)}
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "at": "m",
+        "other": "",
+        "other_at": "m",
+        "anchor": "m",
+        "damping": "N s/m",
+    }
+    example: ClassVar[dict] = {
+        "type": "damper",
+        "body": "ball",
+        "anchor": [0.0, 0.0, 1.0],
+        "damping": 0.5,
+    }
 
     def __init__(self, spec, ctx) -> None:
         super().__init__(spec, ctx)

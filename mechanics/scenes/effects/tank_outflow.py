@@ -36,6 +36,8 @@ class TankOutflow(Effect):
 
     type = "tank_outflow"
     schema: ClassVar[Schema] = {"body": ("body", True), "hole_area": ("positive", True)}
+    units: ClassVar[dict[str, str]] = {"body": "", "hole_area": "m²"}
+    example: ClassVar[dict] = {"type": "tank_outflow", "body": "tank", "hole_area": 0.01}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

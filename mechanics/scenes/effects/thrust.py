@@ -28,6 +28,21 @@ class Thrust(Effect):
         "direction": ("vector", False),
         "frame": ("frame", False),
     }
+    units: ClassVar[dict[str, str]] = {
+        "body": "",
+        "mass_flow": "kg/s",
+        "exhaust_speed": "m/s",
+        "fuel_mass": "kg",
+        "direction": "1",
+        "frame": "",
+    }
+    example: ClassVar[dict] = {
+        "type": "thrust",
+        "body": "ball",
+        "mass_flow": 0.01,
+        "exhaust_speed": 20.0,
+        "fuel_mass": 0.05,
+    }
 
     @classmethod
     def check(cls, spec, scene, index) -> None:

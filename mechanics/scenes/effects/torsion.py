@@ -16,6 +16,8 @@ class Torsion(Effect):
 
     type = "torsion"
     schema: ClassVar[Schema] = {"body": ("body", True), "stiffness": ("positive", True)}
+    units: ClassVar[dict[str, str]] = {"body": "", "stiffness": "N m/rad"}
+    example: ClassVar[dict] = {"type": "torsion", "body": "rod", "stiffness": 2.0}
 
     @classmethod
     def check(cls, spec, scene, index) -> None:
