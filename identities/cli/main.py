@@ -426,21 +426,44 @@ def _cmd_scene(args) -> int:
 
 
 def _cmd_demo(args) -> int:
+    import textwrap
+
+    from identities.book.scenes.demos import LECTURE_DEMOS
     from mechanics.scenes import builtin_scenes, load_scene
 
     scenes = builtin_scenes()
+    lectures = {d.name: d for d in LECTURE_DEMOS}
     if args.list:
         if args.json:
-            print(json.dumps({n: load_scene(p).title for n, p in scenes.items()}, indent=1))
-        else:
-            for n, p in scenes.items():
-                sc = load_scene(p)
-                print(f"{n:<26} {sc.book:<18} {sc.title}")
+            rows = {
+                n: {"title": load_scene(p).title, "book": load_scene(p).book}
+                | (
+                    {"topic": lectures[n].topic, "about": lectures[n].paragraph}
+                    | {"check": lectures[n].check}
+                    if n in lectures
+                    else {}
+                )
+                for n, p in scenes.items()
+            }
+            print(json.dumps(rows, indent=1, ensure_ascii=False))
+            return 0
+        print("Lecture demos (bodycheck demo NAME --plot NAME.png):\n")
+        for d in LECTURE_DEMOS:
+            sc = load_scene(scenes[d.name])
+            print(f"{d.name}: {d.topic} ({sc.book}; backed by the check {d.check})")
+            print(textwrap.indent(textwrap.fill(d.paragraph, 84), "    ") + "\n")
+        print("All built-in scenes:\n")
+        for n, p in scenes.items():
+            sc = load_scene(p)
+            print(f"{n:<26} {sc.book:<18} {sc.title}")
         return 0
     if not args.name:
         raise UsageError("demo needs a NAME or --list")
     if args.name not in scenes:
         raise UsageError(f"unknown demo {args.name!r} (known: {', '.join(scenes)})")
+    if args.name in lectures and not args.json:
+        d = lectures[args.name]
+        print(f"{d.topic} ({d.check}):\n{textwrap.fill(d.paragraph, 88)}\n")
     return _run_scene_file(scenes[args.name], args)
 
 
