@@ -399,16 +399,23 @@ def test_dop853_work_counts_every_evaluation_and_rejection(h0):
         assert sol.rejected_steps >= 1
 
 
-def test_dop853_matches_scipy_step_for_step():
+# The reference path sums as scipy does (np.dot): 64 eps.  The compiled path sums the
+# stages in its own order, a few eps per step apart; measured 96 eps here (|y| ~ 2.3).
+SCIPY_AGREEMENT_EPS = {False: 64, True: 512}
+
+
+@pytest.mark.parametrize("compiled", [False, True])
+def test_dop853_matches_scipy_step_for_step(compiled):
     from scipy.integrate import solve_ivp
 
     rhs = free_rigid_body_rhs(J_TOP)
     y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
-    ours = integrate(rhs, y0, (0.0, 20.0), method="dop853", rtol=1e-9, atol=1e-9)
+    ours = integrate(rhs, y0, (0.0, 20.0), method="dop853", rtol=1e-9, atol=1e-9, compiled=compiled)
     ref = solve_ivp(rhs, (0.0, 20.0), y0, method="DOP853", rtol=1e-9, atol=1e-9)
     assert ours.steps == ref.t.size - 1
     assert ours.rhs_evals == ref.nfev
-    assert np.abs(ours.y[-1] - ref.y[:, -1]).max() <= 64 * EPS
+    bound = SCIPY_AGREEMENT_EPS[compiled] * EPS
+    assert np.abs(ours.y[-1] - ref.y[:, -1]).max() <= bound
 
 
 def test_splitting_work_counts_merged_sub_flows():
