@@ -153,18 +153,22 @@ def _member_rms_min_max(v, scale, groups, want_max):  # pragma: no cover
 
 @njit(cache=True, error_model="numpy")
 def dop853_free_body(
-    J, y0, t, h0, rtol, atol, groups, max_steps, A, B, C, E3, E5, ctrl, ys
+    J, y0, t, h0, rtol, atol, groups, max_steps, A, B, C, E3, E5, D, ctrl, ys
 ):  # pragma: no cover
-    """DOP853 on the free rigid body, stepping onto every output time (the reference's
-    ``_integrate_dop853``).  h0 ≤ 0: Hairer's initial step.  ctrl = (safety, min
+    """DOP853 on the free rigid body (the reference's ``_integrate_dop853``): steps
+    set by the error control towards t[-1], outputs inside a step from its 7th-order
+    continuous extension.  A (16, 16), C (16,) the extended tableau, D (4, 16) the
+    interpolant's matrix.  h0 ≤ 0: Hairer's initial step.  ctrl = (safety, min
     factor, max factor, exponent).  Returns (status, steps, evals, rejected)."""
     n = y0.size
     ns = B.size  # 12 stages
+    n_ext = A.shape[0]  # 16: the dense output's 3 extra stages after f_new
+    F = np.empty((7, n))
     safety, min_factor, max_factor, exponent = ctrl[0], ctrl[1], ctrl[2], ctrl[3]
     y = y0.copy()
     y_new = np.empty(n)
     tmp = np.empty(n)
-    K = np.empty((ns + 1, n))
+    K = np.empty((n_ext, n))
     f0 = np.empty(n)
     ys[0] = y
     _frb_rhs(J, y, f0)
@@ -197,59 +201,95 @@ def dop853_free_body(
         h_abs = min(100 * hs, h1, t[t.size - 1] - tc)
     steps = 0
     rejected = 0
-    t_last = t[t.size - 1]
-    for k in range(t.size - 1):
-        t_end = t[k + 1]
-        while tc < t_end:
-            min_step = 10.0 * (np.nextafter(abs(tc), np.inf) - abs(tc))
-            if h_abs < min_step:
-                h_abs = min_step
-            was_rejected = False
-            while True:
-                t_new = tc + h_abs
-                if t_new >= t_end:
-                    t_new = t_end
-                hh = t_new - tc
-                for i in range(n):
-                    K[0, i] = f0[i]
-                for s in range(1, ns):
-                    for i in range(n):
-                        acc = 0.0
-                        for j in range(s):
-                            acc += K[j, i] * A[s, j]
-                        tmp[i] = y[i] + hh * acc
-                    _frb_rhs(J, tmp, K[s])
+    nt = t.size
+    t_end = t[nt - 1]
+    k = 1  # the next output
+    while k < nt:
+        min_step = 10.0 * (np.nextafter(abs(tc), np.inf) - abs(tc))
+        if h_abs < min_step:
+            h_abs = min_step
+        was_rejected = False
+        while True:
+            t_new = tc + h_abs
+            if t_new >= t_end:
+                t_new = t_end
+            hh = t_new - tc
+            for i in range(n):
+                K[0, i] = f0[i]
+            for s in range(1, ns):
                 for i in range(n):
                     acc = 0.0
-                    for j in range(ns):
-                        acc += K[j, i] * B[j]
-                    y_new[i] = y[i] + hh * acc
-                _frb_rhs(J, y_new, K[ns])
-                evals += ns
-                err = _error_norm(K, E5, E3, hh, y, y_new, rtol, atol, groups)
-                if not math.isfinite(err):
-                    return STATUS_NONFINITE, steps, evals, rejected
-                if err < 1.0:
-                    factor = max_factor if err == 0.0 else min(max_factor, safety * err**exponent)
-                    if was_rejected:
-                        factor = min(1.0, factor)
-                    if not _all_finite(y_new):
-                        return STATUS_NONFINITE, steps, evals, rejected
-                    h_abs = hh * factor
-                    break
-                rejected += 1
-                was_rejected = True
-                h_abs = hh * max(min_factor, safety * err**exponent)
-                if h_abs < min_step:
-                    return STATUS_STEP_TOO_SMALL, steps, evals, rejected
+                    for j in range(s):
+                        acc += K[j, i] * A[s, j]
+                    tmp[i] = y[i] + hh * acc
+                _frb_rhs(J, tmp, K[s])
             for i in range(n):
-                y[i] = y_new[i]
-                f0[i] = K[ns, i]
-            tc = t_new
-            steps += 1
-            if steps >= max_steps and tc < t_last:
-                return STATUS_MAX_STEPS, steps, evals, rejected
-        ys[k + 1] = y
+                acc = 0.0
+                for j in range(ns):
+                    acc += K[j, i] * B[j]
+                y_new[i] = y[i] + hh * acc
+            _frb_rhs(J, y_new, K[ns])
+            evals += ns
+            err = _error_norm(K[: ns + 1], E5, E3, hh, y, y_new, rtol, atol, groups)
+            if not math.isfinite(err):
+                return STATUS_NONFINITE, steps, evals, rejected
+            if err < 1.0:
+                factor = max_factor if err == 0.0 else min(max_factor, safety * err**exponent)
+                if was_rejected:
+                    factor = min(1.0, factor)
+                if not _all_finite(y_new):
+                    return STATUS_NONFINITE, steps, evals, rejected
+                h_abs = hh * factor
+                break
+            rejected += 1
+            was_rejected = True
+            h_abs = hh * max(min_factor, safety * err**exponent)
+            if h_abs < min_step:
+                return STATUS_STEP_TOO_SMALL, steps, evals, rejected
+        steps += 1
+        j = k
+        while j < nt and t[j] < t_new:
+            j += 1
+        if j > k:  # outputs inside the step: its continuous extension
+            for q in range(ns + 1, n_ext):
+                for i in range(n):
+                    acc = 0.0
+                    for r in range(q):
+                        acc += K[r, i] * A[q, r]
+                    tmp[i] = y[i] + hh * acc
+                _frb_rhs(J, tmp, K[q])
+            evals += n_ext - ns - 1
+            for i in range(n):
+                dlt = y_new[i] - y[i]
+                F[0, i] = dlt
+                F[1, i] = hh * K[0, i] - dlt
+                F[2, i] = 2 * dlt - hh * (K[ns, i] + K[0, i])
+                for r in range(D.shape[0]):
+                    acc = 0.0
+                    for q in range(n_ext):
+                        acc += D[r, q] * K[q, i]
+                    F[3 + r, i] = hh * acc
+            if not _all_finite(F.ravel()):
+                return STATUS_NONFINITE, steps, evals, rejected
+            for m in range(k, j):
+                x = (t[m] - tc) / hh
+                for i in range(n):
+                    v = 0.0
+                    for r in range(7):
+                        v += F[6 - r, i]
+                        v *= x if r % 2 == 0 else 1.0 - x
+                    ys[m, i] = v + y[i]
+        if j < nt and t[j] == t_new:
+            for i in range(n):
+                ys[j, i] = y_new[i]
+            j += 1
+        k = j
+        for i in range(n):
+            y[i] = y_new[i]
+            f0[i] = K[ns, i]
+        tc = t_new
+        if steps >= max_steps and k < nt:
+            return STATUS_MAX_STEPS, steps, evals, rejected
     return STATUS_OK, steps, evals, rejected
 
 
