@@ -166,3 +166,49 @@ def test_bench_batch_of_free_bodies_against_scipy_body_by_body(benchmark):
     benchmark.pedantic(ours, rounds=1, iterations=1)
     if enabled:
         assert ratio >= BATCH_RATIO_REQUIRED
+
+
+# One evaluation of the exact top (ω and the attitude at one instant) against scipy's
+# DOP853 run to the same instant; the target is 1e5 (asserted when enabled).
+EXACT_ONE_RATIO_REQUIRED = 1e5
+EXACT_INSTANTS = {True: 10**6, False: 10**3}
+EXACT_STATE_EPS = 64  # the error at 1000 rotations, eps of |ω0| and absolute in R
+
+
+def test_bench_exact_top_one_evaluation_and_many_against_dop853(benchmark):
+    enabled = not benchmark.disabled
+    t1 = ROTATIONS[enabled] * ROTATION
+    top = FreeAsymmetricTop(J, W0)
+    rhs = free_rigid_body_rhs(J)
+    y0 = rigid_body_state(J * W0, np.eye(3))
+
+    def scipy_run():
+        return solve_ivp(rhs, (0.0, t1), y0, method="DOP853", rtol=RTOL_TOP, atol=RTOL_TOP)
+
+    t_scipy, _ = _best_time(scipy_run, REPEATS[enabled])
+    t_one, (w, R) = _best_time(lambda: top.state(float(t1)), 200)
+    # the one-instant path against the array path (the mpmath-tested one), at t1
+    w_arr, R_arr = top.omega(np.array([t1]))[0], top.attitude(np.array([t1]))[0]
+    eps = float(np.finfo(float).eps)
+    assert np.abs(w - w_arr).max() <= EXACT_STATE_EPS * eps * np.linalg.norm(W0)
+    assert np.abs(R - R_arr).max() <= EXACT_STATE_EPS * eps
+    n = EXACT_INSTANTS[enabled]
+    ts = np.linspace(0.0, t1, n)
+    t_many, (wm, Rm) = _best_time(lambda: top.state(ts), REPEATS[enabled])
+    assert np.isfinite(wm).all()
+    assert np.isfinite(Rm).all()
+    ratio = t_scipy / t_one
+    benchmark.extra_info.update(
+        scipy_time=t_scipy,
+        one_evaluation=t_one,
+        ratio_scipy_over_one=ratio,
+        instants=n,
+        seconds_per_instant=t_many / n,
+    )
+    print(
+        f"\nexact top: one state {1e6 * t_one:.1f} µs (scipy DOP853 {t_scipy:.2f} s, ratio "
+        f"{ratio:.3g}); {n} instants {1e6 * t_many / n:.3f} µs each"
+    )
+    benchmark.pedantic(top.state, args=(float(t1),), rounds=100, iterations=1)
+    if enabled:
+        assert ratio >= EXACT_ONE_RATIO_REQUIRED
