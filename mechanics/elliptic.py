@@ -57,6 +57,8 @@ m = 1 − 1e-12 (where scipy's fast path is the inaccurate one).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import scipy.special as sc
 
@@ -510,3 +512,113 @@ def _third_kind_excess(u, n, m, m1):
         full = np.where(j != 0, _complete_tail(nn, qq), 0.0)
         out[rest] = tail + 2.0 * j * full
     return out
+
+
+# ------------------------------------------------ one argument in Python floats (issue 15)
+#
+# The same steps as the array functions above, operation for operation, on one float:
+# :class:`mechanics.tops.FreeAsymmetricTop` evaluates one instant ~20× faster through
+# them (numpy's per-call overhead, not arithmetic, is the cost of one instant).  Only
+# 0 ≤ m ≤ 1 with m1 given, as the top needs; ``K`` (``_quarter_period(p1)``) and the
+# trigonometric AGM ratios are the caller's, computed once per parameter.
+
+
+def _two_prod_scalar(a: float, b: float) -> tuple[float, float]:
+    p = a * b
+    ta = _SPLIT * a
+    ah = ta - (ta - a)
+    al = a - ah
+    tb = _SPLIT * b
+    bh = tb - (tb - b)
+    bl = b - bh
+    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+    return p, (e if math.isfinite(e) else 0.0)
+
+
+def _agm_ratios_scalar(p: float, p1: float, hyper: bool, ymax: float):
+    """:func:`_agm_ratios` of one parameter."""
+    a = 1.0
+    b = math.sqrt(p) if hyper else math.sqrt(p1)
+    c = math.sqrt(p1) if hyper else math.sqrt(p)
+    ratios = []
+    for _ in range(_N_AGM):
+        a_new = 0.5 * (a + b)
+        b = math.sqrt(a * b)
+        c = c * c / (4.0 * a_new)
+        a = a_new
+        ratios.append(c / a)
+        grow = math.exp(min(2.0 ** len(ratios) * a * ymax, 700.0)) if hyper else 1.0
+        if ratios[-1] * grow < 2.0**-64:
+            break
+    return a, ratios
+
+
+def _asinh_r_sinh_scalar(r: float, psi: float) -> float:
+    if psi <= 350.0:
+        return math.asinh(r * math.sinh(psi))
+    logy = (math.log(r) if r > 0 else -math.inf) + psi - math.log(2.0)
+    return logy + math.log(2.0) if logy > 40.0 else math.asinh(math.exp(logy))
+
+
+def _core_scalar(y: float, p: float, p1: float, trig_agm):
+    """:func:`_core` of one argument; ``trig_agm`` the (a, ratios) of p ≤ 1/2."""
+    if p <= 0.5:
+        a, ratios = trig_agm
+        phi = (2.0 ** len(ratios)) * a * y
+        for r in reversed(ratios):
+            phi = 0.5 * (phi + math.asin(r * math.sin(phi)))
+        s_ = math.sin(phi)
+        return s_, math.cos(phi), math.sqrt(1.0 - p * s_ * s_)
+    a, ratios = _agm_ratios_scalar(p, p1, True, y)
+    phi = (2.0 ** len(ratios)) * a * y
+    for r in reversed(ratios):
+        phi = 0.5 * (phi + _asinh_r_sinh_scalar(r, phi))
+    s_ = math.tanh(phi)
+    c_ = 1.0 / math.cosh(phi) if phi < 710.0 else 0.0
+    return s_, c_, math.sqrt(p1 + p * c_ * c_)
+
+
+def _reduced_scalar(u: float, p: float, p1: float, K: float, trig_agm):
+    """:func:`_reduced` of one argument: (j, s, snx, cnx, dnx)."""
+    finite = math.isfinite(K)
+    if finite:
+        K2 = 2.0 * K
+        j = float(round(u / K2))
+        prod, err = _two_prod_scalar(j, K2)
+        r = (u - prod) - err
+    else:
+        j, r = 0.0, u
+    s = -1.0 if r < 0 else 1.0
+    Kf = K if finite else math.inf
+    x = min(abs(r), Kf)
+    flip = x > 0.5 * Kf
+    y = Kf - x if flip else x
+    sy, cy, dy = _core_scalar(y, p, p1, trig_agm)
+    if flip:
+        kp = math.sqrt(p1)
+        return j, s, cy / dy, kp * sy / dy, kp / dy
+    return j, s, sy, cy, dy
+
+
+def _ellipj_scalar(u: float, p: float, p1: float, K: float, trig_agm):
+    """sn, cn, dn of one argument, 0 ≤ p ≤ 1 (:func:`ellipj`'s middle branch)."""
+    j, s, snx, cnx, dnx = _reduced_scalar(u, p, p1, K, trig_agm)
+    sign = 1.0 - 2.0 * (j % 2.0)
+    return sign * s * snx, sign * cnx, dnx
+
+
+def _third_kind_excess_scalar(u: float, n: float, p: float, p1: float, K: float, trig_agm, full):
+    """:func:`_third_kind_excess` of one argument; ``full`` = _complete_tail(n, p1)."""
+    if p1 <= 0:
+        a = math.sqrt(abs(n))
+        th = math.tanh(u)
+        neg = a * math.atan(a * th) if n < 0 else -a * math.atanh(a * th)
+        return (n * u + neg) / (1.0 - n)
+    j, s, snx, cnx, dnx = _reduced_scalar(u, p, p1, K, trig_agm)
+    S = s * snx
+    if S == 0 or n == 0:
+        tail = 0.0
+    else:
+        s2 = S * S
+        tail = (n / 3.0) * s2 * S * float(sc.elliprj(cnx * cnx, dnx * dnx, 1.0, 1.0 - n * s2))
+    return tail + 2.0 * j * (full if j != 0 else 0.0)

@@ -405,3 +405,64 @@ def test_a_subnormal_spin_keeps_its_direction() -> None:
     R = top.attitude(np.array([0.0, 1.0]))
     assert np.all(np.isfinite(R))
     np.testing.assert_allclose(R[1] @ R[1].T, np.eye(3), rtol=0, atol=8 * 2.0**-52)
+
+
+# ------------------------------------------------ one instant (issue 15, part 4)
+
+# A Python float t takes the one-instant path (math functions on floats, the array
+# path's steps in its order); it differs from the array path only by the rounding of
+# libm's against numpy's sin/asin/... and the order of the 3×3 products: measured
+# 5.9 eps (relative to |ω|, and absolute in R) on 37 tops × 6 times, t up to 1000
+# rotations.  Both paths meet the mpmath oracles with the same worst errors
+# (tests/stability/test_tops_stability.py, parametrised over the path).
+ONE_INSTANT_EPS = 32
+
+
+def _free_tops():
+    rng = np.random.default_rng(20261125)
+    cases = [
+        ((1.0, 2.0, 3.0), (0.4, 0.2, 1.0)),  # issue 15's top
+        ((1.0, 2.0, 3.0), (1.0, 0.1, 0.5)),
+        ((3.0, 1.0, 2.0), (0.3, 1.0, 0.01)),  # axis 1, unsorted moments
+        ((1.0, 1.0, 2.0), (0.3, 0.2, 1.0)),  # symmetric: uniform precession
+        ((1.0, 2.0, 2.0), (1.0, 0.3, 0.1)),
+        ((1.0, 2.0, 3.0), (1.0, 0.0, 0.5773502691896258)),  # near the separatrix
+    ]
+    cases += [(tuple(rng.uniform(1, 2, 3)), tuple(rng.normal(size=3))) for _ in range(12)]
+    return cases
+
+
+@pytest.mark.parametrize(("J", "w0"), _free_tops())
+def test_one_instant_path_agrees_with_the_array_path(J, w0):
+    top = tops.FreeAsymmetricTop(J, w0)
+    for t in (0.0, 0.3, 7.5, -3.0, 100.0, 6283.0):
+        w, R = top.omega(t), top.attitude(t)
+        w_arr, R_arr = top.omega(np.array([t]))[0], top.attitude(np.array([t]))[0]
+        assert w.shape == (3,)
+        assert R.shape == (3, 3)
+        assert np.abs(w - w_arr).max() <= ONE_INSTANT_EPS * EPS * np.abs(w_arr).max()
+        assert np.abs(R - R_arr).max() <= ONE_INSTANT_EPS * EPS
+        ws, Rs = top.state(t)
+        np.testing.assert_array_equal(ws, w)
+        np.testing.assert_array_equal(Rs, R)
+
+
+def test_state_is_omega_and_attitude_over_any_time_shape():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.4, 0.2, 1.0])
+    t = np.linspace(0.0, 50.0, 12).reshape(3, 4)
+    w, R = top.state(t)
+    np.testing.assert_array_equal(w, top.omega(t))
+    np.testing.assert_array_equal(R, top.attitude(t))
+    for steady in ([0.0, 0.0, 0.0], [0.0, 0.0, 1.5]):  # rest and a steady spin
+        top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], steady)
+        w, R = top.state(2.0)
+        np.testing.assert_array_equal(w, top.omega(2.0))
+        np.testing.assert_array_equal(R, top.attitude(2.0))
+
+
+def test_one_instant_path_refuses_what_the_array_path_refuses():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.4, 0.2, 1.0])
+    for bad in (math.nan, math.inf):
+        for fn in (top.omega, top.attitude, top.state):
+            with pytest.raises(NonFiniteError):
+                fn(bad)

@@ -51,7 +51,13 @@ def _reference():
     return json.loads(DATA.read_text())["free_top"]
 
 
-def test_free_top_near_separatrix_against_the_mpmath_ode_solution():
+def _at(fn, t: float, path: str):
+    """fn at one float time by the one-instant path (a Python float) or the array path."""
+    return fn(t) if path == "instant" else fn(np.array([t]))[0]
+
+
+@pytest.mark.parametrize("path", ["instant", "array"])
+def test_free_top_near_separatrix_against_the_mpmath_ode_solution(path):
     lines = []
     worst_w = worst_R = 0.0
     for case in _reference():
@@ -65,11 +71,11 @@ def test_free_top_near_separatrix_against_the_mpmath_ode_solution():
             t = float(s["t"])
             scale = 1 + lam * t
             ref = [mpmath.mpf(x) for x in s["omega"]]
-            w = top.omega(t)
+            w = _at(top.omega, t, path)
             e = max(abs(mpmath.mpf(float(a)) - r) for a, r in zip(w, ref, strict=True))
             ew = max(ew, float(e / (EPS * np.linalg.norm(w0) * scale)))
             if s["R"] is not None:
-                R = top.attitude(t).ravel()
+                R = _at(top.attitude, t, path).ravel()
                 e = max(
                     abs(mpmath.mpf(float(a)) - mpmath.mpf(r))
                     for a, r in zip(R, s["R"], strict=True)
@@ -80,7 +86,7 @@ def test_free_top_near_separatrix_against_the_mpmath_ode_solution():
             f"  J={J} ω0={w0.tolist()} {top.regime:10s} m1={top.m1:.3g}: "
             f"ω {ew:.3g} eps, R {eR:.3g} eps"
         )
-    print("\nfree top vs mpmath odefun (eps, per unit of phase):")  # shown with -s
+    print(f"\nfree top vs mpmath odefun, {path} path (eps, per unit of phase):")  # shown with -s
     print("\n".join(lines))
     assert worst_w <= TOP_EPS
     assert worst_R <= ATTITUDE_EPS
