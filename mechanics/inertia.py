@@ -234,9 +234,10 @@ def _jacobi(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
             done = np.ones(n, dtype=bool)
             for p, q in ((0, 1), (0, 2), (1, 2)):
                 apq = a[(p, q)]
-                small = np.abs(apq) <= np.maximum(
-                    0.5 * EPS * np.sqrt(np.abs(a[(p, p)] * a[(q, q)])), EPS * EPS * big
-                )
+                # √|a_pp| √|a_qq|, not √|a_pp a_qq|: the product overflows for entries
+                # beyond 1e154, and an infinite bound would stop the sweeps unrotated
+                geo = np.sqrt(np.abs(a[(p, p)])) * np.sqrt(np.abs(a[(q, q)]))
+                small = np.abs(apq) <= np.maximum(0.5 * EPS * geo, EPS * EPS * big)
                 done &= small
             if done.all():
                 break

@@ -388,6 +388,20 @@ def test_principal_axes_rows_are_eigenvectors_4_13():
         np.testing.assert_allclose(J @ R[i], moments[i] * R[i], rtol=0, atol=8 * EPS * 2.5)
 
 
+@pytest.mark.parametrize("scale", [1e-300, 1.0, 1e160, 1e300, 1e307])
+def test_principal_axes_at_any_scale_give_the_moments(scale):
+    """Regression: beyond 1e154 the convergence test formed √|a_pp a_qq|, whose product
+    overflowed to inf, so the sweeps stopped unrotated and returned the diagonal of a
+    rotated tensor as its moments (1.21, 1.39, 1.90 for 1, 1.5, 2).  Against LAPACK's
+    eigvalsh on the tensor scaled to 1 (an independent route); 16 eps of the largest
+    moment: Jacobi's error (the module's bound) and the rotation's rounding."""
+    R = matrix_from_rotvec([0.4, 0.1, -0.7])
+    J = I.rotate_inertia(np.diag([1.0, 1.5, 2.0]) * scale, R)
+    moments, _ = I.principal_axes(J)
+    want = np.linalg.eigvalsh(J / scale)
+    np.testing.assert_allclose(moments / scale, want, rtol=0, atol=16 * EPS * 2.0)
+
+
 def test_principal_axes_is_a_proper_rotation_with_fixed_signs():
     rng = np.random.default_rng(3)
     J = I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec(rng.normal(size=(200, 3))))
