@@ -697,6 +697,20 @@ def _finite_or_none(x):
     return x if math.isfinite(x) else None
 
 
+def warm_compiled() -> None:
+    """Run each compiled kernel once on a tiny problem before anything is timed: the
+    first call in a process compiles it (or loads numba's on-disk cache), which costs up
+    to seconds on a fresh clone and is not the method's cost (the JIT's cold and warm
+    figures are in the README; ``tools/jit_cost.py`` measures them)."""
+    J = np.array([1.0, 2.0, 3.0])
+    y0 = rigid_body_state(J * np.array([0.4, 0.2, 1.0]), np.eye(3))
+    for method, kw in (("rk4", {"h": 0.05}), ("dop853", {"rtol": 1e-6})):
+        integrate(free_rigid_body_rhs(J), y0, (0.0, 0.1), method=method, **kw)
+    L0, R0 = rigid_body_parts(y0)
+    for order in (2, 4, 6):
+        free_rigid_body_splitting(J, L0, R0, (0.0, 0.1), 0.05, order=order)
+
+
 def sweep(problem: Problem, *, repeats: int, budget: float, progress: _Progress) -> dict:
     """Run every method of ``problem`` over its parameters; records and skipped points."""
     records, skipped = [], []
@@ -1208,6 +1222,7 @@ def run_study(
         },
         "problems": {},
     }
+    warm_compiled()
     try:
         for p in problems:
             study["problems"][p.name] = sweep(p, repeats=repeats, budget=budget, progress=bar)
