@@ -191,13 +191,13 @@ def math_from_text(text: str) -> str | None:
 def _equation(text: str) -> str | None:
     """An equation chain as HTML: one ``<math>`` when the whole chain renders, else
     each side that renders as its own ``<math>`` and the others as text; None when no
-    side renders."""
+    side with an operation renders (a lone symbol in MathML beside text is no help)."""
     whole = math_from_text(text)
     if whole is not None:
         return whole
     sides = [s.strip() for s in text.split("=")]
     shown = [math_from_text(s) if s else None for s in sides]
-    if all(m is None for m in shown):
+    if not any(m is not None and "<mo>" in m for m in shown):
         return None
     return " = ".join(html.escape(s) if m is None else m for s, m in zip(sides, shown, strict=True))
 
