@@ -9,6 +9,7 @@
     bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
     bodycheck demo --list
     bodycheck bench [--quick] [--out DIR] [--repeats N]
+    bodycheck site OUT
 
 Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale, or a scene missed the
 book), 2 bad usage (including a bad scene file: one line naming file, field and reason).
@@ -114,6 +115,8 @@ def _parser() -> argparse.ArgumentParser:
         metavar="N",
         help="timing repeats, the median is taken (default 3; 1 with --quick)",
     )
+    si = sub.add_parser("site", help="write the book as a static site (pages, MathML, plots)")
+    si.add_argument("out", metavar="OUT", help="output folder (new, empty or a previous site)")
     return p
 
 
@@ -487,6 +490,21 @@ def _cmd_bench(args) -> int:
     return 0
 
 
+def _cmd_site(args) -> int:
+    from identities.cli.site import SiteError, build_site
+
+    t0 = time.perf_counter()
+    try:
+        pages = build_site(args.out)
+    except SiteError as exc:
+        raise UsageError(str(exc)) from None
+    print(
+        f"wrote {len(pages)} pages to {args.out} in {time.perf_counter() - t0:.1f} s; "
+        f"open {Path(args.out) / 'index.html'}"
+    )
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bodycheck`` console script."""
     try:
@@ -499,6 +517,7 @@ def main(argv: list[str] | None = None) -> int:
             "scene": _cmd_scene,
             "demo": _cmd_demo,
             "bench": _cmd_bench,
+            "site": _cmd_site,
         }[args.command]
         return handler(args)
     except UsageError as exc:

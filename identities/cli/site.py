@@ -1,0 +1,435 @@
+"""The book as pages: ``bodycheck site OUT/`` writes a static site (no server, no
+network, no JavaScript): an index, one page per chapter with every book item, its
+verdict and its check, the errata on one page, a few built-in scenes with their
+plots, and the work-precision plot.
+
+Conventions
+-----------
+- The verdict of an item is the registry's static status (``verified``, ``erratum``,
+  ``definition``, ``pending``), as in CHECKS.md; building the site runs no proof
+  (``bodycheck check`` does), only the few scenes whose plots it shows.
+- Equations are MathML printed by sympy (``printer="presentation"``), which current
+  browsers render offline. A piece of a check's text is shown as MathML only when it
+  is an equation chain in the small notation :func:`math_from_text` reads (one-letter
+  symbols with subscripts, Greek letters, integers, ``+ − / ² ³ √( ) ½``, products
+  written by juxtaposition) *and* the rendering keeps the text's symbols and numbers
+  in the text's order (:func:`leaves_of_text` against :func:`leaves_of_mathml`);
+  everything else is shown as the text itself. So a rendering never differs from the
+  text it stands for, beyond layout (fractions stacked, roots drawn).
+- The output folder holds a marker file :data:`MARKER`: a folder that exists, is not
+  empty and lacks it is refused (it is not a previous site); a previous site is
+  replaced.
+- Every link is relative, so the folder can be copied anywhere and opened with
+  ``file://``.
+"""
+
+from __future__ import annotations
+
+import html
+import re
+import shutil
+import tokenize
+from collections import defaultdict
+from pathlib import Path
+
+__all__ = [
+    "MARKER",
+    "SCENES",
+    "SiteError",
+    "build_site",
+    "leaves_of_mathml",
+    "leaves_of_text",
+    "math_from_text",
+]
+
+#: the marker file that says "this folder is a bodycheck site"
+MARKER = ".bodycheck-site"
+#: built-in scenes shown with their plots (each runs in well under a second)
+SCENES = ("bouncing_ball", "heavy_top", "free_top_flip")
+#: the work-precision plot of the committed study (``make bench`` rewrites it)
+_BENCH = Path(__file__).resolve().parents[2] / "docs" / "bench"
+
+_GREEK = {
+    "α": "alpha",
+    "β": "beta",
+    "γ": "gamma",
+    "δ": "delta",
+    "ε": "epsilon",
+    "θ": "theta",
+    "κ": "kappa",
+    "λ": "lamda",
+    "μ": "mu",
+    "ν": "nu",
+    "ξ": "xi",
+    "ρ": "rho",
+    "σ": "sigma",
+    "τ": "tau",
+    "φ": "phi",
+    "χ": "chi",
+    "ψ": "psi",
+    "ω": "omega",
+    "Ω": "Omega",
+    "Φ": "Phi",
+    "Ψ": "Psi",
+    "Δ": "Delta",
+    "Γ": "Gamma",
+    "Λ": "Lamda",
+    "Θ": "Theta",
+    "ℓ": "ell",
+}
+#: one token of the notation: a symbol (letter, optional digits or _subscript), an
+#: integer, an operator, a parenthesis, a power sign, a root or a half
+_TOKEN = re.compile(
+    r"\s*(?:(?P<sym>[A-Za-z" + "".join(_GREEK) + r"](?:_[A-Za-z0-9]+|[0-9]+)?)"
+    r"|(?P<num>[0-9]+)|(?P<op>[-+/=])|(?P<open>\()|(?P<close>\))|(?P<pow>[²³])"
+    r"|(?P<root>√\()|(?P<half>½)|(?P<pi>π))"
+)
+#: a trailing book reference such as "(3.76)" or "(5.50)-(5.52)"
+_REF = re.compile(r"\s*(\(\d\.\d+\)(?:\s*-\s*\(\d\.\d+\))?)\s*$")
+
+
+class SiteError(ValueError):
+    """The site cannot be written where it was asked (the message says why)."""
+
+
+def _ascii(text: str) -> tuple[str, dict] | None:
+    """``text`` in sympy's input syntax, products made explicit, with the symbols it
+    names; None when ``text`` is not in the notation (prose, decimals, dots, …)."""
+    import sympy as sp
+
+    text = text.replace("−", "-").strip()
+    out: list[str] = []
+    names: dict[str, object] = {}
+    pos, prev = 0, None  # prev: did the last token end an operand?
+    while pos < len(text):
+        m = _TOKEN.match(text, pos)
+        if m is None or m.end() == pos:
+            return None
+        pos = m.end()
+        kind = m.lastgroup
+        starts_operand = kind in ("sym", "num", "open", "root", "half", "pi")
+        if starts_operand and prev:
+            out.append("*")  # a product written by juxtaposition
+        if kind == "sym":
+            word = m.group("sym")
+            if pos < len(text) and text[pos] == "(":
+                return None  # f(x) or f·(x): ambiguous, shown as text
+            key = "s" + str(len(names))
+            names[key] = sp.Symbol(word)
+            out.append(key)
+        elif kind == "num":
+            out.append(m.group("num"))
+        elif kind == "pi":
+            out.append("pi")
+        elif kind == "half":
+            out.append("(1/2)")
+        elif kind == "root":
+            out.append("sqrt(")
+        elif kind == "pow":
+            out.append("**" + {"²": "2", "³": "3"}[m.group("pow")])
+        else:
+            out.append(m.group(kind))
+        prev = kind in ("sym", "num", "close", "pow", "half", "pi")
+    return "".join(out), names
+
+
+def leaves_of_text(text: str) -> list[str]:
+    """The symbols' letters and subscripts and the numbers of ``text``, in order
+    (``m_0`` gives ``m``, ``0``; ``v²`` gives ``v``, ``2``; ``½`` gives ``1``, ``2``)."""
+    out: list[str] = []
+    for m in _TOKEN.finditer(text.replace("−", "-")):
+        kind = m.lastgroup
+        if kind == "sym":
+            word = m.group("sym")
+            head, _, sub = word.partition("_")
+            if not sub:
+                head, sub = re.match(r"(\D)(\d*)$", word).groups()
+            out += [head, sub] if sub else [head]
+        elif kind == "num":
+            out.append(m.group("num"))
+        elif kind == "pow":
+            out.append({"²": "2", "³": "3"}[m.group("pow")])
+        elif kind == "half":
+            out += ["1", "2"]
+        elif kind == "pi":
+            out.append("π")
+    return out
+
+
+def leaves_of_mathml(markup: str) -> list[str]:
+    """The contents of the ``<mi>`` and ``<mn>`` elements of ``markup``, in order."""
+    return [html.unescape(t) for t in re.findall(r"<m[in]>([^<]*)</m[in]>", markup)]
+
+
+def math_from_text(text: str) -> str | None:
+    """``text`` (an expression or an equation chain ``A = B = …``) as a ``<math>`` element, or None
+    when it is outside the notation or sympy's rendering would not keep its symbols
+    and numbers in order (see the module's Conventions)."""
+    import sympy as sp
+    from sympy.printing.mathml import mathml
+
+    sides = text.split("=")
+    if not all(s.strip() for s in sides):
+        return None
+    parts = []
+    for side in sides:
+        read = _ascii(side)
+        if read is None:
+            return None
+        source, names = read
+        try:
+            expr = sp.parse_expr(source, local_dict=names, evaluate=False)
+        except (SyntaxError, TypeError, ValueError, tokenize.TokenError):
+            return None
+        parts.append(mathml(expr, printer="presentation", order="none"))
+    markup = "<mo>=</mo>".join(parts)
+    if leaves_of_mathml(markup) != leaves_of_text(text):
+        return None
+    return f'<math display="inline"><mrow>{markup}</mrow></math>'
+
+
+def _equation(text: str) -> str | None:
+    """An equation chain as HTML: one ``<math>`` when the whole chain renders, else
+    each side that renders as its own ``<math>`` and the others as text; None when no
+    side with an operation renders (a lone symbol in MathML beside text is no help)."""
+    whole = math_from_text(text)
+    if whole is not None:
+        return whole
+    sides = [s.strip() for s in text.split("=")]
+    shown = [math_from_text(s) if s else None for s in sides]
+    if not any(m is not None and "<mo>" in m for m in shown):
+        return None
+    return " = ".join(html.escape(s) if m is None else m for s, m in zip(sides, shown, strict=True))
+
+
+def _rich(text: str) -> str:
+    """``text`` as HTML: its equation pieces (between ``,``, ``;`` and ``:``) as MathML
+    where :func:`math_from_text` renders them, the rest escaped."""
+    out = []
+    for piece in re.split(r"([,;:]\s+)", text):
+        body, ref = piece, ""
+        m = _REF.search(piece)
+        if m:
+            body, ref = piece[: m.start()], " " + m.group(1)
+        rendered = _equation(body.strip()) if "=" in body else None
+        if rendered is None:
+            out.append(html.escape(piece))
+        else:
+            lead = body[: len(body) - len(body.lstrip())]
+            out.append(html.escape(lead) + rendered + html.escape(ref))
+    return "".join(out)
+
+
+_CSS = """
+body { font-family: sans-serif; max-width: 72em; margin: 1em auto; padding: 0 1em;
+       color: #111; background: #fff; line-height: 1.4; }
+nav a { margin-right: 1em; }
+table { border-collapse: collapse; width: 100%; }
+th, td { border-bottom: 1px solid #ccc; padding: 0.25em 0.5em; text-align: left;
+         vertical-align: top; }
+.verified { color: #176117; } .erratum { color: #a01010; font-weight: bold; }
+.definition { color: #444; } .pending { color: #a06000; }
+math { font-size: 1.1em; }
+code { font-size: 0.9em; }
+img { max-width: 100%; }
+"""
+
+
+def _page(title: str, body: str, chapters: list[int]) -> str:
+    nav = " ".join(
+        ['<a href="index.html">index</a>']
+        + [f'<a href="ch{c}.html">chapter {c}</a>' for c in chapters]
+        + [
+            '<a href="errata.html">errata</a>',
+            '<a href="scenes.html">scenes</a>',
+            '<a href="workprecision.html">work-precision</a>',
+        ]
+    )
+    return (
+        "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
+        f"<title>{html.escape(title)}</title>"
+        "<link rel='stylesheet' href='style.css'></head>\n"
+        f"<body><nav>{nav}</nav>\n<h1>{html.escape(title)}</h1>\n{body}\n</body></html>\n"
+    )
+
+
+def _check_anchor(check_id: str) -> str:
+    return "check-" + re.sub(r"[^A-Za-z0-9-]", "-", check_id)
+
+
+def _chapter_page(ch: int, rows: list, regs: list) -> str:
+    home = {c.id: c.chapter for c in regs}
+    lines = [
+        "<p>Every numbered equation (eq), worked example (E) and problem (P) of the "
+        "chapter, its verdict and the check behind it. Verdicts as in CHECKS.md: "
+        "<span class='verified'>verified</span> (a check proves or reproduces it), "
+        "<span class='erratum'>erratum</span> (the printed form is shown false, the "
+        "corrected form proved), <span class='definition'>definition</span>.</p>",
+        "<h2>Items</h2>",
+        "<table><tr><th>item</th><th>page</th><th>section</th><th>verdict</th><th>check</th></tr>",
+    ]
+    for r in rows:
+        cells = []
+        for c in r.checks:
+            target = home.get(c.id)
+            page = f"ch{target}.html" if target else "named.html"
+            cells.append(
+                f"<a href='{page}#{_check_anchor(c.id)}'><code>{html.escape(c.id)}</code></a> "
+                f"{html.escape(c.title)}"
+            )
+        lines.append(
+            f"<tr id='{r.item.id}'><td>{r.item.id}</td><td>{r.item.page}</td>"
+            f"<td>{html.escape(r.item.section)}</td><td class='{r.status}'>{r.status}</td>"
+            f"<td>{'<br>'.join(cells) or '-'}</td></tr>"
+        )
+    lines.append("</table>")
+    lines.append("<h2>Checks</h2>")
+    lines += [_check_block(c) for c in regs if c.chapter == ch]
+    return "\n".join(lines)
+
+
+def _check_block(c) -> str:
+    parts = [
+        f"<section id='{_check_anchor(c.id)}'><h3><code>{html.escape(c.id)}</code> "
+        f"{html.escape(c.title)}</h3>",
+        f"<p>kind: {c.kind}; verdict: <span class='{c.status}'>{c.status}</span>; "
+        f"covers: {html.escape(', '.join(c.covers) or '-')}"
+        + (f"; uses definitions {html.escape(', '.join(c.defines))}" if c.defines else "")
+        + f"; code: <code>{html.escape(c.where)}</code></p>",
+    ]
+    if c.statement:
+        parts.append(f"<p class='statement'>{_rich(c.statement)}</p>")
+    if c.reading:
+        parts.append(f"<p>reading of the text: {_rich(c.reading)}</p>")
+    if c.errata:
+        parts.append(
+            f"<p class='erratum'>printed (false): {_rich(c.printed)}</p>"
+            f"<p>corrected: {_rich(c.corrected)}</p>"
+        )
+    parts.append("</section>")
+    return "\n".join(parts)
+
+
+def _errata_page(regs: list) -> str:
+    lines = [
+        "<p>Where the book's printed form is false: the check shows the printed form "
+        "failing and proves the corrected one.</p>"
+    ]
+    for c in regs:
+        if not c.errata:
+            continue
+        page = f"ch{c.chapter}.html" if c.chapter else "named.html"
+        lines.append(
+            f"<section id='{_check_anchor(c.id)}'><h2>{html.escape(', '.join(c.errata))}: "
+            f"{html.escape(c.title)}</h2>"
+            f"<p>check <a href='{page}#{_check_anchor(c.id)}'><code>{html.escape(c.id)}</code></a>"
+            f", kind {c.kind}</p>"
+            f"<p class='erratum'>printed (false): {_rich(c.printed)}</p>"
+            f"<p>corrected: {_rich(c.corrected)}</p></section>"
+        )
+    return "\n".join(lines)
+
+
+def _scenes_page(out: Path) -> str:
+    from identities.book.scenes.compare import load_book_scene, run_book_scene
+    from identities.cli.scene_plots import plot_result
+    from mechanics.scenes import builtin_scenes
+
+    known = builtin_scenes()
+    lines = [
+        "<p>Built-in scenes, simulated while the site was built and compared with the "
+        "book (<code>bodycheck demo NAME --plot OUT.png</code> runs one).</p>"
+    ]
+    for name in SCENES:
+        result = run_book_scene(load_book_scene(known[name]))
+        plot_result(result, out / f"scene-{name}.svg")
+        verdict = "PASSED" if result.passed else "FAILED"
+        lines.append(
+            f"<section id='{name}'><h2>{html.escape(result.scene.title or name)}</h2>"
+            f"<p><code>bodycheck demo {name}</code>: {verdict}</p>"
+            f"<img src='scene-{name}.svg' alt='plots of the scene {name}'>"
+            f"<pre>{html.escape(result.summary())}</pre></section>"
+        )
+    return "\n".join(lines)
+
+
+def _prepare(out: Path) -> None:
+    """Make ``out`` an empty folder: refuse one that is not empty and not a site."""
+    if out.exists() and not out.is_dir():
+        raise SiteError(f"output {out} exists and is not a folder")
+    if out.is_dir() and any(out.iterdir()) and not (out / MARKER).is_file():
+        raise SiteError(
+            f"output folder {out} exists, is not empty and is not a previous site "
+            f"(no {MARKER} file): refusing to write into it; give a new or empty folder"
+        )
+    if out.is_dir():
+        shutil.rmtree(out)
+    out.mkdir(parents=True)
+
+
+def build_site(out, *, scenes: bool = True) -> list[Path]:
+    """Write the site into the folder ``out``; return the pages written.
+
+    Raises :class:`SiteError` when ``out`` exists, is not empty and holds no
+    :data:`MARKER` (it is not a previous site).
+    """
+    from identities.verify.catalogue import checks, item_rows
+
+    out = Path(out)
+    _prepare(out)
+    rows, regs = item_rows(), checks()
+    by_ch: dict[int, list] = defaultdict(list)
+    for r in rows:
+        by_ch[r.item.chapter].append(r)
+    chapters = sorted(by_ch)
+    pages: dict[str, tuple[str, str]] = {}
+    for ch in chapters:
+        pages[f"ch{ch}.html"] = (f"Chapter {ch}", _chapter_page(ch, by_ch[ch], regs))
+    named = [c for c in regs if c.chapter is None]
+    pages["named.html"] = (
+        "Named results",
+        "\n".join(_check_block(c) for c in named) or "<p>none</p>",
+    )
+    pages["errata.html"] = ("Errata", _errata_page(regs))
+    if scenes:
+        pages["scenes.html"] = ("Scenes", _scenes_page(out))
+    else:
+        pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
+    png = _BENCH / "workprecision.png"
+    if png.is_file():
+        shutil.copyfile(png, out / "workprecision.png")
+        bench = (
+            "<p>What accuracy costs: error against time for each method on the reference "
+            "problems with exact solutions (<code>bodycheck bench</code>, "
+            "<code>docs/bench/</code>).</p>"
+            "<img src='workprecision.png' alt='work-precision plot'>"
+        )
+    else:
+        bench = "<p>No work-precision study found (run <code>bodycheck bench</code>).</p>"
+    pages["workprecision.html"] = ("Work-precision", bench)
+    counts = defaultdict(int)
+    for r in rows:
+        counts[r.status] += 1
+    index = [
+        "<p>H. Essén, <i>Dynamics of Bodies</i> (KTH, 1996), executable and checked: "
+        f"{len(rows)} book items behind {len(regs)} checks ("
+        + ", ".join(f"{n} {s}" for s, n in sorted(counts.items()))
+        + ").</p><ul>",
+        *(
+            f"<li><a href='ch{ch}.html'>Chapter {ch}</a>: {len(by_ch[ch])} items</li>"
+            for ch in chapters
+        ),
+        f"<li><a href='named.html'>Named results</a>: {len(named)} checks</li>",
+        f"<li><a href='errata.html'>Errata</a>: {sum(bool(c.errata) for c in regs)} checks</li>",
+        "<li><a href='scenes.html'>Scenes</a></li>",
+        "<li><a href='workprecision.html'>Work-precision</a></li></ul>",
+    ]
+    pages["index.html"] = ("bodycheck: the book, checked", "\n".join(index))
+    written = []
+    for name, (title, body) in pages.items():
+        path = out / name
+        path.write_text(_page(title, body, chapters), encoding="utf-8")
+        written.append(path)
+    (out / "style.css").write_text(_CSS.lstrip(), encoding="utf-8")
+    (out / MARKER).write_text("written by bodycheck site\n", encoding="utf-8")
+    return written

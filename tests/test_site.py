@@ -1,0 +1,290 @@
+"""``bodycheck site``: the static site, its links, its MathML and a real browser.
+
+The site is built once per module into a temporary folder. The link checker and the
+MathML checks are pure Python and always run; the browser tests run headless
+Chromium (``/usr/bin/chromium``, installed by ``.ci/run``) and are skipped with a
+message saying how to install it where it is missing.
+
+What the browser tests compare:
+
+- every page loads: ``--dump-dom`` gives the rendered DOM, non-empty and with the
+  page's title, and Chromium logs no console message (``--enable-logging=stderr``
+  marks them ``CONSOLE``), e.g. no resource that failed to load;
+- equations are rendered, not shown as markup: the DOM of a chapter page holds
+  ``<math>`` elements, and its visible text holds no ``<math``, ``<mi>`` or
+  ``&InvisibleTimes;``;
+- the screenshots of the errata page and of a chapter page are not blank, and
+  swapping the ``<math>`` elements for plain ``<span>`` elements (the negative
+  control: the same tokens shown as text) changes the errata screenshot, so the
+  browser lays the MathML out as mathematics.
+"""
+
+from __future__ import annotations
+
+import html
+import re
+import shutil
+import subprocess
+from pathlib import Path
+from urllib.parse import unquote, urlsplit
+
+import pytest
+
+from identities.cli.main import main
+from identities.cli.site import MARKER, build_site, leaves_of_text, math_from_text
+
+CHROMIUM = Path("/usr/bin/chromium")
+NO_CHROMIUM = "headless Chromium not found at /usr/bin/chromium (apt-get install -y chromium)"
+#: a screenshot counts as not blank when this share of its pixels is not white: the
+#: navigation bar and the title alone cover about 1 % of a 1200 x 900 page
+MIN_INK = 0.005
+#: a browser run that takes longer is hung (a page here loads in about a second)
+BROWSER_TIMEOUT_S = 60
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("site") / "out"
+    build_site(out)
+    return out
+
+
+def _links(page: Path) -> list[str]:
+    return re.findall(r"""(?:href|src)=['"]([^'"]+)['"]""", page.read_text("utf-8"))
+
+
+def _ids(page: Path) -> set[str]:
+    return set(re.findall(r"""\bid=['"]([^'"]+)['"]""", page.read_text("utf-8")))
+
+
+def broken_links(root: Path) -> list[str]:
+    """Every href/src of every page under ``root`` that does not resolve to a file
+    (and, with a #fragment, to an element id in it); absolute URLs count as broken:
+    the site works offline."""
+    broken = []
+    for page in sorted(root.rglob("*.html")):
+        for link in _links(page):
+            parts = urlsplit(link)
+            if parts.scheme or parts.netloc:
+                broken.append(f"{page.name}: {link} (not relative)")
+                continue
+            target = (page.parent / unquote(parts.path)) if parts.path else page
+            if not target.is_file():
+                broken.append(f"{page.name}: {link} (no file)")
+            elif parts.fragment and parts.fragment not in _ids(target):
+                broken.append(f"{page.name}: {link} (no id {parts.fragment!r})")
+    return broken
+
+
+def test_site_has_every_page_and_its_marker(site):
+    names = {p.name for p in site.iterdir()}
+    chapters = {f"ch{n}.html" for n in range(1, 9)}
+    assert chapters | {"index.html", "errata.html", "scenes.html", "workprecision.html"} <= names
+    assert MARKER in names
+    assert {"scene-bouncing_ball.svg", "scene-heavy_top.svg", "workprecision.png"} <= names
+
+
+def test_every_book_item_has_a_row_with_its_verdict(site):
+    from identities.verify.catalogue import item_rows
+
+    pages = {n: (site / f"ch{n}.html").read_text("utf-8") for n in range(1, 9)}
+    for r in item_rows():
+        row = re.search(f"<tr id='{re.escape(r.item.id)}'>.*?</tr>", pages[r.item.chapter])
+        assert row, f"{r.item.id} has no row on ch{r.item.chapter}.html"
+        assert f"class='{r.status}'>{r.status}<" in row.group(0), r.item.id
+
+
+def test_every_link_of_the_site_resolves(site):
+    assert broken_links(site) == []
+
+
+def test_the_link_checker_finds_a_broken_link(site, tmp_path):
+    copy = tmp_path / "copy"
+    shutil.copytree(site, copy)
+    (copy / "errata.html").unlink()
+    (copy / "extra.html").write_text("<a href='ch1.html#no-such-id'>x</a>", encoding="utf-8")
+    broken = broken_links(copy)
+    assert any("errata.html (no file)" in b for b in broken)
+    assert any("no-such-id" in b for b in broken)
+
+
+def test_the_errata_page_has_every_erratum_and_equations(site):
+    from identities.verify.catalogue import checks
+
+    text = (site / "errata.html").read_text("utf-8")
+    for c in checks():
+        if c.errata:
+            assert f"#check-{c.id.replace('.', '-')}'" in text, c.id
+    assert text.count("<math") >= 5
+
+
+def test_mathml_keeps_the_texts_symbols_in_order():
+    markup = math_from_text("T_p = 2π √(τ_0/J_z)")
+    assert markup is not None
+    assert markup.startswith("<math")
+    assert "<msqrt>" in markup
+    assert "<mfrac>" in markup
+    assert "<mi>&pi;</mi>" in markup
+    assert leaves_of_text("T_p = 2π √(τ_0/J_z)") == ["T", "p", "2", "π", "τ", "0", "J", "z"]
+
+
+@pytest.mark.parametrize(
+    ("text", "why"),
+    [
+        ("T = 2π √(2τ_0/(m R²))", "sympy prints R² before m: the order would differ"),
+        ("E = ½ m v²", "sympy prints m v²/2: the ½ would move"),
+        ("g = 9.8 kg/s²", "a decimal and a unit are outside the notation"),
+        ("v_j(t + Δt) = 0", "f(x) could be a product or a function"),
+        ("rod m = 75 kg", "prose"),
+        ("x = (a", "unbalanced"),
+    ],
+)
+def test_text_outside_the_notation_stays_text(text, why):
+    assert math_from_text(text) is None, why
+
+
+def test_a_folder_that_is_not_a_site_is_refused(tmp_path, capsys):
+    out = tmp_path / "mine"
+    out.mkdir()
+    (out / "notes.txt").write_text("keep me", encoding="utf-8")
+    assert main(["site", str(out)]) == 2
+    err = capsys.readouterr().err
+    assert str(out) in err
+    assert MARKER in err
+    assert "not a previous site" in err
+    assert (out / "notes.txt").read_text(encoding="utf-8") == "keep me"
+
+
+def test_a_previous_site_is_replaced(site, tmp_path):
+    out = tmp_path / "again"
+    shutil.copytree(site, out)
+    (out / "stale.html").write_text("old", encoding="utf-8")
+    build_site(out, scenes=False)
+    assert not (out / "stale.html").exists()
+    assert (out / MARKER).is_file()
+    assert (out / "ch1.html").is_file()
+
+
+def _chromium(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
+    profile = tmp_path / "profile"
+    profile.mkdir(exist_ok=True)
+    flags = [
+        "--headless",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--disable-quic",
+        "--no-first-run",
+        "--disable-background-networking",
+        "--disable-component-update",
+        "--disable-sync",
+        f"--user-data-dir={profile}",
+    ]
+    return subprocess.run(
+        [str(CHROMIUM), *flags, *args],
+        capture_output=True,
+        text=True,
+        timeout=BROWSER_TIMEOUT_S,
+        check=False,
+    )
+
+
+def _dump(tmp_path: Path, page: Path) -> tuple[str, list[str]]:
+    """The rendered DOM of ``page`` and Chromium's console messages."""
+    run = _chromium(tmp_path, "--enable-logging=stderr", "--v=0", "--dump-dom", page.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    return run.stdout, [line for line in run.stderr.splitlines() if "CONSOLE" in line]
+
+
+def _ink(png: Path) -> float:
+    """The share of pixels of ``png`` that are not white."""
+    import matplotlib.image
+
+    img = matplotlib.image.imread(png)[..., :3]
+    return float((img.min(axis=-1) < 0.9).mean())
+
+
+def _screenshot(tmp_path: Path, page: Path, png: Path) -> Path:
+    run = _chromium(tmp_path, f"--screenshot={png}", "--window-size=1200,900", page.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert png.is_file(), run.stderr[-2000:]
+    return png
+
+
+def _visible_text(dom: str) -> str:
+    return html.unescape(re.sub(r"<[^>]+>", " ", dom))
+
+
+needs_chromium = pytest.mark.skipif(not CHROMIUM.exists(), reason=NO_CHROMIUM)
+
+
+@needs_chromium
+def test_every_page_loads_in_chromium_without_console_messages(site, tmp_path):
+    for page in sorted(site.glob("*.html")):
+        dom, console = _dump(tmp_path, page)
+        assert "<h1>" in dom, page.name
+        assert "</html>" in dom, page.name
+        assert console == [], f"{page.name}: {console}"
+
+
+@needs_chromium
+def test_the_console_check_sees_an_error(tmp_path):
+    page = tmp_path / "bad.html"
+    page.write_text(
+        "<!DOCTYPE html><h1>x</h1><script>console.error('boom')</script>", encoding="utf-8"
+    )
+    _, console = _dump(tmp_path, page)
+    assert any("boom" in line for line in console)
+
+
+def _flattened(page: Path) -> Path:
+    """A copy of ``page`` beside the site with every MathML element turned into a
+    ``<span>``: the same tokens, shown as plain text (the negative control)."""
+    control = page.parent.parent / f"flat-{page.name}"
+    text = page.read_text("utf-8")
+    control.write_text(re.sub(r"<(/?)(?:math|m[a-z]+)\b[^>]*>", r"<\1span>", text), "utf-8")
+    shutil.copy(page.parent / "style.css", control.parent / "style.css")
+    return control
+
+
+def _changed(a: Path, b: Path) -> float:
+    """The share of pixels that differ between two screenshots of the same size."""
+    import matplotlib.image
+
+    x, y = matplotlib.image.imread(a), matplotlib.image.imread(b)
+    assert x.shape == y.shape
+    return float((abs(x - y).max(axis=-1) > 0.1).mean())
+
+
+#: the share of pixels that must change when MathML becomes text: one stacked
+#: fraction or root moves a line's worth of text (measured: 5.5 % on chapter 4 at
+#: 1200 x 6000, 6.0 % on the errata page at 1200 x 900)
+MIN_CHANGED = 0.001
+
+
+@needs_chromium
+def test_chapter_page_shows_equations_not_markup(site, tmp_path):
+    page = site / "ch4.html"
+    dom, _ = _dump(tmp_path, page)
+    assert dom.count("<math") >= 10
+    visible = _visible_text(dom)
+    for raw in ("<math", "<mi>", "<mfrac", "InvisibleTimes"):
+        assert raw not in visible, raw
+    # tall enough to reach the checks below the items table
+    size = "--window-size=1200,6000"
+    shots = []
+    for source, name in ((page, "ch4.png"), (_flattened(page), "flat.png")):
+        png = tmp_path / name
+        run = _chromium(tmp_path, f"--screenshot={png}", size, source.as_uri())
+        assert run.returncode == 0, run.stderr[-2000:]
+        shots.append(png)
+    assert _ink(shots[0]) > MIN_INK
+    assert _changed(*shots) > MIN_CHANGED, "the chapter's MathML looks like plain text"
+
+
+@needs_chromium
+def test_errata_screenshot_shows_mathml_laid_out(site, tmp_path):
+    page = site / "errata.html"
+    rendered = _screenshot(tmp_path, page, tmp_path / "errata.png")
+    assert _ink(rendered) > MIN_INK
+    flat = _screenshot(tmp_path, _flattened(page), tmp_path / "flat.png")
+    assert _changed(rendered, flat) > MIN_CHANGED, "the errata's MathML looks like plain text"
