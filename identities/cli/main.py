@@ -1,7 +1,7 @@
 """The ``bodycheck`` command.
 
     bodycheck check [--chapter N] [--id ID ...] [--kind KIND] [--json] [-j N] [--timings N]
-    bodycheck explain ID|TOPIC [--json]
+    bodycheck explain ID|TOPIC [--json] [--latex]
     bodycheck search TOPIC [--json]
     bodycheck catalogue [--write PATH]
     bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
@@ -78,6 +78,9 @@ def _parser() -> argparse.ArgumentParser:
         help="a check id, a book item (eq4.38, E6.1, P2.6) or a topic (parallel-axis)",
     )
     e.add_argument("--json", action="store_true", help="print id, status and quantities (srepr)")
+    e.add_argument(
+        "--latex", action="store_true", help="print the algebra as LaTeX instead of pretty text"
+    )
     f = sub.add_parser("search", help="find checks by topic words or a theorem's name")
     f.add_argument(
         "topic", nargs="+", metavar="TOPIC", help='e.g. restitution, "Euler\'s equations"'
@@ -276,10 +279,56 @@ def _timings_table(outcomes: list[Outcome], n: int) -> str:
     return "\n".join(lines)
 
 
+#: a side larger than this (sympy's operation count) is summarised, not printed: a
+#: 3 × 3 tensor of a few terms each prints in a screen, a full expansion does not
+SHOW_OPS = 400
+
+
+def _too_large(expr) -> str | None:
+    import sympy as sp
+
+    try:
+        ops = int(sp.count_ops(expr))
+    except (TypeError, AttributeError, ValueError):
+        return None
+    return f"(an expression of {ops} operations, not shown)" if ops > SHOW_OPS else None
+
+
 def _pretty(expr) -> str:
     import sympy as sp
 
-    return sp.pretty(expr, use_unicode=True, wrap_line=False)
+    return _too_large(expr) or sp.pretty(expr, use_unicode=True, wrap_line=False)
+
+
+def _latex(expr) -> str:
+    import sympy as sp
+
+    return _too_large(expr) or sp.latex(expr)
+
+
+def _is_zero_literal(x) -> bool:
+    import sympy as sp
+
+    if isinstance(x, sp.MatrixBase):
+        return x.is_zero_matrix is True
+    return x == 0
+
+
+def _indent(text: str, n: int) -> str:
+    return "\n".join(" " * n + line for line in text.splitlines())
+
+
+def _simplified(expr):
+    """``derived − printed`` as simplify gives it (entrywise), for reading: the step's
+    own record keeps the difference as it was formed."""
+    import sympy as sp
+
+    if isinstance(expr, sp.MatrixBase):
+        return expr.applyfunc(sp.simplify)
+    try:
+        return sp.simplify(expr)
+    except (TypeError, AttributeError):
+        return expr
 
 
 def _topic_matches(query: str) -> list:
@@ -366,10 +415,21 @@ def _cmd_explain(args) -> int:
     if c.errata:
         print(f"printed (false): {c.printed}\ncorrected: {c.corrected}")
     print()
+    show = _latex if args.latex else _pretty
     for n, step in enumerate(d.steps, 1):
         print(f"{n:>2}. {step.text}")
-        if step.expr is not None:
-            print("\n".join("     " + line for line in _pretty(step.expr).splitlines()))
+        if step.sides is not None:  # the claim's algebra: both sides, and the rule
+            lhs, rhs = step.sides
+            print(_indent(show(lhs), 5))
+            if _is_zero_literal(rhs):  # prove_zero: one side
+                verb = f"reduces to 0 by {step.rule}" if step.kind == "proved" else "is not 0"
+                print(f"     {verb}")
+            else:
+                print(f"     equals, by {step.rule}:" if step.kind == "proved" else "     is not:")
+                print(_indent(show(rhs), 5))
+        elif step.expr is not None:
+            expr = _simplified(step.expr) if step.kind == "refuted" else step.expr
+            print(_indent(show(expr), 5))
     print()
     print("PASSED" if outcome.passed else f"FAILED: {outcome.message}")
     return 0 if outcome.passed else 1

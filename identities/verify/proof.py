@@ -84,6 +84,11 @@ class Step:
         "note"  # note | proved | rejected | refuted | witness | probabilistic | numeric | confirmed
     )
     seconds: float = 0.0
+    #: a claim's two sides as the check stated them (proved or rejected): what
+    #: ``bodycheck explain`` shows as the algebra before and after the rule
+    sides: tuple | None = None
+    #: the rule (strategy) that reduced, or failed to reduce, their difference
+    rule: str = ""
 
 
 def _entries(expr) -> list:
@@ -193,7 +198,16 @@ class Derivation:
         dt = time.perf_counter() - t0
         if not ok:
             raise CheckFailure(f"not proved by {strategy}: {claim}")
-        self.steps.append(Step(f"proved ({strategy}, {dt:.2f} s): {claim}", None, "proved", dt))
+        self.steps.append(
+            Step(
+                f"proved ({strategy}, {dt:.2f} s): {claim}",
+                None,
+                "proved",
+                dt,
+                sides=(lhs, rhs),
+                rule=strategy,
+            )
+        )
         self.labels.add("proved")
         self.strategies.add(strategy)
         self.n_proved += 1
@@ -224,6 +238,8 @@ class Derivation:
                 f"rejected wrong variant ({strategy}; false at an exact point): {claim}",
                 None,
                 "rejected",
+                sides=(lhs, rhs),
+                rule=strategy,
             )
         )
         self.n_rejected += 1
