@@ -190,6 +190,10 @@ class SceneResult:
             "conserved": [c.as_dict() for c in self.conserved],
             "comparisons": [c.as_dict() for c in self.comparisons],
             "self_checks": [c.as_dict() for c in self.self_checks],
+            "derived": [
+                {"name": n, "exact": x, "measured": m}
+                for n, x, m in self.trajectory.extra.get("derived", [])
+            ],
             "samples": {
                 "t": tr.t.tolist(),
                 **{k: np.asarray(v).tolist() for k, v in tr.series.items()},
@@ -232,6 +236,13 @@ class SceneResult:
                     f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<48} {c.violation:.2e} ≤ "
                     f"{c.tolerance:.1e}  [{c.reason}]"
                 )
+        derived = self.trajectory.extra.get("derived", [])
+        if derived:
+            lines.append("derived (exact | measured from the motion):")
+            for n, x, m in derived:
+                fx = f"{x:.10g}" if x is not None else "-"
+                fm = f"{m:.10g}" if m is not None else "-"
+                lines.append(f"  {n:<40} {fx:>18} | {fm}" if (x, m) != (None, None) else f"  {n}")
         if self.comparisons:
             lines.append("against the book:")
             for c in self.comparisons:

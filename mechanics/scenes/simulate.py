@@ -5,6 +5,7 @@
 from __future__ import annotations
 
 from . import engine
+from .derived import derived_quantities
 from .state import body_inertia, body_radius
 from .trajectory import EPS, Event, Trajectory
 
@@ -17,5 +18,9 @@ def validate(scene) -> None:
 
 
 def simulate(scene) -> Trajectory:
-    """Run the scene with exactly the listed effects."""
-    return engine.Engine(scene).run()
+    """Run the scene with exactly the listed effects; the derived quantities its bodies
+    and effects define go into ``extra["derived"]`` (:mod:`.derived`)."""
+    eng = engine.Engine(scene)
+    tr = eng.run()
+    tr.extra["derived"] = derived_quantities(eng, tr)
+    return tr

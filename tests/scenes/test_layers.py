@@ -21,11 +21,12 @@ LAYERS = {
     "effects": 2,
     "splitting": 3,
     "engine": 4,
-    "simulate": 5,
-    "spec": 6,
-    "result": 7,
-    "reference": 7,
-    "__init__": 8,
+    "derived": 5,
+    "simulate": 6,
+    "spec": 7,
+    "result": 8,
+    "reference": 8,
+    "__init__": 9,
 }
 
 
