@@ -925,6 +925,13 @@ class HeavySymmetricTop:
     def _arg(self, t):
         return self._kappa * t + self._w0
 
+    def nutation_period(self) -> float:
+        """The period of θ(t), 2K(m)/κ (u = u1 + (u2 − u1) sn²(κt + w0 | m)); inf for a
+        sleeping top, whose θ stays put."""
+        if self.sleeping:
+            return math.inf
+        return 2.0 * float(elliptic._quarter_period(np.float64(self._m1))) / self._kappa
+
     def u(self, t) -> np.ndarray:
         """u(t) = cos θ(t) = u1 + (u2 − u1) sn²(κt + w0 | m)."""
         t = as_float_array(t, "t")

@@ -110,9 +110,7 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
         rows.append(("θ min (rad)", math.acos(min(u2, 1.0)), float(np.min(theta))))
         rows.append(("θ max (rad)", math.acos(max(u1, -1.0)), float(np.max(theta))))
         if not top.sleeping:
-            from scipy.special import ellipk
-
-            exact = 2.0 * float(ellipk(top._m)) / top._kappa
+            exact = top.nutation_period()
             c = series[f"{pre(i)}cos_theta"]
             top_k = [k for k in range(1, len(c) - 1) if c[k] > c[k - 1] and c[k] >= c[k + 1]]
             peaks = [_vertex(t, c, k) for k in top_k]

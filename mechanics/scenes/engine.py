@@ -69,7 +69,7 @@ from mechanics.errors import OutOfDomainError
 
 from . import contacts
 from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
-from .effects.base import CONSERVED, Effect
+from .effects.base import CONSERVED, Effect, gravity_vector
 from .effects.impact import EnergyGainError, Impact
 from .errors import SceneError
 from .state import Guide, Hinge, Layout, body_vertices
@@ -159,10 +159,7 @@ def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
 
 def _guides(scene, index) -> dict[int, Guide]:
     """The guided bodies (a fixed axis, rolling, sliding on a plane) -> their Guide."""
-    g = np.zeros(3)
-    for e in scene.effects_of("gravity"):
-        d = np.asarray(e.fields.get("direction", [0.0, 0.0, -1.0]), dtype=float)
-        g = g + float(e.fields["g"]) * d / np.linalg.norm(d)
+    g = gravity_vector(scene)
     out = {}
     for spec in scene.effects:
         make = REGISTRY[spec.type].make_guide

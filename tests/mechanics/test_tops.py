@@ -466,3 +466,20 @@ def test_one_instant_path_refuses_what_the_array_path_refuses():
         for fn in (top.omega, top.attitude, top.state):
             with pytest.raises(NonFiniteError):
                 fn(bad)
+
+
+def test_the_heavy_tops_nutation_period_returns_u_to_itself():
+    """u(t + T) = u(t), while u at T/2 is the other turning point (sn² runs 0 → 1 → 0)."""
+    top = tops.HeavySymmetricTop(
+        1.0, 0.5, 1.0, theta=1.0, psi=0.0, phi=0.0, theta_dot=0.0, psi_dot=0.3, phi_dot=20.0
+    )
+    T = top.nutation_period()
+    t = np.linspace(0.0, 3.0, 7)
+    np.testing.assert_allclose(top.u(t + T), top.u(t), rtol=0, atol=64 * EPS)
+    # released with θ̇ = 0: u0 is one turning point, half a period later u is the other
+    u1, u2, _ = top.roots
+    ends = sorted([float(top.u(0.0)), float(top.u(0.5 * T))])
+    np.testing.assert_allclose(ends, [u1, u2], rtol=0, atol=64 * EPS)
+    assert u2 - u1 > 0.01  # the two turning points are apart: a real test
+    sleeping = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=0.0, phi_dot=20.0)
+    assert sleeping.nutation_period() == math.inf

@@ -41,6 +41,7 @@ __all__ = [
     "Snapshot",
     "check_joint_body",
     "check_on_fixed_axis",
+    "gravity_vector",
     "keeps_for_force_along",
     "register",
     "unit",
@@ -277,6 +278,16 @@ def check_joint_body(spec, scene, index, *, what: str, keys: tuple[str, ...] | N
                 f"bodies[{index[b.name]}].initial.{k}",
                 f"a body on a {spec.type} takes {', '.join(keys)}",
             )
+
+
+def gravity_vector(scene) -> np.ndarray:
+    """The sum g·d of the scene's listed gravity effects, from their fields (before any
+    effect object exists: the joints' guides and checks read it)."""
+    g = np.zeros(3)
+    for e in scene.effects_of("gravity"):
+        d = np.asarray(e.fields.get("direction", [0.0, 0.0, -1.0]), dtype=float)
+        g = g + float(e.fields["g"]) * d / float(np.linalg.norm(d))
+    return g
 
 
 def check_on_fixed_axis(spec, scene, *, what: str) -> None:

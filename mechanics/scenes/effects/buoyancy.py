@@ -24,7 +24,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..state import SPHERICAL_SHAPES
-from .base import Effect, Schema, keeps_for_force_along, register
+from .base import Effect, Schema, gravity_vector, keeps_for_force_along, register
 
 __all__ = ["Buoyancy"]
 
@@ -53,7 +53,7 @@ class Buoyancy(Effect):
             )
         if b.fixed:
             raise scene.error(f"{spec.where}.body", f"body {b.name!r} is fixed: it cannot float")
-        g = _gravity(scene)
+        g = gravity_vector(scene)
         if not (g[0] == 0.0 and g[1] == 0.0 and g[2] < 0.0):
             raise scene.error(
                 f"{spec.where}.type",
@@ -69,7 +69,7 @@ class Buoyancy(Effect):
             return
         self.i = ctx.index[self.fields["body"]]
         self.a = float(ctx.scene.bodies[self.i].dims["radius"])
-        self.g = -float(_gravity(ctx.scene)[2])
+        self.g = -float(gravity_vector(ctx.scene)[2])
 
     def _depth(self, z):
         return np.clip(self.level - (z - self.a), 0.0, None)
@@ -96,11 +96,3 @@ class Buoyancy(Effect):
 
     def exerts_moment(self, k: int) -> bool:
         return False
-
-
-def _gravity(scene) -> np.ndarray:
-    g = np.zeros(3)
-    for e in scene.effects_of("gravity"):
-        d = np.asarray(e.fields.get("direction", [0.0, 0.0, -1.0]), dtype=float)
-        g = g + float(e.fields["g"]) * d / float(np.linalg.norm(d))
-    return g

@@ -37,10 +37,10 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..state import ROUND_SHAPES, Guide, body_inertia, turned
+from ..state import Guide, body_inertia, turned
 from ..trajectory import Event
 from .base import Effect, Schema, check_joint_body, register
-from .rolling import slope_frame
+from .rolling import check_round_on_slope, slope_frame
 
 __all__ = ["CoulombFriction", "Slide"]
 
@@ -156,21 +156,13 @@ class CoulombFriction(Effect):
 
     @classmethod
     def check(cls, spec, scene, index) -> None:
-        b = scene.body(spec.fields["body"])
-        if b.shape not in ROUND_SHAPES:
-            raise scene.error(
-                f"{spec.where}.body",
-                f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
-            )
+        check_round_on_slope(spec, scene)
         if not scene.effects_of("gravity"):
             raise scene.error(
                 f"{spec.where}.type",
                 "coulomb_friction on a plane needs a gravity effect to press the body on it "
                 "(the normal force); none is listed",
             )
-        a = spec.fields.get("angle", 0.0)
-        if not 0 <= a < math.pi / 2:
-            raise scene.error(f"{spec.where}.angle", f"must lie in [0, π/2); got {a!r}")
         check_joint_body(
             spec, scene, index, what="it cannot slide", keys=("distance", "speed", "spin")
         )

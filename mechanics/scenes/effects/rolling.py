@@ -36,7 +36,7 @@ import numpy as np
 from ..state import ROUND_SHAPES, Guide, body_inertia, pendulum_from_rest, turned
 from .base import Effect, Schema, check_joint_body, register
 
-__all__ = ["Incline", "Rolling", "Track", "slope_frame"]
+__all__ = ["Incline", "Rolling", "Track", "check_round_on_slope", "slope_frame"]
 
 E_Y = np.array([0.0, 1.0, 0.0])
 
@@ -47,6 +47,19 @@ def slope_frame(alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     n = np.array([math.sin(alpha), 0.0, math.cos(alpha)])
     t = np.array([math.cos(alpha), 0.0, -math.sin(alpha)])
     return n, t, E_Y.copy()
+
+
+def check_round_on_slope(spec, scene, *, slope: bool = True) -> None:
+    """A rolling or sliding body must be round; an incline's ``angle`` lies in [0, π/2)."""
+    b = scene.body(spec.fields["body"])
+    if b.shape not in ROUND_SHAPES:
+        raise scene.error(
+            f"{spec.where}.body",
+            f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
+        )
+    a = spec.fields.get("angle", 0.0)
+    if slope and not 0 <= a < math.pi / 2:
+        raise scene.error(f"{spec.where}.angle", f"must lie in [0, π/2); got {a!r}")
 
 
 def _uniform(q0, qd0, acc):
@@ -198,16 +211,9 @@ class Rolling(Effect):
     @classmethod
     def check(cls, spec, scene, index) -> None:
         f, b = spec.fields, scene.body(spec.fields["body"])
-        if b.shape not in ROUND_SHAPES:
-            raise scene.error(
-                f"{spec.where}.body",
-                f"only round bodies roll ({', '.join(ROUND_SHAPES)}); {b.name!r} is a {b.shape}",
-            )
         surf = f["surface"]
+        check_round_on_slope(spec, scene, slope=surf == "incline")
         if surf == "incline":
-            a = f.get("angle", 0.0)
-            if not 0 <= a < math.pi / 2:
-                raise scene.error(f"{spec.where}.angle", f"must lie in [0, π/2); got {a!r}")
             keys = ("distance", "speed")
         elif surf == "track":
             R = f.get("track_radius")

@@ -24,7 +24,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..trajectory import Event
-from .base import Effect, Schema, register
+from .base import Effect, Schema, gravity_vector, register
 
 __all__ = ["TankOutflow"]
 
@@ -57,7 +57,7 @@ class TankOutflow(Effect):
             raise scene.error(
                 f"{spec.where}.type", "tank_outflow is driven by gravity: list a gravity effect"
             )
-        if _g_down(scene) <= 0:
+        if -float(gravity_vector(scene)[2]) <= 0:
             raise scene.error("effects", "gravity must point down (−z) to drain the tank")
         if "level" not in b.initial:
             raise scene.error(f"{where}.initial.level", "missing required field for a tank")
@@ -79,7 +79,7 @@ class TankOutflow(Effect):
         b = ctx.scene.bodies[self.i]
         self.A = float(b.dims["area"])
         self.h0 = float(b.initial["level"])
-        self.g = _g_down(ctx.scene)
+        self.g = -float(gravity_vector(ctx.scene)[2])
         self.empty = False
 
     def outflow_speed(self, h, g, A) -> np.ndarray:
@@ -160,12 +160,3 @@ class TankOutflow(Effect):
 
     def exerts_moment(self, k: int) -> bool:
         return False
-
-
-def _g_down(scene) -> float:
-    """The listed gravities' downward (−z) component."""
-    g = 0.0
-    for e in scene.effects_of("gravity"):
-        d = np.asarray(e.fields.get("direction", [0.0, 0.0, -1.0]), dtype=float)
-        g += float(e.fields["g"]) * -d[2] / float(np.linalg.norm(d))
-    return g
