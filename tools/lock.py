@@ -1,11 +1,11 @@
 """The dependency lock: write it (``make lock``), check it before every install.
 
 ``requirements/lock.txt`` pins every direct and transitive dependency of bodycheck's
-``test`` extra, the build backend and the installer (``requirements/tools.in``), each
-with its hashes, as ``uv pip compile`` writes them for Python 3.11.  Its first line
-records a digest of what it was compiled from (pyproject's requirements and
-tools.in), so that a lock older than its inputs is refused with a message saying how to
-refresh it, rather than installed.
+``test`` and ``engines`` extras, the build backend and the installer
+(``requirements/tools.in``), each with its hashes, as ``uv pip compile`` writes them for
+Python 3.11.  Its first line records a digest of what it was compiled from (pyproject's
+requirements and tools.in), so that a lock older than its inputs is refused with a
+message saying how to refresh it, rather than installed.
 
 Usage (standard library only; run with the machine's Python before any venv exists)::
 
@@ -29,7 +29,7 @@ LOCK = ROOT / "requirements" / "lock.txt"
 TOOLS = ROOT / "requirements" / "tools.in"
 PYPROJECT = ROOT / "pyproject.toml"
 PYTHON_VERSION = "3.11"
-EXTRAS = ("test",)
+EXTRAS = ("test", "engines")
 
 DIGEST_PREFIX = "# inputs-sha256: "
 _PIN = re.compile(
@@ -59,7 +59,8 @@ def inputs_digest(pyproject: Path = PYPROJECT, tools: Path = TOOLS) -> str:
     ]
     payload = {
         "dependencies": project.get("dependencies", []),
-        "optional": {k: project.get("optional-dependencies", {}).get(k, []) for k in EXTRAS},
+        # every extra: the locked ones may name others ("bodycheck[mujoco,drake]")
+        "optional": project.get("optional-dependencies", {}),
         "requires-python": project.get("requires-python", ""),
         "build": data.get("build-system", {}).get("requires", []),
         "tools": tool_lines,
@@ -73,8 +74,19 @@ def direct_names(pyproject: Path = PYPROJECT, tools: Path = TOOLS) -> set[str]:
     data = tomllib.loads(pyproject.read_text(encoding="utf-8"))
     project = data.get("project", {})
     reqs = list(project.get("dependencies", []))
-    for k in EXTRAS:
-        reqs += project.get("optional-dependencies", {}).get(k, [])
+    extras = project.get("optional-dependencies", {})
+    todo, seen = list(EXTRAS), set()
+    while todo:  # an extra may name others of this project: "bodycheck[a,b]"
+        k = todo.pop()
+        if k in seen:
+            continue
+        seen.add(k)
+        for r in extras.get(k, []):
+            own = re.match(rf"^{re.escape(project.get('name', ''))}\[([^\]]+)\]", r.strip())
+            if own:
+                todo += [e.strip() for e in own.group(1).split(",")]
+            else:
+                reqs.append(r)
     reqs += [
         ln.strip()
         for ln in tools.read_text(encoding="utf-8").splitlines()
@@ -142,7 +154,8 @@ def write(uv: str, lock: Path = LOCK) -> None:
     header = (
         f"{DIGEST_PREFIX}{inputs_digest()}\n"
         "# Written by `make lock` (tools/lock.py: uv pip compile pyproject.toml\n"
-        f"# requirements/tools.in --extra test --python-version {PYTHON_VERSION}"
+        f"# requirements/tools.in {' '.join('--extra ' + e for e in EXTRAS)}"
+        f" --python-version {PYTHON_VERSION}"
         " --generate-hashes); do not edit.\n"
     )
     lock.write_text(header + out.stdout, encoding="utf-8")
