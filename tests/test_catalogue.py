@@ -210,3 +210,21 @@ def test_mechanics_never_imports_sympy_or_identities() -> None:
     for path in (ROOT / "mechanics").rglob("*.py"):
         text = path.read_text(encoding="utf-8")
         assert not re.search(r"^\s*(import|from)\s+(sympy|identities)\b", text, re.M), path
+
+
+def test_the_readme_states_the_catalogues_counts() -> None:
+    # README's one-line summary of the catalogue is written by hand: it must not go stale
+    readme = (Path(__file__).resolve().parent.parent / "README.md").read_text(encoding="utf-8")
+    m = re.search(
+        r"(\d+) book items \((\d+) verified, (\d+) definitions, (\d+) errata\)\s+behind (\d+) checks",
+        readme,
+    )
+    assert m, "README no longer states the catalogue's counts"
+    status = Counter(r.status for r in item_rows())
+    assert tuple(int(x) for x in m.groups()) == (
+        sum(status.values()),
+        status["verified"],
+        status["definition"],
+        status["erratum"],
+        len(load_all()),
+    )

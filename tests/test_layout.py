@@ -2,7 +2,7 @@
 source with ast, every import statement anywhere in a module (also inside functions).
 
 - ``mechanics`` never imports ``identities`` or ``bench``;
-- the checks (``identities.book``, ``identities.stability``) and the machinery
+- the checks (``identities.book``, ``identities.properties``, ``identities.stability``) and the machinery
   (``identities.verify``) never import the command line, matplotlib or argparse;
 - the machinery imports no check; ``bench`` never imports ``identities``;
 - ``import mechanics`` (every module of it) loads neither sympy nor matplotlib.
@@ -25,6 +25,10 @@ ROOT = Path(__file__).resolve().parent.parent
 RULES = {
     "mechanics": (("identities", "bench"), "the library knows no book and no study"),
     "identities.book": (("identities.cli", "matplotlib", "argparse"), "a check is not the CLI"),
+    "identities.properties": (
+        ("identities.cli", "matplotlib", "argparse"),
+        "a check is not the CLI",
+    ),
     "identities.stability": (
         ("identities.cli", "matplotlib", "argparse"),
         "a check is not the CLI",

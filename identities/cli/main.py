@@ -81,6 +81,11 @@ def _parser() -> argparse.ArgumentParser:
     e.add_argument(
         "--latex", action="store_true", help="print the algebra as LaTeX instead of pretty text"
     )
+    e.add_argument(
+        "--no-cache",
+        action="store_true",
+        help="run the check even if a cached run of the same sources exists (identities.cli.cache)",
+    )
     f = sub.add_parser("search", help="find checks by topic words or a theorem's name")
     f.add_argument(
         "topic", nargs="+", metavar="TOPIC", help='e.g. restitution, "Euler\'s equations"'
@@ -354,6 +359,35 @@ def _cmd_search(args) -> int:
 
 
 def _cmd_explain(args) -> int:
+    """``explain``, through the cache of :mod:`identities.cli.cache`: a second call with the
+    same sources, package versions and options prints the first call's output."""
+    import contextlib
+    import io
+
+    from identities.cli import cache
+
+    options = {"id": args.id, "json": bool(args.json), "latex": bool(args.latex)}
+    if not args.no_cache and (hit := cache.load("explain", options)) is not None:
+        out, code, created = hit
+        sys.stdout.write(out)
+        when = time.strftime("%Y-%m-%d %H:%M", time.localtime(created))
+        print(
+            f"bodycheck: the output of a run at {when} of the same sources and package "
+            "versions (cached); --no-cache runs the check again",
+            file=sys.stderr,
+        )
+        return code
+    buf = io.StringIO()
+    with contextlib.redirect_stdout(buf):
+        code = _explain(args)
+    out = buf.getvalue()
+    sys.stdout.write(out)
+    if not args.no_cache and (problem := cache.store("explain", options, out, code)):
+        print(f"bodycheck: note: {problem}", file=sys.stderr)
+    return code
+
+
+def _explain(args) -> int:
     import sympy as sp
 
     reg = catalogue.load_all()

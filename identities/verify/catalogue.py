@@ -27,8 +27,10 @@ from dataclasses import dataclass, field
 from functools import cache
 from importlib import resources
 from pathlib import Path
+from typing import TYPE_CHECKING
 
-from identities.verify.proof import CheckFailure, Derivation
+if TYPE_CHECKING:  # the proof machinery imports sympy: only run_check needs it
+    from identities.verify.proof import Derivation
 
 __all__ = [
     "CHAPTER_MODULES",
@@ -52,13 +54,13 @@ ID_PATTERN = re.compile(r"^(eq[1-8]\.\d{1,3}|[EP][1-8]\.\d{1,2}|thm\.[a-z0-9][a-
 #: the identities package's folder (this module lives in its ``verify`` room)
 _ROOT = Path(__file__).resolve().parent.parent
 #: Modules that register checks, imported by :func:`load_all`: every module of the
-#: rooms ``identities/book/`` (``chNN/`` per chapter, ``scenes/``) and
-#: ``identities/stability/``, found on disk and imported in sorted order so the
+#: rooms ``identities/book/`` (``chNN/`` per chapter, ``scenes/``),
+#: ``identities/properties/`` and ``identities/stability/``, found on disk and imported in sorted order so the
 #: registry order is reproducible.
 CHAPTER_MODULES = tuple(
     sorted(
         ".".join(("identities", *p.relative_to(_ROOT).with_suffix("").parts))
-        for room in ("book", "stability")
+        for room in ("book", "properties", "stability")
         for p in (_ROOT / room).rglob("*.py")
         if p.name != "__init__.py"
     )
@@ -242,6 +244,8 @@ def _structure_problems(c: Check, d: Derivation) -> list[str]:
         problems.append("it made no claim")
     if c.kind == "proof" and d.n_rejected == 0:
         problems.append("a proof without a negative control")
+    if c.kind == "property" and d.n_rejected == 0:
+        problems.append("a property without a negative control (a wrong variant it rejects)")
     if c.errata and d.n_refuted == 0:
         problems.append("an erratum that does not show the printed form failing")
     if c.id.startswith("P") and (not d.quantities or d.n_confirmed == 0):
@@ -251,6 +255,8 @@ def _structure_problems(c: Check, d: Derivation) -> list[str]:
 
 def run_check(c: Check) -> tuple[Outcome, Derivation]:
     """Run one check; never raises for a failing check (the Outcome says so)."""
+    from identities.verify.proof import CheckFailure, Derivation
+
     d = Derivation()
     t0 = time.perf_counter()
     try:

@@ -15,6 +15,9 @@ A check function receives a :class:`Derivation` and records what it shows:
   label ``probabilistic``, never ``proved``.
 - :meth:`Derivation.numeric_close` compares floats within a named tolerance:
   label ``numeric``.
+- :meth:`Derivation.holds_for_examples` runs a randomised property (hypothesis, a
+  stated number of examples, the derivation's seed): label ``numeric``;
+  :meth:`Derivation.reject_property` is its negative control.
 - :meth:`Derivation.confirm` records an independent route (numeric through
   ``mechanics``, a limit, a second derivation) for a derived result.
 
@@ -68,6 +71,11 @@ STRATEGIES = {
 
 #: Labels, strongest first.
 LABELS = ("proved", "probabilistic", "numeric")
+
+
+def _short(text: str, limit: int = 240) -> str:
+    """``text`` cut to ``limit`` characters (a drawn example can be long)."""
+    return text if len(text) <= limit else text[: limit - 1] + "…"
 
 
 class CheckFailure(AssertionError):
@@ -314,6 +322,55 @@ class Derivation:
         )
         self.labels.add("numeric")
         self.n_proved += 1
+
+    def holds_for_examples(self, prop, strategy, *, examples: int, claim: str) -> None:
+        """A randomised property: ``prop(*args)`` holds for ``examples`` argument tuples
+        drawn from the hypothesis ``strategy`` with this derivation's seed (label
+        ``numeric``; :mod:`identities.verify.properties`)."""
+        from identities.verify.properties import search_counterexample
+
+        t0 = time.perf_counter()
+        found = search_counterexample(prop, strategy, examples=examples, seed=self.seed)
+        dt = time.perf_counter() - t0
+        if found is not None:
+            raise CheckFailure(f"{claim}: fails for {found.arguments!r}: {found.message}")
+        self.steps.append(
+            Step(
+                f"holds for {examples} drawn examples (hypothesis, seed {self.seed}): {claim}",
+                None,
+                "numeric",
+                dt,
+                rule="property",
+            )
+        )
+        self.labels.add("numeric")
+        self.n_proved += 1
+
+    def reject_property(self, prop, strategy, *, examples: int, claim: str) -> None:
+        """Negative control of a property: the same search, on a deliberately wrong
+        variant, must find a counterexample (the first one found is shown)."""
+        from identities.verify.properties import search_counterexample
+
+        t0 = time.perf_counter()
+        found = search_counterexample(
+            prop, strategy, examples=examples, seed=self.seed, shrink=False
+        )
+        dt = time.perf_counter() - t0
+        if found is None:
+            raise CheckFailure(
+                f"negative control accepted: no counterexample in {examples} examples: {claim}"
+            )
+        self.steps.append(
+            Step(
+                f"rejected wrong variant (a counterexample in {examples} drawn examples): "
+                f"{claim}; fails for {_short(repr(found.arguments))}",
+                None,
+                "rejected",
+                dt,
+                rule="property",
+            )
+        )
+        self.n_rejected += 1
 
     def confirm(self, actual, expected, *, atol: float, route: str) -> None:
         """An independent numeric route agrees with a derived quantity.

@@ -116,10 +116,21 @@ def render_checks_md() -> str:
             out.append(f"| `{c.id}` | {_md(c.reading)} |")
     out += ["", "## Notation", "", "| book | code | meaning |", "|---|---|---|"]
     out += [f"| {_md(a)} | {_md(b)} | {_md(m)} |" for a, b, m in NOTATION]
-    out += ["", "## Named results", "", "| check | kind | title | where |", "|---|---|---|---|"]
+    out += [
+        "",
+        "## Named results",
+        "",
+        "Checks named by what they show rather than by one book item; a `property` check",
+        "runs its randomised invariant over the stated number of hypothesis examples with",
+        "the seed its steps name (`bodycheck explain ID`), and a wrong variant it rejects.",
+        "",
+        "| check | kind | title | backs | where |",
+        "|---|---|---|---|---|",
+    ]
     for c in regs:
         if c.id.startswith("thm."):
-            out.append(f"| `{c.id}` | {c.kind} | {_md(c.title)} | `{c.where}` |")
+            backs = ", ".join(c.covers) or "—"
+            out.append(f"| `{c.id}` | {c.kind} | {_md(c.title)} | {backs} | `{c.where}` |")
     out += ["", "## Items", ""]
     for ch in sorted(by_ch):
         out += [

@@ -16,22 +16,12 @@ from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
+from identities.properties.inertia import SUM_ATOL, parallel_axis_theorem_holds, points
 from mechanics import dynamics as D
 from mechanics import inertia as I
 from mechanics import strategies as ms
 from mechanics.errors import NonPhysicalInertiaError
 from mechanics.rotation import EPS, R3
-
-#: A tensor summed over N ≤ 6 particles (each term a few rounded products) or
-#: rotated (each entry nine rounded products): 64 eps of the trace bounds the
-#: difference of two such computations.
-SUM_ATOL = 64 * EPS
-
-#: Underflow: a product of float64 coordinates below the smallest subnormal flushes to
-#: 0 (the extended-precision reference keeps it), so each of the ≤ 6 terms of an entry
-#: may be off by m × smallest subnormal whatever the relative tolerance; 2 such per
-#: term (|s|² and s sᵀ) bound it.
-UNDERFLOW_TERMS = 2
 
 #: Principal moments against the moments a tensor was built from: the built
 #: tensor carries ~4 eps·J3 of rounding from the rotation, the Jacobi moments
@@ -45,17 +35,6 @@ CONSERVATION_RTOL = 1e-9
 #: Regimes of principal_moments without a needle-thin body, whose fast
 #: rotation about the thin axis makes the integration stiff and slow.
 NON_THIN = tuple(r for r in ms.PRINCIPAL_MOMENT_REGIMES if r not in ("thin", "wide-scales"))
-
-points = st.tuples(*(st.floats(-1e3, 1e3),) * 3).map(np.array)
-
-
-def _direct(m, r, C):
-    """Σ m (|s|² 1 − s sᵀ), s = r − C (4.34), summed in extended precision."""
-    s = (r - C).astype(np.longdouble)
-    mm = m.astype(np.longdouble)
-    sq = (s * s).sum(axis=-1)
-    J = (mm[:, None, None] * (sq[:, None, None] * np.eye(3) - s[:, :, None] * s[:, None, :])).sum(0)
-    return J.astype(np.float64), float((mm * sq).sum())
 
 
 # ------------------------------------------------------------ parallel axes
@@ -71,17 +50,7 @@ def _direct(m, r, C):
     np.array([0.0, 0.0, 2.7229738264047844e-163]),
 )
 def test_parallel_axis_theorem_holds_about_any_point_4_38(system, C):
-    m, r = system.m, system.r
-    J_C = I.inertia_tensor(m, r, about=C)
-    J_ref, scale = _direct(m, r, C)
-    tiny = UNDERFLOW_TERMS * float(m.sum()) * np.finfo(float).smallest_subnormal
-    assert np.abs(J_C - J_ref).max() <= SUM_ATOL * scale + tiny
-    # and J_C = J_G + m(|R|² 1 − R ⊗ R) with R = GC (4.38), J_G from the same particles.
-    M = m.sum()
-    G = (m[:, None] * r).sum(0) / M
-    J_G = I.inertia_tensor(m, r, about=G)
-    shifted = I.parallel_axis(J_G, M, C - G, allow_singular=True)
-    assert np.abs(shifted - J_ref).max() <= SUM_ATOL * scale + tiny
+    parallel_axis_theorem_holds(system, C)  # stated in identities.properties.inertia
 
 
 @given(ms.rigid_bodies(), points, points)

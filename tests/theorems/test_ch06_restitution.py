@@ -14,6 +14,9 @@ points, contact_normals, approaching velocities and e (0, 1, interior, within 1e
 - e = 0 leaves no normal separation velocity;
 - the same procedure rejects a wrong loss formula, ½ μ (1 − e) v_n².
 
+The rigid-impact invariants (restitution, momentum, angular momentum, energy loss) are
+stated once, in :mod:`identities.properties.impact`, which also runs them as catalogue
+checks of kind ``property``; here they run under ``@given`` with the profile's examples.
 Every invariant is evaluated from the returned velocities by the book's
 definitions (momentum m v_G, angular momentum r_G × m v_G + J_G ω, energy
 ½ m v² + ½ ωᵀ J ω), never from the impulse the code used.  Tolerances are
@@ -30,19 +33,23 @@ import pytest
 from hypothesis import Phase, example, find, given, settings
 from hypothesis import strategies as st
 
+from identities.properties.impact import (
+    ENERGY_RTOL,
+    SUM_RTOL,
+    angular_momentum_about_contact_point_is_conserved,
+    angular_momentum_is_conserved,
+    check_energy_loss,
+    contact_normal_velocity,
+    loss_6_41,
+    loss_wrong,
+    momentum_is_conserved,
+    restitution_law_holds,
+    solve_error_scale,
+)
 from mechanics import impact as im
 from mechanics import strategies as ms
 
 EPS = float(np.finfo(float).eps)
-
-#: Sums of a few products of correctly rounded numbers (momentum, angular
-#: momentum, contact velocities): each term carries at most a few roundings,
-#: the sum a few more; 32 eps of the sum of magnitudes bounds it with room.
-SUM_RTOL = 32 * EPS
-
-#: Kinetic energies are sums of positive terms, each rounded a few times; their
-#: difference T_before − T_after loses nothing beyond that: 32 eps of T.
-ENERGY_RTOL = 32 * EPS
 
 #: The direct-impact functions are within 2 ulps (DIRECT_ULPS) of the exact
 #: values; an invariant formed from them by a few more products and sums
@@ -60,52 +67,8 @@ SUBNORMAL_ATOL = 2 * math.ulp(0.0)
 RIGID = settings(max_examples=max(10, int(0.6 * settings.default.max_examples)))
 
 
-# ------------------------------------------------------------------ helpers
-
-
 def _norm(v) -> float:
     return float(np.linalg.norm(v))
-
-
-def _bodies(c: ms.Contact, out: im.RigidImpact):
-    """(before, after) pairs of the bodies that move."""
-    pairs = [(c.body_1, out.body_1)]
-    if c.body_2 is not None:
-        pairs.append((c.body_2, out.body_2))
-    return pairs
-
-
-def _kappa(J) -> float:
-    lam = np.linalg.eigvalsh(J)
-    return float(lam[-1] / lam[0])
-
-
-def _contact_normal_velocity(c: ms.Contact, b1, b2) -> tuple[float, float]:
-    """n · (v_S1 − v_S2) by the connection formula (2.73), and its magnitude scale."""
-    rel = b1.v_G + np.cross(b1.omega, c.r_S - b1.r_G)
-    scale = _norm(b1.v_G) + _norm(b1.omega) * _norm(c.r_S - b1.r_G)
-    if b2 is not None:
-        rel = rel - (b2.v_G + np.cross(b2.omega, c.r_S - b2.r_G))
-        scale += _norm(b2.v_G) + _norm(b2.omega) * _norm(c.r_S - b2.r_G)
-    return float(c.n @ rel), scale
-
-
-def _kinetic_energy(b) -> float:
-    return 0.5 * b.m * float(b.v_G @ b.v_G) + 0.5 * float(b.omega @ b.J_G @ b.omega)
-
-
-def _solve_error_scale(c: ms.Contact, out: im.RigidImpact) -> float:
-    """κ |S| Σ |r_k|²/λ_min,k: the forward error of J⁻¹(r × S n) in velocity units.
-
-    A backward-stable solve is accurate to κ eps relative to |J⁻¹ u| ≤ |u|/λ_min,
-    and that error moves the contact point by |r| times it.
-    """
-    total = 0.0
-    for before, _ in _bodies(c, out):
-        r = c.r_S - before.r_G
-        lam = np.linalg.eigvalsh(before.J_G)
-        total += (lam[-1] / lam[0]) * abs(out.S) * float(r @ r) / lam[0]
-    return total
 
 
 # ------------------------------------------------------------ restitution
@@ -114,25 +77,17 @@ def _solve_error_scale(c: ms.Contact, out: im.RigidImpact) -> float:
 @RIGID
 @given(ms.contacts())
 def test_normal_relative_velocity_after_is_minus_e_times_before(c):
-    out = im.rigid_impact(c.body_1, c.body_2, r_S=c.r_S, n=c.n, e=c.e)
-    v_before, scale_before = _contact_normal_velocity(c, c.body_1, c.body_2)
-    v_after, scale_after = _contact_normal_velocity(c, out.body_1, out.body_2)
-    assert v_before < 0  # the strategy draws impacts
-    # Sums of the contact velocities, plus the solve's forward error.
-    tol = SUM_RTOL * (scale_before + scale_after + abs(out.S) / out.mu) + 4 * EPS * (
-        _solve_error_scale(c, out)
-    )
-    assert abs(v_after - (-c.e * v_before)) <= tol, (v_after, v_before, c.e, tol)
+    restitution_law_holds(c)
 
 
 @RIGID
 @given(ms.contacts(restitution=st.just(0.0)))
 def test_plastic_impact_leaves_no_normal_separation_velocity(c):
     out = im.rigid_impact(c.body_1, c.body_2, r_S=c.r_S, n=c.n, e=0.0)
-    v_after, scale_after = _contact_normal_velocity(c, out.body_1, out.body_2)
-    _, scale_before = _contact_normal_velocity(c, c.body_1, c.body_2)
+    v_after, scale_after = contact_normal_velocity(c, out.body_1, out.body_2)
+    _, scale_before = contact_normal_velocity(c, c.body_1, c.body_2)
     tol = SUM_RTOL * (scale_before + scale_after + abs(out.S) / out.mu) + 4 * EPS * (
-        _solve_error_scale(c, out)
+        solve_error_scale(c, out)
     )
     assert abs(v_after) <= tol
 
@@ -149,47 +104,19 @@ def test_direct_impact_restitution_by_the_definition_6_36(e):
 @RIGID
 @given(ms.contacts())
 def test_total_linear_momentum_is_conserved_6_16(c):
-    out = im.rigid_impact(c.body_1, c.body_2, r_S=c.r_S, n=c.n, e=c.e)
-    if c.body_2 is None:  # the fixed body takes −S n: momentum of body 1 changes by S n
-        p_before = c.body_1.m * c.body_1.v_G + out.S * c.n
-        p_after = out.body_1.m * out.body_1.v_G
-        scale = _norm(p_before) + _norm(p_after) + abs(out.S)
-    else:
-        p_before = c.body_1.m * c.body_1.v_G + c.body_2.m * c.body_2.v_G
-        p_after = out.body_1.m * out.body_1.v_G + out.body_2.m * out.body_2.v_G
-        scale = sum(b.m * _norm(b.v_G) for pair in _bodies(c, out) for b in pair)
-    assert _norm(p_after - p_before) <= SUM_RTOL * scale
-
-
-def _angular_momentum(b, about) -> np.ndarray:
-    return np.cross(b.r_G - about, b.m * b.v_G) + b.J_G @ b.omega
-
-
-def _angular_scale(b, about) -> float:
-    return _norm(b.r_G - about) * b.m * _norm(b.v_G) + np.linalg.norm(b.J_G, 2) * _norm(b.omega)
+    momentum_is_conserved(c)
 
 
 @RIGID
 @given(ms.contacts(regimes=["free-free", "central", "planar", "mass-ratio"]), ms.impact_bodies())
 def test_angular_momentum_about_any_fixed_point_is_conserved_6_18(c, anywhere):
-    about = anywhere.r_G  # a drawn fixed point
-    out = im.rigid_impact(c.body_1, c.body_2, r_S=c.r_S, n=c.n, e=c.e)
-    L_before = sum(_angular_momentum(b, about) for b in (c.body_1, c.body_2))
-    L_after = sum(_angular_momentum(b, about) for b in (out.body_1, out.body_2))
-    scale = sum(_angular_scale(b, about) for pair in _bodies(c, out) for b in pair)
-    scale += _norm(c.r_S - about) * abs(out.S)  # the internal impulses' moments cancel
-    assert _norm(L_after - L_before) <= SUM_RTOL * scale
+    angular_momentum_is_conserved(c, anywhere.r_G)  # about a drawn fixed point
 
 
 @RIGID
 @given(ms.contacts(regimes=["fixed-body-2"]))
 def test_angular_momentum_about_the_contact_point_is_conserved_6_22(c):
-    # Against a fixed body the impulse acts at S: L about S is unchanged (6.22).
-    out = im.rigid_impact(c.body_1, None, r_S=c.r_S, n=c.n, e=c.e)
-    L_before = _angular_momentum(c.body_1, c.r_S)
-    L_after = _angular_momentum(out.body_1, c.r_S)
-    scale = _angular_scale(c.body_1, c.r_S) + _angular_scale(out.body_1, c.r_S)
-    assert _norm(L_after - L_before) <= SUM_RTOL * scale
+    angular_momentum_about_contact_point_is_conserved(c)
 
 
 @RIGID
@@ -328,47 +255,10 @@ def test_in_the_plane_the_centre_of_percussion_leaves_the_axis_entirely_free(bod
 # ---------------------------------------------------------------- energy
 
 
-def _loss_correct(mu, e, v_n):
-    return 0.5 * mu * (1.0 - e * e) * v_n * v_n
-
-
-def _loss_wrong(mu, e, v_n):
-    """A wrong variant: (1 − e) instead of (1 − e²)."""
-    return 0.5 * mu * (1.0 - e) * v_n * v_n
-
-
-def check_energy_loss(loss, c: ms.Contact) -> None:
-    """Raise AssertionError unless T_before − T_after = ``loss(μ, e, v_n)``.
-
-    The same procedure for the book's (6.41) and for any variant: T from the
-    returned velocities by definition, μ by :func:`mechanics.impact.effective_mass`,
-    v_n by the connection formula.  Tolerance: the roundings of the energies
-    (ENERGY_RTOL of T), the solve's backward error moving ½ ωᵀJω by
-    eps ‖J‖ |ω'| |Δω|, and the relative error κ eps of μ on the loss.
-    """
-    out = im.rigid_impact(c.body_1, c.body_2, r_S=c.r_S, n=c.n, e=c.e)
-    bodies = _bodies(c, out)
-    T_before = sum(_kinetic_energy(b) for b, _ in bodies)
-    T_after = sum(_kinetic_energy(a) for _, a in bodies)
-    args = [c.body_1.m, c.body_1.J_G, c.r_S - c.body_1.r_G, c.n]
-    if c.body_2 is not None:
-        args += [c.body_2.m, c.body_2.J_G, c.r_S - c.body_2.r_G]
-    mu = float(im.effective_mass(*args))
-    v_n, _ = _contact_normal_velocity(c, c.body_1, c.body_2)
-    Q = loss(mu, c.e, v_n)
-    kappa = max(_kappa(b.J_G) for b, _ in bodies)
-    solve = sum(
-        np.linalg.norm(b.J_G, 2) * _norm(a.omega) * _norm(a.omega - b.omega) for b, a in bodies
-    )
-    tol = ENERGY_RTOL * (T_before + T_after + solve) + 4 * kappa * EPS * abs(Q)
-    assert T_after <= T_before + tol, ("energy increased", T_before, T_after, tol)
-    assert abs((T_before - T_after) - Q) <= tol, (T_before - T_after, Q, tol)
-
-
 @RIGID
 @given(ms.contacts())
 def test_energy_loss_equals_half_mu_one_minus_e_squared_vn_squared_6_41(c):
-    check_energy_loss(_loss_correct, c)
+    check_energy_loss(loss_6_41, c)
 
 
 @RIGID
@@ -387,14 +277,14 @@ def _example_contact(e: float) -> ms.Contact:
 
 def test_the_energy_procedure_rejects_the_loss_with_one_minus_e():
     # The negative control: the same procedure, a wrong formula, an interior e.
-    check_energy_loss(_loss_correct, _example_contact(0.5))
+    check_energy_loss(loss_6_41, _example_contact(0.5))
     with pytest.raises(AssertionError):
-        check_energy_loss(_loss_wrong, _example_contact(0.5))
+        check_energy_loss(loss_wrong, _example_contact(0.5))
 
     # And hypothesis finds a drawn contact that rejects it.
     def rejects(c) -> bool:
         try:
-            check_energy_loss(_loss_wrong, c)
+            check_energy_loss(loss_wrong, c)
         except AssertionError:
             return True
         return False
