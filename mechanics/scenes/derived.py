@@ -12,7 +12,8 @@ Conventions
   along −z alone): the nutation range of θ (the roots u1, u2 of the cubic, 5.2.4) and
   the nutation period 2K(m)/κ; measured: the extremes of θ over the samples and the
   mean spacing of the maxima of cos θ (each the vertex of a parabola through three
-  samples).
+  samples); the mean precession rate Δψ/T over a nutation period (the exact ψ(t));
+  measured: ψ's advance between the first and the last maximum over their time apart.
 - **Impacts**: the kinetic energy lost, summed over the impacts, against the sum of
   the Chapter 6 formula ½ μ (1 − e²) v_n² (6.41) (the impulse's work with friction).
 - **A rocket** (space-fixed ``thrust``): the speed at burn-out by (7.30),
@@ -115,6 +116,16 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
             top_k = [k for k in range(1, len(c) - 1) if c[k] > c[k - 1] and c[k] >= c[k + 1]]
             peaks = [_vertex(t, c, k) for k in top_k]
             rows.append(("nutation period", exact, _spacing(peaks)))
+            # the mean precession rate: ψ advances by the same Δψ in every nutation
+            # period (5.2.5), so Δψ/T over one period is the rate over any whole number;
+            # measured over the whole periods between the first and the last maximum
+            rate = float(top.psi(exact) - top.psi(0.0)) / exact
+            measured = None
+            if len(peaks) >= 2:
+                psi = series[f"{pre(i)}psi"]
+                ends = np.interp([peaks[0], peaks[-1]], t, psi)
+                measured = float(ends[1] - ends[0]) / (peaks[-1] - peaks[0])
+            rows.append(("mean precession rate ψ̇ (rad/s)", rate, measured))
     impacts = [e.detail for e in traj.events if "energy_loss" in e.detail]
     if impacts:
         lost = sum(d["kinetic_energy_before"] - d["kinetic_energy_after"] for d in impacts)

@@ -51,6 +51,14 @@ def test_the_heavy_top_reports_its_nutation_from_the_solution_and_the_motion() -
     dt = r.trajectory.t[1] - r.trajectory.t[0]
     # each maximum is a parabola's vertex through three samples: O(dt³) per peak
     assert measured == pytest.approx(exact, abs=dt**2)
+    # ψ is read at the first and last maximum by linear interpolation between samples
+    # (off by ≤ ⅛ max|Δ²ψ| at each end), at peak times off by ≤ dt² (above: ψ moves by
+    # max|ψ̇| dt² more), over the maxima's distance ≥ duration − 2 periods
+    rate, measured_rate = rows["mean precession rate ψ̇ (rad/s)"]
+    psi, t = r.trajectory.series["psi"], r.trajectory.t
+    ends = 2 * (0.125 * float(np.abs(np.diff(psi, 2)).max()) + np.abs(np.diff(psi)).max() * dt)
+    assert rate != 0.0
+    assert measured_rate == pytest.approx(rate, abs=ends / (t[-1] - t[0] - 2 * exact))
     lo, hi = rows["θ min (rad)"], rows["θ max (rad)"]
     # a sampled extreme misses the true one by at most ½ max|θ̈| dt² (θ̈ read off the
     # samples' second differences)
