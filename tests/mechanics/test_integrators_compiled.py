@@ -14,7 +14,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import mechanics.integrators as integrators
@@ -104,6 +104,23 @@ def test_compiled_splitting_is_the_reference_within_eps(order, bodies):
 ORDINARY_MOMENTS = ("equal", "general", "symmetric", "flat", "near-flat")
 
 
+def _amplification(run, y0, seed: int = 0) -> float:
+    """How many eps of the output one ulp of the initial state becomes: the reference
+    run from y0 with every component moved by one ulp (random signs, two draws), against
+    the run from y0.  A flat body such as J = (1/32, 1/2, 17/32) is nearly symmetric
+    (J2 ≈ J3) and amplifies rounding by 430 over 3 s: two runs that round differently
+    (the kernels sum in another order) differ by that factor times their own roundings."""
+    base = run(y0)
+    rng = np.random.default_rng(seed)
+    worst = 0.0
+    for _ in range(2):
+        moved = np.where(
+            rng.random(y0.shape) < 0.5, np.nextafter(y0, np.inf), np.nextafter(y0, -np.inf)
+        )
+        worst = max(worst, _rel_diff_eps(run(moved), base))
+    return worst
+
+
 @settings(max_examples=20, deadline=None)
 @given(
     J=principal_moments(min_scale=0.1, max_scale=10.0, regimes=ORDINARY_MOMENTS),
@@ -111,6 +128,9 @@ ORDINARY_MOMENTS = ("equal", "general", "symmetric", "flat", "near-flat")
     w=st.lists(st.floats(-2.0, 2.0), min_size=3, max_size=3),
     order=st.sampled_from(integrators.SPLITTING_ORDERS),
 )
+# found by hypothesis (dev profile): a flat body near J2 = J3, where one ulp of the
+# initial state grows to 430 eps in the reference itself; the paths differed by 1270 eps
+@example(J=np.array([0.03125, 0.5, 0.53125]), R0=np.eye(3), w=[1.0, 2.0, -1.0], order=2)
 def test_compiled_and_reference_agree_on_any_free_body(J, R0, w, order):
     L0 = J * np.array(w)
     t = (0.0, 3.0)
@@ -122,7 +142,11 @@ def test_compiled_and_reference_agree_on_any_free_body(J, R0, w, order):
     fast = integrate(rhs, y0, t, method="dop853", rtol=1e-9)
     ref = integrate(rhs, y0, t, method="dop853", rtol=1e-9, compiled=False)
     assert fast.steps == ref.steps
-    assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS
+    # the kernels' roundings, amplified as the motion amplifies one ulp of the start
+    amp = _amplification(
+        lambda y: integrate(rhs, y, t, method="dop853", rtol=1e-9, compiled=False).y, y0
+    )
+    assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS * max(1.0, amp)
 
 
 def test_moments_per_body_broadcast_on_the_compiled_path():
