@@ -31,7 +31,7 @@ The scenarios (:data:`SCENARIOS`)
     period 2K/κ and the mean precession rate over whole nutation periods.  Conserved: E
     and the angular momentum about the pivot's vertical L_z (5.55), and L₃ = J₃ω₃ (5.53).
 ``parabola``
-    A spinning ball thrown under gravity (no ground).  Exact: the parabola (Chapter 3)
+    A spinning ball thrown under gravity (no ground).  Exact: the parabola (ṗ = F, (1.1))
     and the free rotation.  Figures: the apex's height and time.  Conserved: E (with
     m g z) and the horizontal momentum.
 ``two_body_impact``
@@ -55,7 +55,8 @@ The scenarios (:data:`SCENARIOS`)
 Samples are uniform at binary fractions of a second (1/128 to 1/8 s) and ``steps`` are
 2⁻⁶, 2⁻⁷, 2⁻⁸ s (the heavy top 2⁻⁷ … 2⁻⁹): every product n·h is exact, every sample a
 whole number of steps.  Impacts fall at least 9 ms from any sample, so a sample is never
-between an impact and an engine's slightly late one at the battery's steps.
+between an impact and an engine's slightly late one at the finest step (3.9 ms), the run
+that is judged.
 """
 
 from __future__ import annotations
@@ -740,7 +741,7 @@ def _build() -> dict[str, Scenario]:
         Scenario(
             "parabola",
             "a spinning ball thrown under gravity: the parabola and its apex",
-            "Essén 3 (uniform gravity), (4.47) with M = 0",
+            "ṗ = F (1.1) under uniform gravity; (4.47) with M = 0",
             (ball,),
             duration=1.5,
             sample_times=_times(1.5, 2.0**-5),
