@@ -19,6 +19,7 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import inspect
+import os
 import sys
 from pathlib import Path
 
@@ -104,14 +105,19 @@ def _import(module: str):
             sys.modules[name] = mod
             spec.loader.exec_module(mod)
             return mod
-        if "" not in sys.path and "." not in sys.path:
-            sys.path.insert(0, "")  # as `python -m` does: the current directory's modules
-        return importlib.import_module(module)
+        here = os.getcwd()  # searched first, as `python -m` does, for this import only
+        sys.path.insert(0, here)
+        try:
+            return importlib.import_module(module)
+        finally:
+            sys.path.remove(here)
     except MissingExtraError as exc:
         raise _usage(str(exc)) from None
     except ModuleNotFoundError as exc:
         if exc.name and module.startswith(exc.name):
-            raise _usage(f"unknown adapter module {module!r} (no module named {exc.name!r})")
+            raise _usage(
+                f"unknown adapter module {module!r} (no module named {exc.name!r})"
+            ) from None
         raise _usage(f"importing adapter module {module!r} failed: {exc}") from None
     except Exception as exc:
         if type(exc).__name__ == "UsageError":
@@ -176,8 +182,15 @@ def _plot(report, path: Path) -> None:
         if w is not None and w.threshold:
             ax1.plot([w.threshold] * 2, [k - 0.4, k + 0.4], color="black", lw=1)
         label = w.name if w is not None else res[k].status
-        ax1.annotate(label, (0, k), xycoords=("axes fraction", "data"), xytext=(3, 0),
-                     textcoords="offset points", va="center", fontsize=7)
+        ax1.annotate(
+            label,
+            (0, k),
+            xycoords=("axes fraction", "data"),
+            xytext=(3, 0),
+            textcoords="offset points",
+            va="center",
+            fontsize=7,
+        )
     ax1.set_xscale("log")
     ax1.set_xlabel("worst figure (relative error or drift); bar: threshold")
     ax1.set_yticks(list(y), names)

@@ -121,7 +121,8 @@ def test_every_step_divides_every_sample_time_exactly(name):
     assert len(s.steps) >= 2
     for h in s.steps:
         for t in s.sample_times:
-            assert (t / h).is_integer() and round(t / h) * h == t, (h, t)
+            assert (t / h).is_integer(), (h, t)
+            assert round(t / h) * h == t, (h, t)
 
 
 def test_near_separatrix_scenario_is_as_near_as_documented():
@@ -159,7 +160,8 @@ def test_bouncing_ball_reference_matches_example_6_1_law_e_squared_per_bounce():
     h = ref.figures["apex_heights"]
     assert np.allclose(h[1:] / h[:-1], 0.8**2, rtol=4 * EPS, atol=0)
     z = ref.trajectory.position[:, 0, 2] - 0.1
-    assert z.min() >= -4 * EPS and z.max() == pytest.approx(1.275)
+    assert z.min() >= -4 * EPS
+    assert z.max() == pytest.approx(1.275)
 
 
 def test_unknown_scenario_names_the_known_ones():
@@ -185,7 +187,8 @@ def test_active_attitudes_fail_every_tilted_scenario_on_the_attitude():
         tilted = not np.allclose(SCENARIOS[name].bodies[0].R_A_O, np.eye(3))
         assert status == ("fail" if tilted else "pass"), name
         if tilted:
-            assert "attitude" in r[name].message and "violates threshold" in r[name].message
+            assert "attitude" in r[name].message
+            assert "violates threshold" in r[name].message
 
 
 def test_gravity_sign_error_fails_the_scenarios_with_gravity_only(toy):
@@ -196,7 +199,8 @@ def test_gravity_sign_error_fails_the_scenarios_with_gravity_only(toy):
     for name in ("parabola", "bouncing_ball"):
         assert wrong[name].status == "fail"
         pos = wrong[name].figure("position")
-        assert pos.value > 1.0 and f"position {pos.value:.3g} violates" in wrong[name].message
+        assert pos.value > 1.0
+        assert f"position {pos.value:.3g} violates" in wrong[name].message
     assert right["parabola"].status == "pass"
 
 
@@ -296,7 +300,8 @@ def test_no_order_is_read_from_errors_at_rounding():
 
     r = run_battery(Stepping(), scenarios=["parabola"], thresholds={"order": 3.0})["parabola"]
     assert [x.error for x in r.runs] == [0.0] * 3
-    assert r.order is None and r.status == "pass"
+    assert r.order is None
+    assert r.status == "pass"
     assert r.figure("order").note == "errors at rounding level: no order to read"
     assert ORDER_FLOOR < DEFAULT_RTOL
 
@@ -314,7 +319,8 @@ def test_thresholds_override_and_a_scenario_key_wins_over_a_figure_key(toy):
     assert loose.status == "pass"
     th = {**TOY_THRESHOLDS, "parabola.position": 1e-3}
     tight = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
-    assert tight.status == "fail" and tight.message.startswith("position ")
+    assert tight.status == "fail"
+    assert tight.message.startswith("position ")
     assert "violates threshold <= 0.001" in tight.message
 
 
@@ -322,7 +328,9 @@ def test_a_threshold_of_none_reports_without_checking(toy):
     th = {**TOY_THRESHOLDS, "position": None}
     r = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
     f = r.figure("position")
-    assert f.value > TOY_THRESHOLDS["position"] / 4 and f.passed is None and f.threshold is None
+    assert f.value > TOY_THRESHOLDS["position"] / 4
+    assert f.passed is None
+    assert f.threshold is None
 
 
 def test_an_order_threshold_is_a_lower_bound(toy):
@@ -354,10 +362,12 @@ def test_bad_thresholds_are_refused_naming_them(thresholds, message):
 def test_report_json_and_markdown_carry_every_scenario_and_status():
     r = run_battery(Crashes({"rocket"}), scenarios=["parabola", "rocket"])
     d = json.loads(r.to_json())
-    assert d["adapter"] == "crashes" and d["passed"] is False
+    assert d["adapter"] == "crashes"
+    assert d["passed"] is False
     assert d["counts"] == {"pass": 1, "fail": 0, "unsupported": 0, "error": 1}
     by = {s["scenario"]: s for s in d["scenarios"]}
-    assert by["rocket"]["status"] == "error" and by["rocket"]["wall_time"] is None
+    assert by["rocket"]["status"] == "error"
+    assert by["rocket"]["wall_time"] is None
     assert {f["name"] for f in by["parabola"]["figures"]} >= {"position", "apex_height"}
     md = r.to_markdown()
     assert "| scenario | status | worst figure | threshold | order | wall time (s) |" in md
