@@ -19,10 +19,11 @@ The scenarios (:data:`SCENARIOS`)
 ``free_top_near_separatrix``
     The same body spun at 4 rad/s about the intermediate axis, 0.04 rad/s off it:
     L² − 2EJ₂ = −3.2e-3 kg² m⁴ s⁻² against L² = 144, the elliptic complement m₁ = 1.3e-4;
-    the body flips every 8.3 s (ω's period 16.5 s, 5.6 times the e-folding time 1/λ₀ of
-    the unstable small motion about axis 2, λ₀ = 4 √((J₂ − J₁)(J₃ − J₂)/(J₁J₃)) = 1.41/s).
-    An energy error δE/E shifts m₁ by about 10⁴ δE/E: the period is the test of an
-    engine's energy behaviour near the separatrix (Section 5.3.3).
+    the body flips every 8.3 s (ω's period 16.5 s), 11.7 e-folding times 1/λ₀ of the
+    unstable small motion about axis 2 (λ₀ = 4 √((J₂ − J₁)(J₃ − J₂)/(J₁J₃)) = 1.41/s).
+    An energy error δE/E moves L² − 2EJ₂ by 2J₂E δE/E = 144 δE/E, so m₁ by a relative
+    4.5e4 δE/E: the period and the phase test an engine's energy behaviour near the
+    separatrix (Section 5.3.3).
 ``heavy_top``
     A heavy symmetric top on a frictionless pivot ℓ = 0.1 m below G (J₁ = J₂ = 0.3,
     J₃ = 0.5 kg m² about G, 1 kg, g = 9.81 m/s²), released at θ = 0.6 rad with spin
