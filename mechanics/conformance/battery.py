@@ -56,6 +56,7 @@ from .protocol import ConformanceError, Scenario, Trajectory, check_trajectory
 from .scenarios import (
     SCENARIOS,
     UnknownScenarioError,
+    body_sizes,
     figure_names,
     get_scenario,
     invariant_names,
@@ -316,16 +317,6 @@ class Report:
 # --------------------------------------------------------------------------- measuring
 
 
-def _body_sizes(s: Scenario) -> np.ndarray:
-    out = []
-    for b in s.bodies:
-        size = math.sqrt(max(b.inertia) / b.mass)  # radius of gyration
-        if b.shape is not None:
-            size = max(size, float(np.linalg.norm(b.shape.dims)))
-        out.append(size)
-    return np.array(out)
-
-
 def state_errors(s: Scenario, ref: Trajectory, tr: Trajectory) -> dict[str, float]:
     """Largest errors of a trajectory against the exact one over samples and bodies.
 
@@ -334,7 +325,7 @@ def state_errors(s: Scenario, ref: Trajectory, tr: Trajectory) -> dict[str, floa
     omega: |Δω| / max|ω| (V/L for bodies that do not turn);
     attitude: max |ΔR_ij| (absolute: the entries of a rotation are at most 1);
     mass: |Δm| / m₀, where the scenario has thrust (inf when no masses are returned)."""
-    L = max(float(np.max(np.linalg.norm(ref.position, axis=-1))), float(_body_sizes(s).max()))
+    L = max(float(np.max(np.linalg.norm(ref.position, axis=-1))), float(body_sizes(s).max()))
     W = float(np.max(np.linalg.norm(ref.omega, axis=-1)))
     V = max(float(np.max(np.linalg.norm(ref.velocity, axis=-1))), L * W)
     V = V if V > 0 else 1.0
@@ -430,8 +421,9 @@ def _run_one(adapter, s: Scenario, th: dict) -> ScenarioResult:
         m = measured[name]
         value, note = (math.inf, m) if isinstance(m, str) else (_relative(m, exact), "")
         figs.append(_judge(name, "error", value, _threshold(th, s.name, name), note))
-    for name, (q, scale) in invariants(s, tr).items():
-        q = np.asarray(q, dtype=float)
+    scales = {k: v[1] for k, v in invariants(s, ref.trajectory).items()}
+    for name, (q, _) in invariants(s, tr).items():
+        q, scale = np.asarray(q, dtype=float), scales[name]
         drift = float(np.max(np.abs(q - q[0]))) / scale
         key = f"{name}_drift"
         figs.append(_judge(key, "drift", drift, _threshold(th, s.name, key)))

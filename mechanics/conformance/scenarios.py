@@ -77,6 +77,7 @@ __all__ = [
     "SCENARIOS",
     "Reference",
     "UnknownScenarioError",
+    "body_sizes",
     "crossings",
     "figure_names",
     "get_scenario",
@@ -216,22 +217,41 @@ def _energy(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
     return T + V, scale
 
 
+def body_sizes(s: Scenario) -> np.ndarray:
+    """Each body's size, shape (n,): the larger of its radius of gyration √(max J / m)
+    and the norm of its shape's dimensions."""
+    out = []
+    for b in s.bodies:
+        size = math.sqrt(max(b.inertia) / b.mass)
+        if b.shape is not None:
+            size = max(size, float(np.linalg.norm(b.shape.dims)))
+        out.append(size)
+    return np.array(out)
+
+
 def _momentum(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
+    """Total momentum; scale: the largest Σ m|v|, or, where nothing translates (a free
+    top), Σ m·size·max|ω|, the momentum of the bodies' points."""
     m = np.array([b.mass for b in s.bodies])
     P = (m[None, :, None] * tr.velocity).sum(1)
     scale = float(np.max((m[None, :] * np.linalg.norm(tr.velocity, axis=-1)).sum(-1)))
-    return P, max(scale, 1e-300)
+    spin = m * body_sizes(s) * np.max(np.linalg.norm(tr.omega, axis=-1), axis=0)
+    return P, max(scale, float(spin.sum()), 1e-300)
 
 
 def _angular_momentum(s: Scenario, tr: Trajectory, about) -> tuple[np.ndarray, float]:
     """L about the fixed point ``about``: orbital (r − about) × m v plus the spins
-    R_A_Oᵀ J ω (4.x), summed over the bodies; scale: the sum of the parts' sizes."""
+    R_A_Oᵀ J ω (4.x), summed over the bodies; scale: the largest sum of the parts' sizes,
+    |r − about| m |v| + |J ω| (not of the cross product, zero for a head-on motion through
+    the point)."""
     m = np.array([b.mass for b in s.bodies])
     J = np.array([b.inertia for b in s.bodies])
-    orb = np.cross(tr.position - np.asarray(about, dtype=float), m[None, :, None] * tr.velocity)
+    r = tr.position - np.asarray(about, dtype=float)
+    orb = np.cross(r, m[None, :, None] * tr.velocity)
     spin = np.einsum("tbji,tbj->tbi", tr.R_A_O, J * tr.omega)
     L = (orb + spin).sum(1)
-    scale = float(np.max((np.linalg.norm(orb, axis=-1) + np.linalg.norm(spin, axis=-1)).sum(-1)))
+    size = np.linalg.norm(r, axis=-1) * m * np.linalg.norm(tr.velocity, axis=-1)
+    scale = float(np.max((size + np.linalg.norm(spin, axis=-1)).sum(-1)))
     return L, max(scale, 1e-300)
 
 
@@ -648,7 +668,9 @@ def measure(scenario: Scenario, trajectory: Trajectory) -> dict:
 
 def invariants(scenario: Scenario, trajectory: Trajectory) -> dict:
     """The quantities conserved in the scenario, sampled along a trajectory: name →
-    (samples, shape (m,) or (m, k); scale for the relative drift)."""
+    (samples, shape (m,) or (m, k); scale for the relative drift).  The battery takes
+    the scales from the exact trajectory, so that a run-away engine cannot inflate
+    them."""
     return _kind(scenario)[2](scenario, trajectory)
 
 

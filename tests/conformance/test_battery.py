@@ -204,6 +204,24 @@ def test_gravity_sign_error_fails_the_scenarios_with_gravity_only(toy):
     assert right["parabola"].status == "pass"
 
 
+def test_conserved_quantities_that_vanish_are_scaled_by_the_motion_not_by_zero():
+    """The free top's p and the head-on pair's L about the origin are exactly 0: an
+    engine 1e-12 off (G creeping, a pair slightly off its line) must still pass."""
+
+    def nudge(s, tr):
+        creep = 1e-12 * tr.t[:, None, None]
+        return dataclasses.replace(
+            tr, velocity=tr.velocity + creep, position=tr.position + creep * [0.0, 1.0, 0.0]
+        )
+
+    r = run_battery(
+        Wrapped("nudged", answer=nudge), scenarios=["free_top_axis1", "two_body_impact"]
+    )
+    assert statuses(r) == {"free_top_axis1": "pass", "two_body_impact": "pass"}
+    assert 0 < r["free_top_axis1"].figure("p_drift").value < 1e-11
+    assert 0 < r["two_body_impact"].figure("L_drift").value < 1e-11
+
+
 # -- bad answers --------------------------------------------------------------------
 
 
