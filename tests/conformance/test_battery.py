@@ -35,6 +35,7 @@ from mechanics.tops import FreeAsymmetricTop
 
 from .toys import (
     BAD_ANSWERS,
+    DOC,
     RK4,
     Crashes,
     NeedsMissingEngine,
@@ -235,6 +236,17 @@ def test_bad_answer_is_an_error_naming_scenario_field_and_expectation(case):
     assert msg.startswith("scenario 'parabola': "), msg
     for w in words:
         assert w in msg, (w, msg)
+
+
+def test_the_docs_bad_answer_messages_are_the_batterys():
+    text = DOC.read_text(encoding="utf-8")
+    block = text[text.index("## Bad answers") :].split("```text\n")[1].split("```")[0]
+    shown = block.strip().splitlines()
+    got = [
+        run_battery(Wrapped(c, answer=spoil), scenarios=["parabola"])["parabola"].message
+        for c, (spoil, _) in BAD_ANSWERS.items()
+    ]
+    assert shown == got
 
 
 def test_crashing_adapter_fails_its_scenario_and_the_battery_goes_on():

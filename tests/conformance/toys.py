@@ -154,7 +154,7 @@ def _swap_2_3(t):
 BAD_ANSWERS = {
     # case: (spoil, what the message must name)
     "wrong shape": (_field("position", lambda x: x[:, :, :2]), ("'position'", "shape")),
-    "NaN": (_field("velocity", _nan_at_3), ("'velocity'", "finite", "nan")),
+    "NaN": (_field("velocity", _nan_at_3), ("'velocity'", "finite", "got nan at index (3, 0, 1)")),
     "non-orthogonal attitude": (
         _field("R_A_O", lambda R: R * 1.001),
         ("'R_A_O'", "rotations", "off by"),
