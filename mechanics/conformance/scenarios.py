@@ -208,8 +208,8 @@ def _kinetic(s: Scenario, tr: Trajectory) -> np.ndarray:
 
 
 def _energy(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
-    """Kinetic plus m g z energy (5.85, 3.x), and its scale: the largest of the kinetic
-    and the potential parts' sizes."""
+    """Kinetic (½ m v² + ½ Σ J_i ω_i², (5.85)) plus potential −m g·r energy, and its
+    scale: the largest of the kinetic and the potential parts' sizes."""
     m = np.array([b.mass for b in s.bodies])
     T = _kinetic(s, tr)
     V = -(m[None, :, None] * _gravity(s) * tr.position).sum((-1, -2))
@@ -240,10 +240,10 @@ def _momentum(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
 
 
 def _angular_momentum(s: Scenario, tr: Trajectory, about) -> tuple[np.ndarray, float]:
-    """L about the fixed point ``about``: orbital (r − about) × m v plus the spins
-    R_A_Oᵀ J ω (4.x), summed over the bodies; scale: the largest sum of the parts' sizes,
-    |r − about| m |v| + |J ω| (not of the cross product, zero for a head-on motion through
-    the point)."""
+    """L about the fixed point ``about``: orbital (r − about) × m v plus the spins about
+    G, R_A_Oᵀ J ω, summed over the bodies; scale: the largest sum of the parts' sizes,
+    |r − about| m |v| + |J ω| (not of the cross product, zero for a head-on motion
+    through the point)."""
     m = np.array([b.mass for b in s.bodies])
     J = np.array([b.inertia for b in s.bodies])
     r = tr.position - np.asarray(about, dtype=float)
