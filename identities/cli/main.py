@@ -10,6 +10,7 @@
     bodycheck demo --list
     bodycheck bench [--quick] [--out DIR] [--repeats N]
     bodycheck site OUT
+    bodycheck conform MODULE:ADAPTER|exact|engine [--scenario NAME ...] [--json FILE] [--plot FILE]
 
 Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale, or a scene missed the
 book), 2 bad usage (including a bad scene file: one line naming file, field and reason).
@@ -26,6 +27,7 @@ from collections import defaultdict
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
+from identities.cli import conform
 from identities.verify import catalogue
 from identities.verify.catalogue import KINDS, Outcome
 
@@ -125,6 +127,7 @@ def _parser() -> argparse.ArgumentParser:
     )
     si = sub.add_parser("site", help="write the book as a static site (pages, MathML, plots)")
     si.add_argument("out", metavar="OUT", help="output folder (new, empty or a previous site)")
+    conform.add_parser(sub)
     return p
 
 
@@ -612,6 +615,7 @@ def main(argv: list[str] | None = None) -> int:
             "demo": _cmd_demo,
             "bench": _cmd_bench,
             "site": _cmd_site,
+            "conform": conform.cmd_conform,
         }[args.command]
         return handler(args)
     except UsageError as exc:

@@ -2,8 +2,30 @@
 
 - :mod:`mechanics.conformance.protocol`: the scenario, the trajectory, the adapter
   protocol a user implements, and the validation of an adapter's answer.
+- :mod:`mechanics.conformance.scenarios`: the battery's scenarios (:data:`SCENARIOS`:
+  torque-free tops in each regime and near the separatrix, the heavy top, the parabola,
+  a two-body impact, a bouncing ball, a rocket) with their exact references.
+- :mod:`mechanics.conformance.battery`: :func:`run_battery` and its :class:`Report`
+  (Markdown, JSON); :data:`DEFAULT_THRESHOLDS`.
+- :mod:`mechanics.conformance.adapters`: the reference adapters (``ExactAdapter``,
+  ``SceneEngineAdapter``) and :func:`~mechanics.conformance.adapters.require` for an
+  optional engine's extra.
+- :mod:`mechanics.conformance.parametrize`: :func:`conformance_tests`, the battery as a
+  pytest parametrisation (imports pytest only when called).
+
+See docs/conformance.md.
 """
 
+from .battery import (
+    DEFAULT_RTOL,
+    DEFAULT_THRESHOLDS,
+    Figure,
+    Report,
+    Run,
+    ScenarioResult,
+    ThresholdError,
+    run_battery,
+)
 from .protocol import (
     ORTHOGONALITY_ATOL,
     SAMPLE_TIME_RTOL,
@@ -19,19 +41,42 @@ from .protocol import (
     Trajectory,
     check_trajectory,
 )
+from .scenarios import SCENARIOS, Reference, UnknownScenarioError, get_scenario, reference
 
 __all__ = [
+    "DEFAULT_RTOL",
+    "DEFAULT_THRESHOLDS",
     "ORTHOGONALITY_ATOL",
     "SAMPLE_TIME_RTOL",
+    "SCENARIOS",
     "Adapter",
     "Body",
     "ConformanceError",
     "Event",
+    "Figure",
     "Ground",
     "Pivot",
+    "Reference",
+    "Report",
+    "Run",
     "Scenario",
+    "ScenarioResult",
     "Shape",
+    "ThresholdError",
     "Thrust",
     "Trajectory",
+    "UnknownScenarioError",
     "check_trajectory",
+    "conformance_tests",
+    "get_scenario",
+    "reference",
+    "run_battery",
 ]
+
+
+def __getattr__(name: str):
+    if name == "conformance_tests":  # imports pytest when called, not here
+        from .parametrize import conformance_tests
+
+        return conformance_tests
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -219,7 +219,7 @@ def _field(scenario: Scenario, name: str, value, shape: tuple[int, ...]) -> np.n
     bad = ~np.isfinite(a)
     if bad.any():
         i = tuple(int(k) for k in np.argwhere(bad)[0])
-        raise ConformanceError(f"{where} must be finite; got {a[i]!r} at index {i}")
+        raise ConformanceError(f"{where} must be finite; got {float(a[i])!r} at index {i}")
     return a
 
 
@@ -257,15 +257,15 @@ def check_trajectory(scenario: Scenario, trajectory) -> Trajectory:
     if m > 1 and not np.all(np.diff(t) > 0):
         k = int(np.argmin(np.diff(t) > 0))
         raise ConformanceError(
-            f"{where}: trajectory field 't' must increase strictly; t[{k}] = {t[k]!r}, "
-            f"t[{k + 1}] = {t[k + 1]!r}"
+            f"{where}: trajectory field 't' must increase strictly; t[{k}] = {float(t[k])!r}, "
+            f"t[{k + 1}] = {float(t[k + 1])!r}"
         )
     off = np.abs(t - T) > SAMPLE_TIME_RTOL * np.maximum(np.abs(T), 1.0)
     if off.any():
         k = int(np.argmax(off))
         raise ConformanceError(
             f"{where}: trajectory field 't' must be the scenario's sample times; "
-            f"t[{k}] = {t[k]!r}, expected {T[k]!r}"
+            f"t[{k}] = {float(t[k])!r}, expected {float(T[k])!r}"
         )
     pos = _field(scenario, "position", trajectory.position, (m, n, 3))
     vel = _field(scenario, "velocity", trajectory.velocity, (m, n, 3))
@@ -285,7 +285,7 @@ def check_trajectory(scenario: Scenario, trajectory) -> Trajectory:
         if (masses <= 0).any():
             k, b = (int(x) for x in np.argwhere(masses <= 0)[0])
             raise ConformanceError(
-                f"{where}: trajectory field 'masses' must be > 0; got {masses[k, b]!r} "
+                f"{where}: trajectory field 'masses' must be > 0; got {float(masses[k, b])!r} "
                 f"at sample {k}, body {b}"
             )
     events = tuple(trajectory.events)

@@ -1288,6 +1288,8 @@ class Engine:
                     scales[f"{pre(i)}{what}_{c}"] = size
         traj = Trajectory(t, series, events, how, state_at, conserved, since, {}, frozenset(across))
         traj.extra["scales"] = scales
+        #: every body's r, v, R_A_O, ω_A and m at the sample times (mechanics.conformance)
+        traj.extra["snapshot"] = s
         traj.extra["gaps"] = {
             imp.label: np.min([imp.gap(s, ft) for ft in imp.features], axis=0)
             for imp in self.impacts

@@ -1,0 +1,232 @@
+"""``bodycheck conform``: the conformance battery on an adapter, as a table and a plot.
+
+    bodycheck conform MODULE:ADAPTER [--scenario NAME ...] [--json FILE] [--plot FILE]
+                      [--threshold NAME=VALUE ...]
+    bodycheck conform exact|engine ...
+
+MODULE is a dotted module (importable from the current directory too) or a path to a
+``.py`` file; ADAPTER an attribute of it (dots allowed): a class (instantiated without
+arguments), a factory (called without arguments) or an adapter instance.  Resolved with
+importlib and getattr, never eval.  ``exact`` and ``engine`` name the reference adapters
+(the closed forms; the project's integrated scene engine).
+
+Exit codes: 0 every scenario passed or is unsupported, 1 a scenario failed or errored,
+2 bad usage (one line naming the value).
+"""
+
+from __future__ import annotations
+
+import importlib
+import importlib.util
+import inspect
+import os
+import sys
+from pathlib import Path
+
+__all__ = ["PLOT_SUFFIXES", "add_parser", "cmd_conform", "load_adapter", "parse_thresholds"]
+
+#: formats the plot is written in, by the file's suffix
+PLOT_SUFFIXES = (".svg", ".png")
+BUILTIN = {"exact": "ExactAdapter", "engine": "SceneEngineAdapter"}
+
+
+def add_parser(sub) -> None:
+    """Add the ``conform`` subcommand to the ``bodycheck`` parser's subparsers."""
+    c = sub.add_parser(
+        "conform", help="run the engine-conformance battery on an adapter (docs/conformance.md)"
+    )
+    c.add_argument(
+        "adapter",
+        metavar="MODULE:ADAPTER",
+        help="MODULE a dotted module or a .py path, ADAPTER a class, factory or instance in "
+        "it; or 'exact' / 'engine' for the reference adapters",
+    )
+    c.add_argument(
+        "--scenario",
+        dest="scenarios",
+        nargs="+",
+        action="extend",
+        metavar="NAME",
+        help="only these scenarios (default: all)",
+    )
+    c.add_argument("--json", metavar="FILE", help="write the report as JSON ('-': stdout)")
+    c.add_argument("--plot", metavar="FILE", help="write a bar chart (.svg or .png)")
+    c.add_argument(
+        "--threshold",
+        dest="thresholds",
+        nargs="+",
+        action="extend",
+        default=[],
+        metavar="NAME=VALUE",
+        help="override a threshold: a figure (velocity, E_drift, order, ...) or "
+        "scenario.figure; VALUE a number or 'none' (report, do not check)",
+    )
+
+
+def _usage(message: str):
+    from .main import UsageError
+
+    return UsageError(message)
+
+
+def parse_thresholds(items: list[str]) -> dict:
+    """NAME=VALUE strings to a dict (VALUE a float or ``none``); UsageError otherwise."""
+    out: dict = {}
+    for item in items:
+        name, sep, value = item.partition("=")
+        if not sep or not name:
+            raise _usage(f"--threshold {item!r}: expected NAME=VALUE, e.g. velocity=1e-4")
+        if value.strip().lower() == "none":
+            out[name] = None
+            continue
+        try:
+            out[name] = float(value)
+        except ValueError:
+            raise _usage(
+                f"--threshold {item!r}: VALUE must be a number or 'none'; got {value!r}"
+            ) from None
+    return out
+
+
+def _import(module: str):
+    from mechanics.conformance.adapters import MissingExtraError
+
+    looks_like_path = module.endswith(".py") or "/" in module or "\\" in module
+    try:
+        if looks_like_path:
+            path = Path(module)
+            if not path.is_file():
+                raise _usage(f"adapter module file {module!r} does not exist")
+            name = f"_bodycheck_conform_{path.stem}"
+            spec = importlib.util.spec_from_file_location(name, path)
+            if spec is None or spec.loader is None:
+                raise _usage(f"adapter module file {module!r} cannot be imported")
+            mod = importlib.util.module_from_spec(spec)
+            sys.modules[name] = mod
+            spec.loader.exec_module(mod)
+            return mod
+        here = os.getcwd()  # searched first, as `python -m` does, for this import only
+        sys.path.insert(0, here)
+        try:
+            return importlib.import_module(module)
+        finally:
+            sys.path.remove(here)
+    except MissingExtraError as exc:
+        raise _usage(str(exc)) from None
+    except ModuleNotFoundError as exc:
+        if exc.name and module.startswith(exc.name):
+            raise _usage(
+                f"unknown adapter module {module!r} (no module named {exc.name!r})"
+            ) from None
+        raise _usage(f"importing adapter module {module!r} failed: {exc}") from None
+    except Exception as exc:
+        if type(exc).__name__ == "UsageError":
+            raise
+        raise _usage(
+            f"importing adapter module {module!r} raised {type(exc).__name__}: {exc}"
+        ) from None
+
+
+def load_adapter(spec: str):
+    """The adapter named by ``MODULE:ADAPTER``, ``exact`` or ``engine``; UsageError
+    naming the value for anything else."""
+    from mechanics.conformance import adapters
+
+    if spec in BUILTIN:
+        return getattr(adapters, BUILTIN[spec])()
+    module, sep, attr = spec.rpartition(":")
+    if not sep or not module or not attr:
+        raise _usage(
+            f"adapter {spec!r}: expected MODULE:ADAPTER (e.g. my_engine.adapter:MyAdapter or "
+            "path/to/adapter.py:MyAdapter), 'exact' or 'engine'"
+        )
+    obj = _import(module)
+    for part in attr.split("."):
+        if not part.isidentifier() or not hasattr(obj, part):
+            raise _usage(f"adapter {spec!r}: module {module!r} has no attribute {attr!r}")
+        obj = getattr(obj, part)
+    if inspect.isclass(obj) or (callable(obj) and not hasattr(obj, "run")):
+        what = "class" if inspect.isclass(obj) else "factory"
+        try:
+            obj = obj()
+        except Exception as exc:
+            raise _usage(
+                f"adapter {spec!r}: the {what} could not be called without arguments: "
+                f"{type(exc).__name__}: {exc}"
+            ) from None
+    missing = [a for a in ("name", "takes_step", "supports", "run") if not hasattr(obj, a)]
+    if missing:
+        raise _usage(
+            f"adapter {spec!r} is not an adapter ({type(obj).__name__} lacks "
+            f"{', '.join(missing)}): it needs name, takes_step, supports(scenario) and "
+            "run(scenario, step)"
+        )
+    return obj
+
+
+def _plot(report, path: Path) -> None:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    res = report.results
+    names = [r.scenario for r in res]
+    y = range(len(res))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 0.45 * len(res) + 1.8), sharey=True)
+    colours = {"pass": "tab:green", "fail": "tab:red", "error": "black", "unsupported": "grey"}
+    worst = [r.worst for r in res]
+    err = [w.value if w is not None and w.value > 0 else float("nan") for w in worst]
+    ax1.barh(y, err, color=[colours[r.status] for r in res])
+    for k, w in enumerate(worst):
+        if w is not None and w.threshold:
+            ax1.plot([w.threshold] * 2, [k - 0.4, k + 0.4], color="black", lw=1)
+        label = w.name if w is not None else res[k].status
+        ax1.annotate(
+            label,
+            (0, k),
+            xycoords=("axes fraction", "data"),
+            xytext=(3, 0),
+            textcoords="offset points",
+            va="center",
+            fontsize=7,
+        )
+    ax1.set_xscale("log")
+    ax1.set_xlabel("worst figure (relative error or drift); bar: threshold")
+    ax1.set_yticks(list(y), names)
+    ax1.invert_yaxis()
+    wall = [r.wall_time for r in res]
+    ax2.barh(y, wall, color="tab:blue")
+    ax2.set_xscale("log")
+    ax2.set_xlabel("wall time of the finest run (s)")
+    fig.suptitle(f"Conformance: {report.adapter}")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+    plt.close(fig)
+
+
+def cmd_conform(args) -> int:
+    """Run the battery; print the table; write JSON and the plot if asked."""
+    from mechanics.conformance import SCENARIOS, run_battery
+    from mechanics.conformance.battery import ThresholdError, resolve_thresholds
+
+    if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
+        raise _usage(f"--plot {args.plot!r}: the file must end in .svg or .png")
+    for name in args.scenarios or ():
+        if name not in SCENARIOS:
+            raise _usage(f"unknown scenario {name!r} (known: {', '.join(SCENARIOS)})")
+    try:
+        thresholds = resolve_thresholds(parse_thresholds(args.thresholds))
+    except ThresholdError as exc:
+        raise _usage(str(exc)) from None
+    adapter = load_adapter(args.adapter)
+    report = run_battery(adapter, scenarios=args.scenarios, thresholds=thresholds)
+    if args.json == "-":
+        print(report.to_json())
+    else:
+        print(report.to_markdown(), end="")
+        if args.json:
+            Path(args.json).write_text(report.to_json() + "\n", encoding="utf-8")
+    if args.plot:
+        _plot(report, Path(args.plot))
+    return 0 if report.passed else 1

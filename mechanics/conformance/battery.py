@@ -1,0 +1,486 @@
+"""Run the conformance battery against an adapter and report, per scenario, how far the
+engine is from the book (issue 19).
+
+For each scenario of :data:`~mechanics.conformance.scenarios.SCENARIOS` (or the ones
+given) the battery
+
+1. asks ``adapter.supports(scenario)``: a reason makes it **unsupported** (shown, never
+   passed by omission);
+2. runs it, once with ``step=None`` or, when ``adapter.takes_step``, at each of the
+   scenario's ``steps`` (coarse to fine), timing each run (wall time, ``perf_counter``);
+   an adapter that raises, or returns what :func:`~.protocol.check_trajectory` refuses,
+   makes the scenario an **error** with the exception's type and message (the battery
+   goes on with the next scenario);
+3. compares the finest run with the exact reference
+   (:func:`~mechanics.conformance.scenarios.reference`): the state errors ``position``,
+   ``velocity``, ``omega`` (relative to the motion's scales, see :func:`state_errors`),
+   ``attitude`` (absolute, the largest entry of R − R_exact) and ``mass`` (with thrust);
+   the scenario's derived figures measured from the samples (periods, rates, apexes,
+   e, Δv; relative errors); the drift of each conserved quantity,
+   max |Q(t) − Q(0)| / scale (``E_drift``, ``p_drift``, ``L_drift``, about the point
+   where each is conserved: the pivot's vertical ``L_z_drift`` for the heavy top);
+4. with two or more steps, the **order of convergence**: the slope of log(error) against
+   log(step) through the runs whose largest state error is above rounding
+   (:data:`ORDER_FLOOR`);
+5. marks the scenario **pass** when every checked figure is within its threshold, else
+   **fail** naming each figure, its value and the threshold.
+
+Thresholds
+----------
+:data:`DEFAULT_THRESHOLDS` maps a figure name to its bound; a user's dict overrides it
+with keys ``"figure"`` (every scenario that has the figure) or ``"scenario.figure"``
+(one scenario; it wins over the plain name).  A value ``None`` reports the figure
+without checking it.  ``order`` is a lower bound (default ``None``: reported only); all
+the others are upper bounds.  Unknown keys are refused, naming them.
+
+Conserved quantities claimed (and why no others): free tops E, p, L; the heavy top E,
+L_z about the pivot's vertical and L₃ (5.53, 5.55, 5.66); the parabola E and the
+horizontal momentum; the two-body impact p and L about the origin, kept by the internal
+central impulse (E is lost, 6.41); the bouncing ball the tangential momentum (smooth
+ground; E is lost at each impact, p_z reversed); the rocket nothing (mass leaves with its
+momentum and energy).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import time
+from collections.abc import Iterable, Mapping
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ..errors import MechanicsValueError
+from .protocol import ConformanceError, Scenario, Trajectory, check_trajectory
+from .scenarios import (
+    SCENARIOS,
+    UnknownScenarioError,
+    body_sizes,
+    figure_names,
+    get_scenario,
+    invariant_names,
+    invariants,
+    measure,
+    reference,
+)
+
+__all__ = [
+    "DEFAULT_RTOL",
+    "DEFAULT_THRESHOLDS",
+    "ORDER_FLOOR",
+    "STATE_FIGURES",
+    "STATUSES",
+    "Figure",
+    "Report",
+    "Run",
+    "ScenarioResult",
+    "ThresholdError",
+    "known_threshold_keys",
+    "resolve_thresholds",
+    "run_battery",
+    "state_errors",
+]
+
+EPS = float(np.finfo(float).eps)
+#: 2^-10 ≈ 0.1 %: engineering accuracy.  A convergent engine at the battery's finest
+#: step stays far below it (RK4 ~1e-9, the project's DOP853 ~1e-10), a wrong law (a sign,
+#: a lost e, a transposed attitude) is off by O(1); users tighten it for their engine
+DEFAULT_RTOL = 2**42 * EPS
+#: state errors below 2^10 eps of their scale are rounding: no order is read from them
+ORDER_FLOOR = 2**10 * EPS
+
+STATE_FIGURES = ("position", "velocity", "attitude", "omega", "mass")
+STATUSES = ("pass", "fail", "unsupported", "error")
+
+
+def _defaults() -> dict[str, float | None]:
+    out: dict[str, float | None] = dict.fromkeys(STATE_FIGURES, DEFAULT_RTOL)
+    for s in SCENARIOS.values():
+        for f in figure_names(s):
+            out[f] = DEFAULT_RTOL
+        for q in invariant_names(s):
+            out[f"{q}_drift"] = DEFAULT_RTOL
+    out["order"] = None
+    return out
+
+
+#: Every figure's default bound (relative unless said otherwise; ``order`` a lower bound,
+#: ``None``: reported, not checked).
+DEFAULT_THRESHOLDS: dict[str, float | None] = _defaults()
+
+
+class ThresholdError(MechanicsValueError):
+    """A threshold the battery does not know, or a value that is not a number ≥ 0."""
+
+
+def _figures_of(s: Scenario) -> tuple[str, ...]:
+    state = STATE_FIGURES if s.thrust is not None else STATE_FIGURES[:-1]
+    drift = tuple(f"{q}_drift" for q in invariant_names(s))
+    return (*state, *figure_names(s), *drift, "order")
+
+
+def known_threshold_keys(scenarios: Iterable[Scenario] = ()) -> set[str]:
+    """Every key a threshold dict may use: figure names and ``scenario.figure``."""
+    keys = set(DEFAULT_THRESHOLDS)
+    for s in [*SCENARIOS.values(), *scenarios]:
+        keys.update(f"{s.name}.{f}" for f in _figures_of(s))
+    return keys
+
+
+def resolve_thresholds(thresholds: Mapping | None, scenarios: Iterable[Scenario] = ()) -> dict:
+    """Validate a user's thresholds; return them as a plain dict of floats (or None).
+
+    Raises :class:`ThresholdError` naming every unknown key (and the known figure names)
+    or the first value that is not a finite number ≥ 0 or None.
+
+    Examples
+    --------
+    >>> resolve_thresholds({"velocity": 1e-2, "parabola.apex_height": None})
+    {'velocity': 0.01, 'parabola.apex_height': None}
+    >>> resolve_thresholds({"velocty": 1e-2})  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.conformance.battery.ThresholdError: unknown threshold key(s) 'velocty'; ...
+    """
+    if thresholds is None:
+        return {}
+    if not isinstance(thresholds, Mapping):
+        raise ThresholdError(
+            f"thresholds must be a dict of figure name -> number; got {type(thresholds).__name__}"
+        )
+    known = known_threshold_keys(scenarios)
+    unknown = sorted(str(k) for k in thresholds if k not in known)
+    if unknown:
+        raise ThresholdError(
+            f"unknown threshold key(s) {', '.join(repr(k) for k in unknown)}; a key is a "
+            f"figure ({', '.join(sorted(DEFAULT_THRESHOLDS))}) or 'scenario.figure'"
+        )
+    out = {}
+    for k, v in thresholds.items():
+        if v is not None:
+            try:
+                x = float(v)
+            except (TypeError, ValueError):
+                x = math.nan
+            if not (math.isfinite(x) and x >= 0) or isinstance(v, bool):
+                raise ThresholdError(
+                    f"threshold {k!r} must be a finite number >= 0 (or None); got {v!r}"
+                )
+            v = x
+        out[k] = v
+    return out
+
+
+# --------------------------------------------------------------------------- results
+
+
+@dataclass
+class Figure:
+    """One figure of a scenario: ``kind`` ``"error"`` (relative unless ``attitude``),
+    ``"drift"`` or ``"order"``; ``passed`` is None when the figure is not checked."""
+
+    name: str
+    kind: str
+    value: float | None
+    threshold: float | None
+    passed: bool | None
+    note: str = ""
+
+    def describe(self) -> str:
+        v = "n/a" if self.value is None else f"{self.value:.3g}"
+        if self.threshold is None:
+            return f"{self.name} {v}"
+        rel = ">=" if self.kind == "order" else "<="
+        word = "within" if self.passed else "violates"
+        text = f"{self.name} {v} {word} threshold {rel} {self.threshold:.3g}"
+        return f"{text} ({self.note})" if self.note else text
+
+
+@dataclass
+class Run:
+    """One run of the adapter: the step (None: the engine's own), the wall time and the
+    largest relative state error."""
+
+    step: float | None
+    wall_time: float
+    error: float
+
+
+@dataclass
+class ScenarioResult:
+    """A scenario's verdict: ``status`` in :data:`STATUSES`, ``message`` the reason
+    (failed figures, the adapter's exception, its unsupported reason)."""
+
+    scenario: str
+    description: str
+    book: str
+    status: str
+    message: str = ""
+    figures: list[Figure] = field(default_factory=list)
+    runs: list[Run] = field(default_factory=list)
+
+    @property
+    def wall_time(self) -> float:
+        """Wall time of the finest (last) run, s; nan when nothing ran."""
+        return self.runs[-1].wall_time if self.runs else math.nan
+
+    @property
+    def order(self) -> float | None:
+        f = self.figure("order")
+        return None if f is None else f.value
+
+    def figure(self, name: str) -> Figure | None:
+        return next((f for f in self.figures if f.name == name), None)
+
+    @property
+    def worst(self) -> Figure | None:
+        """The checked error or drift figure nearest to (or furthest beyond) its bound."""
+        checked = [
+            f for f in self.figures if f.kind != "order" and f.threshold and f.value is not None
+        ]
+        return max(checked, key=lambda f: f.value / f.threshold, default=None)
+
+
+@dataclass
+class Report:
+    """The battery's results for one adapter, in scenario order."""
+
+    adapter: str
+    results: list[ScenarioResult]
+    thresholds: dict
+
+    def __getitem__(self, name: str) -> ScenarioResult:
+        for r in self.results:
+            if r.scenario == name:
+                return r
+        raise KeyError(name)
+
+    @property
+    def passed(self) -> bool:
+        """No scenario failed or errored (unsupported ones are listed, not failures)."""
+        return all(r.status in ("pass", "unsupported") for r in self.results)
+
+    def counts(self) -> dict[str, int]:
+        return {s: sum(r.status == s for r in self.results) for s in STATUSES}
+
+    def as_dict(self) -> dict:
+        def clean(x):
+            if isinstance(x, float) and not math.isfinite(x):
+                return None if math.isnan(x) else ("inf" if x > 0 else "-inf")
+            if isinstance(x, dict):
+                return {k: clean(v) for k, v in x.items()}
+            if isinstance(x, list):
+                return [clean(v) for v in x]
+            return x
+
+        out = {
+            "adapter": self.adapter,
+            "passed": self.passed,
+            "counts": self.counts(),
+            "thresholds": self.thresholds,
+            "scenarios": [
+                {**asdict(r), "wall_time": r.wall_time, "order": r.order} for r in self.results
+            ],
+        }
+        return clean(out)
+
+    def to_json(self) -> str:
+        """The report as JSON (non-finite numbers as null or "inf")."""
+        return json.dumps(self.as_dict(), indent=2)
+
+    def to_markdown(self) -> str:
+        """A table: scenario, status, the worst figure against its threshold, the order,
+        the wall time; then one line per failed, errored or unsupported scenario."""
+        c = self.counts()
+        lines = [
+            f"# Conformance: {self.adapter}",
+            "",
+            ", ".join(f"{n} {s}" for s, n in c.items()),
+            "",
+            "| scenario | status | worst figure | threshold | order | wall time (s) |",
+            "|---|---|---|---|---|---|",
+        ]
+        for r in self.results:
+            w = r.worst
+            fig = f"{w.name} {w.value:.3g}" if w is not None else ""
+            thr = f"{w.threshold:.3g}" if w is not None else ""
+            order = f"{r.order:.2f}" if r.order is not None else ""
+            wall = f"{r.wall_time:.3g}" if r.runs else ""
+            lines.append(f"| {r.scenario} | {r.status} | {fig} | {thr} | {order} | {wall} |")
+        notes = [f"- {r.scenario} ({r.status}): {r.message}" for r in self.results if r.message]
+        if notes:
+            lines += ["", *notes]
+        return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- measuring
+
+
+def state_errors(s: Scenario, ref: Trajectory, tr: Trajectory) -> dict[str, float]:
+    """Largest errors of a trajectory against the exact one over samples and bodies.
+
+    position: |Δr| / L, L the larger of the largest |r| and the bodies' sizes;
+    velocity: |Δv| / V, V the larger of the largest |v| and L·max|ω|;
+    omega: |Δω| / max|ω| (V/L for bodies that do not turn);
+    attitude: max |ΔR_ij| (absolute: the entries of a rotation are at most 1);
+    mass: |Δm| / m₀, where the scenario has thrust (inf when no masses are returned)."""
+    L = max(float(np.max(np.linalg.norm(ref.position, axis=-1))), float(body_sizes(s).max()))
+    W = float(np.max(np.linalg.norm(ref.omega, axis=-1)))
+    V = max(float(np.max(np.linalg.norm(ref.velocity, axis=-1))), L * W)
+    V = V if V > 0 else 1.0
+    W = W if W > 0 else V / L
+
+    def worst(a, b, scale):
+        return float(np.max(np.linalg.norm(a - b, axis=-1))) / scale
+
+    out = {
+        "position": worst(tr.position, ref.position, L),
+        "velocity": worst(tr.velocity, ref.velocity, V),
+        "attitude": float(np.max(np.abs(tr.R_A_O - ref.R_A_O))),
+        "omega": worst(tr.omega, ref.omega, W),
+    }
+    if s.thrust is not None:
+        m0 = np.array([b.mass for b in s.bodies])
+        out["mass"] = (
+            math.inf if tr.masses is None else float(np.max(np.abs(tr.masses - ref.masses) / m0))
+        )
+    return out
+
+
+def _relative(measured, exact) -> float:
+    m, e = np.asarray(measured, dtype=float), np.asarray(exact, dtype=float)
+    scale = float(np.max(np.abs(e)))
+    diff = float(np.max(np.abs(m - e))) if m.shape == e.shape else math.inf
+    return diff / scale if scale > 0 else diff
+
+
+def _order(runs: list[Run]) -> tuple[float | None, str]:
+    use = [r for r in runs if r.step is not None and r.error > ORDER_FLOOR]
+    if len(runs) < 2:
+        return None, ""
+    if len(use) < 2:
+        return None, "errors at rounding level: no order to read"
+    x = np.log([r.step for r in use])
+    y = np.log([r.error for r in use])
+    return float(np.polyfit(x, y, 1)[0]), ""
+
+
+def _threshold(th: dict, scenario: str, name: str):
+    key = f"{scenario}.{name}"
+    if key in th:
+        return th[key]
+    return th.get(name, DEFAULT_THRESHOLDS.get(name))
+
+
+def _judge(name, kind, value, threshold, note="") -> Figure:
+    if threshold is None:
+        return Figure(name, kind, value, None, None, note)
+    if value is None:
+        return Figure(name, kind, None, threshold, None, note)
+    ok = value >= threshold if kind == "order" else value <= threshold
+    return Figure(name, kind, value, threshold, bool(ok), note)
+
+
+def _describe_exc(exc: BaseException) -> str:
+    return f"{type(exc).__name__}: {exc}"
+
+
+def _run_one(adapter, s: Scenario, th: dict) -> ScenarioResult:
+    res = ScenarioResult(s.name, s.description, s.book, "error")
+    try:
+        why = adapter.supports(s)
+    except Exception as exc:  # a crashing adapter fails its scenario, not the battery
+        res.message = f"supports() raised {_describe_exc(exc)}"
+        return res
+    if why:
+        res.status, res.message = "unsupported", str(why)
+        return res
+    ref = reference(s)
+    steps = tuple(s.steps) if adapter.takes_step and s.steps else (None,)
+    tr = None
+    for h in steps:
+        t0 = time.perf_counter()
+        try:
+            raw = adapter.run(s, h)
+        except Exception as exc:
+            at = "" if h is None else f" at step {h:g} s"
+            res.message = f"run{at} raised {_describe_exc(exc)}"
+            return res
+        wall = time.perf_counter() - t0
+        try:
+            tr = check_trajectory(s, raw)
+        except ConformanceError as exc:
+            res.message = str(exc)
+            return res
+        errs = state_errors(s, ref.trajectory, tr)
+        res.runs.append(Run(h, wall, max(v for k, v in errs.items() if k != "mass")))
+    figs = [_judge(k, "error", v, _threshold(th, s.name, k)) for k, v in errs.items()]
+    measured = measure(s, tr)
+    for name, exact in ref.figures.items():
+        m = measured[name]
+        value, note = (math.inf, m) if isinstance(m, str) else (_relative(m, exact), "")
+        figs.append(_judge(name, "error", value, _threshold(th, s.name, name), note))
+    scales = {k: v[1] for k, v in invariants(s, ref.trajectory).items()}
+    for name, (q, _) in invariants(s, tr).items():
+        q, scale = np.asarray(q, dtype=float), scales[name]
+        drift = float(np.max(np.abs(q - q[0]))) / scale
+        key = f"{name}_drift"
+        figs.append(_judge(key, "drift", drift, _threshold(th, s.name, key)))
+    order, note = _order(res.runs)
+    thr = _threshold(th, s.name, "order")
+    if order is None and note and thr is not None:  # exact to rounding: nothing to converge
+        figs.append(Figure("order", "order", None, thr, True, note))
+    elif adapter.takes_step:
+        figs.append(_judge("order", "order", order, thr, note))
+    res.figures = figs
+    bad = [f for f in figs if f.passed is False]
+    res.status = "fail" if bad else "pass"
+    res.message = "; ".join(f.describe() for f in bad)
+    return res
+
+
+def run_battery(adapter, *, scenarios=None, thresholds=None) -> Report:
+    """Run the battery against ``adapter`` (see :class:`~.protocol.Adapter`).
+
+    Parameters
+    ----------
+    adapter : Adapter
+        The engine under test.
+    scenarios : iterable of str or Scenario, optional
+        Names from :data:`~.scenarios.SCENARIOS`, or scenarios (of a known kind) built
+        by the user; default all of them, in order.
+    thresholds : dict, optional
+        Overrides of :data:`DEFAULT_THRESHOLDS`: ``{"figure": bound}`` or
+        ``{"scenario.figure": bound}``; ``None`` reports without checking.
+
+    Returns
+    -------
+    Report
+        One :class:`ScenarioResult` per scenario.
+
+    Examples
+    --------
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> report = run_battery(ExactAdapter(), scenarios=["parabola"])
+    >>> report["parabola"].status, report.passed
+    ('pass', True)
+    """
+    for attr in ("name", "takes_step", "supports", "run"):
+        if not hasattr(adapter, attr):
+            raise ConformanceError(
+                f"the adapter {adapter!r} has no {attr!r}: an adapter needs name, takes_step, "
+                "supports(scenario) and run(scenario, step)"
+            )
+    chosen = []
+    for x in SCENARIOS if scenarios is None else scenarios:
+        if isinstance(x, Scenario):
+            chosen.append(x)
+        elif isinstance(x, str):
+            chosen.append(get_scenario(x))
+        else:
+            raise UnknownScenarioError(
+                f"a scenario must be a name or a Scenario; got {type(x).__name__} {x!r}"
+            )
+    th = resolve_thresholds(thresholds, chosen)
+    return Report(str(adapter.name), [_run_one(adapter, s, th) for s in chosen], th)

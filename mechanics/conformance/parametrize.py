@@ -1,0 +1,70 @@
+"""The battery as a pytest parametrisation a user drops into their suite.
+
+>>> from mechanics.conformance.adapters import ExactAdapter
+>>> test_exact = conformance_tests(ExactAdapter(), scenarios=["parabola"])
+>>> test_exact("parabola")  # passes: returns None
+
+In a test module::
+
+    from mechanics.conformance import conformance_tests
+    from my_engine.bodycheck_adapter import MyAdapter
+
+    test_my_engine = conformance_tests(MyAdapter(), thresholds={"velocity": 1e-4})
+
+gives one test per scenario (ids = the scenario names): it passes, fails with the
+figure, its value and the threshold, fails with the adapter's exception (type and
+message) or with what the protocol refused in its answer, or is skipped with the
+adapter's reason when the adapter does not support the scenario.  Thresholds and
+scenario names are checked when the module is collected.  pytest is imported here only
+when :func:`conformance_tests` is called (not by :mod:`mechanics.conformance`).
+"""
+
+from __future__ import annotations
+
+from .battery import resolve_thresholds, run_battery
+from .protocol import Scenario
+from .scenarios import SCENARIOS, get_scenario
+
+__all__ = ["conformance_tests"]
+
+
+def conformance_tests(adapter, *, thresholds=None, scenarios=None):
+    """A test function parametrised over the battery's scenarios for ``adapter``.
+
+    Parameters
+    ----------
+    adapter : Adapter
+        The engine under test (an instance).
+    thresholds : dict, optional
+        As for :func:`~mechanics.conformance.battery.run_battery`; checked now.
+    scenarios : iterable of str or Scenario, optional
+        Default: all of :data:`~mechanics.conformance.scenarios.SCENARIOS`.
+
+    Returns
+    -------
+    function
+        ``test(scenario_name)`` decorated with ``pytest.mark.parametrize``; assign it
+        to a module-level name starting with ``test``.
+    """
+    import pytest
+
+    chosen = [
+        x if isinstance(x, Scenario) else get_scenario(x)
+        for x in (SCENARIOS if scenarios is None else scenarios)
+    ]
+    th = resolve_thresholds(thresholds, chosen)
+    by_name = {s.name: s for s in chosen}
+    label = getattr(adapter, "name", type(adapter).__name__)
+
+    @pytest.mark.parametrize("scenario_name", list(by_name), ids=list(by_name))
+    def test_conformance(scenario_name):
+        r = run_battery(adapter, scenarios=[by_name[scenario_name]], thresholds=th).results[0]
+        if r.status == "unsupported":
+            pytest.skip(f"{label} does not support {scenario_name}: {r.message}")
+        if r.status == "error":
+            pytest.fail(f"{label}, scenario {scenario_name}: adapter error: {r.message}", False)
+        if r.status == "fail":
+            pytest.fail(f"{label}, scenario {scenario_name}: {r.message}", pytrace=False)
+
+    test_conformance.__doc__ = f"The conformance battery on {label}, one scenario per test."
+    return test_conformance

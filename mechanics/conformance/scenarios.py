@@ -1,0 +1,857 @@
+"""The battery's scenarios and their exact references (issue 19).
+
+Each scenario is a :class:`~mechanics.conformance.protocol.Scenario` whose
+``extra["kind"]`` names its exact solution; :func:`reference` computes, from the
+scenario's own fields (so a user's variant with other numbers gets its own answer), the
+exact states at the sample times and the derived figures; :func:`measure` reads the same
+figures off any trajectory's samples; :func:`invariants` gives the quantities the laws
+conserve in that scenario, sampled along a trajectory, with their scales.
+
+The scenarios (:data:`SCENARIOS`)
+---------------------------------
+``free_top_axis1``, ``free_top_axis3``
+    A torque-free asymmetric body, J = (2, 3, 4) kg m² (a box of half extents
+    (√7.5, √4.5, √1.5) m, 1 kg), tilted, ω circulating the axis of least (axis1:
+    L² < 2EJ₂) or of greatest moment (axis3: L² > 2EJ₂).  Exact: Jacobi elliptic
+    functions (:class:`mechanics.tops.FreeAsymmetricTop`, Euler's equations (4.47),
+    Poinsot (5.85)–(5.90)).  Figure: the period of ω, 4K/λ.  Conserved: E, p, L (about
+    G, which stays at the origin, so also about the origin).
+``free_top_near_separatrix``
+    The same body spun at 4 rad/s about the intermediate axis, 0.04 rad/s off it:
+    L² − 2EJ₂ = −3.2e-3 kg² m⁴ s⁻² against L² = 144, the elliptic complement m₁ = 1.3e-4;
+    the body flips every 8.3 s (ω's period 16.5 s), 11.7 e-folding times 1/λ₀ of the
+    unstable small motion about axis 2 (λ₀ = 4 √((J₂ − J₁)(J₃ − J₂)/(J₁J₃)) = 1.41/s).
+    An energy error δE/E moves L² − 2EJ₂ by 2J₂E δE/E = 144 δE/E, so m₁ by a relative
+    4.5e4 δE/E: the period and the phase test an engine's energy behaviour near the
+    separatrix (Section 5.3.3).
+``heavy_top``
+    A heavy symmetric top on a frictionless pivot ℓ = 0.1 m below G (J₁ = J₂ = 0.3,
+    J₃ = 0.5 kg m² about G, 1 kg, g = 9.81 m/s²), released at θ = 0.6 rad with spin
+    φ̇ = 6 rad/s and no precession.  Exact: :class:`mechanics.tops.HeavySymmetricTop`
+    (5.2.2–5.2.5).  Figures: θ(t) (largest error, relative to its range), the nutation
+    period 2K/κ and the mean precession rate over whole nutation periods.  Conserved: E
+    and the angular momentum about the pivot's vertical L_z (5.55), and L₃ = J₃ω₃ (5.53).
+``parabola``
+    A spinning ball thrown under gravity (no ground).  Exact: the parabola (ṗ = F, (1.1))
+    and the free rotation.  Figures: the apex's height and time.  Conserved: E (with
+    m g z) and the horizontal momentum.
+``two_body_impact``
+    Two spheres (1 kg and 3 kg) head-on along x, e = 0.6, no gravity.  Exact: uniform
+    motion and the direct impact (6.36)–(6.38) (:func:`mechanics.impact.direct_impact`).
+    Figures: the velocities after, the restitution e measured from them and the impact
+    time read back from the final gap.  Conserved across the impact: p and L about the
+    origin (the impulse is internal and central); E is not (6.41).
+``bouncing_ball``
+    A ball dropped from h₀ = 1.275 m (its lowest point) onto smooth ground, e = 0.8,
+    moving sideways at 0.5 m/s.  Exact: the apex heights e^{2k} h₀ at the times
+    t_f(1 + 2e + … + 2e^{k−1} + e^k), t_f = √(2h₀/g) (Example 6.1, (6.6)).  Figures:
+    the three apex heights and times.  Conserved: the horizontal momentum only (smooth
+    impacts); E is lost at each impact.
+``rocket``
+    A rocket of 10 kg burning 0.5 kg/s for 8 s at exhaust speed 20 m/s along its tilted
+    body axis 3, in free space.  Exact: Tsiolkovsky's Δv = u ln(m₀/m₁) (7.30) and the
+    mass m₀ − q t.  Figures: Δv and the burn-out mass.  Nothing is conserved (mass
+    leaves with momentum and energy).
+
+Samples are uniform at binary fractions of a second (1/128 to 1/8 s) and ``steps`` are
+2⁻⁶, 2⁻⁷, 2⁻⁸ s (the heavy top 2⁻⁷ … 2⁻⁹): every product n·h is exact, every sample a
+whole number of steps.  Impacts fall at least 9 ms from any sample, so a sample is never
+between an impact and an engine's slightly late one at the finest step (3.9 ms), the run
+that is judged.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import MechanicsValueError
+from ..rotation import euler_from_matrix, matrix_from_euler
+from .protocol import Body, Ground, Pivot, Scenario, Shape, Thrust, Trajectory
+
+__all__ = [
+    "FIGURES",
+    "INVARIANTS",
+    "SCENARIOS",
+    "Reference",
+    "UnknownScenarioError",
+    "body_sizes",
+    "crossings",
+    "figure_names",
+    "get_scenario",
+    "interpolate",
+    "invariant_names",
+    "invariants",
+    "measure",
+    "reference",
+]
+
+EPS = float(np.finfo(float).eps)
+#: Newton steps from the secant's root of a sign change to the interpolating
+#: polynomial's: quadratic convergence from a start within Δt reaches rounding in ≤ 6
+_NEWTON_STEPS = 8
+
+
+class UnknownScenarioError(MechanicsValueError):
+    """A scenario name the battery does not have, or a scenario of an unknown kind."""
+
+
+@dataclass(frozen=True)
+class Reference:
+    """The exact answer to a scenario: the states at its sample times and the derived
+    figures (each a float or, for a sequence such as the apex heights, an array)."""
+
+    trajectory: Trajectory
+    figures: dict
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def _rows(R) -> tuple[tuple[float, float, float], ...]:
+    return tuple(tuple(float(x) for x in row) for row in np.asarray(R))
+
+
+def _times(duration: float, dt: float) -> tuple[float, ...]:
+    n = round(duration / dt)
+    return tuple(k * dt for k in range(n + 1))
+
+
+def _free_rotation(body: Body, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(R_A_O, ω_A) of a torque-free body at times t, shapes (m, 3, 3), (m, 3)."""
+    from ..tops import FreeAsymmetricTop
+
+    top = FreeAsymmetricTop(body.inertia, body.omega, np.array(body.R_A_O))
+    return top.attitude(t), top.omega(t)
+
+
+def _stack(t, bodies, pos, vel, R, w, masses=None) -> Trajectory:
+    return Trajectory(
+        np.asarray(t, dtype=float),
+        np.stack(pos, axis=1),
+        np.stack(vel, axis=1),
+        np.stack(R, axis=1),
+        np.stack(w, axis=1),
+        None if masses is None else np.stack(masses, axis=1),
+    )
+
+
+def _window(n: int, k: int, size: int) -> slice:
+    """``size`` consecutive indices around the interval [k, k + 1], inside [0, n)."""
+    lo = min(max(k - (size - 2) // 2, 0), max(n - size, 0))
+    return slice(lo, min(lo + size, n))
+
+
+def _local_poly(t, y, k, deg):
+    s = _window(t.size, k, deg + 1)
+    h = t[k + 1] - t[k] if k + 1 < t.size else t[k] - t[k - 1]
+    x = (t[s] - t[k]) / h
+    coef = np.polynomial.polynomial.polyfit(x, y[s], min(deg, x.size - 1))
+    return coef, h
+
+
+def interpolate(t, y, tau: float, deg: int = 5) -> float:
+    """y at time tau by the polynomial of degree ``deg`` through the nearest samples."""
+    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    k = int(np.clip(np.searchsorted(t, tau) - 1, 0, t.size - 2))
+    coef, h = _local_poly(t, y, k, deg)
+    return float(np.polynomial.polynomial.polyval((tau - t[k]) / h, coef))
+
+
+def crossings(t, y, *, deg: int = 5, direction: int = 0) -> np.ndarray:
+    """Times where the sampled y changes sign (``direction`` +1: rising only, −1: falling
+    only), each the root of the interpolating polynomial of degree ``deg`` through the
+    nearest ``deg + 1`` samples (error O(Δt^{deg+1}) for a smooth y)."""
+    t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
+    P = np.polynomial.polynomial
+    rises = (y[:-1] < 0) & (y[1:] >= 0)  # a zero at a sample counts on the side it ends
+    falls = (y[:-1] > 0) & (y[1:] <= 0)
+    want = rises | falls if direction == 0 else (rises if direction > 0 else falls)
+    out = []
+    for k in np.nonzero(want)[0]:
+        coef, h = _local_poly(t, y, int(k), deg)
+        x = y[k] / (y[k] - y[k + 1])  # the secant's root, then Newton on the polynomial
+        d = P.polyder(coef)
+        for _ in range(_NEWTON_STEPS):
+            slope = P.polyval(x, d)
+            if slope == 0:
+                break
+            x = min(max(x - P.polyval(x, coef) / slope, 0.0), 1.0)
+        out.append(t[k] + h * x)
+    return np.array(out)
+
+
+def _omega_from_rates(theta, phi, theta_dot, psi_dot, phi_dot) -> np.ndarray:
+    """Body ω of ^A R^O = R3(φ) R1(θ) R3(ψ) from the z-x-z Euler rates (2.59)."""
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
+    return np.stack(
+        [
+            psi_dot * st * sp + theta_dot * cp,
+            psi_dot * st * cp - theta_dot * sp,
+            psi_dot * ct + phi_dot,
+        ],
+        axis=-1,
+    )
+
+
+def _gravity(s: Scenario) -> np.ndarray:
+    return np.asarray(s.gravity, dtype=float)
+
+
+def _kinetic(s: Scenario, tr: Trajectory) -> np.ndarray:
+    m = np.array([b.mass for b in s.bodies]) if tr.masses is None else tr.masses
+    J = np.array([b.inertia for b in s.bodies])
+    T = 0.5 * m * (tr.velocity**2).sum(-1) + 0.5 * (J * tr.omega**2).sum(-1)
+    return T.sum(-1)
+
+
+def _energy(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
+    """Kinetic (½ m v² + ½ Σ J_i ω_i², (5.85)) plus potential −m g·r energy, and its
+    scale: the largest of the kinetic and the potential parts' sizes."""
+    m = np.array([b.mass for b in s.bodies])
+    T = _kinetic(s, tr)
+    V = -(m[None, :, None] * _gravity(s) * tr.position).sum((-1, -2))
+    scale = max(float(np.max(np.abs(T))), float(np.max(np.abs(V))), 1e-300)
+    return T + V, scale
+
+
+def body_sizes(s: Scenario) -> np.ndarray:
+    """Each body's size, shape (n,): the larger of its radius of gyration √(max J / m)
+    and the norm of its shape's dimensions."""
+    out = []
+    for b in s.bodies:
+        size = math.sqrt(max(b.inertia) / b.mass)
+        if b.shape is not None:
+            size = max(size, float(np.linalg.norm(b.shape.dims)))
+        out.append(size)
+    return np.array(out)
+
+
+def _momentum(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
+    """Total momentum; scale: the largest Σ m|v|, or, where nothing translates (a free
+    top), Σ m·size·max|ω|, the momentum of the bodies' points."""
+    m = np.array([b.mass for b in s.bodies])
+    P = (m[None, :, None] * tr.velocity).sum(1)
+    scale = float(np.max((m[None, :] * np.linalg.norm(tr.velocity, axis=-1)).sum(-1)))
+    spin = m * body_sizes(s) * np.max(np.linalg.norm(tr.omega, axis=-1), axis=0)
+    return P, max(scale, float(spin.sum()), 1e-300)
+
+
+def _angular_momentum(s: Scenario, tr: Trajectory, about) -> tuple[np.ndarray, float]:
+    """L about the fixed point ``about``: orbital (r − about) × m v plus the spins about
+    G, R_A_Oᵀ J ω, summed over the bodies; scale: the largest sum of the parts' sizes,
+    |r − about| m |v| + |J ω| (not of the cross product, zero for a head-on motion
+    through the point)."""
+    m = np.array([b.mass for b in s.bodies])
+    J = np.array([b.inertia for b in s.bodies])
+    r = tr.position - np.asarray(about, dtype=float)
+    orb = np.cross(r, m[None, :, None] * tr.velocity)
+    spin = np.einsum("tbji,tbj->tbi", tr.R_A_O, J * tr.omega)
+    L = (orb + spin).sum(1)
+    size = np.linalg.norm(r, axis=-1) * m * np.linalg.norm(tr.velocity, axis=-1)
+    scale = float(np.max((size + np.linalg.norm(spin, axis=-1)).sum(-1)))
+    return L, max(scale, 1e-300)
+
+
+# --------------------------------------------------------------------------- free tops
+
+
+def _ref_free(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    pos, vel, Rs, ws = [], [], [], []
+    for b in s.bodies:
+        R, w = _free_rotation(b, t)
+        v0 = np.asarray(b.velocity, dtype=float)
+        pos.append(np.asarray(b.position) + t[:, None] * v0)
+        vel.append(np.broadcast_to(v0, (t.size, 3)))
+        Rs.append(R)
+        ws.append(w)
+    from ..tops import FreeAsymmetricTop
+
+    b = s.bodies[0]
+    top = FreeAsymmetricTop(b.inertia, b.omega, np.array(b.R_A_O))
+    return Reference(_stack(t, s.bodies, pos, vel, Rs, ws), {"omega_period": top.flip_period()})
+
+
+def _measure_free(s: Scenario, tr: Trajectory) -> dict:
+    b = s.bodies[0]
+    mid = int(np.argsort(b.inertia, kind="stable")[1])
+    z = crossings(tr.t, tr.omega[:, 0, mid])
+    if z.size < 2:
+        return {
+            "omega_period": f"ω{mid + 1} crosses zero {z.size} time(s) in the samples; "
+            "2 are needed for the period"
+        }
+    return {"omega_period": 2.0 * (z[-1] - z[0]) / (z.size - 1)}
+
+
+def _inv_free(s: Scenario, tr: Trajectory) -> dict:
+    return {
+        "E": _energy(s, tr),
+        "p": _momentum(s, tr),
+        "L": _angular_momentum(s, tr, (0.0, 0.0, 0.0)),
+    }
+
+
+# --------------------------------------------------------------------------- heavy top
+
+
+def _heavy_top(s: Scenario):
+    from ..tops import HeavySymmetricTop
+
+    b, pv = s.bodies[s.pivot.body], s.pivot
+    J1, J2, J3 = b.inertia
+    g = _gravity(s)
+    ell = -pv.point[2]
+    if J1 != J2 or pv.point[0] != 0 or pv.point[1] != 0 or ell <= 0:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the heavy top needs J1 = J2 and the pivot on axis 3 below "
+            f"G; got inertia {b.inertia}, pivot point {pv.point}"
+        )
+    if g[0] != 0 or g[1] != 0 or g[2] >= 0:
+        raise MechanicsValueError(f"scenario {s.name!r}: gravity must point along −z; got {g}")
+    R0 = np.array(b.R_A_O)
+    psi, theta, phi = (float(x) for x in euler_from_matrix(R0))
+    w = np.asarray(b.omega, dtype=float)
+    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(phi), math.cos(phi)
+    psi_dot = (w[0] * sp + w[1] * cp) / st
+    theta_dot = w[0] * cp - w[1] * sp
+    phi_dot = w[2] - psi_dot * ct
+    top = HeavySymmetricTop(
+        J1 + b.mass * ell * ell,
+        J3,
+        b.mass * -g[2] * ell,
+        theta=theta,
+        psi=psi,
+        phi=phi,
+        theta_dot=theta_dot,
+        psi_dot=psi_dot,
+        phi_dot=phi_dot,
+    )
+    return top
+
+
+def _ref_heavy(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    top = _heavy_top(s)
+    psi, theta, phi = top.psi(t), top.theta(t), top.phi(t)
+    thd, psid, phid = top.rates(t)
+    R = matrix_from_euler(psi, theta, phi)
+    w = _omega_from_rates(theta, phi, thd, psid, phid)
+    pv = s.pivot
+    rho = -np.einsum("tji,j->ti", R, np.asarray(pv.point, dtype=float))  # G − C, space
+    pos = np.asarray(pv.anchor, dtype=float) + rho
+    w_O = np.einsum("tji,tj->ti", R, w)
+    vel = np.cross(w_O, rho)
+    T = top.nutation_period()
+    rate = float(top.psi(T) - top.psi(0.0)) / T
+    figs = {"nutation_period": T, "precession_rate": rate, "theta": theta}
+    return Reference(_stack(t, s.bodies, [pos], [vel], [R], [w]), figs)
+
+
+def _u_dot(tr: Trajectory, i: int) -> np.ndarray:
+    """d(cos θ)/dt = d(R₃₃)/dt from the passive attitude and body ω: Ṙ = −[ω]× R."""
+    R, w = tr.R_A_O[:, i], tr.omega[:, i]
+    return w[:, 1] * R[:, 0, 2] - w[:, 0] * R[:, 1, 2]
+
+
+def _measure_heavy(s: Scenario, tr: Trajectory) -> dict:
+    i = s.pivot.body
+    R = tr.R_A_O[:, i]
+    out: dict = {"theta": np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2])}
+    turns = crossings(tr.t, _u_dot(tr, i))
+    if turns.size < 3:
+        msg = f"θ turns {turns.size} time(s) in the samples; 3 are needed for a period"
+        out["nutation_period"] = out["precession_rate"] = msg
+        return out
+    n = (turns.size - 1) // 2 * 2  # whole periods: turning points of one kind
+    out["nutation_period"] = 2.0 * (turns[n] - turns[0]) / n
+    # ψ = atan2(R31, −R32): body axis 3 in space is (sθ sψ, −sθ cψ, cθ)
+    psi = np.unwrap(np.arctan2(R[:, 2, 0], -R[:, 2, 1]))
+    a, b = interpolate(tr.t, psi, turns[0]), interpolate(tr.t, psi, turns[n])
+    out["precession_rate"] = (b - a) / (turns[n] - turns[0])
+    return out
+
+
+def _inv_heavy(s: Scenario, tr: Trajectory) -> dict:
+    i = s.pivot.body
+    b = s.bodies[i]
+    L, scale = _angular_momentum(s, tr, s.pivot.anchor)
+    E, Escale = _energy(s, tr)
+    L3 = b.inertia[2] * tr.omega[:, i, 2]
+    return {
+        "E": (E, Escale),
+        "L_z": (L[:, 2], scale),
+        "L_3": (L3, max(float(np.max(np.abs(L3))), 1e-300)),
+    }
+
+
+# --------------------------------------------------------------------------- parabola
+
+
+def _ballistic(s: Scenario, t: np.ndarray):
+    g = _gravity(s)
+    pos, vel, Rs, ws = [], [], [], []
+    for b in s.bodies:
+        x0, v0 = np.asarray(b.position, dtype=float), np.asarray(b.velocity, dtype=float)
+        pos.append(x0 + t[:, None] * v0 + 0.5 * t[:, None] ** 2 * g)
+        vel.append(v0 + t[:, None] * g)
+        R, w = _free_rotation(b, t)
+        Rs.append(R)
+        ws.append(w)
+    return pos, vel, Rs, ws
+
+
+def _ref_parabola(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    pos, vel, Rs, ws = _ballistic(s, t)
+    b, gz = s.bodies[0], _gravity(s)[2]
+    t_apex = -b.velocity[2] / gz
+    h = b.position[2] - 0.5 * b.velocity[2] ** 2 / gz
+    return Reference(_stack(t, s.bodies, pos, vel, Rs, ws), {"apex_height": h, "apex_time": t_apex})
+
+
+def _measure_parabola(s: Scenario, tr: Trajectory) -> dict:
+    z = crossings(tr.t, tr.velocity[:, 0, 2], deg=3, direction=-1)
+    if z.size != 1:
+        msg = f"v_z falls through zero {z.size} times in the samples; expected once (the apex)"
+        return {"apex_height": msg, "apex_time": msg}
+    return {
+        "apex_time": float(z[0]),
+        "apex_height": interpolate(tr.t, tr.position[:, 0, 2], float(z[0]), deg=3),
+    }
+
+
+def _inv_parabola(s: Scenario, tr: Trajectory) -> dict:
+    P, scale = _momentum(s, tr)
+    return {"E": _energy(s, tr), "p_horizontal": (P[:, :2], scale)}
+
+
+# --------------------------------------------------------------------------- impact
+
+
+def _ref_impact(s: Scenario) -> Reference:
+    from ..impact import direct_impact
+
+    t = np.asarray(s.sample_times)
+    ((i, j, e),) = s.pair_restitution
+    a, b = s.bodies[i], s.bodies[j]
+    x1, x2 = np.asarray(a.position), np.asarray(b.position)
+    v1, v2 = np.asarray(a.velocity), np.asarray(b.velocity)
+    d = x2 - x1
+    n = d / np.linalg.norm(d)
+    if np.linalg.norm(np.cross(d, v2 - v1)) > 2**6 * EPS * np.linalg.norm(d) * np.linalg.norm(
+        v2 - v1
+    ):
+        raise MechanicsValueError(f"scenario {s.name!r}: the impact must be head-on")
+    gap = float(np.linalg.norm(d)) - a.shape.dims[0] - b.shape.dims[0]
+    closing = float(np.dot(v1 - v2, n))
+    tc = gap / closing
+    u1, u2 = (float(np.dot(v, n)) for v in (v1, v2))
+    w1, w2 = direct_impact(a.mass, b.mass, u1, u2, e)
+    v1f, v2f = v1 + (float(w1) - u1) * n, v2 + (float(w2) - u2) * n
+    after = t > tc
+    dt = (t - tc)[:, None]
+    pos1 = np.where(after[:, None], x1 + tc * v1 + dt * v1f, x1 + t[:, None] * v1)
+    pos2 = np.where(after[:, None], x2 + tc * v2 + dt * v2f, x2 + t[:, None] * v2)
+    vel1 = np.where(after[:, None], v1f, v1)
+    vel2 = np.where(after[:, None], v2f, v2)
+    pos, vel = [None] * 2, [None] * 2
+    pos[i], pos[j], vel[i], vel[j] = pos1, pos2, vel1, vel2
+    R, w = zip(*(_free_rotation(bb, t) for bb in s.bodies), strict=True)
+    figs = {"v1_after": v1f, "v2_after": v2f, "restitution": e, "impact_time": tc}
+    return Reference(_stack(t, s.bodies, pos, vel, list(R), list(w)), figs)
+
+
+def _measure_impact(s: Scenario, tr: Trajectory) -> dict:
+    ((i, j, _),) = s.pair_restitution
+    a, b = s.bodies[i], s.bodies[j]
+    n = np.asarray(b.position) - np.asarray(a.position)
+    n = n / np.linalg.norm(n)
+    v1f, v2f = tr.velocity[-1, i], tr.velocity[-1, j]
+    v1, v2 = tr.velocity[0, i], tr.velocity[0, j]
+    sep = float(np.dot(v2f - v1f, n))
+    out = {"v1_after": v1f, "v2_after": v2f, "restitution": sep / float(np.dot(v1 - v2, n))}
+    gap = float(np.linalg.norm(tr.position[-1, j] - tr.position[-1, i])) - (
+        a.shape.dims[0] + b.shape.dims[0]
+    )
+    out["impact_time"] = (
+        tr.t[-1] - gap / sep if sep > 0 else "the bodies do not separate at the end"
+    )
+    return out
+
+
+def _inv_impact(s: Scenario, tr: Trajectory) -> dict:
+    return {"p": _momentum(s, tr), "L": _angular_momentum(s, tr, (0.0, 0.0, 0.0))}
+
+
+# --------------------------------------------------------------------------- bounce
+
+
+def _bounce_numbers(s: Scenario):
+    b, gr = s.bodies[0], s.ground
+    g = -float(np.dot(_gravity(s), gr.normal))
+    r = b.shape.dims[0]
+    h0 = float(np.dot(b.position, gr.normal)) - gr.height - r
+    if np.dot(b.velocity, gr.normal) != 0 or h0 <= 0 or g <= 0:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the bouncing ball's reference starts at rest along the "
+            f"normal, above the ground, gravity pressing it down; got height {h0}, velocity "
+            f"{b.velocity}, gravity {s.gravity}"
+        )
+    tf = math.sqrt(2.0 * h0 / g)
+    return g, r, h0, tf, gr.restitution
+
+
+def _ref_bounce(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    b, gr = s.bodies[0], s.ground
+    g, r, h0, tf, e = _bounce_numbers(s)
+    nrm = np.asarray(gr.normal, dtype=float)
+    # impacts at tf (1 + 2e + … + 2e^{k−1}); between them free flight
+    impacts = [tf]
+    while impacts[-1] <= t[-1]:
+        k = len(impacts)
+        impacts.append(impacts[-1] + 2.0 * tf * e**k)
+    n_apex = sum(1 for k in range(1, len(impacts)) if impacts[k - 1] + tf * e**k <= t[-1])
+    apex_t = np.array([impacts[k - 1] + tf * e**k for k in range(1, n_apex + 1)])
+    apex_h = h0 * e ** (2.0 * np.arange(1, n_apex + 1))
+    # the normal coordinate above the lowest point and its rate, per sample
+    k = np.searchsorted(np.array(impacts), t, side="left")  # impacts before each sample
+    start = np.where(k == 0, 0.0, np.array([0.0, *impacts])[k])
+    v_up = np.where(k == 0, 0.0, g * tf * e**k)
+    z0 = np.where(k == 0, h0, 0.0)
+    tau = t - start
+    zn = z0 + v_up * tau - 0.5 * g * tau**2
+    vn = v_up - g * tau
+    v0 = np.asarray(b.velocity, dtype=float)
+    v_t = v0 - np.dot(v0, nrm) * nrm  # tangential, kept by the smooth impacts
+    base = np.asarray(b.position, dtype=float) - (np.dot(b.position, nrm) - gr.height - r) * nrm
+    pos = base + t[:, None] * v_t + (zn + 0.0)[:, None] * nrm
+    vel = v_t + vn[:, None] * nrm
+    R, w = _free_rotation(b, t)
+    figs = {"apex_heights": apex_h, "apex_times": apex_t}
+    return Reference(_stack(t, s.bodies, [pos], [vel], [R], [w]), figs)
+
+
+def _measure_bounce(s: Scenario, tr: Trajectory) -> dict:
+    gr = s.ground
+    nrm = np.asarray(gr.normal, dtype=float)
+    r = s.bodies[0].shape.dims[0]
+    vn = tr.velocity[:, 0] @ nrm
+    zn = tr.position[:, 0] @ nrm - gr.height - r
+    apex = crossings(tr.t, vn, deg=2, direction=-1)
+    expected = _ref_bounce(s).figures["apex_times"].size
+    if apex.size != expected:
+        msg = (
+            f"found {apex.size} apexes (v·n falling through 0) in the samples; expected {expected}"
+        )
+        return {"apex_heights": msg, "apex_times": msg}
+    h = np.array([interpolate(tr.t, zn, a, deg=2) for a in apex])
+    return {"apex_heights": h, "apex_times": apex}
+
+
+def _inv_bounce(s: Scenario, tr: Trajectory) -> dict:
+    nrm = np.asarray(s.ground.normal, dtype=float)
+    P, scale = _momentum(s, tr)
+    return {"p_tangential": (P - np.outer(P @ nrm, nrm), scale)}
+
+
+# --------------------------------------------------------------------------- rocket
+
+
+def _rocket_numbers(s: Scenario):
+    th = s.thrust
+    b = s.bodies[th.body]
+    m0, q, u, T = b.mass, th.mass_rate, th.exhaust_speed, th.burn_time
+    d = np.array(b.R_A_O).T @ np.asarray(th.axis, dtype=float)  # the axis in space
+    if np.any(b.omega) or np.any(_gravity(s)) or len(s.bodies) != 1:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the rocket's reference is for one non-spinning body in "
+            "free space"
+        )
+    return b, m0, q, u, T, d
+
+
+def _ref_rocket(s: Scenario) -> Reference:
+    from ..open_systems import rocket_height, rocket_velocity
+
+    t = np.asarray(s.sample_times)
+    b, m0, q, u, T, d = _rocket_numbers(s)
+    kw = dict(m_0=m0, q=q, u=u, m_f=q * T, g=0.0, after_burn_out="coast")
+    v0 = np.asarray(b.velocity, dtype=float)
+    pos = np.asarray(b.position) + t[:, None] * v0 + rocket_height(t, **kw)[:, None] * d
+    vel = v0 + rocket_velocity(t, **kw)[:, None] * d
+    m = m0 - q * np.minimum(t, T)
+    R, w = _free_rotation(b, t)
+    figs = {"delta_v": u * math.log(m0 / (m0 - q * T)), "burnout_mass": m0 - q * T}
+    return Reference(_stack(t, s.bodies, [pos], [vel], [R], [w], [m]), figs)
+
+
+def _measure_rocket(s: Scenario, tr: Trajectory) -> dict:
+    d = _rocket_numbers(s)[-1]
+    i = s.thrust.body
+    out = {"delta_v": float(np.dot(tr.velocity[-1, i] - tr.velocity[0, i], d))}
+    out["burnout_mass"] = (
+        float(tr.masses[-1, i])
+        if tr.masses is not None
+        else "the trajectory has no masses (field 'masses' is required with thrust)"
+    )
+    return out
+
+
+# --------------------------------------------------------------------------- registry
+
+#: per kind: the derived figures and the conserved quantities (names of the report)
+FIGURES = {
+    "free_top": ("omega_period",),
+    "heavy_top": ("theta", "nutation_period", "precession_rate"),
+    "parabola": ("apex_height", "apex_time"),
+    "impact": ("v1_after", "v2_after", "restitution", "impact_time"),
+    "bounce": ("apex_heights", "apex_times"),
+    "rocket": ("delta_v", "burnout_mass"),
+}
+INVARIANTS = {
+    "free_top": ("E", "p", "L"),
+    "heavy_top": ("E", "L_z", "L_3"),
+    "parabola": ("E", "p_horizontal"),
+    "impact": ("p", "L"),
+    "bounce": ("p_tangential",),
+    "rocket": (),
+}
+
+_KINDS = {
+    "free_top": (_ref_free, _measure_free, _inv_free),
+    "heavy_top": (_ref_heavy, _measure_heavy, _inv_heavy),
+    "parabola": (_ref_parabola, _measure_parabola, _inv_parabola),
+    "impact": (_ref_impact, _measure_impact, _inv_impact),
+    "bounce": (_ref_bounce, _measure_bounce, _inv_bounce),
+    "rocket": (_ref_rocket, _measure_rocket, lambda s, tr: {}),
+}
+
+
+def _kind(scenario: Scenario):
+    kind = scenario.extra.get("kind")
+    if kind not in _KINDS:
+        raise UnknownScenarioError(
+            f"scenario {scenario.name!r}: extra['kind'] must be one of {sorted(_KINDS)}; "
+            f"got {kind!r}"
+        )
+    return _KINDS[kind]
+
+
+def figure_names(scenario: Scenario) -> tuple[str, ...]:
+    """The derived figures of the scenario's kind."""
+    _kind(scenario)
+    return FIGURES[scenario.extra["kind"]]
+
+
+def invariant_names(scenario: Scenario) -> tuple[str, ...]:
+    """The quantities conserved in the scenario (the keys of :func:`invariants`)."""
+    _kind(scenario)
+    return INVARIANTS[scenario.extra["kind"]]
+
+
+def reference(scenario: Scenario) -> Reference:
+    """The exact states at the scenario's sample times and its derived figures."""
+    return _kind(scenario)[0](scenario)
+
+
+def measure(scenario: Scenario, trajectory: Trajectory) -> dict:
+    """The derived figures read off a (validated) trajectory's samples, keyed as in
+    :func:`reference`; a figure that cannot be read (too few crossings, no masses) is a
+    string saying why."""
+    return _kind(scenario)[1](scenario, trajectory)
+
+
+def invariants(scenario: Scenario, trajectory: Trajectory) -> dict:
+    """The quantities conserved in the scenario, sampled along a trajectory: name →
+    (samples, shape (m,) or (m, k); scale for the relative drift).  The battery takes
+    the scales from the exact trajectory, so that a run-away engine cannot inflate
+    them."""
+    return _kind(scenario)[2](scenario, trajectory)
+
+
+# --------------------------------------------------------------------------- scenarios
+
+_STEPS = (2.0**-6, 2.0**-7, 2.0**-8)
+_J = (2.0, 3.0, 4.0)
+_BOX = Shape("box", (math.sqrt(7.5), math.sqrt(4.5), math.sqrt(1.5)))  # J = (2, 3, 4) at 1 kg
+_TILT = _rows(matrix_from_euler(0.3, 0.7, -0.4))
+
+
+def _free_top(name, omega, duration, description) -> Scenario:
+    return Scenario(
+        name,
+        description,
+        "(4.47), (5.85)-(5.90), Essén 5.3",
+        (Body("box", 1.0, _J, _BOX, R_A_O=_TILT, omega=omega),),
+        duration=duration,
+        sample_times=_times(duration, 2.0**-4),
+        steps=_STEPS,
+        extra={"kind": "free_top"},
+    )
+
+
+def _build() -> dict[str, Scenario]:
+    out = [
+        _free_top(
+            "free_top_axis1",
+            (2.0, 0.3, 0.2),
+            8.0,
+            "torque-free asymmetric body, ω circulating the axis of least moment",
+        ),
+        _free_top(
+            "free_top_axis3",
+            (0.2, 0.3, 2.0),
+            8.0,
+            "torque-free asymmetric body, ω circulating the axis of greatest moment",
+        ),
+        _free_top(
+            "free_top_near_separatrix",
+            (0.04, 4.0, 0.0),
+            14.0,
+            "torque-free body spun 1 % off the intermediate axis: m1 = 1.3e-4, a flip every 8.3 s",
+        ),
+    ]
+    ell, m = 0.1, 1.0
+    top = Body(
+        "top",
+        m,
+        (0.3, 0.3, 0.5),
+        Shape("cylinder", (1.0, math.sqrt(0.15))),
+        R_A_O=_rows(matrix_from_euler(0.0, 0.6, 0.0)),
+        omega=(0.0, 0.0, 6.0),
+    )
+    R0 = np.array(top.R_A_O)
+    top = Body(
+        top.name,
+        m,
+        top.inertia,
+        top.shape,
+        position=tuple(float(x) for x in R0.T @ (0.0, 0.0, ell)),
+        R_A_O=top.R_A_O,
+        omega=top.omega,
+    )
+    out.append(
+        Scenario(
+            "heavy_top",
+            "heavy symmetric top on a pivot 0.1 m below G, released at θ = 0.6 rad "
+            "spinning 6 rad/s: nutation and precession",
+            "(5.53), (5.55), (5.66), Essén 5.2.2-5.2.5",
+            (top,),
+            duration=2.0,
+            sample_times=_times(2.0, 2.0**-7),
+            gravity=(0.0, 0.0, -9.81),
+            pivot=Pivot(0, (0.0, 0.0, -ell)),
+            steps=(2.0**-7, 2.0**-8, 2.0**-9),
+            extra={"kind": "heavy_top"},
+        )
+    )
+    ball = Body(
+        "ball",
+        0.5,
+        (0.002, 0.002, 0.002),
+        Shape("sphere", (0.1,)),
+        position=(0.0, 0.0, 1.0),
+        velocity=(3.0, 1.0, 8.0),
+        R_A_O=_TILT,
+        omega=(1.0, -2.0, 3.0),
+    )
+    out.append(
+        Scenario(
+            "parabola",
+            "a spinning ball thrown under gravity: the parabola and its apex",
+            "ṗ = F (1.1) under uniform gravity; (4.47) with M = 0",
+            (ball,),
+            duration=1.5,
+            sample_times=_times(1.5, 2.0**-5),
+            gravity=(0.0, 0.0, -9.81),
+            steps=_STEPS,
+            extra={"kind": "parabola"},
+        )
+    )
+    out.append(
+        Scenario(
+            "two_body_impact",
+            "two spheres (1 kg, 3 kg) head-on along x with e = 0.6, no gravity",
+            "(6.36)-(6.38), Essén 6.3",
+            (
+                Body(
+                    "a",
+                    1.0,
+                    (0.004, 0.004, 0.004),
+                    Shape("sphere", (0.1,)),
+                    position=(-1.0, 0.0, 0.0),
+                    velocity=(2.0, 0.0, 0.0),
+                ),
+                Body(
+                    "b",
+                    3.0,
+                    (0.027, 0.027, 0.027),
+                    Shape("sphere", (0.15,)),
+                    position=(0.5, 0.0, 0.0),
+                    velocity=(-1.0, 0.0, 0.0),
+                ),
+            ),
+            duration=1.0,
+            sample_times=_times(1.0, 2.0**-5),
+            pair_restitution=((0, 1, 0.6),),
+            steps=_STEPS,
+            extra={"kind": "impact"},
+        )
+    )
+    out.append(
+        Scenario(
+            "bouncing_ball",
+            "a ball dropped from 1.275 m onto smooth ground, e = 0.8, drifting sideways: "
+            "three apexes e^(2k) h0",
+            "(6.6), Example 6.1",
+            (
+                Body(
+                    "ball",
+                    0.5,
+                    (0.002, 0.002, 0.002),
+                    Shape("sphere", (0.1,)),
+                    position=(0.0, 0.0, 1.375),
+                    velocity=(0.5, 0.0, 0.0),
+                ),
+            ),
+            duration=2.375,
+            sample_times=_times(2.375, 2.0**-5),
+            gravity=(0.0, 0.0, -9.81),
+            ground=Ground(0.8),
+            steps=_STEPS,
+            extra={"kind": "bounce"},
+        )
+    )
+    out.append(
+        Scenario(
+            "rocket",
+            "a 10 kg rocket burning 0.5 kg/s for 8 s at 20 m/s exhaust speed along its "
+            "tilted axis 3, in free space",
+            "(7.30), Example 7.2 with g = 0",
+            (Body("rocket", 10.0, (0.1, 0.1, 0.05), R_A_O=_TILT),),
+            duration=10.0,
+            sample_times=_times(10.0, 2.0**-3),
+            thrust=Thrust(0, 0.5, 20.0, 8.0),
+            steps=_STEPS,
+            extra={"kind": "rocket"},
+        )
+    )
+    return {s.name: s for s in out}
+
+
+#: The battery, by name, in the order of the report.
+SCENARIOS: dict[str, Scenario] = _build()
+
+
+def get_scenario(name: str) -> Scenario:
+    """The battery's scenario ``name``; :class:`UnknownScenarioError` naming the known ones."""
+    if name not in SCENARIOS:
+        raise UnknownScenarioError(
+            f"unknown scenario {name!r}; the battery has {', '.join(SCENARIOS)}"
+        )
+    return SCENARIOS[name]

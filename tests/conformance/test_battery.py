@@ -1,0 +1,419 @@
+"""The conformance battery (issue 19, part 2): the reference columns pass, wrong engines
+fail the right scenarios with the figure in the message, bad answers are named, orders
+of convergence are measured right, thresholds override."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from mechanics.conformance import (
+    DEFAULT_RTOL,
+    DEFAULT_THRESHOLDS,
+    SCENARIOS,
+    ConformanceError,
+    ThresholdError,
+    UnknownScenarioError,
+    get_scenario,
+    reference,
+    run_battery,
+)
+from mechanics.conformance.adapters import (
+    ExactAdapter,
+    MissingExtraError,
+    SceneEngineAdapter,
+    require,
+)
+from mechanics.conformance.battery import ORDER_FLOOR
+from mechanics.tops import FreeAsymmetricTop
+
+from .toys import (
+    BAD_ANSWERS,
+    DOC,
+    RK4,
+    Crashes,
+    NeedsMissingEngine,
+    Wrapped,
+    active_attitudes,
+    doc_example,
+    gravity_sign_error,
+    ignores_restitution,
+)
+
+EPS = float(np.finfo(float).eps)
+#: reading a period or a turning point off samples by local polynomials (degree 5 at 16
+#: to 128 samples per turn): measured at most 5.4e-10 (the near-separatrix period);
+#: 2^23 eps = 1.9e-9 keeps a factor of 3
+SAMPLING_FLOOR = 2**23 * EPS
+#: sums of a few squares of O(1) numbers, then a difference: a few eps (measured 3 eps)
+DRIFT_ATOL = 2**4 * EPS
+#: the scene engine's DOP853 at rtol = atol = 1e-12 over a few turns: measured attitude
+#: 1.9e-11; its figures sit on the sampling floor
+ENGINE_RTOL = SAMPLING_FLOOR
+#: an order read from three halvings of a method in its asymptotic range: measured 1.00
+#: to 1.02 (semi-implicit Euler), 4.00 (RK4); 0.05 tells 1 from 2 and 4 from 3
+ORDER_TOL = 0.05
+#: the loose bounds under which the first-order toy passes its smooth free-body
+#: scenarios at 2^-8 s (its errors there: up to 6.8e-3)
+#: a creep of G (m/s per s) far below any threshold, to show a zero invariant's scale
+CREEP = 2**-40
+TOY_THRESHOLDS = {
+    k: 2.0**-6 for k in ("position", "attitude", "omega", "apex_height", "E_drift", "L_drift")
+}
+
+
+def statuses(report) -> dict[str, str]:
+    return {r.scenario: r.status for r in report.results}
+
+
+@pytest.fixture(scope="module")
+def toy():
+    return doc_example()["SemiImplicitEuler"]()
+
+
+# -- the two reference columns ------------------------------------------------------
+
+
+def test_exact_adapter_passes_every_scenario_with_figures_at_the_sampling_floor():
+    report = run_battery(ExactAdapter())
+    assert report.passed
+    assert set(statuses(report).values()) == {"pass"}
+    for r in report.results:
+        for f in r.figures:
+            bound = {"error": SAMPLING_FLOOR, "drift": DRIFT_ATOL}[f.kind]
+            if f.name in ("position", "velocity", "attitude", "omega", "mass"):
+                bound = 0.0  # the exact states compared with themselves
+            assert f.value <= bound, (r.scenario, f)
+
+
+def test_scene_engine_adapter_passes_every_scenario_near_rounding():
+    report = run_battery(SceneEngineAdapter())
+    assert set(statuses(report).values()) == {"pass"}, report.to_markdown()
+    for r in report.results:
+        assert r.worst.value <= ENGINE_RTOL, (r.scenario, r.worst)
+        assert r.wall_time > 0
+
+
+def test_scene_engine_adapter_says_why_it_cannot_run_a_scenario():
+    s = get_scenario("parabola")
+    odd = dataclasses.replace(s, sample_times=(0.0, 0.1, 1.5), duration=1.5)
+    box = dataclasses.replace(
+        get_scenario("bouncing_ball"),
+        bodies=(dataclasses.replace(s.bodies[0], inertia=(0.001, 0.002, 0.003)),),
+    )
+    r = run_battery(SceneEngineAdapter(), scenarios=[odd, box])
+    assert statuses(r) == {"parabola": "unsupported", "bouncing_ball": "unsupported"}
+    assert "uniformly" in r["parabola"].message
+    assert "solid spheres" in r["bouncing_ball"].message
+
+
+# -- the scenarios ------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", list(SCENARIOS))
+def test_every_step_divides_every_sample_time_exactly(name):
+    s = SCENARIOS[name]
+    assert s.sample_times[0] == 0.0
+    assert s.sample_times[-1] == s.duration
+    assert len(s.steps) >= 2
+    for h in s.steps:
+        for t in s.sample_times:
+            assert (t / h).is_integer(), (h, t)
+            assert round(t / h) * h == t, (h, t)
+
+
+def test_near_separatrix_scenario_is_as_near_as_documented():
+    b = get_scenario("free_top_near_separatrix").bodies[0]
+    top = FreeAsymmetricTop(b.inertia, b.omega)
+    assert top.regime == "axis1"
+    assert 1.2e-4 < top.m1 < 1.4e-4  # "m1 = 1.3e-4"
+    assert 16.0 < top.flip_period() < 17.0  # "ω's period 16.5 s": a flip every 8.3 s
+    L2 = top.angular_momentum_norm**2
+    assert math.isclose(L2, 144.0, rel_tol=1e-3)
+    assert math.isclose(top.separatrix_distance, -3.2e-3, rel_tol=1e-2)
+
+
+def test_impacts_fall_at_least_9_ms_from_any_sample():
+    """So that a sample never lies between an impact and an engine's slightly late one
+    at the battery's finest step (3.9 ms), whose run is the one judged."""
+    impact = get_scenario("two_body_impact")
+    tc = reference(impact).figures["impact_time"]
+    ball = get_scenario("bouncing_ball")
+    apex = reference(ball).figures["apex_times"]
+    g, h0, e = 9.81, 1.275, 0.8
+    tf = math.sqrt(2 * h0 / g)
+    hits = [tf * (1 + 2 * sum(e**j for j in range(1, k + 1))) for k in range(4)]
+    assert np.allclose(np.diff(hits), 2 * (apex - hits[:3]), rtol=1e-12)  # apexes halfway
+    assert hits[2] < ball.duration < hits[3]
+    for times, s in (([tc], impact), (hits[:3], ball)):
+        T = np.array(s.sample_times)
+        for t in times:
+            assert np.min(np.abs(T - t)) > 9e-3, (s.name, t)
+    assert max(min(s.steps) for s in (impact, ball)) < 9e-3 / 2  # the judged (finest) run
+
+
+def test_bouncing_ball_reference_matches_example_6_1_law_e_squared_per_bounce():
+    ref = reference(get_scenario("bouncing_ball"))
+    h = ref.figures["apex_heights"]
+    assert np.allclose(h[1:] / h[:-1], 0.8**2, rtol=4 * EPS, atol=0)
+    z = ref.trajectory.position[:, 0, 2] - 0.1
+    assert z.min() >= -4 * EPS
+    assert z.max() == pytest.approx(1.275)
+
+
+def test_unknown_scenario_names_the_known_ones():
+    with pytest.raises(UnknownScenarioError, match=r"'nope'.*free_top_axis1, "):
+        run_battery(ExactAdapter(), scenarios=["nope"])
+
+
+# -- wrong engines fail the right scenarios -----------------------------------------
+
+
+def test_ignored_restitution_fails_exactly_the_impact_scenarios_naming_e():
+    r = run_battery(ignores_restitution())
+    failing = {n for n, s in statuses(r).items() if s == "fail"}
+    assert failing == {"two_body_impact", "bouncing_ball"}
+    assert "restitution 0.667 violates threshold <= 0.000977" in r["two_body_impact"].message
+    assert "apex_heights inf violates threshold" in r["bouncing_ball"].message
+    assert "found 2 apexes" in r["bouncing_ball"].message
+
+
+def test_active_attitudes_fail_every_tilted_scenario_on_the_attitude():
+    r = run_battery(active_attitudes())
+    for name, status in statuses(r).items():
+        tilted = not np.allclose(SCENARIOS[name].bodies[0].R_A_O, np.eye(3))
+        assert status == ("fail" if tilted else "pass"), name
+        if tilted:
+            assert "attitude" in r[name].message
+            assert "violates threshold" in r[name].message
+
+
+def test_gravity_sign_error_fails_the_scenarios_with_gravity_only(toy):
+    right = run_battery(toy, thresholds=TOY_THRESHOLDS)
+    wrong = run_battery(gravity_sign_error(), thresholds=TOY_THRESHOLDS)
+    for name in ("free_top_axis1", "free_top_axis3"):
+        assert right[name].status == wrong[name].status == "pass"
+    for name in ("parabola", "bouncing_ball"):
+        assert wrong[name].status == "fail"
+        pos = wrong[name].figure("position")
+        assert pos.value > 1.0
+        assert f"position {pos.value:.3g} violates" in wrong[name].message
+    assert right["parabola"].status == "pass"
+
+
+def test_conserved_quantities_that_vanish_are_scaled_by_the_motion_not_by_zero():
+    """The free top's p and the head-on pair's L about the origin are exactly 0: an
+    engine 1e-12 off (G creeping, a pair slightly off its line) must still pass."""
+
+    def nudge(s, tr):
+        creep = CREEP * tr.t[:, None, None]
+        return dataclasses.replace(
+            tr, velocity=tr.velocity + creep, position=tr.position + creep * [0.0, 1.0, 0.0]
+        )
+
+    r = run_battery(
+        Wrapped("nudged", answer=nudge), scenarios=["free_top_axis1", "two_body_impact"]
+    )
+    assert statuses(r) == {"free_top_axis1": "pass", "two_body_impact": "pass"}
+    # |Δp| = m √3 CREEP T over a scale of several kg m/s; |ΔL| ≤ |Δr| m |v| + |r| m |Δv|
+    assert 0 < r["free_top_axis1"].figure("p_drift").value < CREEP * 8.0 * math.sqrt(3)
+    assert 0 < r["two_body_impact"].figure("L_drift").value < CREEP * 10.0
+
+
+# -- bad answers --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("case", list(BAD_ANSWERS))
+def test_bad_answer_is_an_error_naming_scenario_field_and_expectation(case):
+    spoil, words = BAD_ANSWERS[case]
+    adapter = Wrapped(case, answer=spoil, only={"parabola"})
+    r = run_battery(adapter, scenarios=["parabola", "rocket"])
+    assert statuses(r) == {"parabola": "error", "rocket": "pass"}
+    msg = r["parabola"].message
+    assert msg.startswith("scenario 'parabola': "), msg
+    for w in words:
+        assert w in msg, (w, msg)
+
+
+def test_the_docs_bad_answer_messages_are_the_batterys():
+    text = DOC.read_text(encoding="utf-8")
+    block = text[text.index("## Bad answers") :].split("```text\n")[1].split("```")[0]
+    shown = block.strip().splitlines()
+    got = [
+        run_battery(Wrapped(c, answer=spoil), scenarios=["parabola"])["parabola"].message
+        for c, (spoil, _) in BAD_ANSWERS.items()
+    ]
+    assert shown == got
+
+
+def test_crashing_adapter_fails_its_scenario_and_the_battery_goes_on():
+    r = run_battery(Crashes({"heavy_top", "rocket"}))
+    st = statuses(r)
+    assert st.pop("heavy_top") == st.pop("rocket") == "error"
+    assert set(st.values()) == {"pass"}
+    assert r["heavy_top"].message == "run raised RuntimeError: boom in heavy_top"
+    assert not r.passed
+
+
+def test_adapter_whose_supports_raises_errors_that_scenario_only():
+    class Picky(ExactAdapter):
+        def supports(self, scenario):
+            if scenario.name == "parabola":
+                raise KeyError("no parabolas")
+            return None
+
+    r = run_battery(Picky(), scenarios=["parabola", "two_body_impact"])
+    assert statuses(r) == {"parabola": "error", "two_body_impact": "pass"}
+    assert r["parabola"].message == "supports() raised KeyError: 'no parabolas'"
+
+
+def test_crash_at_a_step_names_the_step(toy):
+    class Coarse(type(toy)):
+        def run(self, scenario, step):
+            if step > 2**-7:
+                raise ValueError("step too large")
+            return super().run(scenario, step)
+
+    r = run_battery(Coarse(), scenarios=["parabola"])
+    assert r["parabola"].message == "run at step 0.015625 s raised ValueError: step too large"
+
+
+def test_missing_engine_names_the_extra_to_install():
+    r = run_battery(NeedsMissingEngine(), scenarios=["parabola"])
+    assert r["parabola"].status == "error"
+    assert r["parabola"].message == (
+        "run raised MissingExtraError: the MuJoCo adapter needs the bodycheck_no_such_engine "
+        "package: pip install 'bodycheck[mujoco]'"
+    )
+
+
+def test_require_names_the_engine_and_the_extra_and_is_an_import_error():
+    with pytest.raises(ImportError) as info:
+        require("mujoco_not_installed_here", "mujoco")
+    assert isinstance(info.value, MissingExtraError)
+    assert str(info.value) == (
+        "the mujoco_not_installed_here adapter needs the mujoco_not_installed_here package: "
+        "pip install 'bodycheck[mujoco]'"
+    )
+    assert require("json", "none") is json
+
+
+def test_an_object_that_is_not_an_adapter_is_refused_naming_what_it_lacks():
+    with pytest.raises(ConformanceError, match="has no 'takes_step'"):
+        run_battery(type("A", (), {"name": "x"})())
+
+
+# -- order of convergence -----------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["free_top_axis1", "free_top_axis3", "parabola"])
+def test_semi_implicit_euler_converges_at_first_order(toy, name):
+    r = run_battery(toy, scenarios=[name])[name]
+    assert len(r.runs) == 3
+    assert [x.step for x in r.runs] == list(SCENARIOS[name].steps)
+    assert abs(r.order - 1.0) < ORDER_TOL, r.order
+
+
+@pytest.mark.parametrize("name", ["free_top_axis1", "free_top_near_separatrix"])
+def test_rk4_converges_at_fourth_order(name):
+    r = run_battery(RK4(), scenarios=[name])[name]
+    assert abs(r.order - 4.0) < ORDER_TOL, r.order
+    assert r.status == "pass"
+
+
+def test_no_order_is_read_from_errors_at_rounding():
+    class Stepping(ExactAdapter):
+        takes_step = True
+
+    r = run_battery(Stepping(), scenarios=["parabola"], thresholds={"order": 3.0})["parabola"]
+    assert [x.error for x in r.runs] == [0.0] * 3
+    assert r.order is None
+    assert r.status == "pass"
+    assert r.figure("order").note == "errors at rounding level: no order to read"
+    assert ORDER_FLOOR < DEFAULT_RTOL
+
+
+# -- thresholds ---------------------------------------------------------------------
+
+
+def test_thresholds_override_and_a_scenario_key_wins_over_a_figure_key(toy):
+    default = run_battery(toy, scenarios=["parabola"])["parabola"]
+    assert default.status == "fail"
+    pos = default.figure("position")
+    assert pos.threshold == DEFAULT_THRESHOLDS["position"] == DEFAULT_RTOL
+    assert f"position {pos.value:.3g} violates threshold <= 0.000977" in default.message
+    loose = run_battery(toy, scenarios=["parabola"], thresholds=TOY_THRESHOLDS)["parabola"]
+    assert loose.status == "pass"
+    th = {**TOY_THRESHOLDS, "parabola.position": 1e-3}
+    tight = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
+    assert tight.status == "fail"
+    assert tight.message.startswith("position ")
+    assert "violates threshold <= 0.001" in tight.message
+
+
+def test_a_threshold_of_none_reports_without_checking(toy):
+    th = {**TOY_THRESHOLDS, "position": None}
+    r = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
+    f = r.figure("position")
+    assert f.value > TOY_THRESHOLDS["position"] / 4
+    assert f.passed is None
+    assert f.threshold is None
+
+
+def test_an_order_threshold_is_a_lower_bound(toy):
+    r = run_battery(toy, scenarios=["parabola"], thresholds={**TOY_THRESHOLDS, "order": 2.0})
+    res = r["parabola"]
+    assert res.status == "fail"
+    assert f"order {res.order:.3g} violates threshold >= 2" in res.message
+
+
+@pytest.mark.parametrize(
+    ("thresholds", "message"),
+    [
+        ({"velocty": 1e-3}, r"unknown threshold key\(s\) 'velocty'; a key is a figure"),
+        ({"parabola.theta": 1e-3, "x": 1}, r"unknown threshold key\(s\) 'parabola.theta', 'x'"),
+        ({"velocity": -1.0}, r"threshold 'velocity' must be a finite number >= 0.*got -1.0"),
+        ({"velocity": "tight"}, r"threshold 'velocity' must be .*got 'tight'"),
+        ({"order": math.nan}, r"threshold 'order' must be .*got nan"),
+        ([("velocity", 1.0)], r"thresholds must be a dict.*got list"),
+    ],
+)
+def test_bad_thresholds_are_refused_naming_them(thresholds, message):
+    with pytest.raises(ThresholdError, match=message):
+        run_battery(ExactAdapter(), scenarios=["parabola"], thresholds=thresholds)
+
+
+# -- the report ---------------------------------------------------------------------
+
+
+def test_report_json_and_markdown_carry_every_scenario_and_status():
+    r = run_battery(Crashes({"rocket"}), scenarios=["parabola", "rocket"])
+    d = json.loads(r.to_json())
+    assert d["adapter"] == "crashes"
+    assert d["passed"] is False
+    assert d["counts"] == {"pass": 1, "fail": 0, "unsupported": 0, "error": 1}
+    by = {s["scenario"]: s for s in d["scenarios"]}
+    assert by["rocket"]["status"] == "error"
+    assert by["rocket"]["wall_time"] is None
+    assert {f["name"] for f in by["parabola"]["figures"]} >= {"position", "apex_height"}
+    md = r.to_markdown()
+    assert "| scenario | status | worst figure | threshold | order | wall time (s) |" in md
+    assert "| rocket | error |" in md
+    assert "- rocket (error): run raised RuntimeError: boom in rocket" in md
+
+
+def test_importing_the_battery_and_its_adapters_is_light():
+    code = (
+        "import sys, mechanics.conformance, mechanics.conformance.adapters; "
+        "heavy = ('pytest', 'matplotlib', 'sympy', 'identities', 'mujoco'); "
+        "print(sorted({m.split('.')[0] for m in sys.modules if m.split('.')[0] in heavy} "
+        "| {m for m in sys.modules if m.startswith('mechanics.scenes')}))"
+    )
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert proc.stdout.strip() == "[]", proc.stdout + proc.stderr

@@ -1,0 +1,188 @@
+"""Toy adapters for the battery's tests: a fourth-order one, wrong ones, broken ones.
+
+The first-order toy (semi-implicit Euler on free bodies and a ground bounce) is the
+example adapter of docs/conformance.md; :func:`doc_example_source` reads it out of the
+document, so that the example users copy is the one under test.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from pathlib import Path
+
+import numpy as np
+
+from mechanics.conformance import Trajectory
+from mechanics.conformance.adapters import ExactAdapter, require
+from mechanics.rotation import nearest_rotation
+
+DOC = Path(__file__).resolve().parents[2] / "docs" / "conformance.md"
+
+
+def doc_example_source() -> str:
+    """The code block that follows the marker ``<!-- example adapter -->`` in the doc."""
+    text = DOC.read_text(encoding="utf-8")
+    m = re.search(r"<!-- example adapter -->\s*```python\n(.*?)```", text, re.S)
+    assert m is not None, f"{DOC} has no example adapter block"
+    return m.group(1)
+
+
+def doc_example():
+    """The doc's example module, executed: its namespace."""
+    ns: dict = {"__name__": "toy_engine"}
+    exec(compile(doc_example_source(), str(DOC), "exec"), ns)
+    return ns
+
+
+class RK4:
+    """Classical Runge-Kutta on free bodies (no contacts, joints or thrust): x, v, the
+    nine entries of R (Ṙ = −[ω]× R, passive) and ω (Euler's equations 4.47); R is
+    projected on SO(3) only where sampled.  Order 4."""
+
+    name = "toy RK4"
+    takes_step = True
+
+    def supports(self, scenario):
+        if scenario.pivot or scenario.thrust or scenario.pair_restitution or scenario.ground:
+            return "free bodies only"
+        return None
+
+    def run(self, scenario, step):
+        b = scenario.bodies
+        J = np.array([x.inertia for x in b])
+        g = np.array(scenario.gravity)
+        y = [
+            np.array([x.position for x in b]),
+            np.array([x.velocity for x in b]),
+            np.array([x.R_A_O for x in b]),
+            np.array([x.omega for x in b]),
+        ]
+
+        def f(s):
+            _x, v, R, w = s
+            W = np.zeros((len(b), 3, 3))
+            W[:, 0, 1], W[:, 0, 2], W[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
+            W = W - np.swapaxes(W, 1, 2)
+            return [v, np.broadcast_to(g, v.shape), -W @ R, np.cross(J * w, w) / J]
+
+        def add(s, k, c):
+            return [a + c * d for a, d in zip(s, k, strict=True)]
+
+        out, n = [], 0
+        for t in scenario.sample_times:
+            while n < round(t / step):
+                k1 = f(y)
+                k2 = f(add(y, k1, step / 2))
+                k3 = f(add(y, k2, step / 2))
+                k4 = f(add(y, k3, step))
+                y = [
+                    a + step / 6 * (p + 2 * q + 2 * r + s)
+                    for a, p, q, r, s in zip(y, k1, k2, k3, k4, strict=True)
+                ]
+                n += 1
+            out.append([a.copy() for a in y])
+        x, v, R, w = (np.array([o[i] for o in out]) for i in range(4))
+        R = np.array([[nearest_rotation(M) for M in row] for row in R])
+        return Trajectory(np.array(scenario.sample_times), x, v, R, w)
+
+
+class Wrapped(ExactAdapter):
+    """The exact adapter with its answer (or its scenario) spoiled by ``spoil``."""
+
+    def __init__(self, name, *, scenario=None, answer=None, only=None):
+        self.name = name
+        self._scenario, self._answer, self._only = scenario, answer, only
+
+    def run(self, scenario, step):
+        if self._only is not None and scenario.name not in self._only:
+            return super().run(scenario, step)
+        s = self._scenario(scenario) if self._scenario else scenario
+        tr = super().run(s, step)
+        return self._answer(scenario, tr) if self._answer else tr
+
+
+def ignores_restitution():
+    """Every contact elastic, whatever e says."""
+
+    def elastic(s):
+        ground = s.ground and dataclasses.replace(s.ground, restitution=1.0)
+        pairs = tuple((i, j, 1.0) for i, j, _ in s.pair_restitution)
+        return dataclasses.replace(s, ground=ground, pair_restitution=pairs)
+
+    return Wrapped("e ignored", scenario=elastic)
+
+
+def active_attitudes():
+    """Returns the engine's active matrix (body-to-world) instead of ^A R^O."""
+    return Wrapped(
+        "active attitudes",
+        answer=lambda s, tr: dataclasses.replace(tr, R_A_O=np.swapaxes(tr.R_A_O, -1, -2)),
+    )
+
+
+def gravity_sign_error():
+    """The doc's first-order toy with gravity pointing up."""
+    base = doc_example()["SemiImplicitEuler"]
+
+    class Up(base):
+        name = "gravity up"
+
+        def run(self, scenario, step):
+            flipped = dataclasses.replace(scenario, gravity=tuple(-x for x in scenario.gravity))
+            return super().run(flipped, step)
+
+    return Up()
+
+
+def _field(name, f):
+    return lambda s, tr: dataclasses.replace(tr, **{name: f(getattr(tr, name))})
+
+
+def _nan_at_3(v):
+    v = v.copy()
+    v[3, 0, 1] = np.nan
+    return v
+
+
+def _swap_2_3(t):
+    t = t.copy()
+    t[[2, 3]] = t[[3, 2]]
+    return t
+
+
+BAD_ANSWERS = {
+    # case: (spoil, what the message must name)
+    "wrong shape": (_field("position", lambda x: x[:, :, :2]), ("'position'", "shape")),
+    "NaN": (_field("velocity", _nan_at_3), ("'velocity'", "finite", "got nan at index (3, 0, 1)")),
+    "non-orthogonal attitude": (
+        _field("R_A_O", lambda R: R * 1.001),
+        ("'R_A_O'", "rotations", "off by"),
+    ),
+    "times out of order": (_field("t", _swap_2_3), ("'t'", "increase strictly")),
+    "not a trajectory": (lambda s, tr: {"t": tr.t}, ("Trajectory", "got dict")),
+}
+
+
+class Crashes(ExactAdapter):
+    """Raises in ``run`` for the listed scenarios."""
+
+    name = "crashes"
+
+    def __init__(self, crash_on):
+        self.crash_on = set(crash_on)
+
+    def run(self, scenario, step):
+        if scenario.name in self.crash_on:
+            raise RuntimeError(f"boom in {scenario.name}")
+        return super().run(scenario, step)
+
+
+class NeedsMissingEngine(ExactAdapter):
+    """An engine adapter whose engine is not installed."""
+
+    name = "missing engine"
+
+    def run(self, scenario, step):
+        require("bodycheck_no_such_engine", "mujoco", engine="MuJoCo")
+        raise AssertionError("unreachable")
