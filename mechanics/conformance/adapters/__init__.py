@@ -1,0 +1,1 @@
+"""Adapters that put real engines under the conformance battery (issue 19)."""
