@@ -35,7 +35,8 @@ class MissingExtraError(ImportError):
 
 
 def require(module: str, extra: str, *, quiet: bool = False):
-    """Import ``module`` or raise :class:`MissingExtraError` naming ``extra``.
+    """Import ``module`` or raise :class:`MissingExtraError` naming ``extra`` (each
+    engine's extra is named after its PyPI package: ``mujoco``, ``pybullet``, ``drake``).
 
     ``quiet`` keeps what the module prints on import (pybullet's build banner, written
     by C code to file descriptor 1) off stdout."""
@@ -45,9 +46,8 @@ def require(module: str, extra: str, *, quiet: bool = False):
                 return importlib.import_module(module)
         return importlib.import_module(module)
     except ImportError as exc:
-        top = module.split(".")[0]
         raise MissingExtraError(
-            f"this adapter needs the {top} package: pip install 'bodycheck[{extra}]' "
+            f"this adapter needs the {extra} package: pip install 'bodycheck[{extra}]' "
             f"({type(exc).__name__}: {exc})"
         ) from exc
 
