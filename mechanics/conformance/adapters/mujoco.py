@@ -43,8 +43,10 @@ parameters").  With d held constant the depth x obeys an oscillator of frequency
   and time constant (τ = 0.02 s), with the damping ratio of the issue's mapping,
   ζ = −ln e/√(π² + ln² e): the textbook value for a spring-damper that may pull.
 - ``contact="tuned"``: constant impedance (``solimp = 0.9999 0.9999 0.001 0.5 2``,
-  mjMAXIMP), τ = 2 ms (a tenth of the default: a stiffer contact, a shallower dent),
-  and the ζ of the no-tension law: the contact force k x + b ẋ cannot pull, so the
+  mjMAXIMP), τ = max(2 ms, 20 h) (a tenth of the default, a stiffer contact and a
+  shallower dent, as long as the step resolves it: with fewer than ~20 steps per τ the
+  rebound is not the oscillator's; at h = 1 ms and τ = 2 ms a ball dropped at 4.4 m/s
+  came back at 5.9 times its speed), and the ζ of the no-tension law: the contact force k x + b ẋ cannot pull, so the
   body lets go at ω_d t = π − 2 arcsin ζ with
 
       e(ζ) = exp(−ζ (π − 2 arcsin ζ) / √(1 − ζ²)),
@@ -52,8 +54,7 @@ parameters").  With d held constant the depth x obeys an oscillator of frequency
   solved for ζ by bisection (:func:`zeta_without_tension`).  The numbers and their
   measured rebounds come from ``tests/scenes/test_mujoco_reference.py`` (issue 14):
   e(1 − 1.8e-4) at a 1 µs step; what is left is the climb out of the dent,
-  2 g τ ζ²/(e v).  MuJoCo clamps τ to at least 2h (its ``refsafe``): the tuned contact
-  needs a step well below 1 ms to mean what it says.
+  2 g τ ζ²/(e v), and a step error of about 2h/τ (≤ 0.1 at the floor τ = 20 h).
 - e = 1 has ζ = 0, an infinite stiffness in (τ, ζ); it is written in MuJoCo's direct
   form ``solref = (−1/τ², 0)`` (a spring of frequency 1/τ and no damping, which lets go
   at the speed it came in).  e = 0 is ζ = 1 (critical damping) in both settings.
@@ -96,6 +97,7 @@ __all__ = [
     "DEFAULT_TIMECONST",
     "INTEGRATORS",
     "TUNED_SOLIMP",
+    "TUNED_STEPS_PER_TIMECONST",
     "TUNED_TIMECONST",
     "MissingExtraError",
     "MuJoCoAdapter",
@@ -115,6 +117,9 @@ DEFAULT_SOLIMP = "0.9 0.95 0.001 0.5 2"
 #: mjMAXIMP, a time constant a tenth of the default
 TUNED_SOLIMP = "0.9999 0.9999 0.001 0.5 2"
 TUNED_TIMECONST = 2e-3
+#: the tuned time constant is at least this many steps: the damping force b v switches
+#: on inside a step, a relative rebound error ~ 2h/τ (test_mujoco_reference), 0.1 here
+TUNED_STEPS_PER_TIMECONST = 20
 #: the scenario's inertia must come back as written: MJCF is printed with repr (exact
 #: round trip), MuJoCo stores doubles; 4 eps relative leaves room for one conversion
 INERTIA_RTOL = 4 * EPS
@@ -219,11 +224,12 @@ class MuJoCoAdapter:
         """``None``, or why MuJoCo cannot run ``scenario`` (a Thrust)."""
         return common_unsupported(scenario)
 
-    def _solref(self, e: float) -> tuple[str, str]:
+    def _solref(self, e: float, step: float) -> tuple[str, str]:
         if self.contact == "default":
             tau, solimp, zeta = DEFAULT_TIMECONST, DEFAULT_SOLIMP, zeta_textbook(e)
         else:
-            tau, solimp, zeta = TUNED_TIMECONST, TUNED_SOLIMP, zeta_without_tension(e)
+            tau = max(TUNED_TIMECONST, TUNED_STEPS_PER_TIMECONST * step)
+            solimp, zeta = TUNED_SOLIMP, zeta_without_tension(e)
         if zeta == 0.0:  # e = 1: a spring of frequency 1/τ, no damping (direct form)
             return f"{-1.0 / tau**2!r} 0", solimp
         return f"{tau!r} {zeta!r}", solimp
@@ -277,7 +283,7 @@ class MuJoCoAdapter:
         if pairs:
             parts.append("  <contact>")
             for g1, g2, e in pairs:
-                solref, solimp = self._solref(e)
+                solref, solimp = self._solref(e, float(step))
                 parts.append(
                     f'    <pair geom1="{g1}" geom2="{g2}" condim="1" solref="{solref}" '
                     f'solimp="{solimp}"/>'
