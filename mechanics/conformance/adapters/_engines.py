@@ -115,8 +115,8 @@ def step_counts(scenario: Scenario, step) -> tuple[float, np.ndarray]:
     if off.any():
         k = int(np.argmax(off))
         raise MechanicsValueError(
-            f"scenario {scenario.name!r}: sample time {T[k]!r} is not a whole number of "
-            f"steps {step!r}"
+            f"scenario {scenario.name!r}: sample time {float(T[k])!r} is not a whole number "
+            f"of steps {float(step)!r}"
         )
     return float(step), n.astype(np.int64)
 

@@ -226,7 +226,9 @@ class DrakeAdapter:
         pd = self._pd
         props = pd.ProximityProperties()
         pd.AddContactMaterial(
-            dissipation=d, point_stiffness=None, friction=pd.CoulombFriction(0.0, 0.0),
+            dissipation=d,
+            point_stiffness=None,
+            friction=pd.CoulombFriction(0.0, 0.0),
             properties=props,
         )
         if self.contact == "hydroelastic":
@@ -280,7 +282,10 @@ class DrakeAdapter:
             X = pd.HalfSpace.MakePose(n, scenario.ground.height * n)
             d = float(np.mean(per_body.get(-1, [0.0])))
             plant.RegisterCollisionGeometry(
-                plant.world_body(), X, pd.HalfSpace(), "ground",
+                plant.world_body(),
+                X,
+                pd.HalfSpace(),
+                "ground",
                 self._properties(d, half_space=True),
             )
         joint = None
@@ -296,9 +301,7 @@ class DrakeAdapter:
             for y in shaped:
                 if x < y and (x, y) not in listed:
                     ids = [plant.GetBodyFrameIdOrThrow(bodies[z].index()) for z in (x, y)]
-                    sgi.Apply(
-                        pd.CollisionFilterDeclaration().ExcludeWithin(pd.GeometrySet(ids))
-                    )
+                    sgi.Apply(pd.CollisionFilterDeclaration().ExcludeWithin(pd.GeometrySet(ids)))
         diagram = builder.Build()
         sim = pd.Simulator(diagram)
         ctx = plant.GetMyMutableContextFromRoot(sim.get_mutable_context())
@@ -384,7 +387,7 @@ class DrakeAdapter:
         else:  # between updates: n·h would leave the update due at n·h to rounding
             stops = [(n - 0.5) * h for n in step_counts(scenario, h)[1]]
         for T in stops:
-            if T > sim.get_context().get_time():
+            if sim.get_context().get_time() < T:
                 sim.AdvanceTo(T)
             samples.append(self._read(plant, ctx, bodies))
         pos, vel, R, w = (np.array(x) for x in zip(*samples, strict=True))

@@ -46,8 +46,8 @@ parameters").  With d held constant the depth x obeys an oscillator of frequency
   mjMAXIMP), τ = max(2 ms, 20 h) (a tenth of the default, a stiffer contact and a
   shallower dent, as long as the step resolves it: with fewer than ~20 steps per τ the
   rebound is not the oscillator's; at h = 1 ms and τ = 2 ms a ball dropped at 4.4 m/s
-  came back at 5.9 times its speed), and the ζ of the no-tension law: the contact force k x + b ẋ cannot pull, so the
-  body lets go at ω_d t = π − 2 arcsin ζ with
+  came back at 5.9 times its speed), and the ζ of the no-tension law: the contact
+  force k x + b ẋ cannot pull, so the body lets go at ω_d t = π − 2 arcsin ζ with
 
       e(ζ) = exp(−ζ (π − 2 arcsin ζ) / √(1 − ζ²)),
 
@@ -332,13 +332,22 @@ class MuJoCoAdapter:
     def _read(self, scenario: Scenario, model, data):
         mj = self._mj
         n = len(scenario.bodies)
-        pos, vel, Rs, ws = (np.empty((n, 3)), np.empty((n, 3)), np.empty((n, 3, 3)), np.empty((n, 3)))
+        pos, vel, Rs, ws = (
+            np.empty((n, 3)),
+            np.empty((n, 3)),
+            np.empty((n, 3, 3)),
+            np.empty((n, 3)),
+        )
         for k in range(n):
             jnt = model.body_jntadr[k + 1]
             a, d = model.jnt_qposadr[jnt], model.jnt_dofadr[jnt]
             if model.jnt_type[jnt] == mj.mjtJoint.mjJNT_FREE:
                 R = matrix_from_quat(data.qpos[a + 3 : a + 7])
-                pos[k], vel[k], ws[k] = data.qpos[a : a + 3], data.qvel[d : d + 3], data.qvel[d + 3 : d + 6]
+                pos[k], vel[k], ws[k] = (
+                    data.qpos[a : a + 3],
+                    data.qvel[d : d + 3],
+                    data.qvel[d + 3 : d + 6],
+                )
             else:
                 p = scenario.pivot
                 R = matrix_from_quat(data.qpos[a : a + 4])

@@ -56,10 +56,18 @@ on the step: a ball at 4.4 m/s moves 4.4 mm in a 1 ms step and penetrates before
 solver acts (it bounces); at 0.125 ms or with substeps it is caught in front of the
 plane and stops dead (measured with ``bench/engines.py``).
 
-- ``contact="default"``: Bullet's threshold kept.
-- ``contact="tuned"``: ``contactProcessingThreshold = 0`` on every body: only
-  penetrating contacts are solved, so the restitution is applied at every step size;
-  the price is the penetration of up to one step's travel, removed by split impulses.
+- ``contact="default"``: Bullet's settings kept.
+- ``contact="tuned"``: ``contactProcessingThreshold = 0`` on every body (only
+  penetrating contacts are solved, so the restitution is applied at every step size)
+  and ``contactERP = 0`` (no Baumgarte push out of the penetration: Bullet's multibody
+  solver has no split impulse, and the push adds up to ERP·v to the rebound — measured
+  +0.034 m/s per m/s at its default).  Then Newton's law (6.6) holds at the step of the
+  impact, and the rebound at the height of first touch is e within ~g h/v (the speed
+  gained within the step, the climb out of at most one step's travel v h).  The price:
+  a body stays up to one step's travel deep (4.3 mm for 4.4 m/s at 1 ms).
+- Measured oddity, kept as is: at steps of 10 µs and below Bullet loses a further
+  0.4 m/s of the rebound, and with substeps there the bounce vanishes
+  (``bench/engines.py``).
 
 Variants (:func:`variants`)
 ---------------------------
@@ -237,6 +245,8 @@ class PyBulletAdapter:
             numSolverIterations=FINE_ITERATIONS if fine else 50,
             **kw,
         )
+        if self.contact == "tuned":
+            p.setPhysicsEngineParameter(contactERP=0.0, **kw)
         ground = None
         if scenario.ground is not None:
             g = scenario.ground
@@ -340,7 +350,11 @@ class PyBulletAdapter:
                 v, w_O = p.getBaseVelocity(uid, physicsClientId=cid)
             else:
                 s = p.getLinkState(
-                    uid, link, computeLinkVelocity=1, computeForwardKinematics=1, physicsClientId=cid
+                    uid,
+                    link,
+                    computeLinkVelocity=1,
+                    computeForwardKinematics=1,
+                    physicsClientId=cid,
                 )
                 x, q, v, w_O = s[0], s[1], s[6], s[7]
             R = _R_A_O(q)
