@@ -34,16 +34,23 @@ Conventions (Drake against the book)
 
 Restitution: Hunt–Crossley dissipation, where no e exists
 ---------------------------------------------------------
-Drake's compliant contact presses with f = k x (1 + d ẋ) (point contact; the
-hydroelastic pressure has the same factor (1 + d ẋ)), smooth here
-(``CoulombFriction(0, 0)``).  A Hunt–Crossley contact has no coefficient of
-restitution: its rebound ratio depends on the impact speed v, to first order
-e ≈ 1 − (2/3) d v (Hunt & Crossley 1975).  The adapter sets
-d = 3 (1 − e) / (2 v_ref) with v_ref the scenario's nominal approach speed (the speed
-at which a body falling from its initial state would reach the ground, or the initial
-relative speed of a pair; 1 m/s where that is zero), and the battery reports the
-effective e *measured*, which differs from e beyond first order in d v.  Stiffness:
-``point_stiffness`` is left to the plant, which derives it from its
+Drake's compliant contact presses with f = k x (1 + d ẋ) (point contact, x the
+penetration; the hydroelastic pressure has the same factor (1 + d ẋ)), smooth here
+(``CoulombFriction(0, 0)``).  A Hunt–Crossley contact has no coefficient of restitution
+of its own: for the linear spring of point contact, with no other force during the
+contact, the phase plane u du/dx = −ω² x (1 + d u) integrates to
+c u − ln(1 + c u) = const (c = d v, u = ẋ/v), so the body leaves at −e v with
+
+    ln((1 + c)/(1 − c e)) = c (1 + e),     c = d v        (to first order c = (3/2)(1 − e)),
+
+whatever k and m (:func:`hunt_crossley_dissipation` solves it for c).  The restitution
+thus depends on the impact speed v; the adapter sets d = c(e)/v_ref with v_ref the
+scenario's nominal approach speed (the speed at which a body falling from its initial
+state reaches the ground, or the initial relative speed of a pair; 1 m/s where that is
+zero), and the battery reports the effective e *measured*: gravity acting during the
+contact, another impact speed, or the hydroelastic force law (not linear in x) move it.
+
+Stiffness: ``point_stiffness`` is left to the plant, which derives it from its
 ``penetration_allowance`` (1 mm); the hydroelastic modulus is :data:`HYDRO_MODULUS`
 (a hard rubber), the ground rigid (Drake refuses compliant-against-compliant contact
 with a half space, and falls back to point contact without saying so).
@@ -86,6 +93,7 @@ from ._engines import (
 __all__ = [
     "CONTACTS",
     "CONTINUOUS_ACCURACY",
+    "E_FLOOR",
     "HYDRO_MODULUS",
     "MODES",
     "DrakeAdapter",
@@ -107,22 +115,46 @@ RESOLUTION_HINT = 0.01
 #: the pivot's line to G may not start closer than this to gravity's direction (rad):
 #: the RPY joint's pitch would start within 1e-3 of ±π/2
 PIVOT_SINGULAR_ANGLE = 1e-3
+#: e = 0 needs an infinite dissipation; it is given the d of this e (c ≈ 1/e = 2^20)
+E_FLOOR = 2.0**-20
 #: the inertia read back from the plant: stored as given, 4 eps for one conversion
 INERTIA_RTOL = 4 * EPS
 
 
 def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
-    """d = 3 (1 − e)/(2 v_ref) (s/m): the Hunt–Crossley dissipation whose first-order
-    restitution 1 − (2/3) d v is ``e`` at the speed ``v_ref``.
+    """The Hunt–Crossley dissipation d (s/m) with which a linear-spring contact
+    f = k x (1 + d ẋ) hit at ``v_ref`` lets go at e·v_ref: d = c/v_ref with
+    ln((1 + c)/(1 − c e)) = c (1 + e), c in (0, 1/e) (module docstring), solved by
+    bisection to the last bit.  e = 0 would need d = ∞: it is given the d of
+    e = :data:`E_FLOOR`.
 
-    >>> hunt_crossley_dissipation(0.8, 3.0)
-    0.09999999999999998
+    Examples
+    --------
+    The first order, c = (3/2)(1 − e), near e = 1; and the law itself:
+
+    >>> c = hunt_crossley_dissipation(0.999, 1.0)
+    >>> abs(c / (1.5 * 0.001) - 1) < 2e-3
+    True
+    >>> c, e = hunt_crossley_dissipation(0.5, 1.0), 0.5
+    >>> abs(math.log((1 + c) / (1 - c * e)) - c * (1 + e)) < 1e-15
+    True
     """
     if not 0.0 <= e <= 1.0:
         raise MechanicsValueError(f"a coefficient of restitution must lie in [0, 1]; got {e!r}")
     if not v_ref > 0:
         raise MechanicsValueError(f"the reference speed must be > 0; got {v_ref!r}")
-    return 1.5 * (1.0 - e) / v_ref
+    if e == 1.0:
+        return 0.0
+    e = max(e, E_FLOOR)
+    lo, hi = 0.0, 1.0 / e  # φ(c) = ln((1 + c)/(1 − c e)) − c (1 + e): < 0 near 0, → ∞ at 1/e
+    while True:
+        mid = 0.5 * (lo + hi)
+        if mid in (lo, hi):
+            return mid / v_ref
+        if math.log1p(mid) - math.log1p(-mid * e) - mid * (1.0 + e) < 0.0:
+            lo = mid
+        else:
+            hi = mid
 
 
 def variants() -> list[DrakeAdapter]:

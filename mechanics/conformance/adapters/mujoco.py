@@ -133,8 +133,8 @@ def restitution_without_tension(zeta: float) -> float:
     --------
     >>> restitution_without_tension(0.0), restitution_without_tension(1.0)
     (1.0, 0.0)
-    >>> round(restitution_without_tension(0.06), 4)
-    0.8333
+    >>> round(restitution_without_tension(0.06), 4)  # ζ = 0.060 for e = 5/6 (issue 14)
+    0.8339
     """
     if zeta >= 1.0:
         return 0.0
