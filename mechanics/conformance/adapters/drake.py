@@ -29,7 +29,7 @@ Conventions (Drake against the book)
   gravity (space z without gravity) and M at the pivot with its x axis along the line
   from the pivot to G, so the singular configurations are the line vertical: a top
   upright or hanging straight down.  A scenario that starts there is unsupported; a
-  motion that passes through it makes Drake raise (a top nutating between
+  motion that passes near it loses the joint's accuracy there (a top nutating between
   0 < θ₁ ≤ θ ≤ θ₂ < π never does).  A pivot at G itself takes body axis 1 as M's x.
 
 Restitution: Hunt–Crossley dissipation, where no e exists
@@ -49,6 +49,8 @@ scenario's nominal approach speed (the speed at which a body falling from its in
 state reaches the ground, or the initial relative speed of a pair; 1 m/s where that is
 zero), and the battery reports the effective e *measured*: gravity acting during the
 contact, another impact speed, or the hydroelastic force law (not linear in x) move it.
+Drake combines the d of the two geometries in contact; each geometry gets the mean d
+of the contacts it takes part in (exact for one body on the ground).
 
 Stiffness: ``point_stiffness`` is left to the plant, which derives it from its
 ``penetration_allowance`` (1 mm); the hydroelastic modulus is :data:`HYDRO_MODULUS`
