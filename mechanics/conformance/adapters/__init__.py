@@ -25,7 +25,7 @@ class MissingExtraError(ImportError):
     """An optional engine is not installed; the message names the extra to install."""
 
 
-def require(module: str, extra: str, *, engine: str | None = None):
+def require(module: str, extra: str, *, engine: str | None = None, package: str | None = None):
     """Import ``module`` or raise :class:`MissingExtraError` naming ``extra``.
 
     Parameters
@@ -37,6 +37,9 @@ def require(module: str, extra: str, *, engine: str | None = None):
     engine : str, optional
         The engine's name in the message (default from :data:`ENGINE_NAMES`, else
         ``module``).
+    package : str, optional
+        The distribution that provides ``module``, as the message names it (default:
+        ``module``'s top level; Drake's ``pydrake`` comes with the ``drake`` package).
 
     Examples
     --------
@@ -56,7 +59,8 @@ mujoco_is_not_here package: pip install 'bodycheck[mujoco]'
             raise  # the package is there but is broken: show its own error
         name = engine or ENGINE_NAMES.get(top, module)
         raise MissingExtraError(
-            f"the {name} adapter needs the {module} package: pip install 'bodycheck[{extra}]'",
+            f"the {name} adapter needs the {package or top} package: "
+            f"pip install 'bodycheck[{extra}]'",
             name=module,
         ) from None
 
