@@ -3,12 +3,17 @@
     bodycheck conform MODULE:ADAPTER [--scenario NAME ...] [--json FILE] [--plot FILE]
                       [--threshold NAME=VALUE ...]
     bodycheck conform exact|engine ...
+    bodycheck conform all [--markdown FILE] [--plot FILE] [--json FILE]
 
 MODULE is a dotted module (importable from the current directory too) or a path to a
 ``.py`` file; ADAPTER an attribute of it (dots allowed): a class (instantiated without
 arguments), a factory (called without arguments) or an adapter instance.  Resolved with
 importlib and getattr, never eval.  ``exact`` and ``engine`` name the reference adapters
-(the closed forms; the project's integrated scene engine).
+(the closed forms; the project's integrated scene engine).  ``all`` runs the references
+and every variant of MuJoCo, PyBullet and Drake that is installed
+(:mod:`mechanics.conformance.compare`) into one table, scenario by scenario; its exit
+code is 1 only when a reference fails (an engine failing a scenario is what the table
+reports).
 
 Exit codes: 0 every scenario passed or is unsupported, 1 a scenario failed or errored,
 2 bad usage (one line naming the value).
@@ -28,6 +33,8 @@ __all__ = ["PLOT_SUFFIXES", "add_parser", "cmd_conform", "load_adapter", "parse_
 #: formats the plot is written in, by the file's suffix
 PLOT_SUFFIXES = (".svg", ".png")
 BUILTIN = {"exact": "ExactAdapter", "engine": "SceneEngineAdapter"}
+#: the name that runs every adapter (references and engines) into one table
+ALL = "all"
 
 
 def add_parser(sub) -> None:
@@ -39,7 +46,8 @@ def add_parser(sub) -> None:
         "adapter",
         metavar="MODULE:ADAPTER",
         help="MODULE a dotted module or a .py path, ADAPTER a class, factory or instance in "
-        "it; or 'exact' / 'engine' for the reference adapters",
+        "it; 'exact' / 'engine' for the reference adapters; 'all' for the references and "
+        "every installed engine variant in one table",
     )
     c.add_argument(
         "--scenario",
@@ -50,6 +58,9 @@ def add_parser(sub) -> None:
         help="only these scenarios (default: all)",
     )
     c.add_argument("--json", metavar="FILE", help="write the report as JSON ('-': stdout)")
+    c.add_argument(
+        "--markdown", metavar="FILE", help="also write the printed table to FILE (for 'all')"
+    )
     c.add_argument("--plot", metavar="FILE", help="write a bar chart (.svg or .png)")
     c.add_argument(
         "--threshold",
@@ -219,6 +230,10 @@ def cmd_conform(args) -> int:
         thresholds = resolve_thresholds(parse_thresholds(args.thresholds))
     except ThresholdError as exc:
         raise _usage(str(exc)) from None
+    if args.adapter == ALL:
+        return _conform_all(args, thresholds)
+    if args.markdown:
+        raise _usage("--markdown is for 'bodycheck conform all'; one adapter's table is printed")
     adapter = load_adapter(args.adapter)
     report = run_battery(adapter, scenarios=args.scenarios, thresholds=thresholds)
     if args.json == "-":
@@ -230,3 +245,66 @@ def cmd_conform(args) -> int:
     if args.plot:
         _plot(report, Path(args.plot))
     return 0 if report.passed else 1
+
+
+def _plot_all(comparison, path: Path) -> None:
+    """A grid, scenario by adapter: colour = log10 of the worst checked figure over its
+    threshold (green within, red beyond), the status written in each cell."""
+    import math
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    reports = comparison.reports
+    scenarios = [r.scenario for r in reports[0][1].results]
+    grid = np.full((len(scenarios), len(reports)), np.nan)
+    fig, ax = plt.subplots(figsize=(1.0 * len(reports) + 3, 0.5 * len(scenarios) + 2.5))
+    for j, (_, rep) in enumerate(reports):
+        for i, r in enumerate(rep.results):
+            w = r.worst
+            if r.status in ("pass", "fail") and w is not None and w.threshold:
+                # 0 (an exact figure) at the colour scale's floor, inf at its top
+                ratio = max(w.value, 1e-16) / w.threshold
+                grid[i, j] = math.log10(ratio) if math.isfinite(ratio) else 8.0
+            text = {"pass": "pass", "fail": "fail", "error": "error"}.get(r.status, "n/a")
+            ax.text(j, i, text, ha="center", va="center", fontsize=7)
+    im = ax.imshow(grid, cmap="RdYlGn_r", vmin=-8, vmax=8, aspect="auto")
+    ax.set_xticks(range(len(reports)), [rep.adapter for _, rep in reports], rotation=60,
+                  ha="right", fontsize=7)  # fmt: skip
+    ax.set_yticks(range(len(scenarios)), scenarios, fontsize=8)
+    fig.colorbar(im, ax=ax, label="log10(worst figure / threshold)")
+    ax.set_title("Conformance battery: every adapter (n/a: cannot express the scenario)")
+    fig.savefig(path, dpi=100, bbox_inches="tight")
+    plt.close(fig)
+
+
+def _conform_all(args, thresholds) -> int:
+    from mechanics.conformance.compare import compare
+
+    comparison = compare(scenarios=args.scenarios, thresholds=thresholds)
+    table = comparison.to_markdown()
+    if args.json == "-":
+        print(comparison.to_json())
+    else:
+        print(table, end="")
+        if args.json:
+            Path(args.json).write_text(comparison.to_json() + "\n", encoding="utf-8")
+    if args.markdown:
+        command = (
+            " ".join(["bodycheck", "conform", *sys.argv[2:]])
+            if sys.argv[1:2] == ["conform"]
+            else "bodycheck conform all --markdown FILE"
+        )
+        head = (
+            "# The conformance battery on every engine\n\n"
+            f"Written by `{command}` (docs/conformance.md: the scenarios, figures and "
+            "thresholds; each engine's adapter module: how it maps the scenario).\n\n"
+        )
+        Path(args.markdown).write_text(head + table, encoding="utf-8")
+    if args.plot:
+        _plot_all(comparison, Path(args.plot))
+    references = [rep for family, rep in comparison.reports if family == "reference"]
+    return 0 if all(rep.passed for rep in references) else 1

@@ -10,6 +10,8 @@
 - :mod:`mechanics.conformance.adapters`: the reference adapters (``ExactAdapter``,
   ``SceneEngineAdapter``) and :func:`~mechanics.conformance.adapters.require` for an
   optional engine's extra.
+- :mod:`mechanics.conformance.compare`: the battery on every adapter (the references and
+  each installed engine's variants) into one table (``bodycheck conform all``).
 - :mod:`mechanics.conformance.parametrize`: :func:`conformance_tests`, the battery as a
   pytest parametrisation (imports pytest only when called).
 

@@ -1,0 +1,142 @@
+"""The battery on several engines at once: one table, scenario by scenario, engine by engine.
+
+:func:`engine_adapters` lists the reference columns (the closed forms, the project's
+integrated scene engine) and every variant of each engine with an adapter here (MuJoCo's
+integrators and contacts, PyBullet's steps and contacts, Drake's discrete and continuous
+plants with point and hydroelastic contact); an engine that is not installed is listed
+once with the extra that installs it.  :func:`compare` runs the battery on each and
+:meth:`Comparison.to_markdown` writes the table: per scenario and adapter its status,
+worst error, worst drift (each with the figure's name), order of convergence and the
+wall time of its finest run.  ``bodycheck conform all`` prints it (``--markdown``,
+``--plot`` and ``--json`` write it).
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+
+from .battery import Figure, Report, ScenarioResult, run_battery
+
+__all__ = ["ENGINE_MODULES", "Comparison", "compare", "engine_adapters"]
+
+#: the engines with an adapter here: (adapter module, the engine's name, its extra)
+ENGINE_MODULES = (
+    ("mujoco", "MuJoCo", "mujoco"),
+    ("pybullet", "PyBullet", "pybullet"),
+    ("drake", "Drake", "drake"),
+)
+
+
+def engine_adapters() -> list[tuple[str, object]]:
+    """(family, adapter) for the references and each engine variant; for an engine that
+    is not installed, (family, the reason as a string) once."""
+    import importlib
+
+    from .adapters import ExactAdapter, MissingExtraError, SceneEngineAdapter
+
+    out: list[tuple[str, object]] = [
+        ("reference", ExactAdapter()),
+        ("reference", SceneEngineAdapter()),
+    ]
+    for module, engine, _extra in ENGINE_MODULES:
+        mod = importlib.import_module(f"mechanics.conformance.adapters.{module}")
+        try:
+            out += [(engine, a) for a in mod.variants()]
+        except MissingExtraError as exc:
+            out.append((engine, str(exc)))
+    return out
+
+
+def _worst(r: ScenarioResult, kind: str) -> Figure | None:
+    figs = [f for f in r.figures if f.kind == kind and f.value is not None]
+    if not figs:
+        return None
+    checked = [f for f in figs if f.threshold]
+    if checked:
+        return max(checked, key=lambda f: f.value / f.threshold)
+    return max(figs, key=lambda f: f.value)
+
+
+@dataclass
+class Comparison:
+    """Reports per adapter (in the order run) and the engines that could not run."""
+
+    reports: list[tuple[str, Report]]
+    missing: list[tuple[str, str]] = field(default_factory=list)
+
+    def rows(self) -> list[dict]:
+        """One dict per (scenario, adapter): the table's cells as values."""
+        out = []
+        if not self.reports:
+            return out
+        for k, scenario in enumerate(r.scenario for r in self.reports[0][1].results):
+            for family, rep in self.reports:
+                r = rep.results[k]
+                assert r.scenario == scenario, "every report runs the scenarios in one order"
+                err, drift = _worst(r, "error"), _worst(r, "drift")
+                out.append(
+                    {
+                        "scenario": scenario,
+                        "family": family,
+                        "adapter": rep.adapter,
+                        "status": r.status,
+                        "error": None if err is None else [err.name, err.value],
+                        "drift": None if drift is None else [drift.name, drift.value],
+                        "order": r.order,
+                        "wall_time": r.wall_time if r.runs else None,
+                        "message": r.message if r.status in ("unsupported", "error") else "",
+                    }
+                )
+        return out
+
+    def to_markdown(self) -> str:
+        """The table, then the engines that are not installed and the reasons given."""
+        lines = [
+            "| scenario | adapter | status | worst error | worst drift | order | wall time (s) |",
+            "|---|---|---|---|---|---|---|",
+        ]
+        last = None
+        for row in self.rows():
+            scenario = row["scenario"] if row["scenario"] != last else ""
+            last = row["scenario"]
+            err = "" if row["error"] is None else f"{row['error'][1]:.2g} ({row['error'][0]})"
+            drift = "" if row["drift"] is None else f"{row['drift'][1]:.2g} ({row['drift'][0]})"
+            order = "" if row["order"] is None else f"{row['order']:.2f}"
+            wall = "" if row["wall_time"] is None else f"{row['wall_time']:.2g}"
+            status = row["status"]
+            if status == "unsupported":
+                status = "cannot express"
+            lines.append(
+                f"| {scenario} | {row['adapter']} | {status} | {err} | {drift} | {order} | {wall} |"
+            )
+        why: dict[tuple[str, str, str], list[str]] = {}
+        for r in self.rows():
+            if r["status"] in ("unsupported", "error") and r["message"]:
+                key = (r["scenario"], r["status"], r["message"])
+                why.setdefault(key, []).append(r["adapter"])
+        if why or self.missing:
+            lines += ["", "Not run:", ""]
+            lines += [f"- {family}: {reason}" for family, reason in self.missing]
+            for (scenario, status, message), names in why.items():
+                verb = "cannot express" if status == "unsupported" else "raised an error in"
+                lines.append(f"- {', '.join(names)} {verb} {scenario}: {message}")
+        return "\n".join(lines) + "\n"
+
+    def to_json(self) -> str:
+        return json.dumps(
+            {"rows": self.rows(), "missing": [list(m) for m in self.missing]}, indent=1
+        )
+
+
+def compare(adapters=None, *, scenarios=None, thresholds=None) -> Comparison:
+    """Run the battery on each of ``adapters`` ((family, adapter or reason) pairs;
+    default :func:`engine_adapters`)."""
+    adapters = engine_adapters() if adapters is None else adapters
+    reports, missing = [], []
+    for family, adapter in adapters:
+        if isinstance(adapter, str):
+            missing.append((family, adapter))
+            continue
+        reports.append((family, run_battery(adapter, scenarios=scenarios, thresholds=thresholds)))
+    return Comparison(reports, missing)
