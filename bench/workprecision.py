@@ -257,10 +257,16 @@ def _free_top_problem(quick: bool) -> Problem:
         r.steps, r.rhs_evals, r.rejected_steps = s.steps, s.rhs_evals, s.rejected_steps
         return r
 
-    def split(order):
+    def split(order, compensated=False):
         def run(n) -> Run:
             s = free_rigid_body_splitting(
-                J[[1, 2, 0]], _PERM @ L0, _PERM, (0.0, T), rot / n, order=order
+                J[[1, 2, 0]],
+                _PERM @ L0,
+                _PERM,
+                (0.0, T),
+                rot / n,
+                order=order,
+                compensated=compensated,
             )
             L, R = rigid_body_parts(s.y[-1])
             r = err_state(rigid_body_state(_PERM.T @ L, _PERM.T @ R))
@@ -286,6 +292,8 @@ def _free_top_problem(quick: bool) -> Problem:
             "splitting-4": [25, 50],
             "splitting-6": [25, 50],
             "splitting-8": [25, 50],
+            "splitting-6-kahan": [25, 50],
+            "splitting-8-kahan": [25, 50],
             "RK45": [1e-6, 1e-8],
             "DOP853": [1e-8, 1e-11],
             "LSODA": [1e-6, 1e-8],
@@ -299,6 +307,9 @@ def _free_top_problem(quick: bool) -> Problem:
             "splitting-4": [50, 100, 200, 400, 800, 1600],
             "splitting-6": [50, 100, 200, 400, 800, 1600],
             "splitting-8": [25, 50, 100, 200, 400, 800],
+            # compensated: where rounding, not truncation, sets the error
+            "splitting-6-kahan": [400, 800, 1600, 3200],
+            "splitting-8-kahan": [100, 200, 400, 800],
             "RK45": [1e-6, 1e-8, 1e-10],
             "DOP853": [1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14],
             "LSODA": [1e-6, 1e-8, 1e-10, 1e-12],
@@ -314,6 +325,12 @@ def _free_top_problem(quick: bool) -> Problem:
             "steps per rotation",
             sw[f"splitting-{order}"],
             split(order),
+        )
+    for order in (6, 8):
+        methods[f"splitting-{order}-kahan"] = (
+            "steps per rotation",
+            sw[f"splitting-{order}-kahan"],
+            split(order, compensated=True),
         )
     for m in SCIPY_METHODS:
         methods[f"scipy-{m}"] = ("rtol", sw[m], sp(m))
@@ -748,7 +765,9 @@ def warm_compiled() -> None:
         integrate(free_rigid_body_rhs(J), y0, (0.0, 0.1), method=method, **kw)
     L0, R0 = rigid_body_parts(y0)
     for order in (2, 4, 6, 8):
-        free_rigid_body_splitting(J, L0, R0, (0.0, 0.1), 0.05, order=order)
+        for comp in (False, True):
+            free_rigid_body_splitting(J, L0, R0, (0.0, 0.1), 0.05, order=order, compensated=comp)
+            free_rigid_body_splitting(J, L0[None], R0, (0.0, 0.1), 0.05, order=order)
     integrate(
         free_rigid_body_rhs(J), y0[None], (0.0, 0.1), method="dop853", rtol=1e-6, batch_ndim=1
     )
@@ -1520,6 +1539,8 @@ _STYLE = {
     "scipy-DOP853": ("C3", "P"),
     "scipy-LSODA": ("C8", "+"),
     "splitting-8": ("C5", "<"),
+    "splitting-6-kahan": ("C6", "d"),
+    "splitting-8-kahan": ("C5", ">"),
     "scipy-Radau": ("C9", "1"),
 }
 
@@ -1541,7 +1562,7 @@ def write_plots(study: dict, out_dir: Path) -> None:
                 [max(r["error"], ERROR_FLOOR) for r in rs],
                 color=c,
                 marker=mk,
-                ls="--" if m.startswith("scipy") else "-",
+                ls="--" if m.startswith("scipy") else (":" if m.endswith("kahan") else "-"),
                 label=m,
             )
         if name == "free_top":

@@ -39,7 +39,14 @@ TARGET_ROWS = (
 STATUSES = {"met", "must met, goal not", "NOT MET", "not measured"}
 EXPECTED_PROBLEMS = ("free_top", "heavy_top", "pendulum", "impact")
 SCIPY = ("scipy-RK45", "scipy-DOP853", "scipy-LSODA", "scipy-Radau")
-SPLITTINGS = ("splitting-2", "splitting-4", "splitting-6", "splitting-8")
+SPLITTINGS = (
+    "splitting-2",
+    "splitting-4",
+    "splitting-6",
+    "splitting-8",
+    "splitting-6-kahan",
+    "splitting-8-kahan",
+)
 EXPECTED_METHODS = {
     "free_top": ("exact", "rk4", "dop853", *SPLITTINGS, *SCIPY),
     "heavy_top": ("exact", "rk4", "dop853", *SCIPY),
