@@ -337,23 +337,64 @@ def _flow(J, L, R, i, c):  # pragma: no cover
 
 
 @njit(cache=True, error_model="numpy")
-def splitting_free_body(J, L0, R0, norm0, t, ns, axes, fracs, head, every, ys):  # pragma: no cover
+def _flow_compensated(J, L, R, cL, cR, i, c):  # pragma: no cover
+    """The reference's ``_flow_compensated``: the turn about axis i as an increment
+    ((cos − 1) x + sin y, cos − 1 = −2 sin²(θ/2)) added by Kahan summation, the
+    compensations cL (3,), cR (3, 3) carried from flow to flow."""
+    a = (i + 1) % 3
+    b = (i + 2) % 3
+    ang = c * (L[i] / J[i])
+    s2 = math.sin(0.5 * ang)
+    cm = -2.0 * s2 * s2
+    si = math.sin(ang)
+    La = L[a]
+    Lb = L[b]
+    y = (cm * La + si * Lb) - cL[a]
+    s = La + y
+    cL[a] = (s - La) - y
+    L[a] = s
+    y = (cm * Lb - si * La) - cL[b]
+    s = Lb + y
+    cL[b] = (s - Lb) - y
+    L[b] = s
+    for m in range(3):
+        Ra = R[a, m]
+        Rb = R[b, m]
+        y = (cm * Ra + si * Rb) - cR[a, m]
+        s = Ra + y
+        cR[a, m] = (s - Ra) - y
+        R[a, m] = s
+        y = (cm * Rb - si * Ra) - cR[b, m]
+        s = Rb + y
+        cR[b, m] = (s - Rb) - y
+        R[b, m] = s
+
+
+@njit(cache=True, error_model="numpy")
+def splitting_free_body(
+    J, L0, R0, norm0, t, ns, axes, fracs, head, every, compensated, ys
+):  # pragma: no cover
     """The Lie–Poisson splitting of each body (the reference's run and projection):
     axes/fracs the schedule's middle flows, head its opening H1 fraction; ns[k]
     steps over [t[k], t[k+1]], the drift removed every ``every`` steps and at each
-    output.  ys (len(t), bodies, 12).  Returns (status, flows)."""
+    output (``compensated``: the flows added by Kahan summation, no projection).
+    ys (len(t), bodies, 12).  Returns (status, flows)."""
     nb = J.shape[0]
     flows = 0
     L = np.empty(3)
     R = np.empty((3, 3))
+    cL = np.zeros(3)
+    cR = np.zeros((3, 3))
     Jb = np.empty(3)
     status = STATUS_OK
     for b in range(nb):
         for i in range(3):
             L[i] = L0[b, i]
             Jb[i] = J[b, i]
+            cL[i] = 0.0
             for m in range(3):
                 R[i, m] = R0[b, i, m]
+                cR[i, m] = 0.0
         for k in range(t.size - 1):
             n = ns[k]
             hk = (t[k + 1] - t[k]) / n
@@ -362,15 +403,21 @@ def splitting_free_body(J, L0, R0, norm0, t, ns, axes, fracs, head, every, ys): 
             for first in range(0, n, every):
                 m = min(every, n - first)
                 for j in range(m):
-                    if j == 0:
-                        _flow(Jb, L, R, 0, hh)
-                        flows += 1
-                    for q in range(axes.size):
-                        _flow(Jb, L, R, axes[q], fracs[q] * hk)
-                    flows += axes.size
-                    _flow(Jb, L, R, 0, join if j < m - 1 else hh)
-                    flows += 1
-                _project(L, R, norm0[b])
+                    if compensated:
+                        if j == 0:
+                            _flow_compensated(Jb, L, R, cL, cR, 0, hh)
+                        for q in range(axes.size):
+                            _flow_compensated(Jb, L, R, cL, cR, axes[q], fracs[q] * hk)
+                        _flow_compensated(Jb, L, R, cL, cR, 0, join if j < m - 1 else hh)
+                    else:
+                        if j == 0:
+                            _flow(Jb, L, R, 0, hh)
+                        for q in range(axes.size):
+                            _flow(Jb, L, R, axes[q], fracs[q] * hk)
+                        _flow(Jb, L, R, 0, join if j < m - 1 else hh)
+                    flows += axes.size + 1 + (j == 0)
+                if not compensated:
+                    _project(L, R, norm0[b])
             ys[k + 1, b, 0] = L[0]
             ys[k + 1, b, 1] = L[1]
             ys[k + 1, b, 2] = L[2]

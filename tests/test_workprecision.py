@@ -29,10 +29,26 @@ RATE_ATOL = 2**12 * EPS
 FD_ATOL = 2**29 * EPS
 
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
+TARGET_ROWS = (
+    "fastest stepper at scipy DOP853's error",
+    "exact solution (one evaluation)",
+    "our best ≤ scipy's best time at every decade",
+    "batch of",
+    "MuJoCo RK4",
+)
+STATUSES = {"met", "must met, goal not", "NOT MET", "not measured"}
 EXPECTED_PROBLEMS = ("free_top", "heavy_top", "pendulum", "impact")
-SCIPY = ("scipy-RK45", "scipy-DOP853", "scipy-LSODA")
+SCIPY = ("scipy-RK45", "scipy-DOP853", "scipy-LSODA", "scipy-Radau")
+SPLITTINGS = (
+    "splitting-2",
+    "splitting-4",
+    "splitting-6",
+    "splitting-8",
+    "splitting-6-kahan",
+    "splitting-8-kahan",
+)
 EXPECTED_METHODS = {
-    "free_top": ("exact", "rk4", "dop853", "splitting-2", "splitting-4", "splitting-6", *SCIPY),
+    "free_top": ("exact", "rk4", "dop853", *SPLITTINGS, *SCIPY),
     "heavy_top": ("exact", "rk4", "dop853", *SCIPY),
     "pendulum": ("exact", "rk4", "dop853", *SCIPY),
     "impact": ("exact", "rk4", "dop853", *SCIPY),
@@ -40,6 +56,9 @@ EXPECTED_METHODS = {
 # The exact references' own residuals are rounding: a few hundred eps at most over
 # the quick horizons (elliptic phase ~100, a few eps per unit phase, tops.py).
 EXACT_RESIDUAL_MAX = 1024 * EPS
+# MuJoCo's RK4 at dt 1e-3 over 20 s: the issue measured 4.3e-14 for ω; the attitude is
+# of the same size (measured 3.4e-14): 2^12 eps leaves a factor of 20
+MUJOCO_RK4_ERROR_MAX = 2**12 * EPS
 # Every quick-run method reaches at least this error at its tightest setting
 # (the loosest, RK4 at 200 steps per period of the θ0 = 3 pendulum, measured below).
 TIGHTEST_ERROR_MAX = 1e-2
@@ -117,7 +136,13 @@ def test_headline_ratios_are_reported_not_asserted(quick_run):
     assert h["exact_vs_scipy_dop853"] is not None
     assert h["exact_vs_scipy_dop853"] > 0
     assert set(h["batched_1000_over_1"]) == {"rk4", "splitting-4"}
-    assert set(h["goals"]) >= {"exact_vs_scipy_dop853 >= 1e4"}
+    names = [r["name"] for r in h["targets"]]
+    assert len(names) == len(TARGET_ROWS)
+    for name, start in zip(names, TARGET_ROWS, strict=True):
+        assert name.startswith(start), (name, start)
+    for r in h["targets"]:
+        assert r["status"] in STATUSES, r
+    assert [x["error"] for x in h["decades"]] == list(wp.DECADES)
     b = d["batched"]
     for k in ("rk4", "splitting-4"):
         # the batch's first member is exactly the single body's run (fixed-step methods)
@@ -140,7 +165,8 @@ def test_energy_drift_bounded_for_the_splitting_and_growing_for_rk4(quick_run):
 def test_markdown_has_a_table_per_problem_and_the_headline(quick_run):
     _, out, d = quick_run
     md = (out / "workprecision.md").read_text(encoding="utf-8")
-    assert "## Headline ratios" in md
+    assert "## Headline: issue 15's targets" in md
+    assert "### Every decade" in md
     assert md.count("| method | parameter | error | time [s] |") == len(EXPECTED_PROBLEMS)
     for p in d["problems"].values():
         assert p["title"] in md
@@ -217,3 +243,121 @@ def test_impact_exact_follows_energy_and_restitution():
 def test_main_bench_rejects_a_bad_repeats(tmp_path):
     with pytest.raises(SystemExit):
         wp.main_bench(["--quick", "--out", str(tmp_path), "--repeats", "0"])
+
+
+def _record(method, family, error, time_s, param=1.0):
+    return {
+        "method": method,
+        "family": family,
+        "param_name": "rtol",
+        "param": param,
+        "error": error,
+        "time_s": time_s,
+        "steps": 1,
+    }
+
+
+def _study(records, batch_ratio=100.0, mujoco=None, exact_s=1e-6):
+    """A study dict with the fields ``headline`` reads, around the given free-top records."""
+    curve = [1e-6, 1e-6]
+    return {
+        "quick": True,
+        "problems": {"free_top": {"records": records}},
+        "energy_drift": {"horizons_rotations": [10, 30], "curves": {"splitting-2": curve}},
+        "batched": {k: {"batch_over_one": 10.0} for k in ("rk4", "splitting-4")},
+        "batched_vs_scipy": {
+            "bodies": 10,
+            "ratio": batch_ratio,
+            "ours_s": 1.0,
+            "scipy_s": batch_ratio,
+            "scipy_bodies_run": 2,
+            "worst_error_ours": 1e-10,
+            "worst_error_scipy": 1e-10,
+            "rtol": 1e-9,
+        },
+        "exact_evaluation": {"rotations": 1000, "evaluation_s": exact_s, "construction_s": 1e-3},
+        "mujoco": mujoco or {"available": False, "install": wp.MUJOCO_EXTRA},
+    }
+
+
+def _statuses(h):
+    return {r["name"].split(" ")[0]: r["status"] for r in h["targets"]}
+
+
+def test_headline_flags_every_target_not_met():
+    """A slow project (ours 10× slower than scipy at every error, a slow batch) must be
+    shown as not meeting each target; a fast one as meeting it."""
+    errors = [10.0**-k for k in range(3, 14)]
+    slow = [_record("dop853", "ours", e, 10.0) for e in errors]
+    slow += [_record("scipy-DOP853", "scipy", e, 1.0) for e in errors]
+    slow.append(_record("exact", "exact", 0.0, 1e-5, None))
+    h = wp.headline(_study(slow, batch_ratio=2.0, exact_s=1e-3))
+    rows = {r["name"]: r for r in h["targets"]}
+    assert [r["status"] for r in h["targets"]][:4] == ["NOT MET"] * 4, rows
+    assert all(d["status"] == "NOT MET" for d in h["decades"]), h["decades"]
+    fast = [dict(r, time_s=r["time_s"] / 1000) if r["family"] == "ours" else r for r in slow]
+    h = wp.headline(_study(fast, batch_ratio=60.0))
+    assert [r["status"] for r in h["targets"]][:4] == ["met"] * 4, h["targets"]
+    # between the required 3 and the goal 10
+    mid = [dict(r, time_s=r["time_s"] / 50) if r["family"] == "ours" else r for r in slow]
+    assert wp.headline(_study(mid))["targets"][0]["status"] == "must met, goal not"
+
+
+def test_headline_flags_a_decade_that_ours_does_not_reach():
+    recs = [_record("dop853", "ours", 1e-9, 0.1), _record("scipy-DOP853", "scipy", 1e-11, 5.0)]
+    recs.append(_record("exact", "exact", 0.0, 1e-5, None))
+    h = wp.headline(_study(recs))
+    by = {d["error"]: d["status"] for d in h["decades"]}
+    assert by[1e-9] == "met"
+    assert by[1e-10] == "NOT MET"  # scipy reaches it, ours does not
+    assert by[1e-12] == "NOT MET (neither reaches it)"
+    assert h["targets"][2]["status"] == "NOT MET"
+    assert h["targets"][0]["status"] == "not measured"  # no stepper at DOP853's 1e-11
+
+
+def test_mujoco_row_names_the_extra_when_mujoco_is_absent(monkeypatch):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_mujoco(name, *a, **k):
+        if name == "mujoco" or name.startswith("mujoco."):
+            raise ImportError("No module named 'mujoco'")
+        return real_import(name, *a, **k)
+
+    monkeypatch.setattr(builtins, "__import__", no_mujoco)
+    out = wp.mujoco_peer(True, 1, wp._Progress(1, False))
+    assert out == {"available": False, "install": wp.MUJOCO_EXTRA}
+    monkeypatch.undo()
+    recs = [_record("dop853", "ours", 1e-9, 0.1), _record("scipy-DOP853", "scipy", 1e-9, 5.0)]
+    recs.append(_record("exact", "exact", 0.0, 1e-5, None))
+    row = wp.headline(_study(recs, mujoco=out))["targets"][4]
+    assert row["status"] == "not measured"
+    assert "mujoco" in row["detail"]
+    assert wp.MUJOCO_EXTRA in row["detail"]
+
+
+def test_mujoco_peer_measures_rk4_euler_and_ours_on_the_quoted_run(quick_run):
+    """With mujoco installed: its RK4 at dt 1e-3 reaches ~1e-13 on the quoted body (the
+    issue: 4.3e-14 for ω), its Euler ~1e-4 … 1e-2, and some method of ours reaches RK4's."""
+    pytest.importorskip("mujoco", reason="the mujoco extra: " + wp.MUJOCO_EXTRA)
+    _, _, d = quick_run
+    mj = d["mujoco"]
+    assert mj["available"] is True
+    rk4, euler = mj["peers"]["mujoco-RK4"], mj["peers"]["mujoco-Euler"]
+    assert rk4["error"] < MUJOCO_RK4_ERROR_MAX, rk4
+    assert euler["error"] > 1e3 * rk4["error"], (euler, rk4)
+    best = mj["best_at_mujoco_rk4_error"]
+    assert best is not None
+    assert best["error"] <= rk4["error"]
+    assert mj["ratio"] == pytest.approx(rk4["time_s"] / best["time_s"])
+
+
+def test_the_batch_against_scipy_is_as_accurate(quick_run):
+    """One common step for the batch: every member at least as accurate as scipy's own
+    run of it (measured 4.4e-10 against 1.8e-9 at rtol 1e-9)."""
+    _, _, d = quick_run
+    b = d["batched_vs_scipy"]
+    assert b["bodies"] == wp.BATCH_BODIES[True]
+    assert b["worst_error_ours"] <= b["worst_error_scipy"] + 10 * b["rtol"], b
+    assert b["worst_error_ours"] < 1e3 * b["rtol"], b

@@ -324,6 +324,41 @@ def test_kahan_summation_removes_the_rounding_walk_of_a_long_fixed_step_run():
     assert float((np.abs(dop.y[-1] - exact) / exact).max()) <= 4 * EPS
 
 
+# The compensated splitting (issue 15, part 3): order 8 at 1000 steps per rotation of
+# the top J = (1, 2, 3), ω0 = (0.4, 0.2, 1.0), where its energy error (h ω)^8 ~ 2e-18 is
+# far below rounding; the RMS of |E/E0 − 1| over steps 3e4 … 1e5 measured 41 eps plain
+# (projected every 64 steps) and 1.6 eps compensated (bench/roundoff.py, over 1e4 … 1e6
+# steps: the state's error at 1e6 steps 1.0e-12 compensated against 6.2e-11 plain).
+COMPENSATED_ENERGY_EPS = 8  # the RMS energy rounding after 1e5 steps, 5x the measurement
+COMPENSATED_GAIN = 4  # plain / compensated, measured 25
+
+
+def test_compensated_splitting_keeps_the_energy_rounding_near_eps():
+    J, w0 = np.array([2.0, 3.0, 1.0]), np.array([0.2, 1.0, 0.4])  # (J_mid, J_max, J_min)
+    L0 = J * w0
+    E0 = 0.5 * float(np.sum(L0 * L0 / J))
+    h = 2 * np.pi / float(np.linalg.norm(w0)) / 1000
+    k = np.unique(np.round(np.geomspace(3e4, 1e5, 60)).astype(int))
+    t = np.concatenate([[0.0], k * h])
+
+    def rms_energy_error(compensated):
+        sol = free_rigid_body_splitting(J, L0, np.eye(3), t, h, order=8, compensated=compensated)
+        L = sol.y[1:, :3]
+        dE = 0.5 * np.sum(L * L / J, axis=1) / E0 - 1
+        return float(np.sqrt(np.mean(dE * dE))) / EPS
+
+    plain, compensated = rms_energy_error(False), rms_energy_error(True)
+    assert compensated <= COMPENSATED_ENERGY_EPS, compensated
+    assert plain >= COMPENSATED_GAIN * compensated, (plain, compensated)
+
+
+def test_compensated_splitting_rejects_a_non_boolean():
+    with pytest.raises(UnknownOptionError, match="compensated must be True or False"):
+        free_rigid_body_splitting(
+            np.ones(3), np.ones(3), np.eye(3), (0.0, 1.0), 0.1, compensated="yes"
+        )
+
+
 # --------------------------------------------------------------------- batches
 
 
