@@ -63,11 +63,13 @@ test-oldest: $(STAMP)
 	.venv-oldest/bin/python -m pytest $(PYTEST_ARGS) -p no:cacheprovider
 
 ## make bench: time the kernels (pytest-benchmark, saved for --benchmark-compare), then
-## the work-precision study (bodycheck bench: table, JSON and plots in bench-results/)
+## the work-precision study (bodycheck bench: table, JSON and plots in bench-results/) and the
+## roundoff study of the splittings, plain and compensated (bench/roundoff.py)
 bench: $(STAMP)
 	$(BIN)/python -m pytest tests/benchmarks --benchmark-enable --benchmark-only \
 		--benchmark-autosave --benchmark-columns=min,median,max,rounds -p no:randomly
 	$(BIN)/bodycheck bench --out bench-results
+	$(BIN)/python -m bench.roundoff --out bench-results
 
 clean:
 	rm -rf $(VENV) .venv-latest .venv-oldest .pytest_cache .hypothesis .benchmarks \

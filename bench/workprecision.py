@@ -122,6 +122,7 @@ __all__ = [
     "pendulum_rhs",
     "reference_problems",
     "run_study",
+    "summary_lines",
 ]
 
 SCHEMA = "bodycheck.workprecision/2"
@@ -1694,16 +1695,22 @@ def main_bench(argv=None) -> int:
     if repeats < 1:
         ap.error(f"--repeats must be ≥ 1; got {repeats}")
     study = run_study(quick=args.quick, out_dir=Path(args.out), repeats=repeats, progress=True)
-    h = study["headline"]
-    print(
-        f"wrote {args.out}/workprecision.{{json,md,png}} and energy_drift.png "
+    print("\n".join(summary_lines(study, args.out)))
+    return 0
+
+
+def summary_lines(study: dict, out) -> list[str]:
+    """What ``bodycheck bench`` prints when the study is done: where it wrote, and each
+    target's status, measured value and goal."""
+    lines = [
+        f"wrote {out}/workprecision.{{json,md,png}} and energy_drift.png "
         f"in {study['total_time_s']:.1f} s"
-    )
-    for r in h["targets"]:
+    ]
+    for r in study["headline"]["targets"]:
         m = r["measured"]
         m = format_value(m, ".3g") if not isinstance(m, str) else m
-        print(f"{r['status']:>20}: {r['name']}: {m} (goal {r['goal']})")
-    return 0
+        lines.append(f"{r['status']:>20}: {r['name']}: {m} (goal {r['goal']})")
+    return lines
 
 
 if __name__ == "__main__":

@@ -119,7 +119,8 @@ def test_timings_lists_the_slowest_checks_with_their_strategies(capsys) -> None:
 def test_bench_quick_writes_the_study(tmp_path, capsys) -> None:
     assert main(["bench", "--quick", "--out", str(tmp_path)]) == 0
     out = capsys.readouterr().out
-    assert "scipy DOP853 / exact solution" in out
+    assert "exact solution (one evaluation) / scipy DOP853's time" in out  # a target row
+    assert out.count("(goal ") >= 4  # every target with its goal
     study = json.loads((tmp_path / "workprecision.json").read_text())
     assert study["quick"] is True
     assert {"free_top", "heavy_top", "pendulum"} <= set(study["problems"])

@@ -568,22 +568,13 @@ def _cmd_demo(args) -> int:
 
 
 def _cmd_bench(args) -> int:
-    from bench.workprecision import format_value, run_study
+    from bench.workprecision import run_study, summary_lines
 
     repeats = args.repeats if args.repeats is not None else (1 if args.quick else 3)
     if repeats < 1:
         raise UsageError(f"--repeats must be at least 1; got {repeats}")
     study = run_study(quick=args.quick, out_dir=Path(args.out), repeats=repeats, progress=True)
-    h = study["headline"]
-    print(
-        f"wrote {args.out}/workprecision.{{json,md,png}} and energy_drift.png "
-        f"in {study['total_time_s']:.1f} s"
-    )
-    print(
-        f"time of scipy DOP853 / our best stepper at equal error: "
-        f"{format_value(h['best_stepper_vs_scipy_dop853'], '.2f')}; "
-        f"scipy DOP853 / exact solution: {format_value(h['exact_vs_scipy_dop853'], '.3g')}"
-    )
+    print("\n".join(summary_lines(study, args.out)))
     return 0
 
 
