@@ -77,6 +77,7 @@ starts along gravity (the RPY joint's singularity).
 
 from __future__ import annotations
 
+import logging
 import math
 
 import numpy as np
@@ -198,6 +199,23 @@ def _approach_speeds(scenario: Scenario) -> list[tuple[int, int, float, float]]:
     return [(i, j, e, s if s > 0 else 1.0) for i, j, e, s in out]
 
 
+#: Drake logs this on every half space registered with proximity properties: it concerns
+#: deformable bodies, which no scenario has; every other message of Drake's stays
+_DEFORMABLE_NOTICE = "half spaces are not currently supported for deformable contact"
+
+
+class _DropDeformableNotice(logging.Filter):
+    def filter(self, record: logging.LogRecord) -> bool:
+        return _DEFORMABLE_NOTICE not in record.getMessage()
+
+
+def _quiet_deformable_notice() -> None:
+    """Drop :data:`_DEFORMABLE_NOTICE` from Drake's Python logger (once)."""
+    log = logging.getLogger("drake")
+    if not any(isinstance(f, _DropDeformableNotice) for f in log.filters):
+        log.addFilter(_DropDeformableNotice())
+
+
 class DrakeAdapter:
     """Drake's MultibodyPlant, discrete or continuous, point or hydroelastic contact.
 
@@ -216,6 +234,7 @@ class DrakeAdapter:
         self.mode = check_option(mode, MODES, "Drake mode")
         self.contact = check_option(contact, CONTACTS, "Drake contact")
         self._pd = require("pydrake.all", "drake")
+        _quiet_deformable_notice()
         self.takes_step = mode == "discrete"
         how = (
             "discrete (lagged)"
