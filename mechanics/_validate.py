@@ -8,9 +8,12 @@ first offending entry.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
+
 import numpy as np
 
-from .errors import NonFiniteError, ShapeError
+from .errors import NonFiniteError, ResultOverflowError, ShapeError
 
 
 def _first_bad(a: np.ndarray) -> str:
@@ -35,3 +38,43 @@ def as_float_array(x, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
     if not np.isfinite(a).all():
         raise NonFiniteError(f"{name} must be finite; found {_first_bad(a)}")
     return a
+
+
+def _nonfinite(x) -> bool:
+    """True if a result (array, number, tuple, dataclass) holds NaN or an infinity."""
+    if isinstance(x, (bool, np.bool_, str, type(None))):
+        return False
+    if isinstance(x, (int, float, np.number)):
+        return not np.isfinite(x)
+    if isinstance(x, np.ndarray):
+        return x.dtype.kind in "fc" and not np.isfinite(x).all()
+    if isinstance(x, (tuple, list)):
+        return any(_nonfinite(v) for v in x)
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return any(_nonfinite(getattr(x, f.name)) for f in dataclasses.fields(x))
+    return False
+
+
+def finite_result(fn):
+    """Decorator: a function of finite inputs returns a finite result, or raises.
+
+    Every public function validates its inputs as finite (:func:`as_float_array`), so
+    a non-finite result can only come from an intermediate beyond float64's range
+    (~1.8e308: a velocity of 1e300 squared, say). That is reported as a
+    :class:`~mechanics.errors.ResultOverflowError` naming the function, never as a
+    silent ``inf``/``NaN`` or a numpy ``RuntimeWarning``. Division by zero is not
+    masked: each function refuses its own zero denominators by name.
+    """
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        with np.errstate(over="ignore", invalid="ignore"):
+            out = fn(*args, **kwargs)
+        if _nonfinite(out):
+            raise ResultOverflowError(
+                f"{fn.__name__}: the result is not finite for finite inputs: an intermediate "
+                "exceeds float64's range (~1.8e308); rescale the inputs (choose units)"
+            )
+        return out
+
+    return wrapper

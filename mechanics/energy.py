@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import simpson
 
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     NegativeMassError,
     NonPhysicalInertiaError,
@@ -78,6 +78,7 @@ def _nonneg(x, name: str, error=NegativeMassError) -> np.ndarray:
 # ------------------------------------------------------------ kinetic energy
 
 
+@finite_result
 def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     """Kinetic energy of a rigid body, T = ½ m v_G² + ½ ωᵀ J_G ω (3.7), (3.24).
 
@@ -116,6 +117,7 @@ def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     return _finite_result(trans + rot, "the kinetic energy")
 
 
+@finite_result
 def kinetic_energy_fixed_axis(J_axis, omega) -> np.ndarray:
     """T = ½ J φ̇² for rotation about a fixed axis (3.26), (3.27), (3.30).
 
@@ -153,6 +155,7 @@ def _pair(F, v, names=("F", "v")) -> tuple[np.ndarray, np.ndarray]:
     return FF, vv
 
 
+@finite_result
 def power(F, v) -> np.ndarray:
     """Power of a system of forces, P = Σ_k F_k · v_k (3.1), compensated.
 
@@ -181,6 +184,7 @@ def power(F, v) -> np.ndarray:
     return _finite_result(P, "the power")
 
 
+@finite_result
 def work_from_power(P, t) -> np.ndarray:
     """W_12 = ∫ P dt (3.36) from samples of the power, by composite Simpson.
 
@@ -215,6 +219,7 @@ def work_from_power(P, t) -> np.ndarray:
     return _finite_result(np.asarray(simpson(PP, x=tt, axis=-1)), "the work")
 
 
+@finite_result
 def work_along_path(F, r) -> np.ndarray:
     """Work of a force along a sampled path, W = ∫ F · dr (3.38), by the trapezoid rule.
 
@@ -256,6 +261,7 @@ def work_along_path(F, r) -> np.ndarray:
     return _finite_result(W, "the work")
 
 
+@finite_result
 def work_of_couple(M, dphi) -> np.ndarray:
     """Work of a constant moment M over a rotation δφ about a fixed axis: W = M · δφ (3.70).
 
@@ -272,6 +278,7 @@ def work_of_couple(M, dphi) -> np.ndarray:
     return _finite_result(np.einsum("...i,...i->...", MM, dd), "the work")
 
 
+@finite_result
 def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
     """Power of the forces on a rigid body, P = F · v_A + M_A · ω (3.65 per unit time).
 
@@ -296,6 +303,7 @@ def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
 # ------------------------------------------------------------------ potentials
 
 
+@finite_result
 def gravity_potential(m, r, *, g) -> np.ndarray:
     """Potential energy of uniform gravity, Φ^e = −Σ m_k g · r_k = −m g · r_G (3.55)–(3.56).
 
@@ -338,6 +346,7 @@ def _spring_args(k, ell_0, r_1, r_2):
     return kk, ll, d, np.linalg.norm(d, axis=-1)
 
 
+@finite_result
 def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Φ = ½ k (|r_1 − r_2| − ℓ_0)² of a linear spring between two points (3.53).
 
@@ -358,6 +367,7 @@ def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.nd
     return _finite_result(0.5 * kk * ext * ext, "the spring energy")
 
 
+@finite_result
 def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Force on point 1 from the spring: −∇_1 Φ = −k (|r_12| − ℓ_0) r_12/|r_12| (3.48).
 
@@ -392,6 +402,7 @@ def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarra
     return _finite_result(-(kk * ext / dist)[..., None] * d, "the spring force")
 
 
+@finite_result
 def torsion_potential(tau_0, phi) -> np.ndarray:
     """Φ(φ) = ½ τ_0 φ² of a torsion spring with moment M = −τ_0 φ (3.71)–(3.72).
 
@@ -410,6 +421,7 @@ def torsion_potential(tau_0, phi) -> np.ndarray:
     return _finite_result(0.5 * tt * pp * pp, "the torsion energy")
 
 
+@finite_result
 def torsion_moment(tau_0, phi) -> np.ndarray:
     """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5)."""
     tt = as_float_array(tau_0, "tau_0")
@@ -421,6 +433,7 @@ def torsion_moment(tau_0, phi) -> np.ndarray:
 # ------------------------------------------------------- forces that do no work
 
 
+@finite_result
 def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     """Velocity of the body point at the contact C, v_C = v_G + ω × GC (2.73).
 
@@ -436,6 +449,7 @@ def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     return v + np.cross(w, rr)
 
 
+@finite_result
 def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of a contact force acting on the body point C: P = F · (v_G + ω × GC).
 
@@ -451,6 +465,7 @@ def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     return _finite_result(np.einsum("...i,...i->...", FF, vC), "the power")
 
 
+@finite_result
 def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of the contact force (normal force plus static friction) on a rolling body (3.2.2).
 
@@ -471,6 +486,7 @@ def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     return contact_power(F_contact, v_G, omega, r_GC)
 
 
+@finite_result
 def pair_power(N, v_1, v_2) -> np.ndarray:
     """Net power of a force N on body 1 and its reaction −N on body 2: N · (v_1 − v_2).
 

@@ -36,8 +36,14 @@ from collections.abc import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_float_array
-from .errors import NonFiniteError, NonPositiveParameterError, OutOfDomainError, ShapeError
+from ._validate import as_float_array, finite_result
+from .errors import (
+    NonFiniteError,
+    NonPositiveParameterError,
+    OutOfDomainError,
+    ShapeError,
+    StepSizeError,
+)
 from .rotation import EPS
 
 __all__ = [
@@ -126,6 +132,7 @@ def _spatial_derivatives(f: Field, r, t, h, name: str, *, vector: bool | None) -
     return np.moveaxis(d, 0, -1)
 
 
+@finite_result
 def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """The velocity gradient G[..., i, j] = ∂v_i/∂x_j at the points ``r``.
 
@@ -157,6 +164,7 @@ def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return _spatial_derivatives(v, r, t, h, "v", vector=True)
 
 
+@finite_result
 def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """div v = ∇·v at the points ``r`` (8.6); shape ``(...)``.
 
@@ -172,6 +180,7 @@ def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return np.trace(velocity_gradient(v, r, t, h=h), axis1=-2, axis2=-1)
 
 
+@finite_result
 def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """curl v = ∇×v at the points ``r``; shape ``(..., 3)``.
 
@@ -192,6 +201,7 @@ def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     )
 
 
+@finite_result
 def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∇f of a scalar field at the points ``r``; shape ``(..., 3)``.
 
@@ -205,6 +215,7 @@ def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return _spatial_derivatives(f, r, t, h, "f", vector=False)
 
 
+@finite_result
 def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∂f/∂t at fixed points ``r`` (8.9), for a scalar or a vector field.
 
@@ -226,6 +237,7 @@ def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return sum(w * val for w, val in zip(_WEIGHTS, vals, strict=True)) / step
 
 
+@finite_result
 def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """The total (material) time derivative (8.12): df/dt = ∂f/∂t + (v·∇) f.
 
@@ -250,6 +262,7 @@ def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return df_dt + np.einsum("...ij,...j->...i", grad, vel)
 
 
+@finite_result
 def rigid_velocity_field(v_0, omega) -> Field:
     """The velocity field of a rigid motion, v(r) = v(0) + ω × r (8.7).
 
@@ -270,6 +283,7 @@ def rigid_velocity_field(v_0, omega) -> Field:
     return field
 
 
+@finite_result
 def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∂ρ/∂t + ∇·(ρ v) at the points ``r``: zero when mass is conserved (8.18)."""
     r = _points(r)
@@ -288,6 +302,7 @@ def _positive(x, name: str) -> float:
     return val
 
 
+@finite_result
 def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarray:
     """∂v/∂t + (v·∇)v − g_vec + ∇p/ρ at the points ``r``: zero for a flow of an ideal
     fluid of constant density ``rho`` under gravity g_vec = −g e_z (8.27).
@@ -315,6 +330,7 @@ def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarra
     return accel - g_vec + grad_p / rho_0
 
 
+@finite_result
 def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     """½ ρ0 v² + ρ0 g z + p (8.34): constant along a streamline of a steady
     incompressible ideal flow.
@@ -348,6 +364,12 @@ def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     return 0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
 
 
+#: the evaluations of the field a streamline may take (10⁴ DOP853 steps of 12 stages): bounded
+#: time for any input; a span of 1e300 would otherwise integrate for ever
+STREAMLINE_MAX_EVALS = 12 * 10**4
+
+
+@finite_result
 def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     """Points of the streamline dr/ds = v(r, t) through ``r_0`` (8.31), at the
     parameter values ``s`` (time frozen at ``t``; for a steady flow s is time).
@@ -376,8 +398,19 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     tt = _time(t)
     if ss.size == 1:
         return r0[None, :].copy()
+    calls = [0]
+
+    def rhs(_s, y):
+        calls[0] += 1
+        if calls[0] > STREAMLINE_MAX_EVALS:
+            raise StepSizeError(
+                f"streamline: more than {STREAMLINE_MAX_EVALS} evaluations of v over "
+                f"s = [{ss[0]!r}, {ss[-1]!r}] at rtol = {rtol!r}; shorten s or loosen rtol"
+            )
+        return _call(v, y, tt, "v", vector=True)
+
     sol = solve_ivp(
-        lambda _s, y: _call(v, y, tt, "v", vector=True),
+        rhs,
         (ss[0], ss[-1]),
         r0,
         method="DOP853",
@@ -399,6 +432,7 @@ def _area_ratio(area_ratio) -> float:
     return a
 
 
+@finite_result
 def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
     """Outflow speed u from a small hole at depth ``h`` (Example 8.1, 8.37).
 
@@ -419,6 +453,7 @@ def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
     return np.sqrt(2.0 * g_mag * hh / ((1.0 - a) * (1.0 + a)))
 
 
+@finite_result
 def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
     """Time for a prismatic tank to empty through a small hole in its bottom
     (quasi-steady Torricelli outflow): T = √(2 h0 (1 − a²)/g) / a.
@@ -441,6 +476,7 @@ def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
     return np.sqrt(2.0 * hh * (1.0 - a) * (1.0 + a) / g_mag) / a
 
 
+@finite_result
 def tank_level(t, *, h_0, g, area_ratio) -> np.ndarray:
     """Liquid level above a small hole in the bottom of a prismatic tank at times ``t``.
 

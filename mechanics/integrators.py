@@ -321,6 +321,21 @@ def _substeps(ta: float, tb: float, h: float) -> int:
     return max(1, math.ceil((tb - ta) / h * (1.0 - _GRID_RTOL) - slack / h))
 
 
+#: the fixed-step methods' default budget of steps (the adaptive one's max_steps default)
+MAX_STEPS = 10**7
+
+
+def _check_step_budget(t: np.ndarray, h: float, max_steps: int) -> None:
+    """StepSizeError before a fixed-step run that would take more than max_steps steps
+    (a span of 1e300 at h = 0.1 would otherwise run for ever, or overflow the count)."""
+    n = (float(t[-1]) - float(t[0])) / h
+    if not n <= max_steps:  # also catches n = inf
+        raise StepSizeError(
+            f"h = {h!r} over t = [{float(t[0])!r}, {float(t[-1])!r}] takes {n:.3g} steps, "
+            f"more than max_steps = {max_steps}; raise h (or max_steps) or shorten the span"
+        )
+
+
 def _substep_counts(t: np.ndarray, h: float) -> np.ndarray:
     """:func:`_substeps` of every interval of the grid t, as int64."""
     return np.array([_substeps(a, b, h) for a, b in itertools.pairwise(t.tolist())], np.int64)
@@ -1034,6 +1049,7 @@ def integrate(
             if h is None:
                 raise NonPositiveParameterError("method 'rk4' needs a step h > 0; got None")
             hh = _positive_scalar(h, "h")
+            _check_step_budget(tt, hh, max_steps)
             out = _rk4_compiled(rhs, y0a, tt, hh) if compiled and not kahan else None
             if out is None:
                 out = _integrate_rk4(f, y0a, tt, hh, bool(kahan))
@@ -1441,6 +1457,7 @@ def free_rigid_body_splitting(
     R = check_rotation(R0, name="R0")
     tt = _check_times(t)
     hf = _positive_scalar(h, "h")
+    _check_step_budget(tt, hf, MAX_STEPS)
     batch = np.broadcast_shapes(Jm.shape[:-1], L.shape[:-1], R.shape[:-2])
     sched = _SCHEDULES[order]
     head = sched[0][1]  # the schedule is symmetric: it starts and ends with (0, head)

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     CollinearPointsError,
     GimbalLockError,
@@ -55,6 +55,7 @@ COLLINEAR_RTOL = 1e4 * EPS
 GIMBAL_LOCK_ATOL = 4 * EPS
 
 
+@finite_result
 def omega_matrix_from_vector(w_A) -> np.ndarray:
     """The angular-velocity matrix (2.52) of the body components ``w_A``."""
     w = as_float_array(w_A, "w_A", (3,))
@@ -65,6 +66,7 @@ def omega_matrix_from_vector(w_A) -> np.ndarray:
     )
 
 
+@finite_result
 def vector_from_omega_matrix(Omega) -> np.ndarray:
     """Body components of ω from the angular-velocity matrix (2.52).
 
@@ -78,6 +80,7 @@ def vector_from_omega_matrix(Omega) -> np.ndarray:
     )
 
 
+@finite_result
 def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> np.ndarray:
     """ω of the body A relative to O from ^A R^O and its rate, (2.45)–(2.52).
 
@@ -111,6 +114,7 @@ def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> n
     return w_A
 
 
+@finite_result
 def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot) -> np.ndarray:
     """Body components of ω from Euler angles and rates: Euler's kinematic equations (2.69).
 
@@ -133,6 +137,7 @@ def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot)
     )
 
 
+@finite_result
 def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
     """(ψ̇, θ̇, φ̇) from the body components of ω: (2.69) inverted.
 
@@ -159,6 +164,7 @@ def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
     return np.stack(np.broadcast_arrays(psidot, thetadot, phidot), axis=-1)
 
 
+@finite_result
 def point_velocity(v_A, omega, r_AB) -> np.ndarray:
     """Velocity of the body point B: v_B = v_A + ω × AB, the connection formula (2.73).
 
@@ -182,6 +188,7 @@ def _first_index(mask: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
 
 
+@finite_result
 def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
     """The instantaneous axis of rotation (2.77).
 
@@ -249,6 +256,7 @@ def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
         return np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
 
 
+@finite_result
 def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
     """Instantaneous centre of zero velocity in plane motion (2.95).
 
@@ -310,6 +318,7 @@ def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.ldexp(mean, shift)[..., 0, :], np.ldexp(offsets, -k), k + shift
 
 
+@finite_result
 def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """ω and the velocity of the centroid from positions and velocities of N ≥ 3 points.
 

@@ -67,7 +67,7 @@ import numpy as np
 import scipy.special as sc
 
 from . import elliptic
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     GimbalLockError,
     NonPhysicalInertiaError,
@@ -97,6 +97,7 @@ EPS = float(np.finfo(np.float64).eps)
 # --------------------------------------------------------------------------- helpers
 
 
+@finite_result
 def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
     """Validate principal moments (J1, J2, J3): positive and J_i ≤ J_j + J_k.
 
@@ -548,6 +549,7 @@ class StabilityResult:
     """The product C_i C_k of (5.102) times ω0² (its sign decides)."""
 
 
+@finite_result
 def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityResult:
     """Stability of rotation at rate ``omega`` about principal ``axis`` (1, 2 or 3), (5.102).
 
@@ -662,6 +664,7 @@ class FreeSymmetricTop:
 # --------------------------------------------------------------------------- heavy symmetric top
 
 
+@finite_result
 def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     """Example 5.3: the vertical (sleeping) top is stable iff L3² > 4 J'1 m g ℓ (5.72).
 
@@ -686,6 +689,7 @@ def _positive(x, name):
     return float(a)
 
 
+@finite_result
 def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     """The two steady precession rates Ω (slow, fast) at nutation angle θ (5.60).
 
@@ -1019,6 +1023,7 @@ class HeavySymmetricTop:
 # --------------------------------------------------------------------------- Example 5.1
 
 
+@finite_result
 def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.0, 0.0, 0.0)):
     """Sphere rolling without slipping on a rough incline (Example 5.1).
 
