@@ -62,7 +62,7 @@ import math
 import numpy as np
 import scipy.special as sc
 
-from ._validate import as_float_array
+from ._validate import as_float_array, broadcast_checked
 from .errors import OutOfDomainError
 
 __all__ = [
@@ -235,6 +235,7 @@ def _scaled(u, rt):
     return v
 
 
+@broadcast_checked
 def ellipj(u, m, *, m1=None):
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
 
@@ -320,6 +321,7 @@ def ellipj(u, m, *, m1=None):
     return tuple(a.reshape(shape) for a in (sn, cn, dn, am))
 
 
+@broadcast_checked
 def ellipk(m, *, m1=None):
     """Complete elliptic integral of the first kind K(m) for m ≤ 1 (K(1) = inf).
 
@@ -352,6 +354,7 @@ def ellipk(m, *, m1=None):
     return _quarter_period(np.maximum(m1, 0.0))
 
 
+@broadcast_checked
 def ellipe(m, *, m1=None):
     """Complete elliptic integral of the second kind E(m) for m ≤ 1.
 
@@ -390,6 +393,7 @@ def _amplitude(phi, m, m1, name):
     return j, s, c, np.maximum(delta2, 0.0)
 
 
+@broadcast_checked
 def ellipf(phi, m, *, m1=None):
     """Incomplete elliptic integral of the first kind F(φ|m).
 
@@ -417,8 +421,13 @@ def ellipf(phi, m, *, m1=None):
 def _third_kind_tail(s, c, d2, n):
     """(n/3) sin³φ R_J(cos²φ, Δ², 1, 1 − n sin²φ), zero at sin φ = 0."""
     s2 = s * s
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (n / 3.0) * s2 * s * sc.elliprj(c * c, d2, 1.0, 1.0 - n * s2)
+    # R_J is homogeneous of degree −3/2: for m ≪ −1 (Δ² up to 1e300) scale its arguments
+    # by λ = 1/√Δ², which brings them to [1e-150, 1e150] where scipy's R_J stays finite
+    # (unscaled it returns NaN; found by the fuzz suite)
+    lam = 1.0 / np.sqrt(np.maximum(d2, 1.0))
+    with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
+        rj = sc.elliprj(c * c * lam, d2 * lam, lam, (1.0 - n * s2) * lam) * lam * np.sqrt(lam)
+        t = (n / 3.0) * s2 * s * rj
     return np.where((s == 0) | (n == 0), 0.0, t)
 
 
@@ -437,6 +446,7 @@ def _check_characteristic(n, limit_ok):
         )
 
 
+@broadcast_checked
 def ellippi(n, phi, m, *, m1=None):
     """Incomplete elliptic integral of the third kind Π(n; φ|m) (mpmath's order).
 
@@ -462,6 +472,7 @@ def ellippi(n, phi, m, *, m1=None):
     return f + tail + 2.0 * j * full
 
 
+@broadcast_checked
 def ellippi_jacobi(u, n, m, *, m1=None):
     """Third-kind integral in Jacobi's form, ∫₀^u dv / (1 − n sn²(v|m)) = Π(n; am u | m).
 

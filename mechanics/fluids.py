@@ -36,7 +36,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_float_array, finite_result
+from ._validate import as_float_array, as_float_scalar, finite_result
 from .errors import (
     NonFiniteError,
     NonPositiveParameterError,
@@ -230,7 +230,7 @@ def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     if h is None:
         step = H_REL * (1.0 + abs(t))
     else:
-        step = float(as_float_array(h, "h"))
+        step = as_float_scalar(h, "h")
         if step <= 0:
             raise NonPositiveParameterError(f"the step h must be > 0; got {h!r}")
     vals = [_call(f, r, t + o * step, "f", vector=None) for o in _OFFSETS]
@@ -296,7 +296,7 @@ def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray
 
 
 def _positive(x, name: str) -> float:
-    val = float(as_float_array(x, name))
+    val = as_float_scalar(x, name)
     if not val > 0:
         raise NonPositiveParameterError(f"{name} must be > 0; got {x!r}")
     return val
@@ -424,7 +424,10 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
 
 
 def _area_ratio(area_ratio) -> float:
-    a = float(as_float_array(area_ratio, "area_ratio"))
+    aa = as_float_array(area_ratio, "area_ratio")
+    if aa.shape != ():
+        raise ShapeError(f"area_ratio must be a scalar; got shape {aa.shape}")
+    a = float(aa)
     if not 0.0 <= a < 1.0:
         raise OutOfDomainError(
             f"area_ratio = (hole area)/(surface area) must lie in [0, 1); got {area_ratio!r}"

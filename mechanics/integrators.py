@@ -119,7 +119,7 @@ from numbers import Integral
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _d853
 
-from ._validate import as_float_array
+from ._validate import as_float_array, as_float_scalar, broadcast_checked
 from .errors import (
     NonFiniteError,
     NonPhysicalInertiaError,
@@ -341,6 +341,7 @@ def _substep_counts(t: np.ndarray, h: float) -> np.ndarray:
     return np.array([_substeps(a, b, h) for a, b in itertools.pairwise(t.tolist())], np.int64)
 
 
+@broadcast_checked
 def time_grid(t0, h, n) -> np.ndarray:
     """The grid t0 + k h, k = 0 … n (each entry rounded once, never accumulated).
 
@@ -356,7 +357,7 @@ def time_grid(t0, h, n) -> np.ndarray:
     >>> s == 10000.0
     False
     """
-    t0f = float(as_float_array(t0, "t0"))
+    t0f = as_float_scalar(t0, "t0")
     hf = _positive_scalar(h, "h")
     if isinstance(n, bool) or not isinstance(n, Integral) or n < 1:
         raise NonPositiveParameterError(f"n must be an integer ≥ 1; got {n!r}")
@@ -1158,6 +1159,7 @@ def _check_moments(J) -> np.ndarray:
     return Jm
 
 
+@broadcast_checked
 def rigid_body_state(L_A, R_A_O) -> np.ndarray:
     """The 12-vector (L_A, rows of ^A R^O) of a free rigid body, shape (..., 12).
 
@@ -1214,6 +1216,7 @@ def free_rigid_body_rhs(J):
     return rhs
 
 
+@broadcast_checked
 def so3_exp_step(R_A_O, w_A, h) -> np.ndarray:
     """^A R^O after a time h of constant body angular velocity ω_A: exp(h Ω) ^A R^O.
 
@@ -1395,6 +1398,7 @@ def _splitting_compiled(Jm, L, R, tt, hf, batch, scalar, middle, head):
     return ys, int(ns.sum()), done[1] // Jb.shape[0]
 
 
+@broadcast_checked
 def free_rigid_body_splitting(
     J, L0, R0, t, h, *, order: int = 2, compiled: bool = True
 ) -> Solution:

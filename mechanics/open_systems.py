@@ -776,5 +776,8 @@ def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
         )
     ra = _positive(r, "r")
     return (
-        -_positive(J_0, "J_0") * np.expm1(-ra * w / _positive(u, "u")) / (_positive(q, "q") * ra) / ra
+        -_positive(J_0, "J_0")
+        * np.expm1(-ra * w / _positive(u, "u"))
+        / (_positive(q, "q") * ra)
+        / ra
     )

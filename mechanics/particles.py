@@ -952,7 +952,10 @@ def masses_from_density(rho, *, cell_volume) -> np.ndarray:
     >>> masses_from_density([3.0] * 4, cell_volume=0.5).tolist()
     [1.5, 1.5, 1.5, 1.5]
     """
-    dV = float(as_float_array(cell_volume, "cell_volume"))
+    dVa = as_float_array(cell_volume, "cell_volume")
+    if dVa.shape != ():
+        raise ShapeError(f"cell_volume must be a scalar; got shape {dVa.shape}")
+    dV = float(dVa)
     if not dV > 0:
         raise NonPositiveParameterError(f"cell_volume = {cell_volume!r} must be > 0")
     return check_masses(rho, "rho") * dV

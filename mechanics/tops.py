@@ -67,7 +67,7 @@ import numpy as np
 import scipy.special as sc
 
 from . import elliptic
-from ._validate import as_float_array, finite_result
+from ._validate import as_float_array, as_float_scalar, finite_result
 from .errors import (
     GimbalLockError,
     NonPhysicalInertiaError,
@@ -228,6 +228,7 @@ class FreeAsymmetricTop:
     True
     """
 
+    @finite_result
     def __init__(self, J, omega_0, R_A_O_0=None):
         J = check_principal_moments(J)
         w0 = _vec3(omega_0, "omega_0")
@@ -244,7 +245,6 @@ class FreeAsymmetricTop:
         L2 = sum(a * a * b * b for a, b in zip(Jf, wf, strict=True))
         self.energy = float(E2 / 2)
         self.angular_momentum_norm = _fsqrt(L2)
-        self._L2 = float(L2)
         L_A0 = J * w0
         self.angular_momentum_space = R0.T @ L_A0
 
@@ -449,6 +449,7 @@ class FreeAsymmetricTop:
         return np.array(out)
 
     # -- public API
+    @finite_result
     def omega(self, t) -> np.ndarray:
         """Angular velocity ω_A(t), body components, shape ``t.shape + (3,)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -456,6 +457,7 @@ class FreeAsymmetricTop:
         t = as_float_array(t, "t")
         return self._sorted_omega(t) @ self._P  # Pᵀ ω' as a row-vector product
 
+    @finite_result
     def state(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(ω_A(t), ^A R^O(t)) together, sharing the elliptic functions of ω: shapes
         ``t.shape + (3,)`` and ``t.shape + (3, 3)``."""
@@ -468,10 +470,12 @@ class FreeAsymmetricTop:
         ws, red = self._sorted_omega(t, with_reduced=True)
         return ws @ self._P, self._attitude_from(t, ws, red)
 
+    @finite_result
     def angular_momentum_body(self, t) -> np.ndarray:
         """L_A(t) = J ω_A(t)."""
         return self.J * self.omega(t)
 
+    @finite_result
     def precession_angle(self, t, _reduced=None) -> np.ndarray:
         """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind)."""
         t = as_float_array(t, "t")
@@ -487,6 +491,7 @@ class FreeAsymmetricTop:
             return Lm * t / J3 - (self._C / self._lam) * (G - self._G0)
         return Lm * t / J1 + (self._C / self._lam) * (G - self._G0)
 
+    @finite_result
     def attitude(self, t) -> np.ndarray:
         """The attitude ^A R^O(t), shape ``t.shape + (3, 3)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -511,6 +516,7 @@ class FreeAsymmetricTop:
         Y = (X.reshape(-1, 3) @ self._M0).reshape(X.shape)
         return Y[..., self._front_rows, :] * self._front_signs[:, None]
 
+    @finite_result
     def omega_space(self, t) -> np.ndarray:
         """ω_O(t) = Rᵀ ω_A, space components."""
         R = self.attitude(t)
@@ -524,6 +530,7 @@ class FreeAsymmetricTop:
         K = float(elliptic.ellipk(self.m, m1=self.m1))
         return 4.0 * K / self._lam
 
+    @finite_result
     def poinsot_residuals(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(ω·Jω − 2E, L_O·ω_O − 2E): ω on the inertia ellipsoid and on the invariable
         plane (5.85), (5.90); both zero for the exact motion."""
@@ -617,17 +624,21 @@ class FreeSymmetricTop:
     True
     """
 
+    @finite_result
     def __init__(self, J1, J3, omega_0, R_A_O_0=None):
-        J = check_principal_moments([J1, J1, J3])
+        for x, name in ((J1, "J1"), (J3, "J3")):
+            if as_float_array(x, name).shape != ():
+                raise ShapeError(f"{name} must be a scalar moment of inertia; got {x!r}")
+        J = check_principal_moments([J1, J1, J3], name="(J1, J1, J3)")
         self.J1, self.J3 = float(J[0]), float(J[2])
         w0 = _vec3(omega_0, "omega_0")
         R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
         self.omega_0, self.R_A_O_0 = w0.copy(), R0.copy()
         Jv = np.array([self.J1, self.J1, self.J3])
         L_A = Jv * w0
-        self.angular_momentum_norm = float(np.linalg.norm(L_A))
+        self.angular_momentum_norm = math.hypot(*L_A.tolist())  # no under/overflow of squares
         self.angular_momentum_space = R0.T @ L_A
-        self.energy = 0.5 * float(Jv @ (w0 * w0))
+        self.energy = 0.5 * math.fsum((Jv * w0 * w0).tolist())
         self.body_precession_rate = (self.J3 - self.J1) * float(w0[2]) / self.J1
         Lm = self.angular_momentum_norm
         self.space_precession_rate = Lm / self.J1 if Lm > 0 else 0.0
@@ -643,6 +654,7 @@ class FreeSymmetricTop:
             self._W0 = _pole_frame(*(L_A / Lm))
             self._M0 = self._W0.T @ R0
 
+    @finite_result
     def omega(self, t) -> np.ndarray:
         """ω_A(t) = (|A| cos(βt + α), |A| sin(βt + α), ω3) (5.44)–(5.45)."""
         t = as_float_array(t, "t")
@@ -650,6 +662,7 @@ class FreeSymmetricTop:
         c, s = np.cos(self.body_precession_rate * t), np.sin(self.body_precession_rate * t)
         return np.stack([w1 * c - w2 * s, w1 * s + w2 * c, np.full_like(c, w3)], axis=-1)
 
+    @finite_result
     def attitude(self, t) -> np.ndarray:
         """^A R^O(t) = R3(φ̇t) R3(φ0) R1(θ0) R3(ψ̇t) R3(ψ0) ^S R^O, L along e^S_3.
 
@@ -675,7 +688,7 @@ def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     """
     J_1 = _positive(J_1, "J_1")
     mgl = _positive(m_g_ell, "m_g_ell")
-    L3 = float(as_float_array(L_3, "L_3"))
+    L3 = as_float_scalar(L_3, "L_3")
     margin = L3 * L3 - 4.0 * J_1 * mgl
     return bool(margin > 0)
 
@@ -710,8 +723,8 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     """
     J_1 = _positive(J_1, "J_1")
     mgl = _positive(m_g_ell, "m_g_ell")
-    L3 = float(as_float_array(L_3, "L_3"))
-    c = math.cos(float(as_float_array(theta, "theta")))
+    L3 = as_float_scalar(L_3, "L_3")
+    c = math.cos(as_float_scalar(theta, "theta"))
     disc = L3 * L3 - 4.0 * J_1 * mgl * c
     if disc < 0:
         raise OutOfDomainError(f"no steady precession: L3² − 4 J'1 m g ℓ cos θ = {disc:.6g} < 0")
@@ -770,11 +783,18 @@ class HeavySymmetricTop:
     True
     """
 
+    @finite_result
     def __init__(
         self, J_1, J_3, m_g_ell, *, theta, psi=0.0, phi=0.0, theta_dot=0.0, psi_dot=0.0, phi_dot=0.0
     ):
         self.J_1 = _positive(J_1, "J_1")
         self.J_3 = _positive(J_3, "J_3")
+        if self.J_3 > 2.0 * self.J_1:
+            raise NonPhysicalInertiaError(
+                f"J_3 = {self.J_3!r} exceeds 2 J_1 = {2.0 * self.J_1!r}: the moments of a "
+                "symmetric body obey the triangle inequality J_3 ≤ J_1 + J_2 = 2 J_1 (about G, "
+                "and so about any point of the axis)"
+            )
         self.m_g_ell = _positive(m_g_ell, "m_g_ell")
         vals = {}
         for k, v in dict(
@@ -905,6 +925,7 @@ class HeavySymmetricTop:
                 return y
         return x
 
+    @finite_result
     def f(self, u) -> np.ndarray:
         """The cubic f(u) = u̇² (the book's 5.66–5.71 in u = cos θ)."""
         u = as_float_array(u, "u")
@@ -912,6 +933,7 @@ class HeavySymmetricTop:
         e = (2 * self.energy - self.L_3**2 / self.J_3) / self.J_1
         return (e - self._beta * u) * (1 - u * u) - (a - self._b * u) ** 2
 
+    @finite_result
     def effective_potential(self, theta) -> np.ndarray:
         """Φ_eff(θ) = (L_z − L3 cos θ)²/(2J'1 sin²θ) − mgℓ(1 − cos θ) (5.70)."""
         th = as_float_array(theta, "theta")
@@ -936,6 +958,7 @@ class HeavySymmetricTop:
             return math.inf
         return 2.0 * float(elliptic._quarter_period(np.float64(self._m1))) / self._kappa
 
+    @finite_result
     def u(self, t) -> np.ndarray:
         """u(t) = cos θ(t) = u1 + (u2 − u1) sn²(κt + w0 | m)."""
         t = as_float_array(t, "t")
@@ -944,6 +967,7 @@ class HeavySymmetricTop:
         sn, _, _, _ = elliptic.ellipj(self._arg(t), self._m, m1=self._m1)
         return self.roots[0] + self._d21 * sn * sn
 
+    @finite_result
     def theta(self, t) -> np.ndarray:
         """θ(t) from u(t), as atan2(sin θ, cos θ) with sin θ = √((1 − u)(1 + u))."""
         u = self.u(t)
@@ -958,6 +982,7 @@ class HeavySymmetricTop:
         )
         return t + ((G[:-1] - G[-1]) / self._kappa).reshape(np.shape(t))
 
+    @finite_result
     def psi(self, t) -> np.ndarray:
         """Precession angle ψ(t): ψ̇ = (a − bu)/(1 − u²) (5.67) integrated in closed form."""
         t = as_float_array(t, "t")
@@ -970,6 +995,7 @@ class HeavySymmetricTop:
             out = out + 0.5 * self._apb / self._opu1 * self._integral(self._nmi, t)
         return out
 
+    @finite_result
     def phi(self, t) -> np.ndarray:
         """Spin angle φ(t): φ̇ = L3/J3 − u ψ̇ (5.53), in closed form."""
         t = as_float_array(t, "t")
@@ -982,6 +1008,7 @@ class HeavySymmetricTop:
             out = out + 0.5 * self._apb / self._opu1 * self._integral(self._nmi, t)
         return out
 
+    @finite_result
     def rates(self, t):
         """(θ̇, ψ̇, φ̇)(t) along the exact motion.
 
@@ -1005,10 +1032,12 @@ class HeavySymmetricTop:
         thd = -udot / np.sqrt(omu * opu)
         return thd, psid, phid
 
+    @finite_result
     def energy_at(self, t) -> np.ndarray:
         """E(t) from the exact motion (5.66); constant."""
         return self.integrals_at(t)[2]
 
+    @finite_result
     def integrals_at(self, t):
         """(L_z, L_3, E) evaluated along the exact motion, (5.55), (5.53), (5.66)."""
         thd, psid, phid = self.rates(t)
@@ -1041,12 +1070,12 @@ def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.
     """
     t = as_float_array(t, "t")
     m, R, J, g = (_positive(v, k) for k, v in dict(m=m, R=R, J=J, g=g).items())
-    beta = float(as_float_array(beta, "beta"))
+    beta = as_float_scalar(beta, "beta")
     if not 0.0 <= beta <= math.pi / 2:
         raise OutOfDomainError(f"beta must lie in [0, π/2]; got {beta!r}")
     w0 = _vec3(omega_0, "omega_0")
-    x0 = float(as_float_array(x0, "x0"))
-    y0 = float(as_float_array(y0, "y0"))
+    x0 = as_float_scalar(x0, "x0")
+    y0 = as_float_scalar(y0, "y0")
     alpha = R * m * g * math.sin(beta) / (J + m * R * R)
     x = x0 + R * w0[1] * t + 0.5 * R * alpha * t * t
     y = y0 - R * w0[0] * t

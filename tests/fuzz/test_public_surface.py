@@ -43,7 +43,107 @@ SURFACE = public_callables()
 
 #: (entry, parameter) pairs that fail the rule in modules this branch may not change:
 #: ``xfail(strict=True)``, so a fix turns them into failures to clean up here
-KNOWN: dict[tuple[str, str], str] = {}
+KNOWN: dict[tuple[str, str], str] = {
+    **{
+        (f"mechanics.{name}", param): (
+            "1e300 overflows an intermediate: a numpy RuntimeWarning, not a ResultOverflowError "
+            "(module owned by the mutation-testing helper)"
+        )
+        for name, param in [
+            ("dynamics.axis_reaction", "phidot"),
+            ("dynamics.bearing_reactions", "phidot"),
+            ("impact.centre_of_percussion", "r_G"),
+            ("impact.effective_mass", "r_1"),
+            ("inertia.box", "a"),
+            ("inertia.box", "b"),
+            ("inertia.box", "c"),
+            ("inertia.cylinder", "R"),
+            ("inertia.cylinder", "h"),
+            ("inertia.cylindrical_shell", "R"),
+            ("inertia.cylindrical_shell", "h"),
+            ("inertia.solid_cone", "R"),
+            ("inertia.solid_cone", "h"),
+            ("inertia.disc", "R"),
+            ("inertia.hollow_sphere", "R"),
+            ("inertia.ring", "R"),
+            ("inertia.solid_sphere", "R"),
+            ("inertia.rectangular_plate", "a"),
+            ("inertia.rectangular_plate", "b"),
+            ("inertia.rod", "ell"),
+            ("inertia.inertia_tensor", "r"),
+        ]
+    },
+    ("mechanics.dynamics.euler_equations_rhs", "J_principal"): (
+        "a zero or negative moment is refused, but the message does not name J_principal"
+    ),
+    ("mechanics.impact.hinged_effective_mass", "r_P"): (
+        "r_P on the axis (0 or 1e-300) returns inf silently (no lever arm: the effective "
+        "mass is infinite; it should be refused naming r_P); 1e300 overflows with a warning"
+    ),
+    **{
+        ("mechanics.impact.RigidBody", p): (
+            "RigidBody is a record that does not validate: NaN, inf, strings and None are kept "
+            "and leak into m, J_G, ... (validated only later, by rigid_impact)"
+        )
+        for p in ("m", "J_G", "r_G", "v_G", "omega")
+    },
+    **{
+        (f"mechanics.{name}", "<batch>"): (
+            "batches of 2 and 3 end in numpy's bare broadcasting ValueError (or are accepted), "
+            "not a ShapeError naming the arguments (module owned by the mutation-testing helper)"
+        )
+        for name in (
+            "dynamics.angular_momentum_rigid",
+            "dynamics.axis_reaction",
+            "dynamics.bearing_reactions",
+            "dynamics.euler_equations_rhs",
+            "dynamics.fixed_axis_angular_acceleration",
+            "dynamics.pendulum_angular_velocity_at",
+            "dynamics.pendulum_axis_reaction",
+            "dynamics.pendulum_motion",
+            "dynamics.pendulum_period",
+            "dynamics.pendulum_small_period",
+            "dynamics.reduced_length",
+            "dynamics.rotational_kinetic_energy",
+            "impact.RigidBody",
+            "impact.centre_of_percussion",
+            "impact.compression_restitution_impulses",
+            "impact.direct_impact",
+            "impact.effective_mass",
+            "impact.energy_loss_direct",
+            "impact.hinged_effective_mass",
+            "impact.hinged_impact",
+            "impact.impulse_direct",
+            "impact.normal_relative_velocity",
+            "impact.rigid_impact",
+            "inertia.box",
+            "inertia.cylinder",
+            "inertia.cylindrical_shell",
+            "inertia.disc",
+            "inertia.four_particle_realisation",
+            "inertia.hollow_sphere",
+            "inertia.inertia_A_from_O",
+            "inertia.parallel_axis",
+            "inertia.rectangular_plate",
+            "inertia.ring",
+            "inertia.rod",
+            "inertia.rotate_inertia",
+            "inertia.solid_cone",
+            "inertia.solid_sphere",
+            "rotation.components_A_from_O",
+            "rotation.compose",
+            "rotation.compose_quat",
+            "rotation.matrix_from_axis_angle",
+            "rotation.matrix_from_euler",
+            "rotation.quat_multiply",
+            "rotation.rotate_vector",
+        )
+    },
+    ("mechanics.rotation.nearest_rotation", "M"): (
+        "the zero matrix has no nearest rotation (every rotation is equally near), yet one "
+        "is returned; it should be refused naming M"
+    ),
+}
 
 
 def test_every_public_callable_has_a_fuzz_entry_or_a_stated_exemption():
@@ -218,7 +318,7 @@ def test_bad_input_is_refused_naming_the_parameter(name, param):
 def _batch_cases():
     for name, entry in ENTRIES.items():
         arr = [p for p in entry.numeric() if p in entry.kw]
-        if len(arr) >= 2:
+        if len(arr) >= 2 and entry.batch:
             marks = []
             if (name, "<batch>") in KNOWN:
                 marks = [pytest.mark.xfail(strict=True, reason=KNOWN[(name, "<batch>")])]
@@ -232,7 +332,7 @@ def test_batches_of_different_lengths_are_refused_with_a_shape_error(name, p1, p
     entry = ENTRIES[name]
     a = np.stack([np.asarray(entry.kw[p1], dtype=float)] * 2)
     b = np.stack([np.asarray(entry.kw[p2], dtype=float)] * 3)
-    exc = _outcome(name, entry, p1, a) if False else None
+    exc = None
     try:
         _call(name, entry, {p1: a, p2: b})
     except MechanicsValueError as e:
