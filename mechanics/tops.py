@@ -73,6 +73,7 @@ from .errors import (
     NonPhysicalInertiaError,
     NonPositiveParameterError,
     OutOfDomainError,
+    ResultOverflowError,
     ShapeError,
     UnknownOptionError,
 )
@@ -239,14 +240,25 @@ class FreeAsymmetricTop:
         self.omega_0 = w0.copy()
         self.R_A_O_0 = R0.copy()
 
+        # The motion depends on J only through its ratios: work with J / 2^k (exact, the
+        # largest moment in [1/2, 1)) and scale E, |L| and L back by 2^k at the end, so
+        # moments from 1e-300 to 1e300 give the same ω(t) and attitude (issue 16, part 4)
+        k = math.frexp(float(J.max()))[1]
+        self._scale_exp = k
+        J = np.ldexp(J, -k)
         Jf = [Fraction(float(x)) for x in J]
         wf = [Fraction(float(x)) for x in w0]
         E2 = sum(a * b * b for a, b in zip(Jf, wf, strict=True))
         L2 = sum(a * a * b * b for a, b in zip(Jf, wf, strict=True))
-        self.energy = float(E2 / 2)
-        self.angular_momentum_norm = _fsqrt(L2)
-        L_A0 = J * w0
-        self.angular_momentum_space = R0.T @ L_A0
+        self.energy = math.ldexp(float(E2 / 2), k)
+        self._Lm = _fsqrt(L2)  # |L| of the scaled moments
+        self.angular_momentum_norm = math.ldexp(self._Lm, k)
+        self.angular_momentum_space = np.ldexp(R0.T @ (J * w0), k)
+        if not np.isfinite(self.angular_momentum_space).all():
+            raise ResultOverflowError(
+                f"the angular momentum J ω exceeds float64's range (|L| = "
+                f"{self.angular_momentum_norm!r}); rescale J or omega_0 (choose units)"
+            )
 
         # proper signed permutation P to sorted moments: ω' = P ω, J' sorted
         order = np.argsort(J, kind="stable")
@@ -264,7 +276,10 @@ class FreeAsymmetricTop:
         B = J2 * (J2 - J1) * w2**2 + J3 * (J3 - J1) * w3**2  # L² − 2EJ1
         D = J3 * (J3 - J2) * w3**2 - J1 * (J2 - J1) * w1**2  # L² − 2EJ2
         self.separatrix_distance = float(D)
-        """L² − 2 E J_mid, exact to rounding (zero on the separatrix)."""
+        """L² − 2 E J_mid of the moments scaled by 2^-k (the largest in [1/2, 1)): its sign
+        gives the regime, zero on the separatrix; exact to rounding. Multiply by 4^k
+        (``math.ldexp(d, 2 * top._scale_exp)``) for the value in the units given, which
+        overflows float64 for moments beyond ~1e154."""
 
         nz = [i for i in range(3) if ws[i] != 0]
         steady = all(Js[i] == Js[nz[0]] for i in nz) if nz else True
@@ -314,7 +329,7 @@ class FreeAsymmetricTop:
             self._amp = np.array([_fsqrt(a) for a in amp])
             self._lam = _fsqrt(lam2)
             self._n = 0.0 if self._uniform else float(n)
-            self._C = float(C) * self.angular_momentum_norm
+            self._C = float(C) * self._Lm
             self._s, self._sigma = s_circ, sigma
             a1, a2, a3 = self._amp
             if self._branch3:
@@ -431,7 +446,7 @@ class FreeAsymmetricTop:
         sxy = math.hypot(nx, ny)
         sphi, cphi = nx / sxy, ny / sxy
         W = [[cphi, sphi * nz, sphi * sxy], [-sphi, cphi * nz, cphi * sxy], [0.0, -sxy, nz]]
-        Lm = self.angular_momentum_norm
+        Lm = self._Lm  # the scaled moments' |L|: ψ is invariant under J → s J
         if self._uniform:
             psi = Lm * self._uniform_rate * t
         else:
@@ -481,7 +496,7 @@ class FreeAsymmetricTop:
         t = as_float_array(t, "t")
         if self.regime in ("rest", "steady"):
             return np.zeros_like(t)
-        Lm = self.angular_momentum_norm
+        Lm = self._Lm  # the scaled moments' |L|: ψ is invariant under J → s J
         if self._uniform:
             return Lm * self._uniform_rate * t
         u = self._lam * t + self._u0
@@ -535,7 +550,7 @@ class FreeAsymmetricTop:
         """(ω·Jω − 2E, L_O·ω_O − 2E): ω on the inertia ellipsoid and on the invariable
         plane (5.85), (5.90); both zero for the exact motion."""
         w = self.omega(t)
-        ell = (self.J * w * w).sum(-1) - 2.0 * self.energy
+        ell = (self.J * w * w).sum(-1) - 2.0 * self.energy  # self.J: the moments as given
         w_O = np.einsum("...ji,...j->...i", self.attitude(t), w)
         plane = w_O @ self.angular_momentum_space - 2.0 * self.energy
         return ell, plane
@@ -634,24 +649,32 @@ class FreeSymmetricTop:
         w0 = _vec3(omega_0, "omega_0")
         R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
         self.omega_0, self.R_A_O_0 = w0.copy(), R0.copy()
-        Jv = np.array([self.J1, self.J1, self.J3])
-        L_A = Jv * w0
-        self.angular_momentum_norm = math.hypot(*L_A.tolist())  # no under/overflow of squares
-        self.angular_momentum_space = R0.T @ L_A
-        self.energy = 0.5 * math.fsum((Jv * w0 * w0).tolist())
-        self.body_precession_rate = (self.J3 - self.J1) * float(w0[2]) / self.J1
-        Lm = self.angular_momentum_norm
-        self.space_precession_rate = Lm / self.J1 if Lm > 0 else 0.0
-        self.nutation_angle = math.atan2(self.J1 * math.hypot(w0[0], w0[1]), self.J3 * w0[2])
-        self.spin_rate = (
-            self.space_precession_rate
-            * math.cos(self.nutation_angle)
-            * (self.J1 - self.J3)
-            / self.J3
+        # the motion depends on J1, J3 and ω only through J3/J1 and ω: compute with the
+        # moments scaled by 2^-k (exact) and scale |L|, L and E back (issue 16, part 4)
+        k = math.frexp(max(self.J1, self.J3))[1]
+        j1, j3 = math.ldexp(self.J1, -k), math.ldexp(self.J3, -k)
+        wmax = float(np.abs(w0).max())
+        kw = math.frexp(wmax)[1] if wmax > 0 else 0
+        wn = np.ldexp(w0, -kw)  # ω scaled too for the directions (no under/overflow)
+        Ln = np.array([j1, j1, j3]) * wn
+        self.angular_momentum_norm = math.ldexp(math.hypot(*Ln.tolist()), k + kw)
+        self.angular_momentum_space = np.ldexp(R0.T @ Ln, k + kw)
+        self.energy = math.ldexp(
+            0.5 * math.fsum((np.array([j1, j1, j3]) * wn * wn).tolist()), k + 2 * kw
         )
+        if not np.isfinite(self.angular_momentum_space).all():
+            raise ResultOverflowError(
+                f"the angular momentum J ω exceeds float64's range (|L| = "
+                f"{self.angular_momentum_norm!r}); rescale J1, J3 or omega_0 (choose units)"
+            )
+        self.body_precession_rate = (j3 - j1) * float(w0[2]) / j1
+        # |L|/J1 = |(ω1, ω2, (J3/J1) ω3)|, from the scaled vector
+        self.space_precession_rate = math.ldexp(math.hypot(*Ln.tolist()) / j1, kw)
+        self.nutation_angle = math.atan2(j1 * math.hypot(wn[0], wn[1]), j3 * wn[2])
+        self.spin_rate = self.space_precession_rate * math.cos(self.nutation_angle) * (j1 - j3) / j3
         self._steady = w0[0] == 0 and w0[1] == 0
         if not self._steady:
-            self._W0 = _pole_frame(*(L_A / Lm))
+            self._W0 = _pole_frame(*(Ln / math.hypot(*Ln.tolist())))
             self._M0 = self._W0.T @ R0
 
     @finite_result
@@ -686,11 +709,18 @@ def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     >>> sleeping_top_is_stable(1.0, 2.1, 1.0), sleeping_top_is_stable(1.0, 1.9, 1.0)
     (True, False)
     """
-    J_1 = _positive(J_1, "J_1")
-    mgl = _positive(m_g_ell, "m_g_ell")
-    L3 = as_float_scalar(L_3, "L_3")
+    J_1, mgl, L3 = _scaled(
+        _positive(J_1, "J_1"), _positive(m_g_ell, "m_g_ell"), as_float_scalar(L_3, "L_3")
+    )
     margin = L3 * L3 - 4.0 * J_1 * mgl
     return bool(margin > 0)
+
+
+def _scaled(*xs: float) -> tuple[float, ...]:
+    """xs / 2^k with the largest |x| in [1/2, 1): exact, for homogeneous formulas (the
+    rates of a top depend on J'1, L3, m g ℓ only through their ratios)."""
+    k = math.frexp(max(abs(x) for x in xs))[1]
+    return tuple(math.ldexp(x, -k) for x in xs)
 
 
 def _positive(x, name):
@@ -702,7 +732,6 @@ def _positive(x, name):
     return float(a)
 
 
-@finite_result
 def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     """The two steady precession rates Ω (slow, fast) at nutation angle θ (5.60).
 
@@ -721,9 +750,9 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     >>> bool(abs(J1 * c * slow**2 - L3 * slow + mgl) < 1e-14)
     True
     """
-    J_1 = _positive(J_1, "J_1")
-    mgl = _positive(m_g_ell, "m_g_ell")
-    L3 = as_float_scalar(L_3, "L_3")
+    J_1, mgl, L3 = _scaled(
+        _positive(J_1, "J_1"), _positive(m_g_ell, "m_g_ell"), as_float_scalar(L_3, "L_3")
+    )
     c = math.cos(as_float_scalar(theta, "theta"))
     disc = L3 * L3 - 4.0 * J_1 * mgl * c
     if disc < 0:
@@ -796,6 +825,14 @@ class HeavySymmetricTop:
                 "and so about any point of the axis)"
             )
         self.m_g_ell = _positive(m_g_ell, "m_g_ell")
+        # The motion depends on J'1, J3 and m g ℓ only through their ratios: the
+        # computation runs on them scaled by 2^-k (exact; the largest in [1/2, 1)), and
+        # L3, Lz, E and the energies are scaled back by 2^k (issue 16, part 4: moments
+        # from 1e-300 to 1e300 give the same θ(t), ψ(t), φ(t)).
+        self._k = math.frexp(max(self.J_1, self.J_3, self.m_g_ell))[1]
+        self._J1n, self._J3n, self._mgln = (
+            math.ldexp(x, -self._k) for x in (self.J_1, self.J_3, self.m_g_ell)
+        )
         vals = {}
         for k, v in dict(
             theta=theta, psi=psi, phi=phi, theta_dot=theta_dot, psi_dot=psi_dot, phi_dot=phi_dot
@@ -813,18 +850,22 @@ class HeavySymmetricTop:
             vals["psi_dot"],
             vals["phi_dot"],
         )
-        J1, J3, mgl = self.J_1, self.J_3, self.m_g_ell
+        J1, J3, mgl = self._J1n, self._J3n, self._mgln
         u0, S = math.cos(th), math.sin(th)
         self.u0 = u0
-        self.L_3 = J3 * (self.psi_dot0 * u0 + self.phi_dot0)
-        self.L_z = J1 * S * S * self.psi_dot0 + self.L_3 * u0
-        self.energy = (
+        self._L3n = J3 * (self.psi_dot0 * u0 + self.phi_dot0)
+        self._Lzn = J1 * S * S * self.psi_dot0 + self._L3n * u0
+        self._En = (
             0.5 * J1 * (self.theta_dot0**2 + (self.psi_dot0 * S) ** 2)
-            + self.L_3**2 / (2 * J3)
+            + self._L3n**2 / (2 * J3)
             + mgl * u0
         )
         self._beta = 2.0 * mgl / J1
-        self._b = self.L_3 / J1
+        self._b = self._L3n / J1
+        #: L3, Lz (about the fixed point) and E in the units given
+        self.L_3, self.L_z, self.energy = (
+            math.ldexp(x, self._k) for x in (self._L3n, self._Lzn, self._En)
+        )
         if S == 0.0:
             if self.theta_dot0 != 0:
                 raise GimbalLockError(
@@ -929,8 +970,8 @@ class HeavySymmetricTop:
     def f(self, u) -> np.ndarray:
         """The cubic f(u) = u̇² (the book's 5.66–5.71 in u = cos θ)."""
         u = as_float_array(u, "u")
-        a = self.L_z / self.J_1
-        e = (2 * self.energy - self.L_3**2 / self.J_3) / self.J_1
+        a = self._Lzn / self._J1n
+        e = (2 * self._En - self._L3n**2 / self._J3n) / self._J1n
         return (e - self._beta * u) * (1 - u * u) - (a - self._b * u) ** 2
 
     @finite_result
@@ -939,14 +980,15 @@ class HeavySymmetricTop:
         th = as_float_array(theta, "theta")
         s = np.sin(th)
         with np.errstate(divide="ignore"):
-            return (self.L_z - self.L_3 * np.cos(th)) ** 2 / (
-                2 * self.J_1 * s * s
-            ) - self.m_g_ell * 2.0 * np.sin(th / 2) ** 2
+            phi = (self._Lzn - self._L3n * np.cos(th)) ** 2 / (
+                2 * self._J1n * s * s
+            ) - self._mgln * 2.0 * np.sin(th / 2) ** 2
+        return np.ldexp(phi, self._k)
 
     @property
     def reduced_energy(self) -> float:
         """E' = E − L3²/(2J3) − mgℓ (5.69)."""
-        return self.energy - self.L_3**2 / (2 * self.J_3) - self.m_g_ell
+        return math.ldexp(self._En - self._L3n**2 / (2 * self._J3n) - self._mgln, self._k)
 
     def _arg(self, t):
         return self._kappa * t + self._w0
@@ -1001,7 +1043,7 @@ class HeavySymmetricTop:
         t = as_float_array(t, "t")
         if self.sleeping:
             return self.phi0 + self.phi_dot0 * t
-        out = self.phi0 + (self.L_3 / self.J_3 - self._b) * t
+        out = self.phi0 + (self._L3n / self._J3n - self._b) * t
         if self._amb != 0:
             out = out - 0.5 * self._amb / (self._omu2 + self._d21) * self._integral(self._npl, t)
         if self._apb != 0:
@@ -1027,7 +1069,7 @@ class HeavySymmetricTop:
             tp = np.where(self._amb != 0, self._amb / omu, 0.0)
             tm = np.where(self._apb != 0, self._apb / opu, 0.0)
         psid = 0.5 * (tp + tm)
-        phid = self.L_3 / self.J_3 - u * psid
+        phid = self._L3n / self._J3n - u * psid
         udot = 2 * self._d21 * sn * cn * dn * self._kappa
         thd = -udot / np.sqrt(omu * opu)
         return thd, psid, phid
@@ -1043,10 +1085,10 @@ class HeavySymmetricTop:
         thd, psid, phid = self.rates(t)
         u = self.u(t)
         S2 = (1 - u) * (1 + u)
-        L3 = self.J_3 * (psid * u + phid)
-        Lz = self.J_1 * S2 * psid + L3 * u
-        E = 0.5 * self.J_1 * (thd**2 + psid**2 * S2) + L3**2 / (2 * self.J_3) + self.m_g_ell * u
-        return Lz, L3, E
+        L3 = self._J3n * (psid * u + phid)
+        Lz = self._J1n * S2 * psid + L3 * u
+        E = 0.5 * self._J1n * (thd**2 + psid**2 * S2) + L3**2 / (2 * self._J3n) + self._mgln * u
+        return tuple(np.ldexp(x, self._k) for x in (Lz, L3, E))
 
 
 # --------------------------------------------------------------------------- Example 5.1
