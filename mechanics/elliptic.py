@@ -239,6 +239,10 @@ def _scaled(u, rt):
 def ellipj(u, m, *, m1=None):
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
 
+    Domain: every finite u and every finite m (m > 1 by the reciprocal modulus, m < 0 by the
+    imaginary modulus); results are finite there. The phase is reduced modulo the period 4K: for |u|
+    ≳ 4K/eps (~1e16) it is lost (finite, meaningless values).
+
     Parameters
     ----------
     u : array_like
@@ -325,6 +329,9 @@ def ellipj(u, m, *, m1=None):
 def ellipk(m, *, m1=None):
     """Complete elliptic integral of the first kind K(m) for m ≤ 1 (K(1) = inf).
 
+    Domain: every float64 m ≤ 1 (down to −1.8e308: K ~ ln(4√−m)/√−m); K(1) = inf is the one
+    non-finite value, documented; m > 1 raises OutOfDomainError.
+
     Parameters
     ----------
     m : array_like
@@ -357,6 +364,8 @@ def ellipk(m, *, m1=None):
 @broadcast_checked
 def ellipe(m, *, m1=None):
     """Complete elliptic integral of the second kind E(m) for m ≤ 1.
+
+    Domain: every float64 m ≤ 1 (E(1) = 1); m > 1 raises OutOfDomainError.
 
     Computed as 2 R_G(0, m1, 1) (Carlson, DLMF 19.25.1) from the exact m1.
 
@@ -396,6 +405,9 @@ def _amplitude(phi, m, m1, name):
 @broadcast_checked
 def ellipf(phi, m, *, m1=None):
     """Incomplete elliptic integral of the first kind F(φ|m).
+
+    Domain: any finite φ for m ≤ 1 (φ = ±π/2 at m = 1 is the logarithmic singularity); for m > 1,
+    |φ| ≤ asin(1/√m) (else OutOfDomainError); m down to −1.8e308.
 
     F(φ|m) = sin φ R_F(cos²φ, Δ², 1) on |φ| ≤ π/2, F(φ + jπ) = F(φ) + 2jK.
 
@@ -450,6 +462,10 @@ def _check_characteristic(n, limit_ok):
 def ellippi(n, phi, m, *, m1=None):
     """Incomplete elliptic integral of the third kind Π(n; φ|m) (mpmath's order).
 
+    Domain: n sin²φ < 1, and n < 1 beyond |φ| = π/2 (else OutOfDomainError); the φ and m of
+    :func:`ellipf`. For n ≪ −1 (|n| ≳ 1e8) F and the R_J tail cancel: the relative accuracy drops to
+    ~|n|·eps.
+
     Π(n; φ|m) = F(φ|m) + (n/3) sin³φ R_J(cos²φ, Δ², 1, 1 − n sin²φ) on
     |φ| ≤ π/2 (DLMF 19.25.14), continued by Π(n; φ + jπ) = Π(n; φ) + 2jΠ(n|m).
 
@@ -476,11 +492,10 @@ def ellippi(n, phi, m, *, m1=None):
 def ellippi_jacobi(u, n, m, *, m1=None):
     """Third-kind integral in Jacobi's form, ∫₀^u dv / (1 − n sn²(v|m)) = Π(n; am u | m).
 
-    For 0 ≤ m ≤ 1 and n < 1.  Evaluated from the reduced sn, cn, dn of :func:`ellipj`
-    (so Δ = dn keeps its relative accuracy near m = 1), u + (n/3) sn³ R_J(cn², dn², 1,
-    1 − n sn²) on the reduced argument plus 2j (Π(n|m) − K); at m = 1 in closed form,
-    u + [n u + √−n atan(√−n tanh u)]/(1 − n) − u for n < 0 (and the atanh form for
-    0 < n < 1).
+    Domain: 0 ≤ m ≤ 1 and n < 1, any finite u (else OutOfDomainError).  Evaluated from the reduced
+    sn, cn, dn of :func:`ellipj` (so Δ = dn keeps its relative accuracy near m = 1), u + (n/3) sn³
+    R_J(cn², dn², 1, 1 − n sn²) on the reduced argument plus 2j (Π(n|m) − K); at m = 1 in closed
+    form, u + [n u + √−n atan(√−n tanh u)]/(1 − n) − u for n < 0 (and the atanh form for 0 < n < 1).
 
     Examples
     --------

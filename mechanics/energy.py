@@ -82,6 +82,10 @@ def _nonneg(x, name: str, error=NegativeMassError) -> np.ndarray:
 def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     """Kinetic energy of a rigid body, T = ½ m v_G² + ½ ωᵀ J_G ω (3.7), (3.24).
 
+    Domain: m ≥ 0 (else NegativeMassError), finite v_G and omega (..., 3), J_G a physical inertia
+    tensor (``check_inertia``, singular allowed: a rod); a result beyond float64 raises
+    ResultOverflowError.
+
     Parameters
     ----------
     m : array_like, shape (...)
@@ -121,6 +125,9 @@ def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
 def kinetic_energy_fixed_axis(J_axis, omega) -> np.ndarray:
     """T = ½ J φ̇² for rotation about a fixed axis (3.26), (3.27), (3.30).
 
+    Domain: J_axis ≥ 0 (else NonPhysicalInertiaError), any finite omega; a result beyond float64
+    raises ResultOverflowError.
+
     Parameters
     ----------
     J_axis : array_like
@@ -159,6 +166,9 @@ def _pair(F, v, names=("F", "v")) -> tuple[np.ndarray, np.ndarray]:
 def power(F, v) -> np.ndarray:
     """Power of a system of forces, P = Σ_k F_k · v_k (3.1), compensated.
 
+    Domain: finite F and v of shape (..., N, 3) (N forces; one force is (1, 3)); a result beyond
+    float64 raises ResultOverflowError.
+
     Parameters
     ----------
     F, v : array_like, shape (..., N, 3)
@@ -187,6 +197,9 @@ def power(F, v) -> np.ndarray:
 @finite_result
 def work_from_power(P, t) -> np.ndarray:
     """W_12 = ∫ P dt (3.36) from samples of the power, by composite Simpson.
+
+    Domain: t of shape (K,), K ≥ 2, strictly increasing (else NonPositiveParameterError), finite P
+    of shape (..., K); a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -222,6 +235,9 @@ def work_from_power(P, t) -> np.ndarray:
 @finite_result
 def work_along_path(F, r) -> np.ndarray:
     """Work of a force along a sampled path, W = ∫ F · dr (3.38), by the trapezoid rule.
+
+    Domain: finite F and r of shape (..., K, 3) with K ≥ 2 samples (else ShapeError); a result
+    beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -265,6 +281,8 @@ def work_along_path(F, r) -> np.ndarray:
 def work_of_couple(M, dphi) -> np.ndarray:
     """Work of a constant moment M over a rotation δφ about a fixed axis: W = M · δφ (3.70).
 
+    Domain: finite M and dphi of shape (..., 3); a result beyond float64 raises ResultOverflowError.
+
     For a fixed rotation axis e_z, δφ = Δφ e_z and W = M_z Δφ; the work of a
     couple is independent of the base point, because a couple has zero
     resultant (3.65 with F = 0).
@@ -281,6 +299,9 @@ def work_of_couple(M, dphi) -> np.ndarray:
 @finite_result
 def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
     """Power of the forces on a rigid body, P = F · v_A + M_A · ω (3.65 per unit time).
+
+    Domain: finite F, M_A, v_A, omega of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     F is the resultant, M_A the moment about the body point A moving with v_A;
     the result does not depend on which body point is chosen.
@@ -306,6 +327,9 @@ def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
 @finite_result
 def gravity_potential(m, r, *, g) -> np.ndarray:
     """Potential energy of uniform gravity, Φ^e = −Σ m_k g · r_k = −m g · r_G (3.55)–(3.56).
+
+    Domain: masses m ≥ 0 of shape (..., N) (``check_masses``), finite r (..., N, 3) and g (..., 3);
+    a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -350,6 +374,9 @@ def _spring_args(k, ell_0, r_1, r_2):
 def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Φ = ½ k (|r_1 − r_2| − ℓ_0)² of a linear spring between two points (3.53).
 
+    Domain: k ≥ 0 and ℓ_0 ≥ 0 (else OutOfDomainError), finite r_1, r_2 (..., 3); a result beyond
+    float64 raises ResultOverflowError.
+
     With ``tension_only=True`` the rubber band of Example 3.3 (3.57): Φ = 0
     while slack, |r_1 − r_2| ≤ ℓ_0.
 
@@ -370,6 +397,9 @@ def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.nd
 @finite_result
 def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Force on point 1 from the spring: −∇_1 Φ = −k (|r_12| − ℓ_0) r_12/|r_12| (3.48).
+
+    Domain: k ≥ 0, ℓ_0 ≥ 0, finite r_1 ≠ r_2 (coincident ends: NonPositiveParameterError, the
+    direction is undefined); a result beyond float64 raises ResultOverflowError.
 
     The force on point 2 is its negative (Newton's third law, central).
 
@@ -406,6 +436,9 @@ def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarra
 def torsion_potential(tau_0, phi) -> np.ndarray:
     """Φ(φ) = ½ τ_0 φ² of a torsion spring with moment M = −τ_0 φ (3.71)–(3.72).
 
+    Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
+    ResultOverflowError.
+
     Examples
     --------
     Φ(φ) = −∫₀^φ M dφ' (3.71), by the trapezoid rule (exact for a linear M):
@@ -423,7 +456,11 @@ def torsion_potential(tau_0, phi) -> np.ndarray:
 
 @finite_result
 def torsion_moment(tau_0, phi) -> np.ndarray:
-    """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5)."""
+    """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5).
+
+    Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
+    ResultOverflowError.
+    """
     tt = as_float_array(tau_0, "tau_0")
     if (tt < 0).any():
         raise OutOfDomainError(f"torsion constant tau_0 = {tau_0!r} must be >= 0")
@@ -436,6 +473,9 @@ def torsion_moment(tau_0, phi) -> np.ndarray:
 @finite_result
 def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     """Velocity of the body point at the contact C, v_C = v_G + ω × GC (2.73).
+
+    Domain: finite v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Examples
     --------
@@ -453,6 +493,9 @@ def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
 def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of a contact force acting on the body point C: P = F · (v_G + ω × GC).
 
+    Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
+
     Examples
     --------
     The same force does work on a sliding body (v_C ≠ 0):
@@ -468,6 +511,9 @@ def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
 @finite_result
 def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of the contact force (normal force plus static friction) on a rolling body (3.2.2).
+
+    Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Rolling without slipping means the body point at the contact has zero
     velocity, v_G + ω × GC = 0; the power F · v_C is then zero whatever F is.
@@ -489,6 +535,9 @@ def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
 @finite_result
 def pair_power(N, v_1, v_2) -> np.ndarray:
     """Net power of a force N on body 1 and its reaction −N on body 2: N · (v_1 − v_2).
+
+    Domain: finite N, v_1, v_2 of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Zero when the contact points have the same velocity component along N
     (a normal force between moving bodies), or the same velocity (static

@@ -102,6 +102,9 @@ EPS = float(np.finfo(np.float64).eps)
 def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
     """Validate principal moments (J1, J2, J3): positive and J_i ≤ J_j + J_k.
 
+    Domain: any finite positive moments (1e-300 … 1e300 and beyond: the check compares moments, it
+    does not square them).
+
     Returns a float64 array of shape (3,).
 
     Raises
@@ -186,6 +189,12 @@ def _pole_frame(nx, ny, nz):
 
 class FreeAsymmetricTop:
     """The exact torque-free motion of a rigid body (Euler's equations 4.47 with M = 0).
+
+    Domain: principal moments J > 0 that obey the triangle inequality, of any magnitude from 1e-300
+    to 1e300 (the motion is computed from J scaled by a power of two, so s·J moves exactly as J; L
+    and E are scaled back); any finite ω_0 (0: at rest) while |L| and E fit float64 (else
+    ResultOverflowError); within ~1e-150 |ω| of the separatrix the complementary parameter
+    underflows (OutOfDomainError).
 
     Parameters
     ----------
@@ -575,6 +584,9 @@ class StabilityResult:
 def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityResult:
     """Stability of rotation at rate ``omega`` about principal ``axis`` (1, 2 or 3), (5.102).
 
+    Domain: J as :func:`check_principal_moments` (only ratios enter: any scale); axis 1, 2 or 3; a
+    finite scalar omega with C_i C_k ω² within float64 (else ResultOverflowError).
+
     δω̈_i = C_i C_k ω0² δω_i with C_i = (J_j − J_k)/J_i cyclic (Euler's equations
     5.91 written as ω̇_i = C_i ω_j ω_k).
 
@@ -611,6 +623,10 @@ def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityRe
 
 class FreeSymmetricTop:
     """The free symmetric top in closed form (5.2.1, Example 5.2).
+
+    Domain: J1, J3 > 0 with J3 ≤ 2 J1 (the triangle inequality), from 1e-300 to 1e300 (computed from
+    the moments scaled by a power of two: s·J moves exactly as J); any finite ω_0 while |L| and E
+    fit float64 (else ResultOverflowError).
 
     Parameters
     ----------
@@ -704,6 +720,9 @@ class FreeSymmetricTop:
 def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     """Example 5.3: the vertical (sleeping) top is stable iff L3² > 4 J'1 m g ℓ (5.72).
 
+    Domain: J'1, m g ℓ > 0, any finite L3: the criterion is homogeneous and evaluated on the three
+    scaled by a power of two, so no square over- or underflows.
+
     Examples
     --------
     >>> sleeping_top_is_stable(1.0, 2.1, 1.0), sleeping_top_is_stable(1.0, 1.9, 1.0)
@@ -734,6 +753,10 @@ def _positive(x, name):
 
 def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     """The two steady precession rates Ω (slow, fast) at nutation angle θ (5.60).
+
+    Domain: J'1, m g ℓ > 0, finite L3 and θ with L3² ≥ 4 J'1 m g ℓ cos θ (else OutOfDomainError);
+    any common scale of J'1, L3, mgℓ (evaluated scaled by a power of two); the fast rate is inf at
+    cos θ = 0 (documented below).
 
     Roots of J'1 cos θ Ω² − L3 Ω + m g ℓ = 0, the slow one as 2mgℓ/(L3 + √disc) (no
     cancellation).  At cos θ = 0 the fast one is inf (one finite root mgℓ/L3).
@@ -768,6 +791,11 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
 
 class HeavySymmetricTop:
     """The heavy symmetric top about a fixed point (5.2.2–5.2.5), exact motion.
+
+    Domain: J'1, J3, m g ℓ > 0 with J3 ≤ 2 J'1, jointly from 1e-300 to 1e300 (the motion depends on
+    their ratios: computed from them scaled by a power of two, so s·(J'1, J3, mgℓ) moves exactly as
+    (J'1, J3, mgℓ)); θ in [0, π] (0 or π only with θ̇ = 0, the sleeping top); finite rates whose
+    squares times J'1/mgℓ fit float64 (else ResultOverflowError).
 
     Parameters
     ----------
@@ -1097,6 +1125,9 @@ class HeavySymmetricTop:
 @finite_result
 def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.0, 0.0, 0.0)):
     """Sphere rolling without slipping on a rough incline (Example 5.1).
+
+    Domain: m, R, J, g > 0, β in [0, π/2], finite t, x0, y0, ω0; a result beyond float64 raises
+    ResultOverflowError.
 
     X down the incline, Z the plane's normal.  Returns ``(x, y, omega)`` with
     x(t) = x0 + R ω_y(0) t + ½ R α t², α = R m g sin β/(J + mR²) (5.15), (5.22),
