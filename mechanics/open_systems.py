@@ -170,6 +170,9 @@ def _option(after_burn_out: str) -> str:
 def thrust(q, u_rel) -> np.ndarray:
     """Force on an open system from an outflow q with relative velocity u_rel: −q u.
 
+    Domain: q ≥ 0 (else NegativeMassError), finite u_rel (..., 3); a result beyond float64 raises
+    ResultOverflowError.
+
     Parameters
     ----------
     q : array_like, shape (...)
@@ -197,6 +200,9 @@ def thrust(q, u_rel) -> np.ndarray:
 @finite_result
 def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.ndarray:
     """dp_o/dt of an open system, the momentum principle (7.19).
+
+    Domain: finite F_e (..., 3); each flow q ≥ 0 of shape (..., n) given together with its
+    velocities (..., n, 3) (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     dp_o/dt = F_e − Σ_a q⁻_a v⁻_a + Σ_b q⁺_b v⁺_b, velocities absolute (inertial).
 
@@ -226,6 +232,9 @@ def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.nd
 def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
     """dm/dt = Σ q⁺ − Σ q⁻ (7.21).  ``q_out``, ``q_in`` of shape (..., n); None for none.
 
+    Domain: flows q ≥ 0 (else NegativeMassError), the last axis listing the flows; a result beyond
+    float64 raises ResultOverflowError.
+
     Examples
     --------
     >>> float(mass_rate(q_out=[1.0, 0.5], q_in=2.0))
@@ -242,6 +251,9 @@ def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
 @finite_result
 def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=None):
     """a_o = (F_e − Σ q⁻ u⁻ + Σ q⁺ u⁺)/m, (7.25), velocities relative to the system.
+
+    Domain: m > 0, finite F_e (..., 3), flows as :func:`momentum_rate`; a result beyond float64
+    raises ResultOverflowError.
 
     Parameters
     ----------
@@ -272,6 +284,9 @@ def angular_momentum_rate(
     M_e, *, about, q_out=None, r_out=None, v_out=None, q_in=None, r_in=None, v_in=None
 ) -> np.ndarray:
     """dL_o/dt about a fixed point A of an open system, (7.35).
+
+    Domain: finite M_e and about (..., 3); each flow q ≥ 0 given with its points and velocities
+    (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     dL_o/dt = M_e − Σ_a (r⁻_a − A) × q⁻_a v⁻_a + Σ_b (r⁺_b − A) × q⁺_b v⁺_b.
 
@@ -343,6 +358,8 @@ def _phi(x: np.ndarray) -> np.ndarray:
 def burn_out_time(*, m_f, q) -> np.ndarray:
     """T = m_f/q, the time at which the fuel m_f = q T is gone (Example 7.2).
 
+    Domain: m_f ≥ 0, q > 0; a result beyond float64 raises ResultOverflowError.
+
     Examples
     --------
     >>> float(burn_out_time(m_f=600.0, q=4.0))
@@ -407,6 +424,9 @@ def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
 def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
     """m(t) = m_0 − q t (7.27) up to burn-out, m_0 − m_f after (with ``"coast"``).
 
+    Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0; t beyond burn-out only with after_burn_out='coast'
+    (else OutOfDomainError).
+
     Examples
     --------
     >>> float(rocket_mass(10.0, m_0=1000.0, q=5.0, m_f=600.0))
@@ -431,6 +451,11 @@ def _burn_height(t, m0, q, u, g):
 @finite_result
 def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
     """Vertical velocity of the rocket of Example 7.2, (7.30).
+
+    Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
+    OutOfDomainError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
+    OutOfDomainError; any other option: UnknownOptionError); a result beyond float64 raises
+    ResultOverflowError.
 
     v(t) = −g t − u log(1 − q t/m_0), computed as u·(−log1p(−q t/m_0)) − g t.
 
@@ -488,6 +513,11 @@ def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> n
 def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
     """Height z(t) of the rocket of Example 7.2: the integral of (7.30), z(0) = 0.
 
+    Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
+    OutOfDomainError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
+    OutOfDomainError; any other option: UnknownOptionError); a result beyond float64 raises
+    ResultOverflowError.
+
     z(t) = u t φ(x) − g t²/2,  x = q t/m_0,
     φ(x) = (1/x)∫₀ˣ −log(1 − y) dy = 1 + (1 − x) log(1 − x)/x = x/2 + x²/6 + x³/12 + …
 
@@ -531,6 +561,9 @@ def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.
 def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
     """Speed of a jet plane taking in still air at q and expelling it at w relative.
 
+    Domain: t ≥ 0, m > 0, q > 0, w > 0, finite v_0; a result beyond float64 raises
+    ResultOverflowError.
+
     From (7.19) with inflow velocity 0 and outflow velocity v − w (Problem 7.1):
     m dv/dt = q (w − v), so v(t) = w + (v_0 − w) e^{−q t/m}, evaluated as
     v_0 e^{−k} − w expm1(−k), k = q t/m (no cancellation for v_0, w ≥ 0).
@@ -562,6 +595,8 @@ def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
 @finite_result
 def pipe_bend_force(q, v, angle) -> np.ndarray:
     """Force that holds a pipe bend at rest: F = q (v_out − v_in), from (7.19).
+
+    Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -605,6 +640,8 @@ def pipe_bend_force(q, v, angle) -> np.ndarray:
 def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
     """|F| = 2 q |v| |sin(α/2)| for the pipe bend of :func:`pipe_bend_force`.
 
+    Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
+
     Examples
     --------
     >>> bool(np.isclose(pipe_bend_force_magnitude(1.0, 1.0, np.pi / 2), np.sqrt(2.0)))
@@ -619,6 +656,9 @@ def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
 @finite_result
 def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
     """Force from a falling chain on a table when a length x has landed (Problem 7.4).
+
+    Domain: lam > 0, g > 0, ell > 0, 0 ≤ x ≤ ell, h ≥ 0 (else OutOfDomainError); a result beyond
+    float64 raises ResultOverflowError.
 
     A uniform chain (λ per length, length ℓ) hangs with its lower end at height h
     and is released from rest.  The hanging part falls freely; when x has landed
@@ -673,6 +713,9 @@ def _carousel_inputs(t, J_0, q, v, r, R):
 def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
     """φ̇(t) of the carousel under fire, Example 7.3: the solution of (7.39).
 
+    Domain: t ≥ 0, J_0 > 0, q ≥ 0, R > 0, |r| ≤ R (else OutOfDomainError), finite v and phidot_0; a
+    result beyond float64 raises ResultOverflowError.
+
     d/dt (J φ̇) = −r q v with J(t) = J_0 + q R² t (7.36)–(7.38) integrates to
     φ̇(t) = (J_0 φ̇_0 − r q v t)/(J_0 + q R² t) → −r v/R² (7.40) as t → ∞.
 
@@ -706,6 +749,9 @@ def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray
 def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
     """φ̈(t) from (7.39): (−r q v − q R² φ̇)/(J_0 + q R² t), φ̇ from the solution.
 
+    Domain: as :func:`carousel_angular_velocity`; a result beyond float64 raises
+    ResultOverflowError.
+
     Equals −q (r v + R² φ̇_0) J_0/J(t)²; negative at t = 0 for φ̇_0 = 0.
 
     Examples
@@ -723,6 +769,9 @@ def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.nda
 def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
     """φ̇_lim = −r v/R² (7.40): the bullets then arrive with the rim's angular velocity.
 
+    Domain: R > 0, |r| ≤ R (else OutOfDomainError), finite v; a result beyond float64 raises
+    ResultOverflowError.
+
     Examples
     --------
     >>> float(carousel_limit_angular_velocity(v=400.0, r=1.5, R=2.0))
@@ -737,6 +786,9 @@ def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
 @finite_result
 def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     """Spin-up of a wheel by rockets on its rim that eject mass tangentially.
+
+    Domain: t ≥ 0, J_0, q, u, r > 0 with q r² t < J_0 (else OutOfDomainError); a result beyond
+    float64 raises ResultOverflowError.
 
     The expelled mass (total flow q, exhaust speed u relative to the rocket) sits at
     radius r, so J(t) = J_0 − q r² t, and (7.35) gives J dω/dt = q r u (Problem
@@ -760,6 +812,8 @@ def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
 @finite_result
 def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
     """Time for the rim rockets of :func:`rim_rocket_angular_velocity` to reach ω.
+
+    Domain: ω ≥ 0, J_0, q, u, r > 0; a result beyond float64 raises ResultOverflowError.
 
     t = −J_0 expm1(−r ω/u)/(q r²) (the inverse; expm1 keeps small r ω/u accurate).
 

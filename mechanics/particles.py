@@ -247,6 +247,8 @@ def _finite_result(x: np.ndarray, what: str) -> np.ndarray:
 def check_masses(m, name: str = "m") -> np.ndarray:
     """Return masses ``(..., N)`` as a finite float64 array, all ≥ 0, N ≥ 1.
 
+    Domain: any finite m ≥ 0 of shape (..., N), N ≥ 1 (else NegativeMassError or ShapeError).
+
     Raises
     ------
     ShapeError
@@ -327,6 +329,9 @@ def _nonzero_mass(M: np.ndarray) -> None:
 def total_mass(m) -> np.ndarray:
     """Total mass m = Σ m_j (1.4), compensated.
 
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError); a result beyond float64 raises ResultOverflowError.
+
     Parameters
     ----------
     m : array_like, shape (..., N)
@@ -349,6 +354,11 @@ def total_mass(m) -> np.ndarray:
 @finite_result
 def centre_of_mass(m, r) -> np.ndarray:
     """Centre of mass r_G = Σ m_j r_j / Σ m_j (1.5).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a total mass > 0 (else ZeroTotalMassError); any magnitudes (the sums are
+    scaled by powers of two).
 
     Parameters
     ----------
@@ -397,6 +407,10 @@ def centre_of_mass(m, r) -> np.ndarray:
 def centre_of_mass_velocity(m, v) -> np.ndarray:
     """Velocity of the centre of mass v_G = Σ m_j v_j / Σ m_j (1.6).
 
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a total mass > 0 (else ZeroTotalMassError).
+
     Examples
     --------
     p = m v_G (1.7), with both sides computed independently:
@@ -412,6 +426,10 @@ def centre_of_mass_velocity(m, v) -> np.ndarray:
 @finite_result
 def momentum(m, v) -> np.ndarray:
     """Linear momentum p = Σ m_j v_j (1.3), compensated.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -437,6 +455,11 @@ def _offsets(r: np.ndarray, A: np.ndarray, name: str) -> np.ndarray:
 @finite_result
 def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
     """Angular momentum about the point A: L_A = Σ AP_j × m_j v_j (1.8).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about (and about_velocity) (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -494,6 +517,11 @@ def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
 def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of L_A (1.12): L_A = L_G + AG × m v_G.
 
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about (..., 3); a total mass > 0 (else ZeroTotalMassError); a result
+    beyond float64 raises ResultOverflowError.
+
     Returns
     -------
     L_G : ndarray, shape (..., 3)
@@ -538,6 +566,11 @@ def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.nd
 def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
     """The extra term v_B × p of the principle for a moving base point (1.50).
 
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about_velocity (..., 3); a result beyond float64 raises
+    ResultOverflowError.
+
     dL_B/dt + v_B × p = M_B, with L_B the book's angular momentum about B
     (absolute velocities, :func:`angular_momentum` without ``about_velocity``).
     It vanishes when p = 0 or v_B ∥ v_G, in particular for B = G (1.51).
@@ -558,6 +591,11 @@ def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
 @finite_result
 def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
     """dL_B/dt of the book's L_B (1.8) for a base point B moving with velocity v_B.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about and about_velocity (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     dL_B/dt = Σ (v_j − v_B) × m_j v_j + Σ BP_j × m_j a_j = −v_B × p + Σ BP_j × m_j a_j,
     the time derivative in (1.47)–(1.50) (the term v_j × m_j v_j vanishes).
@@ -605,6 +643,9 @@ def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
 def moment_of_forces(r, F, *, about) -> np.ndarray:
     """Moment of forces F_j acting at r_j about A: M_A = Σ (r_j − r_A) × F_j (3.63).
 
+    Domain: finite r and F of shape (..., N, 3), finite about (..., 3); a result beyond float64
+    raises ResultOverflowError.
+
     Parameters
     ----------
     r, F : array_like, shape (..., N, 3)
@@ -650,6 +691,9 @@ def _pair_forces(f) -> np.ndarray:
 def internal_forces(f) -> np.ndarray:
     """Internal force on each particle, F^i_k = Σ_j f_kj (1.18).
 
+    Domain: finite f of shape (..., N, N, 3) (f[k, j] the force on k from j; any, Newton's third law
+    is not required); a result beyond float64 raises ResultOverflowError.
+
     Parameters
     ----------
     f : array_like, shape (..., N, N, 3)
@@ -674,6 +718,9 @@ def internal_forces(f) -> np.ndarray:
 @finite_result
 def internal_moment(r, f) -> np.ndarray:
     """The moment of the internal forces, M^i = ½ Σ_kj r_jk × f_jk (1.31).
+
+    Domain: finite r (..., N, 3) and f (..., N, N, 3) with the same N (else ShapeError); a result
+    beyond float64 raises ResultOverflowError.
 
     Equal to Σ_j AP_j × F^i_j about any A when f obeys Newton's third law
     (1.28)–(1.31); zero when, in addition, each f_jk ∥ r_jk (central forces).
@@ -715,6 +762,10 @@ def internal_moment(r, f) -> np.ndarray:
 def kinetic_energy(m, v) -> np.ndarray:
     """Kinetic energy T = ½ Σ m_j v_j · v_j (3.2), compensated.
 
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a result beyond float64 raises ResultOverflowError.
+
     Examples
     --------
     Koenig's theorem (3.7): T = T' + ½ m v_G².
@@ -737,6 +788,11 @@ def kinetic_energy(m, v) -> np.ndarray:
 @finite_result
 def kinetic_energy_decomposition(m, v) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of the kinetic energy (3.7): T = T' + ½ m v_G².
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a total mass > 0 (else ZeroTotalMassError); a result beyond float64 raises
+    ResultOverflowError.
 
     Returns
     -------
@@ -779,6 +835,9 @@ def _unit(axis, lead) -> np.ndarray:
 def axial_component(x, *, axis) -> np.ndarray:
     """The component x · e of a vector along the fixed direction e (1.65).
 
+    Domain: finite x (..., 3) and a nonzero axis (..., 3) (else ZeroAxisError); a result beyond
+    float64 raises ResultOverflowError.
+
     ``axis`` need not be unit: it is normalised.
 
     Examples
@@ -815,6 +874,10 @@ def _reference_direction(e: np.ndarray) -> np.ndarray:
 @finite_result
 def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
     """Cylindrical coordinates of points about the axis through A along e (1.68).
+
+    Domain: finite r, v (..., 3), about (..., 3), a nonzero axis (else ZeroAxisError); no point on
+    the axis (ρ = 0: else OutOfDomainError, φ is undefined); a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -878,6 +941,11 @@ def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
 def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
     """J_z = Σ m_j ρ_j² (1.71), ρ_j the distance of particle j from the axis.
 
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about (..., 3), a nonzero axis (else ZeroAxisError); a result beyond
+    float64 raises ResultOverflowError.
+
     Examples
     --------
     >>> float(moment_of_inertia_about_axis([2.0, 1.0], [[1.0, 0.0, 5.0], [0.0, 3.0, 0.0]],
@@ -897,6 +965,11 @@ def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
 @finite_result
 def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
     """ω_av = Σ m_j ρ_j² ϕ̇_j / Σ m_j ρ_j² = L_Az / J_z (1.70), (1.72).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about, a nonzero axis; J_z > 0 (not all mass on the axis: else
+    OutOfDomainError); a result beyond float64 raises ResultOverflowError.
 
     Raises
     ------
@@ -930,6 +1003,9 @@ def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
 @finite_result
 def masses_from_density(rho, *, cell_volume) -> np.ndarray:
     """Masses dm = ρ dV of a density sampled at the centres of equal cells (1.62–1.64).
+
+    Domain: finite rho ≥ 0 of shape (..., N) (else NegativeMassError), a scalar cell_volume > 0
+    (else NonPositiveParameterError); a result beyond float64 raises ResultOverflowError.
 
     The continuous distributions of section 1.4 are handled as particle systems
     by the midpoint rule: ρ sampled at the centre of each cell of volume dV
@@ -965,6 +1041,9 @@ def masses_from_density(rho, *, cell_volume) -> np.ndarray:
 def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
     """r_G = ∫ r ρ dV / ∫ ρ dV (1.62) by the midpoint rule on equal cells.
 
+    Domain: rho and cell_volume as :func:`masses_from_density`, finite points (..., N, 3); rho not
+    zero everywhere (else ZeroTotalMassError).
+
     Examples
     --------
     A rod on [0, 2] with density ρ(x) = x: r_G = ∫x² dx / ∫x dx = (8/3)/2 = 4/3.
@@ -991,6 +1070,9 @@ def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
 def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
     """p = ∫ v ρ dV (1.63) by the midpoint rule on equal cells.
 
+    Domain: rho and cell_volume as :func:`masses_from_density`, finite velocity (..., N, 3); a
+    result beyond float64 raises ResultOverflowError.
+
     Examples
     --------
     A uniform disc of mass 1 turning rigidly about its centre has p = 0:
@@ -1010,6 +1092,9 @@ def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
 @finite_result
 def continuous_angular_momentum(rho, points, velocity, *, cell_volume, about) -> np.ndarray:
     """L_A = ∫ (r − r_A) × v ρ dV (1.64) by the midpoint rule on equal cells.
+
+    Domain: rho and cell_volume as :func:`masses_from_density`, finite points and velocity (..., N,
+    3), finite about (..., 3); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------

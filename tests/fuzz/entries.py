@@ -393,10 +393,10 @@ _add(
 _add(
     _f + "streamline",
     Entry(
-        {"v": _field_v, "r_0": V, "s": (0.0, 0.5, 1.0)},
+        {"v": _field_v, "r_0": V, "s": (0.0, 0.5, 1.0), "rtol": 1e-10},
         {"r_0": (3,), "s": (3,)},
-        bad={"v": [_nan_field]},
-        only=("r_0", "s", "v"),
+        bad={"v": [_nan_field], "s": [(0.0, 1.0, 0.5)], "rtol": [0.0, -1.0, 1e-20, 1.5]},
+        only=("r_0", "s", "v", "rtol"),
     ),
 )
 _add(

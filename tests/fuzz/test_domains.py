@@ -25,10 +25,6 @@ NOT_YET: dict[str, str] = {
     "mechanics.impact": "owned by the mutation-testing helper",
     "mechanics.inertia": "owned by the mutation-testing helper",
     "mechanics.rotation": "owned by the mutation-testing helper",
-    "mechanics.fluids": "not yet written (issue 16, part 4, left for a next step)",
-    "mechanics.integrators": "not yet written (issue 16, part 4, left for a next step)",
-    "mechanics.open_systems": "not yet written (issue 16, part 4, left for a next step)",
-    "mechanics.particles": "not yet written (issue 16, part 4, left for a next step)",
 }
 
 
