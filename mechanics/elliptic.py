@@ -62,8 +62,8 @@ import math
 import numpy as np
 import scipy.special as sc
 
-from ._validate import as_float_array, broadcast_checked
-from .errors import OutOfDomainError
+from ._validate import as_float_array, broadcast_checked, finite_result
+from .errors import OutOfDomainError, ResultOverflowError
 
 __all__ = [
     "ELLIPJ_EPS",
@@ -117,6 +117,18 @@ def _params(m, m1, name: str = "m"):
             f"m1 = {float(m1[i])!r} (m + m1 − 1 = {float(gap[i]):.3g})"
         )
     return m.astype(np.float64), m1.astype(np.float64)
+
+
+def _no_overflow(out, m1, name: str):
+    """``out``, or ResultOverflowError where it is not finite though m < 1 (m1 > 0): there
+    the value is finite, ~φ·2K/π, and only a |φ| near float64's limit overflows it; at
+    m = 1 (m1 = 0) an infinite value is the true one, K(1) = inf (documented)."""
+    bad = ~np.isfinite(out) & (np.broadcast_to(m1, np.shape(out)) > 0)
+    if np.any(bad):
+        raise ResultOverflowError(
+            f"{name}: the integral exceeds float64's range (~1.8e308) for an argument this large"
+        )
+    return out
 
 
 def _quarter_period(p1):
@@ -235,7 +247,7 @@ def _scaled(u, rt):
     return v
 
 
-@broadcast_checked
+@finite_result
 def ellipj(u, m, *, m1=None):
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
 
@@ -427,7 +439,9 @@ def ellipf(phi, m, *, m1=None):
         f = s * sc.elliprf(c * c, d2, 1.0)
     f = np.where(s == 0, 0.0, f)
     kk = np.where(j != 0, _quarter_period(np.maximum(m1, 0.0)), 0.0)
-    return f + 2.0 * j * kk
+    with np.errstate(over="ignore"):
+        out = f + 2.0 * j * kk
+    return _no_overflow(out, m1, "ellipf")
 
 
 def _third_kind_tail(s, c, d2, n):
@@ -485,7 +499,9 @@ def ellippi(n, phi, m, *, m1=None):
     f = ellipf(phi, m, m1=m1)
     tail = _third_kind_tail(s, c, d2, n)
     full = np.where(j != 0, _complete_tail(n, np.maximum(m1, 0.0)), 0.0)
-    return f + tail + 2.0 * j * full
+    with np.errstate(over="ignore"):
+        out = f + tail + 2.0 * j * full
+    return _no_overflow(out, m1, "ellippi")
 
 
 @broadcast_checked
@@ -516,7 +532,9 @@ def ellippi_jacobi(u, n, m, *, m1=None):
     u, n, m, m1 = np.broadcast_arrays(u, n, m, m1)
     shape = u.shape
     u, n, m, m1 = (np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (u, n, m, m1))
-    return (u + _third_kind_excess(u, n, m, m1)).reshape(shape)
+    with np.errstate(over="ignore"):
+        out = (u + _third_kind_excess(u, n, m, m1)).reshape(shape)
+    return _no_overflow(out, 1.0, "ellippi_jacobi")  # m ≤ 1 and n < 1: always finite
 
 
 def _third_kind_excess(u, n, m, m1):
@@ -536,7 +554,8 @@ def _third_kind_excess(u, n, m, m1):
         j, s, snx, cnx, dnx, _ = _reduced(uu, mm, qq)
         tail = _third_kind_tail(s * snx, cnx, dnx * dnx, nn)
         full = np.where(j != 0, _complete_tail(nn, qq), 0.0)
-        out[rest] = tail + 2.0 * j * full
+        with np.errstate(over="ignore"):  # |u| near 1e308: the caller raises
+            out[rest] = tail + 2.0 * j * full
     return out
 
 

@@ -119,7 +119,7 @@ from numbers import Integral
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _d853
 
-from ._validate import as_float_array, as_float_scalar, broadcast_checked
+from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
 from .errors import (
     NonFiniteError,
     NonPhysicalInertiaError,
@@ -341,7 +341,7 @@ def _substep_counts(t: np.ndarray, h: float) -> np.ndarray:
     return np.array([_substeps(a, b, h) for a, b in itertools.pairwise(t.tolist())], np.int64)
 
 
-@broadcast_checked
+@finite_result
 def time_grid(t0, h, n) -> np.ndarray:
     """The grid t0 + k h, k = 0 … n (each entry rounded once, never accumulated).
 

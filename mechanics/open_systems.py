@@ -832,6 +832,7 @@ def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
     return (
         -_positive(J_0, "J_0")
         * np.expm1(-ra * w / _positive(u, "u"))
-        / (_positive(q, "q") * ra)
+        / _positive(q, "q")  # q·r could underflow to 0: divide one at a time
+        / ra
         / ra
     )

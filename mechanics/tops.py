@@ -604,7 +604,7 @@ def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityRe
     w = as_float_array(omega, "omega")
     if w.shape != ():
         raise ShapeError("omega must be a scalar")
-    if axis not in (1, 2, 3):
+    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)) or axis not in (1, 2, 3):
         raise UnknownOptionError(f"axis must be 1, 2 or 3; got {axis!r}")
     j = axis - 1
     i, k = (j + 1) % 3, (j + 2) % 3
@@ -735,6 +735,10 @@ def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     return bool(margin > 0)
 
 
+#: the smallest normal float64: a scaled moment below it has lost its precision
+_TINY = float(np.finfo(float).tiny)
+
+
 def _scaled(*xs: float) -> tuple[float, ...]:
     """xs / 2^k with the largest |x| in [1/2, 1): exact, for homogeneous formulas (the
     rates of a top depend on J'1, L3, m g ℓ only through their ratios)."""
@@ -776,6 +780,11 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     J_1, mgl, L3 = _scaled(
         _positive(J_1, "J_1"), _positive(m_g_ell, "m_g_ell"), as_float_scalar(L_3, "L_3")
     )
+    if min(J_1, mgl) < _TINY:
+        raise OutOfDomainError(
+            "J_1 or m_g_ell is below 1e-308 of the largest of J_1, |L_3|, m_g_ell: the ratio "
+            "underflows float64 (rescale, or treat the top as free)"
+        )
     c = math.cos(as_float_scalar(theta, "theta"))
     disc = L3 * L3 - 4.0 * J_1 * mgl * c
     if disc < 0:
@@ -786,6 +795,11 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     q = L3 + math.copysign(math.sqrt(disc), L3)
     slow = 2.0 * mgl / q
     fast = q / (2.0 * J_1 * c) if c != 0 else math.copysign(math.inf, L3)
+    if c != 0 and not math.isfinite(fast):
+        raise ResultOverflowError(
+            f"the fast precession rate L3/(J'1 cos θ) exceeds float64's range (J_1 = {J_1!r} "
+            f"scaled, cos θ = {c!r}); rescale (choose units)"
+        )
     return (slow, fast) if abs(slow) <= abs(fast) else (fast, slow)
 
 
@@ -861,6 +875,14 @@ class HeavySymmetricTop:
         self._J1n, self._J3n, self._mgln = (
             math.ldexp(x, -self._k) for x in (self.J_1, self.J_3, self.m_g_ell)
         )
+        for name, x in (("J_1", self._J1n), ("J_3", self._J3n), ("m_g_ell", self._mgln)):
+            if x < _TINY:  # its ratio to the largest is below float64's normal range
+                raise OutOfDomainError(
+                    f"{name} = {getattr(self, name)!r} is below 1e-308 of the largest of J_1, "
+                    f"J_3, m_g_ell ({max(self.J_1, self.J_3, self.m_g_ell)!r}): the ratio "
+                    "underflows float64 (for m_g_ell: gravity is negligible, use "
+                    "FreeSymmetricTop)"
+                )
         vals = {}
         for k, v in dict(
             theta=theta, psi=psi, phi=phi, theta_dot=theta_dot, psi_dot=psi_dot, phi_dot=phi_dot
@@ -932,7 +954,14 @@ class HeavySymmetricTop:
         else:
             from scipy.optimize import brentq  # here: keeps `import mechanics.tops` cheap
 
-            x3 = brentq(f, start, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
+            try:
+                x3 = brentq(f, start, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
+            except RuntimeError:  # no convergence: gravity negligible against the spin
+                raise OutOfDomainError(
+                    f"the turning points of θ are not found (m_g_ell = {self.m_g_ell!r} against "
+                    f"J_1 = {self.J_1!r} and the rates): gravity is negligible here; use "
+                    "FreeSymmetricTop"
+                ) from None
         p = self._coef[1] / beta + x3
         q = -self._coef[3] / (beta * x3)
         disc = math.sqrt(p * p - 4 * q)

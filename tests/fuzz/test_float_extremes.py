@@ -120,3 +120,17 @@ def test_inertia_of_s_J_is_s_times_that_of_J(s, exact):
     )
     R = np.array([[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
     _close(inertia.rotate_inertia(s * JT, R), s * inertia.rotate_inertia(JT, R), exact)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="check_inertia (inertia.py, owned by the mutation-testing helper) overflows in its "
+    "eigenvalue check for a moment near 1e308 (a numpy RuntimeWarning, or LinAlgError with the "
+    "warning masked) instead of accepting the tensor or raising a ResultOverflowError",
+)
+@pytest.mark.parametrize(
+    "moments", [(1.0, 1e308, 1e308), (1e308, 1e308, 1e308)], ids=["1, 1e308, 1e308", "1e308 x3"]
+)
+def test_check_inertia_takes_moments_up_to_float64s_limit(moments):
+    J = np.diag(moments)
+    np.testing.assert_array_equal(inertia.check_inertia(J), J)
