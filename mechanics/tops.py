@@ -808,8 +808,9 @@ class HeavySymmetricTop:
 
     Domain: J'1, J3, m g ℓ > 0 with J3 ≤ 2 J'1, jointly from 1e-300 to 1e300 (the motion depends on
     their ratios: computed from them scaled by a power of two, so s·(J'1, J3, mgℓ) moves exactly as
-    (J'1, J3, mgℓ)); θ in [0, π] (0 or π only with θ̇ = 0, the sleeping top); finite rates whose
-    squares times J'1/mgℓ fit float64 (else ResultOverflowError).
+    (J'1, J3, mgℓ)), each at least 1e-308 of the largest (else OutOfDomainError: for mgℓ,
+    gravity is negligible, a free top); θ in [0, π] (0 or π only with θ̇ = 0, the sleeping
+    top); finite rates whose squares times J'1/mgℓ fit float64 (else ResultOverflowError).
 
     Parameters
     ----------
