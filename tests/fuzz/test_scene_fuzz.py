@@ -244,6 +244,37 @@ def test_a_bad_initial_value_is_refused_naming_it(key, kind):
     assert not problems, "\n".join(problems)
 
 
+#: the fields every body has besides its dimensions, mass and initial state (the rest of
+#: the [[bodies]] schema: spec._parse_body's "allowed" set)
+BODY_FIELDS_BAD = {
+    "name": [3, "", "two words", "1ball", True],
+    "shape": ["torus", 3, ""],
+    "fixed": ["yes", 1, 0.0],
+    "initial": ["at rest", [0.0, 0.0, 1.0], 3],
+}
+
+
+def test_the_body_fields_fuzzed_are_those_of_the_schema():
+    """name, shape, fixed and initial, plus the dimensions of SHAPES and mass, are all
+    the fields a body may have (an unknown one is refused: see below)."""
+    data, _ = base_for("gravity")
+    data["bodies"][0]["fixed"] = False
+    allowed = set(data["bodies"][0]) - {"mass", "radius"}
+    assert allowed == set(BODY_FIELDS_BAD)
+
+
+@pytest.mark.parametrize("field", sorted(BODY_FIELDS_BAD))
+def test_a_bad_body_field_is_refused_naming_it(field):
+    problems = []
+    for bad in BODY_FIELDS_BAD[field]:
+        data, _ = base_for("gravity")
+        data["bodies"][0][field] = bad
+        why = _refused_naming(data, f"bodies[0].{field}")
+        if why:
+            problems.append(f"{field} = {bad!r}: {why}")
+    assert not problems, "\n".join(problems)
+
+
 def test_unknown_tables_bodies_fields_and_initial_keys_are_refused_naming_them():
     cases = []
     d, _ = base_for("gravity")
