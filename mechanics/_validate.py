@@ -8,9 +8,14 @@ first offending entry.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
+import inspect
+import re
+
 import numpy as np
 
-from .errors import NonFiniteError, ShapeError
+from .errors import MechanicsValueError, NonFiniteError, ResultOverflowError, ShapeError
 
 
 def _first_bad(a: np.ndarray) -> str:
@@ -35,3 +40,113 @@ def as_float_array(x, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
     if not np.isfinite(a).all():
         raise NonFiniteError(f"{name} must be finite; found {_first_bad(a)}")
     return a
+
+
+def as_float_scalar(x, name: str) -> float:
+    """Return ``x`` as a finite Python float; a ShapeError naming ``name`` if not a scalar."""
+    a = as_float_array(x, name)
+    if a.shape != ():
+        raise ShapeError(f"{name} must be a scalar; got shape {a.shape}")
+    return float(a)
+
+
+def _nonfinite(x) -> bool:
+    """True if a result (array, number, tuple, dataclass) holds NaN or an infinity."""
+    if isinstance(x, (bool, np.bool_, str, type(None))):
+        return False
+    if isinstance(x, (int, float, np.number)):
+        return not np.isfinite(x)
+    if isinstance(x, np.ndarray):
+        return x.dtype.kind in "fc" and not np.isfinite(x).all()
+    if isinstance(x, (tuple, list)):
+        return any(_nonfinite(v) for v in x)
+    if dataclasses.is_dataclass(x) and not isinstance(x, type):
+        return any(_nonfinite(getattr(x, f.name)) for f in dataclasses.fields(x))
+    return False
+
+
+#: numpy's messages for arrays whose shapes do not broadcast
+_BROADCAST = re.compile(r"could not be broadcast|cannot be broadcast|shape mismatch")
+
+
+def _shapes(sig: inspect.Signature, args, kwargs) -> str:
+    """ "name shape, ..." of the array-like arguments of a call (for a ShapeError)."""
+    try:
+        bound = sig.bind(*args, **kwargs)
+    except TypeError:
+        return "(arguments not bound)"
+    out = []
+    for name, v in bound.arguments.items():
+        if isinstance(v, (np.ndarray, list, tuple, float, int)) and not isinstance(v, bool):
+            try:
+                out.append(f"{name} {np.shape(v)}")
+            except ValueError:  # ragged
+                out.append(f"{name} (ragged)")
+    return ", ".join(out)
+
+
+def finite_result(fn):
+    """Decorator: a function of finite inputs returns a finite result, or raises.
+
+    Every public function validates its inputs as finite (:func:`as_float_array`), so
+    a non-finite result can only come from an intermediate beyond float64's range
+    (~1.8e308: a velocity of 1e300 squared, say; Python's float arithmetic raises
+    ``OverflowError`` there instead). Both are reported as a
+    :class:`~mechanics.errors.ResultOverflowError` naming the function, never as a
+    silent ``inf``/``NaN`` or a numpy ``RuntimeWarning``. Division by zero is not
+    masked: each function refuses its own zero denominators by name. Arguments whose
+    batch axes do not broadcast raise a :class:`~mechanics.errors.ShapeError` listing
+    each argument's shape, not numpy's bare ``ValueError``.
+    """
+
+    sig = inspect.signature(fn)
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            with np.errstate(over="ignore", invalid="ignore"):
+                out = fn(*args, **kwargs)
+        except OverflowError:  # Python float arithmetic (x**2, math.exp) raises instead
+            raise ResultOverflowError(
+                f"{fn.__name__}: an intermediate exceeds float64's range (~1.8e308) for these "
+                "finite inputs; rescale the inputs (choose units)"
+            ) from None
+        except ValueError as exc:
+            if isinstance(exc, MechanicsValueError) or not _BROADCAST.search(str(exc)):
+                raise
+            raise ShapeError(
+                f"{fn.__name__}: the leading (batch) axes of the arguments do not broadcast: "
+                + _shapes(sig, args, kwargs)
+            ) from None
+        if _nonfinite(out):
+            raise ResultOverflowError(
+                f"{fn.__name__}: the result is not finite for finite inputs: an intermediate "
+                "exceeds float64's range (~1.8e308); rescale the inputs (choose units)"
+            )
+        return out
+
+    return wrapper
+
+
+def broadcast_checked(fn):
+    """Decorator: arguments whose batch axes do not broadcast raise a ShapeError.
+
+    For functions whose non-finite results are documented (``ellipk(1) = inf``) and so
+    cannot take :func:`finite_result`: only numpy's bare broadcasting ``ValueError`` is
+    turned into a :class:`~mechanics.errors.ShapeError` listing each argument's shape.
+    """
+    sig = inspect.signature(fn)
+
+    @functools.wraps(fn)
+    def wrapper(*args, **kwargs):
+        try:
+            return fn(*args, **kwargs)
+        except ValueError as exc:
+            if isinstance(exc, MechanicsValueError) or not _BROADCAST.search(str(exc)):
+                raise
+            raise ShapeError(
+                f"{fn.__name__}: the leading (batch) axes of the arguments do not broadcast: "
+                + _shapes(sig, args, kwargs)
+            ) from None
+
+    return wrapper

@@ -62,8 +62,8 @@ import math
 import numpy as np
 import scipy.special as sc
 
-from ._validate import as_float_array
-from .errors import OutOfDomainError
+from ._validate import as_float_array, broadcast_checked, finite_result
+from .errors import OutOfDomainError, ResultOverflowError
 
 __all__ = [
     "ELLIPJ_EPS",
@@ -117,6 +117,18 @@ def _params(m, m1, name: str = "m"):
             f"m1 = {float(m1[i])!r} (m + m1 − 1 = {float(gap[i]):.3g})"
         )
     return m.astype(np.float64), m1.astype(np.float64)
+
+
+def _no_overflow(out, m1, name: str):
+    """``out``, or ResultOverflowError where it is not finite though m < 1 (m1 > 0): there
+    the value is finite, ~φ·2K/π, and only a |φ| near float64's limit overflows it; at
+    m = 1 (m1 = 0) an infinite value is the true one, K(1) = inf (documented)."""
+    bad = ~np.isfinite(out) & (np.broadcast_to(m1, np.shape(out)) > 0)
+    if np.any(bad):
+        raise ResultOverflowError(
+            f"{name}: the integral exceeds float64's range (~1.8e308) for an argument this large"
+        )
+    return out
 
 
 def _quarter_period(p1):
@@ -235,8 +247,13 @@ def _scaled(u, rt):
     return v
 
 
+@finite_result
 def ellipj(u, m, *, m1=None):
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
+
+    Domain: every finite u and every finite m (m > 1 by the reciprocal modulus, m < 0 by the
+    imaginary modulus); results are finite there. The phase is reduced modulo the period 4K: for |u|
+    ≳ 4K/eps (~1e16) it is lost (finite, meaningless values).
 
     Parameters
     ----------
@@ -320,8 +337,12 @@ def ellipj(u, m, *, m1=None):
     return tuple(a.reshape(shape) for a in (sn, cn, dn, am))
 
 
+@broadcast_checked
 def ellipk(m, *, m1=None):
     """Complete elliptic integral of the first kind K(m) for m ≤ 1 (K(1) = inf).
+
+    Domain: every float64 m ≤ 1 (down to −1.8e308: K ~ ln(4√−m)/√−m); K(1) = inf is the one
+    non-finite value, documented; m > 1 raises OutOfDomainError.
 
     Parameters
     ----------
@@ -352,8 +373,11 @@ def ellipk(m, *, m1=None):
     return _quarter_period(np.maximum(m1, 0.0))
 
 
+@broadcast_checked
 def ellipe(m, *, m1=None):
     """Complete elliptic integral of the second kind E(m) for m ≤ 1.
+
+    Domain: every float64 m ≤ 1 (E(1) = 1); m > 1 raises OutOfDomainError.
 
     Computed as 2 R_G(0, m1, 1) (Carlson, DLMF 19.25.1) from the exact m1.
 
@@ -390,8 +414,12 @@ def _amplitude(phi, m, m1, name):
     return j, s, c, np.maximum(delta2, 0.0)
 
 
+@broadcast_checked
 def ellipf(phi, m, *, m1=None):
     """Incomplete elliptic integral of the first kind F(φ|m).
+
+    Domain: any finite φ for m ≤ 1 (φ = ±π/2 at m = 1 is the logarithmic singularity); for m > 1,
+    |φ| ≤ asin(1/√m) (else OutOfDomainError); m down to −1.8e308.
 
     F(φ|m) = sin φ R_F(cos²φ, Δ², 1) on |φ| ≤ π/2, F(φ + jπ) = F(φ) + 2jK.
 
@@ -411,14 +439,21 @@ def ellipf(phi, m, *, m1=None):
         f = s * sc.elliprf(c * c, d2, 1.0)
     f = np.where(s == 0, 0.0, f)
     kk = np.where(j != 0, _quarter_period(np.maximum(m1, 0.0)), 0.0)
-    return f + 2.0 * j * kk
+    with np.errstate(over="ignore"):
+        out = f + 2.0 * j * kk
+    return _no_overflow(out, m1, "ellipf")
 
 
 def _third_kind_tail(s, c, d2, n):
     """(n/3) sin³φ R_J(cos²φ, Δ², 1, 1 − n sin²φ), zero at sin φ = 0."""
     s2 = s * s
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (n / 3.0) * s2 * s * sc.elliprj(c * c, d2, 1.0, 1.0 - n * s2)
+    # R_J is homogeneous of degree −3/2: for m ≪ −1 (Δ² up to 1e300) scale its arguments
+    # by λ = 1/√Δ², which brings them to [1e-150, 1e150] where scipy's R_J stays finite
+    # (unscaled it returns NaN; found by the fuzz suite)
+    lam = 1.0 / np.sqrt(np.maximum(d2, 1.0))
+    with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
+        rj = sc.elliprj(c * c * lam, d2 * lam, lam, (1.0 - n * s2) * lam) * lam * np.sqrt(lam)
+        t = (n / 3.0) * s2 * s * rj
     return np.where((s == 0) | (n == 0), 0.0, t)
 
 
@@ -437,8 +472,13 @@ def _check_characteristic(n, limit_ok):
         )
 
 
+@broadcast_checked
 def ellippi(n, phi, m, *, m1=None):
     """Incomplete elliptic integral of the third kind Π(n; φ|m) (mpmath's order).
+
+    Domain: n sin²φ < 1, and n < 1 beyond |φ| = π/2 (else OutOfDomainError); the φ and m of
+    :func:`ellipf`. For n ≪ −1 (|n| ≳ 1e8) F and the R_J tail cancel: the relative accuracy drops to
+    ~|n|·eps.
 
     Π(n; φ|m) = F(φ|m) + (n/3) sin³φ R_J(cos²φ, Δ², 1, 1 − n sin²φ) on
     |φ| ≤ π/2 (DLMF 19.25.14), continued by Π(n; φ + jπ) = Π(n; φ) + 2jΠ(n|m).
@@ -459,17 +499,19 @@ def ellippi(n, phi, m, *, m1=None):
     f = ellipf(phi, m, m1=m1)
     tail = _third_kind_tail(s, c, d2, n)
     full = np.where(j != 0, _complete_tail(n, np.maximum(m1, 0.0)), 0.0)
-    return f + tail + 2.0 * j * full
+    with np.errstate(over="ignore"):
+        out = f + tail + 2.0 * j * full
+    return _no_overflow(out, m1, "ellippi")
 
 
+@broadcast_checked
 def ellippi_jacobi(u, n, m, *, m1=None):
     """Third-kind integral in Jacobi's form, ∫₀^u dv / (1 − n sn²(v|m)) = Π(n; am u | m).
 
-    For 0 ≤ m ≤ 1 and n < 1.  Evaluated from the reduced sn, cn, dn of :func:`ellipj`
-    (so Δ = dn keeps its relative accuracy near m = 1), u + (n/3) sn³ R_J(cn², dn², 1,
-    1 − n sn²) on the reduced argument plus 2j (Π(n|m) − K); at m = 1 in closed form,
-    u + [n u + √−n atan(√−n tanh u)]/(1 − n) − u for n < 0 (and the atanh form for
-    0 < n < 1).
+    Domain: 0 ≤ m ≤ 1 and n < 1, any finite u (else OutOfDomainError).  Evaluated from the reduced
+    sn, cn, dn of :func:`ellipj` (so Δ = dn keeps its relative accuracy near m = 1), u + (n/3) sn³
+    R_J(cn², dn², 1, 1 − n sn²) on the reduced argument plus 2j (Π(n|m) − K); at m = 1 in closed
+    form, u + [n u + √−n atan(√−n tanh u)]/(1 − n) − u for n < 0 (and the atanh form for 0 < n < 1).
 
     Examples
     --------
@@ -490,7 +532,9 @@ def ellippi_jacobi(u, n, m, *, m1=None):
     u, n, m, m1 = np.broadcast_arrays(u, n, m, m1)
     shape = u.shape
     u, n, m, m1 = (np.ascontiguousarray(a, dtype=np.float64).ravel() for a in (u, n, m, m1))
-    return (u + _third_kind_excess(u, n, m, m1)).reshape(shape)
+    with np.errstate(over="ignore"):
+        out = (u + _third_kind_excess(u, n, m, m1)).reshape(shape)
+    return _no_overflow(out, 1.0, "ellippi_jacobi")  # m ≤ 1 and n < 1: always finite
 
 
 def _third_kind_excess(u, n, m, m1):
@@ -510,7 +554,8 @@ def _third_kind_excess(u, n, m, m1):
         j, s, snx, cnx, dnx, _ = _reduced(uu, mm, qq)
         tail = _third_kind_tail(s * snx, cnx, dnx * dnx, nn)
         full = np.where(j != 0, _complete_tail(nn, qq), 0.0)
-        out[rest] = tail + 2.0 * j * full
+        with np.errstate(over="ignore"):  # |u| near 1e308: the caller raises
+            out[rest] = tail + 2.0 * j * full
     return out
 
 

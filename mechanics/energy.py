@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 from scipy.integrate import simpson
 
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     NegativeMassError,
     NonPhysicalInertiaError,
@@ -78,8 +78,13 @@ def _nonneg(x, name: str, error=NegativeMassError) -> np.ndarray:
 # ------------------------------------------------------------ kinetic energy
 
 
+@finite_result
 def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     """Kinetic energy of a rigid body, T = ½ m v_G² + ½ ωᵀ J_G ω (3.7), (3.24).
+
+    Domain: m ≥ 0 (else NegativeMassError), finite v_G and omega (..., 3), J_G a physical inertia
+    tensor (``check_inertia``, singular allowed: a rod); a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -116,8 +121,12 @@ def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     return _finite_result(trans + rot, "the kinetic energy")
 
 
+@finite_result
 def kinetic_energy_fixed_axis(J_axis, omega) -> np.ndarray:
     """T = ½ J φ̇² for rotation about a fixed axis (3.26), (3.27), (3.30).
+
+    Domain: J_axis ≥ 0 (else NonPhysicalInertiaError), any finite omega; a result beyond float64
+    raises ResultOverflowError.
 
     Parameters
     ----------
@@ -153,8 +162,12 @@ def _pair(F, v, names=("F", "v")) -> tuple[np.ndarray, np.ndarray]:
     return FF, vv
 
 
+@finite_result
 def power(F, v) -> np.ndarray:
     """Power of a system of forces, P = Σ_k F_k · v_k (3.1), compensated.
+
+    Domain: finite F and v of shape (..., N, 3) (N forces; one force is (1, 3)); a result beyond
+    float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -181,8 +194,12 @@ def power(F, v) -> np.ndarray:
     return _finite_result(P, "the power")
 
 
+@finite_result
 def work_from_power(P, t) -> np.ndarray:
     """W_12 = ∫ P dt (3.36) from samples of the power, by composite Simpson.
+
+    Domain: t of shape (K,), K ≥ 2, strictly increasing (else NonPositiveParameterError), finite P
+    of shape (..., K); a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -215,8 +232,12 @@ def work_from_power(P, t) -> np.ndarray:
     return _finite_result(np.asarray(simpson(PP, x=tt, axis=-1)), "the work")
 
 
+@finite_result
 def work_along_path(F, r) -> np.ndarray:
     """Work of a force along a sampled path, W = ∫ F · dr (3.38), by the trapezoid rule.
+
+    Domain: finite F and r of shape (..., K, 3) with K ≥ 2 samples (else ShapeError); a result
+    beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -256,8 +277,11 @@ def work_along_path(F, r) -> np.ndarray:
     return _finite_result(W, "the work")
 
 
+@finite_result
 def work_of_couple(M, dphi) -> np.ndarray:
     """Work of a constant moment M over a rotation δφ about a fixed axis: W = M · δφ (3.70).
+
+    Domain: finite M and dphi of shape (..., 3); a result beyond float64 raises ResultOverflowError.
 
     For a fixed rotation axis e_z, δφ = Δφ e_z and W = M_z Δφ; the work of a
     couple is independent of the base point, because a couple has zero
@@ -272,8 +296,12 @@ def work_of_couple(M, dphi) -> np.ndarray:
     return _finite_result(np.einsum("...i,...i->...", MM, dd), "the work")
 
 
+@finite_result
 def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
     """Power of the forces on a rigid body, P = F · v_A + M_A · ω (3.65 per unit time).
+
+    Domain: finite F, M_A, v_A, omega of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     F is the resultant, M_A the moment about the body point A moving with v_A;
     the result does not depend on which body point is chosen.
@@ -296,8 +324,12 @@ def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
 # ------------------------------------------------------------------ potentials
 
 
+@finite_result
 def gravity_potential(m, r, *, g) -> np.ndarray:
     """Potential energy of uniform gravity, Φ^e = −Σ m_k g · r_k = −m g · r_G (3.55)–(3.56).
+
+    Domain: masses m ≥ 0 of shape (..., N) (``check_masses``), finite r (..., N, 3) and g (..., 3);
+    a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -338,8 +370,12 @@ def _spring_args(k, ell_0, r_1, r_2):
     return kk, ll, d, np.linalg.norm(d, axis=-1)
 
 
+@finite_result
 def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Φ = ½ k (|r_1 − r_2| − ℓ_0)² of a linear spring between two points (3.53).
+
+    Domain: k ≥ 0 and ℓ_0 ≥ 0 (else OutOfDomainError), finite r_1, r_2 (..., 3); a result beyond
+    float64 raises ResultOverflowError.
 
     With ``tension_only=True`` the rubber band of Example 3.3 (3.57): Φ = 0
     while slack, |r_1 − r_2| ≤ ℓ_0.
@@ -358,8 +394,12 @@ def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.nd
     return _finite_result(0.5 * kk * ext * ext, "the spring energy")
 
 
+@finite_result
 def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Force on point 1 from the spring: −∇_1 Φ = −k (|r_12| − ℓ_0) r_12/|r_12| (3.48).
+
+    Domain: k ≥ 0, ℓ_0 ≥ 0, finite r_1 ≠ r_2 (coincident ends: NonPositiveParameterError, the
+    direction is undefined); a result beyond float64 raises ResultOverflowError.
 
     The force on point 2 is its negative (Newton's third law, central).
 
@@ -392,8 +432,12 @@ def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarra
     return _finite_result(-(kk * ext / dist)[..., None] * d, "the spring force")
 
 
+@finite_result
 def torsion_potential(tau_0, phi) -> np.ndarray:
     """Φ(φ) = ½ τ_0 φ² of a torsion spring with moment M = −τ_0 φ (3.71)–(3.72).
+
+    Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
+    ResultOverflowError.
 
     Examples
     --------
@@ -410,8 +454,13 @@ def torsion_potential(tau_0, phi) -> np.ndarray:
     return _finite_result(0.5 * tt * pp * pp, "the torsion energy")
 
 
+@finite_result
 def torsion_moment(tau_0, phi) -> np.ndarray:
-    """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5)."""
+    """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5).
+
+    Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
+    ResultOverflowError.
+    """
     tt = as_float_array(tau_0, "tau_0")
     if (tt < 0).any():
         raise OutOfDomainError(f"torsion constant tau_0 = {tau_0!r} must be >= 0")
@@ -421,8 +470,12 @@ def torsion_moment(tau_0, phi) -> np.ndarray:
 # ------------------------------------------------------- forces that do no work
 
 
+@finite_result
 def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     """Velocity of the body point at the contact C, v_C = v_G + ω × GC (2.73).
+
+    Domain: finite v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Examples
     --------
@@ -436,8 +489,12 @@ def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     return v + np.cross(w, rr)
 
 
+@finite_result
 def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of a contact force acting on the body point C: P = F · (v_G + ω × GC).
+
+    Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Examples
     --------
@@ -451,8 +508,12 @@ def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     return _finite_result(np.einsum("...i,...i->...", FF, vC), "the power")
 
 
+@finite_result
 def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of the contact force (normal force plus static friction) on a rolling body (3.2.2).
+
+    Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Rolling without slipping means the body point at the contact has zero
     velocity, v_G + ω × GC = 0; the power F · v_C is then zero whatever F is.
@@ -471,8 +532,12 @@ def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     return contact_power(F_contact, v_G, omega, r_GC)
 
 
+@finite_result
 def pair_power(N, v_1, v_2) -> np.ndarray:
     """Net power of a force N on body 1 and its reaction −N on body 2: N · (v_1 − v_2).
+
+    Domain: finite N, v_1, v_2 of shape (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Zero when the contact points have the same velocity component along N
     (a normal force between moving bodies), or the same velocity (static

@@ -36,8 +36,14 @@ from collections.abc import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_float_array
-from .errors import NonFiniteError, NonPositiveParameterError, OutOfDomainError, ShapeError
+from ._validate import as_float_array, as_float_scalar, finite_result
+from .errors import (
+    NonFiniteError,
+    NonPositiveParameterError,
+    OutOfDomainError,
+    ShapeError,
+    StepSizeError,
+)
 from .rotation import EPS
 
 __all__ = [
@@ -126,8 +132,13 @@ def _spatial_derivatives(f: Field, r, t, h, name: str, *, vector: bool | None) -
     return np.moveaxis(d, 0, -1)
 
 
+@finite_result
 def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """The velocity gradient G[..., i, j] = ∂v_i/∂x_j at the points ``r``.
+
+    Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
+    field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
+    NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -157,8 +168,13 @@ def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return _spatial_derivatives(v, r, t, h, "v", vector=True)
 
 
+@finite_result
 def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """div v = ∇·v at the points ``r`` (8.6); shape ``(...)``.
+
+    Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
+    field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
+    NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -172,8 +188,13 @@ def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return np.trace(velocity_gradient(v, r, t, h=h), axis1=-2, axis2=-1)
 
 
+@finite_result
 def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """curl v = ∇×v at the points ``r``; shape ``(..., 3)``.
+
+    Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
+    field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
+    NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -192,8 +213,13 @@ def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     )
 
 
+@finite_result
 def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∇f of a scalar field at the points ``r``; shape ``(..., 3)``.
+
+    Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
+    field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
+    NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -205,8 +231,12 @@ def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return _spatial_derivatives(f, r, t, h, "f", vector=False)
 
 
+@finite_result
 def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∂f/∂t at fixed points ``r`` (8.9), for a scalar or a vector field.
+
+    Domain: finite r (..., 3), scalar t, time step h > 0; f finite at t ± h, t ± 2h; a result beyond
+    float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -219,15 +249,20 @@ def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     if h is None:
         step = H_REL * (1.0 + abs(t))
     else:
-        step = float(as_float_array(h, "h"))
+        step = as_float_scalar(h, "h")
         if step <= 0:
             raise NonPositiveParameterError(f"the step h must be > 0; got {h!r}")
     vals = [_call(f, r, t + o * step, "f", vector=None) for o in _OFFSETS]
     return sum(w * val for w, val in zip(_WEIGHTS, vals, strict=True)) / step
 
 
+@finite_result
 def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """The total (material) time derivative (8.12): df/dt = ∂f/∂t + (v·∇) f.
+
+    Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
+    field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
+    NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
     ``f`` may be a scalar field (result ``(...)``) or a vector field (result
     ``(..., 3)``; with ``f = v`` this is the acceleration of a fluid particle, 8.20).
@@ -250,8 +285,12 @@ def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return df_dt + np.einsum("...ij,...j->...i", grad, vel)
 
 
+@finite_result
 def rigid_velocity_field(v_0, omega) -> Field:
     """The velocity field of a rigid motion, v(r) = v(0) + ω × r (8.7).
+
+    Domain: finite v_0 and omega of shape (3,) (else ShapeError); the field takes any finite points
+    (..., 3).
 
     Examples
     --------
@@ -270,8 +309,14 @@ def rigid_velocity_field(v_0, omega) -> Field:
     return field
 
 
+@finite_result
 def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
-    """∂ρ/∂t + ∇·(ρ v) at the points ``r``: zero when mass is conserved (8.18)."""
+    """∂ρ/∂t + ∇·(ρ v) at the points ``r``: zero when mass is conserved (8.18).
+
+    Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
+    field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
+    NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
+    """
     r = _points(r)
 
     def flux(x, s):
@@ -282,15 +327,21 @@ def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray
 
 
 def _positive(x, name: str) -> float:
-    val = float(as_float_array(x, name))
+    val = as_float_scalar(x, name)
     if not val > 0:
         raise NonPositiveParameterError(f"{name} must be > 0; got {x!r}")
     return val
 
 
+@finite_result
 def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarray:
     """∂v/∂t + (v·∇)v − g_vec + ∇p/ρ at the points ``r``: zero for a flow of an ideal
     fluid of constant density ``rho`` under gravity g_vec = −g e_z (8.27).
+
+    Domain: rho > 0, g > 0 (scalars), finite points r (..., 3), a scalar time t, a step h > 0
+    (default H_REL·(1 + |r|∞)); the fields must return finite values of their shape at the stencil
+    points (else NonFiniteError or ShapeError naming them); a result beyond float64 raises
+    ResultOverflowError.
 
     Examples
     --------
@@ -315,9 +366,13 @@ def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarra
     return accel - g_vec + grad_p / rho_0
 
 
+@finite_result
 def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     """½ ρ0 v² + ρ0 g z + p (8.34): constant along a streamline of a steady
     incompressible ideal flow.
+
+    Domain: rho_0 > 0, g > 0, finite v (..., 3), p and z; a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -348,9 +403,22 @@ def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     return 0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
 
 
+#: the smallest rtol of a streamline: scipy's solve_ivp raises it to 100 eps with a warning
+STREAMLINE_MIN_RTOL = 100 * EPS
+
+#: the evaluations of the field a streamline may take (10⁴ DOP853 steps of 12 stages): bounded
+#: time for any input; a span of 1e300 would otherwise integrate for ever
+STREAMLINE_MAX_EVALS = 12 * 10**4
+
+
+@finite_result
 def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     """Points of the streamline dr/ds = v(r, t) through ``r_0`` (8.31), at the
     parameter values ``s`` (time frozen at ``t``; for a steady flow s is time).
+
+    Domain: r_0 of shape (3,), s 1-D strictly increasing (else OutOfDomainError), a scalar t, rtol >
+    0; the field finite along the way (else NonFiniteError); at most ``STREAMLINE_MAX_EVALS`` field
+    evaluations (else StepSizeError: bounded time).
 
     Integrated with scipy's DOP853 at relative tolerance ``rtol``; returns
     ``(len(s), 3)``.
@@ -374,10 +442,27 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     if np.any(np.diff(ss) <= 0):
         raise OutOfDomainError("s must be strictly increasing")
     tt = _time(t)
+    rtol = as_float_scalar(rtol, "rtol")
+    if not STREAMLINE_MIN_RTOL <= rtol < 1.0:
+        raise OutOfDomainError(
+            f"rtol must lie in [{STREAMLINE_MIN_RTOL:.3g}, 1) (scipy's DOP853 floor 100 eps); "
+            f"got {rtol!r}"
+        )
     if ss.size == 1:
         return r0[None, :].copy()
+    calls = [0]
+
+    def rhs(_s, y):
+        calls[0] += 1
+        if calls[0] > STREAMLINE_MAX_EVALS:
+            raise StepSizeError(
+                f"streamline: more than {STREAMLINE_MAX_EVALS} evaluations of v over "
+                f"s = [{ss[0]!r}, {ss[-1]!r}] at rtol = {rtol!r}; shorten s or loosen rtol"
+            )
+        return _call(v, y, tt, "v", vector=True)
+
     sol = solve_ivp(
-        lambda _s, y: _call(v, y, tt, "v", vector=True),
+        rhs,
         (ss[0], ss[-1]),
         r0,
         method="DOP853",
@@ -391,7 +476,10 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
 
 
 def _area_ratio(area_ratio) -> float:
-    a = float(as_float_array(area_ratio, "area_ratio"))
+    aa = as_float_array(area_ratio, "area_ratio")
+    if aa.shape != ():
+        raise ShapeError(f"area_ratio must be a scalar; got shape {aa.shape}")
+    a = float(aa)
     if not 0.0 <= a < 1.0:
         raise OutOfDomainError(
             f"area_ratio = (hole area)/(surface area) must lie in [0, 1); got {area_ratio!r}"
@@ -399,8 +487,12 @@ def _area_ratio(area_ratio) -> float:
     return a
 
 
+@finite_result
 def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
     """Outflow speed u from a small hole at depth ``h`` (Example 8.1, 8.37).
+
+    Domain: h ≥ 0, g > 0, a scalar area_ratio in [0, 1) (else OutOfDomainError); a result beyond
+    float64 raises ResultOverflowError.
 
     u = √(2 g h) with the book's assumption of a still surface (``area_ratio = 0``);
     u = √(2 g h / (1 − a²)) when the surface sinks with speed a u (continuity),
@@ -419,9 +511,13 @@ def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
     return np.sqrt(2.0 * g_mag * hh / ((1.0 - a) * (1.0 + a)))
 
 
+@finite_result
 def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
     """Time for a prismatic tank to empty through a small hole in its bottom
     (quasi-steady Torricelli outflow): T = √(2 h0 (1 − a²)/g) / a.
+
+    Domain: h_0 ≥ 0, g > 0, a scalar area_ratio in (0, 1) (0: the tank never drains; else
+    OutOfDomainError); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -441,8 +537,12 @@ def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
     return np.sqrt(2.0 * hh * (1.0 - a) * (1.0 + a) / g_mag) / a
 
 
+@finite_result
 def tank_level(t, *, h_0, g, area_ratio) -> np.ndarray:
     """Liquid level above a small hole in the bottom of a prismatic tank at times ``t``.
+
+    Domain: t ≥ 0, h_0 ≥ 0, g > 0, a scalar area_ratio in (0, 1) (else OutOfDomainError); after the
+    drain time the level stays 0; a result beyond float64 raises ResultOverflowError.
 
     With Torricelli's outflow u(h) (:func:`torricelli_speed`) and continuity
     A dh/dt = −a u, the level falls as h(t) = (√h0 − c t)², c = a √(g/(2(1 − a²))),

@@ -133,7 +133,7 @@ from numbers import Integral
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _d853
 
-from ._validate import as_float_array
+from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
 from .errors import (
     NonFiniteError,
     NonPhysicalInertiaError,
@@ -335,13 +335,32 @@ def _substeps(ta: float, tb: float, h: float) -> int:
     return max(1, math.ceil((tb - ta) / h * (1.0 - _GRID_RTOL) - slack / h))
 
 
+#: the fixed-step methods' default budget of steps (the adaptive one's max_steps default)
+MAX_STEPS = 10**7
+
+
+def _check_step_budget(t: np.ndarray, h: float, max_steps: int) -> None:
+    """StepSizeError before a fixed-step run that would take more than max_steps steps
+    (a span of 1e300 at h = 0.1 would otherwise run for ever, or overflow the count)."""
+    n = (float(t[-1]) - float(t[0])) / h
+    if not n <= max_steps:  # also catches n = inf
+        raise StepSizeError(
+            f"h = {h!r} over t = [{float(t[0])!r}, {float(t[-1])!r}] takes {n:.3g} steps, "
+            f"more than max_steps = {max_steps}; raise h (or max_steps) or shorten the span"
+        )
+
+
 def _substep_counts(t: np.ndarray, h: float) -> np.ndarray:
     """:func:`_substeps` of every interval of the grid t, as int64."""
     return np.array([_substeps(a, b, h) for a, b in itertools.pairwise(t.tolist())], np.int64)
 
 
+@finite_result
 def time_grid(t0, h, n) -> np.ndarray:
     """The grid t0 + k h, k = 0 … n (each entry rounded once, never accumulated).
+
+    Domain: finite scalars t0 and h > 0, an integer n ≥ 1 (else NonPositiveParameterError); the grid
+    has n + 1 entries in memory.
 
     Examples
     --------
@@ -355,7 +374,7 @@ def time_grid(t0, h, n) -> np.ndarray:
     >>> s == 10000.0
     False
     """
-    t0f = float(as_float_array(t0, "t0"))
+    t0f = as_float_scalar(t0, "t0")
     hf = _positive_scalar(h, "h")
     if isinstance(n, bool) or not isinstance(n, Integral) or n < 1:
         raise NonPositiveParameterError(f"n must be an integer ≥ 1; got {n!r}")
@@ -756,6 +775,10 @@ def _dop853_dense(f, t_old, y_old, y, h, K) -> np.ndarray:
 class DOP853Stepper:
     """Dormand–Prince 8(5,3) one accepted step at a time, with dense output.
 
+    Domain: finite t0 < t_bound, y0 1-D finite with n ≥ 1 entries, rtol > 0 and atol > 0,
+    first_step > 0 and max_step > 0 (inf allowed) (else a MechanicsValueError naming
+    them); rhs must return finite arrays of y0's shape.
+
     The stepping interface of scipy's ``scipy.integrate.DOP853`` (``step``,
     ``dense_output``, ``t``, ``y``, ``t_old``, ``status``) on this module's tableau
     and step control, for a caller that inspects every step, such as a scene
@@ -972,6 +995,10 @@ def integrate(
 ) -> Solution:
     """Integrate dy/dt = rhs(t, y) from y(t[0]) = y0, returning y at the times ``t``.
 
+    Domain: finite y0, t strictly increasing with n ≥ 2 entries, method "rk4" (h > 0, at most
+    max_steps steps: else StepSizeError before any work) or "dop853" (rtol > 0, atol > 0;
+    StepSizeError beyond max_steps or below the rounding of t); rhs finite.
+
     Parameters
     ----------
     rhs : callable
@@ -1048,6 +1075,7 @@ def integrate(
             if h is None:
                 raise NonPositiveParameterError("method 'rk4' needs a step h > 0; got None")
             hh = _positive_scalar(h, "h")
+            _check_step_budget(tt, hh, max_steps)
             out = _rk4_compiled(rhs, y0a, tt, hh) if compiled and not kahan else None
             if out is None:
                 out = _integrate_rk4(f, y0a, tt, hh, bool(kahan))
@@ -1156,8 +1184,12 @@ def _check_moments(J) -> np.ndarray:
     return Jm
 
 
+@broadcast_checked
 def rigid_body_state(L_A, R_A_O) -> np.ndarray:
     """The 12-vector (L_A, rows of ^A R^O) of a free rigid body, shape (..., 12).
+
+    Domain: finite L_A (..., 3) and R_A_O (..., 3, 3) that broadcast (R_A_O is not checked for
+    orthogonality: a drifted state is a state too).
 
     Examples
     --------
@@ -1175,13 +1207,19 @@ def rigid_body_state(L_A, R_A_O) -> np.ndarray:
 
 def rigid_body_parts(y) -> tuple[np.ndarray, np.ndarray]:
     """(L_A, R_A_O) of rigid-body states ``y`` of shape (..., 12) (views, not checked
-    for orthogonality: an integrator's R may have drifted, which is the point)."""
+    for orthogonality: an integrator's R may have drifted, which is the point).
+
+    Domain: any finite y of shape (..., 12) (else ShapeError or NonFiniteError).
+    """
     a = as_float_array(y, "y", (12,))
     return a[..., :3], a[..., 3:].reshape(*a.shape[:-1], 3, 3)
 
 
 def free_rigid_body_rhs(J):
     """The right-hand side rhs(t, y) of the torque-free rigid body for :func:`integrate`.
+
+    Domain: principal moments J > 0 obeying the triangle inequality (else NonPhysicalInertiaError),
+    shape (..., 3); the returned rhs takes finite states.
 
     dL_A/dt = L_A × ω_A (Euler's equations (4.47) with M = 0, ω_i = L_i/J_i) and
     dR_A_O/dt = Ω R_A_O with the book's Ω of ω_A (2.52); ``y`` is the state of
@@ -1212,8 +1250,12 @@ def free_rigid_body_rhs(J):
     return rhs
 
 
+@broadcast_checked
 def so3_exp_step(R_A_O, w_A, h) -> np.ndarray:
     """^A R^O after a time h of constant body angular velocity ω_A: exp(h Ω) ^A R^O.
+
+    Domain: finite R_A_O (..., 3, 3), w_A (..., 3) and h that broadcast; any rotation angle h|ω|
+    (reduced modulo 2π by :func:`~mechanics.rotation.matrix_from_rotvec`).
 
     dR/dt = Ω R with the book's Ω (2.46), (2.52) integrates for constant ω_A to
     exp(h Ω) R, and exp(h Ω) is the passive matrix ^A R^O(h ω_A) of the rotation
@@ -1424,10 +1466,15 @@ def _splitting_compiled(Jm, L, R, tt, hf, batch, scalar, middle, head, compensat
     return ys, int(ns.sum()), done[1] // Jb.shape[0]
 
 
+@broadcast_checked
 def free_rigid_body_splitting(
     J, L0, R0, t, h, *, order: int = 2, compiled: bool = True, compensated: bool = False
 ) -> Solution:
     """Torque-free rigid body by the Lie–Poisson splitting into exact axis rotations.
+
+    Domain: J as :func:`free_rigid_body_rhs`, finite L0, R0 a rotation, t strictly increasing, h > 0
+    with at most ``MAX_STEPS`` steps (else StepSizeError before any work), order in
+    ``SPLITTING_ORDERS`` (else UnknownOptionError).
 
     H = Σ L_i²/(2 J_i) = H1 + H2 + H3.  The flow of H_i alone keeps L_i and
     ω = (L_i/J_i) e_i constant, so over a time τ it turns both L_A and the
@@ -1494,6 +1541,7 @@ def free_rigid_body_splitting(
     R = check_rotation(R0, name="R0")
     tt = _check_times(t)
     hf = _positive_scalar(h, "h")
+    _check_step_budget(tt, hf, MAX_STEPS)
     batch = np.broadcast_shapes(Jm.shape[:-1], L.shape[:-1], R.shape[:-2])
     sched = _SCHEDULES[order]
     head = sched[0][1]  # the schedule is symmetric: it starts and ends with (0, head)

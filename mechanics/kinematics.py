@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     CollinearPointsError,
     GimbalLockError,
@@ -55,8 +55,12 @@ COLLINEAR_RTOL = 1e4 * EPS
 GIMBAL_LOCK_ATOL = 4 * EPS
 
 
+@finite_result
 def omega_matrix_from_vector(w_A) -> np.ndarray:
-    """The angular-velocity matrix (2.52) of the body components ``w_A``."""
+    """The angular-velocity matrix (2.52) of the body components ``w_A``.
+
+    Domain: any finite w_A of shape (..., 3); exact (entries are ±w_i).
+    """
     w = as_float_array(w_A, "w_A", (3,))
     w1, w2, w3 = np.moveaxis(w, -1, 0)
     z = np.zeros_like(w1)
@@ -65,8 +69,11 @@ def omega_matrix_from_vector(w_A) -> np.ndarray:
     )
 
 
+@finite_result
 def vector_from_omega_matrix(Omega) -> np.ndarray:
     """Body components of ω from the angular-velocity matrix (2.52).
+
+    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.
 
     Reads the antisymmetric part, (Ω − Ωᵀ)/2, so that a rounding-level symmetric
     part is ignored rather than folded into ω.
@@ -78,8 +85,13 @@ def vector_from_omega_matrix(Omega) -> np.ndarray:
     )
 
 
+@finite_result
 def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> np.ndarray:
     """ω of the body A relative to O from ^A R^O and its rate, (2.45)–(2.52).
+
+    Domain: R_A_O a rotation (``check_rotation``'s tolerance, else NotARotationError), any finite
+    Rdot_A_O (only the part Rdot R^T antisymmetric is read); basis "A" or "O" (else
+    UnknownOptionError); a product beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -111,8 +123,12 @@ def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> n
     return w_A
 
 
+@finite_result
 def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot) -> np.ndarray:
     """Body components of ω from Euler angles and rates: Euler's kinematic equations (2.69).
+
+    Domain: all six finite and broadcasting; no singularity in this direction (gimbal lock only
+    hides the rates); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -133,8 +149,12 @@ def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot)
     )
 
 
+@finite_result
 def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
     """(ψ̇, θ̇, φ̇) from the body components of ω: (2.69) inverted.
+
+    Domain: finite θ, φ, w_A with |sin θ| > ``GIMBAL_LOCK_ATOL`` (else GimbalLockError: at θ = 0 or
+    π only ψ̇ ± φ̇ is determined); a rate beyond float64 raises ResultOverflowError.
 
     Raises :class:`~mechanics.errors.GimbalLockError` where sin θ = 0, where the
     rates are not determined (only ψ̇ + φ̇ or ψ̇ − φ̇ is).  Close to it the rates
@@ -159,8 +179,12 @@ def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
     return np.stack(np.broadcast_arrays(psidot, thetadot, phidot), axis=-1)
 
 
+@finite_result
 def point_velocity(v_A, omega, r_AB) -> np.ndarray:
     """Velocity of the body point B: v_B = v_A + ω × AB, the connection formula (2.73).
+
+    Domain: any finite v_A, omega, r_AB of shape (..., 3) that broadcast; a result beyond float64
+    raises ResultOverflowError.
 
     Examples
     --------
@@ -182,8 +206,12 @@ def _first_index(mask: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
 
 
+@finite_result
 def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
     """The instantaneous axis of rotation (2.77).
+
+    Domain: finite v_A, omega of shape (..., 3) with omega ≠ 0 (else ZeroAngularVelocityError); a
+    point beyond float64 (|ω| tiny against |v|) raises ResultOverflowError.
 
     Returns
     -------
@@ -249,8 +277,12 @@ def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
         return np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
 
 
+@finite_result
 def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
     """Instantaneous centre of zero velocity in plane motion (2.95).
+
+    Domain: finite r_A, v_A of shape (..., 2) and omega_z ≠ 0 (else ZeroAngularVelocityError); a
+    centre beyond float64 raises ResultOverflowError.
 
     x_C = x_A − ẏ_A/ω, y_C = y_A + ẋ_A/ω, for ω = ω e_z (the text's dots on
     ẋ_A, ẏ_A are lost in the extraction; (2.77) fixes them).
@@ -310,8 +342,13 @@ def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.ldexp(mean, shift)[..., 0, :], np.ldexp(offsets, -k), k + shift
 
 
+@finite_result
 def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """ω and the velocity of the centroid from positions and velocities of N ≥ 3 points.
+
+    Domain: finite r, v of one shape (..., N, 3), N ≥ 3 points not collinear (the spread matrix's
+    eigenvalue ratio > ``COLLINEAR_RTOL``, else CollinearPointsError); offsets and velocities of any
+    magnitude (each is scaled by a power of two).
 
     Solves v_i = u + ω × (r_i − c) in the least-squares sense, c the centroid,
     from the connection formula (2.74).

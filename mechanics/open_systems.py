@@ -52,7 +52,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     NegativeMassError,
     NonPositiveParameterError,
@@ -166,8 +166,12 @@ def _option(after_burn_out: str) -> str:
 # ------------------------------------------------------- the momentum principle
 
 
+@finite_result
 def thrust(q, u_rel) -> np.ndarray:
     """Force on an open system from an outflow q with relative velocity u_rel: −q u.
+
+    Domain: q ≥ 0 (else NegativeMassError), finite u_rel (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -193,8 +197,12 @@ def thrust(q, u_rel) -> np.ndarray:
     return -qa[..., None] * ua
 
 
+@finite_result
 def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.ndarray:
     """dp_o/dt of an open system, the momentum principle (7.19).
+
+    Domain: finite F_e (..., 3); each flow q ≥ 0 of shape (..., n) given together with its
+    velocities (..., n, 3) (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     dp_o/dt = F_e − Σ_a q⁻_a v⁻_a + Σ_b q⁺_b v⁺_b, velocities absolute (inertial).
 
@@ -220,8 +228,12 @@ def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.nd
     return F - _flux(q_out, v_out, "q_out", "v_out") + _flux(q_in, v_in, "q_in", "v_in")
 
 
+@finite_result
 def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
     """dm/dt = Σ q⁺ − Σ q⁻ (7.21).  ``q_out``, ``q_in`` of shape (..., n); None for none.
+
+    Domain: flows q ≥ 0 (else NegativeMassError), the last axis listing the flows; a result beyond
+    float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -236,8 +248,12 @@ def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
     return np.asarray(total)
 
 
+@finite_result
 def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=None):
     """a_o = (F_e − Σ q⁻ u⁻ + Σ q⁺ u⁺)/m, (7.25), velocities relative to the system.
+
+    Domain: m > 0, finite F_e (..., 3), flows as :func:`momentum_rate`; a result beyond float64
+    raises ResultOverflowError.
 
     Parameters
     ----------
@@ -263,10 +279,14 @@ def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=
     return rate / ma[..., None]
 
 
+@finite_result
 def angular_momentum_rate(
     M_e, *, about, q_out=None, r_out=None, v_out=None, q_in=None, r_in=None, v_in=None
 ) -> np.ndarray:
     """dL_o/dt about a fixed point A of an open system, (7.35).
+
+    Domain: finite M_e and about (..., 3); each flow q ≥ 0 given with its points and velocities
+    (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     dL_o/dt = M_e − Σ_a (r⁻_a − A) × q⁻_a v⁻_a + Σ_b (r⁺_b − A) × q⁺_b v⁺_b.
 
@@ -334,8 +354,11 @@ def _phi(x: np.ndarray) -> np.ndarray:
     return np.where(small, series, direct)
 
 
+@finite_result
 def burn_out_time(*, m_f, q) -> np.ndarray:
     """T = m_f/q, the time at which the fuel m_f = q T is gone (Example 7.2).
+
+    Domain: m_f ≥ 0, q > 0; a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -349,6 +372,10 @@ def _first(values, mask) -> float:
     """The first entry of ``values`` where ``mask`` holds (both broadcast)."""
     v, m = np.broadcast_arrays(values, mask)
     return float(v[m].flat[0])
+
+
+#: rocket_mass needs neither u nor g (a None given for them elsewhere is refused by name)
+_UNUSED = object()
 
 
 def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
@@ -367,8 +394,8 @@ def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
         raise OutOfDomainError(
             f"t must be ≥ 0 (the burn starts at t = 0); got {_first(ta, ta < 0)!r}"
         )
-    ua = None if u is None else _positive(u, "u")
-    ga = None if g is None else as_float_array(g, "g")
+    ua = None if u is _UNUSED else _positive(u, "u")
+    ga = None if g is _UNUSED else as_float_array(g, "g")
     if ga is not None and (ga < 0).any():
         raise OutOfDomainError(
             "g is the magnitude of gravity (g = −g e_z) and must be ≥ 0; "
@@ -393,8 +420,12 @@ def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
     return ta, m0, qa, ua, mf, ga, T
 
 
+@finite_result
 def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
     """m(t) = m_0 − q t (7.27) up to burn-out, m_0 − m_f after (with ``"coast"``).
+
+    Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0; t beyond burn-out only with after_burn_out='coast'
+    (else OutOfDomainError).
 
     Examples
     --------
@@ -403,7 +434,7 @@ def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
     >>> float(rocket_mass(500.0, m_0=1000.0, q=5.0, m_f=600.0, after_burn_out="coast"))
     400.0
     """
-    ta, m0, qa, _, mf, _, T = _rocket_inputs(t, m_0, q, None, m_f, None, after_burn_out)
+    ta, m0, qa, _, mf, _, T = _rocket_inputs(t, m_0, q, _UNUSED, m_f, _UNUSED, after_burn_out)
     return np.where(ta > T, m0 - mf, m0 - qa * np.minimum(ta, T))
 
 
@@ -417,8 +448,14 @@ def _burn_height(t, m0, q, u, g):
     return u * t * _phi(q * t / m0) - 0.5 * g * t * t
 
 
+@finite_result
 def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
     """Vertical velocity of the rocket of Example 7.2, (7.30).
+
+    Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
+    OutOfDomainError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
+    OutOfDomainError; any other option: UnknownOptionError); a result beyond float64 raises
+    ResultOverflowError.
 
     v(t) = −g t − u log(1 − q t/m_0), computed as u·(−log1p(−q t/m_0)) − g t.
 
@@ -472,8 +509,14 @@ def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> n
     return v
 
 
+@finite_result
 def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
     """Height z(t) of the rocket of Example 7.2: the integral of (7.30), z(0) = 0.
+
+    Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
+    OutOfDomainError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
+    OutOfDomainError; any other option: UnknownOptionError); a result beyond float64 raises
+    ResultOverflowError.
 
     z(t) = u t φ(x) − g t²/2,  x = q t/m_0,
     φ(x) = (1/x)∫₀ˣ −log(1 − y) dy = 1 + (1 − x) log(1 − x)/x = x/2 + x²/6 + x³/12 + …
@@ -514,8 +557,12 @@ def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.
 # ---------------------------------------------------------- jets, bends, chains
 
 
+@finite_result
 def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
     """Speed of a jet plane taking in still air at q and expelling it at w relative.
+
+    Domain: t ≥ 0, m > 0, q > 0, w > 0, finite v_0; a result beyond float64 raises
+    ResultOverflowError.
 
     From (7.19) with inflow velocity 0 and outflow velocity v − w (Problem 7.1):
     m dv/dt = q (w − v), so v(t) = w + (v_0 − w) e^{−q t/m}, evaluated as
@@ -545,8 +592,11 @@ def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
     return v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
 
 
+@finite_result
 def pipe_bend_force(q, v, angle) -> np.ndarray:
     """Force that holds a pipe bend at rest: F = q (v_out − v_in), from (7.19).
+
+    Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -586,8 +636,11 @@ def pipe_bend_force(q, v, angle) -> np.ndarray:
     return np.stack([F1, F2, np.zeros_like(F1)], axis=-1)
 
 
+@finite_result
 def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
     """|F| = 2 q |v| |sin(α/2)| for the pipe bend of :func:`pipe_bend_force`.
+
+    Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -600,8 +653,12 @@ def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
     return 2.0 * qa * np.abs(va) * np.abs(np.sin(0.5 * a))
 
 
+@finite_result
 def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
     """Force from a falling chain on a table when a length x has landed (Problem 7.4).
+
+    Domain: lam > 0, g > 0, ell > 0, 0 ≤ x ≤ ell, h ≥ 0 (else OutOfDomainError); a result beyond
+    float64 raises ResultOverflowError.
 
     A uniform chain (λ per length, length ℓ) hangs with its lower end at height h
     and is released from rest.  The hanging part falls freely; when x has landed
@@ -652,8 +709,12 @@ def _carousel_inputs(t, J_0, q, v, r, R):
     return ta, J0, qa, va, ra, Ra
 
 
+@finite_result
 def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
     """φ̇(t) of the carousel under fire, Example 7.3: the solution of (7.39).
+
+    Domain: t ≥ 0, J_0 > 0, q ≥ 0, R > 0, |r| ≤ R (else OutOfDomainError), finite v and phidot_0; a
+    result beyond float64 raises ResultOverflowError.
 
     d/dt (J φ̇) = −r q v with J(t) = J_0 + q R² t (7.36)–(7.38) integrates to
     φ̇(t) = (J_0 φ̇_0 − r q v t)/(J_0 + q R² t) → −r v/R² (7.40) as t → ∞.
@@ -684,8 +745,12 @@ def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray
     return (J0 * w0 - ra * qa * va * ta) / (J0 + qa * Ra**2 * ta)
 
 
+@finite_result
 def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
     """φ̈(t) from (7.39): (−r q v − q R² φ̇)/(J_0 + q R² t), φ̇ from the solution.
+
+    Domain: as :func:`carousel_angular_velocity`; a result beyond float64 raises
+    ResultOverflowError.
 
     Equals −q (r v + R² φ̇_0) J_0/J(t)²; negative at t = 0 for φ̇_0 = 0.
 
@@ -700,8 +765,12 @@ def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.nda
     return -qa * (ra * va + Ra**2 * w0) * J0 / J**2
 
 
+@finite_result
 def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
     """φ̇_lim = −r v/R² (7.40): the bullets then arrive with the rim's angular velocity.
+
+    Domain: R > 0, |r| ≤ R (else OutOfDomainError), finite v; a result beyond float64 raises
+    ResultOverflowError.
 
     Examples
     --------
@@ -714,8 +783,12 @@ def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
     return -ra * as_float_array(v, "v") / Ra**2
 
 
+@finite_result
 def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     """Spin-up of a wheel by rockets on its rim that eject mass tangentially.
+
+    Domain: t ≥ 0, J_0, q, u, r > 0 with q r² t < J_0 (else OutOfDomainError); a result beyond
+    float64 raises ResultOverflowError.
 
     The expelled mass (total flow q, exhaust speed u relative to the rocket) sits at
     radius r, so J(t) = J_0 − q r² t, and (7.35) gives J dω/dt = q r u (Problem
@@ -736,8 +809,11 @@ def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     return -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)
 
 
+@finite_result
 def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
     """Time for the rim rockets of :func:`rim_rocket_angular_velocity` to reach ω.
+
+    Domain: ω ≥ 0, J_0, q, u, r > 0; a result beyond float64 raises ResultOverflowError.
 
     t = −J_0 expm1(−r ω/u)/(q r²) (the inverse; expm1 keeps small r ω/u accurate).
 
@@ -754,5 +830,9 @@ def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
         )
     ra = _positive(r, "r")
     return (
-        -_positive(J_0, "J_0") * np.expm1(-ra * w / _positive(u, "u")) / (_positive(q, "q") * ra**2)
+        -_positive(J_0, "J_0")
+        * np.expm1(-ra * w / _positive(u, "u"))
+        / _positive(q, "q")  # q·r could underflow to 0: divide one at a time
+        / ra
+        / ra
     )

@@ -52,7 +52,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, finite_result
 from .errors import (
     NegativeMassError,
     NonPositiveParameterError,
@@ -243,8 +243,11 @@ def _finite_result(x: np.ndarray, what: str) -> np.ndarray:
 # ------------------------------------------------------------------ validation
 
 
+@finite_result
 def check_masses(m, name: str = "m") -> np.ndarray:
     """Return masses ``(..., N)`` as a finite float64 array, all ≥ 0, N ≥ 1.
+
+    Domain: any finite m ≥ 0 of shape (..., N), N ≥ 1 (else NegativeMassError or ShapeError).
 
     Raises
     ------
@@ -322,8 +325,12 @@ def _nonzero_mass(M: np.ndarray) -> None:
 # --------------------------------------------------------------- mass, centre
 
 
+@finite_result
 def total_mass(m) -> np.ndarray:
     """Total mass m = Σ m_j (1.4), compensated.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError); a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -344,8 +351,14 @@ def total_mass(m) -> np.ndarray:
     return _finite_result(_sum(check_masses(m)), "the total mass")
 
 
+@finite_result
 def centre_of_mass(m, r) -> np.ndarray:
     """Centre of mass r_G = Σ m_j r_j / Σ m_j (1.5).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a total mass > 0 (else ZeroTotalMassError); any magnitudes (the sums are
+    scaled by powers of two).
 
     Parameters
     ----------
@@ -390,8 +403,13 @@ def centre_of_mass(m, r) -> np.ndarray:
     return _finite_result(rG, "the centre of mass")
 
 
+@finite_result
 def centre_of_mass_velocity(m, v) -> np.ndarray:
     """Velocity of the centre of mass v_G = Σ m_j v_j / Σ m_j (1.6).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a total mass > 0 (else ZeroTotalMassError).
 
     Examples
     --------
@@ -401,11 +419,17 @@ def centre_of_mass_velocity(m, v) -> np.ndarray:
     >>> (total_mass(m) * centre_of_mass_velocity(m, v)).tolist(), momentum(m, v).tolist()
     ([-4.0, 12.0, 0.0], [-4.0, 12.0, 0.0])
     """
-    return centre_of_mass(m, v)
+    mm, vv = _system(m, v, "v")  # errors name v, not centre_of_mass's r
+    return centre_of_mass(mm, vv)
 
 
+@finite_result
 def momentum(m, v) -> np.ndarray:
     """Linear momentum p = Σ m_j v_j (1.3), compensated.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -428,8 +452,14 @@ def _offsets(r: np.ndarray, A: np.ndarray, name: str) -> np.ndarray:
     return _finite_result(d, f"the offsets r - {name}")
 
 
+@finite_result
 def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
     """Angular momentum about the point A: L_A = Σ AP_j × m_j v_j (1.8).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about (and about_velocity) (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -483,8 +513,14 @@ def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
     return _finite_result(_cross_sum(md, vv), "the angular momentum")
 
 
+@finite_result
 def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of L_A (1.12): L_A = L_G + AG × m v_G.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about (..., 3); a total mass > 0 (else ZeroTotalMassError); a result
+    beyond float64 raises ResultOverflowError.
 
     Returns
     -------
@@ -526,8 +562,14 @@ def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.nd
     return L_G, _finite_result(L_ext, "AG x p")
 
 
+@finite_result
 def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
     """The extra term v_B × p of the principle for a moving base point (1.50).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about_velocity (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     dL_B/dt + v_B × p = M_B, with L_B the book's angular momentum about B
     (absolute velocities, :func:`angular_momentum` without ``about_velocity``).
@@ -546,8 +588,14 @@ def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
     return _finite_result(np.cross(vB, p), "v_B x p")
 
 
+@finite_result
 def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
     """dL_B/dt of the book's L_B (1.8) for a base point B moving with velocity v_B.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about and about_velocity (..., 3); a result beyond float64 raises
+    ResultOverflowError.
 
     dL_B/dt = Σ (v_j − v_B) × m_j v_j + Σ BP_j × m_j a_j = −v_B × p + Σ BP_j × m_j a_j,
     the time derivative in (1.47)–(1.50) (the term v_j × m_j v_j vanishes).
@@ -591,8 +639,12 @@ def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
     return _finite_result(_cross_sum(both_a, both_b), "dL_B/dt")
 
 
+@finite_result
 def moment_of_forces(r, F, *, about) -> np.ndarray:
     """Moment of forces F_j acting at r_j about A: M_A = Σ (r_j − r_A) × F_j (3.63).
+
+    Domain: finite r and F of shape (..., N, 3), finite about (..., 3); a result beyond float64
+    raises ResultOverflowError.
 
     Parameters
     ----------
@@ -635,8 +687,12 @@ def _pair_forces(f) -> np.ndarray:
     return ff
 
 
+@finite_result
 def internal_forces(f) -> np.ndarray:
     """Internal force on each particle, F^i_k = Σ_j f_kj (1.18).
+
+    Domain: finite f of shape (..., N, N, 3) (f[k, j] the force on k from j; any, Newton's third law
+    is not required); a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -659,8 +715,12 @@ def internal_forces(f) -> np.ndarray:
     return _finite_result(_sum(np.moveaxis(ff, -2, -1)), "the internal forces")
 
 
+@finite_result
 def internal_moment(r, f) -> np.ndarray:
     """The moment of the internal forces, M^i = ½ Σ_kj r_jk × f_jk (1.31).
+
+    Domain: finite r (..., N, 3) and f (..., N, N, 3) with the same N (else ShapeError); a result
+    beyond float64 raises ResultOverflowError.
 
     Equal to Σ_j AP_j × F^i_j about any A when f obeys Newton's third law
     (1.28)–(1.31); zero when, in addition, each f_jk ∥ r_jk (central forces).
@@ -698,8 +758,13 @@ def internal_moment(r, f) -> np.ndarray:
 # --------------------------------------------------------------- kinetic energy
 
 
+@finite_result
 def kinetic_energy(m, v) -> np.ndarray:
     """Kinetic energy T = ½ Σ m_j v_j · v_j (3.2), compensated.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -720,8 +785,14 @@ def kinetic_energy(m, v) -> np.ndarray:
     return _finite_result(T, "the kinetic energy")
 
 
+@finite_result
 def kinetic_energy_decomposition(m, v) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of the kinetic energy (3.7): T = T' + ½ m v_G².
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); a total mass > 0 (else ZeroTotalMassError); a result beyond float64 raises
+    ResultOverflowError.
 
     Returns
     -------
@@ -760,8 +831,12 @@ def _unit(axis, lead) -> np.ndarray:
     return np.ldexp(e, -_exponent(e)) / norm
 
 
+@finite_result
 def axial_component(x, *, axis) -> np.ndarray:
     """The component x · e of a vector along the fixed direction e (1.65).
+
+    Domain: finite x (..., 3) and a nonzero axis (..., 3) (else ZeroAxisError); a result beyond
+    float64 raises ResultOverflowError.
 
     ``axis`` need not be unit: it is normalised.
 
@@ -796,8 +871,13 @@ def _reference_direction(e: np.ndarray) -> np.ndarray:
     return c / np.linalg.norm(c, axis=-1, keepdims=True)
 
 
+@finite_result
 def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
     """Cylindrical coordinates of points about the axis through A along e (1.68).
+
+    Domain: finite r, v (..., 3), about (..., 3), a nonzero axis (else ZeroAxisError); no point on
+    the axis (ρ = 0: else OutOfDomainError, φ is undefined); a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
@@ -853,12 +933,18 @@ def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
         )
     phi = np.arctan2(y, x)
     rhodot = (x * xdot + y * ydot) / rho
-    phidot = (x * ydot - y * xdot) / rho**2
+    phidot = (x * ydot - y * xdot) / rho / rho  # not / rho**2: that underflows at rho ~ 1e-160
     return Cylindrical(rho, phi, z, rhodot, phidot, zdot)
 
 
+@finite_result
 def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
     """J_z = Σ m_j ρ_j² (1.71), ρ_j the distance of particle j from the axis.
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about (..., 3), a nonzero axis (else ZeroAxisError); a result beyond
+    float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -876,8 +962,14 @@ def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
     return _finite_result(_dot(mm, rho2), "J_z")
 
 
+@finite_result
 def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
     """ω_av = Σ m_j ρ_j² ϕ̇_j / Σ m_j ρ_j² = L_Az / J_z (1.70), (1.72).
+
+    Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
+    ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
+    (else ShapeError); finite about, a nonzero axis; J_z > 0 (not all mass on the axis: else
+    OutOfDomainError); a result beyond float64 raises ResultOverflowError.
 
     Raises
     ------
@@ -908,8 +1000,12 @@ def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
 # ------------------------------------------------------ continuous distributions
 
 
+@finite_result
 def masses_from_density(rho, *, cell_volume) -> np.ndarray:
     """Masses dm = ρ dV of a density sampled at the centres of equal cells (1.62–1.64).
+
+    Domain: finite rho ≥ 0 of shape (..., N) (else NegativeMassError), a scalar cell_volume > 0
+    (else NonPositiveParameterError); a result beyond float64 raises ResultOverflowError.
 
     The continuous distributions of section 1.4 are handled as particle systems
     by the midpoint rule: ρ sampled at the centre of each cell of volume dV
@@ -932,14 +1028,21 @@ def masses_from_density(rho, *, cell_volume) -> np.ndarray:
     >>> masses_from_density([3.0] * 4, cell_volume=0.5).tolist()
     [1.5, 1.5, 1.5, 1.5]
     """
-    dV = float(as_float_array(cell_volume, "cell_volume"))
+    dVa = as_float_array(cell_volume, "cell_volume")
+    if dVa.shape != ():
+        raise ShapeError(f"cell_volume must be a scalar; got shape {dVa.shape}")
+    dV = float(dVa)
     if not dV > 0:
         raise NonPositiveParameterError(f"cell_volume = {cell_volume!r} must be > 0")
     return check_masses(rho, "rho") * dV
 
 
+@finite_result
 def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
     """r_G = ∫ r ρ dV / ∫ ρ dV (1.62) by the midpoint rule on equal cells.
+
+    Domain: rho and cell_volume as :func:`masses_from_density`, finite points (..., N, 3); rho not
+    zero everywhere (else ZeroTotalMassError).
 
     Examples
     --------
@@ -954,11 +1057,21 @@ def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
     >>> bool(abs(rG[0] - 4 / 3) < 4e-7)
     True
     """
-    return centre_of_mass(masses_from_density(rho, cell_volume=cell_volume), points)
+    mm, pp = _system(masses_from_density(rho, cell_volume=cell_volume), points, "points")
+    if not (mm.sum(axis=-1) > 0).all():
+        raise ZeroTotalMassError(
+            "rho is zero everywhere: the total mass is 0 and the centre of "
+            "mass of a massless body is undefined"
+        )
+    return centre_of_mass(mm, pp)
 
 
+@finite_result
 def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
     """p = ∫ v ρ dV (1.63) by the midpoint rule on equal cells.
+
+    Domain: rho and cell_volume as :func:`masses_from_density`, finite velocity (..., N, 3); a
+    result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -972,11 +1085,16 @@ def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
     >>> bool(np.abs(continuous_momentum(np.ones(len(pts)), vel, cell_volume=0.0025)).max() < 1e-13)
     True
     """
-    return momentum(masses_from_density(rho, cell_volume=cell_volume), velocity)
+    mm, vv = _system(masses_from_density(rho, cell_volume=cell_volume), velocity, "velocity")
+    return momentum(mm, vv)
 
 
+@finite_result
 def continuous_angular_momentum(rho, points, velocity, *, cell_volume, about) -> np.ndarray:
     """L_A = ∫ (r − r_A) × v ρ dV (1.64) by the midpoint rule on equal cells.
+
+    Domain: rho and cell_volume as :func:`masses_from_density`, finite points and velocity (..., N,
+    3), finite about (..., 3); a result beyond float64 raises ResultOverflowError.
 
     Examples
     --------
@@ -993,4 +1111,5 @@ def continuous_angular_momentum(rho, points, velocity, *, cell_volume, about) ->
     True
     """
     m = masses_from_density(rho, cell_volume=cell_volume)
-    return angular_momentum(m, points, velocity, about=about)
+    mm, pp, vv = _system(m, points, "points", particle_arrays=((velocity, "velocity"),))
+    return angular_momentum(mm, pp, vv, about=about)

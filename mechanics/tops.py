@@ -67,12 +67,13 @@ import numpy as np
 import scipy.special as sc
 
 from . import elliptic
-from ._validate import as_float_array
+from ._validate import as_float_array, as_float_scalar, finite_result
 from .errors import (
     GimbalLockError,
     NonPhysicalInertiaError,
     NonPositiveParameterError,
     OutOfDomainError,
+    ResultOverflowError,
     ShapeError,
     UnknownOptionError,
 )
@@ -97,8 +98,12 @@ EPS = float(np.finfo(np.float64).eps)
 # --------------------------------------------------------------------------- helpers
 
 
+@finite_result
 def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
     """Validate principal moments (J1, J2, J3): positive and J_i ≤ J_j + J_k.
+
+    Domain: any finite positive moments (1e-300 … 1e300 and beyond: the check compares moments, it
+    does not square them).
 
     Returns a float64 array of shape (3,).
 
@@ -185,6 +190,12 @@ def _pole_frame(nx, ny, nz):
 class FreeAsymmetricTop:
     """The exact torque-free motion of a rigid body (Euler's equations 4.47 with M = 0).
 
+    Domain: principal moments J > 0 that obey the triangle inequality, of any magnitude from 1e-300
+    to 1e300 (the motion is computed from J scaled by a power of two, so s·J moves exactly as J; L
+    and E are scaled back); any finite ω_0 (0: at rest) while |L| and E fit float64 (else
+    ResultOverflowError); within ~1e-150 |ω| of the separatrix the complementary parameter
+    underflows (OutOfDomainError).
+
     Parameters
     ----------
     J : array_like, shape (3,)
@@ -227,6 +238,7 @@ class FreeAsymmetricTop:
     True
     """
 
+    @finite_result
     def __init__(self, J, omega_0, R_A_O_0=None):
         J = check_principal_moments(J)
         w0 = _vec3(omega_0, "omega_0")
@@ -237,15 +249,25 @@ class FreeAsymmetricTop:
         self.omega_0 = w0.copy()
         self.R_A_O_0 = R0.copy()
 
+        # The motion depends on J only through its ratios: work with J / 2^k (exact, the
+        # largest moment in [1/2, 1)) and scale E, |L| and L back by 2^k at the end, so
+        # moments from 1e-300 to 1e300 give the same ω(t) and attitude (issue 16, part 4)
+        k = math.frexp(float(J.max()))[1]
+        self._scale_exp = k
+        J = np.ldexp(J, -k)
         Jf = [Fraction(float(x)) for x in J]
         wf = [Fraction(float(x)) for x in w0]
         E2 = sum(a * b * b for a, b in zip(Jf, wf, strict=True))
         L2 = sum(a * a * b * b for a, b in zip(Jf, wf, strict=True))
-        self.energy = float(E2 / 2)
-        self.angular_momentum_norm = _fsqrt(L2)
-        self._L2 = float(L2)
-        L_A0 = J * w0
-        self.angular_momentum_space = R0.T @ L_A0
+        self.energy = math.ldexp(float(E2 / 2), k)
+        self._Lm = _fsqrt(L2)  # |L| of the scaled moments
+        self.angular_momentum_norm = math.ldexp(self._Lm, k)
+        self.angular_momentum_space = np.ldexp(R0.T @ (J * w0), k)
+        if not np.isfinite(self.angular_momentum_space).all():
+            raise ResultOverflowError(
+                f"the angular momentum J ω exceeds float64's range (|L| = "
+                f"{self.angular_momentum_norm!r}); rescale J or omega_0 (choose units)"
+            )
 
         # proper signed permutation P to sorted moments: ω' = P ω, J' sorted
         order = np.argsort(J, kind="stable")
@@ -263,7 +285,10 @@ class FreeAsymmetricTop:
         B = J2 * (J2 - J1) * w2**2 + J3 * (J3 - J1) * w3**2  # L² − 2EJ1
         D = J3 * (J3 - J2) * w3**2 - J1 * (J2 - J1) * w1**2  # L² − 2EJ2
         self.separatrix_distance = float(D)
-        """L² − 2 E J_mid, exact to rounding (zero on the separatrix)."""
+        """L² − 2 E J_mid of the moments scaled by 2^-k (the largest in [1/2, 1)): its sign
+        gives the regime, zero on the separatrix; exact to rounding. Multiply by 4^k
+        (``math.ldexp(d, 2 * top._scale_exp)``) for the value in the units given, which
+        overflows float64 for moments beyond ~1e154."""
 
         nz = [i for i in range(3) if ws[i] != 0]
         steady = all(Js[i] == Js[nz[0]] for i in nz) if nz else True
@@ -313,7 +338,7 @@ class FreeAsymmetricTop:
             self._amp = np.array([_fsqrt(a) for a in amp])
             self._lam = _fsqrt(lam2)
             self._n = 0.0 if self._uniform else float(n)
-            self._C = float(C) * self.angular_momentum_norm
+            self._C = float(C) * self._Lm
             self._s, self._sigma = s_circ, sigma
             a1, a2, a3 = self._amp
             if self._branch3:
@@ -430,7 +455,7 @@ class FreeAsymmetricTop:
         sxy = math.hypot(nx, ny)
         sphi, cphi = nx / sxy, ny / sxy
         W = [[cphi, sphi * nz, sphi * sxy], [-sphi, cphi * nz, cphi * sxy], [0.0, -sxy, nz]]
-        Lm = self.angular_momentum_norm
+        Lm = self._Lm  # the scaled moments' |L|: ψ is invariant under J → s J
         if self._uniform:
             psi = Lm * self._uniform_rate * t
         else:
@@ -448,6 +473,7 @@ class FreeAsymmetricTop:
         return np.array(out)
 
     # -- public API
+    @finite_result
     def omega(self, t) -> np.ndarray:
         """Angular velocity ω_A(t), body components, shape ``t.shape + (3,)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -455,6 +481,7 @@ class FreeAsymmetricTop:
         t = as_float_array(t, "t")
         return self._sorted_omega(t) @ self._P  # Pᵀ ω' as a row-vector product
 
+    @finite_result
     def state(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(ω_A(t), ^A R^O(t)) together, sharing the elliptic functions of ω: shapes
         ``t.shape + (3,)`` and ``t.shape + (3, 3)``."""
@@ -467,16 +494,18 @@ class FreeAsymmetricTop:
         ws, red = self._sorted_omega(t, with_reduced=True)
         return ws @ self._P, self._attitude_from(t, ws, red)
 
+    @finite_result
     def angular_momentum_body(self, t) -> np.ndarray:
         """L_A(t) = J ω_A(t)."""
         return self.J * self.omega(t)
 
+    @finite_result
     def precession_angle(self, t, _reduced=None) -> np.ndarray:
         """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind)."""
         t = as_float_array(t, "t")
         if self.regime in ("rest", "steady"):
             return np.zeros_like(t)
-        Lm = self.angular_momentum_norm
+        Lm = self._Lm  # the scaled moments' |L|: ψ is invariant under J → s J
         if self._uniform:
             return Lm * self._uniform_rate * t
         u = self._lam * t + self._u0
@@ -486,6 +515,7 @@ class FreeAsymmetricTop:
             return Lm * t / J3 - (self._C / self._lam) * (G - self._G0)
         return Lm * t / J1 + (self._C / self._lam) * (G - self._G0)
 
+    @finite_result
     def attitude(self, t) -> np.ndarray:
         """The attitude ^A R^O(t), shape ``t.shape + (3, 3)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -510,6 +540,7 @@ class FreeAsymmetricTop:
         Y = (X.reshape(-1, 3) @ self._M0).reshape(X.shape)
         return Y[..., self._front_rows, :] * self._front_signs[:, None]
 
+    @finite_result
     def omega_space(self, t) -> np.ndarray:
         """ω_O(t) = Rᵀ ω_A, space components."""
         R = self.attitude(t)
@@ -523,11 +554,12 @@ class FreeAsymmetricTop:
         K = float(elliptic.ellipk(self.m, m1=self.m1))
         return 4.0 * K / self._lam
 
+    @finite_result
     def poinsot_residuals(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(ω·Jω − 2E, L_O·ω_O − 2E): ω on the inertia ellipsoid and on the invariable
         plane (5.85), (5.90); both zero for the exact motion."""
         w = self.omega(t)
-        ell = (self.J * w * w).sum(-1) - 2.0 * self.energy
+        ell = (self.J * w * w).sum(-1) - 2.0 * self.energy  # self.J: the moments as given
         w_O = np.einsum("...ji,...j->...i", self.attitude(t), w)
         plane = w_O @ self.angular_momentum_space - 2.0 * self.energy
         return ell, plane
@@ -548,8 +580,12 @@ class StabilityResult:
     """The product C_i C_k of (5.102) times ω0² (its sign decides)."""
 
 
+@finite_result
 def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityResult:
     """Stability of rotation at rate ``omega`` about principal ``axis`` (1, 2 or 3), (5.102).
+
+    Domain: J as :func:`check_principal_moments` (only ratios enter: any scale); axis 1, 2 or 3; a
+    finite scalar omega with C_i C_k ω² within float64 (else ResultOverflowError).
 
     δω̈_i = C_i C_k ω0² δω_i with C_i = (J_j − J_k)/J_i cyclic (Euler's equations
     5.91 written as ω̇_i = C_i ω_j ω_k).
@@ -568,7 +604,7 @@ def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityRe
     w = as_float_array(omega, "omega")
     if w.shape != ():
         raise ShapeError("omega must be a scalar")
-    if axis not in (1, 2, 3):
+    if isinstance(axis, bool) or not isinstance(axis, (int, np.integer)) or axis not in (1, 2, 3):
         raise UnknownOptionError(f"axis must be 1, 2 or 3; got {axis!r}")
     j = axis - 1
     i, k = (j + 1) % 3, (j + 2) % 3
@@ -587,6 +623,10 @@ def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityRe
 
 class FreeSymmetricTop:
     """The free symmetric top in closed form (5.2.1, Example 5.2).
+
+    Domain: J1, J3 > 0 with J3 ≤ 2 J1 (the triangle inequality), from 1e-300 to 1e300 (computed from
+    the moments scaled by a power of two: s·J moves exactly as J); any finite ω_0 while |L| and E
+    fit float64 (else ResultOverflowError).
 
     Parameters
     ----------
@@ -615,32 +655,45 @@ class FreeSymmetricTop:
     True
     """
 
+    @finite_result
     def __init__(self, J1, J3, omega_0, R_A_O_0=None):
-        J = check_principal_moments([J1, J1, J3])
+        for x, name in ((J1, "J1"), (J3, "J3")):
+            if as_float_array(x, name).shape != ():
+                raise ShapeError(f"{name} must be a scalar moment of inertia; got {x!r}")
+        J = check_principal_moments([J1, J1, J3], name="(J1, J1, J3)")
         self.J1, self.J3 = float(J[0]), float(J[2])
         w0 = _vec3(omega_0, "omega_0")
         R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
         self.omega_0, self.R_A_O_0 = w0.copy(), R0.copy()
-        Jv = np.array([self.J1, self.J1, self.J3])
-        L_A = Jv * w0
-        self.angular_momentum_norm = float(np.linalg.norm(L_A))
-        self.angular_momentum_space = R0.T @ L_A
-        self.energy = 0.5 * float(Jv @ (w0 * w0))
-        self.body_precession_rate = (self.J3 - self.J1) * float(w0[2]) / self.J1
-        Lm = self.angular_momentum_norm
-        self.space_precession_rate = Lm / self.J1 if Lm > 0 else 0.0
-        self.nutation_angle = math.atan2(self.J1 * math.hypot(w0[0], w0[1]), self.J3 * w0[2])
-        self.spin_rate = (
-            self.space_precession_rate
-            * math.cos(self.nutation_angle)
-            * (self.J1 - self.J3)
-            / self.J3
+        # the motion depends on J1, J3 and ω only through J3/J1 and ω: compute with the
+        # moments scaled by 2^-k (exact) and scale |L|, L and E back (issue 16, part 4)
+        k = math.frexp(max(self.J1, self.J3))[1]
+        j1, j3 = math.ldexp(self.J1, -k), math.ldexp(self.J3, -k)
+        wmax = float(np.abs(w0).max())
+        kw = math.frexp(wmax)[1] if wmax > 0 else 0
+        wn = np.ldexp(w0, -kw)  # ω scaled too for the directions (no under/overflow)
+        Ln = np.array([j1, j1, j3]) * wn
+        self.angular_momentum_norm = math.ldexp(math.hypot(*Ln.tolist()), k + kw)
+        self.angular_momentum_space = np.ldexp(R0.T @ Ln, k + kw)
+        self.energy = math.ldexp(
+            0.5 * math.fsum((np.array([j1, j1, j3]) * wn * wn).tolist()), k + 2 * kw
         )
+        if not np.isfinite(self.angular_momentum_space).all():
+            raise ResultOverflowError(
+                f"the angular momentum J ω exceeds float64's range (|L| = "
+                f"{self.angular_momentum_norm!r}); rescale J1, J3 or omega_0 (choose units)"
+            )
+        self.body_precession_rate = (j3 - j1) * float(w0[2]) / j1
+        # |L|/J1 = |(ω1, ω2, (J3/J1) ω3)|, from the scaled vector
+        self.space_precession_rate = math.ldexp(math.hypot(*Ln.tolist()) / j1, kw)
+        self.nutation_angle = math.atan2(j1 * math.hypot(wn[0], wn[1]), j3 * wn[2])
+        self.spin_rate = self.space_precession_rate * math.cos(self.nutation_angle) * (j1 - j3) / j3
         self._steady = w0[0] == 0 and w0[1] == 0
         if not self._steady:
-            self._W0 = _pole_frame(*(L_A / Lm))
+            self._W0 = _pole_frame(*(Ln / math.hypot(*Ln.tolist())))
             self._M0 = self._W0.T @ R0
 
+    @finite_result
     def omega(self, t) -> np.ndarray:
         """ω_A(t) = (|A| cos(βt + α), |A| sin(βt + α), ω3) (5.44)–(5.45)."""
         t = as_float_array(t, "t")
@@ -648,6 +701,7 @@ class FreeSymmetricTop:
         c, s = np.cos(self.body_precession_rate * t), np.sin(self.body_precession_rate * t)
         return np.stack([w1 * c - w2 * s, w1 * s + w2 * c, np.full_like(c, w3)], axis=-1)
 
+    @finite_result
     def attitude(self, t) -> np.ndarray:
         """^A R^O(t) = R3(φ̇t) R3(φ0) R1(θ0) R3(ψ̇t) R3(ψ0) ^S R^O, L along e^S_3.
 
@@ -662,19 +716,34 @@ class FreeSymmetricTop:
 # --------------------------------------------------------------------------- heavy symmetric top
 
 
+@finite_result
 def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     """Example 5.3: the vertical (sleeping) top is stable iff L3² > 4 J'1 m g ℓ (5.72).
+
+    Domain: J'1, m g ℓ > 0, any finite L3: the criterion is homogeneous and evaluated on the three
+    scaled by a power of two, so no square over- or underflows.
 
     Examples
     --------
     >>> sleeping_top_is_stable(1.0, 2.1, 1.0), sleeping_top_is_stable(1.0, 1.9, 1.0)
     (True, False)
     """
-    J_1 = _positive(J_1, "J_1")
-    mgl = _positive(m_g_ell, "m_g_ell")
-    L3 = float(as_float_array(L_3, "L_3"))
+    J_1, mgl, L3 = _scaled(
+        _positive(J_1, "J_1"), _positive(m_g_ell, "m_g_ell"), as_float_scalar(L_3, "L_3")
+    )
     margin = L3 * L3 - 4.0 * J_1 * mgl
     return bool(margin > 0)
+
+
+#: the smallest normal float64: a scaled moment below it has lost its precision
+_TINY = float(np.finfo(float).tiny)
+
+
+def _scaled(*xs: float) -> tuple[float, ...]:
+    """xs / 2^k with the largest |x| in [1/2, 1): exact, for homogeneous formulas (the
+    rates of a top depend on J'1, L3, m g ℓ only through their ratios)."""
+    k = math.frexp(max(abs(x) for x in xs))[1]
+    return tuple(math.ldexp(x, -k) for x in xs)
 
 
 def _positive(x, name):
@@ -688,6 +757,10 @@ def _positive(x, name):
 
 def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     """The two steady precession rates Ω (slow, fast) at nutation angle θ (5.60).
+
+    Domain: J'1, m g ℓ > 0, finite L3 and θ with L3² ≥ 4 J'1 m g ℓ cos θ (else OutOfDomainError);
+    any common scale of J'1, L3, mgℓ (evaluated scaled by a power of two); the fast rate is inf at
+    cos θ = 0 (documented below).
 
     Roots of J'1 cos θ Ω² − L3 Ω + m g ℓ = 0, the slow one as 2mgℓ/(L3 + √disc) (no
     cancellation).  At cos θ = 0 the fast one is inf (one finite root mgℓ/L3).
@@ -704,10 +777,15 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     >>> bool(abs(J1 * c * slow**2 - L3 * slow + mgl) < 1e-14)
     True
     """
-    J_1 = _positive(J_1, "J_1")
-    mgl = _positive(m_g_ell, "m_g_ell")
-    L3 = float(as_float_array(L_3, "L_3"))
-    c = math.cos(float(as_float_array(theta, "theta")))
+    J_1, mgl, L3 = _scaled(
+        _positive(J_1, "J_1"), _positive(m_g_ell, "m_g_ell"), as_float_scalar(L_3, "L_3")
+    )
+    if min(J_1, mgl) < _TINY:
+        raise OutOfDomainError(
+            "J_1 or m_g_ell is below 1e-308 of the largest of J_1, |L_3|, m_g_ell: the ratio "
+            "underflows float64 (rescale, or treat the top as free)"
+        )
+    c = math.cos(as_float_scalar(theta, "theta"))
     disc = L3 * L3 - 4.0 * J_1 * mgl * c
     if disc < 0:
         raise OutOfDomainError(f"no steady precession: L3² − 4 J'1 m g ℓ cos θ = {disc:.6g} < 0")
@@ -717,11 +795,22 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     q = L3 + math.copysign(math.sqrt(disc), L3)
     slow = 2.0 * mgl / q
     fast = q / (2.0 * J_1 * c) if c != 0 else math.copysign(math.inf, L3)
+    if c != 0 and not math.isfinite(fast):
+        raise ResultOverflowError(
+            f"the fast precession rate L3/(J'1 cos θ) exceeds float64's range (J_1 = {J_1!r} "
+            f"scaled, cos θ = {c!r}); rescale (choose units)"
+        )
     return (slow, fast) if abs(slow) <= abs(fast) else (fast, slow)
 
 
 class HeavySymmetricTop:
     """The heavy symmetric top about a fixed point (5.2.2–5.2.5), exact motion.
+
+    Domain: J'1, J3, m g ℓ > 0 with J3 ≤ 2 J'1, jointly from 1e-300 to 1e300 (the motion depends on
+    their ratios: computed from them scaled by a power of two, so s·(J'1, J3, mgℓ) moves exactly as
+    (J'1, J3, mgℓ)), each at least 1e-308 of the largest (else OutOfDomainError: for mgℓ,
+    gravity is negligible, a free top); θ in [0, π] (0 or π only with θ̇ = 0, the sleeping
+    top); finite rates whose squares times J'1/mgℓ fit float64 (else ResultOverflowError).
 
     Parameters
     ----------
@@ -766,12 +855,35 @@ class HeavySymmetricTop:
     True
     """
 
+    @finite_result
     def __init__(
         self, J_1, J_3, m_g_ell, *, theta, psi=0.0, phi=0.0, theta_dot=0.0, psi_dot=0.0, phi_dot=0.0
     ):
         self.J_1 = _positive(J_1, "J_1")
         self.J_3 = _positive(J_3, "J_3")
+        if self.J_3 > 2.0 * self.J_1:
+            raise NonPhysicalInertiaError(
+                f"J_3 = {self.J_3!r} exceeds 2 J_1 = {2.0 * self.J_1!r}: the moments of a "
+                "symmetric body obey the triangle inequality J_3 ≤ J_1 + J_2 = 2 J_1 (about G, "
+                "and so about any point of the axis)"
+            )
         self.m_g_ell = _positive(m_g_ell, "m_g_ell")
+        # The motion depends on J'1, J3 and m g ℓ only through their ratios: the
+        # computation runs on them scaled by 2^-k (exact; the largest in [1/2, 1)), and
+        # L3, Lz, E and the energies are scaled back by 2^k (issue 16, part 4: moments
+        # from 1e-300 to 1e300 give the same θ(t), ψ(t), φ(t)).
+        self._k = math.frexp(max(self.J_1, self.J_3, self.m_g_ell))[1]
+        self._J1n, self._J3n, self._mgln = (
+            math.ldexp(x, -self._k) for x in (self.J_1, self.J_3, self.m_g_ell)
+        )
+        for name, x in (("J_1", self._J1n), ("J_3", self._J3n), ("m_g_ell", self._mgln)):
+            if x < _TINY:  # its ratio to the largest is below float64's normal range
+                raise OutOfDomainError(
+                    f"{name} = {getattr(self, name)!r} is below 1e-308 of the largest of J_1, "
+                    f"J_3, m_g_ell ({max(self.J_1, self.J_3, self.m_g_ell)!r}): the ratio "
+                    "underflows float64 (for m_g_ell: gravity is negligible, use "
+                    "FreeSymmetricTop)"
+                )
         vals = {}
         for k, v in dict(
             theta=theta, psi=psi, phi=phi, theta_dot=theta_dot, psi_dot=psi_dot, phi_dot=phi_dot
@@ -789,18 +901,22 @@ class HeavySymmetricTop:
             vals["psi_dot"],
             vals["phi_dot"],
         )
-        J1, J3, mgl = self.J_1, self.J_3, self.m_g_ell
+        J1, J3, mgl = self._J1n, self._J3n, self._mgln
         u0, S = math.cos(th), math.sin(th)
         self.u0 = u0
-        self.L_3 = J3 * (self.psi_dot0 * u0 + self.phi_dot0)
-        self.L_z = J1 * S * S * self.psi_dot0 + self.L_3 * u0
-        self.energy = (
+        self._L3n = J3 * (self.psi_dot0 * u0 + self.phi_dot0)
+        self._Lzn = J1 * S * S * self.psi_dot0 + self._L3n * u0
+        self._En = (
             0.5 * J1 * (self.theta_dot0**2 + (self.psi_dot0 * S) ** 2)
-            + self.L_3**2 / (2 * J3)
+            + self._L3n**2 / (2 * J3)
             + mgl * u0
         )
         self._beta = 2.0 * mgl / J1
-        self._b = self.L_3 / J1
+        self._b = self._L3n / J1
+        #: L3, Lz (about the fixed point) and E in the units given
+        self.L_3, self.L_z, self.energy = (
+            math.ldexp(x, self._k) for x in (self._L3n, self._Lzn, self._En)
+        )
         if S == 0.0:
             if self.theta_dot0 != 0:
                 raise GimbalLockError(
@@ -839,7 +955,14 @@ class HeavySymmetricTop:
         else:
             from scipy.optimize import brentq  # here: keeps `import mechanics.tops` cheap
 
-            x3 = brentq(f, start, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
+            try:
+                x3 = brentq(f, start, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
+            except RuntimeError:  # no convergence: gravity negligible against the spin
+                raise OutOfDomainError(
+                    f"the turning points of θ are not found (m_g_ell = {self.m_g_ell!r} against "
+                    f"J_1 = {self.J_1!r} and the rates): gravity is negligible here; use "
+                    "FreeSymmetricTop"
+                ) from None
         p = self._coef[1] / beta + x3
         q = -self._coef[3] / (beta * x3)
         disc = math.sqrt(p * p - 4 * q)
@@ -901,26 +1024,29 @@ class HeavySymmetricTop:
                 return y
         return x
 
+    @finite_result
     def f(self, u) -> np.ndarray:
         """The cubic f(u) = u̇² (the book's 5.66–5.71 in u = cos θ)."""
         u = as_float_array(u, "u")
-        a = self.L_z / self.J_1
-        e = (2 * self.energy - self.L_3**2 / self.J_3) / self.J_1
+        a = self._Lzn / self._J1n
+        e = (2 * self._En - self._L3n**2 / self._J3n) / self._J1n
         return (e - self._beta * u) * (1 - u * u) - (a - self._b * u) ** 2
 
+    @finite_result
     def effective_potential(self, theta) -> np.ndarray:
         """Φ_eff(θ) = (L_z − L3 cos θ)²/(2J'1 sin²θ) − mgℓ(1 − cos θ) (5.70)."""
         th = as_float_array(theta, "theta")
         s = np.sin(th)
         with np.errstate(divide="ignore"):
-            return (self.L_z - self.L_3 * np.cos(th)) ** 2 / (
-                2 * self.J_1 * s * s
-            ) - self.m_g_ell * 2.0 * np.sin(th / 2) ** 2
+            phi = (self._Lzn - self._L3n * np.cos(th)) ** 2 / (
+                2 * self._J1n * s * s
+            ) - self._mgln * 2.0 * np.sin(th / 2) ** 2
+        return np.ldexp(phi, self._k)
 
     @property
     def reduced_energy(self) -> float:
         """E' = E − L3²/(2J3) − mgℓ (5.69)."""
-        return self.energy - self.L_3**2 / (2 * self.J_3) - self.m_g_ell
+        return math.ldexp(self._En - self._L3n**2 / (2 * self._J3n) - self._mgln, self._k)
 
     def _arg(self, t):
         return self._kappa * t + self._w0
@@ -932,6 +1058,7 @@ class HeavySymmetricTop:
             return math.inf
         return 2.0 * float(elliptic._quarter_period(np.float64(self._m1))) / self._kappa
 
+    @finite_result
     def u(self, t) -> np.ndarray:
         """u(t) = cos θ(t) = u1 + (u2 − u1) sn²(κt + w0 | m)."""
         t = as_float_array(t, "t")
@@ -940,6 +1067,7 @@ class HeavySymmetricTop:
         sn, _, _, _ = elliptic.ellipj(self._arg(t), self._m, m1=self._m1)
         return self.roots[0] + self._d21 * sn * sn
 
+    @finite_result
     def theta(self, t) -> np.ndarray:
         """θ(t) from u(t), as atan2(sin θ, cos θ) with sin θ = √((1 − u)(1 + u))."""
         u = self.u(t)
@@ -954,6 +1082,7 @@ class HeavySymmetricTop:
         )
         return t + ((G[:-1] - G[-1]) / self._kappa).reshape(np.shape(t))
 
+    @finite_result
     def psi(self, t) -> np.ndarray:
         """Precession angle ψ(t): ψ̇ = (a − bu)/(1 − u²) (5.67) integrated in closed form."""
         t = as_float_array(t, "t")
@@ -966,18 +1095,20 @@ class HeavySymmetricTop:
             out = out + 0.5 * self._apb / self._opu1 * self._integral(self._nmi, t)
         return out
 
+    @finite_result
     def phi(self, t) -> np.ndarray:
         """Spin angle φ(t): φ̇ = L3/J3 − u ψ̇ (5.53), in closed form."""
         t = as_float_array(t, "t")
         if self.sleeping:
             return self.phi0 + self.phi_dot0 * t
-        out = self.phi0 + (self.L_3 / self.J_3 - self._b) * t
+        out = self.phi0 + (self._L3n / self._J3n - self._b) * t
         if self._amb != 0:
             out = out - 0.5 * self._amb / (self._omu2 + self._d21) * self._integral(self._npl, t)
         if self._apb != 0:
             out = out + 0.5 * self._apb / self._opu1 * self._integral(self._nmi, t)
         return out
 
+    @finite_result
     def rates(self, t):
         """(θ̇, ψ̇, φ̇)(t) along the exact motion.
 
@@ -996,31 +1127,37 @@ class HeavySymmetricTop:
             tp = np.where(self._amb != 0, self._amb / omu, 0.0)
             tm = np.where(self._apb != 0, self._apb / opu, 0.0)
         psid = 0.5 * (tp + tm)
-        phid = self.L_3 / self.J_3 - u * psid
+        phid = self._L3n / self._J3n - u * psid
         udot = 2 * self._d21 * sn * cn * dn * self._kappa
         thd = -udot / np.sqrt(omu * opu)
         return thd, psid, phid
 
+    @finite_result
     def energy_at(self, t) -> np.ndarray:
         """E(t) from the exact motion (5.66); constant."""
         return self.integrals_at(t)[2]
 
+    @finite_result
     def integrals_at(self, t):
         """(L_z, L_3, E) evaluated along the exact motion, (5.55), (5.53), (5.66)."""
         thd, psid, phid = self.rates(t)
         u = self.u(t)
         S2 = (1 - u) * (1 + u)
-        L3 = self.J_3 * (psid * u + phid)
-        Lz = self.J_1 * S2 * psid + L3 * u
-        E = 0.5 * self.J_1 * (thd**2 + psid**2 * S2) + L3**2 / (2 * self.J_3) + self.m_g_ell * u
-        return Lz, L3, E
+        L3 = self._J3n * (psid * u + phid)
+        Lz = self._J1n * S2 * psid + L3 * u
+        E = 0.5 * self._J1n * (thd**2 + psid**2 * S2) + L3**2 / (2 * self._J3n) + self._mgln * u
+        return tuple(np.ldexp(x, self._k) for x in (Lz, L3, E))
 
 
 # --------------------------------------------------------------------------- Example 5.1
 
 
+@finite_result
 def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.0, 0.0, 0.0)):
     """Sphere rolling without slipping on a rough incline (Example 5.1).
+
+    Domain: m, R, J, g > 0, β in [0, π/2], finite t, x0, y0, ω0; a result beyond float64 raises
+    ResultOverflowError.
 
     X down the incline, Z the plane's normal.  Returns ``(x, y, omega)`` with
     x(t) = x0 + R ω_y(0) t + ½ R α t², α = R m g sin β/(J + mR²) (5.15), (5.22),
@@ -1036,12 +1173,12 @@ def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.
     """
     t = as_float_array(t, "t")
     m, R, J, g = (_positive(v, k) for k, v in dict(m=m, R=R, J=J, g=g).items())
-    beta = float(as_float_array(beta, "beta"))
+    beta = as_float_scalar(beta, "beta")
     if not 0.0 <= beta <= math.pi / 2:
         raise OutOfDomainError(f"beta must lie in [0, π/2]; got {beta!r}")
     w0 = _vec3(omega_0, "omega_0")
-    x0 = float(as_float_array(x0, "x0"))
-    y0 = float(as_float_array(y0, "y0"))
+    x0 = as_float_scalar(x0, "x0")
+    y0 = as_float_scalar(y0, "y0")
     alpha = R * m * g * math.sin(beta) / (J + m * R * R)
     x = x0 + R * w0[1] * t + 0.5 * R * alpha * t * t
     y = y0 - R * w0[0] * t

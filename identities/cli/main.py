@@ -618,3 +618,7 @@ def main(argv: list[str] | None = None) -> int:
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 0
+    except OSError as exc:  # a path from the command line: missing, a folder for a file, ...
+        where = f"{exc.filename}: " if exc.filename else ""
+        print(f"bodycheck: error: {where}{exc.strerror or exc}", file=sys.stderr)
+        return 2

@@ -353,6 +353,16 @@ def _parse_body(src: str, i: int, b: Any) -> Body:
             dims[d] = J
         else:
             dims[d] = _check(src, f"{where}.{d}", "positive", b[d])
+            # the moments of inertia are ~ m d² (a length; an area is already m²-like)
+            moment = mass * dims[d] * (dims[d] if DIMENSION_UNITS[d] == "m" else 1.0)
+            if shape != "tank" and not (math.isfinite(moment) and moment > 0):
+                raise SceneError(
+                    src,
+                    f"{where}.{d}",
+                    f"the moment of inertia ~ mass·{d}² = {mass!r}·{dims[d]!r}² is not a "
+                    "positive float64 (overflow or underflow); choose units that keep it "
+                    "within 1e-308 … 1e308",
+                )
     initial = {}
     if "initial" in b:
         ini = _table(src, f"{where}.initial", b["initial"])

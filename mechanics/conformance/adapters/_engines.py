@@ -14,7 +14,13 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ...errors import MechanicsValueError, NonPositiveParameterError, UnknownOptionError
+from ..._validate import as_float_scalar
+from ...errors import (
+    MechanicsValueError,
+    NonPositiveParameterError,
+    RestitutionRangeError,
+    UnknownOptionError,
+)
 from ..protocol import SAMPLE_TIME_RTOL, Scenario
 from . import MissingExtraError
 
@@ -23,9 +29,11 @@ __all__ = [
     "body_rows",
     "check_option",
     "common_unsupported",
+    "positive",
     "quiet_stdout",
     "require",
     "step_counts",
+    "unit_interval",
 ]
 
 
@@ -147,3 +155,20 @@ def body_rows(scenario: Scenario) -> tuple[np.ndarray, ...]:
         np.array([x.R_A_O for x in b], dtype=float).reshape(-1, 3, 3),
         np.array([x.omega for x in b], dtype=float).reshape(-1, 3),
     )
+
+
+def unit_interval(x, name: str, what: str) -> float:
+    """``x`` as a float in [0, 1]; a :class:`~mechanics.errors.MechanicsValueError`
+    naming ``name`` (a NaN, an infinity, a non-scalar, a value outside)."""
+    v = as_float_scalar(x, name)
+    if not 0.0 <= v <= 1.0:
+        raise RestitutionRangeError(f"{name} ({what}) must lie in [0, 1]; got {v!r}")
+    return v
+
+
+def positive(x, name: str, what: str) -> float:
+    """``x`` as a finite float > 0; an error naming ``name`` otherwise."""
+    v = as_float_scalar(x, name)
+    if not v > 0.0:
+        raise NonPositiveParameterError(f"{name} ({what}) must be > 0; got {v!r}")
+    return v

@@ -82,15 +82,17 @@ import math
 
 import numpy as np
 
-from ...errors import MechanicsValueError
+from ...errors import MechanicsValueError, ResultOverflowError
 from ..protocol import ConformanceError, Scenario, Trajectory
 from ._engines import (
     MissingExtraError,
     body_rows,
     check_option,
     common_unsupported,
+    positive,
     require,
     step_counts,
+    unit_interval,
 )
 
 __all__ = [
@@ -131,6 +133,9 @@ def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
     bisection to the last bit.  e = 0 would need d = ∞: it is given the d of
     e = :data:`E_FLOOR`.
 
+    Domain: e in [0, 1], v_ref > 0 and finite (each refused by name otherwise); a
+    v_ref so small that d overflows is a ResultOverflowError.
+
     Examples
     --------
     The first order, c = (3/2)(1 − e), near e = 1; and the law itself:
@@ -142,10 +147,8 @@ def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
     >>> abs(math.log((1 + c) / (1 - c * e)) - c * (1 + e)) < 1e-15
     True
     """
-    if not 0.0 <= e <= 1.0:
-        raise MechanicsValueError(f"a coefficient of restitution must lie in [0, 1]; got {e!r}")
-    if not v_ref > 0:
-        raise MechanicsValueError(f"the reference speed must be > 0; got {v_ref!r}")
+    e = unit_interval(e, "e", "a coefficient of restitution")
+    v_ref = positive(v_ref, "v_ref", "the approach speed")
     if e == 1.0:
         return 0.0
     e = max(e, E_FLOOR)
@@ -153,7 +156,12 @@ def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
     while True:
         mid = 0.5 * (lo + hi)
         if mid in (lo, hi):
-            return mid / v_ref
+            d = mid / v_ref
+            if not math.isfinite(d):
+                raise ResultOverflowError(
+                    f"hunt_crossley_dissipation: d = c/v_ref overflows for v_ref = {v_ref!r}"
+                )
+            return d
         if math.log1p(mid) - math.log1p(-mid * e) - mid * (1.0 + e) < 0.0:
             lo = mid
         else:

@@ -89,6 +89,7 @@ from ._engines import (
     common_unsupported,
     require,
     step_counts,
+    unit_interval,
 )
 
 __all__ = [
@@ -129,6 +130,9 @@ def restitution_without_tension(zeta: float) -> float:
     """Speed ratio at which a spring-damper of damping ratio ζ ∈ [0, 1] that cannot
     pull lets go: exp(−ζ (π − 2 arcsin ζ)/√(1 − ζ²)); 0 at ζ = 1.
 
+    Domain: ζ in [0, 1] (a NaN, an infinity or a value outside is refused naming
+    ``zeta``); the result is in [0, 1].
+
     Examples
     --------
     >>> restitution_without_tension(0.0), restitution_without_tension(1.0)
@@ -136,6 +140,7 @@ def restitution_without_tension(zeta: float) -> float:
     >>> round(restitution_without_tension(0.06), 4)  # ζ = 0.060 for e = 5/6 (issue 14)
     0.8339
     """
+    zeta = unit_interval(zeta, "zeta", "a damping ratio")
     if zeta >= 1.0:
         return 0.0
     c = math.sqrt((1.0 - zeta) * (1.0 + zeta))
@@ -146,13 +151,15 @@ def zeta_without_tension(e: float) -> float:
     """The damping ratio ζ whose no-tension restitution is ``e`` (bisection to the last
     bit: e(ζ) decreases from 1 at ζ = 0 to 0 at ζ = 1).
 
+    Domain: e in [0, 1] (refused naming ``e`` outside); the result is in [0, 1].
+
     Examples
     --------
     >>> z = zeta_without_tension(0.8)
     >>> abs(restitution_without_tension(z) - 0.8) < 1e-15
     True
     """
-    _check_e(e)
+    e = unit_interval(e, "e", "a coefficient of restitution")
     if e >= 1.0:
         return 0.0
     if e <= 0.0:
@@ -170,17 +177,15 @@ def zeta_without_tension(e: float) -> float:
 
 def zeta_textbook(e: float) -> float:
     """ζ = −ln e/√(π² + ln² e), the damping ratio of a spring-damper that may pull and
-    rebounds at e (the issue's mapping, used by the default contact)."""
-    _check_e(e)
+    rebounds at e (the issue's mapping, used by the default contact).
+
+    Domain: e in [0, 1] (refused naming ``e`` outside); ζ in [0, 1], 1 at e = 0.
+    """
+    e = unit_interval(e, "e", "a coefficient of restitution")
     if e <= 0.0:
         return 1.0
     x = -math.log(e)
     return x / math.hypot(math.pi, x)
-
-
-def _check_e(e) -> None:
-    if not 0.0 <= e <= 1.0:
-        raise MechanicsValueError(f"a coefficient of restitution must lie in [0, 1]; got {e!r}")
 
 
 def variants() -> list[MuJoCoAdapter]:
