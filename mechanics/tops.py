@@ -284,11 +284,7 @@ class FreeAsymmetricTop:
         A = J1 * (J3 - J1) * w1**2 + J2 * (J3 - J2) * w2**2  # 2EJ3 − L²
         B = J2 * (J2 - J1) * w2**2 + J3 * (J3 - J1) * w3**2  # L² − 2EJ1
         D = J3 * (J3 - J2) * w3**2 - J1 * (J2 - J1) * w1**2  # L² − 2EJ2
-        self.separatrix_distance = float(D)
-        """L² − 2 E J_mid of the moments scaled by 2^-k (the largest in [1/2, 1)): its sign
-        gives the regime, zero on the separatrix; exact to rounding. Multiply by 4^k
-        (``math.ldexp(d, 2 * top._scale_exp)``) for the value in the units given, which
-        overflows float64 for moments beyond ~1e154."""
+        self._separatrix_scaled = float(D)  # L² − 2EJ2 of the scaled moments
 
         nz = [i for i in range(3) if ws[i] != 0]
         steady = all(Js[i] == Js[nz[0]] for i in nz) if nz else True
@@ -473,6 +469,20 @@ class FreeAsymmetricTop:
         return np.array(out)
 
     # -- public API
+    @property
+    def separatrix_distance(self) -> float:
+        """L² − 2 E J_mid in the units given: its sign gives the regime, zero on the
+        separatrix; exact to rounding (computed for the moments scaled by a power of two,
+        then scaled back exactly).  A :class:`~mechanics.errors.ResultOverflowError` when
+        it is beyond float64 (moments and rates with L² beyond ~1e308)."""
+        try:
+            return math.ldexp(self._separatrix_scaled, 2 * self._scale_exp)
+        except OverflowError:
+            raise ResultOverflowError(
+                "separatrix_distance: L² − 2 E J_mid overflows float64 for these moments "
+                f"(scaled value {self._separatrix_scaled!r} × 4^{self._scale_exp})"
+            ) from None
+
     @finite_result
     def omega(self, t) -> np.ndarray:
         """Angular velocity ω_A(t), body components, shape ``t.shape + (3,)``."""
