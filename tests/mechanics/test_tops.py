@@ -489,10 +489,10 @@ def test_the_heavy_tops_nutation_period_returns_u_to_itself():
 def test_separatrix_distance_is_in_the_units_given_and_refuses_overflow():
     # L² − 2EJ2 scales as s² for J → s J (ω fixed); exact for s a power of two
     J, w = np.array([1.0, 2.0, 3.0]), np.array([0.4, 0.2, 1.0])
-    d = FreeAsymmetricTop(J, w).separatrix_distance
+    d = tops.FreeAsymmetricTop(J, w).separatrix_distance
     L2 = float(((J * w) ** 2).sum())
     E2J2 = float((J * w * w).sum()) * J[1]
     assert d == pytest.approx(L2 - E2J2, rel=16 * np.finfo(float).eps)
-    assert FreeAsymmetricTop(2.0**100 * J, w).separatrix_distance == d * 2.0**200
+    assert tops.FreeAsymmetricTop(2.0**100 * J, w).separatrix_distance == d * 2.0**200
     with pytest.raises(ResultOverflowError, match="separatrix_distance"):
-        _ = FreeAsymmetricTop(1e200 * J, w).separatrix_distance
+        _ = tops.FreeAsymmetricTop(1e200 * J, w).separatrix_distance
