@@ -373,3 +373,71 @@ def test_overflow_is_reported_not_returned_as_inf():
         D.euler_equations_rhs([1.0, 2.0, 2.5], [1e200, 1e200, 0.0], np.zeros(3))
     with pytest.raises(ResultOverflowError):
         D.rotational_kinetic_energy(np.eye(3), [1e200, 0.0, 0.0])
+
+
+# ------------------------------------------------ the hinge functions broadcast
+
+
+def test_bearing_reactions_broadcast_over_bodies_and_states():
+    # A batch of three bodies (J_O, m, r_G) and states: row by row as one at a time,
+    # and the axial load −F_z on the named bearing.
+    J_O = np.array(
+        [
+            I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec(v))
+            for v in ([0.3, -0.2, 0.9], [1.0, 0.5, 0.0], [-0.4, 0.8, 0.2])
+        ]
+    )
+    m = np.array([1.0, 2.0, 0.5])
+    r_G = np.array([[0.3, 0.0, 0.2], [0.1, -0.4, 0.5], [0.0, 0.2, -0.3]])
+    w, a, z_A = np.array([4.0, -1.0, 0.5]), np.array([1.5, 0.0, -2.0]), np.array([0.8, 1.0, -1.2])
+    F = np.array([[0.0, 1.0, -2.0], [0.5, 0.0, 3.0], [1.0, -1.0, 0.25]])
+    M = np.array([[0.1, 0.2, 0.3], [0.0, -0.5, 0.0], [0.4, 0.0, -0.1]])
+    for axial_at in ("O", "A"):
+        R1, R2 = D.bearing_reactions(J_O, m, r_G, w, a, z_A, F_a=F, M_a=M, axial_at=axial_at)
+        assert R1.shape == R2.shape == (3, 3)
+        for i in range(3):
+            r1, r2 = D.bearing_reactions(
+                J_O[i], m[i], r_G[i], w[i], a[i], z_A[i], F_a=F[i], M_a=M[i], axial_at=axial_at
+            )
+            np.testing.assert_array_equal(R1[i], r1)
+            np.testing.assert_array_equal(R2[i], r2)
+        axial = R2[:, 2] if axial_at == "O" else R1[:, 2]
+        np.testing.assert_array_equal(axial, -F[:, 2])
+
+
+def test_axis_reactions_broadcast_over_states():
+    m, h = np.array([2.0, 1.0]), np.array([0.5, 0.0])
+    phidot, phiddot = np.array([[1.0], [3.0]]), np.array([0.5, -2.0])  # (2, 1) with (2,)
+    R = D.axis_reaction(m, h, phidot, phiddot, F_a_rho=1.5, F_a_phi=-0.5)
+    assert R.shape == (2, 2, 2)
+    for i in range(2):
+        for j in range(2):
+            want = D.axis_reaction(m[j], h[j], phidot[i, 0], phiddot[j], F_a_rho=1.5, F_a_phi=-0.5)
+            np.testing.assert_array_equal(R[i, j], want)
+    phi = np.array([0.0, 0.4, -1.0])
+    Rp = D.pendulum_axis_reaction(phi, 1.0, 2.0, G_EARTH, 0.5, E=np.array([20.0, 10.0, 15.0]))
+    assert Rp.shape == (3, 2)
+    one = D.pendulum_axis_reaction(phi[1], 1.0, 2.0, G_EARTH, 0.5, E=10.0)
+    np.testing.assert_array_equal(Rp[1], one)
+
+
+def test_axis_reaction_rejects_a_negative_distance_naming_it():
+    with pytest.raises(NonPositiveParameterError, match=r"^h must be >= 0; found -0\.5"):
+        D.axis_reaction(1.0, [0.2, -0.5], 1.0, 0.0, F_a_rho=0.0, F_a_phi=0.0)
+
+
+def test_bearing_reactions_name_the_bad_argument():
+    args = (np.eye(3), 1.0, [0, 0, 0], 1.0, 0.0)
+    kw = {"F_a": [0, 0, 0], "M_a": [0, 0, 0]}
+    with pytest.raises(UnknownOptionError, match=r"^axial_at='B'; expected 'O' or 'A'"):
+        D.bearing_reactions(*args, 1.0, axial_at="B", **kw)
+    with pytest.raises(NonPositiveParameterError, match=r"^z_A must be non-zero"):
+        D.bearing_reactions(*args, [1.0, 0.0], **kw)
+    with pytest.raises(ShapeError, match=r"^r_G has shape \(2,\)"):
+        D.bearing_reactions(np.eye(3), 1.0, [0, 0], 1.0, 0.0, 1.0, **kw)
+    with pytest.raises(ShapeError, match=r"^F_a has shape \(2,\)"):
+        D.bearing_reactions(*args, 1.0, F_a=[0, 0], M_a=[0, 0, 0])
+    with pytest.raises(ShapeError, match=r"^M_a has shape \(2,\)"):
+        D.bearing_reactions(*args, 1.0, F_a=[0, 0, 0], M_a=[0, 0])
+    with pytest.raises(NonPhysicalInertiaError, match=r"^J_O"):
+        D.bearing_reactions(np.diag([1.0, 1.0, 3.0]), *args[1:], 1.0, **kw)
