@@ -277,9 +277,8 @@ def rotvecs(*, axes=None, angles=None, regimes=None) -> st.SearchStrategy[np.nda
         "huge": log_uniform(*HUGE_LENGTH_RANGE, shrink_to="lo"),
     }
     mixed = st.tuples(
-        *(st.tuples(log_uniform(*_MIXED_RANGE, shrink_to="lo"), signs).map(
-            lambda t: t[0] * t[1]
-        ),) * 3
+        *(st.tuples(log_uniform(*_MIXED_RANGE, shrink_to="lo"), signs).map(lambda t: t[0] * t[1]),)
+        * 3
     ).map(np.array)
 
     @st.composite
@@ -400,8 +399,9 @@ def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
             # half turn whose off-plane zeros and −1 are exact, the block symmetric.
             alpha = draw(st.floats(-math.pi, math.pi))
             c, s = math.cos(alpha), math.sin(alpha)
-            R = np.array([[2 * c * c - 1, 2 * c * s, 0.0], [2 * c * s, 2 * s * s - 1, 0.0],
-                          [0.0, 0.0, -1.0]])
+            R = np.array(
+                [[2 * c * c - 1, 2 * c * s, 0.0], [2 * c * s, 2 * s * s - 1, 0.0], [0.0, 0.0, -1.0]]
+            )
             k = draw(st.integers(0, 2))
             return np.roll(R, (k, k), axis=(0, 1))
         if regime == "rotvec":

@@ -468,7 +468,13 @@ def _tilted_hinge():
     """A general body on a tilted axis: J_A, G, A and a with no zero components."""
     R = np.array([[0.36, 0.48, -0.8], [-0.8, 0.6, 0.0], [0.48, 0.64, 0.6]])  # a rotation
     J_A = R.T @ np.diag([2.0, 3.0, 4.5]) @ R
-    return 2.5, J_A, np.array([0.7, -0.2, 0.4]), np.array([0.1, 0.3, -0.2]), np.array([1.0, 2.0, 2.0])
+    return (
+        2.5,
+        J_A,
+        np.array([0.7, -0.2, 0.4]),
+        np.array([0.1, 0.3, -0.2]),
+        np.array([1.0, 2.0, 2.0]),
+    )
 
 
 def test_bearings_carry_an_axial_blow_on_the_first_bearing():
@@ -480,7 +486,14 @@ def test_bearings_carry_an_axial_blow_on_the_first_bearing():
     S_P = np.array([0.5, -1.0, 2.0])
     s1, s2 = -0.4, 1.3
     out = im.hinged_impact(
-        m, J_A, r_G, axis_point=A, axis=axis, omega=0.7, r_P=[1.0, 0.5, -0.3], S_P=S_P,
+        m,
+        J_A,
+        r_G,
+        axis_point=A,
+        axis=axis,
+        omega=0.7,
+        r_P=[1.0, 0.5, -0.3],
+        S_P=S_P,
         bearings=(s1, s2),
     )
     B1, B2 = out.S_bearings
@@ -494,7 +507,7 @@ def test_bearings_carry_an_axial_blow_on_the_first_bearing():
 
 def test_hinge_functions_broadcast_over_leading_axes():
     # Batched inputs give, row by row, what the unbatched calls give.
-    m, J_A, r_G, A, axis = _tilted_hinge()
+    _, J_A, r_G, A, axis = _tilted_hinge()
     rP = np.array([[1.0, 0.5, -0.3], [0.2, -1.0, 0.8], [-0.6, 0.4, 1.1]])
     SP = np.array([[0.5, -1.0, 2.0], [1.0, 0.0, 0.0], [0.0, 0.3, -0.4]])
     omegas = np.array([0.7, -1.0, 0.0])
@@ -506,13 +519,22 @@ def test_hinge_functions_broadcast_over_leading_axes():
     mus = im.hinged_effective_mass(J_A, rP, SP, axis_point=A, axis=axis)
     for i in range(3):
         one = im.hinged_impact(
-            masses[i], J_A, r_G, axis_point=A, axis=axis, omega=omegas[i], r_P=rP[i],
-            S_P=SP[i], bearings=(bear[0][i], bear[1][i]),
+            masses[i],
+            J_A,
+            r_G,
+            axis_point=A,
+            axis=axis,
+            omega=omegas[i],
+            r_P=rP[i],
+            S_P=SP[i],
+            bearings=(bear[0][i], bear[1][i]),
         )
         np.testing.assert_allclose(batched.omega[i], one.omega, rtol=HAND_RTOL, atol=0)
         np.testing.assert_allclose(batched.S_axis[i], one.S_axis, rtol=0, atol=HAND_RTOL * 4)
         np.testing.assert_allclose(batched.M_axis[i], one.M_axis, rtol=0, atol=HAND_RTOL * 4)
-        np.testing.assert_allclose(batched.S_bearings[i], one.S_bearings, rtol=0, atol=HAND_RTOL * 16)
+        np.testing.assert_allclose(
+            batched.S_bearings[i], one.S_bearings, rtol=0, atol=HAND_RTOL * 16
+        )
         mu = im.hinged_effective_mass(J_A, rP[i], SP[i], axis_point=A, axis=axis)
         np.testing.assert_allclose(mus[i], mu, rtol=HAND_RTOL, atol=0)
     assert batched.S_bearings.shape == (3, 2, 3)
@@ -533,71 +555,163 @@ _HINGE_KW = dict(axis_point=[0, 0, 0], axis=[0, 0, 1])
     [
         pytest.param(
             lambda: im.effective_mass(0.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0]),
-            NonPositiveParameterError, r"^m_1 must be > 0 for a rigid body; found 0\.0", id="effective-m1",
+            NonPositiveParameterError,
+            r"^m_1 must be > 0 for a rigid body; found 0\.0",
+            id="effective-m1",
         ),
         pytest.param(
-            lambda: im.effective_mass(1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 0.0, np.eye(3), [0, 0, 1.0]),
-            NonPositiveParameterError, r"^m_2 must be > 0 for a rigid body; found 0\.0", id="effective-m2",
+            lambda: im.effective_mass(
+                1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 0.0, np.eye(3), [0, 0, 1.0]
+            ),
+            NonPositiveParameterError,
+            r"^m_2 must be > 0 for a rigid body; found 0\.0",
+            id="effective-m2",
         ),
         pytest.param(
-            lambda: im.hinged_impact(0.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]),
-            NonPositiveParameterError, r"^m must be > 0 for a rigid body; found 0\.0 at index \(\)", id="hinged-m",
+            lambda: im.hinged_impact(
+                0.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]
+            ),
+            NonPositiveParameterError,
+            r"^m must be > 0 for a rigid body; found 0\.0 at index \(\)",
+            id="hinged-m",
         ),
         pytest.param(
-            lambda: im.hinged_impact([1.0, -2.0], np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]),
-            NegativeMassError, r"^m must be >= 0; found -2\.0 at index \(1,\)", id="hinged-negative-m",
+            lambda: im.hinged_impact(
+                [1.0, -2.0],
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            NegativeMassError,
+            r"^m must be >= 0; found -2\.0 at index \(1,\)",
+            id="hinged-negative-m",
         ),
         pytest.param(
             lambda: im.centre_of_percussion(0.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW),
-            NonPositiveParameterError, r"^m must be > 0 for a rigid body; found 0\.0", id="percussion-m",
+            NonPositiveParameterError,
+            r"^m must be > 0 for a rigid body; found 0\.0",
+            id="percussion-m",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]),
-            ShapeError, r"^r_G has shape \(2,\); expected \(\.\.\., 3\)", id="hinged-r_G-shape",
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]
+            ),
+            ShapeError,
+            r"^r_G has shape \(2,\); expected \(\.\.\., 3\)",
+            id="hinged-r_G-shape",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], axis_point=[0, 0], axis=[0, 0, 1], omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]),
-            ShapeError, r"^axis_point has shape \(2,\)", id="hinged-axis-point-shape",
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                axis_point=[0, 0],
+                axis=[0, 0, 1],
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            ShapeError,
+            r"^axis_point has shape \(2,\)",
+            id="hinged-axis-point-shape",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0], S_P=[0, 1, 0]),
-            ShapeError, r"^r_P has shape \(2,\)", id="hinged-r_P-shape",
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0], S_P=[0, 1, 0]
+            ),
+            ShapeError,
+            r"^r_P has shape \(2,\)",
+            id="hinged-r_P-shape",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1]),
-            ShapeError, r"^S_P has shape \(2,\)", id="hinged-S_P-shape",
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1]
+            ),
+            ShapeError,
+            r"^S_P has shape \(2,\)",
+            id="hinged-S_P-shape",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=np.nan, r_P=[1, 0, 0], S_P=[0, 1, 0]),
-            NonFiniteError, r"^omega must be finite", id="hinged-omega-nan",
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=np.nan, r_P=[1, 0, 0], S_P=[0, 1, 0]
+            ),
+            NonFiniteError,
+            r"^omega must be finite",
+            id="hinged-omega-nan",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0], bearings=(0.0, np.inf)),
-            NonFiniteError, r"^bearings\[1\] must be finite", id="hinged-bearing-inf",
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+                bearings=(0.0, np.inf),
+            ),
+            NonFiniteError,
+            r"^bearings\[1\] must be finite",
+            id="hinged-bearing-inf",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0], bearings=(np.nan, 1.0)),
-            NonFiniteError, r"^bearings\[0\] must be finite", id="hinged-bearing-nan",
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+                bearings=(np.nan, 1.0),
+            ),
+            NonFiniteError,
+            r"^bearings\[0\] must be finite",
+            id="hinged-bearing-nan",
         ),
         pytest.param(
-            lambda: im.hinged_impact(1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0], bearings=(1.0,)),
-            OutOfDomainError, r"^bearings must be two axial positions; got \(1\.0,\)", id="hinged-one-bearing",
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+                bearings=(1.0,),
+            ),
+            OutOfDomainError,
+            r"^bearings must be two axial positions; got \(1\.0,\)",
+            id="hinged-one-bearing",
         ),
         pytest.param(
             lambda: im.hinged_effective_mass(np.eye(3), [1.0, 0], [0, 1.0, 0], **_HINGE_KW),
-            ShapeError, r"^r_P has shape \(2,\)", id="hinged-mu-r_P-shape",
+            ShapeError,
+            r"^r_P has shape \(2,\)",
+            id="hinged-mu-r_P-shape",
         ),
         pytest.param(
             lambda: im.hinged_effective_mass(np.eye(3), [1.0, 0, 0], [0, 0, 0], **_HINGE_KW),
-            ZeroNormalError, r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]", id="hinged-mu-zero-n",
+            ZeroNormalError,
+            r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="hinged-mu-zero-n",
         ),
         pytest.param(
-            lambda: im.hinged_effective_mass(np.diag([1.0, 1.0, -1.0]), [1.0, 0, 0], [0, 1.0, 0], **_HINGE_KW),
-            NonPhysicalInertiaError, r"J_A", id="hinged-mu-bad-J",
+            lambda: im.hinged_effective_mass(
+                np.diag([1.0, 1.0, -1.0]), [1.0, 0, 0], [0, 1.0, 0], **_HINGE_KW
+            ),
+            NonPhysicalInertiaError,
+            r"J_A",
+            id="hinged-mu-bad-J",
         ),
         pytest.param(
             lambda: im.centre_of_percussion(1.0, np.eye(3), [0.0, 0, 2.0], **_HINGE_KW),
-            OutOfDomainError, r"^the centre of mass lies on the axis \(distance h = 0\.0 at index \(\)\)", id="percussion-on-axis",
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis \(distance h = 0\.0 at index \(\)\)",
+            id="percussion-on-axis",
         ),
     ],
 )

@@ -521,16 +521,23 @@ def test_inertia_tensor_of_particles_broadcasts_over_systems():
     # Two systems of three particles, each about its own point: row by row.
     m = np.array([[1.0, 2.0, 0.5], [3.0, 0.25, 1.0]])
     r = np.array(
-        [[[1.0, 0, 0], [0, 1.0, -1.0], [0.5, 0.5, 2.0]], [[-1.0, 2.0, 0], [0, 0, 3.0], [1.0, 1.0, 1.0]]]
+        [
+            [[1.0, 0, 0], [0, 1.0, -1.0], [0.5, 0.5, 2.0]],
+            [[-1.0, 2.0, 0], [0, 0, 3.0], [1.0, 1.0, 1.0]],
+        ]
     )
     about = np.array([[0.0, 0, 0], [0.5, -0.5, 1.0]])
     J = I.inertia_tensor(m, r, about=about)
     assert J.shape == (2, 3, 3)
     for i in range(2):
-        np.testing.assert_allclose(J[i], I.inertia_tensor(m[i], r[i], about=about[i]), rtol=0, atol=ENTRY_ATOL * 16)
+        np.testing.assert_allclose(
+            J[i], I.inertia_tensor(m[i], r[i], about=about[i]), rtol=0, atol=ENTRY_ATOL * 16
+        )
     # and one point for both systems
     J0 = I.inertia_tensor(m, r, about=ORIGIN)
-    np.testing.assert_allclose(J0[1], I.inertia_tensor(m[1], r[1], about=ORIGIN), rtol=0, atol=ENTRY_ATOL * 16)
+    np.testing.assert_allclose(
+        J0[1], I.inertia_tensor(m[1], r[1], about=ORIGIN), rtol=0, atol=ENTRY_ATOL * 16
+    )
 
 
 def test_parallel_axis_broadcasts_over_a_batch_of_tensors():
@@ -561,13 +568,19 @@ def test_four_particle_realisation_broadcasts_and_reproduces_each_tensor():
         np.testing.assert_allclose(r[i], ri, rtol=0, atol=ENTRY_ATOL * 4)
         np.testing.assert_allclose(masses[i].sum(), m[i], rtol=ENTRY_ATOL)
         np.testing.assert_allclose(
-            I.inertia_tensor(masses[i], r[i], about=ORIGIN), J[i], rtol=0, atol=ENTRY_ATOL * 16 * np.abs(J[i]).max()
+            I.inertia_tensor(masses[i], r[i], about=ORIGIN),
+            J[i],
+            rtol=0,
+            atol=ENTRY_ATOL * 16 * np.abs(J[i]).max(),
         )
 
 
 def test_parallel_axis_rejects_a_singular_centroidal_tensor_unless_allowed():
     rod = np.diag([0.0, 1.0, 1.0])
-    with pytest.raises(NonPhysicalInertiaError, match=r"^J_G is not positive definite: smallest principal moment J1 = 0.*allow_singular=True"):
+    with pytest.raises(
+        NonPhysicalInertiaError,
+        match=r"^J_G is not positive definite: smallest principal moment J1 = 0.*allow_singular=True",
+    ):
         I.parallel_axis(rod, 1.0, [0.0, 1.0, 0.0])
     J = I.parallel_axis(rod, 1.0, [0.0, 1.0, 0.0], allow_singular=True)
     np.testing.assert_allclose(J, np.diag([1.0, 1.0, 2.0]), rtol=0, atol=ENTRY_ATOL)
@@ -576,13 +589,48 @@ def test_parallel_axis_rejects_a_singular_centroidal_tensor_unless_allowed():
 @pytest.mark.parametrize(
     ("call", "error", "match"),
     [
-        pytest.param(lambda: I.four_particle_realisation(0.0, np.eye(3)), NonPositiveParameterError, r"^m must be > 0; found 0\.0", id="four-zero-mass"),
-        pytest.param(lambda: I.four_particle_realisation(-1.0, np.eye(3)), NegativeMassError, r"^m .*-1\.0", id="four-negative-mass"),
-        pytest.param(lambda: I.parallel_axis(np.eye(3), -2.0, [1.0, 0, 0]), NegativeMassError, r"^m .*-2\.0", id="parallel-negative-mass"),
-        pytest.param(lambda: I.parallel_axis(np.eye(3), 1.0, [1.0, 0]), ShapeError, r"^d has shape \(2,\); expected \(\.\.\., 3\)", id="parallel-d-shape"),
-        pytest.param(lambda: I.parallel_axis(np.eye(2), 1.0, [1.0, 0, 0]), ShapeError, r"^J_G has shape \(2, 2\)", id="parallel-J-shape"),
-        pytest.param(lambda: I.inertia_tensor([1.0], [[1.0, 0]], about=ORIGIN), ShapeError, r"^r has shape \(1, 2\)", id="particles-r-shape"),
-        pytest.param(lambda: I.inertia_tensor([1.0], [[1.0, 0, 0]], about=[0, 0]), ShapeError, r"^about has shape \(2,\)", id="particles-about-shape"),
+        pytest.param(
+            lambda: I.four_particle_realisation(0.0, np.eye(3)),
+            NonPositiveParameterError,
+            r"^m must be > 0; found 0\.0",
+            id="four-zero-mass",
+        ),
+        pytest.param(
+            lambda: I.four_particle_realisation(-1.0, np.eye(3)),
+            NegativeMassError,
+            r"^m .*-1\.0",
+            id="four-negative-mass",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), -2.0, [1.0, 0, 0]),
+            NegativeMassError,
+            r"^m .*-2\.0",
+            id="parallel-negative-mass",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), 1.0, [1.0, 0]),
+            ShapeError,
+            r"^d has shape \(2,\); expected \(\.\.\., 3\)",
+            id="parallel-d-shape",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(2), 1.0, [1.0, 0, 0]),
+            ShapeError,
+            r"^J_G has shape \(2, 2\)",
+            id="parallel-J-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([1.0], [[1.0, 0]], about=ORIGIN),
+            ShapeError,
+            r"^r has shape \(1, 2\)",
+            id="particles-r-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([1.0], [[1.0, 0, 0]], about=[0, 0]),
+            ShapeError,
+            r"^about has shape \(2,\)",
+            id="particles-about-shape",
+        ),
     ],
 )
 def test_each_inertia_function_validates_its_own_inputs(call, error, match):

@@ -983,9 +983,7 @@ def test_euler_angles_of_an_exact_sign_flip_are_theta_pi_and_reproduce_it(alpha)
     assert np.abs(rot.matrix_from_euler(psi, theta, phi) - R).max() <= rot.ROUNDTRIP_ATOL
 
 
-@pytest.mark.parametrize(
-    "e", [(0.5, 1e-300, 1.0), (-2.0, 3e-280, 0.25), (0.5, np.pi - 1e-15, 1.0)]
-)
+@pytest.mark.parametrize("e", [(0.5, 1e-300, 1.0), (-2.0, 3e-280, 0.25), (0.5, np.pi - 1e-15, 1.0)])
 def test_euler_angles_are_recovered_one_by_one_close_to_gimbal_lock(e):
     # θ is a normal number, so ψ and φ are each defined and carried by the entries
     # of size θ (or π − θ): the split must come back, not only ψ ± φ.

@@ -66,7 +66,9 @@ MASS_PAIR_REGIMES = {
     "generic": lambda p: 1e-6 <= p[0] / p[1] <= 1e6 and p != (1.0, 1.0),
     "light-1": lambda p: p[0] / p[1] <= 1e-6,
     "heavy-1": lambda p: p[0] / p[1] >= 1e6,
-    "scaled": lambda p: min(p) >= 1e-153 and max(p) <= 1e153 and (max(p) > 1e100 or min(p) < 1e-100),
+    "scaled": lambda p: (
+        min(p) >= 1e-153 and max(p) <= 1e153 and (max(p) > 1e100 or min(p) < 1e-100)
+    ),
 }
 
 RESTITUTION_REGIMES = {
@@ -83,7 +85,8 @@ DIRECT_VELOCITY_REGIMES = {
     "at-rest": lambda v: v[1] == 0.0 and v[0] > 0,
     "small-relative": lambda v: 0 < abs(v[0] - v[1]) <= 1e-6 * abs(v[1]),
     "mixed-magnitude": lambda v: (
-        min(abs(v[0]), abs(v[1])) > 0 and max(abs(v[0]), abs(v[1])) > 1e100 * min(abs(v[0]), abs(v[1]))
+        min(abs(v[0]), abs(v[1])) > 0
+        and max(abs(v[0]), abs(v[1])) > 1e100 * min(abs(v[0]), abs(v[1]))
     ),
 }
 

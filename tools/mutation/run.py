@@ -104,8 +104,11 @@ def prepare(module: str, tests: list[str]) -> Path:
     selection = "pytest_add_cli_args_test_selection = " + _toml_list(tests)
     text, n = re.subn(r"(?m)^pytest_add_cli_args_test_selection = .*$", selection, text)
     if n != 1:
-        raise SystemExit("pyproject.toml: [tool.mutmut] needs one pytest_add_cli_args_test_selection line")
-    text = text.replace("[tool.mutmut]\n", f"[tool.mutmut]\nonly_mutate = {_toml_list([module])}\n", 1)
+        raise SystemExit(
+            "pyproject.toml: [tool.mutmut] needs one pytest_add_cli_args_test_selection line"
+        )
+    only = f"[tool.mutmut]\nonly_mutate = {_toml_list([module])}\n"
+    text = text.replace("[tool.mutmut]\n", only, 1)
     target = work / "pyproject.toml"
     if not target.exists() or target.read_text(encoding="utf-8") != text:
         target.write_text(text, encoding="utf-8")
@@ -129,7 +132,9 @@ def results(work: Path, mutmut: str) -> dict[str, str]:
     return found
 
 
-def report(module: str, status: dict[str, str], equivalent: dict[str, str]) -> tuple[str, list[str]]:
+def report(
+    module: str, status: dict[str, str], equivalent: dict[str, str]
+) -> tuple[str, list[str]]:
     """The score line and the survivors that are not in the reviewed list."""
     prefix = module_prefix(module)
     mine = {k: v for k, v in status.items() if k.startswith(prefix)}
