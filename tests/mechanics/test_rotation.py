@@ -846,6 +846,86 @@ BAD_INPUT = [
         id="axis-inf",
     ),
     pytest.param(
+        rot.quat_from_rotvec,
+        ([1.0, 2.0],),
+        ShapeError,
+        r"^rotvec has shape \(2,\); expected \(\.\.\., 3\)",
+        id="quat-from-rotvec-shape",
+    ),
+    pytest.param(
+        rot.quat_from_rotvec,
+        ([1.0, -np.inf, 0],),
+        NonFiniteError,
+        r"^rotvec must be finite; found .*inf.* at index \(1,\)",
+        id="quat-from-rotvec-inf",
+    ),
+    pytest.param(
+        rot.matrix_from_euler,
+        (np.nan, 0.0, 0.0),
+        NonFiniteError,
+        r"^psi must be finite; found .*nan",
+        id="euler-psi-nan",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (2 * np.eye(3),),
+        NotARotationError,
+        r"^R_A_O is not a rotation: max \|R R\^T - 1\| = 3 exceeds atol = .* \(index \(\)\); "
+        r"use nearest_rotation\(\) to project it$",
+        id="check-hint-nearest",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (_REFLECTION,),
+        NotARotationError,
+        r"^R_A_O is not a rotation: \|det R - 1\| = 2 exceeds atol = .* \(index \(\)\); "
+        r"it is a reflection$",
+        id="check-hint-reflection",
+    ),
+    pytest.param(
+        lambda R: rot.check_rotation(R, atol=0.0),
+        (_REFLECTION,),
+        NotARotationError,
+        r"^R_A_O is not a rotation: \|det R - 1\| = 2 exceeds atol = 0 \(index \(\)\); "
+        r"it is a reflection$",
+        id="check-reflection-atol-zero",
+    ),
+    pytest.param(
+        lambda R: rot.check_rotation(R, atol=1.0),
+        (np.diag([1.0, 1.0, -0.5]),),
+        NotARotationError,
+        r"\|det R - 1\| = 1\.5 exceeds atol = 1 \(index \(\)\); use nearest_rotation\(\) to project it$",
+        id="check-det-1.5-not-a-reflection",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (1e200 * np.eye(3),),
+        NotARotationError,
+        r"^R_A_O is not a rotation: max \|R R\^T - 1\| = inf",
+        id="check-overflow",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (np.array([[1e200, 1e200, 0], [1e200, -1e200, 0], [0, 0, 1.0]]),),
+        NotARotationError,
+        r"^R_A_O is not a rotation: max \|R R\^T - 1\| = (inf|nan)",
+        id="check-overflow-inf-minus-inf",
+    ),
+    pytest.param(
+        rot.matrix_from_quat,
+        ([1e200, 0, 0, 0],),
+        NotARotationError,
+        r"^q is not a unit quaternion: \|q\| = 1e\+200 at index \(\)",
+        id="quat-overflow",
+    ),
+    pytest.param(
+        rot.matrix_from_quat,
+        ([[1.0, 0, 0, 0], [0, 0, 0, 0]],),
+        ZeroAxisError,
+        r"^q has zero length; a unit quaternion is required",
+        id="quat-zero-in-batch",
+    ),
+    pytest.param(
         rot.nearest_rotation,
         (np.full((3, 3), np.inf),),
         NonFiniteError,
@@ -1011,3 +1091,73 @@ def test_huge_rotation_vectors_give_unit_quaternions_along_their_axis(v):
     u = np.asarray(v) / np.linalg.norm(np.asarray(v) / 1e300) / 1e300
     # the vector part is sin(φ/2) e_a: parallel to v, same sense as sin(φ/2)
     assert_allclose(np.cross(q[1:], u), 0.0, atol=4 * EPS)
+
+
+#: The double-double norm and ratio promise about 2**-75 relative; 2**-70 leaves
+#: room for the few roundings of the correction terms.
+DD_RTOL = 2.0**-70
+
+
+def _dd_cases():
+    rng = np.random.default_rng(RNG_SEED + 7)
+    u = rng.normal(size=(300, 3))
+    scale = 10.0 ** rng.uniform(-100, 100, size=(300, 1))
+    v = u * scale
+    v[:100] = u[:100] * rng.uniform(3.0, 40.0, size=(100, 1))  # the angles of rotations
+    return v
+
+
+def test_double_double_norm_and_ratio_keep_2_to_the_minus_70():
+    # _norm_dd: |v| = r + r_lo; _ratio_dd: num/|v| = q + q_lo; _times_dd: a (q + q_lo)
+    # rounded once.  Exact references in mpmath.
+    mpmath = pytest.importorskip("mpmath")
+    v = _dd_cases()
+    x, y, z = v.T.copy()
+    r = np.sqrt(x * x + y * y + z * z)
+    norm, splits = rot._norm_dd((x, y, z), r)
+    assert_array_equal(norm[0] + norm[1], r)  # r split exactly
+    num = np.sin(0.5 * r)
+    ratio = rot._ratio_dd(num, norm, r)
+    prod = rot._times_dd(x, splits[0], ratio)
+    with mpmath.workdps(60):
+        for i in range(len(r)):
+            n = mpmath.sqrt(sum(mpmath.mpf(float(c)) ** 2 for c in v[i]))
+            got = mpmath.mpf(float(r[i])) + mpmath.mpf(float(norm[2][i]))
+            assert abs(got - n) <= DD_RTOL * n, ("norm", i, v[i])
+            want = mpmath.mpf(float(num[i])) / n
+            q = mpmath.mpf(float(ratio[0][i])) + mpmath.mpf(float(ratio[1][i]))
+            assert abs(q - want) <= DD_RTOL * abs(want), ("ratio", i, v[i])
+            exact = mpmath.mpf(float(x[i])) * want
+            assert abs(mpmath.mpf(float(prod[i])) - exact) <= EPS * abs(exact), ("times", i)
+
+
+def test_unit_quaternion_tolerance_is_inclusive():
+    # |q| − 1 = _QUAT_NORM_ATOL exactly (64 eps) is accepted, 65 eps is not.
+    g = np.array([0.5, 0.5, 0.5, 0.5])
+    rot.matrix_from_quat(g * (1 + 64 * EPS))
+    with pytest.raises(NotARotationError, match="not a unit quaternion"):
+        rot.matrix_from_quat(g * (1 + 65 * EPS))
+
+
+@pytest.mark.parametrize("k", [-60, -16, 16, 60])
+def test_matrix_from_quat_divides_out_an_accepted_length(k):
+    # A quaternion off unit length by k eps (accepted) gives the rotation of q/|q|:
+    # its length is divided out exactly (1/|q|² = 1 − δ/(1 + δ)), so the matrix is
+    # orthogonal to the forward accuracy of a unit quaternion, 4 eps.
+    from identities.stability.rotation import error_in_eps, exact_matrix_from_quat
+
+    q = np.array([0.36, -0.48, 0.64, 0.48]) * (1 + k * EPS)
+    assert error_in_eps(rot.matrix_from_quat(q), exact_matrix_from_quat(q)) <= 4.0
+
+
+def test_conversions_of_a_batch_larger_than_one_block_reach_every_row():
+    # _BLOCK rows are converted at a time: the rows after the first block must be
+    # converted too, each as alone.
+    n = rot._BLOCK + 5
+    rng = np.random.default_rng(RNG_SEED + 3)
+    v = rng.normal(size=(n, 3))
+    R = rot.matrix_from_rotvec(v)
+    for i in (0, rot._BLOCK - 1, rot._BLOCK, n - 1):
+        assert_allclose(R[i], rot.matrix_from_rotvec(v[i]), rtol=0, atol=VECTORISE_ATOL)
+    back = rot.rotvec_from_matrix(R)
+    assert_allclose(back[-1], rot.rotvec_from_matrix(R[-1]), rtol=0, atol=VECTORISE_ATOL)
