@@ -21,17 +21,25 @@ Usage (standard library only; mutmut must be on PATH or given with ``--mutmut``)
     python tools/mutation/run.py mechanics/rotation.py [--max-children 1] [--diff]
     python tools/mutation/run.py mechanics/rotation.py --report   # score of the last run
     python tools/mutation/run.py mechanics/rotation.py --names NAME...  # re-run some
+    python tools/mutation/run.py mechanics/impact.py --sample 300  # a random sample
+
+A sample (``--sample N``, seeded) runs N mutants drawn at random from all of the
+module's; the score then counts the mutants checked so far and says how many were not.
 """
 
 from __future__ import annotations
 
 import argparse
 import filecmp
+import json
 import os
+import random
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 import tomllib
 from pathlib import Path
 
@@ -137,7 +145,9 @@ def report(
 ) -> tuple[str, list[str]]:
     """The score line and the survivors that are not in the reviewed list."""
     prefix = module_prefix(module)
-    mine = {k: v for k, v in status.items() if k.startswith(prefix)}
+    everything = {k: v for k, v in status.items() if k.startswith(prefix)}
+    mine = {k: v for k, v in everything.items() if v != "not checked"}
+    unchecked = len(everything) - len(mine)
     killed = sum(v in KILLED for v in mine.values())
     survivors = sorted(k for k, v in mine.items() if v not in KILLED)
     equiv = [k for k in survivors if k in equivalent]
@@ -149,7 +159,34 @@ def report(
         f"{module}: {total} mutants, {killed} killed, {len(equiv)} equivalent (reviewed), "
         f"{len(open_)} survived: score {score:.1f} % = killed / (mutants - equivalent)"
     )
+    if unchecked:
+        line += f"  [{unchecked} of {len(everything)} mutants not checked: a sample]"
     return line, open_
+
+
+def generate(work: Path, module: str, mutmut: str, env: dict) -> list[str]:
+    """Every mutant name of the module: let ``mutmut run`` write its mutants and their
+    list (``mutants/<module>.meta``), then stop it before it runs them."""
+    meta = work / "mutants" / (module + ".meta")
+    if not meta.exists():
+        proc = subprocess.Popen(
+            [mutmut, "run", "--max-children", "1"],
+            cwd=work,
+            env=env,
+            start_new_session=True,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        try:
+            while not meta.exists() and proc.poll() is None:
+                time.sleep(0.5)
+        finally:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGTERM)
+                proc.wait()
+        time.sleep(0.5)
+    data = json.loads(meta.read_text(encoding="utf-8"))
+    return sorted(data["exit_code_by_key"])
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -160,6 +197,8 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--report", action="store_true", help="only report the last run")
     ap.add_argument("--diff", action="store_true", help="show each open survivor's diff")
     ap.add_argument("--names", nargs="+", help="run only these mutants")
+    ap.add_argument("--sample", type=int, help="run this many mutants drawn at random")
+    ap.add_argument("--seed", type=int, default=16, help="seed of --sample")
     args = ap.parse_args(argv)
 
     modules = load_modules()
@@ -171,8 +210,13 @@ def main(argv: list[str] | None = None) -> int:
     work = prepare(module, modules[module])
     env = {**os.environ, "CI": "1"}
     env.pop("HYPOTHESIS_PROFILE", None)
+    names = list(args.names or [])
+    if args.sample and not args.report:
+        every = generate(work, module, args.mutmut, env)
+        names = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
+        print(f"a sample of {len(names)} of the {len(every)} mutants (seed {args.seed})")
     if not args.report:
-        cmd = [args.mutmut, "run", "--max-children", str(args.max_children), *(args.names or [])]
+        cmd = [args.mutmut, "run", "--max-children", str(args.max_children), *names]
         print("$ (cd", work.relative_to(ROOT), "&&", " ".join(cmd) + ")", flush=True)
         rc = subprocess.run(cmd, cwd=work, env=env).returncode
         if rc:
