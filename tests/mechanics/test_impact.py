@@ -718,3 +718,167 @@ _HINGE_KW = dict(axis_point=[0, 0, 0], axis=[0, 0, 1])
 def test_each_function_validates_its_own_inputs_naming_value_and_condition(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def _ball(**kw):
+    fields = dict(m=1.0, J_G=0.4 * np.eye(3), r_G=[0, 0, 1.0], v_G=[0, 0, -1.0], omega=[0, 0, 0.0])
+    fields.update(kw)
+    return im.RigidBody(**fields)
+
+
+_RIGID_KW = dict(r_S=[0, 0, 0.0], n=[0, 0, 1.0])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, 1.0, np.nan, 0.5),
+            NonFiniteError,
+            r"^v_2 must be finite; found .*nan.* at index \(\)",
+            id="direct-v2-nan",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, 1.0, 0.0, np.inf),
+            NonFiniteError,
+            r"^e must be finite; found .*inf.* at index \(\)",
+            id="direct-e-inf",
+        ),
+        pytest.param(
+            lambda: im.impulse_direct(1e308, 1e308, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^the impulse S_12 overflows float64 at index \(\) \(finite input\)$",
+            id="impulse-overflow",
+        ),
+        pytest.param(
+            lambda: im.impulse_direct(
+                [1.0, 1e308], [1.0, 1e308], [1.0, 1e308], [-1.0, -1e308], 1.0
+            ),
+            ResultOverflowError,
+            r"^the impulse S_12 overflows float64 at index \(1,\)",
+            id="impulse-overflow-batched",
+        ),
+        pytest.param(
+            lambda: im.energy_loss_direct(1e300, 1e300, 1e300, -1e300, 0.0),
+            ResultOverflowError,
+            r"^the energy loss Q overflows float64 at index \(\)",
+            id="energy-overflow",
+        ),
+        pytest.param(
+            lambda: im.compression_restitution_impulses(1e308, 1e308, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^S_1 overflows float64 at index \(\)",
+            id="compression-overflow",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.eye(3), [0, 0, 1.0], [[1.0, 0, 0], [0, 0, 0]]),
+            ZeroNormalError,
+            r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="effective-zero-n-batched",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.eye(3), [0, 0, 1.0], [1.0, 0]),
+            ShapeError,
+            r"^n has shape \(2,\); expected \(\.\.\., 3\)",
+            id="effective-n-shape",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.diag([1.0, 1.0, 3.0]), [0, 0, 1.0], [1.0, 0, 0]),
+            NonPhysicalInertiaError,
+            r"^J_1 ",
+            id="effective-J1",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.eye(3), [0, 1.0], [1.0, 0, 0]),
+            ShapeError,
+            r"^r_1 has shape \(2,\); expected \(\.\.\., 3\)",
+            id="effective-r1-shape",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(
+                1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 1.0, np.diag([1.0, 1.0, 3.0]), [0, 0, 1.0]
+            ),
+            NonPhysicalInertiaError,
+            r"^J_2 ",
+            id="effective-J2",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(
+                1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 1.0, np.eye(3), [0, 1.0]
+            ),
+            ShapeError,
+            r"^r_2 has shape \(2,\); expected \(\.\.\., 3\)",
+            id="effective-r2-shape",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(r_G=[0, 1.0]), None, **_RIGID_KW),
+            ShapeError,
+            r"^body_1\.r_G has shape \(2,\)",
+            id="nrv-body1-r_G",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(), _ball(v_G=[0, 1.0]), **_RIGID_KW),
+            ShapeError,
+            r"^body_2\.v_G has shape \(2,\)",
+            id="nrv-body2-v_G",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(omega=[0, np.nan, 0]), None, **_RIGID_KW),
+            NonFiniteError,
+            r"^body_1\.omega must be finite",
+            id="nrv-omega-nan",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(), None, r_S=[0, 0], n=[0, 0, 1.0]),
+            ShapeError,
+            r"^r_S has shape \(2,\); expected \(\.\.\., 3\)",
+            id="nrv-r_S-shape",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(_ball(), None, r_S=[0, 0], n=[0, 0, 1.0], e=0.5),
+            ShapeError,
+            r"^r_S has shape \(2,\); expected \(\.\.\., 3\)",
+            id="rigid-r_S-shape",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(_ball(), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=np.nan),
+            NonFiniteError,
+            r"^e must be finite",
+            id="rigid-e-nan",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                axis_point=[0, 0, 0],
+                axis=[0, 0, 0],
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            ZeroNormalError,
+            r"^axis must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="hinged-zero-axis",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(
+                1.0, np.eye(3), [[1.0, 0, 0], [0, 0, 2.0]], axis_point=[0, 0, 0], axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis \(distance h = 0\.0 at index \(1,\)\)",
+            id="percussion-on-axis-batched",
+        ),
+    ],
+)
+def test_every_message_names_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def test_effective_mass_broadcasts_one_contact_over_a_batch_of_tensors():
+    J = np.array([np.eye(3), np.diag([1.0, 2.0, 2.5]), np.diag([0.5, 0.5, 0.9])])
+    mu = im.effective_mass(1.5, J, [0.3, 0.0, 1.0], [1.0, 0.0, 0.0])
+    assert mu.shape == (3,)
+    for i in range(3):
+        assert mu[i] == im.effective_mass(1.5, J[i], [0.3, 0.0, 1.0], [1.0, 0.0, 0.0])

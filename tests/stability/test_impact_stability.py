@@ -185,6 +185,8 @@ HUGE_SPEED = 1e302
 @example((1e15, 1.0), (1e302, 1e-300), 0.25)
 @example((1e-150, 3e-150), (5e301, -1e-200), 0.0)
 @example((3e140, 1e150), (1e-250, -7e301), 1.0)
+@example((1.7e308, 1e-300), (1.0, -1.0), 0.5)
+@example((1e-300, 1.7e308), (3.0, -1.0), 0.25)
 def test_direct_impact_velocities_exact_when_the_velocities_span_the_float_range(
     masses, velocities, e
 ):
