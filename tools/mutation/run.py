@@ -199,6 +199,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--names", nargs="+", help="run only these mutants")
     ap.add_argument("--sample", type=int, help="run this many mutants drawn at random")
     ap.add_argument("--seed", type=int, default=16, help="seed of --sample")
+    ap.add_argument(
+        "--restat",
+        action="store_true",
+        help="record again which tests call which function (after changing tests)",
+    )
     args = ap.parse_args(argv)
 
     modules = load_modules()
@@ -210,6 +215,8 @@ def main(argv: list[str] | None = None) -> int:
     work = prepare(module, modules[module])
     env = {**os.environ, "CI": "1"}
     env.pop("HYPOTHESIS_PROFILE", None)
+    if args.restat:
+        (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     names = list(args.names or [])
     if args.sample and not args.report:
         every = generate(work, module, args.mutmut, env)
