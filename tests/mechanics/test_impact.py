@@ -342,7 +342,9 @@ def test_a_body_that_is_not_a_rigid_body_record_raises():
 
 
 def test_effective_mass_needs_all_of_body_2_or_none():
-    with pytest.raises(OutOfDomainError, match=r"^body 2 needs all of m_2, J_2 and r_2, or none of them$"):
+    with pytest.raises(
+        OutOfDomainError, match=r"^body 2 needs all of m_2, J_2 and r_2, or none of them$"
+    ):
         im.effective_mass(1.0, np.eye(3), [0, 0, 0], [1, 0, 0], m_2=2.0)
 
 
@@ -887,19 +889,107 @@ def test_effective_mass_broadcasts_one_contact_over_a_batch_of_tensors():
 @pytest.mark.parametrize(
     ("call", "error", "match"),
     [
-        pytest.param(lambda: im.direct_impact(-1.0, 1.0, 1.0, 0.0, 0.5), NegativeMassError, r"^m_1 must be >= 0; found -1\.0", id="direct-m1-negative"),
-        pytest.param(lambda: im.direct_impact(1.0, 1.0, np.nan, 0.0, 0.5), NonFiniteError, r"^v_1 must be finite", id="direct-v1-nan"),
-        pytest.param(lambda: im.direct_impact([1.0, 0.0], [1.0, 0.0], 1.0, 0.0, 0.5), ZeroTotalMassError, r"^m_1 \+ m_2 must be > 0; both masses are 0 at index \(1,\)$", id="direct-zero-total-batched"),
-        pytest.param(lambda: im.direct_impact(1.0, 1.0, 1.0, 0.0, [0.5, 1.5]), RestitutionRangeError, r"^coefficient of restitution e must lie in \[0, 1\]; found 1\.5 at index \(1,\)$", id="direct-e-batched"),
-        pytest.param(lambda: im.direct_impact(1e-10, 1.0, 1e308, -1e308, 1.0), ResultOverflowError, r"^v_1f overflows float64 at index \(\)", id="direct-v1f-overflow"),
-        pytest.param(lambda: im.direct_impact(1.0, 1e-10, 1e308, -1e308, 1.0), ResultOverflowError, r"^v_2f overflows float64 at index \(\)", id="direct-v2f-overflow"),
-        pytest.param(lambda: im.hinged_impact([1.0, 0.0], np.eye(3), [1.0, 0, 0], axis_point=[0, 0, 0], axis=[0, 0, 1], omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]), NonPositiveParameterError, r"^m must be > 0 for a rigid body; found 0\.0 at index \(1,\)$", id="hinged-zero-m-batched"),
-        pytest.param(lambda: im.rigid_impact(_ball(J_G=np.diag([1.0, 1.0, 3.0])), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5), NonPhysicalInertiaError, r"^body_1\.J_G ", id="rigid-J_G"),
-        pytest.param(lambda: im.rigid_impact(_ball(omega=[0, 1.0]), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5), ShapeError, r"^body_1\.omega has shape \(2,\)", id="rigid-omega-shape"),
-        pytest.param(lambda: im.hinged_effective_mass(np.diag([1.0, 1.0, 3.0]), [1.0, 0, 0], [0, 1.0, 0], axis_point=[0, 0, 0], axis=[0, 0, 1]), NonPhysicalInertiaError, r"^J_A ", id="hinged-J_A"),
-        pytest.param(lambda: im.normal_relative_velocity(_ball(), None, r_S=[0, 0, 0.0], n=[0, 0, 0.0]), ZeroNormalError, r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]", id="nrv-zero-n"),
-        pytest.param(lambda: im.centre_of_percussion(1.0, np.eye(3), [4 * EPS, 0, 1.0], axis_point=[0, 0, 0], axis=[0, 0, 1]), OutOfDomainError, r"^the centre of mass lies on the axis", id="percussion-h-at-4-eps"),
-        pytest.param(lambda: im.centre_of_percussion(1.0, np.eye(3), [1e-7, 0, 1e10], axis_point=[0, 0, 0], axis=[0, 0, 1]), OutOfDomainError, r"^the centre of mass lies on the axis \(distance h = 1e-07", id="percussion-far-G-near-axis"),
+        pytest.param(
+            lambda: im.direct_impact(-1.0, 1.0, 1.0, 0.0, 0.5),
+            NegativeMassError,
+            r"^m_1 must be >= 0; found -1\.0",
+            id="direct-m1-negative",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, np.nan, 0.0, 0.5),
+            NonFiniteError,
+            r"^v_1 must be finite",
+            id="direct-v1-nan",
+        ),
+        pytest.param(
+            lambda: im.direct_impact([1.0, 0.0], [1.0, 0.0], 1.0, 0.0, 0.5),
+            ZeroTotalMassError,
+            r"^m_1 \+ m_2 must be > 0; both masses are 0 at index \(1,\)$",
+            id="direct-zero-total-batched",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, 1.0, 0.0, [0.5, 1.5]),
+            RestitutionRangeError,
+            r"^coefficient of restitution e must lie in \[0, 1\]; found 1\.5 at index \(1,\)$",
+            id="direct-e-batched",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1e-10, 1.0, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^v_1f overflows float64 at index \(\)",
+            id="direct-v1f-overflow",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1e-10, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^v_2f overflows float64 at index \(\)",
+            id="direct-v2f-overflow",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                [1.0, 0.0],
+                np.eye(3),
+                [1.0, 0, 0],
+                axis_point=[0, 0, 0],
+                axis=[0, 0, 1],
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            NonPositiveParameterError,
+            r"^m must be > 0 for a rigid body; found 0\.0 at index \(1,\)$",
+            id="hinged-zero-m-batched",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(
+                _ball(J_G=np.diag([1.0, 1.0, 3.0])), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
+            ),
+            NonPhysicalInertiaError,
+            r"^body_1\.J_G ",
+            id="rigid-J_G",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(
+                _ball(omega=[0, 1.0]), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
+            ),
+            ShapeError,
+            r"^body_1\.omega has shape \(2,\)",
+            id="rigid-omega-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_effective_mass(
+                np.diag([1.0, 1.0, 3.0]),
+                [1.0, 0, 0],
+                [0, 1.0, 0],
+                axis_point=[0, 0, 0],
+                axis=[0, 0, 1],
+            ),
+            NonPhysicalInertiaError,
+            r"^J_A ",
+            id="hinged-J_A",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(), None, r_S=[0, 0, 0.0], n=[0, 0, 0.0]),
+            ZeroNormalError,
+            r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="nrv-zero-n",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(
+                1.0, np.eye(3), [4 * EPS, 0, 1.0], axis_point=[0, 0, 0], axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis",
+            id="percussion-h-at-4-eps",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(
+                1.0, np.eye(3), [1e-7, 0, 1e10], axis_point=[0, 0, 0], axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis \(distance h = 1e-07",
+            id="percussion-far-G-near-axis",
+        ),
     ],
 )
 def test_more_messages_name_the_argument_the_value_and_the_condition(call, error, match):
@@ -909,7 +999,9 @@ def test_more_messages_name_the_argument_the_value_and_the_condition(call, error
 
 def test_centre_of_percussion_just_beyond_rounding_of_the_axis_is_found():
     # h = 4.5 eps (|AG| = 1): G is off the axis by more than the rounding bound
-    P, b = im.centre_of_percussion(1.0, np.eye(3), [4.5 * EPS, 0, 1.0], axis_point=[0, 0, 0], axis=[0, 0, 1])
+    P, _ = im.centre_of_percussion(
+        1.0, np.eye(3), [4.5 * EPS, 0, 1.0], axis_point=[0, 0, 0], axis=[0, 0, 1]
+    )
     assert np.isfinite(P).all()
     np.testing.assert_allclose(P[0], 1.0 / (4.5 * EPS), rtol=HAND_RTOL)  # J_zz/(m h)
 
