@@ -636,3 +636,201 @@ def test_parallel_axis_rejects_a_singular_centroidal_tensor_unless_allowed():
 def test_each_inertia_function_validates_its_own_inputs(call, error, match):
     with pytest.raises(error, match=match):
         call()
+
+
+def _overflow_error():
+    from mechanics.errors import ResultOverflowError
+
+    return ResultOverflowError
+
+
+_TRIANGLE = np.diag([1.0, 1.0, 3.0])  # J1 + J2 < J3
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: I.rod(np.nan, 1.0), NonFiniteError, r"^m must be finite", id="rod-m-nan"
+        ),
+        pytest.param(
+            lambda: I.rod(1.0, np.nan), NonFiniteError, r"^ell must be finite", id="rod-ell-nan"
+        ),
+        pytest.param(
+            lambda: I.rod(1.0, 0.0),
+            NonPositiveParameterError,
+            r"^ell must be > 0; found 0\.0$",
+            id="rod-ell-zero",
+        ),
+        pytest.param(
+            lambda: I.cylinder(1.0, 0.0, 1.0),
+            NonPositiveParameterError,
+            r"^R must be > 0; found 0\.0$",
+            id="cylinder-R",
+        ),
+        pytest.param(
+            lambda: I.cylinder(1.0, 1.0, -2.0),
+            NonPositiveParameterError,
+            r"^h must be > 0; found -2\.0$",
+            id="cylinder-h",
+        ),
+        pytest.param(
+            lambda: I.cylinder(1.0, [1.0, 2.0], [[1.0], [0.0]]),
+            NonPositiveParameterError,
+            r"^h must be > 0; found 0\.0$",
+            id="cylinder-h-batched",
+        ),
+        pytest.param(
+            lambda: I.cylindrical_shell(1.0, 0.0, 1.0),
+            NonPositiveParameterError,
+            r"^R must be > 0; found 0\.0$",
+            id="shell-R",
+        ),
+        pytest.param(
+            lambda: I.rectangular_plate(1.0, 1.0, -1.0),
+            NonPositiveParameterError,
+            r"^b must be > 0; found -1\.0$",
+            id="plate-b",
+        ),
+        pytest.param(
+            lambda: I.box(1.0, -1.0, 1.0, 1.0),
+            NonPositiveParameterError,
+            r"^a must be > 0; found -1\.0$",
+            id="box-a",
+        ),
+        pytest.param(
+            lambda: I.solid_cone(1.0, -1.0, 1.0),
+            NonPositiveParameterError,
+            r"^R must be > 0; found -1\.0$",
+            id="cone-R",
+        ),
+        pytest.param(
+            lambda: I.solid_cone(1.0, 1.0, 0.0),
+            NonPositiveParameterError,
+            r"^h must be > 0; found 0\.0$",
+            id="cone-h",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(_TRIANGLE),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3 about G: principal moments \[1\.0, 1\.0, 3\.0\] give J1 \+ J2 - J3 = -1 \(-0\.333 of J3; index \(\)\)$",
+            id="check-triangle-about-G",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(_TRIANGLE, about_centre_of_mass=False),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3 about the given point: ",
+            id="check-triangle-about-point",
+        ),
+        pytest.param(
+            lambda: I.principal_axes(_TRIANGLE),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3: principal",
+            id="principal-triangle",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.diag([-1.0, 2.0, 2.0])),
+            NonPhysicalInertiaError,
+            r"^J is not positive semidefinite: smallest principal moment J1 = -1 < 0 \(by 0\.5 of the largest moment; index \(\)\)$",
+            id="check-negative-moment",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.array([[2.0, 0.5, 0], [0, 2.0, 0], [0, 0, 2.0]])),
+            NonPhysicalInertiaError,
+            r"^J is not symmetric: max \|J - J\^T\| = 0\.5 = 1e\+15 eps of the largest moment, more than 64 eps \(index \(\)\)$",
+            id="check-asymmetric",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.diag([1e-300, 2.0, 2.0])),
+            NonPhysicalInertiaError,
+            r"^J is not positive definite: smallest principal moment J1 = 1e-300 is zero to rounding \(5e-301 of the largest moment, index \(\)\)",
+            id="check-singular-ratio",
+        ),
+        pytest.param(
+            lambda: I.principal_axes(np.eye(2)),
+            ShapeError,
+            r"^J has shape \(2, 2\); expected \(\.\.\., 3, 3\)",
+            id="principal-shape",
+        ),
+        pytest.param(
+            lambda: I.is_physical_inertia(np.eye(2)),
+            ShapeError,
+            r"^J has shape \(2, 2\); expected \(\.\.\., 3, 3\)",
+            id="is-physical-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_A_from_O(np.eye(2), np.eye(3)),
+            ShapeError,
+            r"^J_O has shape \(2, 2\)",
+            id="A-from-O-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([], np.zeros((0, 3)), about=ORIGIN),
+            ZeroTotalMassError,
+            r"^no particles: the centre of mass is undefined$",
+            id="particles-none",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor(
+                [[1.0, 1.0], [0.0, 0.0]], [[[1.0, 0, 0], [0, 1.0, 0]]] * 2, about=ORIGIN
+            ),
+            ZeroTotalMassError,
+            r"^total mass is 0 \(index \(1,\)\): G is undefined$",
+            id="particles-zero-total-batched",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), 1e300, [1e300, 0, 0]),
+            _overflow_error(),
+            r"^the shifted inertia tensor overflows float64 \(finite inputs, result beyond 1\.8e308\)$",
+            id="parallel-overflow",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), np.nan, [1.0, 0, 0]),
+            NonFiniteError,
+            r"^m must be finite",
+            id="parallel-m-nan",
+        ),
+        pytest.param(
+            lambda: I.four_particle_realisation(np.nan, np.eye(3)),
+            NonFiniteError,
+            r"^m must be finite",
+            id="four-m-nan",
+        ),
+        pytest.param(
+            lambda: I.principal_subspaces(np.eye(3), rtol=-1.0),
+            NonPositiveParameterError,
+            r"^rtol must be a finite number >= 0; got -1\.0$",
+            id="subspaces-rtol",
+        ),
+    ],
+)
+def test_inertia_messages_name_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def test_inertia_tolerances_are_inclusive_and_rtol_zero_is_allowed():
+    # a tensor exactly at the triangle inequality's edge (a lamina) is physical
+    assert I.is_physical_inertia(np.diag([1.0, 2.0, 3.0]))
+    # rtol = 0: only exactly equal moments share a subspace
+    _, P = I.principal_subspaces(np.diag([2.0, 2.0, 3.0]), rtol=0.0)
+    assert np.diag(P[0]).tolist() == [1.0, 1.0, 0.0]
+    _, P = I.principal_subspaces(np.diag([2.0, 2.0 * (1 + 4 * EPS), 3.0]), rtol=0.0)
+    assert np.diag(P[0]).tolist() == [1.0, 0.0, 0.0]
+
+
+def test_principal_subspaces_group_moments_relative_to_the_largest():
+    # gaps of 1e-9 of J3 = 1e6: within the default rtol (2**-26 = 1.5e-8) of the
+    # largest moment, so J2 and J3 share a subspace; 1e-9 absolute would not.
+    J = np.diag([1e5, 1e6, 1e6 * (1 + 1e-9)])
+    _, P = I.principal_subspaces(J)
+    np.testing.assert_allclose(np.diag(P[2]), [0.0, 1.0, 1.0], atol=ENTRY_ATOL)
+    _, P = I.principal_subspaces(J / 1e12)  # the same, scaled: the grouping is scale-free
+    np.testing.assert_allclose(np.diag(P[2]), [0.0, 1.0, 1.0], atol=ENTRY_ATOL)
+
+
+def test_is_physical_inertia_judges_each_tensor_of_a_batch_on_its_own():
+    slightly_asymmetric = np.diag([1.0, 2.0, 2.5])
+    slightly_asymmetric[0, 1] += 1e-3
+    batch = np.array([np.eye(3), slightly_asymmetric, np.diag([2.0, 2.0, 3.0]), -np.eye(3)])
+    assert I.is_physical_inertia(batch).tolist() == [True, False, True, False]
