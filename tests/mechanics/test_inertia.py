@@ -834,3 +834,119 @@ def test_is_physical_inertia_judges_each_tensor_of_a_batch_on_its_own():
     slightly_asymmetric[0, 1] += 1e-3
     batch = np.array([np.eye(3), slightly_asymmetric, np.diag([2.0, 2.0, 3.0]), -np.eye(3)])
     assert I.is_physical_inertia(batch).tolist() == [True, False, True, False]
+
+
+_ASYM = np.array([[2.0, 0.5, 0], [0, 2.0, 0], [0, 0, 2.0]])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: I.rotate_inertia(_ASYM, np.eye(3)),
+            NonPhysicalInertiaError,
+            r"^J_A is not symmetric: max \|J - J\^T\| = 0\.5, more than 64 eps of its largest entry \(index \(\)\)$",
+            id="rotate-asym",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(np.array([np.eye(3), _ASYM]), np.eye(3)),
+            NonPhysicalInertiaError,
+            r"^J_A is not symmetric: .*\(index \(1,\)\)$",
+            id="rotate-asym-batched",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(1e-10 * _ASYM, np.eye(3)),
+            NonPhysicalInertiaError,
+            r"^J_A is not symmetric: max \|J - J\^T\| = 5e-11",
+            id="rotate-asym-tiny-tensor",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(np.full((3, 3), np.nan), np.eye(3)),
+            NonFiniteError,
+            r"^J_A must be finite",
+            id="rotate-nan",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(np.eye(2), np.eye(3)),
+            ShapeError,
+            r"^J_A has shape \(2, 2\)",
+            id="rotate-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_A_from_O(np.full((3, 3), np.inf), np.eye(3)),
+            NonFiniteError,
+            r"^J_O must be finite",
+            id="A-from-O-inf",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(_HUGE_OFFDIAG, R3(np.pi / 4)),
+            _overflow_error(),
+            r"^the rotated inertia tensor overflows float64 \(finite inputs",
+            id="rotate-overflow",
+        ),
+        pytest.param(
+            lambda: I.inertia_A_from_O(_HUGE_OFFDIAG, R3(np.pi / 4)),
+            _overflow_error(),
+            r"^the rotated inertia tensor overflows float64 \(finite inputs",
+            id="A-from-O-overflow",
+        ),
+        pytest.param(
+            lambda: I.box(1e200, 1e200, 1e200, 1e200),
+            _overflow_error(),
+            r"^the inertia tensor overflows float64 \(finite inputs, result beyond 1\.8e308\)$",
+            id="box-overflow",
+        ),
+        pytest.param(
+            lambda: I.principal_axes(np.full((3, 3), 1e308)),
+            _overflow_error(),
+            r"^the principal moments \(entries near the float64 limit\) overflows float64",
+            id="principal-overflow",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.array([np.eye(3), _ASYM])),
+            NonPhysicalInertiaError,
+            r"^J is not symmetric: .*\(index \(1,\)\)$",
+            id="check-asym-batched",
+        ),
+    ],
+)
+def test_inertia_messages_for_rotation_and_overflow(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+_HUGE_OFFDIAG = np.array([[1.7e308, 1.7e308, 0], [1.7e308, 1.7e308, 0], [0, 0, 1.0]])
+
+
+def test_principal_axes_annihilate_an_off_diagonal_entry_of_exactly_one():
+    moments, _ = I.principal_axes(np.array([[2.0, 1.0, 0], [1.0, 2.0, 0], [0, 0, 3.0]]))
+    np.testing.assert_allclose(moments, [1.0, 3.0, 3.0], rtol=0, atol=ENTRY_ATOL * 3)
+
+
+def test_parallel_axis_near_the_overflow_threshold_uses_the_plain_formula_correctly():
+    # m beyond 2**996: Dekker's split overflows, the plain J_G + m(|d|² 1 − d dᵀ) is used
+    J_G, m, d = 1e300 * np.eye(3), 1e301, np.array([1.0, 2.0, 0.5])
+    want = J_G + m * (d @ d * np.eye(3) - np.outer(d, d))
+    np.testing.assert_allclose(I.parallel_axis(J_G, m, d), want, rtol=ENTRY_ATOL * 4, atol=0)
+
+
+def test_batched_shapes_follow_every_argument():
+    J_G = _general_tensors(3)
+    assert I.parallel_axis(J_G, 2.0, [1.0, 0, 0]).shape == (3, 3, 3)
+    np.testing.assert_allclose(
+        I.parallel_axis(J_G, 2.0, [1.0, 0, 0])[2],
+        I.parallel_axis(J_G[2], 2.0, [1.0, 0, 0]),
+        rtol=0,
+        atol=ENTRY_ATOL * 4,
+    )
+    rods = I.rod(1.0, [1.0, 2.0])
+    assert rods.shape == (2, 3, 3)
+    assert rods[1, 0, 0] == pytest.approx(4.0 / 12.0, rel=ENTRY_ATOL)
+    cyl = I.cylinder(2.0, [[1.0], [2.0]], [1.0, 3.0, 4.0])
+    assert cyl.shape == (2, 3, 3, 3)
+    np.testing.assert_array_equal(cyl[1, 2], I.cylinder(2.0, 2.0, 4.0))
+    moments, P = I.principal_subspaces(J_G)
+    assert P.shape == (3, 3, 3, 3)
+    for i in range(3):
+        _, Pi = I.principal_subspaces(J_G[i])
+        np.testing.assert_allclose(P[i], Pi, rtol=0, atol=ENTRY_ATOL * 8)
