@@ -945,7 +945,7 @@ def test_batched_shapes_follow_every_argument():
     cyl = I.cylinder(2.0, [[1.0], [2.0]], [1.0, 3.0, 4.0])
     assert cyl.shape == (2, 3, 3, 3)
     np.testing.assert_array_equal(cyl[1, 2], I.cylinder(2.0, 2.0, 4.0))
-    moments, P = I.principal_subspaces(J_G)
+    _, P = I.principal_subspaces(J_G)
     assert P.shape == (3, 3, 3, 3)
     for i in range(3):
         _, Pi = I.principal_subspaces(J_G[i])
