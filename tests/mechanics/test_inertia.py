@@ -915,6 +915,11 @@ def test_inertia_messages_for_rotation_and_overflow(call, error, match):
         call()
 
 
+# a tensor of size 2e-10, asymmetric by 1e-20: 3.6e6 eps of its size (1e-20 is far below
+# eps in absolute terms: the tolerance must be relative to the tensor)
+_TINY_ASYM = 1e-10 * np.diag([2.0, 2.0, 2.0])
+_TINY_ASYM[0, 1] += 1e-20
+
 _HUGE_OFFDIAG = np.array([[1.7e308, 1.7e308, 0], [1.7e308, 1.7e308, 0], [0, 0, 1.0]])
 
 
