@@ -365,3 +365,19 @@ def test_rotvecs_with_an_angle_strategy_draw_only_axis_angle():
 def test_rotvecs_reject_a_non_strategy_quoting_it():
     with pytest.raises(InvalidArgument, match=re.escape("angles=1.0")):
         ms.rotvecs(angles=1.0)
+
+
+#: ``rotvecs`` regimes by name, each characterised by value.
+ROTVEC_REGIMES_BY_NAME = {
+    "axis-angle": lambda v: 0 < math.hypot(*v) <= math.pi * (1 + 2 * EPS),
+    "beyond-pi": lambda v: math.pi < math.hypot(*v) <= 2.0**26 * (1 + 2 * EPS),
+    "tiny-general": lambda v: 0 < math.hypot(*v) <= 1e-6 and bool(np.all(v != 0)),
+    "huge": lambda v: math.hypot(*v) >= 2.0**26,
+    "mixed": lambda v: np.abs(v).max() > 1e100 * np.abs(v).min() > 0,
+}
+
+
+def test_every_rotvec_regime_is_named_and_reached_when_drawn_alone():
+    assert set(ms.ROTVEC_REGIMES) == set(ROTVEC_REGIMES_BY_NAME)
+    for regime, predicate in ROTVEC_REGIMES_BY_NAME.items():
+        _found(ms.rotvecs(regimes=[regime]), predicate)
