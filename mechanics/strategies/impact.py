@@ -95,10 +95,11 @@ RESTITUTION_REGIMES = ("zero", "one", "interior", "near-zero", "near-one")
 #: Regimes of :func:`direct_velocities` (ẋ_1, ẋ_2), ẋ_1 ≥ ẋ_2: head-on
 #: (opposite signs); chase (same sign); body 2 at rest; a relative velocity
 #: 1e-12 … 1e-6 of the velocities themselves (Δẋ cancels); mixed magnitudes
-#: (|ẋ_1| and |ẋ_2| drawn independently from the tiers 0, 1e-300 … 1e-100,
+#: (|ẋ_1| and |ẋ_2| drawn independently from the tiers 0, 1e-250 … 1e-100,
 #: 1e-3 … 1e3 and the top ten decades below ``max_speed``/2, head-on or chase: with
 #: ``max_speed`` = 1e302 they span the float range, and a scaling that follows
-#: only one of them overflows).
+#: only one of them overflows).  The tiny tier stops at 1e-250 so that the
+#: velocities after, down to 1e-15 of it, are normal numbers.
 DIRECT_VELOCITY_REGIMES = ("head-on", "chase", "at-rest", "small-relative", "mixed-magnitude")
 
 #: Regimes of :func:`impact_inertia_tensors` (principal moments J1 ≤ J2, J3): a sphere
@@ -266,7 +267,9 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
     any_speed = st.one_of(
         log_uniform(1e-3, 1e3, shrink_to="hi"),
         st.just(0.0),
-        log_uniform(1e-300, 1e-100, shrink_to="hi"),
+        # not below 1e-250: times a mass fraction down to 1e-15 the velocities
+        # after stay normal numbers, where relative accuracy is promised
+        log_uniform(1e-250, 1e-100, shrink_to="hi"),
         log_uniform(top / 2e10, top / 2, shrink_to="lo"),
     )
 
