@@ -7,7 +7,7 @@ LOCK   := requirements/lock.txt
 # the suite's one command line; test-latest and test-oldest run it in their own venvs
 PYTEST_ARGS := -n auto
 
-.PHONY: run test checks bench lock test-latest test-oldest clean
+.PHONY: run test checks bench lock test-latest test-oldest clean mutate
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -70,6 +70,15 @@ bench: $(STAMP)
 		--benchmark-autosave --benchmark-columns=min,median,max,rounds -p no:randomly
 	$(BIN)/bodycheck bench --out bench-results
 	$(BIN)/python -m bench.roundoff --out bench-results
+
+## make mutate MODULE=mechanics/rotation.py: mutation testing of one module against the tests
+## that cover it (tools/mutation/modules.toml), one mutant at a time; prints the score, counting
+## the reviewed equivalents of tools/mutation/equivalent.toml, and the survivors not listed
+## (mutmut comes with the lock: the `mutation` extra)
+MODULE ?= mechanics/rotation.py
+MUTATE_ARGS ?=
+mutate: $(STAMP)
+	$(BIN)/python tools/mutation/run.py $(MODULE) --mutmut $(BIN)/mutmut --max-children 1 $(MUTATE_ARGS)
 
 clean:
 	rm -rf $(VENV) .venv-latest .venv-oldest .pytest_cache .hypothesis .benchmarks \

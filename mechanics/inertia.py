@@ -786,9 +786,10 @@ def _diag(m, name_values, f1, f2, f3) -> np.ndarray:
     mm = np.broadcast_to(mm, shape)
     vals = [np.broadcast_to(v, shape) for v in vals]
     out = np.zeros((*shape, 3, 3))
-    out[..., 0, 0] = f1(mm, *vals)
-    out[..., 1, 1] = f2(mm, *vals)
-    out[..., 2, 2] = f3(mm, *vals)
+    with np.errstate(over="ignore"):  # an overflow is reported by _finite_result
+        out[..., 0, 0] = f1(mm, *vals)
+        out[..., 1, 1] = f2(mm, *vals)
+        out[..., 2, 2] = f3(mm, *vals)
     return _finite_result(out, "the inertia tensor")
 
 

@@ -8,6 +8,8 @@ One submodule per concept of :mod:`mechanics`, all re-exported here, so that
 - :mod:`mechanics.strategies.particles`: masses and particle systems.
 - :mod:`mechanics.strategies.inertia`: inertia tensors and rigid bodies.
 - :mod:`mechanics.strategies.impact`: contacts and restitution.
+- :mod:`mechanics.strategies.batching`: stacks of independent draws, for the
+  promise that every function broadcasts over leading axes.
 
 Each submodule states its regimes (``*_REGIMES``); importing this package imports
 hypothesis, ``import mechanics`` does not.
@@ -15,10 +17,17 @@ hypothesis, ``import mechanics`` does not.
 
 from __future__ import annotations
 
-from . import impact, inertia, particles, rotation
+from . import batching, impact, inertia, particles, rotation
+from .batching import *  # noqa: F403
 from .impact import *  # noqa: F403
 from .inertia import *  # noqa: F403
 from .particles import *  # noqa: F403
 from .rotation import *  # noqa: F403
 
-__all__ = [*rotation.__all__, *particles.__all__, *inertia.__all__, *impact.__all__]
+__all__ = [
+    *rotation.__all__,
+    *particles.__all__,
+    *inertia.__all__,
+    *impact.__all__,
+    *batching.__all__,
+]

@@ -79,8 +79,12 @@ IMPACT_MASS_REGIMES = ("unit", "generic", "tiny", "huge")
 #: log-uniform in [1e-3, 1e3]); body 1 light (m_1/m_2 log-uniform in
 #: [1/max_ratio, 1e-6]); body 1 heavy (m_1/m_2 in [1e6, max_ratio]).  The
 #: extreme ratios are where m_1 m_2/(m_1 + m_2) and the mass fractions lose
-#: digits or overflow when written naively.
-MASS_PAIR_REGIMES = ("equal", "generic", "light-1", "heavy-1")
+#: digits or overflow when written naively; scaled (a generic pair times a common
+#: factor log-uniform in 1e-150 … 1e150: masses far from 1, the internal scaling
+#: must follow both, while m v² still fits in float64 for speeds up to 1e6).
+MASS_PAIR_REGIMES = ("equal", "generic", "light-1", "heavy-1", "scaled")
+
+_MASS_SCALES = (1e-150, 1e150)
 
 #: Regimes of :func:`restitution_coefficients`: e = 0 (plastic), e = 1
 #: (elastic), interior (uniform in [0, 1]), near 0 (log-uniform 1e-15 … 1e-6),
@@ -90,8 +94,13 @@ RESTITUTION_REGIMES = ("zero", "one", "interior", "near-zero", "near-one")
 
 #: Regimes of :func:`direct_velocities` (ẋ_1, ẋ_2), ẋ_1 ≥ ẋ_2: head-on
 #: (opposite signs); chase (same sign); body 2 at rest; a relative velocity
-#: 1e-12 … 1e-6 of the velocities themselves (Δẋ cancels).
-DIRECT_VELOCITY_REGIMES = ("head-on", "chase", "at-rest", "small-relative")
+#: 1e-12 … 1e-6 of the velocities themselves (Δẋ cancels); mixed magnitudes
+#: (|ẋ_1| and |ẋ_2| drawn independently from the tiers 0, 1e-250 … 1e-100,
+#: 1e-3 … 1e3 and the top ten decades below ``max_speed``/2, head-on or chase: with
+#: ``max_speed`` = 1e302 they span the float range, and a scaling that follows
+#: only one of them overflows).  The tiny tier stops at 1e-250 so that the
+#: velocities after, down to 1e-15 of it, are normal numbers.
+DIRECT_VELOCITY_REGIMES = ("head-on", "chase", "at-rest", "small-relative", "mixed-magnitude")
 
 #: Regimes of :func:`impact_inertia_tensors` (principal moments J1 ≤ J2, J3): a sphere
 #: (J1 = J2 = J3); symmetric (J1 = J2 ≠ J3, a top); general; a flat lamina
@@ -202,6 +211,9 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
             return (1.0, 1.0)
         if regime == "generic":
             return (draw(base), draw(base))
+        if regime == "scaled":
+            k = draw(log_uniform(*_MASS_SCALES, shrink_to="hi"))
+            return (draw(base) * k, draw(base) * k)
         m2 = draw(base)
         ratio = draw(log_uniform(1e6, r, shrink_to="hi"))
         return (m2 / ratio, m2) if regime == "light-1" else (m2 * ratio, m2)
@@ -251,11 +263,23 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
         raise InvalidArgument(f"max_speed={max_speed!r} must be >= 1")
     names = check_regimes(regimes, DIRECT_VELOCITY_REGIMES, "direct_velocities")
     speed = log_uniform(1e-6, top / 2, shrink_to="hi")
+    # tiers, so that extremes meet in one pair: 0, tiny, order 1, the top ten decades
+    any_speed = st.one_of(
+        log_uniform(1e-3, 1e3, shrink_to="hi"),
+        st.just(0.0),
+        # not below 1e-250: times a mass fraction down to 1e-15 the velocities
+        # after stay normal numbers, where relative accuracy is promised
+        log_uniform(1e-250, 1e-100, shrink_to="hi"),
+        log_uniform(top / 2e10, top / 2, shrink_to="lo"),
+    )
 
     @st.composite
     def draw_pair(draw) -> tuple[float, float]:
         regime = draw(st.sampled_from(names))
         event(f"direct_velocities: {regime}")
+        if regime == "mixed-magnitude":
+            a, b = draw(any_speed), draw(any_speed)
+            return (a, -b) if draw(st.booleans()) else (max(a, b), min(a, b))
         if regime == "head-on":
             return (draw(speed), -draw(speed))
         if regime == "at-rest":

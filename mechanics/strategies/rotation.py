@@ -6,6 +6,9 @@ Conventions
   rotation angles in [0, π], rotation vectors φ e_a ``(3,)``, Euler angles
   (ψ, θ, φ) z-x-z, unit quaternions ``(4,)`` scalar first (w, x, y, z), and the
   book's passive matrices ^A R^O ``(3, 3)``.  Everything is float64.
+- Rotation vectors are not confined to angles in [0, π]: a rotation vector of
+  any length is valid (the angle is taken modulo 2π), and the code has branches
+  for tiny, ordinary and huge lengths; :data:`ROTVEC_REGIMES` reaches them all.
 - **Valid by construction.**  No strategy filters: a unit vector is built from a
   height and an azimuth, an angle near π is π minus a drawn offset, a matrix is
   the image of drawn parameters under :mod:`mechanics.rotation`.
@@ -47,10 +50,13 @@ from ._common import check_real, check_regimes, log_uniform
 
 __all__ = [
     "ANGLE_REGIMES",
+    "BEYOND_PI_RANGE",
     "EULER_REGIMES",
+    "HUGE_LENGTH_RANGE",
     "MATRIX_REGIMES",
     "NEAR_PI_WIDTH",
     "QUATERNION_REGIMES",
+    "ROTVEC_REGIMES",
     "TINY_ANGLE_RANGE",
     "UNIT_VECTOR_REGIMES",
     "euler_angles",
@@ -86,6 +92,29 @@ NEAR_PI_WIDTH = 1e-8
 
 _PI_ULP = math.ulp(math.pi)  # 4.4e-16: the smallest δ with fl(π − δ) < π
 
+#: Regimes of :func:`rotvecs`: ``axis-angle``, a :func:`unit_vectors` direction
+#: times a :func:`rotation_angles` angle in [0, π] (all their regimes);
+#: ``beyond-pi``, a :func:`unit_vectors` direction times a length log-uniform in
+#: :data:`BEYOND_PI_RANGE`; ``tiny-general``, a length log-uniform in
+#: :data:`TINY_ANGLE_RANGE` along a direction whose three components are all
+#: non-zero (1/8 to 1 of the largest, either sign), so that no component's error
+#: hides behind a zero; ``huge``, a :func:`unit_vectors` direction (exact axes
+#: included) times a length log-uniform in :data:`HUGE_LENGTH_RANGE`; ``mixed``,
+#: three components of independent magnitudes log-uniform over 1e-300 … 1e300
+#: (either sign), so that one rotation vector spans the whole float range.
+ROTVEC_REGIMES = ("axis-angle", "beyond-pi", "tiny-general", "huge", "mixed")
+
+#: Lengths of the ``beyond-pi`` rotation vectors: from just above π to 2**26
+#: (= 6.7e7), where the angle modulo 2π can still be formed to an ulp (beyond it a
+#: rounding of the input moves the angle by more than the matrix can show).
+BEYOND_PI_RANGE = (math.pi * (1.0 + 2.0**-50), 2.0**26)
+
+#: Lengths of the ``huge`` rotation vectors: from 2**26 to 1e308, where the
+#: squared length overflows.
+HUGE_LENGTH_RANGE = (2.0**26, 1e308)
+
+_MIXED_RANGE = (1e-300, 1e300)
+
 #: Regimes of :func:`euler_angles`: all zero; generic (ψ, φ in [−π, π], θ in
 #: [0, π]); gimbal lock θ = 0 and θ = π exactly; θ within 1e-12 … 1e-6 of 0 and
 #: of π (log-uniform).  In the four gimbal regimes ψ and φ are non-zero
@@ -104,9 +133,20 @@ QUATERNION_REGIMES = ("identity", "half-turn", "from-rotvec")
 
 #: Regimes of :func:`rotation_matrices`: the identity; a signed permutation
 #: matrix (a turn by a multiple of π/2 about coordinate axes, exact in float64);
-#: the image of :func:`rotvecs`, of :func:`euler_angles` (gimbal lock included)
-#: and of :func:`quaternions` under :mod:`mechanics.rotation`.
-MATRIX_REGIMES = ("identity", "signed-permutation", "rotvec", "euler", "quaternion")
+#: a sign flip: a half turn about an axis in a coordinate plane, the matrix
+#: 2 n nᵀ − 1 with its zeros and the −1 on the diagonal exact (Euler θ exactly 0
+#: or π when the plane is the x-y plane: gimbal lock with a general ψ − φ, which
+#: :func:`~mechanics.rotation.matrix_from_euler` never gives exactly, as
+#: sin(fl(π)) ≠ 0); the image of :func:`rotvecs`, of :func:`euler_angles`
+#: (gimbal lock included) and of :func:`quaternions` under :mod:`mechanics.rotation`.
+MATRIX_REGIMES = (
+    "identity",
+    "signed-permutation",
+    "sign-flip",
+    "rotvec",
+    "euler",
+    "quaternion",
+)
 
 
 # ------------------------------------------------------------------ validation
@@ -205,20 +245,54 @@ def rotation_angles(
     return draw_angle()
 
 
-def rotvecs(*, axes=None, angles=None) -> st.SearchStrategy[np.ndarray]:
-    """Rotation vectors φ e_a, shape ``(3,)``: an axis times an angle.
+def rotvecs(*, axes=None, angles=None, regimes=None) -> st.SearchStrategy[np.ndarray]:
+    """Rotation vectors φ e_a, shape ``(3,)``, of any length.
 
-    ``axes`` defaults to :func:`unit_vectors` and ``angles`` to
-    :func:`rotation_angles`, so the regimes are theirs: general and near-axis
-    directions times zero, tiny, generic, near-π and exactly-π angles.  The norm
-    of the result is the angle within an ulp or two.
+    Regimes (:data:`ROTVEC_REGIMES`): ``axis-angle`` (a direction from ``axes``,
+    default :func:`unit_vectors`, times an angle from ``angles``, default
+    :func:`rotation_angles`: zero, tiny, generic, near-π and exactly-π angles;
+    the norm is the angle within an ulp or two), ``beyond-pi`` (lengths in
+    :data:`BEYOND_PI_RANGE`), ``tiny-general`` (lengths in
+    :data:`TINY_ANGLE_RANGE`, every component non-zero), ``huge`` (lengths in
+    :data:`HUGE_LENGTH_RANGE`, along exact axes too) and ``mixed`` (components of
+    independent magnitudes over 1e-300 … 1e300).  ``regimes`` restricts the draw;
+    when ``axes`` or ``angles`` is given and ``regimes`` is not, only
+    ``axis-angle`` is drawn (the one regime they shape).  Shrinks toward zero.
     """
+    for name, s in (("axes", axes), ("angles", angles)):
+        if s is not None and not isinstance(s, st.SearchStrategy):
+            raise InvalidArgument(f"{name}={s!r} must be a hypothesis strategy")
+    if regimes is None and (axes is not None or angles is not None):
+        regimes = ("axis-angle",)
+    names = check_regimes(regimes, ROTVEC_REGIMES, "rotvecs")
     axes = unit_vectors() if axes is None else axes
     angles = rotation_angles() if angles is None else angles
-    for name, s in (("axes", axes), ("angles", angles)):
-        if not isinstance(s, st.SearchStrategy):
-            raise InvalidArgument(f"{name}={s!r} must be a hypothesis strategy")
-    return st.tuples(angles, axes).map(lambda t: t[1] * t[0])
+    signs = st.sampled_from((1.0, -1.0))
+    general = st.tuples(
+        *(st.tuples(st.floats(0.125, 1.0), signs).map(lambda t: t[0] * t[1]),) * 3
+    ).map(lambda c: np.array(c) / math.hypot(*c))
+    lengths = {
+        "beyond-pi": log_uniform(*BEYOND_PI_RANGE, shrink_to="lo"),
+        "tiny-general": log_uniform(*TINY_ANGLE_RANGE, shrink_to="hi"),
+        "huge": log_uniform(*HUGE_LENGTH_RANGE, shrink_to="lo"),
+    }
+    mixed = st.tuples(
+        *(st.tuples(log_uniform(*_MIXED_RANGE, shrink_to="lo"), signs).map(lambda t: t[0] * t[1]),)
+        * 3
+    ).map(np.array)
+
+    @st.composite
+    def draw_rotvec(draw) -> np.ndarray:
+        regime = draw(st.sampled_from(names))
+        event(f"rotvecs: {regime}")
+        if regime == "axis-angle":
+            return draw(axes) * draw(angles)
+        if regime == "mixed":
+            return draw(mixed)
+        direction = draw(general if regime == "tiny-general" else axes)
+        return direction * draw(lengths[regime])
+
+    return draw_rotvec()
 
 
 def euler_angles(*, regimes=None) -> st.SearchStrategy[tuple[float, float, float]]:
@@ -296,7 +370,9 @@ def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
 
     Regimes (:data:`MATRIX_REGIMES`): ``identity``; ``signed-permutation`` (an
     exact turn by a multiple of π/2: a permutation matrix with signs and
-    determinant +1); ``rotvec``, ``euler`` and ``quaternion``: the matrix of a
+    determinant +1); ``sign-flip`` (a half turn 2 n nᵀ − 1 about an axis n in a
+    coordinate plane, exact zeros: gimbal lock θ = π exactly when the plane is
+    x-y); ``rotvec``, ``euler`` and ``quaternion``: the matrix of a
     drawn :func:`rotvecs`, :func:`euler_angles` or :func:`quaternions` by
     :func:`~mechanics.rotation.matrix_from_rotvec`,
     :func:`~mechanics.rotation.matrix_from_euler` or
@@ -318,6 +394,16 @@ def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
             # The third sign makes det = +1: valid by construction.
             s3 = s1 * s2 * float(np.linalg.det(P))
             return np.diag([s1, s2, s3]) @ P
+        if regime == "sign-flip":
+            # 2 n nᵀ − 1 for n = (cos α, sin α, 0) rolled into a coordinate plane: a
+            # half turn whose off-plane zeros and −1 are exact, the block symmetric.
+            alpha = draw(st.floats(-math.pi, math.pi))
+            c, s = math.cos(alpha), math.sin(alpha)
+            R = np.array(
+                [[2 * c * c - 1, 2 * c * s, 0.0], [2 * c * s, 2 * s * s - 1, 0.0], [0.0, 0.0, -1.0]]
+            )
+            k = draw(st.integers(0, 2))
+            return np.roll(R, (k, k), axis=(0, 1))
         if regime == "rotvec":
             return _rot.matrix_from_rotvec(draw(rotvecs()))
         if regime == "euler":

@@ -1197,6 +1197,7 @@ for _name in (
     "rotation.rotation_matrices",
     "rotation.rotvecs",
     "rotation.unit_vectors",
+    "batching.batches",
 ):
     EXEMPT[f"mechanics.strategies.{_name}"] = _STRAT
 _CONFORMANCE = (

@@ -373,3 +373,334 @@ def test_overflow_is_reported_not_returned_as_inf():
         D.euler_equations_rhs([1.0, 2.0, 2.5], [1e200, 1e200, 0.0], np.zeros(3))
     with pytest.raises(ResultOverflowError):
         D.rotational_kinetic_energy(np.eye(3), [1e200, 0.0, 0.0])
+
+
+# ------------------------------------------------ the hinge functions broadcast
+
+
+def test_bearing_reactions_broadcast_over_bodies_and_states():
+    # A batch of three bodies (J_O, m, r_G) and states: row by row as one at a time,
+    # and the axial load −F_z on the named bearing.
+    J_O = np.array(
+        [
+            I.rotate_inertia(np.diag([1.0, 2.0, 2.5]), matrix_from_rotvec(v))
+            for v in ([0.3, -0.2, 0.9], [1.0, 0.5, 0.0], [-0.4, 0.8, 0.2])
+        ]
+    )
+    m = np.array([1.0, 2.0, 0.5])
+    r_G = np.array([[0.3, 0.0, 0.2], [0.1, -0.4, 0.5], [0.0, 0.2, -0.3]])
+    w, a, z_A = np.array([4.0, -1.0, 0.5]), np.array([1.5, 0.0, -2.0]), np.array([0.8, 1.0, -1.2])
+    F = np.array([[0.0, 1.0, -2.0], [0.5, 0.0, 3.0], [1.0, -1.0, 0.25]])
+    M = np.array([[0.1, 0.2, 0.3], [0.0, -0.5, 0.0], [0.4, 0.0, -0.1]])
+    for axial_at in ("O", "A"):
+        R1, R2 = D.bearing_reactions(J_O, m, r_G, w, a, z_A, F_a=F, M_a=M, axial_at=axial_at)
+        assert R1.shape == R2.shape == (3, 3)
+        for i in range(3):
+            r1, r2 = D.bearing_reactions(
+                J_O[i], m[i], r_G[i], w[i], a[i], z_A[i], F_a=F[i], M_a=M[i], axial_at=axial_at
+            )
+            np.testing.assert_array_equal(R1[i], r1)
+            np.testing.assert_array_equal(R2[i], r2)
+        axial = R2[:, 2] if axial_at == "O" else R1[:, 2]
+        np.testing.assert_array_equal(axial, -F[:, 2])
+
+
+def test_axis_reactions_broadcast_over_states():
+    m, h = np.array([2.0, 1.0]), np.array([0.5, 0.0])
+    phidot, phiddot = np.array([[1.0], [3.0]]), np.array([0.5, -2.0])  # (2, 1) with (2,)
+    R = D.axis_reaction(m, h, phidot, phiddot, F_a_rho=1.5, F_a_phi=-0.5)
+    assert R.shape == (2, 2, 2)
+    for i in range(2):
+        for j in range(2):
+            want = D.axis_reaction(m[j], h[j], phidot[i, 0], phiddot[j], F_a_rho=1.5, F_a_phi=-0.5)
+            np.testing.assert_array_equal(R[i, j], want)
+    phi = np.array([0.0, 0.4, -1.0])
+    Rp = D.pendulum_axis_reaction(phi, 1.0, 2.0, G_EARTH, 0.5, E=np.array([20.0, 10.0, 15.0]))
+    assert Rp.shape == (3, 2)
+    one = D.pendulum_axis_reaction(phi[1], 1.0, 2.0, G_EARTH, 0.5, E=10.0)
+    np.testing.assert_array_equal(Rp[1], one)
+
+
+def test_axis_reaction_rejects_a_negative_distance_naming_it():
+    with pytest.raises(NonPositiveParameterError, match=r"^h must be >= 0; found -0\.5"):
+        D.axis_reaction(1.0, [0.2, -0.5], 1.0, 0.0, F_a_rho=0.0, F_a_phi=0.0)
+
+
+def test_bearing_reactions_name_the_bad_argument():
+    args = (np.eye(3), 1.0, [0, 0, 0], 1.0, 0.0)
+    kw = {"F_a": [0, 0, 0], "M_a": [0, 0, 0]}
+    with pytest.raises(UnknownOptionError, match=r"^axial_at='B'; expected 'O' or 'A'"):
+        D.bearing_reactions(*args, 1.0, axial_at="B", **kw)
+    with pytest.raises(NonPositiveParameterError, match=r"^z_A must be non-zero"):
+        D.bearing_reactions(*args, [1.0, 0.0], **kw)
+    with pytest.raises(ShapeError, match=r"^r_G has shape \(2,\)"):
+        D.bearing_reactions(np.eye(3), 1.0, [0, 0], 1.0, 0.0, 1.0, **kw)
+    with pytest.raises(ShapeError, match=r"^F_a has shape \(2,\)"):
+        D.bearing_reactions(*args, 1.0, F_a=[0, 0], M_a=[0, 0, 0])
+    with pytest.raises(ShapeError, match=r"^M_a has shape \(2,\)"):
+        D.bearing_reactions(*args, 1.0, F_a=[0, 0, 0], M_a=[0, 0])
+    with pytest.raises(NonPhysicalInertiaError, match=r"^J_O"):
+        D.bearing_reactions(np.diag([1.0, 1.0, 3.0]), *args[1:], 1.0, **kw)
+
+
+def _overflow_error():
+    from mechanics.errors import ResultOverflowError
+
+    return ResultOverflowError
+
+
+_NAN = float("nan")
+_BR = {"F_a": [0, 0, 0.0], "M_a": [0, 0, 0.0]}
+_AR = {"F_a_rho": 0.0, "F_a_phi": 0.0}
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: D.pendulum_period(1.0, 1.0, 9.81, 0.5, 4.0),
+            OutOfDomainError,
+            r"^theta_0 = 4\.0 is beyond pi: a pendulum released from rest oscillates with amplitude \|theta_0\| <= pi$",
+            id="amplitude",
+        ),
+        pytest.param(
+            lambda: D.pendulum_period(1.0, 1.0, 9.81, 0.5, _NAN),
+            NonFiniteError,
+            r"^theta_0 must be finite",
+            id="amplitude-nan",
+        ),
+        pytest.param(
+            lambda: D.pendulum_small_period(1.0, 0.0, 9.81, 0.5),
+            NonPositiveParameterError,
+            r"^m must be > 0; found 0\.0$",
+            id="pendulum-m",
+        ),
+        pytest.param(
+            lambda: D.pendulum_small_period(1.0, 1.0, -9.81, 0.5),
+            NonPositiveParameterError,
+            r"^g must be > 0; found -9\.81$",
+            id="pendulum-g",
+        ),
+        pytest.param(
+            lambda: D.pendulum_small_period(1.0, 1.0, 9.81, 0.0),
+            NonPositiveParameterError,
+            r"^h must be > 0; found 0\.0$",
+            id="pendulum-h",
+        ),
+        pytest.param(
+            lambda: D.pendulum_small_period(0.0, 1.0, 9.81, 0.5),
+            NonPositiveParameterError,
+            r"^J_axis must be > 0; found 0\.0$",
+            id="pendulum-J",
+        ),
+        pytest.param(
+            lambda: D.pendulum_small_period(1.0, _NAN, 9.81, 0.5),
+            NonFiniteError,
+            r"^m must be finite",
+            id="pendulum-m-nan",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs([1.0, 2.0], [0, 0, 1.0], [0, 0, 0.0]),
+            ShapeError,
+            r"^J_principal has shape \(2,\); expected \(\.\.\., 3\)$",
+            id="euler-J-shape",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs(
+                [[1.0, 2.0, 2.5], [1.0, 1.0, 3.0]], [0, 0, 1.0], [0, 0, 0.0]
+            ),
+            NonPhysicalInertiaError,
+            r"^J_principal breaks the triangle inequality: \[1\.0, 1\.0, 3\.0\] has J_j \+ J_k - J_i = -1 < 0 for i = 3$",
+            id="euler-J-triangle-batched",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs([1.0, 2.0, 2.5], [0, 1.0], [0, 0, 0.0]),
+            ShapeError,
+            r"^omega has shape \(2,\); expected \(\.\.\., 3\)$",
+            id="euler-omega-shape",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs([1.0, 2.0, 2.5], [0, _NAN, 1.0], [0, 0, 0.0]),
+            NonFiniteError,
+            r"^omega must be finite; found .*nan.* at index \(1,\)$",
+            id="euler-omega-nan",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs([1.0, 2.0, 2.5], [0, 0, 1.0], [0, _NAN, 0.0]),
+            NonFiniteError,
+            r"^M must be finite",
+            id="euler-M-nan",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs([1.0, 2.0, 2.5], [1e200, 1e200, 1e200], [0, 0, 0.0]),
+            _overflow_error(),
+            r"^d omega/dt overflows float64",
+            id="euler-overflow",
+        ),
+        pytest.param(
+            lambda: D.angular_momentum_rigid(np.eye(3), [0, _NAN, 0]),
+            NonFiniteError,
+            r"^omega must be finite",
+            id="L-omega-nan",
+        ),
+        pytest.param(
+            lambda: D.angular_momentum_rigid(1e300 * np.eye(3), [1e300, 0, 0]),
+            _overflow_error(),
+            r"^L = J omega overflows float64",
+            id="L-overflow",
+        ),
+        pytest.param(
+            lambda: D.rotational_kinetic_energy(1e300 * np.eye(3), [1e300, 0, 0]),
+            _overflow_error(),
+            r"^T overflows float64",
+            id="T-overflow",
+        ),
+        pytest.param(
+            lambda: D.rotational_kinetic_energy(
+                np.diag([0.0, 1.0, 1.0]), [1.0, 0, 0], allow_singular=False
+            ),
+            NonPhysicalInertiaError,
+            r"^J is not positive definite",
+            id="T-singular-refused",
+        ),
+        pytest.param(
+            lambda: D.rotational_kinetic_energy(np.diag([1.0, 1.0, 3.0]), [1.0, 0, 0]),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3 about the given point",
+            id="T-triangle-about-point",
+        ),
+        pytest.param(
+            lambda: D.fixed_axis_angular_acceleration(0.0, 1.0),
+            NonPositiveParameterError,
+            r"^J_axis must be > 0",
+            id="fixed-axis-J",
+        ),
+        pytest.param(
+            lambda: D.fixed_axis_angular_acceleration(1.0, _NAN),
+            NonFiniteError,
+            r"^M_axis must be finite",
+            id="fixed-axis-M",
+        ),
+        pytest.param(
+            lambda: D.axis_reaction(1.0, _NAN, 1.0, 0.0, **_AR),
+            NonFiniteError,
+            r"^h must be finite",
+            id="axis-h-nan",
+        ),
+        pytest.param(
+            lambda: D.axis_reaction(0.0, 1.0, 1.0, 0.0, **_AR),
+            NonPositiveParameterError,
+            r"^m must be > 0; found 0\.0$",
+            id="axis-m",
+        ),
+        pytest.param(
+            lambda: D.axis_reaction(1.0, 1.0, _NAN, 0.0, **_AR),
+            NonFiniteError,
+            r"^phidot must be finite",
+            id="axis-phidot",
+        ),
+        pytest.param(
+            lambda: D.axis_reaction(1.0, 1.0, 1.0, _NAN, **_AR),
+            NonFiniteError,
+            r"^phiddot must be finite",
+            id="axis-phiddot",
+        ),
+        pytest.param(
+            lambda: D.axis_reaction(1.0, 1.0, 1.0, 0.0, F_a_rho=_NAN, F_a_phi=0.0),
+            NonFiniteError,
+            r"^F_a_rho must be finite",
+            id="axis-F-rho",
+        ),
+        pytest.param(
+            lambda: D.axis_reaction(1.0, 1.0, 1.0, 0.0, F_a_rho=0.0, F_a_phi=_NAN),
+            NonFiniteError,
+            r"^F_a_phi must be finite",
+            id="axis-F-phi",
+        ),
+        pytest.param(
+            lambda: D.bearing_reactions(np.eye(3), 0.0, [0, 0, 0.0], 1.0, 0.0, 1.0, **_BR),
+            NonPositiveParameterError,
+            r"^m must be > 0; found 0\.0$",
+            id="bearing-m",
+        ),
+        pytest.param(
+            lambda: D.bearing_reactions(np.eye(3), 1.0, [0, 0, 0.0], _NAN, 0.0, 1.0, **_BR),
+            NonFiniteError,
+            r"^phidot must be finite",
+            id="bearing-phidot",
+        ),
+        pytest.param(
+            lambda: D.bearing_reactions(np.eye(3), 1.0, [0, 0, 0.0], 1.0, _NAN, 1.0, **_BR),
+            NonFiniteError,
+            r"^phiddot must be finite",
+            id="bearing-phiddot",
+        ),
+        pytest.param(
+            lambda: D.bearing_reactions(np.eye(3), 1.0, [0, 0, 0.0], 1.0, 0.0, _NAN, **_BR),
+            NonFiniteError,
+            r"^z_A must be finite",
+            id="bearing-z_A",
+        ),
+        pytest.param(
+            lambda: D.pendulum_angular_velocity_at(_NAN, 1.0, 1.0, 9.81, 0.5, 1.0),
+            NonFiniteError,
+            r"^theta must be finite",
+            id="velocity-theta-nan",
+        ),
+        pytest.param(
+            lambda: D.pendulum_angular_velocity_at([0.1, 1.5], 1.0, 1.0, 9.81, 0.5, 1.0),
+            OutOfDomainError,
+            r"^theta = 1\.5 lies beyond the amplitude \|theta_0\| = 1\.0$",
+            id="velocity-beyond-batched",
+        ),
+        pytest.param(
+            lambda: D.pendulum_axis_reaction(_NAN, 1.0, 2.0, 9.81, 0.5, E=0.0),
+            NonFiniteError,
+            r"^phi must be finite",
+            id="reaction-phi-nan",
+        ),
+        pytest.param(
+            lambda: D.pendulum_axis_reaction(1.0, 1.0, 1.0, 1.0, 1.0, E=0.1),
+            OutOfDomainError,
+            r"^E is below the potential energy m g h \(1 - cos phi\) at phi: the pendulum does not reach phi \(first at index \(\)\)$",
+            id="reaction-E",
+        ),
+        pytest.param(
+            lambda: D.pendulum_motion(_NAN, 1.0, 1.0, 9.81, 0.5, 1.0),
+            NonFiniteError,
+            r"^t must be finite",
+            id="motion-t-nan",
+        ),
+        pytest.param(
+            lambda: D.reduced_length(0.0, 1.0, 0.5),
+            NonPositiveParameterError,
+            r"^J_axis must be > 0",
+            id="reduced-J",
+        ),
+        pytest.param(
+            lambda: D.reduced_length(1.0, 0.0, 0.5),
+            NonPositiveParameterError,
+            r"^m must be > 0",
+            id="reduced-m",
+        ),
+    ],
+)
+def test_dynamics_messages_name_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def test_principal_moment_checks_judge_each_row_of_a_batch():
+    # a batch of principal moments: the triangle tolerance is relative to each row's
+    # own largest moment, and totals per row
+    J = np.array([[1.0, 2.0, 2.5], [1e-6, 2e-6, 3e-6 * (1 + 1e-14)], [2.0, 3.0, 4.0]])
+    out = D.euler_equations_rhs(J, [0.1, 0.2, 0.3], [0.0, 0.0, 0.0])
+    assert out.shape == (3, 3)
+    for i in range(3):
+        np.testing.assert_array_equal(
+            out[i], D.euler_equations_rhs(J[i], [0.1, 0.2, 0.3], [0.0, 0.0, 0.0])
+        )
+
+
+def test_kinetic_energy_accepts_a_singular_tensor_by_default():
+    assert D.rotational_kinetic_energy(np.diag([0.0, 1.0, 1.0]), [0.0, 2.0, 0.0]) == 2.0

@@ -342,7 +342,9 @@ def test_a_body_that_is_not_a_rigid_body_record_raises():
 
 
 def test_effective_mass_needs_all_of_body_2_or_none():
-    with pytest.raises(OutOfDomainError, match="m_2, J_2 and r_2"):
+    with pytest.raises(
+        OutOfDomainError, match=r"^body 2 needs all of m_2, J_2 and r_2, or none of them$"
+    ):
         im.effective_mass(1.0, np.eye(3), [0, 0, 0], [1, 0, 0], m_2=2.0)
 
 
@@ -459,3 +461,561 @@ def test_hinged_effective_mass_is_infinite_for_a_blow_through_the_axis():
         J_A, [1.0, 0, 0], [1.0, 0, 0], axis_point=[0, 0, 0], axis=[0, 0, 1]
     )
     assert mu == math.inf
+
+
+# ------------------------------------- promises checked where they are not trivial
+
+
+def _tilted_hinge():
+    """A general body on a tilted axis: J_A, G, A and a with no zero components."""
+    R = np.array([[0.36, 0.48, -0.8], [-0.8, 0.6, 0.0], [0.48, 0.64, 0.6]])  # a rotation
+    J_A = R.T @ np.diag([2.0, 3.0, 4.5]) @ R
+    return (
+        2.5,
+        J_A,
+        np.array([0.7, -0.2, 0.4]),
+        np.array([0.1, 0.3, -0.2]),
+        np.array([1.0, 2.0, 2.0]),
+    )
+
+
+def test_bearings_carry_an_axial_blow_on_the_first_bearing():
+    # A blow with a component along the axis: the axial part of S_axis (statically
+    # indeterminate) goes to bearing 1, and the two bearings still sum to S_axis and
+    # give M_axis about A.
+    m, J_A, r_G, A, axis = _tilted_hinge()
+    a = axis / 3.0
+    S_P = np.array([0.5, -1.0, 2.0])
+    s1, s2 = -0.4, 1.3
+    out = im.hinged_impact(
+        m,
+        J_A,
+        r_G,
+        axis_point=A,
+        axis=axis,
+        omega=0.7,
+        r_P=[1.0, 0.5, -0.3],
+        S_P=S_P,
+        bearings=(s1, s2),
+    )
+    B1, B2 = out.S_bearings
+    assert abs(out.S_axis @ a) > 0.1  # the reaction has an axial part
+    np.testing.assert_allclose(B1 + B2, out.S_axis, atol=RIGID_RTOL * 4)
+    np.testing.assert_allclose(B1 @ a, out.S_axis @ a, atol=RIGID_RTOL * 4)
+    np.testing.assert_allclose(B2 @ a, 0.0, atol=RIGID_RTOL * 4)
+    moment = np.cross(s1 * a, B1) + np.cross(s2 * a, B2)
+    np.testing.assert_allclose(moment, out.M_axis, atol=RIGID_RTOL * 4)
+
+
+def test_hinge_functions_broadcast_over_leading_axes():
+    # Batched inputs give, row by row, what the unbatched calls give.
+    _, J_A, r_G, A, axis = _tilted_hinge()
+    rP = np.array([[1.0, 0.5, -0.3], [0.2, -1.0, 0.8], [-0.6, 0.4, 1.1]])
+    SP = np.array([[0.5, -1.0, 2.0], [1.0, 0.0, 0.0], [0.0, 0.3, -0.4]])
+    omegas = np.array([0.7, -1.0, 0.0])
+    masses = np.array([2.5, 1.0, 4.0])
+    bear = (np.array([-0.4, 0.0, 1.0]), np.array([1.3, 2.0, -1.0]))
+    batched = im.hinged_impact(
+        masses, J_A, r_G, axis_point=A, axis=axis, omega=omegas, r_P=rP, S_P=SP, bearings=bear
+    )
+    mus = im.hinged_effective_mass(J_A, rP, SP, axis_point=A, axis=axis)
+    for i in range(3):
+        one = im.hinged_impact(
+            masses[i],
+            J_A,
+            r_G,
+            axis_point=A,
+            axis=axis,
+            omega=omegas[i],
+            r_P=rP[i],
+            S_P=SP[i],
+            bearings=(bear[0][i], bear[1][i]),
+        )
+        np.testing.assert_allclose(batched.omega[i], one.omega, rtol=HAND_RTOL, atol=0)
+        np.testing.assert_allclose(batched.S_axis[i], one.S_axis, rtol=0, atol=HAND_RTOL * 4)
+        np.testing.assert_allclose(batched.M_axis[i], one.M_axis, rtol=0, atol=HAND_RTOL * 4)
+        np.testing.assert_allclose(
+            batched.S_bearings[i], one.S_bearings, rtol=0, atol=HAND_RTOL * 16
+        )
+        mu = im.hinged_effective_mass(J_A, rP[i], SP[i], axis_point=A, axis=axis)
+        np.testing.assert_allclose(mus[i], mu, rtol=HAND_RTOL, atol=0)
+    assert batched.S_bearings.shape == (3, 2, 3)
+    points = np.array([[0.0, 0, 0], [0.1, 0.3, -0.2], [1.0, -1.0, 0.5]])
+    P, b = im.centre_of_percussion(masses, J_A, r_G, axis_point=points, axis=axis)
+    assert P.shape == b.shape == (3, 3)
+    for i in range(3):
+        P1, b1 = im.centre_of_percussion(masses[i], J_A, r_G, axis_point=points[i], axis=axis)
+        np.testing.assert_allclose(P[i], P1, rtol=0, atol=HAND_RTOL * 8)
+        np.testing.assert_allclose(b[i], b1, rtol=0, atol=HAND_RTOL)
+
+
+_HINGE_KW = dict(axis_point=[0, 0, 0], axis=[0, 0, 1])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: im.effective_mass(0.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0]),
+            NonPositiveParameterError,
+            r"^m_1 must be > 0 for a rigid body; found 0\.0",
+            id="effective-m1",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(
+                1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 0.0, np.eye(3), [0, 0, 1.0]
+            ),
+            NonPositiveParameterError,
+            r"^m_2 must be > 0 for a rigid body; found 0\.0",
+            id="effective-m2",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                0.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]
+            ),
+            NonPositiveParameterError,
+            r"^m must be > 0 for a rigid body; found 0\.0 at index \(\)",
+            id="hinged-m",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                [1.0, -2.0],
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            NegativeMassError,
+            r"^m must be >= 0; found -2\.0 at index \(1,\)",
+            id="hinged-negative-m",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(0.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW),
+            NonPositiveParameterError,
+            r"^m must be > 0 for a rigid body; found 0\.0",
+            id="percussion-m",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1, 0]
+            ),
+            ShapeError,
+            r"^r_G has shape \(2,\); expected \(\.\.\., 3\)",
+            id="hinged-r_G-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                axis_point=[0, 0],
+                axis=[0, 0, 1],
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            ShapeError,
+            r"^axis_point has shape \(2,\)",
+            id="hinged-axis-point-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0], S_P=[0, 1, 0]
+            ),
+            ShapeError,
+            r"^r_P has shape \(2,\)",
+            id="hinged-r_P-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=0.0, r_P=[1, 0, 0], S_P=[0, 1]
+            ),
+            ShapeError,
+            r"^S_P has shape \(2,\)",
+            id="hinged-S_P-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0, np.eye(3), [1.0, 0, 0], **_HINGE_KW, omega=np.nan, r_P=[1, 0, 0], S_P=[0, 1, 0]
+            ),
+            NonFiniteError,
+            r"^omega must be finite",
+            id="hinged-omega-nan",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+                bearings=(0.0, np.inf),
+            ),
+            NonFiniteError,
+            r"^bearings\[1\] must be finite",
+            id="hinged-bearing-inf",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+                bearings=(np.nan, 1.0),
+            ),
+            NonFiniteError,
+            r"^bearings\[0\] must be finite",
+            id="hinged-bearing-nan",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                **_HINGE_KW,
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+                bearings=(1.0,),
+            ),
+            OutOfDomainError,
+            r"^bearings must be two axial positions; got \(1\.0,\)",
+            id="hinged-one-bearing",
+        ),
+        pytest.param(
+            lambda: im.hinged_effective_mass(np.eye(3), [1.0, 0], [0, 1.0, 0], **_HINGE_KW),
+            ShapeError,
+            r"^r_P has shape \(2,\)",
+            id="hinged-mu-r_P-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_effective_mass(np.eye(3), [1.0, 0, 0], [0, 0, 0], **_HINGE_KW),
+            ZeroNormalError,
+            r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="hinged-mu-zero-n",
+        ),
+        pytest.param(
+            lambda: im.hinged_effective_mass(
+                np.diag([1.0, 1.0, -1.0]), [1.0, 0, 0], [0, 1.0, 0], **_HINGE_KW
+            ),
+            NonPhysicalInertiaError,
+            r"J_A",
+            id="hinged-mu-bad-J",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(1.0, np.eye(3), [0.0, 0, 2.0], **_HINGE_KW),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis \(distance h = 0\.0 at index \(\)\)",
+            id="percussion-on-axis",
+        ),
+    ],
+)
+def test_each_function_validates_its_own_inputs_naming_value_and_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def _ball(**kw):
+    fields = dict(m=1.0, J_G=0.4 * np.eye(3), r_G=[0, 0, 1.0], v_G=[0, 0, -1.0], omega=[0, 0, 0.0])
+    fields.update(kw)
+    return im.RigidBody(**fields)
+
+
+_RIGID_KW = dict(r_S=[0, 0, 0.0], n=[0, 0, 1.0])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, 1.0, np.nan, 0.5),
+            NonFiniteError,
+            r"^v_2 must be finite; found .*nan.* at index \(\)",
+            id="direct-v2-nan",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, 1.0, 0.0, np.inf),
+            NonFiniteError,
+            r"^e must be finite; found .*inf.* at index \(\)",
+            id="direct-e-inf",
+        ),
+        pytest.param(
+            lambda: im.impulse_direct(1e308, 1e308, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^the impulse S_12 overflows float64 at index \(\) \(finite input\)$",
+            id="impulse-overflow",
+        ),
+        pytest.param(
+            lambda: im.impulse_direct(
+                [1.0, 1e308], [1.0, 1e308], [1.0, 1e308], [-1.0, -1e308], 1.0
+            ),
+            ResultOverflowError,
+            r"^the impulse S_12 overflows float64 at index \(1,\)",
+            id="impulse-overflow-batched",
+        ),
+        pytest.param(
+            lambda: im.energy_loss_direct(1e300, 1e300, 1e300, -1e300, 0.0),
+            ResultOverflowError,
+            r"^the energy loss Q overflows float64 at index \(\)",
+            id="energy-overflow",
+        ),
+        pytest.param(
+            lambda: im.compression_restitution_impulses(1e308, 1e308, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^S_1 overflows float64 at index \(\)",
+            id="compression-overflow",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.eye(3), [0, 0, 1.0], [[1.0, 0, 0], [0, 0, 0]]),
+            ZeroNormalError,
+            r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="effective-zero-n-batched",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.eye(3), [0, 0, 1.0], [1.0, 0]),
+            ShapeError,
+            r"^n has shape \(2,\); expected \(\.\.\., 3\)",
+            id="effective-n-shape",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.diag([1.0, 1.0, 3.0]), [0, 0, 1.0], [1.0, 0, 0]),
+            NonPhysicalInertiaError,
+            r"^J_1 ",
+            id="effective-J1",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(1.0, np.eye(3), [0, 1.0], [1.0, 0, 0]),
+            ShapeError,
+            r"^r_1 has shape \(2,\); expected \(\.\.\., 3\)",
+            id="effective-r1-shape",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(
+                1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 1.0, np.diag([1.0, 1.0, 3.0]), [0, 0, 1.0]
+            ),
+            NonPhysicalInertiaError,
+            r"^J_2 ",
+            id="effective-J2",
+        ),
+        pytest.param(
+            lambda: im.effective_mass(
+                1.0, np.eye(3), [0, 0, 1.0], [1.0, 0, 0], 1.0, np.eye(3), [0, 1.0]
+            ),
+            ShapeError,
+            r"^r_2 has shape \(2,\); expected \(\.\.\., 3\)",
+            id="effective-r2-shape",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(r_G=[0, 1.0]), None, **_RIGID_KW),
+            ShapeError,
+            r"^body_1\.r_G has shape \(2,\)",
+            id="nrv-body1-r_G",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(), _ball(v_G=[0, 1.0]), **_RIGID_KW),
+            ShapeError,
+            r"^body_2\.v_G has shape \(2,\)",
+            id="nrv-body2-v_G",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(omega=[0, np.nan, 0]), None, **_RIGID_KW),
+            NonFiniteError,
+            r"^body_1\.omega must be finite",
+            id="nrv-omega-nan",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(), None, r_S=[0, 0], n=[0, 0, 1.0]),
+            ShapeError,
+            r"^r_S has shape \(2,\); expected \(\.\.\., 3\)",
+            id="nrv-r_S-shape",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(_ball(), None, r_S=[0, 0], n=[0, 0, 1.0], e=0.5),
+            ShapeError,
+            r"^r_S has shape \(2,\); expected \(\.\.\., 3\)",
+            id="rigid-r_S-shape",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(_ball(), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=np.nan),
+            NonFiniteError,
+            r"^e must be finite",
+            id="rigid-e-nan",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                1.0,
+                np.eye(3),
+                [1.0, 0, 0],
+                axis_point=[0, 0, 0],
+                axis=[0, 0, 0],
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            ZeroNormalError,
+            r"^axis must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="hinged-zero-axis",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(
+                1.0, np.eye(3), [[1.0, 0, 0], [0, 0, 2.0]], axis_point=[0, 0, 0], axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis \(distance h = 0\.0 at index \(1,\)\)",
+            id="percussion-on-axis-batched",
+        ),
+    ],
+)
+def test_every_message_names_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def test_effective_mass_broadcasts_one_contact_over_a_batch_of_tensors():
+    J = np.array([np.eye(3), np.diag([1.0, 2.0, 2.5]), np.diag([0.5, 0.5, 0.9])])
+    mu = im.effective_mass(1.5, J, [0.3, 0.0, 1.0], [1.0, 0.0, 0.0])
+    assert mu.shape == (3,)
+    for i in range(3):
+        assert mu[i] == im.effective_mass(1.5, J[i], [0.3, 0.0, 1.0], [1.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: im.direct_impact(-1.0, 1.0, 1.0, 0.0, 0.5),
+            NegativeMassError,
+            r"^m_1 must be >= 0; found -1\.0",
+            id="direct-m1-negative",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, np.nan, 0.0, 0.5),
+            NonFiniteError,
+            r"^v_1 must be finite",
+            id="direct-v1-nan",
+        ),
+        pytest.param(
+            lambda: im.direct_impact([1.0, 0.0], [1.0, 0.0], 1.0, 0.0, 0.5),
+            ZeroTotalMassError,
+            r"^m_1 \+ m_2 must be > 0; both masses are 0 at index \(1,\)$",
+            id="direct-zero-total-batched",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1.0, 1.0, 0.0, [0.5, 1.5]),
+            RestitutionRangeError,
+            r"^coefficient of restitution e must lie in \[0, 1\]; found 1\.5 at index \(1,\)$",
+            id="direct-e-batched",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1e-10, 1.0, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^v_1f overflows float64 at index \(\)",
+            id="direct-v1f-overflow",
+        ),
+        pytest.param(
+            lambda: im.direct_impact(1.0, 1e-10, 1e308, -1e308, 1.0),
+            ResultOverflowError,
+            r"^v_2f overflows float64 at index \(\)",
+            id="direct-v2f-overflow",
+        ),
+        pytest.param(
+            lambda: im.hinged_impact(
+                [1.0, 0.0],
+                np.eye(3),
+                [1.0, 0, 0],
+                axis_point=[0, 0, 0],
+                axis=[0, 0, 1],
+                omega=0.0,
+                r_P=[1, 0, 0],
+                S_P=[0, 1, 0],
+            ),
+            NonPositiveParameterError,
+            r"^m must be > 0 for a rigid body; found 0\.0 at index \(1,\)$",
+            id="hinged-zero-m-batched",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(
+                _ball(J_G=np.diag([1.0, 1.0, 3.0])), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
+            ),
+            NonPhysicalInertiaError,
+            r"^body_1\.J_G ",
+            id="rigid-J_G",
+        ),
+        pytest.param(
+            lambda: im.rigid_impact(
+                _ball(omega=[0, 1.0]), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
+            ),
+            ShapeError,
+            r"^body_1\.omega has shape \(2,\)",
+            id="rigid-omega-shape",
+        ),
+        pytest.param(
+            lambda: im.hinged_effective_mass(
+                np.diag([1.0, 1.0, 3.0]),
+                [1.0, 0, 0],
+                [0, 1.0, 0],
+                axis_point=[0, 0, 0],
+                axis=[0, 0, 1],
+            ),
+            NonPhysicalInertiaError,
+            r"^J_A ",
+            id="hinged-J_A",
+        ),
+        pytest.param(
+            lambda: im.normal_relative_velocity(_ball(), None, r_S=[0, 0, 0.0], n=[0, 0, 0.0]),
+            ZeroNormalError,
+            r"^n must be a non-zero vector; found \[0\.0, 0\.0, 0\.0\]",
+            id="nrv-zero-n",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(
+                1.0, np.eye(3), [4 * EPS, 0, 1.0], axis_point=[0, 0, 0], axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis",
+            id="percussion-h-at-4-eps",
+        ),
+        pytest.param(
+            lambda: im.centre_of_percussion(
+                1.0, np.eye(3), [1e-7, 0, 1e10], axis_point=[0, 0, 0], axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            r"^the centre of mass lies on the axis \(distance h = 1e-07",
+            id="percussion-far-G-near-axis",
+        ),
+    ],
+)
+def test_more_messages_name_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def test_centre_of_percussion_just_beyond_rounding_of_the_axis_is_found():
+    # h = 4.5 eps (|AG| = 1): G is off the axis by more than the rounding bound
+    P, _ = im.centre_of_percussion(
+        1.0, np.eye(3), [4.5 * EPS, 0, 1.0], axis_point=[0, 0, 0], axis=[0, 0, 1]
+    )
+    assert np.isfinite(P).all()
+    np.testing.assert_allclose(P[0], 1.0 / (4.5 * EPS), rtol=HAND_RTOL)  # J_zz/(m h)
+
+
+def test_a_huge_or_tiny_normal_is_the_same_direction():
+    args = (1.0, np.diag([1.0, 2.0, 2.5]), [0.3, -0.2, 1.0])
+    mu = im.effective_mass(*args, [1.0, 0.0, 1.0])
+    for scale in (1e300, 1e-300):
+        assert im.effective_mass(*args, [scale, 0.0, scale]) == pytest.approx(mu, rel=HAND_RTOL)
+
+
+def test_rigid_impact_reports_the_normal_relative_velocity_before():
+    ball = _ball(v_G=[0.5, 0, -2.0], omega=[0.0, 1.0, 0])
+    out = im.rigid_impact(ball, None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5)
+    v_n = im.normal_relative_velocity(ball, None, r_S=[0, 0, 0.0], n=[0, 0, 1.0])
+    assert out.v_n == v_n
+    assert float(v_n) == -2.0  # v_G + ω × (S − G) = (0.5 − 1, 0, −2): its e_z part

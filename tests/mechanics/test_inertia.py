@@ -503,3 +503,455 @@ def test_rotate_inertia_rejects_an_asymmetric_matrix_instead_of_symmetrising_it(
         I.rotate_inertia(J, np.eye(3))
     with pytest.raises(NonPhysicalInertiaError, match="J_O is not symmetric"):
         I.inertia_A_from_O(J, np.eye(3))
+
+
+# ------------------------------------------ broadcasting and repeated validations
+
+
+def _general_tensors(n: int) -> np.ndarray:
+    """n physical tensors with distinct moments, turned about different axes."""
+    out = []
+    for k in range(n):
+        R = matrix_from_rotvec([0.3 + k, -0.5 * k, 0.2])
+        out.append(R.T @ np.diag([1.0 + k, 2.0 + k, 2.5 + 1.5 * k]) @ R)
+    return np.array(out)
+
+
+def test_inertia_tensor_of_particles_broadcasts_over_systems():
+    # Two systems of three particles, each about its own point: row by row.
+    m = np.array([[1.0, 2.0, 0.5], [3.0, 0.25, 1.0]])
+    r = np.array(
+        [
+            [[1.0, 0, 0], [0, 1.0, -1.0], [0.5, 0.5, 2.0]],
+            [[-1.0, 2.0, 0], [0, 0, 3.0], [1.0, 1.0, 1.0]],
+        ]
+    )
+    about = np.array([[0.0, 0, 0], [0.5, -0.5, 1.0]])
+    J = I.inertia_tensor(m, r, about=about)
+    assert J.shape == (2, 3, 3)
+    for i in range(2):
+        np.testing.assert_allclose(
+            J[i], I.inertia_tensor(m[i], r[i], about=about[i]), rtol=0, atol=ENTRY_ATOL * 16
+        )
+    # and one point for both systems
+    J0 = I.inertia_tensor(m, r, about=ORIGIN)
+    np.testing.assert_allclose(
+        J0[1], I.inertia_tensor(m[1], r[1], about=ORIGIN), rtol=0, atol=ENTRY_ATOL * 16
+    )
+
+
+def test_parallel_axis_broadcasts_over_a_batch_of_tensors():
+    J_G = _general_tensors(3)
+    m = np.array([1.0, 2.5, 0.5])
+    d = np.array([[1.0, 0, 0], [0.5, -1.0, 2.0], [0.0, 0.0, 0.0]])
+    J = I.parallel_axis(J_G, m, d)
+    assert J.shape == (3, 3, 3)
+    for i in range(3):
+        # (4.38): J_A = J_G + m (d² 1 − d dᵀ), by hand
+        want = J_G[i] + m[i] * (d[i] @ d[i] * np.eye(3) - np.outer(d[i], d[i]))
+        np.testing.assert_allclose(J[i], want, rtol=0, atol=ENTRY_ATOL * 8)
+    # one J_G, a batch of offsets
+    J1 = I.parallel_axis(J_G[1], 2.0, d)
+    assert J1.shape == (3, 3, 3)
+    np.testing.assert_allclose(J1[0], I.parallel_axis(J_G[1], 2.0, d[0]), rtol=0, atol=ENTRY_ATOL)
+
+
+def test_four_particle_realisation_broadcasts_and_reproduces_each_tensor():
+    J = _general_tensors(3)
+    m = np.array([1.0, 4.0, 0.5])
+    masses, r = I.four_particle_realisation(m, J)
+    assert masses.shape == (3, 4)
+    assert r.shape == (3, 4, 3)
+    for i in range(3):
+        mi, ri = I.four_particle_realisation(m[i], J[i])
+        np.testing.assert_allclose(masses[i], mi, rtol=0, atol=0)
+        np.testing.assert_allclose(r[i], ri, rtol=0, atol=ENTRY_ATOL * 4)
+        np.testing.assert_allclose(masses[i].sum(), m[i], rtol=ENTRY_ATOL)
+        np.testing.assert_allclose(
+            I.inertia_tensor(masses[i], r[i], about=ORIGIN),
+            J[i],
+            rtol=0,
+            atol=ENTRY_ATOL * 16 * np.abs(J[i]).max(),
+        )
+
+
+def test_parallel_axis_rejects_a_singular_centroidal_tensor_unless_allowed():
+    rod = np.diag([0.0, 1.0, 1.0])
+    with pytest.raises(
+        NonPhysicalInertiaError,
+        match=r"^J_G is not positive definite: smallest principal moment J1 = 0.*allow_singular=True",
+    ):
+        I.parallel_axis(rod, 1.0, [0.0, 1.0, 0.0])
+    J = I.parallel_axis(rod, 1.0, [0.0, 1.0, 0.0], allow_singular=True)
+    np.testing.assert_allclose(J, np.diag([1.0, 1.0, 2.0]), rtol=0, atol=ENTRY_ATOL)
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: I.four_particle_realisation(0.0, np.eye(3)),
+            NonPositiveParameterError,
+            r"^m must be > 0; found 0\.0",
+            id="four-zero-mass",
+        ),
+        pytest.param(
+            lambda: I.four_particle_realisation(-1.0, np.eye(3)),
+            NegativeMassError,
+            r"^m .*-1\.0",
+            id="four-negative-mass",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), -2.0, [1.0, 0, 0]),
+            NegativeMassError,
+            r"^m .*-2\.0",
+            id="parallel-negative-mass",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), 1.0, [1.0, 0]),
+            ShapeError,
+            r"^d has shape \(2,\); expected \(\.\.\., 3\)",
+            id="parallel-d-shape",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(2), 1.0, [1.0, 0, 0]),
+            ShapeError,
+            r"^J_G has shape \(2, 2\)",
+            id="parallel-J-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([1.0], [[1.0, 0]], about=ORIGIN),
+            ShapeError,
+            r"^r has shape \(1, 2\)",
+            id="particles-r-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([1.0], [[1.0, 0, 0]], about=[0, 0]),
+            ShapeError,
+            r"^about has shape \(2,\)",
+            id="particles-about-shape",
+        ),
+    ],
+)
+def test_each_inertia_function_validates_its_own_inputs(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def _overflow_error():
+    from mechanics.errors import ResultOverflowError
+
+    return ResultOverflowError
+
+
+_TRIANGLE = np.diag([1.0, 1.0, 3.0])  # J1 + J2 < J3
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: I.rod(np.nan, 1.0), NonFiniteError, r"^m must be finite", id="rod-m-nan"
+        ),
+        pytest.param(
+            lambda: I.rod(1.0, np.nan), NonFiniteError, r"^ell must be finite", id="rod-ell-nan"
+        ),
+        pytest.param(
+            lambda: I.rod(1.0, 0.0),
+            NonPositiveParameterError,
+            r"^ell must be > 0; found 0\.0$",
+            id="rod-ell-zero",
+        ),
+        pytest.param(
+            lambda: I.cylinder(1.0, 0.0, 1.0),
+            NonPositiveParameterError,
+            r"^R must be > 0; found 0\.0$",
+            id="cylinder-R",
+        ),
+        pytest.param(
+            lambda: I.cylinder(1.0, 1.0, -2.0),
+            NonPositiveParameterError,
+            r"^h must be > 0; found -2\.0$",
+            id="cylinder-h",
+        ),
+        pytest.param(
+            lambda: I.cylinder(1.0, [1.0, 2.0], [[1.0], [0.0]]),
+            NonPositiveParameterError,
+            r"^h must be > 0; found 0\.0$",
+            id="cylinder-h-batched",
+        ),
+        pytest.param(
+            lambda: I.cylindrical_shell(1.0, 0.0, 1.0),
+            NonPositiveParameterError,
+            r"^R must be > 0; found 0\.0$",
+            id="shell-R",
+        ),
+        pytest.param(
+            lambda: I.rectangular_plate(1.0, 1.0, -1.0),
+            NonPositiveParameterError,
+            r"^b must be > 0; found -1\.0$",
+            id="plate-b",
+        ),
+        pytest.param(
+            lambda: I.box(1.0, -1.0, 1.0, 1.0),
+            NonPositiveParameterError,
+            r"^a must be > 0; found -1\.0$",
+            id="box-a",
+        ),
+        pytest.param(
+            lambda: I.solid_cone(1.0, -1.0, 1.0),
+            NonPositiveParameterError,
+            r"^R must be > 0; found -1\.0$",
+            id="cone-R",
+        ),
+        pytest.param(
+            lambda: I.solid_cone(1.0, 1.0, 0.0),
+            NonPositiveParameterError,
+            r"^h must be > 0; found 0\.0$",
+            id="cone-h",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(_TRIANGLE),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3 about G: principal moments \[1\.0, 1\.0, 3\.0\] give J1 \+ J2 - J3 = -1 \(-0\.333 of J3; index \(\)\)$",
+            id="check-triangle-about-G",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(_TRIANGLE, about_centre_of_mass=False),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3 about the given point: ",
+            id="check-triangle-about-point",
+        ),
+        pytest.param(
+            lambda: I.principal_axes(_TRIANGLE),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3: principal",
+            id="principal-triangle",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.diag([-1.0, 2.0, 2.0])),
+            NonPhysicalInertiaError,
+            r"^J is not positive semidefinite: smallest principal moment J1 = -1 < 0 \(by 0\.5 of the largest moment; index \(\)\)$",
+            id="check-negative-moment",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.array([[2.0, 0.5, 0], [0, 2.0, 0], [0, 0, 2.0]])),
+            NonPhysicalInertiaError,
+            r"^J is not symmetric: max \|J - J\^T\| = 0\.5 = 1e\+15 eps of the largest moment, more than 64 eps \(index \(\)\)$",
+            id="check-asymmetric",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.diag([1e-300, 2.0, 2.0])),
+            NonPhysicalInertiaError,
+            r"^J is not positive definite: smallest principal moment J1 = 1e-300 is zero to rounding \(5e-301 of the largest moment, index \(\)\)",
+            id="check-singular-ratio",
+        ),
+        pytest.param(
+            lambda: I.principal_axes(np.eye(2)),
+            ShapeError,
+            r"^J has shape \(2, 2\); expected \(\.\.\., 3, 3\)",
+            id="principal-shape",
+        ),
+        pytest.param(
+            lambda: I.is_physical_inertia(np.eye(2)),
+            ShapeError,
+            r"^J has shape \(2, 2\); expected \(\.\.\., 3, 3\)",
+            id="is-physical-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_A_from_O(np.eye(2), np.eye(3)),
+            ShapeError,
+            r"^J_O has shape \(2, 2\)",
+            id="A-from-O-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([], np.zeros((0, 3)), about=ORIGIN),
+            ZeroTotalMassError,
+            r"^no particles: the centre of mass is undefined$",
+            id="particles-none",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor(
+                [[0.25, 0.25], [0.0, 0.0]], [[[1.0, 0, 0], [0, 1.0, 0]]] * 2, about=ORIGIN
+            ),
+            ZeroTotalMassError,
+            r"^total mass is 0 \(index \(1,\)\): G is undefined$",
+            id="particles-zero-total-batched",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), 1e300, [1e300, 0, 0]),
+            _overflow_error(),
+            r"^the shifted inertia tensor overflows float64 \(finite inputs, result beyond 1\.8e308\)$",
+            id="parallel-overflow",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), np.nan, [1.0, 0, 0]),
+            NonFiniteError,
+            r"^m must be finite",
+            id="parallel-m-nan",
+        ),
+        pytest.param(
+            lambda: I.four_particle_realisation(np.nan, np.eye(3)),
+            NonFiniteError,
+            r"^m must be finite",
+            id="four-m-nan",
+        ),
+        pytest.param(
+            lambda: I.principal_subspaces(np.eye(3), rtol=-1.0),
+            NonPositiveParameterError,
+            r"^rtol must be a finite number >= 0; got -1\.0$",
+            id="subspaces-rtol",
+        ),
+    ],
+)
+def test_inertia_messages_name_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+def test_inertia_tolerances_are_inclusive_and_rtol_zero_is_allowed():
+    # a tensor exactly at the triangle inequality's edge (a lamina) is physical
+    assert I.is_physical_inertia(np.diag([1.0, 2.0, 3.0]))
+    # rtol = 0: only exactly equal moments share a subspace
+    _, P = I.principal_subspaces(np.diag([2.0, 2.0, 3.0]), rtol=0.0)
+    assert np.diag(P[0]).tolist() == [1.0, 1.0, 0.0]
+    _, P = I.principal_subspaces(np.diag([2.0, 2.0 * (1 + 4 * EPS), 3.0]), rtol=0.0)
+    assert np.diag(P[0]).tolist() == [1.0, 0.0, 0.0]
+
+
+def test_principal_subspaces_group_moments_relative_to_the_largest():
+    # gaps of 1e-9 of J3 = 1e6: within the default rtol (2**-26 = 1.5e-8) of the
+    # largest moment, so J2 and J3 share a subspace; 1e-9 absolute would not.
+    J = np.diag([1e5, 1e6, 1e6 * (1 + 1e-9)])
+    _, P = I.principal_subspaces(J)
+    np.testing.assert_allclose(np.diag(P[2]), [0.0, 1.0, 1.0], atol=ENTRY_ATOL)
+    _, P = I.principal_subspaces(J / 1e12)  # the same, scaled: the grouping is scale-free
+    np.testing.assert_allclose(np.diag(P[2]), [0.0, 1.0, 1.0], atol=ENTRY_ATOL)
+
+
+def test_is_physical_inertia_judges_each_tensor_of_a_batch_on_its_own():
+    slightly_asymmetric = np.diag([1.0, 2.0, 2.5])
+    slightly_asymmetric[0, 1] += 1e-3
+    batch = np.array([np.eye(3), slightly_asymmetric, np.diag([2.0, 2.0, 3.0]), -np.eye(3)])
+    assert I.is_physical_inertia(batch).tolist() == [True, False, True, False]
+
+
+_ASYM = np.array([[2.0, 0.5, 0], [0, 2.0, 0], [0, 0, 2.0]])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            lambda: I.rotate_inertia(_ASYM, np.eye(3)),
+            NonPhysicalInertiaError,
+            r"^J_A is not symmetric: max \|J - J\^T\| = 0\.5, more than 64 eps of its largest entry \(index \(\)\)$",
+            id="rotate-asym",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(np.array([np.eye(3), _ASYM]), np.eye(3)),
+            NonPhysicalInertiaError,
+            r"^J_A is not symmetric: .*\(index \(1,\)\)$",
+            id="rotate-asym-batched",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(_TINY_ASYM, np.eye(3)),
+            NonPhysicalInertiaError,
+            r"^J_A is not symmetric: max \|J - J\^T\| = 1e-20",
+            id="rotate-asym-tiny-tensor",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(np.full((3, 3), np.nan), np.eye(3)),
+            NonFiniteError,
+            r"^J_A must be finite",
+            id="rotate-nan",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(np.eye(2), np.eye(3)),
+            ShapeError,
+            r"^J_A has shape \(2, 2\)",
+            id="rotate-shape",
+        ),
+        pytest.param(
+            lambda: I.inertia_A_from_O(np.full((3, 3), np.inf), np.eye(3)),
+            NonFiniteError,
+            r"^J_O must be finite",
+            id="A-from-O-inf",
+        ),
+        pytest.param(
+            lambda: I.rotate_inertia(_HUGE_OFFDIAG, R3(np.pi / 4)),
+            _overflow_error(),
+            r"^the rotated inertia tensor overflows float64 \(finite inputs",
+            id="rotate-overflow",
+        ),
+        pytest.param(
+            lambda: I.inertia_A_from_O(_HUGE_OFFDIAG, R3(np.pi / 4)),
+            _overflow_error(),
+            r"^the rotated inertia tensor overflows float64 \(finite inputs",
+            id="A-from-O-overflow",
+        ),
+        pytest.param(
+            lambda: I.box(1e200, 1e200, 1e200, 1e200),
+            _overflow_error(),
+            r"^the inertia tensor overflows float64 \(finite inputs, result beyond 1\.8e308\)$",
+            id="box-overflow",
+        ),
+        pytest.param(
+            lambda: I.principal_axes(np.full((3, 3), 1e308)),
+            _overflow_error(),
+            r"^the principal moments \(entries near the float64 limit\) overflows float64",
+            id="principal-overflow",
+        ),
+        pytest.param(
+            lambda: I.check_inertia(np.array([np.eye(3), _ASYM])),
+            NonPhysicalInertiaError,
+            r"^J is not symmetric: .*\(index \(1,\)\)$",
+            id="check-asym-batched",
+        ),
+    ],
+)
+def test_inertia_messages_for_rotation_and_overflow(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+# a tensor of size 2e-10, asymmetric by 1e-20: 3.6e6 eps of its size (1e-20 is far below
+# eps in absolute terms: the tolerance must be relative to the tensor)
+_TINY_ASYM = 1e-10 * np.diag([2.0, 2.0, 2.0])
+_TINY_ASYM[0, 1] += 1e-20
+
+_HUGE_OFFDIAG = np.array([[1.7e308, 1.7e308, 0], [1.7e308, 1.7e308, 0], [0, 0, 1.0]])
+
+
+def test_principal_axes_annihilate_an_off_diagonal_entry_of_exactly_one():
+    moments, _ = I.principal_axes(np.array([[2.0, 1.0, 0], [1.0, 2.0, 0], [0, 0, 3.0]]))
+    np.testing.assert_allclose(moments, [1.0, 3.0, 3.0], rtol=0, atol=ENTRY_ATOL * 3)
+
+
+def test_parallel_axis_near_the_overflow_threshold_uses_the_plain_formula_correctly():
+    # m beyond 2**996: Dekker's split overflows, the plain J_G + m(|d|² 1 − d dᵀ) is used
+    J_G, m, d = 1e300 * np.eye(3), 1e301, np.array([1.0, 2.0, 0.5])
+    want = J_G + m * (d @ d * np.eye(3) - np.outer(d, d))
+    np.testing.assert_allclose(I.parallel_axis(J_G, m, d), want, rtol=ENTRY_ATOL * 4, atol=0)
+
+
+def test_batched_shapes_follow_every_argument():
+    J_G = _general_tensors(3)
+    assert I.parallel_axis(J_G, 2.0, [1.0, 0, 0]).shape == (3, 3, 3)
+    np.testing.assert_allclose(
+        I.parallel_axis(J_G, 2.0, [1.0, 0, 0])[2],
+        I.parallel_axis(J_G[2], 2.0, [1.0, 0, 0]),
+        rtol=0,
+        atol=ENTRY_ATOL * 4,
+    )
+    rods = I.rod(1.0, [1.0, 2.0])
+    assert rods.shape == (2, 3, 3)
+    assert rods[1, 0, 0] == pytest.approx(4.0 / 12.0, rel=ENTRY_ATOL)
+    cyl = I.cylinder(2.0, [[1.0], [2.0]], [1.0, 3.0, 4.0])
+    assert cyl.shape == (2, 3, 3, 3)
+    np.testing.assert_array_equal(cyl[1, 2], I.cylinder(2.0, 2.0, 4.0))
+    _, P = I.principal_subspaces(J_G)
+    assert P.shape == (3, 3, 3, 3)
+    for i in range(3):
+        _, Pi = I.principal_subspaces(J_G[i])
+        np.testing.assert_allclose(P[i], Pi, rtol=0, atol=ENTRY_ATOL * 8)

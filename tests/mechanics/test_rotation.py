@@ -10,6 +10,7 @@ quaternions are scalar *last*.
 from __future__ import annotations
 
 import re
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -51,6 +52,11 @@ EULER_ANGLE_ATOL = 10 * SCIPY_ATOL
 ROTVEC_ATOL = 2 * np.pi * SCIPY_ATOL
 
 RNG_SEED = 20240917
+
+#: ψ and φ read back one by one close to gimbal lock: each is an atan2 of
+#: products of entries carried to full relative precision (θ normal), a few
+#: roundings of order-one angles.
+GIMBAL_SPLIT_ATOL = 8 * EPS
 
 
 def _scipy_passive(r: Rotation) -> np.ndarray:
@@ -791,6 +797,135 @@ BAD_INPUT = [
         id="quat-multiply-shape",
     ),
     pytest.param(
+        rot.quat_multiply,
+        ([1.0, 0, 0, 0], [1.0, 0, 0]),
+        ShapeError,
+        r"^q has shape \(3,\); expected \(\.\.\., 4\)",
+        id="quat-multiply-shape-right",
+    ),
+    pytest.param(
+        rot.quat_multiply,
+        ([1.0, 0, 0, 0], [1.0, np.nan, 0, 0]),
+        NonFiniteError,
+        r"^q must be finite; found .*nan.* at index \(1,\)",
+        id="quat-multiply-nan-right",
+    ),
+    pytest.param(
+        rot.compose_quat,
+        ([0.0, 0, 0, 0.5], [1.0, 0, 0, 0]),
+        NotARotationError,
+        r"^q_B_A is not a unit quaternion: \|q\| = 0\.5",
+        id="compose-quat-non-unit-left",
+    ),
+    pytest.param(
+        rot.components_A_from_O,
+        (np.eye(3), [1.0, 0]),
+        ShapeError,
+        r"^r_O has shape \(2,\); expected \(\.\.\., 3\)",
+        id="components-shape",
+    ),
+    pytest.param(
+        rot.nearest_rotation,
+        (np.eye(2),),
+        ShapeError,
+        r"^M has shape \(2, 2\); expected \(\.\.\., 3, 3\)",
+        id="nearest-shape",
+    ),
+    pytest.param(
+        rot.matrix_from_axis_angle,
+        ([1.0, 0], 1.0),
+        ShapeError,
+        r"^axis has shape \(2,\); expected \(\.\.\., 3\)",
+        id="axis-shape",
+    ),
+    pytest.param(
+        rot.matrix_from_axis_angle,
+        ([1.0, np.inf, 0], 1.0),
+        NonFiniteError,
+        r"^axis must be finite; found .*inf.* at index \(1,\)",
+        id="axis-inf",
+    ),
+    pytest.param(
+        rot.quat_from_rotvec,
+        ([1.0, 2.0],),
+        ShapeError,
+        r"^rotvec has shape \(2,\); expected \(\.\.\., 3\)",
+        id="quat-from-rotvec-shape",
+    ),
+    pytest.param(
+        rot.quat_from_rotvec,
+        ([1.0, -np.inf, 0],),
+        NonFiniteError,
+        r"^rotvec must be finite; found .*inf.* at index \(1,\)",
+        id="quat-from-rotvec-inf",
+    ),
+    pytest.param(
+        rot.matrix_from_euler,
+        (np.nan, 0.0, 0.0),
+        NonFiniteError,
+        r"^psi must be finite; found .*nan",
+        id="euler-psi-nan",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (2 * np.eye(3),),
+        NotARotationError,
+        r"^R_A_O is not a rotation: max \|R R\^T - 1\| = 3 exceeds atol = .* \(index \(\)\); "
+        r"use nearest_rotation\(\) to project it$",
+        id="check-hint-nearest",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (_REFLECTION,),
+        NotARotationError,
+        r"^R_A_O is not a rotation: \|det R - 1\| = 2 exceeds atol = .* \(index \(\)\); "
+        r"it is a reflection$",
+        id="check-hint-reflection",
+    ),
+    pytest.param(
+        lambda R: rot.check_rotation(R, atol=0.0),
+        (_REFLECTION,),
+        NotARotationError,
+        r"^R_A_O is not a rotation: \|det R - 1\| = 2 exceeds atol = 0 \(index \(\)\); "
+        r"it is a reflection$",
+        id="check-reflection-atol-zero",
+    ),
+    pytest.param(
+        lambda R: rot.check_rotation(R, atol=1.0),
+        (np.diag([1.0, 1.0, -0.5]),),
+        NotARotationError,
+        r"\|det R - 1\| = 1\.5 exceeds atol = 1 \(index \(\)\); use nearest_rotation\(\) to project it$",
+        id="check-det-1.5-not-a-reflection",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (1e200 * np.eye(3),),
+        NotARotationError,
+        r"^R_A_O is not a rotation: max \|R R\^T - 1\| = inf",
+        id="check-overflow",
+    ),
+    pytest.param(
+        rot.check_rotation,
+        (np.array([[1e200, 1e200, 0], [1e200, -1e200, 0], [0, 0, 1.0]]),),
+        NotARotationError,
+        r"^R_A_O is not a rotation: max \|R R\^T - 1\| = (inf|nan)",
+        id="check-overflow-inf-minus-inf",
+    ),
+    pytest.param(
+        rot.matrix_from_quat,
+        ([1e200, 0, 0, 0],),
+        NotARotationError,
+        r"^q is not a unit quaternion: \|q\| = 1e\+200 at index \(\)",
+        id="quat-overflow",
+    ),
+    pytest.param(
+        rot.matrix_from_quat,
+        ([[1.0, 0, 0, 0], [0, 0, 0, 0]],),
+        ZeroAxisError,
+        r"^q has zero length; a unit quaternion is required",
+        id="quat-zero-in-batch",
+    ),
+    pytest.param(
         rot.nearest_rotation,
         (np.full((3, 3), np.inf),),
         NonFiniteError,
@@ -857,3 +992,172 @@ def test_round_trips_reproduce_the_matrix_within_the_documented_ROUNDTRIP_ATOL(r
     assert err <= rot.ROUNDTRIP_ATOL, (
         f"round trip error {err / EPS:.2f} eps > ROUNDTRIP_ATOL = 4 eps"
     )
+
+
+# ------------------------------------------------- tolerances, exact arithmetic
+
+
+def test_rotation_tolerance_is_inclusive_for_both_deviations():
+    # "within atol" means ≤: a matrix whose deviation equals atol is accepted.
+    stretched = np.diag([1.0, 1.0, 1.5])  # max |R Rᵀ − 1| = 1.25, |det R − 1| = 0.5
+    reflection = np.diag([1.0, 1.0, -1.0])  # max |R Rᵀ − 1| = 0, |det R − 1| = 2
+    assert rot.is_rotation(stretched, atol=1.25)
+    assert not rot.is_rotation(stretched, atol=np.nextafter(1.25, 0))
+    assert rot.is_rotation(reflection, atol=2.0)
+    assert not rot.is_rotation(reflection, atol=np.nextafter(2.0, 0))
+    assert_array_equal(rot.check_rotation(stretched, atol=1.25), stretched)
+    assert_array_equal(rot.check_rotation(reflection, atol=2.0), reflection)
+
+
+def test_gimbal_lock_predicate_is_strict_at_atol():
+    theta = 0.5
+    assert not rot.euler_near_gimbal_lock(theta, atol=float(np.sin(theta)))
+    assert rot.euler_near_gimbal_lock(theta, atol=float(np.nextafter(np.sin(theta), 1.0)))
+
+
+@pytest.mark.parametrize(
+    ("a", "b"), [(1.0, 2.0**-53), (1.0, -(2.0**-54)), (3.0, 1e-17), (1e16, 1.0), (0.1, 0.2)]
+)
+def test_two_sum_is_error_free(a, b):
+    s, e = rot._two_sum(a, b)
+    assert s == a + b
+    assert Fraction(s) + Fraction(e) == Fraction(a) + Fraction(b)
+
+
+@pytest.mark.parametrize(
+    "parts",
+    [
+        (1.0, 2.0**-53, 2.0**-53, 0.0),
+        (1.0, 2.0**-53, 0.0, 2.0**-53),
+        (1.0, 0.0, 2.0**-53, 2.0**-53),
+        (1.0, -(2.0**-54), -(2.0**-54), 0.0),
+    ],
+)
+def test_compensated_sum_of_four_rounds_once(parts):
+    # Each case loses its small parts to rounding when summed plainly.
+    exact = float(sum(map(Fraction, parts)))
+    assert ((parts[0] + parts[1]) + parts[2]) + parts[3] != exact
+    assert rot._sum4(*parts) == exact
+
+
+def test_compose_quat_normalises_quaternions_accepted_off_unit_length():
+    q = np.array([0.6, 0.0, 0.8, 0.0]) * (1 + 32 * EPS)  # |q| − 1 within the tolerance
+    out = rot.compose_quat(q, [1.0, 0.0, 0.0, 0.0])
+    assert abs(np.linalg.norm(out) - 1.0) <= 2 * EPS
+    assert_allclose(out, [0.6, 0.0, 0.8, 0.0], rtol=0, atol=2 * EPS)
+
+
+def _half_turn_about_xy_direction(alpha: float) -> np.ndarray:
+    c, s = np.cos(alpha), np.sin(alpha)
+    return np.array([[2 * c * c - 1, 2 * c * s, 0], [2 * c * s, 2 * s * s - 1, 0], [0, 0, -1.0]])
+
+
+@pytest.mark.parametrize("alpha", [0.0, 0.4, -1.3, np.pi / 2, 2.9])
+def test_euler_angles_of_an_exact_sign_flip_are_theta_pi_and_reproduce_it(alpha):
+    # θ = π exactly (R33 = −1, zeros exact): only ψ − φ is defined; split evenly.
+    R = _half_turn_about_xy_direction(alpha)
+    psi, theta, phi = rot.euler_from_matrix(R)
+    assert np.isfinite([psi, theta, phi]).all()
+    assert theta == np.pi
+    assert psi == -phi
+    assert np.abs(rot.matrix_from_euler(psi, theta, phi) - R).max() <= rot.ROUNDTRIP_ATOL
+
+
+@pytest.mark.parametrize("e", [(0.5, 1e-300, 1.0), (-2.0, 3e-280, 0.25), (0.5, np.pi - 1e-15, 1.0)])
+def test_euler_angles_are_recovered_one_by_one_close_to_gimbal_lock(e):
+    # θ is a normal number, so ψ and φ are each defined and carried by the entries
+    # of size θ (or π − θ): the split must come back, not only ψ ± φ.
+    psi, theta, phi = rot.euler_from_matrix(rot.matrix_from_euler(*e))
+    assert_allclose([psi, phi], [e[0], e[2]], rtol=0, atol=GIMBAL_SPLIT_ATOL)
+    assert_allclose(theta, e[1], rtol=GIMBAL_SPLIT_ATOL, atol=0)
+
+
+def test_quat_from_rotvec_keeps_every_component_of_a_tiny_vector():
+    # Below 2**-27 the quaternion is (1, v/2) to within v²/48 relative: exact halves.
+    for v in ([0.0, 0.0, 1e-9], [2e-9, -1e-9, 3e-9], [1e-300, -2e-300, 3e-300]):
+        q = rot.quat_from_rotvec(v)
+        assert q[0] == 1.0
+        assert_array_equal(q[1:], 0.5 * np.array(v))
+
+
+@pytest.mark.parametrize(
+    "v",
+    [[0.0, 0.0, 1e300], [0.0, -1e308, 0.0], [1e300, -1e299, 3e300], [1e300, 1e300, 0.0]],
+)
+def test_huge_rotation_vectors_give_unit_quaternions_along_their_axis(v):
+    q = rot.quat_from_rotvec(v)
+    assert np.isfinite(q).all()
+    assert abs(np.linalg.norm(q) - 1.0) <= 4 * EPS
+    u = np.asarray(v) / np.linalg.norm(np.asarray(v) / 1e300) / 1e300
+    # the vector part is sin(φ/2) e_a: parallel to v, same sense as sin(φ/2)
+    assert_allclose(np.cross(q[1:], u), 0.0, atol=4 * EPS)
+
+
+#: The double-double norm and ratio promise about 2**-75 relative; 2**-70 leaves
+#: room for the few roundings of the correction terms.
+DD_RTOL = 2.0**-70
+
+
+def _dd_cases():
+    rng = np.random.default_rng(RNG_SEED + 7)
+    u = rng.normal(size=(300, 3))
+    scale = 10.0 ** rng.uniform(-100, 100, size=(300, 1))
+    v = u * scale
+    v[:100] = u[:100] * rng.uniform(3.0, 40.0, size=(100, 1))  # the angles of rotations
+    return v
+
+
+def test_double_double_norm_and_ratio_keep_2_to_the_minus_70():
+    # _norm_dd: |v| = r + r_lo; _ratio_dd: num/|v| = q + q_lo; _times_dd: a (q + q_lo)
+    # rounded once.  Exact references in mpmath.
+    mpmath = pytest.importorskip("mpmath")
+    v = _dd_cases()
+    x, y, z = v.T.copy()
+    r = np.sqrt(x * x + y * y + z * z)
+    norm, splits = rot._norm_dd((x, y, z), r)
+    assert_array_equal(norm[0] + norm[1], r)  # r split exactly
+    num = np.sin(0.5 * r)
+    ratio = rot._ratio_dd(num, norm, r)
+    prod = rot._times_dd(x, splits[0], ratio)
+    with mpmath.workdps(60):
+        for i in range(len(r)):
+            n = mpmath.sqrt(sum(mpmath.mpf(float(c)) ** 2 for c in v[i]))
+            got = mpmath.mpf(float(r[i])) + mpmath.mpf(float(norm[2][i]))
+            assert abs(got - n) <= DD_RTOL * n, ("norm", i, v[i])
+            want = mpmath.mpf(float(num[i])) / n
+            q = mpmath.mpf(float(ratio[0][i])) + mpmath.mpf(float(ratio[1][i]))
+            assert abs(q - want) <= DD_RTOL * abs(want), ("ratio", i, v[i])
+            exact = mpmath.mpf(float(x[i])) * want
+            assert abs(mpmath.mpf(float(prod[i])) - exact) <= EPS * abs(exact), ("times", i)
+
+
+def test_unit_quaternion_tolerance_is_inclusive():
+    # |q| − 1 = _QUAT_NORM_ATOL exactly (64 eps) is accepted, 65 eps is not.
+    g = np.array([0.5, 0.5, 0.5, 0.5])
+    rot.matrix_from_quat(g * (1 + 64 * EPS))
+    with pytest.raises(NotARotationError, match="not a unit quaternion"):
+        rot.matrix_from_quat(g * (1 + 65 * EPS))
+
+
+@pytest.mark.parametrize("k", [-60, -16, 16, 60])
+def test_matrix_from_quat_divides_out_an_accepted_length(k):
+    # A quaternion off unit length by k eps (accepted) gives the rotation of q/|q|:
+    # its length is divided out exactly (1/|q|² = 1 − δ/(1 + δ)), so the matrix is
+    # orthogonal to the forward accuracy of a unit quaternion, 4 eps.
+    from identities.stability.rotation import error_in_eps, exact_matrix_from_quat
+
+    q = np.array([0.36, -0.48, 0.64, 0.48]) * (1 + k * EPS)
+    assert error_in_eps(rot.matrix_from_quat(q), exact_matrix_from_quat(q)) <= 4.0
+
+
+def test_conversions_of_a_batch_larger_than_one_block_reach_every_row():
+    # _BLOCK rows are converted at a time: the rows after the first block must be
+    # converted too, each as alone.
+    n = rot._BLOCK + 5
+    rng = np.random.default_rng(RNG_SEED + 3)
+    v = rng.normal(size=(n, 3))
+    R = rot.matrix_from_rotvec(v)
+    for i in (0, rot._BLOCK - 1, rot._BLOCK, n - 1):
+        assert_allclose(R[i], rot.matrix_from_rotvec(v[i]), rtol=0, atol=VECTORISE_ATOL)
+    back = rot.rotvec_from_matrix(R)
+    assert_allclose(back[-1], rot.rotvec_from_matrix(R[-1]), rtol=0, atol=VECTORISE_ATOL)

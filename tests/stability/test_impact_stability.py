@@ -169,6 +169,47 @@ def test_direct_impact_is_within_a_few_ulps_of_the_exact_value(masses, velocitie
     assert worst <= PROMISE_ULPS, errs
 
 
+#: Speeds up to this reach the top of the float range while v_1f, v_2f (at most
+#: 3 max|ẋ|) stay finite.
+HUGE_SPEED = 1e302
+
+
+@given(
+    ms.mass_pairs(),
+    ms.direct_velocities(max_speed=HUGE_SPEED, regimes=["mixed-magnitude"]),
+    ms.restitution_coefficients(),
+)
+@example((1.0, 1.0), (0.0, -1e302), 0.5)
+@example((1.0, 1.0), (1e302, 0.0), 0.5)
+@example((1.0, 3.0), (1e-300, -1e302), 1.0)
+@example((1e15, 1.0), (1e302, 1e-300), 0.25)
+@example((1e-150, 3e-150), (5e301, -1e-200), 0.0)
+@example((3e140, 1e150), (1e-250, -7e301), 1.0)
+@example((1.7e308, 1e-300), (1.0, -1.0), 0.5)
+@example((1e-300, 1.7e308), (3.0, -1.0), 0.25)
+def test_direct_impact_velocities_exact_when_the_velocities_span_the_float_range(
+    masses, velocities, e
+):
+    # The internal scaling must follow both velocities (and both masses): scaled
+    # by the smaller one, the larger overflows in the double-double products.
+    (m1, m2), (v1, v2) = masses, velocities
+    v1f, v2f = im.direct_impact(m1, m2, v1, v2, e)
+    exact = _exact(m1, m2, v1, v2, e)
+    for name, got in (("v_1f", v1f), ("v_2f", v2f)):
+        err = error_ulps(got, exact[name], _floor(name, m1, m2, v1, v2))
+        target(min(err, 1e6), label=f"{name} error in ulps")
+        assert err <= PROMISE_ULPS, (name, float(got), float(exact[name]), err)
+
+
+def test_direct_impact_of_a_huge_velocity_against_one_at_rest_is_exact():
+    # the case of issue 16: a scaling that ignores ẋ_2 overflows here
+    for v1, v2, want in ((0.0, -1e302, (-0.75, -0.25)), (1e302, 0.0, (0.25, 0.75))):
+        got = im.direct_impact(1.0, 1.0, v1, v2, 0.5)
+        big = Fraction(1e302)
+        for g, w in zip(got, want, strict=True):
+            assert error_ulps(g, Fraction(w) * big) <= PROMISE_ULPS, (float(g), w)
+
+
 # ------------------------------------------- the problems the module avoids
 
 

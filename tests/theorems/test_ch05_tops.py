@@ -26,6 +26,7 @@ import math
 from fractions import Fraction
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, example, given, settings, target
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
@@ -257,3 +258,28 @@ def test_heavy_top_conserves_its_three_integrals(case):
     assert np.abs(E - top.energy).max() <= 1e-9 * escale
     assert np.abs(L3 - top.L_3).max() <= 1e-9 * lscale
     assert np.abs(Lz - top.L_z).max() <= 1e-9 * lscale
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known loss (found by hypothesis, open): for J_max within ~1e-13 … 1e-8 "
+    "(relative) of J_mid, ω near their plane, the exact attitude is off by up to 3e-9 "
+    "after 3 rotations (ψ = L t/J + (C/λ)(G − G0) with λ → 0 cancels); ω stays exact",
+)
+@pytest.mark.parametrize("ulps", [4, 16, 256])  # measured 2.3e-9, 2.7e-9, 2.0e-9
+def test_exact_free_top_attitude_with_two_moments_a_few_ulps_apart(ulps):
+    J = np.array([13.5 * (1 + ulps * 2.0**-53), 9.0, 13.5])
+    w0, R0 = np.array([0.0, -1e-6, 1.0]), np.eye(3)
+    top = tops.FreeAsymmetricTop(J, w0, R0)
+    ts = np.linspace(0, 3 * 2 * np.pi, 7)
+    sol = solve_ivp(
+        _attitude_rhs(J),
+        (0, ts[-1]),
+        np.concatenate([w0, R0.ravel()]),
+        method="DOP853",
+        rtol=1e-13,
+        atol=1e-15,
+        t_eval=ts,
+    )
+    assert np.abs(top.omega(ts) - sol.y[:3].T).max() <= ODE_RTOL
+    assert np.abs(top.attitude(ts) - sol.y[3:].T.reshape(-1, 3, 3)).max() <= ODE_RTOL * 10

@@ -66,6 +66,9 @@ MASS_PAIR_REGIMES = {
     "generic": lambda p: 1e-6 <= p[0] / p[1] <= 1e6 and p != (1.0, 1.0),
     "light-1": lambda p: p[0] / p[1] <= 1e-6,
     "heavy-1": lambda p: p[0] / p[1] >= 1e6,
+    "scaled": lambda p: (
+        min(p) >= 1e-153 and max(p) <= 1e153 and (max(p) > 1e100 or min(p) < 1e-100)
+    ),
 }
 
 RESTITUTION_REGIMES = {
@@ -81,6 +84,10 @@ DIRECT_VELOCITY_REGIMES = {
     "chase": lambda v: v[0] * v[1] > 0 and v[0] != v[1],
     "at-rest": lambda v: v[1] == 0.0 and v[0] > 0,
     "small-relative": lambda v: 0 < abs(v[0] - v[1]) <= 1e-6 * abs(v[1]),
+    "mixed-magnitude": lambda v: (
+        min(abs(v[0]), abs(v[1])) > 0
+        and max(abs(v[0]), abs(v[1])) > 1e100 * min(abs(v[0]), abs(v[1]))
+    ),
 }
 
 INERTIA_REGIMES = {
@@ -150,6 +157,18 @@ def test_impact_masses_reach_every_regime(regime, predicate):
 @pytest.mark.parametrize(("regime", "predicate"), list(MASS_PAIR_REGIMES.items()))
 def test_mass_pairs_reach_every_regime(regime, predicate):
     _found(ms.mass_pairs(), predicate)
+
+
+@pytest.mark.parametrize(
+    "predicate",
+    [
+        pytest.param(lambda v: v[0] > 1e290 and 0 < -v[1] < 1e-200, id="huge-behind-tiny-ahead"),
+        pytest.param(lambda v: v[0] == 0.0 and v[1] < -1e290, id="at-rest-hit-by-huge"),
+        pytest.param(lambda v: v[0] > 1e290 and 0 < v[1] < 1e-200, id="huge-chasing-tiny"),
+    ],
+)
+def test_direct_velocities_span_the_float_range_with_a_huge_max_speed(predicate):
+    _found(ms.direct_velocities(max_speed=1e302, regimes=["mixed-magnitude"]), predicate)
 
 
 def test_mass_pairs_reach_the_extreme_ratios_1e15():

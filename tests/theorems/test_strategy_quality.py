@@ -88,6 +88,22 @@ ROTVEC_REGIMES = {
         abs(math.hypot(*v) - math.pi) <= 2 * EPS and _general_axis(v)
     ),
     "generic": lambda v: 0.1 < math.hypot(*v) < 3.0 and _general_axis(v),
+    "beyond pi about a general axis": lambda v: (
+        math.pi < math.hypot(*v) <= 2.0**26 and _general_axis(v)
+    ),
+    "beyond 1e6": lambda v: 1e6 < math.hypot(*v) <= 2.0**26,
+    "tiny, every component non-zero": lambda v: (
+        0 < math.hypot(*v) <= 1e-6 and bool(np.all(np.abs(v) >= math.hypot(*v) / 16))
+    ),
+    "tiny below 1e-200, every component non-zero": lambda v: (
+        0 < math.hypot(*v) <= 1e-200 and bool(np.all(v != 0))
+    ),
+    "huge along e3 only": lambda v: v[0] == v[1] == 0.0 and abs(v[2]) > 2.0**26,
+    "huge about a general axis": lambda v: np.abs(v).min() > 2.0**26 and _general_axis(v),
+    "huge, squared norm overflows": lambda v: np.abs(v).max() > 1e155,
+    "mixed magnitudes 1e-100 to 1e100 in one vector": lambda v: (
+        np.abs(v).min() < 1e-100 and np.abs(v).max() > 1e100
+    ),
 }
 
 GIMBAL_OUTER = lambda e: e[0] != 0.0 and e[2] != 0.0  # noqa: E731
@@ -122,6 +138,12 @@ MATRIX_REGIMES = {
         abs(1 + np.trace(R)) <= 1e-14 and bool(np.all(np.abs(R[~np.eye(3, dtype=bool)]) > 0.01))
     ),
     "gimbal lock, not about e3 only": lambda R: abs(R[2, 2]) == 1.0 and 0.01 < abs(R[0, 1]) < 0.99,
+    "sign flip: θ = π exactly, general ψ − φ": lambda R: (
+        R[2, 2] == -1.0 and not R[2, :2].any() and not R[:2, 2].any() and 0.01 < abs(R[0, 1]) < 0.99
+    ),
+    "sign flip about an axis in the y-z plane": lambda R: (
+        R[0, 0] == -1.0 and not R[0, 1:].any() and 0.01 < abs(R[1, 2]) < 0.99
+    ),
     "generic": lambda R: bool(np.all(np.abs(R) > 0.05)),
 }
 
@@ -226,10 +248,37 @@ def test_bounded_rotation_angles_still_reach_the_hard_regimes_inside_the_bounds(
     _found(inside, lambda a: 0 < math.pi - a <= 1e-8 + PI_ROUNDING)
 
 
-@given(ms.rotvecs())
-def test_rotvecs_have_angles_in_zero_to_pi(v):
+@given(ms.rotvecs(regimes=["axis-angle"]))
+def test_rotvecs_axis_angle_have_angles_in_zero_to_pi(v):
     assert v.shape == (3,)
     assert math.hypot(*v) <= math.pi * (1 + 2 * EPS)
+
+
+@pytest.mark.parametrize(
+    ("regime", "lo", "hi"),
+    [
+        ("beyond-pi", ms.BEYOND_PI_RANGE[0], ms.BEYOND_PI_RANGE[1]),
+        ("tiny-general", ms.TINY_ANGLE_RANGE[0], ms.TINY_ANGLE_RANGE[1]),
+        ("huge", ms.HUGE_LENGTH_RANGE[0], ms.HUGE_LENGTH_RANGE[1]),
+    ],
+)
+def test_rotvecs_lengths_stay_in_their_regime_range(regime, lo, hi):
+    @given(ms.rotvecs(regimes=[regime]))
+    def check(v):
+        assert v.shape == (3,)
+        assert np.isfinite(v).all()
+        n = math.hypot(*v)  # hypot does not overflow
+        assert lo * (1 - 4 * EPS) <= n <= hi * (1 + 4 * EPS)
+        if regime == "tiny-general":
+            assert np.all(np.abs(v) >= n / 16)  # every component at least 1/8 of the largest
+
+    check()
+
+
+@given(ms.rotvecs(regimes=["mixed"]))
+def test_rotvecs_mixed_components_are_finite_and_non_zero(v):
+    assert np.isfinite(v).all()
+    assert np.all(np.abs(v) >= 1e-300 * (1 - 4 * EPS))
 
 
 @given(ms.quaternions())
@@ -300,6 +349,35 @@ def test_euler_angles_reject_an_unknown_regime_quoting_it():
         ms.euler_angles(regimes=["gimbal"])
 
 
+def test_rotvecs_reject_an_unknown_regime_quoting_it():
+    with pytest.raises(InvalidArgument, match="'enormous'"):
+        ms.rotvecs(regimes=["enormous"])
+
+
+def test_rotvecs_with_an_angle_strategy_draw_only_axis_angle():
+    @given(ms.rotvecs(angles=ms.rotation_angles(regimes=["pi"])))
+    def check(v):
+        assert abs(math.hypot(*v) - math.pi) <= 2 * EPS
+
+    check()
+
+
 def test_rotvecs_reject_a_non_strategy_quoting_it():
     with pytest.raises(InvalidArgument, match=re.escape("angles=1.0")):
         ms.rotvecs(angles=1.0)
+
+
+#: ``rotvecs`` regimes by name, each characterised by value.
+ROTVEC_REGIMES_BY_NAME = {
+    "axis-angle": lambda v: 0 < math.hypot(*v) <= math.pi * (1 + 2 * EPS),
+    "beyond-pi": lambda v: math.pi < math.hypot(*v) <= 2.0**26 * (1 + 2 * EPS),
+    "tiny-general": lambda v: 0 < math.hypot(*v) <= 1e-6 and bool(np.all(v != 0)),
+    "huge": lambda v: math.hypot(*v) >= 2.0**26,
+    "mixed": lambda v: np.abs(v).max() > 1e100 * np.abs(v).min() > 0,
+}
+
+
+def test_every_rotvec_regime_is_named_and_reached_when_drawn_alone():
+    assert set(ms.ROTVEC_REGIMES) == set(ROTVEC_REGIMES_BY_NAME)
+    for regime, predicate in ROTVEC_REGIMES_BY_NAME.items():
+        _found(ms.rotvecs(regimes=[regime]), predicate)

@@ -1,0 +1,255 @@
+"""Mutation testing of one module of ``mechanics/``: ``make mutate MODULE=mechanics/rotation.py``.
+
+The module's mutants (mutmut 3, configured in pyproject's ``[tool.mutmut]``) run against
+the tests that cover it (``tools/mutation/modules.toml``) under ``CI=1``.  Each module gets
+its own copy of the project, ``build/mutation/<module>/``, with ``only_mutate`` and the
+test selection set for it, so that modules keep their results apart and a second run
+only re-checks what changed.
+
+The score counts a surviving mutant as equivalent only if it is in the reviewed list
+``tools/mutation/equivalent.toml`` (mutant name → one-line reason)::
+
+    score = killed / (mutants − equivalent)
+
+where killed includes timeouts (the mutant made the tests hang) and every other survivor
+(no test reaches it, or none fails) counts against the score.  The survivors not in the
+list are printed, each with its diff (``--diff``), and so are listed names that no longer
+survive (stale entries: remove them).
+
+Usage (standard library only; mutmut must be on PATH or given with ``--mutmut``)::
+
+    python tools/mutation/run.py mechanics/rotation.py [--max-children 1] [--diff]
+    python tools/mutation/run.py mechanics/rotation.py --report   # score of the last run
+    python tools/mutation/run.py mechanics/rotation.py --names NAME...  # re-run some
+    python tools/mutation/run.py mechanics/impact.py --sample 300  # a random sample
+
+A sample (``--sample N``, seeded) runs N mutants drawn at random from all of the
+module's; the score then counts the mutants checked so far and says how many were not.
+"""
+
+from __future__ import annotations
+
+import argparse
+import filecmp
+import json
+import os
+import random
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import tomllib
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+MODULES = ROOT / "tools" / "mutation" / "modules.toml"
+EQUIVALENT = ROOT / "tools" / "mutation" / "equivalent.toml"
+WORK = ROOT / "build" / "mutation"
+
+#: what the copy of the project holds (mutmut copies these into its mutants/ in turn)
+COPIED = ("mechanics", "identities", "bench", "tests", "tools", "docs", "CHECKS.md", "README.md")
+_IGNORED = shutil.ignore_patterns("__pycache__", "*.pyc", ".hypothesis", "mutants")
+
+KILLED = frozenset({"killed", "timeout", "segfault", "caught by type check"})
+_RESULT = re.compile(r"^\s+(?P<name>\S+): (?P<status>.+)$")
+
+
+def load_modules(path: Path = MODULES) -> dict[str, list[str]]:
+    """Module path → the test paths that cover it."""
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    return {m: list(row["tests"]) for m, row in data["modules"].items()}
+
+
+def load_equivalent(path: Path = EQUIVALENT) -> dict[str, str]:
+    """Mutant name → the reviewed one-line reason it is equivalent.
+
+    Every reason must be a non-empty single line: a bare name is not a review."""
+    if not path.exists():
+        return {}
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    out: dict[str, str] = {}
+    for module, table in data.items():
+        for name, reason in table.items():
+            if not isinstance(reason, str) or not reason.strip() or "\n" in reason:
+                raise SystemExit(
+                    f"{path.name}: [{module}] {name!r} needs a one-line reason, got {reason!r}"
+                )
+            out[name] = reason
+    return out
+
+
+def module_prefix(module: str) -> str:
+    """``mechanics/rotation.py`` → ``mechanics.rotation.``, the prefix of its mutant names."""
+    return module.removesuffix(".py").replace("/", ".") + "."
+
+
+def _sync(src: Path, dst: Path) -> None:
+    """Copy src over dst, keeping a file's mtime where its content did not change (mutmut
+    re-generates the mutants of a source whose mtime moved)."""
+    if src.is_file():
+        if not dst.exists() or not filecmp.cmp(src, dst, shallow=False):
+            dst.parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(src, dst)
+        return
+    for s in src.rglob("*"):
+        rel = s.relative_to(src)
+        if any(p in ("__pycache__", ".hypothesis", "mutants") for p in rel.parts):
+            continue
+        if s.is_file() and s.suffix != ".pyc":
+            _sync(s, dst / rel)
+
+
+def prepare(module: str, tests: list[str]) -> Path:
+    """The module's copy of the project, its pyproject's mutmut table set for the module."""
+    work = WORK / module.removesuffix(".py").replace("/", "_")
+    work.mkdir(parents=True, exist_ok=True)
+    for name in COPIED:
+        if (ROOT / name).exists():
+            _sync(ROOT / name, work / name)
+    text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
+    selection = "pytest_add_cli_args_test_selection = " + _toml_list(tests)
+    text, n = re.subn(r"(?m)^pytest_add_cli_args_test_selection = .*$", selection, text)
+    if n != 1:
+        raise SystemExit(
+            "pyproject.toml: [tool.mutmut] needs one pytest_add_cli_args_test_selection line"
+        )
+    only = f"[tool.mutmut]\nonly_mutate = {_toml_list([module])}\n"
+    text = text.replace("[tool.mutmut]\n", only, 1)
+    target = work / "pyproject.toml"
+    if not target.exists() or target.read_text(encoding="utf-8") != text:
+        target.write_text(text, encoding="utf-8")
+    return work
+
+
+def _toml_list(items: list[str]) -> str:
+    return "[" + ", ".join(f'"{i}"' for i in items) + "]"
+
+
+def results(work: Path, mutmut: str) -> dict[str, str]:
+    """Mutant name → status, as ``mutmut results --all true`` reports them."""
+    out = subprocess.run(
+        [mutmut, "results", "--all", "true"], cwd=work, capture_output=True, text=True, check=True
+    ).stdout
+    found = {}
+    for line in out.splitlines():
+        m = _RESULT.match(line)
+        if m:
+            found[m["name"]] = m["status"].strip()
+    return found
+
+
+def report(
+    module: str, status: dict[str, str], equivalent: dict[str, str]
+) -> tuple[str, list[str]]:
+    """The score line and the survivors that are not in the reviewed list."""
+    prefix = module_prefix(module)
+    everything = {k: v for k, v in status.items() if k.startswith(prefix)}
+    mine = {k: v for k, v in everything.items() if v != "not checked"}
+    unchecked = len(everything) - len(mine)
+    killed = sum(v in KILLED for v in mine.values())
+    survivors = sorted(k for k, v in mine.items() if v not in KILLED)
+    equiv = [k for k in survivors if k in equivalent]
+    open_ = [k for k in survivors if k not in equivalent]
+    total = len(mine)
+    denom = total - len(equiv)
+    score = 100.0 * killed / denom if denom else 100.0
+    line = (
+        f"{module}: {total} mutants, {killed} killed, {len(equiv)} equivalent (reviewed), "
+        f"{len(open_)} survived: score {score:.1f} % = killed / (mutants - equivalent)"
+    )
+    if unchecked:
+        line += f"  [{unchecked} of {len(everything)} mutants not checked: a sample]"
+    return line, open_
+
+
+def generate(work: Path, module: str, mutmut: str, env: dict) -> list[str]:
+    """Every mutant name of the module: let ``mutmut run`` write its mutants and their
+    list (``mutants/<module>.meta``), then stop it before it runs them."""
+    meta = work / "mutants" / (module + ".meta")
+    if not meta.exists():
+        proc = subprocess.Popen(
+            [mutmut, "run", "--max-children", "1"],
+            cwd=work,
+            env=env,
+            start_new_session=True,
+            stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL,
+        )
+        try:
+            while not meta.exists() and proc.poll() is None:
+                time.sleep(0.5)
+        finally:
+            if proc.poll() is None:
+                os.killpg(proc.pid, signal.SIGTERM)
+                proc.wait()
+        time.sleep(0.5)
+    data = json.loads(meta.read_text(encoding="utf-8"))
+    return sorted(data["exit_code_by_key"])
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("module", help="e.g. mechanics/rotation.py")
+    ap.add_argument("--max-children", type=int, default=1)
+    ap.add_argument("--mutmut", default=shutil.which("mutmut") or "mutmut")
+    ap.add_argument("--report", action="store_true", help="only report the last run")
+    ap.add_argument("--diff", action="store_true", help="show each open survivor's diff")
+    ap.add_argument("--names", nargs="+", help="run only these mutants")
+    ap.add_argument("--sample", type=int, help="run this many mutants drawn at random")
+    ap.add_argument("--seed", type=int, default=16, help="seed of --sample")
+    ap.add_argument(
+        "--restat",
+        action="store_true",
+        help="record again which tests call which function (after changing tests)",
+    )
+    args = ap.parse_args(argv)
+
+    modules = load_modules()
+    module = args.module.removeprefix("./")
+    if module not in modules:
+        known = ", ".join(sorted(modules))
+        raise SystemExit(f"{module!r} has no row in {MODULES.name} (known: {known})")
+    equivalent = load_equivalent()
+    work = prepare(module, modules[module])
+    env = {**os.environ, "CI": "1"}
+    env.pop("HYPOTHESIS_PROFILE", None)
+    if args.restat:
+        (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
+    names = list(args.names or [])
+    if args.sample and not args.report:
+        every = generate(work, module, args.mutmut, env)
+        names = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
+        print(f"a sample of {len(names)} of the {len(every)} mutants (seed {args.seed})")
+    if not args.report:
+        cmd = [args.mutmut, "run", "--max-children", str(args.max_children), *names]
+        print("$ (cd", work.relative_to(ROOT), "&&", " ".join(cmd) + ")", flush=True)
+        rc = subprocess.run(cmd, cwd=work, env=env).returncode
+        if rc:
+            print(f"mutmut run exited with {rc}", file=sys.stderr)
+            return rc
+    status = results(work, args.mutmut)
+    line, open_ = report(module, status, equivalent)
+    prefix = module_prefix(module)
+    stale = sorted(
+        k for k in equivalent if k.startswith(prefix) and status.get(k, "gone") in KILLED | {"gone"}
+    )
+    print()
+    print(line)
+    if open_:
+        print(f"survivors not in {EQUIVALENT.relative_to(ROOT)} ({len(open_)}):")
+        for name in open_:
+            print(f"  {name}: {status[name]}")
+            if args.diff:
+                diff = subprocess.run(
+                    [args.mutmut, "show", name], cwd=work, capture_output=True, text=True
+                ).stdout
+                print("    " + "\n    ".join(diff.splitlines()[1:]))
+    if stale:
+        print(f"listed as equivalent but killed or gone (remove them): {', '.join(stale)}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
