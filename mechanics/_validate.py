@@ -20,7 +20,9 @@ from .errors import MechanicsValueError, NonFiniteError, ResultOverflowError, Sh
 
 def _first_bad(a: np.ndarray) -> str:
     idx = np.argwhere(~np.isfinite(a))[0]
-    return f"{a[tuple(idx)]!r} at index {tuple(int(i) for i in idx)}"
+    # a Python float's repr: "nan", "inf", "-inf" (numpy 2's scalar repr would print
+    # "np.float64(nan)" into the user's message)
+    return f"{float(a[tuple(idx)])!r} at index {tuple(int(i) for i in idx)}"
 
 
 def as_float_array(x, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
