@@ -123,8 +123,8 @@ def R1(alpha) -> np.ndarray:
     """Basis rotation by ``alpha`` about the first axis, (2.30).
 
     Domain: any finite angle ``alpha``, scalar or array (...), giving (..., 3, 3); NaN or inf raise
-    NonFiniteError, a complex or non-numeric ``alpha`` ShapeError.  Huge angles are fine (numpy
-    reduces them exactly), but a rounding of the input then moves the angle by up to ulp(alpha).
+    NonFiniteError, a complex or non-numeric ``alpha`` ShapeError.  Huge angles are accepted, but
+    a rounding of the input then moves the angle by up to ulp(alpha).
 
     Examples
     --------
