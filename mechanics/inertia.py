@@ -353,8 +353,8 @@ def check_inertia(
     Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); it is refused with
     NonPhysicalInertiaError when not symmetric, not positive definite (semidefinite with
     ``allow_singular``) or breaking J1 + J2 ≥ J3 by more than :data:`INERTIA_ATOL` of the largest
-    moment.  Moments from 1e-300 to about 5e307; near 1e308 the sum J1 + J2 overflows with a numpy
-    RuntimeWarning (known, issue 16:
+    moment.  Moments from 1e-300 to about 5e307; near 1e308 the eigenvalue check overflows with a
+    numpy RuntimeWarning, or a LinAlgError with the warning masked (known, issue 16:
     test_float_extremes.py::test_check_inertia_takes_moments_up_to_float64s_limit).
 
     Parameters
