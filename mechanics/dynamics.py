@@ -121,6 +121,13 @@ def _principal_moments(J_principal) -> np.ndarray:
 def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarray:
     """L = J ω (4.6), (4.12): about the point ``J`` refers to (G or a fixed point C).
 
+    Domain: ``J`` (..., 3, 3) a physical inertia tensor as :func:`~mechanics.inertia.check_inertia`
+    (symmetric, positive semidefinite, J1 + J2 ≥ J3; else NonPhysicalInertiaError;
+    ``allow_singular=False`` also refuses a zero moment), ``omega`` any finite (..., 3); a result
+    beyond float64 raises ResultOverflowError.  Moments near 1e308 overflow inside check_inertia
+    with a numpy warning (known, issue 16).  Batches that do not broadcast (2 against 3) end in
+    numpy's bare ValueError, not a ShapeError (known, issue 16).
+
     Parameters
     ----------
     J : array_like, shape (..., 3, 3)
@@ -154,6 +161,11 @@ def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarr
 def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.ndarray:
     """T = ½ ωᵀ J ω (3.15), (4.32), about G (plus ½ m v_G² for the total) or a fixed point.
 
+    Domain: as :func:`angular_momentum_rigid`: ``J`` physical (check_inertia, else
+    NonPhysicalInertiaError), ``omega`` finite (..., 3); a T beyond float64 raises
+    ResultOverflowError; moments near 1e308 overflow inside check_inertia with a numpy warning, and
+    non-broadcasting batches end in numpy's bare ValueError (both known, issue 16).
+
     Examples
     --------
     In the principal basis T = ½ (J1 ω1² + J2 ω2² + J3 ω3²) (4.32):
@@ -169,6 +181,12 @@ def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.nd
 
 def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
     """dω/dt from Euler's dynamic equations (4.47), body principal components.
+
+    Domain: ``J_principal`` (..., 3) each > 0 (else NonPositiveParameterError, whose message does
+    not name ``J_principal``: known, issue 16) and obeying the triangle inequality to 64 eps of the
+    largest (else NonPhysicalInertiaError); any finite ``omega``, ``M`` (..., 3); a result beyond
+    float64 raises ResultOverflowError.  Batches that do not broadcast end in numpy's bare
+    ValueError (known, issue 16).
 
     J1 ω̇1 + (J3 − J2) ω2 ω3 = M1, and cyclically.
 
@@ -216,6 +234,10 @@ def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
 def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
     """φ̈ = M_z / J_z for rotation about a fixed axis (the z-component of (4.42); (4.48)).
 
+    Domain: ``J_axis`` > 0 (else NonPositiveParameterError), any finite ``M_axis``, broadcast
+    together (non-broadcasting batches: numpy's bare ValueError, known, issue 16).  The quotient is
+    not checked: M_z/J_z beyond float64 (1e300/1e-300) is inf with a numpy RuntimeWarning.
+
     Examples
     --------
     The physical pendulum (4.48), M_z = −m g h sin φ:
@@ -243,6 +265,10 @@ def _pendulum(J_axis, m, g, h):
 def reduced_length(J_axis, m, h) -> np.ndarray:
     """The reduced length ℓ = J_z/(m h) of a physical pendulum (4.49).
 
+    Domain: ``J_axis``, ``m``, ``h`` > 0 (else NonPositiveParameterError naming it), broadcast
+    together (else numpy's bare ValueError, known, issue 16).  Not checked for overflow: a quotient
+    beyond float64 (or m h underflowing to 0) gives inf with a numpy RuntimeWarning.
+
     Examples
     --------
     A rod of length l about its end (Example 4.3): ℓ = (m l²/3)/(m l/2) = 2l/3:
@@ -259,6 +285,11 @@ def _omega0(J, m, g, h):
 
 def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
     """Small-oscillation period T_p = 2π √(J_z/(m g h)) = 2π √(ℓ/g) (4.51)–(4.52).
+
+    Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError naming it),
+    broadcast together (else numpy's bare ValueError, known, issue 16); while m g h/J_z neither
+    overflows nor underflows: at the extremes (1e-300 and 1e300 mixed) the period is 0 or inf with a
+    numpy RuntimeWarning, not an error.
 
     ``h`` is the distance from the axis to G (the book's h).
 
@@ -299,6 +330,11 @@ def _amplitude(theta_0) -> np.ndarray:
 def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
     """Exact period T = 4 K(k²)/ω0 of a physical pendulum with amplitude θ0 (from (4.50)).
 
+    Domain: as :func:`pendulum_small_period` for ``J_axis``, ``m``, ``g``, ``h`` (> 0, else
+    NonPositiveParameterError; at over- or underflowing m g h/J_z the result is 0 or inf with a
+    numpy warning), and ``theta_0`` in [−π, π] (else OutOfDomainError); |θ0| = fl(π) gives a finite
+    period.
+
     k = sin(θ0/2), ω0 = √(m g h/J_z) (4.51).  K is evaluated as
     ``scipy.special.ellipkm1(k'²)`` with the complementary parameter
     k'² = cos²(θ0/2) formed from π − θ0 without cancellation, so the period
@@ -329,6 +365,11 @@ def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
 
 def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
     """Exact angle φ(t) of a physical pendulum released from rest at φ(0) = θ0 (4.50).
+
+    Domain: ``J_axis``, ``m``, ``g``, ``h``, ``theta_0`` as :func:`pendulum_period` (> 0, else
+    NonPositiveParameterError; |θ0| ≤ π, else OutOfDomainError) and any finite ``t``, all broadcast
+    together (else numpy's bare ValueError, known, issue 16).  The phase ω0 t is not checked: beyond
+    float64 it overflows with a numpy RuntimeWarning; the error grows like eps·|ω0 t|.
 
     sin(φ/2) = k cd(ω0 t | k²), k = sin(θ0/2), written without the arcsine as
     tan(φ/2) = k cn(ω0 t | k²)/k' (since dn² − k² cn² = k'²), with
@@ -374,6 +415,11 @@ def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
 def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
     """|φ̇| at angle φ = ``theta`` for a pendulum released from rest at θ0, by energy (4.57).
 
+    Domain: as :func:`pendulum_period` (> 0, else NonPositiveParameterError; |θ0| ≤ π, else
+    OutOfDomainError), with a finite ``theta`` of |θ| ≤ |θ0| (else OutOfDomainError).  Not checked
+    for overflow: 4 m g h/J_z beyond float64 is inf with a numpy RuntimeWarning; non-broadcasting
+    batches end in numpy's bare ValueError (known, issue 16).
+
     φ̇² = (2 m g h/J_z)(cos φ − cos θ0) = (4 m g h/J_z)(s0 − s)(s0 + s), with
     s = sin(|φ|/2), s0 = sin(|θ0|/2): the difference of cosines without
     cancellation.  The sign of φ̇ is not determined by the energy; the
@@ -415,6 +461,11 @@ def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
 def axis_reaction(m, h, phidot, phiddot, *, F_a_rho, F_a_phi) -> np.ndarray:
     """Reaction R from a fixed axis, polar components (R_ρ, R_φ) (4.70)–(4.71).
 
+    Domain: ``m`` > 0, ``h`` ≥ 0 (else NonPositiveParameterError), any finite ``phidot``,
+    ``phiddot``, ``F_a_rho``, ``F_a_phi``, broadcast together (else numpy's bare ValueError, known,
+    issue 16).  Not checked for overflow: m h φ̇² beyond float64 (``phidot`` near 1e300) is inf with
+    a numpy RuntimeWarning, not a ResultOverflowError (known, issue 16).
+
     R_ρ = −m h φ̇² − F^a_ρ,  R_φ = m h φ̈ − F^a_φ: the momentum principle (4.66)
     with the acceleration of G on its circle of radius h (4.70).
 
@@ -454,6 +505,11 @@ def axis_reaction(m, h, phidot, phiddot, *, F_a_rho, F_a_phi) -> np.ndarray:
 def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
     """Axis reaction of the physical pendulum as a function of φ and E (4.76)–(4.77).
 
+    Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError), any finite ``phi``
+    and an energy ``E`` ≥ m g h (1 − cos φ) to 8 eps (else OutOfDomainError).  Not checked for
+    overflow: products beyond float64 (parameters near 1e300) are inf with a numpy RuntimeWarning;
+    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+
     R_ρ = (2 m h/J_z)(m g h − E) − (1 + 2 m h²/J_z) m g cos φ,
     R_φ = (1 − m h²/J_z) m g sin φ, with E of (4.74).  No small-amplitude
     approximation.
@@ -490,6 +546,13 @@ def bearing_reactions(
     J_O, m, r_G, phidot, phiddot, z_A, *, F_a, M_a, axial_at: str = "O"
 ) -> tuple[np.ndarray, np.ndarray]:
     """Reactions R1 at bearing A and R2 at bearing O of a body turning about e_z (4.78)–(4.85).
+
+    Domain: ``J_O`` (..., 3, 3) as :func:`~mechanics.inertia.check_inertia` about a point, singular
+    allowed (else NonPhysicalInertiaError), ``m`` > 0 (else NonPositiveParameterError), ``z_A`` ≠ 0
+    (else NonPositiveParameterError), any finite ``r_G``, ``F_a``, ``M_a`` (..., 3) and ``phidot``,
+    ``phiddot``; ``axial_at`` 'O' or 'A' (else UnknownOptionError).  Not checked for overflow: φ̇²
+    terms beyond float64 (``phidot`` near 1e300) are inf with a numpy RuntimeWarning (known, issue
+    16); non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
 
     Body axes, O at the origin, A at (0, 0, z_A); ω = φ̇ e_z.  The book's
     choice r_G = (h, 0, z_G) gives (4.78), (4.84), (4.85) exactly; any r_G is

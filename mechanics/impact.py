@@ -115,6 +115,11 @@ _SEPARATING = ("raise", "ignore")
 class RigidBody(NamedTuple):
     """A free rigid body's state, all vectors in one fixed basis O.
 
+    Domain: a record: it stores what it is given and validates nothing (NaN, inf, strings and None
+    are kept; known, issue 16).  Its fields are validated where it is used, by :func:`rigid_impact`
+    and :func:`normal_relative_velocity`: ``m`` > 0, ``J_G`` positive definite as
+    :func:`~mechanics.inertia.check_inertia`, finite ``r_G``, ``v_G``, ``omega`` (..., 3).
+
     ``m`` (...), ``J_G`` (..., 3, 3) the inertia tensor about the centre of mass
     G, ``r_G`` (..., 3) the position of G, ``v_G`` (..., 3) its velocity,
     ``omega`` (..., 3) the angular velocity.
@@ -361,6 +366,13 @@ def _direct_parts(m_1, m_2, v_1, v_2, e, separating):
 def direct_impact(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     """Velocities after a direct central impact, (6.36)–(6.38).
 
+    Domain: masses ``m_1``, ``m_2`` ≥ 0, not both 0 (else NegativeMassError, ZeroTotalMassError),
+    any finite ``v_1``, ``v_2`` and ``e`` in [0, 1] (else RestitutionRangeError), broadcast
+    together; any magnitudes, 1e-300 to 1e300 (operands are scaled by powers of two: no intermediate
+    overflows), a result beyond float64 raising ResultOverflowError.  ``separating``: 'raise'
+    (SeparatingContactError where ẋ_2 > ẋ_1) or 'ignore' (else UnknownOptionError).  Batches that do
+    not broadcast (2 against 3) end in numpy's bare ValueError, not a ShapeError (known, issue 16).
+
     Parameters
     ----------
     m_1, m_2 : array_like, shape (...)
@@ -418,6 +430,10 @@ def direct_impact(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     """The impulse S_12 = m_1 (ẋ_1f − ẋ_1i) from body 2 on body 1 along X, (6.19).
 
+    Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
+    [0, 1], any magnitudes (scaled by powers of two), a result beyond float64 raising
+    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+
     Returns the x-component (≤ 0 for an impact: body 1 is behind and is
     pushed back); body 2 receives −S_12 (6.46).  S_12 = (1 + e) μ Δẋ with
     μ = m_1 m_2/(m_1 + m_2), Δẋ = ẋ_2 − ẋ_1, within :data:`DIRECT_ULPS` ulps.
@@ -446,6 +462,11 @@ def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 
 def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     """Kinetic energy lost in a direct impact, Q = ½ μ (1 − e²) (Δẋ)², (6.41).
+
+    Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
+    [0, 1], any magnitudes (no overflow of m_1 m_2 or Δẋ² where Q is representable), a Q beyond
+    float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError
+    (known, issue 16).
 
     Evaluated as ½ μ (1 − e)(1 + e) Δẋ Δẋ with μ = m_1 · m_2/(m_1 + m_2), every
     factor positive and exact or carried in double-double on operands scaled by
@@ -480,6 +501,10 @@ def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 
 def compression_restitution_impulses(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     """The impulses on body 1 in the compression and restitution phases (Example 6.3).
+
+    Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
+    [0, 1] (down to the smallest normal keeps its digits), a result beyond float64 raising
+    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
 
     During compression the bodies reach the common velocity ẋ_G of the centre
     of mass, so S_1 = m_1 (ẋ_G − ẋ_1i) = μ Δẋ; during restitution
@@ -561,6 +586,14 @@ def _inverse_mass(m, J, r, n):
 def effective_mass(m_1, J_1, r_1, n, m_2=None, J_2=None, r_2=None):
     """Effective mass μ of a contact of one or two free rigid bodies along ``n``.
 
+    Domain: ``m_1`` (and ``m_2``) > 0 (else NegativeMassError or NonPositiveParameterError), ``J_1``
+    (``J_2``) positive definite as :func:`~mechanics.inertia.check_inertia` (else
+    NonPhysicalInertiaError), finite arms ``r_1`` (``r_2``) (..., 3), a non-zero ``n`` (else
+    ZeroNormalError), body 2 given whole or not at all (else OutOfDomainError).  Not checked for
+    overflow: arms near 1e300 overflow (r × n)·J⁻¹(r × n) with a numpy RuntimeWarning, not a
+    ResultOverflowError (known, issue 16); non-broadcasting batches end in numpy's bare ValueError
+    (known, issue 16).
+
     1/μ = 1/m_1 + (r_1 × n)·J_1⁻¹(r_1 × n) + 1/m_2 + (r_2 × n)·J_2⁻¹(r_2 × n),
     where r_k is the arm from the centre of mass G_k to the contact point and
     J_k the inertia tensor about G_k (same basis).  With body 2 omitted (a fixed
@@ -624,6 +657,12 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
     """v_n = n · (v_S1 − v_S2): the normal velocity of the contact point of body 1
     relative to body 2 (``None``: fixed) at the position ``r_S``; < 0 approaching.
 
+    Domain: bodies given as :class:`RigidBody` or 5-tuples (else OutOfDomainError), validated: ``m``
+    > 0, ``J_G`` positive definite (NonPhysicalInertiaError), finite (..., 3) vectors; ``r_S``
+    finite (..., 3), ``n`` non-zero (else ZeroNormalError).  Not checked for overflow: ω × (r_S −
+    r_G) beyond float64 is inf or NaN with a numpy RuntimeWarning; non-broadcasting batches end in
+    numpy's bare ValueError (known, issue 16).
+
     Examples
     --------
     A ball moving down onto the fixed floor (n = e_z points into the ball):
@@ -643,6 +682,14 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
 
 def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -> RigidImpact:
     """Smooth impact of two free rigid bodies (or one against a fixed body) in 3-D.
+
+    Domain: bodies as in :func:`normal_relative_velocity` (RigidBody or 5-tuple, else
+    OutOfDomainError; ``m`` > 0, ``J_G`` positive definite, finite vectors), ``r_S`` finite (...,
+    3), ``n`` non-zero (else ZeroNormalError), ``e`` in [0, 1] (else RestitutionRangeError),
+    ``separating`` 'raise' (SeparatingContactError where v_n > 0) or 'ignore' (else
+    UnknownOptionError).  Not checked for overflow: velocities or arms near 1e300 to 1e308 give inf
+    or NaN with a numpy RuntimeWarning; non-broadcasting batches end in numpy's bare ValueError
+    (known, issue 16).
 
     The impulse S n at the contact point r_S changes the momenta by (6.19) and
     the angular momenta about the centres of mass by (6.21):
@@ -736,6 +783,13 @@ def _hinge(J_A, r_G, axis_point, axis):
 def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
     """Effective mass at the point ``r_P`` along ``n`` of a body hinged on a fixed axis.
 
+    Domain: ``J_A`` positive definite as :func:`~mechanics.inertia.check_inertia` (else
+    NonPhysicalInertiaError), finite ``axis_point`` and ``r_P`` (..., 3), non-zero ``axis`` and
+    ``n`` (else ZeroNormalError).  A blow that cannot turn the body (``r_P`` on the axis, or ``n``
+    in the plane of the axis and P) returns inf silently rather than being refused naming ``r_P``,
+    and ``r_P`` near 1e300 overflows with a numpy RuntimeWarning (both known, issue 16);
+    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+
     A blow S n at P turns the body by Δω = a·(AP × n) S/J_a, and P's velocity
     along n changes by S (a·(AP × n))²/J_a, so 1/μ = (a·(AP × n))²/J_a with
     J_a = aᵀ J_A a the moment of inertia about the axis.  Returns ``inf``
@@ -761,6 +815,13 @@ def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
 
 def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=None) -> HingedImpact:
     """A body turning on a fixed frictionless axis struck by the impulse ``S_P`` at ``r_P``.
+
+    Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive
+    definite (else NonPhysicalInertiaError), finite ``r_G``, ``axis_point``, ``r_P``, ``S_P`` (...,
+    3) and ``omega``, a non-zero ``axis`` (else ZeroNormalError); ``bearings`` two finite axial
+    positions, different (else OutOfDomainError).  Not checked for overflow: AP × S_P beyond float64
+    (both near 1e300) is inf with a numpy RuntimeWarning; non-broadcasting batches end in numpy's
+    bare ValueError (known, issue 16).
 
     The angular momentum about the axis (6.21) gives J_a Δω = a·(AP × S_P), so
     ω' = ω + a·(AP × S_P)/J_a; the momentum principle (6.19) for the whole body,
@@ -844,6 +905,13 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
 
 def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion:
     """The point where a blow loads a body hinged on a fixed axis with no reaction impulse.
+
+    Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive
+    definite (else NonPhysicalInertiaError), finite ``r_G`` and ``axis_point`` (..., 3), a non-zero
+    ``axis`` (else ZeroNormalError), G off the axis by more than 4 eps of |AG| (else
+    OutOfDomainError).  Not checked for overflow: ``r_G`` near 1e300 overflows |AG|² with a numpy
+    RuntimeWarning, not a ResultOverflowError (known, issue 16); non-broadcasting batches end in
+    numpy's bare ValueError (known, issue 16).
 
     Let a be the unit axis, h > 0 the distance of G from the axis, û the unit
     vector from the axis to G perpendicular to it, b = a × û, and J_xz = ûᵀ J_A a,

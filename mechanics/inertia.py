@@ -350,6 +350,13 @@ def check_inertia(
 ) -> np.ndarray:
     """Validate an inertia tensor and return it as a float64 array, unchanged.
 
+    Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); it is refused with
+    NonPhysicalInertiaError when not symmetric, not positive definite (semidefinite with
+    ``allow_singular``) or breaking J1 + J2 ≥ J3 by more than :data:`INERTIA_ATOL` of the largest
+    moment.  Moments from 1e-300 to about 5e307; near 1e308 the eigenvalue check overflows with a
+    numpy RuntimeWarning, or a LinAlgError with the warning masked (known, issue 16:
+    test_float_extremes.py::test_check_inertia_takes_moments_up_to_float64s_limit).
+
     Parameters
     ----------
     J : array_like, shape (..., 3, 3)
@@ -402,6 +409,10 @@ def check_inertia(
 def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
     """Elementwise: does ``J`` (..., 3, 3) pass :func:`check_inertia`?  Shape (...).
 
+    Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); the answer (...) is
+    False, never an error, for a tensor :func:`check_inertia` refuses.  Moments near 1e308 overflow
+    J1 + J2 with a numpy RuntimeWarning, as in :func:`check_inertia`.
+
     Examples
     --------
     >>> is_physical_inertia([np.eye(3), np.diag([1.0, 1.0, 2.5])]).tolist()
@@ -422,6 +433,12 @@ def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
 
 def inertia_tensor(m, r, *, about) -> np.ndarray:
     """The inertia tensor J_C of particles about the point C = ``about`` (4.34).
+
+    Domain: masses ``m`` (..., N) ≥ 0 (else NegativeMassError) with a positive total and N ≥ 1 (else
+    ZeroTotalMassError), positions ``r`` (..., N, 3) matching ``m`` (else ShapeError), ``about`` any
+    finite (..., 3); a tensor beyond float64 raises ResultOverflowError.  Positions near 1e300
+    overflow the squares m s² with a numpy RuntimeWarning, not a ResultOverflowError (known, issue
+    16).
 
     Built in centre-of-mass coordinates: G is found relative to the heaviest
     particle, J_G = Σ m (|s|² 1 − s sᵀ) with s = r − G (diagonal entries as
@@ -496,6 +513,11 @@ def _centre_of_mass_tensor(m, r):
 
 def parallel_axis(J_G, m, d, *, allow_singular: bool = False) -> np.ndarray:
     """The parallel-axis (Steiner) theorem in tensor form: J_C = J_G + m(|d|² 1 − d dᵀ) (4.38).
+
+    Domain: ``J_G`` (..., 3, 3) as :func:`check_inertia` (``allow_singular`` passed on; else
+    NonPhysicalInertiaError), ``m`` ≥ 0 (else NegativeMassError), any finite ``d`` (..., 3),
+    broadcast together; any magnitudes (error-free products, the plain formula near the overflow
+    threshold), a result beyond float64 raising ResultOverflowError.
 
     Parameters
     ----------
@@ -576,6 +598,12 @@ def _shift(JG: np.ndarray, mm: np.ndarray, dd: np.ndarray) -> np.ndarray:
 def rotate_inertia(J_A, R_A_O) -> np.ndarray:
     """The tensor's components in O from those in A: J^O = ^O R^A J^A ^A R^O (4.11).
 
+    Domain: ``J_A`` (..., 3, 3) symmetric to :data:`INERTIA_ATOL` of its largest entry (else
+    NonPhysicalInertiaError), not necessarily physical; ``R_A_O`` a rotation as
+    :func:`~mechanics.rotation.check_rotation` (else NotARotationError); a result beyond float64
+    raises ResultOverflowError.  Batches that do not broadcast end in numpy's bare ValueError, not a
+    ShapeError (known, issue 16).
+
     ``R_A_O`` is the book's passive ^A R^O (rows: the e^A_i in O components).
     ``J_A`` must be symmetric (to :data:`INERTIA_ATOL` of its largest entry,
     else :class:`~mechanics.errors.NonPhysicalInertiaError`) but need not be
@@ -605,6 +633,10 @@ def rotate_inertia(J_A, R_A_O) -> np.ndarray:
 def inertia_A_from_O(J_O, R_A_O) -> np.ndarray:
     """The tensor's components in A from those in O: J^A = ^A R^O J^O ^O R^A.
 
+    Domain: as :func:`rotate_inertia`: ``J_O`` symmetric (else NonPhysicalInertiaError), ``R_A_O`` a
+    rotation (else NotARotationError), a result beyond float64 raising ResultOverflowError;
+    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+
     Examples
     --------
     >>> from mechanics.rotation import matrix_from_rotvec
@@ -625,6 +657,11 @@ def inertia_A_from_O(J_O, R_A_O) -> np.ndarray:
 
 def principal_axes(J, *, allow_singular: bool = True) -> tuple[np.ndarray, np.ndarray]:
     """Principal moments (ascending) and principal axes of ``J`` (4.13)–(4.14).
+
+    Domain: ``J`` (..., 3, 3) as :func:`check_inertia` (singular allowed by default; else
+    NonPhysicalInertiaError, NonFiniteError, ShapeError), moments from 1e-300 to about 5e307: near
+    1e308 the check's J1 + J2 overflows with a numpy RuntimeWarning (as :func:`check_inertia`);
+    moments beyond float64 raise ResultOverflowError.
 
     Parameters
     ----------
@@ -675,6 +712,9 @@ def principal_axes(J, *, allow_singular: bool = True) -> tuple[np.ndarray, np.nd
 def principal_subspaces(J, *, rtol: float = SUBSPACE_RTOL) -> tuple[np.ndarray, np.ndarray]:
     """Moments and the orthogonal projectors onto their eigen-subspaces.
 
+    Domain: ``J`` as :func:`principal_axes` (physical, singular allowed), ``rtol`` a finite number ≥
+    0 (else NonPositiveParameterError).
+
     Moments J_i, J_{i+1} whose gap is at most ``rtol`` times the largest moment
     belong to one subspace (chained: three moments within two small gaps form
     one).  Unlike the axes, the projectors are unique, so two computations of
@@ -723,6 +763,12 @@ def principal_subspaces(J, *, rtol: float = SUBSPACE_RTOL) -> tuple[np.ndarray, 
 
 def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
     """Four particles of mass m/4 with total mass m and inertia tensor J about G (Example 4.1).
+
+    Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J`` (..., 3, 3) as
+    :func:`check_inertia` with a singular tensor allowed (else NonPhysicalInertiaError).  Not
+    checked for overflow: moments over a tiny mass beyond float64 (J near 1e300, m near 1e-300) are
+    inf with a numpy RuntimeWarning; batches that do not broadcast end in numpy's bare ValueError
+    (known, issue 16).
 
     In the principal basis, with J_x ≤ J_y ≤ J_z the principal moments, the
     particles are at (±a, 0, c) and (0, ±b, −c) (4.15)–(4.18) with
@@ -796,6 +842,11 @@ def _diag(m, name_values, f1, f2, f3) -> np.ndarray:
 def rod(m, ell) -> np.ndarray:
     """Thin homogeneous rod of mass m and length ℓ along e3, about G: diag(mℓ²/12, mℓ²/12, 0).
 
+    Domain: ``m`` ≥ 0 (else NegativeMassError) and ``ell`` > 0 (else NonPositiveParameterError),
+    finite (else NonFiniteError), broadcast together; a tensor beyond float64 (m ℓ² near 1e308)
+    raises ResultOverflowError.  Batches that do not broadcast end in numpy's bare ValueError, not a
+    ShapeError (known, issue 16).
+
     The tensor is singular (an ideal line mass): validate it with
     ``check_inertia(J, allow_singular=True)``.
 
@@ -809,6 +860,10 @@ def rod(m, ell) -> np.ndarray:
 
 def ring(m, R) -> np.ndarray:
     """Thin ring (hoop) of radius R in the e1e2-plane, about G: diag(mR²/2, mR²/2, mR²).
+
+    Domain: ``m`` ≥ 0 (else NegativeMassError) and ``R`` > 0 (else NonPositiveParameterError),
+    finite, broadcast together; m R² beyond float64 raises ResultOverflowError; non-broadcasting
+    batches end in numpy's bare ValueError (known, issue 16).
 
     Examples
     --------
@@ -824,6 +879,10 @@ def ring(m, R) -> np.ndarray:
 def disc(m, R) -> np.ndarray:
     """Thin homogeneous disc of radius R in the e1e2-plane, about G: diag(mR²/4, mR²/4, mR²/2).
 
+    Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
+    result beyond float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare
+    ValueError (known, issue 16).
+
     Examples
     --------
     >>> J = disc(4.0, 1.0)
@@ -835,6 +894,10 @@ def disc(m, R) -> np.ndarray:
 
 def cylinder(m, R, h) -> np.ndarray:
     """Solid homogeneous circular cylinder, radius R, height h, axis e3, about G.
+
+    Domain: ``m`` ≥ 0 (else NegativeMassError), ``R``, ``h`` > 0 (else NonPositiveParameterError
+    naming it), finite, broadcast together; a result beyond float64 raises ResultOverflowError;
+    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
 
     diag(m(3R² + h²)/12, m(3R² + h²)/12, mR²/2).
 
@@ -855,6 +918,9 @@ def cylinder(m, R, h) -> np.ndarray:
 def cylindrical_shell(m, R, h) -> np.ndarray:
     """Thin-walled open cylindrical shell (tube), radius R, height h, axis e3, about G.
 
+    Domain: as :func:`cylinder`: ``m`` ≥ 0, ``R``, ``h`` > 0, a result beyond float64 raising
+    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+
     diag(m(6R² + h²)/12, m(6R² + h²)/12, mR²); Problem 3.3's hollow wheels.
 
     Examples
@@ -874,6 +940,10 @@ def cylindrical_shell(m, R, h) -> np.ndarray:
 def solid_sphere(m, R) -> np.ndarray:
     """Homogeneous solid sphere about its centre: (2/5) m R² 1.
 
+    Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
+    result beyond float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare
+    ValueError (known, issue 16).
+
     Examples
     --------
     >>> float(solid_sphere(5.0, 1.0)[1, 1])
@@ -886,6 +956,10 @@ def solid_sphere(m, R) -> np.ndarray:
 def hollow_sphere(m, R) -> np.ndarray:
     """Thin homogeneous spherical shell about its centre: (2/3) m R² 1.
 
+    Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
+    result beyond float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare
+    ValueError (known, issue 16).
+
     Examples
     --------
     >>> float(hollow_sphere(3.0, 1.0)[2, 2])
@@ -897,6 +971,10 @@ def hollow_sphere(m, R) -> np.ndarray:
 
 def rectangular_plate(m, a, b) -> np.ndarray:
     """Thin rectangular plate, side a along e1 and b along e2, about G.
+
+    Domain: ``m`` ≥ 0 (else NegativeMassError), ``a``, ``b`` > 0 (else NonPositiveParameterError
+    naming it), finite, broadcast together; a result beyond float64 raises ResultOverflowError;
+    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
 
     diag(m b²/12, m a²/12, m(a² + b²)/12).
 
@@ -919,6 +997,10 @@ def rectangular_plate(m, a, b) -> np.ndarray:
 def box(m, a, b, c) -> np.ndarray:
     """Homogeneous rectangular box (cuboid), sides a, b, c along e1, e2, e3, about G.
 
+    Domain: ``m`` ≥ 0 (else NegativeMassError), ``a``, ``b``, ``c`` > 0 (else
+    NonPositiveParameterError naming it), finite, broadcast together; a result beyond float64 raises
+    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+
     diag(m(b² + c²)/12, m(a² + c²)/12, m(a² + b²)/12).  A cube of side 2a
     (Problem 4.4) has (2/3) m a² 1.
 
@@ -938,6 +1020,10 @@ def box(m, a, b, c) -> np.ndarray:
 
 def solid_cone(m, R, h) -> np.ndarray:
     """Homogeneous solid right circular cone, base radius R, height h, axis e3, about G.
+
+    Domain: as :func:`cylinder`: ``m`` ≥ 0, ``R``, ``h`` > 0 (NegativeMassError,
+    NonPositiveParameterError), a result beyond float64 raising ResultOverflowError;
+    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
 
     G lies on the axis at h/4 above the base.  diag(3m(4R² + h²)/80,
     3m(4R² + h²)/80, 3mR²/10).

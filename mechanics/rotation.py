@@ -122,6 +122,10 @@ def _stack(rows) -> np.ndarray:
 def R1(alpha) -> np.ndarray:
     """Basis rotation by ``alpha`` about the first axis, (2.30).
 
+    Domain: any finite angle ``alpha``, scalar or array (...), giving (..., 3, 3); NaN or inf raise
+    NonFiniteError, a complex or non-numeric ``alpha`` ShapeError.  Huge angles are accepted, but
+    a rounding of the input then moves the angle by up to ulp(alpha).
+
     Examples
     --------
     >>> import numpy as np
@@ -134,7 +138,10 @@ def R1(alpha) -> np.ndarray:
 
 
 def R2(alpha) -> np.ndarray:
-    """Basis rotation by ``alpha`` about the second axis, (2.30)."""
+    """Basis rotation by ``alpha`` about the second axis, (2.30).
+
+    Domain: as :func:`R1`: any finite ``alpha`` (...), else NonFiniteError or ShapeError.
+    """
     c, s = _trig(alpha, "alpha")
     o, z = np.ones_like(c), np.zeros_like(c)
     return _stack([(c, z, -s), (z, o, z), (s, z, c)])
@@ -142,6 +149,8 @@ def R2(alpha) -> np.ndarray:
 
 def R3(alpha) -> np.ndarray:
     """Basis rotation by ``alpha`` about the third axis, (2.11) and (2.30).
+
+    Domain: as :func:`R1`: any finite ``alpha`` (...), else NonFiniteError or ShapeError.
 
     Examples
     --------
@@ -156,17 +165,31 @@ def R3(alpha) -> np.ndarray:
 
 
 def active_from_passive(R_A_O) -> np.ndarray:
-    """The active operator R_{O→A} (2.21) in O components: the transpose of ^A R^O."""
+    """The active operator R_{O→A} (2.21) in O components: the transpose of ^A R^O.
+
+    Domain: a rotation matrix (..., 3, 3), orthogonal with det +1 within :data:`ROTATION_ATOL`
+    (:func:`check_rotation`: else NotARotationError naming the deviation; NonFiniteError,
+    ShapeError).
+    """
     return np.swapaxes(check_rotation(R_A_O), -1, -2)
 
 
 def passive_from_active(R_active) -> np.ndarray:
-    """The book's basis matrix ^A R^O of an active operator: its transpose."""
+    """The book's basis matrix ^A R^O of an active operator: its transpose.
+
+    Domain: a rotation matrix (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
+    ``R_active``; NonFiniteError, ShapeError).
+    """
     return np.swapaxes(check_rotation(R_active, name="R_active"), -1, -2)
 
 
 def rotate_vector(R_A_O, r_O) -> np.ndarray:
     """Turn ``r`` with the basis, r' = R_{O→A} r (2.21); components in O in and out.
+
+    Domain: ``R_A_O`` a rotation as :func:`check_rotation` (else NotARotationError), ``r_O`` any
+    finite (..., 3); the leading axes broadcast, and batches that do not (2 against 3) end in
+    numpy's bare ValueError, not a ShapeError (known, issue 16).  The result is not checked: a
+    component beyond float64 (``r_O`` near 1e308) turns to inf silently.
 
     Examples
     --------
@@ -181,14 +204,23 @@ def rotate_vector(R_A_O, r_O) -> np.ndarray:
 
 
 def components_A_from_O(R_A_O, r_O) -> np.ndarray:
-    """Components in the basis A of a vector given in O: r^A = ^A R^O r^O (2.20)."""
+    """Components in the basis A of a vector given in O: r^A = ^A R^O r^O (2.20).
+
+    Domain: as :func:`rotate_vector`: a rotation ``R_A_O`` (else NotARotationError) and any finite
+    ``r_O`` (..., 3); non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    """
     R = check_rotation(R_A_O)
     r = as_float_array(r_O, "r_O", (3,))
     return np.einsum("...ij,...j->...i", R, r)
 
 
 def compose(R_B_A, R_A_O) -> np.ndarray:
-    """^B R^O = ^B R^A ^A R^O, the chain of basis changes (2.34)."""
+    """^B R^O = ^B R^A ^A R^O, the chain of basis changes (2.34).
+
+    Domain: two rotations (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
+    ``R_B_A`` or ``R_A_O``); the leading axes broadcast, and batches that do not end in numpy's bare
+    ValueError (known, issue 16).
+    """
     return check_rotation(R_B_A, name="R_B_A") @ check_rotation(R_A_O, name="R_A_O")
 
 
@@ -265,6 +297,11 @@ def _rotation_deviation(R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def check_rotation(R, *, atol: float = ROTATION_ATOL, name: str = "R_A_O") -> np.ndarray:
     """Validate a rotation matrix and return it as a float64 array.
 
+    Domain: any finite array of shape (..., 3, 3) (else NonFiniteError or ShapeError); the check is
+    the domain test of every function taking a matrix here.  Entries beyond about 1e154 overflow its
+    products to inf and are refused as not a rotation, without a numpy warning.  ``atol`` is used as
+    given (not validated).
+
     Raises :class:`~mechanics.errors.NotARotationError` naming the measured
     deviation when max |R Rᵀ − 1| or |det R − 1| exceeds ``atol``.
 
@@ -295,7 +332,12 @@ def check_rotation(R, *, atol: float = ROTATION_ATOL, name: str = "R_A_O") -> np
 
 
 def is_rotation(R, *, atol: float = ROTATION_ATOL) -> np.ndarray:
-    """Elementwise predicate: orthogonal with det +1 within ``atol``."""
+    """Elementwise predicate: orthogonal with det +1 within ``atol``.
+
+    Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); the answer, a bool
+    array (...), is False and never an error for a matrix that is not a rotation, entries beyond
+    1e154 included.
+    """
     a = as_float_array(R, "R", (3, 3))
     ortho, det = _rotation_deviation(a)
     return (ortho <= atol) & (det <= atol)
@@ -303,6 +345,11 @@ def is_rotation(R, *, atol: float = ROTATION_ATOL) -> np.ndarray:
 
 def nearest_rotation(M) -> np.ndarray:
     """The rotation closest to ``M`` in the Frobenius norm (polar factor, by SVD).
+
+    Domain: any finite (..., 3, 3) (else NonFiniteError or ShapeError), entries up to 1e300.  A
+    singular ``M`` has no unique nearest rotation, yet one is returned; the zero matrix in
+    particular is not refused (it gives the identity; known, issue 16: it should be refused naming
+    ``M``).
 
     Repairs the drift of long products of rotation matrices.  A matrix whose
     determinant is not positive has no unique nearest rotation; the result then
@@ -433,6 +480,10 @@ def _times_dd(a, split, ratio):
 def matrix_from_euler(psi, theta, phi) -> np.ndarray:
     """^A R^O(ψ, θ, φ) = R3(φ) R1(θ) R3(ψ), written out as in (2.36).
 
+    Domain: any finite ``psi``, ``theta``, ``phi`` (...), broadcast together (else NonFiniteError;
+    non-broadcasting batches end in numpy's bare ValueError, known, issue 16); ``theta`` need not
+    lie in [0, π].
+
     Examples
     --------
     The explicit form equals the product of (2.35):
@@ -457,6 +508,9 @@ def matrix_from_euler(psi, theta, phi) -> np.ndarray:
 
 def euler_from_matrix(R_A_O) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Euler angles (ψ, θ, φ) of ^A R^O, the inverse of :func:`matrix_from_euler`.
+
+    Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError); gimbal lock
+    (θ = 0 or π) included.
 
     Returns ψ, φ in (−π, π] and θ in [0, π].
 
@@ -532,6 +586,9 @@ def _unit_scale_where(mask, a, b):
 def euler_near_gimbal_lock(theta, *, atol: float = 1e-6) -> np.ndarray:
     """True where sin θ < ``atol``: Euler-angle rates are ill-conditioned there.
 
+    Domain: any finite ``theta`` (...) (else NonFiniteError); ``atol`` is used as given (not
+    validated).
+
     The default 1e-6 is where (2.69) inverted amplifies a rate error by 1e6.
     """
     t = as_float_array(theta, "theta")
@@ -572,7 +629,12 @@ def _check_quat(q, name: str = "q") -> np.ndarray:
 
 
 def quat_multiply(p, q) -> np.ndarray:
-    """Hamilton product p ⊗ q (scalar first); the operator of p after that of q."""
+    """Hamilton product p ⊗ q (scalar first); the operator of p after that of q.
+
+    Domain: any finite ``p``, ``q`` of shape (..., 4), unit or not (no check of length); the leading
+    axes broadcast (batches that do not: numpy's bare ValueError, known, issue 16).  Products beyond
+    float64 (components near 1e300) overflow to inf with a numpy RuntimeWarning, not an error.
+    """
     p = as_float_array(p, "p", (4,))
     q = as_float_array(q, "q", (4,))
     pw, px, py, pz = np.moveaxis(p, -1, 0)
@@ -590,6 +652,10 @@ def quat_multiply(p, q) -> np.ndarray:
 
 def compose_quat(q_B_A, q_A_O) -> np.ndarray:
     """Quaternion of ^B R^O from those of ^B R^A and ^A R^O (as :func:`compose`).
+
+    Domain: two unit quaternions (..., 4) with |q| − 1 within 64 eps (else NotARotationError; a zero
+    quaternion ZeroAxisError), renormalised before use; non-broadcasting batches end in numpy's bare
+    ValueError (known, issue 16).
 
     The active operators compose in the opposite order to the basis matrices:
     R_{O→B} = R_{O→A} R_{A→B}, so q_B_O = q_A_O ⊗ q_B_A; returned with w ≥ 0.
@@ -661,6 +727,9 @@ def _length_correction(*parts):
 def matrix_from_quat(q) -> np.ndarray:
     """^A R^O of the unit quaternion ``q`` = (w, x, y, z) of the active operator.
 
+    Domain: a unit quaternion (..., 4), |q| − 1 within 64 eps (else NotARotationError; a zero
+    quaternion ZeroAxisError); its length is divided out.
+
     Notes
     -----
     The diagonal is (w² + x² − y² − z²)/|q|² and its like, rather than
@@ -726,6 +795,8 @@ def _shepperd_columns(r11, r12, r13, r21, r22, r23, r31, r32, r33):
 
 def quat_from_matrix(R_A_O) -> np.ndarray:
     """Unit quaternion (w ≥ 0) of ^A R^O, by Shepperd's largest-pivot method.
+
+    Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError).
 
     The Shepperd row is divided by its double-double length (:func:`_norm_dd`;
     r ≥ 1 there, the pivot entry), each part with about one rounding.
@@ -822,6 +893,9 @@ def _quat_from_rotvec_huge(x, y, z, s, with_sin):
 def quat_from_rotvec(rotvec) -> np.ndarray:
     """Unit quaternion (cos φ/2, sin φ/2 e_a) of the rotation vector φ e_a (2.4).
 
+    Domain: as :func:`matrix_from_rotvec`: any finite rotation vector (..., 3), subnormal to near
+    1e308 in length, else NonFiniteError.
+
     Returned as computed (w may be negative for φ > π; q ≡ −q).  The angle
     φ = |φ e_a| is formed in double-double, so it adds no rounding of its own,
     and tiny angles (down to subnormal) keep full relative accuracy.
@@ -858,13 +932,21 @@ def _rotvec_from_quat_tiny(w, x, y, z, s):
 
 
 def rotvec_from_quat(q) -> np.ndarray:
-    """Rotation vector φ e_a with φ in [0, π] of the unit quaternion ``q``."""
+    """Rotation vector φ e_a with φ in [0, π] of the unit quaternion ``q``.
+
+    Domain: a unit quaternion (..., 4), |q| − 1 within 64 eps (else NotARotationError; a zero
+    quaternion ZeroAxisError).
+    """
     a = _canonical(_check_quat_raw(q))
     return _by_blocks(_rotvec_columns_from_quat, a, 3)
 
 
 def matrix_from_rotvec(rotvec) -> np.ndarray:
     """^A R^O(φ) of the rotation vector φ = φ e_a, (2.28)–(2.29).
+
+    Domain: any finite rotation vector (..., 3), from subnormal to near 1e308 in length (tiny and
+    huge angles are computed apart, without overflow); beyond 2**26 rad the angle modulo 2π is only
+    as good as the input's rounding.  NaN or inf raise NonFiniteError.
 
     Computed through the quaternion (cos φ/2, sin(φ/2) e_a) (the symmetric part
     and the diagonal) and sin φ e_a (the antisymmetric part), with the angle
@@ -892,6 +974,8 @@ def matrix_from_rotvec(rotvec) -> np.ndarray:
 def rotvec_from_matrix(R_A_O) -> np.ndarray:
     """Rotation vector φ e_a, φ in [0, π], of ^A R^O (inverse of (2.28)).
 
+    Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError).
+
     At φ = π both ±π e_a describe the rotation; either may be returned.
     Read off the unnormalised Shepperd quaternion: for φ < π/2 that is
     (1 + tr, a_32 − a_23, ...), so φ = 2 atan2(|s|, 1 + tr) with no square root.
@@ -906,6 +990,10 @@ def rotvec_from_matrix(R_A_O) -> np.ndarray:
 
 def matrix_from_axis_angle(axis, angle) -> np.ndarray:
     """^A R^O for a turn ``angle`` about the direction ``axis`` (2.29).
+
+    Domain: ``axis`` any finite non-zero (..., 3) of any length, subnormal to 1e308 (its norm is
+    taken by hypot; a zero axis raises ZeroAxisError), ``angle`` any finite (...); their leading
+    axes broadcast (batches that do not end in numpy's bare ValueError, known, issue 16).
 
     ``axis`` is a direction: its length is divided out; a zero axis raises
     :class:`~mechanics.errors.ZeroAxisError`.

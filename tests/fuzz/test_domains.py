@@ -20,12 +20,7 @@ from .surface import public_callables
 SURFACE = public_callables()
 
 #: modules whose docstrings do not state every domain yet, and why
-NOT_YET: dict[str, str] = {
-    "mechanics.dynamics": "owned by the mutation-testing helper (issue 16, part 1)",
-    "mechanics.impact": "owned by the mutation-testing helper",
-    "mechanics.inertia": "owned by the mutation-testing helper",
-    "mechanics.rotation": "owned by the mutation-testing helper",
-}
+NOT_YET: dict[str, str] = {}
 
 
 def _modules() -> list[str]:
