@@ -124,7 +124,7 @@ def test_inertia_of_s_J_is_s_times_that_of_J(s, exact):
 
 @pytest.mark.xfail(
     strict=True,
-    reason="check_inertia (inertia.py, owned by the mutation-testing helper) overflows in its "
+    reason="check_inertia (inertia.py; known, issue 16) overflows in its "
     "eigenvalue check for a moment near 1e308 (a numpy RuntimeWarning, or LinAlgError with the "
     "warning masked) instead of accepting the tensor or raising a ResultOverflowError",
 )

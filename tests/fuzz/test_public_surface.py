@@ -50,7 +50,7 @@ KNOWN: dict[tuple[str, str], str] = {
     **{
         (f"mechanics.{name}", param): (
             "1e300 overflows an intermediate: a numpy RuntimeWarning, not a ResultOverflowError "
-            "(module owned by the mutation-testing helper)"
+            "(known, issue 16)"
         )
         for name, param in [
             ("dynamics.axis_reaction", "phidot"),
@@ -77,7 +77,7 @@ KNOWN: dict[tuple[str, str], str] = {
     **{
         (f"mechanics.{name}", "<batch>"): (
             "batches of 2 and 3 end in numpy's bare broadcasting ValueError (or are accepted), "
-            "not a ShapeError naming the arguments (module owned by the mutation-testing helper)"
+            "not a ShapeError naming the arguments (known, issue 16)"
         )
         for name in (
             "dynamics.angular_momentum_rigid",
@@ -366,7 +366,7 @@ def test_any_float_in_any_numeric_parameter_gives_a_finite_result_or_a_mechanics
     """One entry of a parameter (a scalar, or one component of an array) set to any
     float64, subnormals, ±0, ±inf and NaN included: a finite result or a
     MechanicsValueError, never a silent NaN, a numpy warning or another exception
-    (the modules of the mutation-testing helper are left to their KNOWN list)."""
+    (the known failures of dynamics, impact, inertia and rotation are in KNOWN)."""
     name, param = case
     entry = ENTRIES[name]
     value = _nan_like(entry.kw[param], entry.tail(param), x)
