@@ -15,7 +15,13 @@ import re
 
 import numpy as np
 
-from .errors import MechanicsValueError, NonFiniteError, ResultOverflowError, ShapeError
+from .errors import (
+    MechanicsValueError,
+    NonFiniteError,
+    NonPositiveParameterError,
+    ResultOverflowError,
+    ShapeError,
+)
 
 
 def _first_bad(a: np.ndarray) -> str:
@@ -50,6 +56,15 @@ def as_float_scalar(x, name: str) -> float:
     if a.shape != ():
         raise ShapeError(f"{name} must be a scalar; got shape {a.shape}")
     return float(a)
+
+
+def as_positive_scalar(x, name: str) -> float:
+    """Return ``x`` as a finite Python float > 0; a ShapeError, NonFiniteError or
+    NonPositiveParameterError naming ``name`` otherwise."""
+    v = as_float_scalar(x, name)
+    if not v > 0:
+        raise NonPositiveParameterError(f"{name} must be > 0; got {v!r}")
+    return v
 
 
 def _nonfinite(x) -> bool:

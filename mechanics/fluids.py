@@ -36,7 +36,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_float_array, as_float_scalar, finite_result
+from ._validate import as_float_array, as_float_scalar, as_positive_scalar, finite_result
 from .errors import (
     NonFiniteError,
     NonPositiveParameterError,
@@ -326,11 +326,7 @@ def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray
     return partial_time_derivative(rho, r, t) + div_flux
 
 
-def _positive(x, name: str) -> float:
-    val = as_float_scalar(x, name)
-    if not val > 0:
-        raise NonPositiveParameterError(f"{name} must be > 0; got {x!r}")
-    return val
+_positive = as_positive_scalar
 
 
 @finite_result

@@ -133,7 +133,13 @@ from numbers import Integral
 import numpy as np
 from scipy.integrate._ivp import dop853_coefficients as _d853
 
-from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
+from ._validate import (
+    as_float_array,
+    as_float_scalar,
+    as_positive_scalar,
+    broadcast_checked,
+    finite_result,
+)
 from .errors import (
     NonFiniteError,
     NonPhysicalInertiaError,
@@ -298,14 +304,7 @@ def _run_compiled(name: str, *args):
 # --------------------------------------------------------------------- validation
 
 
-def _positive_scalar(x, name: str) -> float:
-    a = as_float_array(x, name)
-    if a.shape != ():
-        raise ShapeError(f"{name} must be a scalar; got shape {a.shape}")
-    v = float(a)
-    if not v > 0:
-        raise NonPositiveParameterError(f"{name} must be > 0; got {v!r}")
-    return v
+_positive_scalar = as_positive_scalar
 
 
 def _check_times(t) -> np.ndarray:

@@ -67,11 +67,10 @@ import numpy as np
 import scipy.special as sc
 
 from . import elliptic
-from ._validate import as_float_array, as_float_scalar, finite_result
+from ._validate import as_float_array, as_float_scalar, as_positive_scalar, finite_result
 from .errors import (
     GimbalLockError,
     NonPhysicalInertiaError,
-    NonPositiveParameterError,
     OutOfDomainError,
     ResultOverflowError,
     ShapeError,
@@ -756,13 +755,7 @@ def _scaled(*xs: float) -> tuple[float, ...]:
     return tuple(math.ldexp(x, -k) for x in xs)
 
 
-def _positive(x, name):
-    a = as_float_array(x, name)
-    if a.shape != ():
-        raise ShapeError(f"{name} must be a scalar; got shape {a.shape}")
-    if not a > 0:
-        raise NonPositiveParameterError(f"{name} must be > 0; got {float(a)!r}")
-    return float(a)
+_positive = as_positive_scalar
 
 
 def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:

@@ -293,11 +293,11 @@ def _conform_all(args, thresholds) -> int:
         if args.json:
             Path(args.json).write_text(comparison.to_json() + "\n", encoding="utf-8")
     if args.markdown:
-        command = (
-            " ".join(["bodycheck", "conform", *sys.argv[2:]])
-            if sys.argv[1:2] == ["conform"]
-            else "bodycheck conform all --markdown FILE"
-        )
+        parts = ["bodycheck conform all"]
+        parts += [f"--scenario {n}" for n in args.scenarios or ()]
+        parts += [f"--threshold {t}" for t in args.thresholds]
+        parts += [f"--markdown {args.markdown}"] + ([f"--plot {args.plot}"] if args.plot else [])
+        command = " ".join(parts)
         head = (
             "# The conformance battery on every engine\n\n"
             f"Written by `{command}` (docs/conformance.md: the scenarios, figures and "

@@ -18,23 +18,16 @@ from __future__ import annotations
 
 import random
 from collections.abc import Callable
-from typing import Any
+from typing import Any, NamedTuple
 
 __all__ = ["Counterexample", "search_counterexample"]
 
 
-class Counterexample(tuple):
-    """(arguments, message): the failing arguments and the assertion's message."""
+class Counterexample(NamedTuple):
+    """The failing arguments (shrunk unless asked not to) and the assertion's message."""
 
-    __slots__ = ()
-
-    @property
-    def arguments(self) -> tuple:
-        return self[0]
-
-    @property
-    def message(self) -> str:
-        return self[1]
+    arguments: tuple
+    message: str
 
 
 def _failure(prop: Callable[..., Any], args: tuple) -> str | None:
@@ -85,4 +78,4 @@ def search_counterexample(
             )
         except NoSuchExample:
             return None
-        return Counterexample((args, _failure(prop, args) or "fails only when not shrunk"))
+        return Counterexample(args, _failure(prop, args) or "fails only when not shrunk")

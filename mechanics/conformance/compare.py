@@ -96,8 +96,9 @@ class Comparison:
             "| scenario | adapter | status | worst error | worst drift | order | wall time (s) |",
             "|---|---|---|---|---|---|---|",
         ]
+        rows = self.rows()
         last = None
-        for row in self.rows():
+        for row in rows:
             scenario = row["scenario"] if row["scenario"] != last else ""
             last = row["scenario"]
             err = "" if row["error"] is None else f"{row['error'][1]:.2g} ({row['error'][0]})"
@@ -111,7 +112,7 @@ class Comparison:
                 f"| {scenario} | {row['adapter']} | {status} | {err} | {drift} | {order} | {wall} |"
             )
         why: dict[tuple[str, str, str], list[str]] = {}
-        for r in self.rows():
+        for r in rows:
             if r["status"] in ("unsupported", "error") and r["message"]:
                 key = (r["scenario"], r["status"], r["message"])
                 why.setdefault(key, []).append(r["adapter"])

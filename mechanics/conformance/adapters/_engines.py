@@ -18,7 +18,7 @@ from ..._validate import as_float_scalar
 from ...errors import (
     MechanicsValueError,
     NonPositiveParameterError,
-    RestitutionRangeError,
+    OutOfDomainError,
     UnknownOptionError,
 )
 from ..protocol import SAMPLE_TIME_RTOL, Scenario
@@ -29,7 +29,6 @@ __all__ = [
     "body_rows",
     "check_option",
     "common_unsupported",
-    "positive",
     "quiet_stdout",
     "require",
     "step_counts",
@@ -157,18 +156,11 @@ def body_rows(scenario: Scenario) -> tuple[np.ndarray, ...]:
     )
 
 
-def unit_interval(x, name: str, what: str) -> float:
+def unit_interval(x, name: str, what: str, *, error=OutOfDomainError) -> float:
     """``x`` as a float in [0, 1]; a :class:`~mechanics.errors.MechanicsValueError`
-    naming ``name`` (a NaN, an infinity, a non-scalar, a value outside)."""
+    naming ``name`` (a NaN, an infinity, a non-scalar), or ``error`` for a value outside
+    (:class:`~mechanics.errors.RestitutionRangeError` for a coefficient of restitution)."""
     v = as_float_scalar(x, name)
     if not 0.0 <= v <= 1.0:
-        raise RestitutionRangeError(f"{name} ({what}) must lie in [0, 1]; got {v!r}")
-    return v
-
-
-def positive(x, name: str, what: str) -> float:
-    """``x`` as a finite float > 0; an error naming ``name`` otherwise."""
-    v = as_float_scalar(x, name)
-    if not v > 0.0:
-        raise NonPositiveParameterError(f"{name} ({what}) must be > 0; got {v!r}")
+        raise error(f"{name} ({what}) must lie in [0, 1]; got {v!r}")
     return v

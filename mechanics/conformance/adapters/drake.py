@@ -82,14 +82,14 @@ import math
 
 import numpy as np
 
-from ...errors import MechanicsValueError, ResultOverflowError
+from ..._validate import as_positive_scalar
+from ...errors import MechanicsValueError, RestitutionRangeError, ResultOverflowError
 from ..protocol import ConformanceError, Scenario, Trajectory
 from ._engines import (
     MissingExtraError,
     body_rows,
     check_option,
     common_unsupported,
-    positive,
     require,
     step_counts,
     unit_interval,
@@ -147,8 +147,8 @@ def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
     >>> abs(math.log((1 + c) / (1 - c * e)) - c * (1 + e)) < 1e-15
     True
     """
-    e = unit_interval(e, "e", "a coefficient of restitution")
-    v_ref = positive(v_ref, "v_ref", "the approach speed")
+    e = unit_interval(e, "e", "a coefficient of restitution", error=RestitutionRangeError)
+    v_ref = as_positive_scalar(v_ref, "v_ref")
     if e == 1.0:
         return 0.0
     e = max(e, E_FLOOR)

@@ -79,7 +79,7 @@ import math
 
 import numpy as np
 
-from ...errors import MechanicsValueError
+from ...errors import MechanicsValueError, RestitutionRangeError
 from ...rotation import matrix_from_quat, quat_from_matrix
 from ..protocol import ConformanceError, Scenario, Trajectory
 from ._engines import (
@@ -159,7 +159,7 @@ def zeta_without_tension(e: float) -> float:
     >>> abs(restitution_without_tension(z) - 0.8) < 1e-15
     True
     """
-    e = unit_interval(e, "e", "a coefficient of restitution")
+    e = unit_interval(e, "e", "a coefficient of restitution", error=RestitutionRangeError)
     if e >= 1.0:
         return 0.0
     if e <= 0.0:
@@ -181,7 +181,7 @@ def zeta_textbook(e: float) -> float:
 
     Domain: e in [0, 1] (refused naming ``e`` outside); ζ in [0, 1], 1 at e = 0.
     """
-    e = unit_interval(e, "e", "a coefficient of restitution")
+    e = unit_interval(e, "e", "a coefficient of restitution", error=RestitutionRangeError)
     if e <= 0.0:
         return 1.0
     x = -math.log(e)
