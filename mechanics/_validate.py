@@ -114,6 +114,10 @@ def finite_result(fn):
     masked: each function refuses its own zero denominators by name. Arguments whose
     batch axes do not broadcast raise a :class:`~mechanics.errors.ShapeError` listing
     each argument's shape, not numpy's bare ``ValueError``.
+
+    Apply it after the definition, ``f = finite_result(f)``, not as ``@finite_result``:
+    mutmut does not mutate decorated functions, and every body of ``mechanics`` is
+    mutation-tested (``docs/mutation.md``; ``tests/test_mutation_setup.py`` holds the rule).
     """
 
     sig = inspect.signature(fn)
@@ -151,6 +155,7 @@ def broadcast_checked(fn):
     For functions whose non-finite results are documented (``ellipk(1) = inf``) and so
     cannot take :func:`finite_result`: only numpy's bare broadcasting ``ValueError`` is
     turned into a :class:`~mechanics.errors.ShapeError` listing each argument's shape.
+    Applied after the definition, like :func:`finite_result`.
     """
     sig = inspect.signature(fn)
 

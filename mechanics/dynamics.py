@@ -46,7 +46,7 @@ import math
 import numpy as np
 from scipy import special
 
-from ._validate import as_float_array
+from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import (
     NonPhysicalInertiaError,
     NonPositiveParameterError,
@@ -158,6 +158,9 @@ def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarr
         return _finite(np.einsum("...ij,...j->...i", Jc, w), "L = J omega")
 
 
+angular_momentum_rigid = broadcast_checked(angular_momentum_rigid)
+
+
 def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.ndarray:
     """T = ½ ωᵀ J ω (3.15), (4.32), about G (plus ½ m v_G² for the total) or a fixed point.
 
@@ -177,6 +180,9 @@ def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.nd
     w = as_float_array(omega, "omega", (3,))
     with np.errstate(over="ignore", invalid="ignore"):
         return _finite(0.5 * np.einsum("...i,...ij,...j->...", w, Jc, w), "T")
+
+
+rotational_kinetic_energy = broadcast_checked(rotational_kinetic_energy)
 
 
 def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
@@ -231,6 +237,9 @@ def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
     return _finite(out, "d omega/dt")
 
 
+euler_equations_rhs = broadcast_checked(euler_equations_rhs)
+
+
 def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
     """φ̈ = M_z / J_z for rotation about a fixed axis (the z-component of (4.42); (4.48)).
 
@@ -249,6 +258,9 @@ def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
     J = _positive(J_axis, "J_axis")
     Mz = as_float_array(M_axis, "M_axis")
     return Mz / J
+
+
+fixed_axis_angular_acceleration = broadcast_checked(fixed_axis_angular_acceleration)
 
 
 # --------------------------------------------------------- the physical pendulum
@@ -279,6 +291,9 @@ def reduced_length(J_axis, m, h) -> np.ndarray:
     return _positive(J_axis, "J_axis") / (_positive(m, "m") * _positive(h, "h"))
 
 
+reduced_length = broadcast_checked(reduced_length)
+
+
 def _omega0(J, m, g, h):
     return np.sqrt((m * g * h) / J)
 
@@ -304,6 +319,9 @@ def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
     """
     J, mm, gg, hh = _pendulum(J_axis, m, g, h)
     return 2.0 * np.pi / _omega0(J, mm, gg, hh)
+
+
+pendulum_small_period = broadcast_checked(pendulum_small_period)
 
 
 def _half_angle_sin_cos(theta_0) -> tuple[np.ndarray, np.ndarray]:
@@ -363,6 +381,9 @@ def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
     return 4.0 * K / _omega0(J, mm, gg, hh)
 
 
+pendulum_period = broadcast_checked(pendulum_period)
+
+
 def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
     """Exact angle φ(t) of a physical pendulum released from rest at φ(0) = θ0 (4.50).
 
@@ -412,6 +433,9 @@ def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
     return np.where(t0 < 0, -phi, phi)
 
 
+pendulum_motion = broadcast_checked(pendulum_motion)
+
+
 def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
     """|φ̇| at angle φ = ``theta`` for a pendulum released from rest at θ0, by energy (4.57).
 
@@ -453,6 +477,9 @@ def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
     s = np.sin(0.5 * np.abs(th))
     s0 = np.sin(0.5 * np.abs(t0))
     return np.sqrt((4.0 * mm * gg * hh / J) * np.maximum((s0 - s) * (s0 + s), 0.0))
+
+
+pendulum_angular_velocity_at = broadcast_checked(pendulum_angular_velocity_at)
 
 
 # ---------------------------------------------------------------------- reactions
@@ -502,6 +529,9 @@ def axis_reaction(m, h, phidot, phiddot, *, F_a_rho, F_a_phi) -> np.ndarray:
     return np.stack(np.broadcast_arrays(-mm * hh * w * w - Fr, mm * hh * a - Fp), axis=-1)
 
 
+axis_reaction = finite_result(axis_reaction)
+
+
 def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
     """Axis reaction of the physical pendulum as a function of φ and E (4.76)–(4.77).
 
@@ -540,6 +570,9 @@ def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
     R_rho = (2.0 * mm * hh / J) * (mg * hh - En) - (1.0 + 2.0 * mm * hh * hh / J) * mg * np.cos(p)
     R_phi = (1.0 - mm * hh * hh / J) * mg * np.sin(p)
     return np.stack(np.broadcast_arrays(R_rho, R_phi), axis=-1)
+
+
+pendulum_axis_reaction = broadcast_checked(pendulum_axis_reaction)
 
 
 def bearing_reactions(
@@ -625,3 +658,6 @@ def bearing_reactions(
     R1 = np.stack([R1x, R1y, R1z], axis=-1)
     R2 = np.stack([Rx - R1x, Ry - R1y, R2z], axis=-1)
     return R1, R2
+
+
+bearing_reactions = finite_result(bearing_reactions)

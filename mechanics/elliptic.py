@@ -247,7 +247,6 @@ def _scaled(u, rt):
     return v
 
 
-@finite_result
 def ellipj(u, m, *, m1=None):
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
 
@@ -337,7 +336,9 @@ def ellipj(u, m, *, m1=None):
     return tuple(a.reshape(shape) for a in (sn, cn, dn, am))
 
 
-@broadcast_checked
+ellipj = finite_result(ellipj)
+
+
 def ellipk(m, *, m1=None):
     """Complete elliptic integral of the first kind K(m) for m ≤ 1 (K(1) = inf).
 
@@ -373,7 +374,9 @@ def ellipk(m, *, m1=None):
     return _quarter_period(np.maximum(m1, 0.0))
 
 
-@broadcast_checked
+ellipk = broadcast_checked(ellipk)
+
+
 def ellipe(m, *, m1=None):
     """Complete elliptic integral of the second kind E(m) for m ≤ 1.
 
@@ -392,6 +395,9 @@ def ellipe(m, *, m1=None):
     m1 = np.maximum(m1, 0.0)
     out = 2.0 * sc.elliprg(0.0, m1, 1.0)
     return np.where(m1 == 0, 1.0, out)
+
+
+ellipe = broadcast_checked(ellipe)
 
 
 def _amplitude(phi, m, m1, name):
@@ -414,7 +420,6 @@ def _amplitude(phi, m, m1, name):
     return j, s, c, np.maximum(delta2, 0.0)
 
 
-@broadcast_checked
 def ellipf(phi, m, *, m1=None):
     """Incomplete elliptic integral of the first kind F(φ|m).
 
@@ -442,6 +447,9 @@ def ellipf(phi, m, *, m1=None):
     with np.errstate(over="ignore"):
         out = f + 2.0 * j * kk
     return _no_overflow(out, m1, "ellipf")
+
+
+ellipf = broadcast_checked(ellipf)
 
 
 def _third_kind_tail(s, c, d2, n):
@@ -472,7 +480,6 @@ def _check_characteristic(n, limit_ok):
         )
 
 
-@broadcast_checked
 def ellippi(n, phi, m, *, m1=None):
     """Incomplete elliptic integral of the third kind Π(n; φ|m) (mpmath's order).
 
@@ -504,7 +511,9 @@ def ellippi(n, phi, m, *, m1=None):
     return _no_overflow(out, m1, "ellippi")
 
 
-@broadcast_checked
+ellippi = broadcast_checked(ellippi)
+
+
 def ellippi_jacobi(u, n, m, *, m1=None):
     """Third-kind integral in Jacobi's form, ∫₀^u dv / (1 − n sn²(v|m)) = Π(n; am u | m).
 
@@ -535,6 +544,9 @@ def ellippi_jacobi(u, n, m, *, m1=None):
     with np.errstate(over="ignore"):
         out = (u + _third_kind_excess(u, n, m, m1)).reshape(shape)
     return _no_overflow(out, 1.0, "ellippi_jacobi")  # m ≤ 1 and n < 1: always finite
+
+
+ellippi_jacobi = broadcast_checked(ellippi_jacobi)
 
 
 def _third_kind_excess(u, n, m, m1):

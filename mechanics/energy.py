@@ -78,7 +78,6 @@ def _nonneg(x, name: str, error=NegativeMassError) -> np.ndarray:
 # ------------------------------------------------------------ kinetic energy
 
 
-@finite_result
 def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     """Kinetic energy of a rigid body, T = ½ m v_G² + ½ ωᵀ J_G ω (3.7), (3.24).
 
@@ -121,7 +120,9 @@ def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
     return _finite_result(trans + rot, "the kinetic energy")
 
 
-@finite_result
+kinetic_energy_rigid = finite_result(kinetic_energy_rigid)
+
+
 def kinetic_energy_fixed_axis(J_axis, omega) -> np.ndarray:
     """T = ½ J φ̇² for rotation about a fixed axis (3.26), (3.27), (3.30).
 
@@ -147,6 +148,9 @@ def kinetic_energy_fixed_axis(J_axis, omega) -> np.ndarray:
     return _finite_result(0.5 * J * w * w, "the kinetic energy")
 
 
+kinetic_energy_fixed_axis = finite_result(kinetic_energy_fixed_axis)
+
+
 # --------------------------------------------------------------- power, work
 
 
@@ -162,7 +166,6 @@ def _pair(F, v, names=("F", "v")) -> tuple[np.ndarray, np.ndarray]:
     return FF, vv
 
 
-@finite_result
 def power(F, v) -> np.ndarray:
     """Power of a system of forces, P = Σ_k F_k · v_k (3.1), compensated.
 
@@ -194,7 +197,9 @@ def power(F, v) -> np.ndarray:
     return _finite_result(P, "the power")
 
 
-@finite_result
+power = finite_result(power)
+
+
 def work_from_power(P, t) -> np.ndarray:
     """W_12 = ∫ P dt (3.36) from samples of the power, by composite Simpson.
 
@@ -232,7 +237,9 @@ def work_from_power(P, t) -> np.ndarray:
     return _finite_result(np.asarray(simpson(PP, x=tt, axis=-1)), "the work")
 
 
-@finite_result
+work_from_power = finite_result(work_from_power)
+
+
 def work_along_path(F, r) -> np.ndarray:
     """Work of a force along a sampled path, W = ∫ F · dr (3.38), by the trapezoid rule.
 
@@ -277,7 +284,9 @@ def work_along_path(F, r) -> np.ndarray:
     return _finite_result(W, "the work")
 
 
-@finite_result
+work_along_path = finite_result(work_along_path)
+
+
 def work_of_couple(M, dphi) -> np.ndarray:
     """Work of a constant moment M over a rotation δφ about a fixed axis: W = M · δφ (3.70).
 
@@ -296,7 +305,9 @@ def work_of_couple(M, dphi) -> np.ndarray:
     return _finite_result(np.einsum("...i,...i->...", MM, dd), "the work")
 
 
-@finite_result
+work_of_couple = finite_result(work_of_couple)
+
+
 def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
     """Power of the forces on a rigid body, P = F · v_A + M_A · ω (3.65 per unit time).
 
@@ -321,10 +332,12 @@ def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
     return _finite_result(P, "the power")
 
 
+rigid_body_power = finite_result(rigid_body_power)
+
+
 # ------------------------------------------------------------------ potentials
 
 
-@finite_result
 def gravity_potential(m, r, *, g) -> np.ndarray:
     """Potential energy of uniform gravity, Φ^e = −Σ m_k g · r_k = −m g · r_G (3.55)–(3.56).
 
@@ -358,6 +371,9 @@ def gravity_potential(m, r, *, g) -> np.ndarray:
     return _finite_result(Phi, "the potential energy")
 
 
+gravity_potential = finite_result(gravity_potential)
+
+
 def _spring_args(k, ell_0, r_1, r_2):
     kk = as_float_array(k, "k")
     if (kk < 0).any():
@@ -370,7 +386,6 @@ def _spring_args(k, ell_0, r_1, r_2):
     return kk, ll, d, np.linalg.norm(d, axis=-1)
 
 
-@finite_result
 def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Φ = ½ k (|r_1 − r_2| − ℓ_0)² of a linear spring between two points (3.53).
 
@@ -394,7 +409,9 @@ def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.nd
     return _finite_result(0.5 * kk * ext * ext, "the spring energy")
 
 
-@finite_result
+spring_potential = finite_result(spring_potential)
+
+
 def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
     """Force on point 1 from the spring: −∇_1 Φ = −k (|r_12| − ℓ_0) r_12/|r_12| (3.48).
 
@@ -432,7 +449,9 @@ def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarra
     return _finite_result(-(kk * ext / dist)[..., None] * d, "the spring force")
 
 
-@finite_result
+spring_force = finite_result(spring_force)
+
+
 def torsion_potential(tau_0, phi) -> np.ndarray:
     """Φ(φ) = ½ τ_0 φ² of a torsion spring with moment M = −τ_0 φ (3.71)–(3.72).
 
@@ -454,7 +473,9 @@ def torsion_potential(tau_0, phi) -> np.ndarray:
     return _finite_result(0.5 * tt * pp * pp, "the torsion energy")
 
 
-@finite_result
+torsion_potential = finite_result(torsion_potential)
+
+
 def torsion_moment(tau_0, phi) -> np.ndarray:
     """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5).
 
@@ -467,10 +488,12 @@ def torsion_moment(tau_0, phi) -> np.ndarray:
     return -tt * as_float_array(phi, "phi")
 
 
+torsion_moment = finite_result(torsion_moment)
+
+
 # ------------------------------------------------------- forces that do no work
 
 
-@finite_result
 def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     """Velocity of the body point at the contact C, v_C = v_G + ω × GC (2.73).
 
@@ -489,7 +512,9 @@ def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
     return v + np.cross(w, rr)
 
 
-@finite_result
+contact_point_velocity = finite_result(contact_point_velocity)
+
+
 def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of a contact force acting on the body point C: P = F · (v_G + ω × GC).
 
@@ -508,7 +533,9 @@ def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     return _finite_result(np.einsum("...i,...i->...", FF, vC), "the power")
 
 
-@finite_result
+contact_power = finite_result(contact_power)
+
+
 def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     """Power of the contact force (normal force plus static friction) on a rolling body (3.2.2).
 
@@ -532,7 +559,9 @@ def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
     return contact_power(F_contact, v_G, omega, r_GC)
 
 
-@finite_result
+rolling_contact_power = finite_result(rolling_contact_power)
+
+
 def pair_power(N, v_1, v_2) -> np.ndarray:
     """Net power of a force N on body 1 and its reaction −N on body 2: N · (v_1 − v_2).
 
@@ -551,3 +580,6 @@ def pair_power(N, v_1, v_2) -> np.ndarray:
     NN = as_float_array(N, "N", (3,))
     a, b = _pair(v_1, v_2, ("v_1", "v_2"))
     return _finite_result(np.einsum("...i,...i->...", NN, a - b), "the power")
+
+
+pair_power = finite_result(pair_power)

@@ -132,7 +132,6 @@ def _spatial_derivatives(f: Field, r, t, h, name: str, *, vector: bool | None) -
     return np.moveaxis(d, 0, -1)
 
 
-@finite_result
 def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """The velocity gradient G[..., i, j] = ∂v_i/∂x_j at the points ``r``.
 
@@ -168,7 +167,9 @@ def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return _spatial_derivatives(v, r, t, h, "v", vector=True)
 
 
-@finite_result
+velocity_gradient = finite_result(velocity_gradient)
+
+
 def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """div v = ∇·v at the points ``r`` (8.6); shape ``(...)``.
 
@@ -188,7 +189,9 @@ def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return np.trace(velocity_gradient(v, r, t, h=h), axis1=-2, axis2=-1)
 
 
-@finite_result
+divergence = finite_result(divergence)
+
+
 def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """curl v = ∇×v at the points ``r``; shape ``(..., 3)``.
 
@@ -213,7 +216,9 @@ def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     )
 
 
-@finite_result
+curl = finite_result(curl)
+
+
 def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∇f of a scalar field at the points ``r``; shape ``(..., 3)``.
 
@@ -231,7 +236,9 @@ def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return _spatial_derivatives(f, r, t, h, "f", vector=False)
 
 
-@finite_result
+gradient = finite_result(gradient)
+
+
 def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∂f/∂t at fixed points ``r`` (8.9), for a scalar or a vector field.
 
@@ -256,7 +263,9 @@ def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return sum(w * val for w, val in zip(_WEIGHTS, vals, strict=True)) / step
 
 
-@finite_result
+partial_time_derivative = finite_result(partial_time_derivative)
+
+
 def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """The total (material) time derivative (8.12): df/dt = ∂f/∂t + (v·∇) f.
 
@@ -285,7 +294,9 @@ def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     return df_dt + np.einsum("...ij,...j->...i", grad, vel)
 
 
-@finite_result
+material_derivative = finite_result(material_derivative)
+
+
 def rigid_velocity_field(v_0, omega) -> Field:
     """The velocity field of a rigid motion, v(r) = v(0) + ω × r (8.7).
 
@@ -309,7 +320,9 @@ def rigid_velocity_field(v_0, omega) -> Field:
     return field
 
 
-@finite_result
+rigid_velocity_field = finite_result(rigid_velocity_field)
+
+
 def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     """∂ρ/∂t + ∇·(ρ v) at the points ``r``: zero when mass is conserved (8.18).
 
@@ -326,10 +339,12 @@ def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray
     return partial_time_derivative(rho, r, t) + div_flux
 
 
+continuity_residual = finite_result(continuity_residual)
+
+
 _positive = as_positive_scalar
 
 
-@finite_result
 def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarray:
     """∂v/∂t + (v·∇)v − g_vec + ∇p/ρ at the points ``r``: zero for a flow of an ideal
     fluid of constant density ``rho`` under gravity g_vec = −g e_z (8.27).
@@ -362,7 +377,9 @@ def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarra
     return accel - g_vec + grad_p / rho_0
 
 
-@finite_result
+euler_residual = finite_result(euler_residual)
+
+
 def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     """½ ρ0 v² + ρ0 g z + p (8.34): constant along a streamline of a steady
     incompressible ideal flow.
@@ -399,6 +416,9 @@ def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     return 0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
 
 
+bernoulli_constant = finite_result(bernoulli_constant)
+
+
 #: the smallest rtol of a streamline: scipy's solve_ivp raises it to 100 eps with a warning
 STREAMLINE_MIN_RTOL = 100 * EPS
 
@@ -407,7 +427,6 @@ STREAMLINE_MIN_RTOL = 100 * EPS
 STREAMLINE_MAX_EVALS = 12 * 10**4
 
 
-@finite_result
 def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     """Points of the streamline dr/ds = v(r, t) through ``r_0`` (8.31), at the
     parameter values ``s`` (time frozen at ``t``; for a steady flow s is time).
@@ -471,6 +490,9 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     return sol.y.T
 
 
+streamline = finite_result(streamline)
+
+
 def _area_ratio(area_ratio) -> float:
     aa = as_float_array(area_ratio, "area_ratio")
     if aa.shape != ():
@@ -483,7 +505,6 @@ def _area_ratio(area_ratio) -> float:
     return a
 
 
-@finite_result
 def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
     """Outflow speed u from a small hole at depth ``h`` (Example 8.1, 8.37).
 
@@ -507,7 +528,9 @@ def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
     return np.sqrt(2.0 * g_mag * hh / ((1.0 - a) * (1.0 + a)))
 
 
-@finite_result
+torricelli_speed = finite_result(torricelli_speed)
+
+
 def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
     """Time for a prismatic tank to empty through a small hole in its bottom
     (quasi-steady Torricelli outflow): T = √(2 h0 (1 − a²)/g) / a.
@@ -533,7 +556,9 @@ def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
     return np.sqrt(2.0 * hh * (1.0 - a) * (1.0 + a) / g_mag) / a
 
 
-@finite_result
+drain_time = finite_result(drain_time)
+
+
 def tank_level(t, *, h_0, g, area_ratio) -> np.ndarray:
     """Liquid level above a small hole in the bottom of a prismatic tank at times ``t``.
 
@@ -562,3 +587,6 @@ def tank_level(t, *, h_0, g, area_ratio) -> np.ndarray:
     c2 = a * a * float(g) / (2.0 * (1.0 - a) * (1.0 + a))
     left = np.maximum(T - tt, 0.0)
     return c2 * left * left
+
+
+tank_level = finite_result(tank_level)

@@ -69,7 +69,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import (
     NegativeMassError,
     NonPositiveParameterError,
@@ -427,6 +427,9 @@ def direct_impact(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     return _overflow(out1, "v_1f")[()], _overflow(out2, "v_2f")[()]
 
 
+direct_impact = broadcast_checked(direct_impact)
+
+
 def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     """The impulse S_12 = m_1 (ẋ_1f − ẋ_1i) from body 2 on body 1 along X, (6.19).
 
@@ -458,6 +461,9 @@ def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     with np.errstate(over="ignore"):
         out = np.ldexp(np.where(d.approach, s[0] + s[1], 0.0), d.km + d.kv)
     return _overflow(out, "the impulse S_12")[()]
+
+
+impulse_direct = broadcast_checked(impulse_direct)
 
 
 def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
@@ -497,6 +503,9 @@ def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     with np.errstate(over="ignore"):
         out = np.ldexp(np.where(d.approach, q[0] + q[1], 0.0), d.km + 2 * d.kv - 1)
     return _overflow(out, "the energy loss Q")[()]
+
+
+energy_loss_direct = broadcast_checked(energy_loss_direct)
 
 
 def compression_restitution_impulses(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
@@ -544,6 +553,9 @@ def compression_restitution_impulses(m_1, m_2, v_1, v_2, e, *, separating: str =
         out2 = np.where(d.approach, s2[0] + s2[1], 0.0)
     out1 = _overflow(out1, "S_1")
     return out1[()], _overflow(out2, "S_2")[()]
+
+
+compression_restitution_impulses = broadcast_checked(compression_restitution_impulses)
 
 
 # ------------------------------------------------------------ rigid bodies
@@ -649,6 +661,9 @@ def effective_mass(m_1, J_1, r_1, n, m_2=None, J_2=None, r_2=None):
     return (1.0 / inv)[()]
 
 
+effective_mass = finite_result(effective_mass)
+
+
 def _contact_velocity(b: RigidBody, r_S: np.ndarray) -> np.ndarray:
     return b.v_G + np.cross(b.omega, r_S - b.r_G)
 
@@ -678,6 +693,9 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
     if body_2 is not None:
         rel = rel - _contact_velocity(_body(body_2, "body_2"), rS)
     return _dot(nn, rel)[()]
+
+
+normal_relative_velocity = broadcast_checked(normal_relative_velocity)
 
 
 def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -> RigidImpact:
@@ -768,6 +786,9 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
     return RigidImpact(S[()], mu[()], v_n[()], Q[()], new_1, new_2)
 
 
+rigid_impact = broadcast_checked(rigid_impact)
+
+
 # ------------------------------------------------------------ hinged body
 
 
@@ -811,6 +832,9 @@ def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
     arm = _dot(a, np.cross(rP, nn))
     with np.errstate(divide="ignore"):
         return (J_aa / (arm * arm))[()]
+
+
+hinged_effective_mass = broadcast_checked(hinged_effective_mass)
 
 
 def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=None) -> HingedImpact:
@@ -903,6 +927,9 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
     return HingedImpact((w + dw)[()], S_axis, M_axis, S_bearings)
 
 
+hinged_impact = broadcast_checked(hinged_impact)
+
+
 def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion:
     """The point where a blow loads a body hinged on a fixed axis with no reaction impulse.
 
@@ -960,3 +987,6 @@ def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion
     mh = mm * h
     point = A + (J_aa / mh)[..., None] * u - (J_xz / mh)[..., None] * a
     return CentreOfPercussion(point, b)
+
+
+centre_of_percussion = finite_result(centre_of_percussion)

@@ -61,7 +61,7 @@ import math
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import (
     NegativeMassError,
     NonPhysicalInertiaError,
@@ -483,6 +483,9 @@ def inertia_tensor(m, r, *, about) -> np.ndarray:
     return _shift(J_G, M, C - G)
 
 
+inertia_tensor = finite_result(inertia_tensor)
+
+
 def _centre_of_mass_tensor(m, r):
     mm = _mass(m, "m")
     rr = as_float_array(r, "r", (3,))
@@ -558,6 +561,9 @@ def parallel_axis(J_G, m, d, *, allow_singular: bool = False) -> np.ndarray:
     return _shift(JG, _mass(m, "m"), as_float_array(d, "d", (3,)))
 
 
+parallel_axis = broadcast_checked(parallel_axis)
+
+
 def _shift(JG: np.ndarray, mm: np.ndarray, dd: np.ndarray) -> np.ndarray:
     """J_G + m(|d|² 1 − d dᵀ) with error-free products and sums (validated inputs)."""
     shape = np.broadcast_shapes(JG.shape[:-2], mm.shape, dd.shape[:-1])
@@ -630,6 +636,9 @@ def rotate_inertia(J_A, R_A_O) -> np.ndarray:
     return _finite_result(out, "the rotated inertia tensor")
 
 
+rotate_inertia = broadcast_checked(rotate_inertia)
+
+
 def inertia_A_from_O(J_O, R_A_O) -> np.ndarray:
     """The tensor's components in A from those in O: J^A = ^A R^O J^O ^O R^A.
 
@@ -650,6 +659,9 @@ def inertia_A_from_O(J_O, R_A_O) -> np.ndarray:
     with np.errstate(over="ignore", invalid="ignore"):
         out = _sym(R @ J @ np.swapaxes(R, -1, -2))
     return _finite_result(out, "the rotated inertia tensor")
+
+
+inertia_A_from_O = broadcast_checked(inertia_A_from_O)
 
 
 # ---------------------------------------------------------------- principal axes
@@ -822,6 +834,9 @@ def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
     return np.repeat((mm / 4.0)[..., None], 4, axis=-1), r_O
 
 
+four_particle_realisation = broadcast_checked(four_particle_realisation)
+
+
 # -------------------------------------------------------------- homogeneous bodies
 
 
@@ -858,6 +873,9 @@ def rod(m, ell) -> np.ndarray:
     return _diag(m, [("ell", ell)], *(lambda m, l: m * l * l / 12.0,) * 2, lambda m, l: 0.0 * m)
 
 
+rod = broadcast_checked(rod)
+
+
 def ring(m, R) -> np.ndarray:
     """Thin ring (hoop) of radius R in the e1e2-plane, about G: diag(mR²/2, mR²/2, mR²).
 
@@ -876,6 +894,9 @@ def ring(m, R) -> np.ndarray:
     return _diag(m, [("R", R)], *(lambda m, r: m * r * r / 2.0,) * 2, lambda m, r: m * r * r)
 
 
+ring = broadcast_checked(ring)
+
+
 def disc(m, R) -> np.ndarray:
     """Thin homogeneous disc of radius R in the e1e2-plane, about G: diag(mR²/4, mR²/4, mR²/2).
 
@@ -890,6 +911,9 @@ def disc(m, R) -> np.ndarray:
     (2.0, 2.0)
     """
     return _diag(m, [("R", R)], *(lambda m, r: m * r * r / 4.0,) * 2, lambda m, r: m * r * r / 2.0)
+
+
+disc = broadcast_checked(disc)
 
 
 def cylinder(m, R, h) -> np.ndarray:
@@ -915,6 +939,9 @@ def cylinder(m, R, h) -> np.ndarray:
     return _diag(m, [("R", R), ("h", h)], f, f, lambda m, r, h: m * r * r / 2.0)
 
 
+cylinder = broadcast_checked(cylinder)
+
+
 def cylindrical_shell(m, R, h) -> np.ndarray:
     """Thin-walled open cylindrical shell (tube), radius R, height h, axis e3, about G.
 
@@ -937,6 +964,9 @@ def cylindrical_shell(m, R, h) -> np.ndarray:
     return _diag(m, [("R", R), ("h", h)], f, f, lambda m, r, h: m * r * r)
 
 
+cylindrical_shell = broadcast_checked(cylindrical_shell)
+
+
 def solid_sphere(m, R) -> np.ndarray:
     """Homogeneous solid sphere about its centre: (2/5) m R² 1.
 
@@ -953,6 +983,9 @@ def solid_sphere(m, R) -> np.ndarray:
     return _diag(m, [("R", R)], f, f, f)
 
 
+solid_sphere = broadcast_checked(solid_sphere)
+
+
 def hollow_sphere(m, R) -> np.ndarray:
     """Thin homogeneous spherical shell about its centre: (2/3) m R² 1.
 
@@ -967,6 +1000,9 @@ def hollow_sphere(m, R) -> np.ndarray:
     """
     f = lambda m, r: 2.0 * m * r * r / 3.0  # noqa: E731
     return _diag(m, [("R", R)], f, f, f)
+
+
+hollow_sphere = broadcast_checked(hollow_sphere)
 
 
 def rectangular_plate(m, a, b) -> np.ndarray:
@@ -994,6 +1030,9 @@ def rectangular_plate(m, a, b) -> np.ndarray:
     )
 
 
+rectangular_plate = broadcast_checked(rectangular_plate)
+
+
 def box(m, a, b, c) -> np.ndarray:
     """Homogeneous rectangular box (cuboid), sides a, b, c along e1, e2, e3, about G.
 
@@ -1016,6 +1055,9 @@ def box(m, a, b, c) -> np.ndarray:
         lambda m, a, b, c: m * (a * a + c * c) / 12.0,
         lambda m, a, b, c: m * (a * a + b * b) / 12.0,
     )
+
+
+box = broadcast_checked(box)
 
 
 def solid_cone(m, R, h) -> np.ndarray:
@@ -1041,3 +1083,6 @@ def solid_cone(m, R, h) -> np.ndarray:
         return 3.0 * m * (4.0 * r * r + h * h) / 80.0
 
     return _diag(m, [("R", R), ("h", h)], f, f, lambda m, r, h: 0.3 * m * r * r)
+
+
+solid_cone = broadcast_checked(solid_cone)

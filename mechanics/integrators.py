@@ -354,7 +354,6 @@ def _substep_counts(t: np.ndarray, h: float) -> np.ndarray:
     return np.array([_substeps(a, b, h) for a, b in itertools.pairwise(t.tolist())], np.int64)
 
 
-@finite_result
 def time_grid(t0, h, n) -> np.ndarray:
     """The grid t0 + k h, k = 0 … n (each entry rounded once, never accumulated).
 
@@ -378,6 +377,9 @@ def time_grid(t0, h, n) -> np.ndarray:
     if isinstance(n, bool) or not isinstance(n, Integral) or n < 1:
         raise NonPositiveParameterError(f"n must be an integer ≥ 1; got {n!r}")
     return t0f + hf * np.arange(int(n) + 1, dtype=np.float64)
+
+
+time_grid = finite_result(time_grid)
 
 
 # ------------------------------------------------------------ right-hand sides
@@ -1183,7 +1185,6 @@ def _check_moments(J) -> np.ndarray:
     return Jm
 
 
-@broadcast_checked
 def rigid_body_state(L_A, R_A_O) -> np.ndarray:
     """The 12-vector (L_A, rows of ^A R^O) of a free rigid body, shape (..., 12).
 
@@ -1202,6 +1203,9 @@ def rigid_body_state(L_A, R_A_O) -> np.ndarray:
     L = np.broadcast_to(L, (*batch, 3))
     R = np.broadcast_to(R, (*batch, 3, 3)).reshape(*batch, 9)
     return np.concatenate([L, R], axis=-1)
+
+
+rigid_body_state = broadcast_checked(rigid_body_state)
 
 
 def rigid_body_parts(y) -> tuple[np.ndarray, np.ndarray]:
@@ -1249,7 +1253,6 @@ def free_rigid_body_rhs(J):
     return rhs
 
 
-@broadcast_checked
 def so3_exp_step(R_A_O, w_A, h) -> np.ndarray:
     """^A R^O after a time h of constant body angular velocity ω_A: exp(h Ω) ^A R^O.
 
@@ -1282,6 +1285,9 @@ def so3_exp_step(R_A_O, w_A, h) -> np.ndarray:
     w = as_float_array(w_A, "w_A", (3,))
     hf = _positive_scalar(h, "h")
     return matrix_from_rotvec(hf * w) @ R
+
+
+so3_exp_step = broadcast_checked(so3_exp_step)
 
 
 # ------------------------------------------------------------------- splitting
@@ -1465,7 +1471,6 @@ def _splitting_compiled(Jm, L, R, tt, hf, batch, scalar, middle, head, compensat
     return ys, int(ns.sum()), done[1] // Jb.shape[0]
 
 
-@broadcast_checked
 def free_rigid_body_splitting(
     J, L0, R0, t, h, *, order: int = 2, compiled: bool = True, compensated: bool = False
 ) -> Solution:
@@ -1607,3 +1612,6 @@ def free_rigid_body_splitting(
                     f"t={float(tt[k + 1])!r}: |L|·h/J too large for float64"
                 )
     return _solution(tt, ys, f"splitting-{order}", steps, flows, 0)
+
+
+free_rigid_body_splitting = broadcast_checked(free_rigid_body_splitting)

@@ -55,7 +55,6 @@ COLLINEAR_RTOL = 1e4 * EPS
 GIMBAL_LOCK_ATOL = 4 * EPS
 
 
-@finite_result
 def omega_matrix_from_vector(w_A) -> np.ndarray:
     """The angular-velocity matrix (2.52) of the body components ``w_A``.
 
@@ -69,7 +68,9 @@ def omega_matrix_from_vector(w_A) -> np.ndarray:
     )
 
 
-@finite_result
+omega_matrix_from_vector = finite_result(omega_matrix_from_vector)
+
+
 def vector_from_omega_matrix(Omega) -> np.ndarray:
     """Body components of ω from the angular-velocity matrix (2.52).
 
@@ -85,7 +86,9 @@ def vector_from_omega_matrix(Omega) -> np.ndarray:
     )
 
 
-@finite_result
+vector_from_omega_matrix = finite_result(vector_from_omega_matrix)
+
+
 def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> np.ndarray:
     """ω of the body A relative to O from ^A R^O and its rate, (2.45)–(2.52).
 
@@ -123,7 +126,9 @@ def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> n
     return w_A
 
 
-@finite_result
+angular_velocity_from_matrix_rate = finite_result(angular_velocity_from_matrix_rate)
+
+
 def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot) -> np.ndarray:
     """Body components of ω from Euler angles and rates: Euler's kinematic equations (2.69).
 
@@ -149,7 +154,9 @@ def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot)
     )
 
 
-@finite_result
+angular_velocity_from_euler_rates = finite_result(angular_velocity_from_euler_rates)
+
+
 def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
     """(ψ̇, θ̇, φ̇) from the body components of ω: (2.69) inverted.
 
@@ -179,7 +186,9 @@ def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
     return np.stack(np.broadcast_arrays(psidot, thetadot, phidot), axis=-1)
 
 
-@finite_result
+euler_rates_from_angular_velocity = finite_result(euler_rates_from_angular_velocity)
+
+
 def point_velocity(v_A, omega, r_AB) -> np.ndarray:
     """Velocity of the body point B: v_B = v_A + ω × AB, the connection formula (2.73).
 
@@ -197,6 +206,9 @@ def point_velocity(v_A, omega, r_AB) -> np.ndarray:
     return v + np.cross(w, r)
 
 
+point_velocity = finite_result(point_velocity)
+
+
 def _exponent(a: np.ndarray, axis) -> np.ndarray:
     """k with max |a| over ``axis`` in [2**(k−1), 2**k) (k = 0 where all are 0); keepdims."""
     return np.frexp(np.max(np.abs(a), axis=axis, keepdims=True))[1]
@@ -206,7 +218,6 @@ def _first_index(mask: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
 
 
-@finite_result
 def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
     """The instantaneous axis of rotation (2.77).
 
@@ -260,6 +271,9 @@ def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
     return r_AC, v_C
 
 
+instantaneous_axis = finite_result(instantaneous_axis)
+
+
 def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
     """a − b/c, inf only where the exact value is beyond float64 (c ≠ 0).
 
@@ -277,7 +291,6 @@ def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
         return np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
 
 
-@finite_result
 def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
     """Instantaneous centre of zero velocity in plane motion (2.95).
 
@@ -324,6 +337,9 @@ def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
     return r_C
 
 
+instantaneous_centre_plane = finite_result(instantaneous_centre_plane)
+
+
 def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """(mean, D, k) of points X (..., N, 3): X − mean = D 2**k, max |D| in [1/2, 1).
 
@@ -342,7 +358,6 @@ def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.ldexp(mean, shift)[..., 0, :], np.ldexp(offsets, -k), k + shift
 
 
-@finite_result
 def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """ω and the velocity of the centroid from positions and velocities of N ≥ 3 points.
 
@@ -435,3 +450,6 @@ def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray
             f"2**{int(k[idx][0, 0])} exceeds 1.8e308"
         )
     return omega, u, residual
+
+
+rigid_velocity_from_points = finite_result(rigid_velocity_from_points)

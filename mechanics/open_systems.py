@@ -166,7 +166,6 @@ def _option(after_burn_out: str) -> str:
 # ------------------------------------------------------- the momentum principle
 
 
-@finite_result
 def thrust(q, u_rel) -> np.ndarray:
     """Force on an open system from an outflow q with relative velocity u_rel: −q u.
 
@@ -197,7 +196,9 @@ def thrust(q, u_rel) -> np.ndarray:
     return -qa[..., None] * ua
 
 
-@finite_result
+thrust = finite_result(thrust)
+
+
 def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.ndarray:
     """dp_o/dt of an open system, the momentum principle (7.19).
 
@@ -228,7 +229,9 @@ def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.nd
     return F - _flux(q_out, v_out, "q_out", "v_out") + _flux(q_in, v_in, "q_in", "v_in")
 
 
-@finite_result
+momentum_rate = finite_result(momentum_rate)
+
+
 def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
     """dm/dt = Σ q⁺ − Σ q⁻ (7.21).  ``q_out``, ``q_in`` of shape (..., n); None for none.
 
@@ -248,7 +251,9 @@ def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
     return np.asarray(total)
 
 
-@finite_result
+mass_rate = finite_result(mass_rate)
+
+
 def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=None):
     """a_o = (F_e − Σ q⁻ u⁻ + Σ q⁺ u⁺)/m, (7.25), velocities relative to the system.
 
@@ -279,7 +284,9 @@ def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=
     return rate / ma[..., None]
 
 
-@finite_result
+open_system_acceleration = finite_result(open_system_acceleration)
+
+
 def angular_momentum_rate(
     M_e, *, about, q_out=None, r_out=None, v_out=None, q_in=None, r_in=None, v_in=None
 ) -> np.ndarray:
@@ -331,6 +338,9 @@ def angular_momentum_rate(
     return total
 
 
+angular_momentum_rate = finite_result(angular_momentum_rate)
+
+
 # ------------------------------------------------------------------- the rocket
 
 
@@ -354,7 +364,6 @@ def _phi(x: np.ndarray) -> np.ndarray:
     return np.where(small, series, direct)
 
 
-@finite_result
 def burn_out_time(*, m_f, q) -> np.ndarray:
     """T = m_f/q, the time at which the fuel m_f = q T is gone (Example 7.2).
 
@@ -366,6 +375,9 @@ def burn_out_time(*, m_f, q) -> np.ndarray:
     150.0
     """
     return _nonnegative(m_f, "m_f") / _positive(q, "q")
+
+
+burn_out_time = finite_result(burn_out_time)
 
 
 def _first(values, mask) -> float:
@@ -420,7 +432,6 @@ def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
     return ta, m0, qa, ua, mf, ga, T
 
 
-@finite_result
 def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
     """m(t) = m_0 − q t (7.27) up to burn-out, m_0 − m_f after (with ``"coast"``).
 
@@ -438,6 +449,9 @@ def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
     return np.where(ta > T, m0 - mf, m0 - qa * np.minimum(ta, T))
 
 
+rocket_mass = finite_result(rocket_mass)
+
+
 def _burn_velocity(t, m0, q, u, g):
     """u L(x) − g t, L = −log1p(−x), x = q t/m_0: (7.30)."""
     return u * -np.log1p(-(q * t / m0)) - g * t
@@ -448,7 +462,6 @@ def _burn_height(t, m0, q, u, g):
     return u * t * _phi(q * t / m0) - 0.5 * g * t * t
 
 
-@finite_result
 def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
     """Vertical velocity of the rocket of Example 7.2, (7.30).
 
@@ -509,7 +522,9 @@ def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> n
     return v
 
 
-@finite_result
+rocket_velocity = finite_result(rocket_velocity)
+
+
 def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
     """Height z(t) of the rocket of Example 7.2: the integral of (7.30), z(0) = 0.
 
@@ -554,10 +569,12 @@ def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.
     return z
 
 
+rocket_height = finite_result(rocket_height)
+
+
 # ---------------------------------------------------------- jets, bends, chains
 
 
-@finite_result
 def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
     """Speed of a jet plane taking in still air at q and expelling it at w relative.
 
@@ -592,7 +609,9 @@ def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
     return v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
 
 
-@finite_result
+jet_velocity = finite_result(jet_velocity)
+
+
 def pipe_bend_force(q, v, angle) -> np.ndarray:
     """Force that holds a pipe bend at rest: F = q (v_out − v_in), from (7.19).
 
@@ -636,7 +655,9 @@ def pipe_bend_force(q, v, angle) -> np.ndarray:
     return np.stack([F1, F2, np.zeros_like(F1)], axis=-1)
 
 
-@finite_result
+pipe_bend_force = finite_result(pipe_bend_force)
+
+
 def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
     """|F| = 2 q |v| |sin(α/2)| for the pipe bend of :func:`pipe_bend_force`.
 
@@ -653,7 +674,9 @@ def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
     return 2.0 * qa * np.abs(va) * np.abs(np.sin(0.5 * a))
 
 
-@finite_result
+pipe_bend_force_magnitude = finite_result(pipe_bend_force_magnitude)
+
+
 def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
     """Force from a falling chain on a table when a length x has landed (Problem 7.4).
 
@@ -690,6 +713,9 @@ def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
     return _positive(lam, "lam") * _positive(g, "g") * (3.0 * xa + 2.0 * ha)
 
 
+falling_chain_table_force = finite_result(falling_chain_table_force)
+
+
 # ------------------------------------------------------------ rotating systems
 
 
@@ -709,7 +735,6 @@ def _carousel_inputs(t, J_0, q, v, r, R):
     return ta, J0, qa, va, ra, Ra
 
 
-@finite_result
 def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
     """φ̇(t) of the carousel under fire, Example 7.3: the solution of (7.39).
 
@@ -745,7 +770,9 @@ def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray
     return (J0 * w0 - ra * qa * va * ta) / (J0 + qa * Ra**2 * ta)
 
 
-@finite_result
+carousel_angular_velocity = finite_result(carousel_angular_velocity)
+
+
 def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
     """φ̈(t) from (7.39): (−r q v − q R² φ̇)/(J_0 + q R² t), φ̇ from the solution.
 
@@ -765,7 +792,9 @@ def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.nda
     return -qa * (ra * va + Ra**2 * w0) * J0 / J**2
 
 
-@finite_result
+carousel_angular_acceleration = finite_result(carousel_angular_acceleration)
+
+
 def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
     """φ̇_lim = −r v/R² (7.40): the bullets then arrive with the rim's angular velocity.
 
@@ -783,7 +812,9 @@ def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
     return -ra * as_float_array(v, "v") / Ra**2
 
 
-@finite_result
+carousel_limit_angular_velocity = finite_result(carousel_limit_angular_velocity)
+
+
 def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     """Spin-up of a wheel by rockets on its rim that eject mass tangentially.
 
@@ -809,7 +840,9 @@ def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     return -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)
 
 
-@finite_result
+rim_rocket_angular_velocity = finite_result(rim_rocket_angular_velocity)
+
+
 def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
     """Time for the rim rockets of :func:`rim_rocket_angular_velocity` to reach ω.
 
@@ -836,3 +869,6 @@ def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
         / ra
         / ra
     )
+
+
+rim_rocket_spin_up_time = finite_result(rim_rocket_spin_up_time)

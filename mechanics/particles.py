@@ -243,7 +243,6 @@ def _finite_result(x: np.ndarray, what: str) -> np.ndarray:
 # ------------------------------------------------------------------ validation
 
 
-@finite_result
 def check_masses(m, name: str = "m") -> np.ndarray:
     """Return masses ``(..., N)`` as a finite float64 array, all ≥ 0, N ≥ 1.
 
@@ -275,6 +274,9 @@ def check_masses(m, name: str = "m") -> np.ndarray:
         idx = _first_index(neg)
         raise NegativeMassError(f"{name} must be >= 0; found {float(a[idx])!r} at index {idx}")
     return a
+
+
+check_masses = finite_result(check_masses)
 
 
 def _system(m, r, rname: str = "r", *, particle_arrays=()) -> tuple[np.ndarray, ...]:
@@ -325,7 +327,6 @@ def _nonzero_mass(M: np.ndarray) -> None:
 # --------------------------------------------------------------- mass, centre
 
 
-@finite_result
 def total_mass(m) -> np.ndarray:
     """Total mass m = Σ m_j (1.4), compensated.
 
@@ -351,7 +352,9 @@ def total_mass(m) -> np.ndarray:
     return _finite_result(_sum(check_masses(m)), "the total mass")
 
 
-@finite_result
+total_mass = finite_result(total_mass)
+
+
 def centre_of_mass(m, r) -> np.ndarray:
     """Centre of mass r_G = Σ m_j r_j / Σ m_j (1.5).
 
@@ -403,7 +406,9 @@ def centre_of_mass(m, r) -> np.ndarray:
     return _finite_result(rG, "the centre of mass")
 
 
-@finite_result
+centre_of_mass = finite_result(centre_of_mass)
+
+
 def centre_of_mass_velocity(m, v) -> np.ndarray:
     """Velocity of the centre of mass v_G = Σ m_j v_j / Σ m_j (1.6).
 
@@ -423,7 +428,9 @@ def centre_of_mass_velocity(m, v) -> np.ndarray:
     return centre_of_mass(mm, vv)
 
 
-@finite_result
+centre_of_mass_velocity = finite_result(centre_of_mass_velocity)
+
+
 def momentum(m, v) -> np.ndarray:
     """Linear momentum p = Σ m_j v_j (1.3), compensated.
 
@@ -443,6 +450,9 @@ def momentum(m, v) -> np.ndarray:
     return _finite_result(_weighted_sum(mm, vv), "the momentum")
 
 
+momentum = finite_result(momentum)
+
+
 # ---------------------------------------------------------- angular momentum
 
 
@@ -452,7 +462,6 @@ def _offsets(r: np.ndarray, A: np.ndarray, name: str) -> np.ndarray:
     return _finite_result(d, f"the offsets r - {name}")
 
 
-@finite_result
 def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
     """Angular momentum about the point A: L_A = Σ AP_j × m_j v_j (1.8).
 
@@ -513,7 +522,9 @@ def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
     return _finite_result(_cross_sum(md, vv), "the angular momentum")
 
 
-@finite_result
+angular_momentum = finite_result(angular_momentum)
+
+
 def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of L_A (1.12): L_A = L_G + AG × m v_G.
 
@@ -562,7 +573,9 @@ def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.nd
     return L_G, _finite_result(L_ext, "AG x p")
 
 
-@finite_result
+angular_momentum_decomposition = finite_result(angular_momentum_decomposition)
+
+
 def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
     """The extra term v_B × p of the principle for a moving base point (1.50).
 
@@ -588,7 +601,9 @@ def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
     return _finite_result(np.cross(vB, p), "v_B x p")
 
 
-@finite_result
+moving_base_point_term = finite_result(moving_base_point_term)
+
+
 def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
     """dL_B/dt of the book's L_B (1.8) for a base point B moving with velocity v_B.
 
@@ -639,7 +654,9 @@ def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
     return _finite_result(_cross_sum(both_a, both_b), "dL_B/dt")
 
 
-@finite_result
+angular_momentum_rate = finite_result(angular_momentum_rate)
+
+
 def moment_of_forces(r, F, *, about) -> np.ndarray:
     """Moment of forces F_j acting at r_j about A: M_A = Σ (r_j − r_A) × F_j (3.63).
 
@@ -680,6 +697,9 @@ def moment_of_forces(r, F, *, about) -> np.ndarray:
     return _finite_result(_cross_sum(d, FF), "the moment")
 
 
+moment_of_forces = finite_result(moment_of_forces)
+
+
 def _pair_forces(f) -> np.ndarray:
     ff = as_float_array(f, "f", (3,))
     if ff.ndim < 3 or ff.shape[-3] != ff.shape[-2]:
@@ -687,7 +707,6 @@ def _pair_forces(f) -> np.ndarray:
     return ff
 
 
-@finite_result
 def internal_forces(f) -> np.ndarray:
     """Internal force on each particle, F^i_k = Σ_j f_kj (1.18).
 
@@ -715,7 +734,9 @@ def internal_forces(f) -> np.ndarray:
     return _finite_result(_sum(np.moveaxis(ff, -2, -1)), "the internal forces")
 
 
-@finite_result
+internal_forces = finite_result(internal_forces)
+
+
 def internal_moment(r, f) -> np.ndarray:
     """The moment of the internal forces, M^i = ½ Σ_kj r_jk × f_jk (1.31).
 
@@ -755,10 +776,12 @@ def internal_moment(r, f) -> np.ndarray:
     return _finite_result(0.5 * _cross_sum(a, b), "the internal moment")
 
 
+internal_moment = finite_result(internal_moment)
+
+
 # --------------------------------------------------------------- kinetic energy
 
 
-@finite_result
 def kinetic_energy(m, v) -> np.ndarray:
     """Kinetic energy T = ½ Σ m_j v_j · v_j (3.2), compensated.
 
@@ -785,7 +808,9 @@ def kinetic_energy(m, v) -> np.ndarray:
     return _finite_result(T, "the kinetic energy")
 
 
-@finite_result
+kinetic_energy = finite_result(kinetic_energy)
+
+
 def kinetic_energy_decomposition(m, v) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of the kinetic energy (3.7): T = T' + ½ m v_G².
 
@@ -819,6 +844,9 @@ def kinetic_energy_decomposition(m, v) -> tuple[np.ndarray, np.ndarray]:
     return T_G, _finite_result(T_cm, "1/2 m v_G^2")
 
 
+kinetic_energy_decomposition = finite_result(kinetic_energy_decomposition)
+
+
 # ------------------------------------------------- fixed direction, cylindrical
 
 
@@ -831,7 +859,6 @@ def _unit(axis, lead) -> np.ndarray:
     return np.ldexp(e, -_exponent(e)) / norm
 
 
-@finite_result
 def axial_component(x, *, axis) -> np.ndarray:
     """The component x · e of a vector along the fixed direction e (1.65).
 
@@ -848,6 +875,9 @@ def axial_component(x, *, axis) -> np.ndarray:
     xx = as_float_array(x, "x", (3,))
     e = _unit(axis, xx.shape[:-1])
     return np.sum(xx * e, axis=-1)
+
+
+axial_component = finite_result(axial_component)
 
 
 class Cylindrical(NamedTuple):
@@ -871,7 +901,6 @@ def _reference_direction(e: np.ndarray) -> np.ndarray:
     return c / np.linalg.norm(c, axis=-1, keepdims=True)
 
 
-@finite_result
 def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
     """Cylindrical coordinates of points about the axis through A along e (1.68).
 
@@ -937,7 +966,9 @@ def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
     return Cylindrical(rho, phi, z, rhodot, phidot, zdot)
 
 
-@finite_result
+cylindrical_components = finite_result(cylindrical_components)
+
+
 def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
     """J_z = Σ m_j ρ_j² (1.71), ρ_j the distance of particle j from the axis.
 
@@ -962,7 +993,9 @@ def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
     return _finite_result(_dot(mm, rho2), "J_z")
 
 
-@finite_result
+moment_of_inertia_about_axis = finite_result(moment_of_inertia_about_axis)
+
+
 def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
     """ω_av = Σ m_j ρ_j² ϕ̇_j / Σ m_j ρ_j² = L_Az / J_z (1.70), (1.72).
 
@@ -997,10 +1030,12 @@ def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
     return axial_component(L, axis=np.broadcast_to(_unit(axis, lead), L.shape)) / Jz
 
 
+average_angular_velocity = finite_result(average_angular_velocity)
+
+
 # ------------------------------------------------------ continuous distributions
 
 
-@finite_result
 def masses_from_density(rho, *, cell_volume) -> np.ndarray:
     """Masses dm = ρ dV of a density sampled at the centres of equal cells (1.62–1.64).
 
@@ -1037,7 +1072,9 @@ def masses_from_density(rho, *, cell_volume) -> np.ndarray:
     return check_masses(rho, "rho") * dV
 
 
-@finite_result
+masses_from_density = finite_result(masses_from_density)
+
+
 def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
     """r_G = ∫ r ρ dV / ∫ ρ dV (1.62) by the midpoint rule on equal cells.
 
@@ -1066,7 +1103,9 @@ def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
     return centre_of_mass(mm, pp)
 
 
-@finite_result
+continuous_centre_of_mass = finite_result(continuous_centre_of_mass)
+
+
 def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
     """p = ∫ v ρ dV (1.63) by the midpoint rule on equal cells.
 
@@ -1089,7 +1128,9 @@ def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
     return momentum(mm, vv)
 
 
-@finite_result
+continuous_momentum = finite_result(continuous_momentum)
+
+
 def continuous_angular_momentum(rho, points, velocity, *, cell_volume, about) -> np.ndarray:
     """L_A = ∫ (r − r_A) × v ρ dV (1.64) by the midpoint rule on equal cells.
 
@@ -1113,3 +1154,6 @@ def continuous_angular_momentum(rho, points, velocity, *, cell_volume, about) ->
     m = masses_from_density(rho, cell_volume=cell_volume)
     mm, pp, vv = _system(m, points, "points", particle_arrays=((velocity, "velocity"),))
     return angular_momentum(mm, pp, vv, about=about)
+
+
+continuous_angular_momentum = finite_result(continuous_angular_momentum)

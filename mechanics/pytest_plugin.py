@@ -97,7 +97,6 @@ def pytest_addoption(parser: pytest.Parser) -> None:
     )
 
 
-@pytest.hookimpl(tryfirst=True)  # before hypothesis' plugin, whose options then apply on top
 def pytest_configure(config: pytest.Config) -> None:
     cli = config.getoption("bodycheck_profile")
     ini = config.getini("bodycheck_profile") or None  # `-o bodycheck_profile=` unsets it
@@ -125,6 +124,10 @@ def pytest_configure(config: pytest.Config) -> None:
         config.stash[_LOADED] = f"bodycheck: hypothesis profile {name!r} (from {source})"
 
 
+# tryfirst: before hypothesis' plugin, whose options then apply on top
+pytest_configure = pytest.hookimpl(tryfirst=True)(pytest_configure)
+
+
 def pytest_report_header(config: pytest.Config) -> str | None:
     return config.stash.get(_LOADED, None)
 
@@ -135,7 +138,6 @@ def _seed(nodeid: str, base: int) -> int:
     return int.from_bytes(digest[:8], "little")
 
 
-@pytest.fixture
 def bodycheck_rng(request: pytest.FixtureRequest):
     """A ``numpy.random.Generator`` seeded from this test's node id and ``--bodycheck-seed``."""
     import numpy as np
@@ -144,6 +146,9 @@ def bodycheck_rng(request: pytest.FixtureRequest):
     seed = _seed(request.node.nodeid, base)
     print(f"bodycheck_rng: numpy.random.default_rng({seed}) (--bodycheck-seed={base})")
     return np.random.default_rng(seed)
+
+
+bodycheck_rng = pytest.fixture(bodycheck_rng)
 
 
 class EpsClose:
@@ -185,7 +190,9 @@ def _multiple(eps) -> float:
     return _check_tolerance(eps, "eps")
 
 
-@pytest.fixture(scope="session")
 def eps_close() -> EpsClose:
     """Assertions in eps: ``eps_close(a, b, eps=8)``, ``.rotations``, ``.quaternions``."""
     return EpsClose()
+
+
+eps_close = pytest.fixture(scope="session")(eps_close)

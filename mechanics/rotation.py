@@ -57,7 +57,7 @@ import math
 
 import numpy as np
 
-from ._validate import as_float_array
+from ._validate import as_float_array, broadcast_checked
 from .errors import NotARotationError, ZeroAxisError
 
 __all__ = [
@@ -203,6 +203,9 @@ def rotate_vector(R_A_O, r_O) -> np.ndarray:
     return np.einsum("...ji,...j->...i", R, r)
 
 
+rotate_vector = broadcast_checked(rotate_vector)
+
+
 def components_A_from_O(R_A_O, r_O) -> np.ndarray:
     """Components in the basis A of a vector given in O: r^A = ^A R^O r^O (2.20).
 
@@ -214,6 +217,9 @@ def components_A_from_O(R_A_O, r_O) -> np.ndarray:
     return np.einsum("...ij,...j->...i", R, r)
 
 
+components_A_from_O = broadcast_checked(components_A_from_O)
+
+
 def compose(R_B_A, R_A_O) -> np.ndarray:
     """^B R^O = ^B R^A ^A R^O, the chain of basis changes (2.34).
 
@@ -222,6 +228,9 @@ def compose(R_B_A, R_A_O) -> np.ndarray:
     ValueError (known, issue 16).
     """
     return check_rotation(R_B_A, name="R_B_A") @ check_rotation(R_A_O, name="R_A_O")
+
+
+compose = broadcast_checked(compose)
 
 
 # ---------------------------------------------------------------- batched kernels
@@ -506,6 +515,9 @@ def matrix_from_euler(psi, theta, phi) -> np.ndarray:
     )
 
 
+matrix_from_euler = broadcast_checked(matrix_from_euler)
+
+
 def euler_from_matrix(R_A_O) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Euler angles (ψ, θ, φ) of ^A R^O, the inverse of :func:`matrix_from_euler`.
 
@@ -650,6 +662,9 @@ def quat_multiply(p, q) -> np.ndarray:
     )
 
 
+quat_multiply = broadcast_checked(quat_multiply)
+
+
 def compose_quat(q_B_A, q_A_O) -> np.ndarray:
     """Quaternion of ^B R^O from those of ^B R^A and ^A R^O (as :func:`compose`).
 
@@ -660,8 +675,12 @@ def compose_quat(q_B_A, q_A_O) -> np.ndarray:
     The active operators compose in the opposite order to the basis matrices:
     R_{O→B} = R_{O→A} R_{A→B}, so q_B_O = q_A_O ⊗ q_B_A; returned with w ≥ 0.
     """
-    q = quat_multiply(_check_quat(q_A_O, "q_A_O"), _check_quat(q_B_A, "q_B_A"))
-    return _canonical(q)
+    a, b = _check_quat(q_A_O, "q_A_O"), _check_quat(q_B_A, "q_B_A")
+    np.broadcast_shapes(a.shape, b.shape)  # a ShapeError naming q_A_O and q_B_A, not p and q
+    return _canonical(quat_multiply(a, b))
+
+
+compose_quat = broadcast_checked(compose_quat)
 
 
 def _canonical(q: np.ndarray) -> np.ndarray:
@@ -1005,3 +1024,6 @@ def matrix_from_axis_angle(axis, angle) -> np.ndarray:
         raise ZeroAxisError(f"axis has zero length at index {idx}; a direction is required")
     phi = as_float_array(angle, "angle")
     return matrix_from_rotvec(a / n[..., None] * phi[..., None])
+
+
+matrix_from_axis_angle = broadcast_checked(matrix_from_axis_angle)

@@ -97,7 +97,6 @@ EPS = float(np.finfo(np.float64).eps)
 # --------------------------------------------------------------------------- helpers
 
 
-@finite_result
 def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
     """Validate principal moments (J1, J2, J3): positive and J_i ≤ J_j + J_k.
 
@@ -137,6 +136,9 @@ def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
                 f"(moments {J.tolist()})"
             )
     return J
+
+
+check_principal_moments = finite_result(check_principal_moments)
 
 
 def _vec3(x, name):
@@ -237,7 +239,6 @@ class FreeAsymmetricTop:
     True
     """
 
-    @finite_result
     def __init__(self, J, omega_0, R_A_O_0=None):
         J = check_principal_moments(J)
         w0 = _vec3(omega_0, "omega_0")
@@ -357,6 +358,8 @@ class FreeAsymmetricTop:
             self._M0_list = self._M0.tolist()
             self._P_list = self._P.tolist()
 
+    __init__ = finite_result(__init__)
+
     # -- construction helpers
     def _initial_argument(self, sn0, cn0, dn0):
         """u0 with sn(u0) = sn0, cn(u0) = cn0, dn(u0) = dn0 (|u0| ≤ 2K)."""
@@ -468,7 +471,6 @@ class FreeAsymmetricTop:
         return np.array(out)
 
     # -- public API
-    @property
     def separatrix_distance(self) -> float:
         """L² − 2 E J_mid in the units given: its sign gives the regime, zero on the
         separatrix; exact to rounding (computed for the moments scaled by a power of two,
@@ -482,7 +484,8 @@ class FreeAsymmetricTop:
                 f"(scaled value {self._separatrix_scaled!r} × 4^{self._scale_exp})"
             ) from None
 
-    @finite_result
+    separatrix_distance = property(separatrix_distance)
+
     def omega(self, t) -> np.ndarray:
         """Angular velocity ω_A(t), body components, shape ``t.shape + (3,)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -490,7 +493,8 @@ class FreeAsymmetricTop:
         t = as_float_array(t, "t")
         return self._sorted_omega(t) @ self._P  # Pᵀ ω' as a row-vector product
 
-    @finite_result
+    omega = finite_result(omega)
+
     def state(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(ω_A(t), ^A R^O(t)) together, sharing the elliptic functions of ω: shapes
         ``t.shape + (3,)`` and ``t.shape + (3, 3)``."""
@@ -503,12 +507,14 @@ class FreeAsymmetricTop:
         ws, red = self._sorted_omega(t, with_reduced=True)
         return ws @ self._P, self._attitude_from(t, ws, red)
 
-    @finite_result
+    state = finite_result(state)
+
     def angular_momentum_body(self, t) -> np.ndarray:
         """L_A(t) = J ω_A(t)."""
         return self.J * self.omega(t)
 
-    @finite_result
+    angular_momentum_body = finite_result(angular_momentum_body)
+
     def precession_angle(self, t, _reduced=None) -> np.ndarray:
         """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind)."""
         t = as_float_array(t, "t")
@@ -524,7 +530,8 @@ class FreeAsymmetricTop:
             return Lm * t / J3 - (self._C / self._lam) * (G - self._G0)
         return Lm * t / J1 + (self._C / self._lam) * (G - self._G0)
 
-    @finite_result
+    precession_angle = finite_result(precession_angle)
+
     def attitude(self, t) -> np.ndarray:
         """The attitude ^A R^O(t), shape ``t.shape + (3, 3)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -534,6 +541,8 @@ class FreeAsymmetricTop:
             rv = t[..., None] * self.omega_0
             return matrix_from_rotvec(rv) @ self.R_A_O_0
         return self._attitude_from(t, self._sorted_omega(t))
+
+    attitude = finite_result(attitude)
 
     def _attitude_from(self, t, ws, reduced=None):
         nvec = self._pole_vector(ws)
@@ -549,11 +558,12 @@ class FreeAsymmetricTop:
         Y = (X.reshape(-1, 3) @ self._M0).reshape(X.shape)
         return Y[..., self._front_rows, :] * self._front_signs[:, None]
 
-    @finite_result
     def omega_space(self, t) -> np.ndarray:
         """ω_O(t) = Rᵀ ω_A, space components."""
         R = self.attitude(t)
         return np.einsum("...ji,...j->...i", R, self.omega(t))
+
+    omega_space = finite_result(omega_space)
 
     def flip_period(self) -> float:
         """The period of ω(t), 4K/λ (the body flips twice in it; inf for steady motion
@@ -563,7 +573,6 @@ class FreeAsymmetricTop:
         K = float(elliptic.ellipk(self.m, m1=self.m1))
         return 4.0 * K / self._lam
 
-    @finite_result
     def poinsot_residuals(self, t) -> tuple[np.ndarray, np.ndarray]:
         """(ω·Jω − 2E, L_O·ω_O − 2E): ω on the inertia ellipsoid and on the invariable
         plane (5.85), (5.90); both zero for the exact motion."""
@@ -572,6 +581,8 @@ class FreeAsymmetricTop:
         w_O = np.einsum("...ji,...j->...i", self.attitude(t), w)
         plane = w_O @ self.angular_momentum_space - 2.0 * self.energy
         return ell, plane
+
+    poinsot_residuals = finite_result(poinsot_residuals)
 
 
 # --------------------------------------------------------------------------- stability (5.3.3)
@@ -589,7 +600,6 @@ class StabilityResult:
     """The product C_i C_k of (5.102) times ω0² (its sign decides)."""
 
 
-@finite_result
 def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityResult:
     """Stability of rotation at rate ``omega`` about principal ``axis`` (1, 2 or 3), (5.102).
 
@@ -625,6 +635,9 @@ def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityRe
     if prod < 0:
         return StabilityResult("stable", math.sqrt(-prod), prod)
     return StabilityResult("neutral", 0.0, 0.0)
+
+
+principal_axis_stability = finite_result(principal_axis_stability)
 
 
 # --------------------------------------------------------------------------- free symmetric top
@@ -664,7 +677,6 @@ class FreeSymmetricTop:
     True
     """
 
-    @finite_result
     def __init__(self, J1, J3, omega_0, R_A_O_0=None):
         for x, name in ((J1, "J1"), (J3, "J3")):
             if as_float_array(x, name).shape != ():
@@ -702,7 +714,8 @@ class FreeSymmetricTop:
             self._W0 = _pole_frame(*(Ln / math.hypot(*Ln.tolist())))
             self._M0 = self._W0.T @ R0
 
-    @finite_result
+    __init__ = finite_result(__init__)
+
     def omega(self, t) -> np.ndarray:
         """ω_A(t) = (|A| cos(βt + α), |A| sin(βt + α), ω3) (5.44)–(5.45)."""
         t = as_float_array(t, "t")
@@ -710,7 +723,8 @@ class FreeSymmetricTop:
         c, s = np.cos(self.body_precession_rate * t), np.sin(self.body_precession_rate * t)
         return np.stack([w1 * c - w2 * s, w1 * s + w2 * c, np.full_like(c, w3)], axis=-1)
 
-    @finite_result
+    omega = finite_result(omega)
+
     def attitude(self, t) -> np.ndarray:
         """^A R^O(t) = R3(φ̇t) R3(φ0) R1(θ0) R3(ψ̇t) R3(ψ0) ^S R^O, L along e^S_3.
 
@@ -721,11 +735,12 @@ class FreeSymmetricTop:
             return matrix_from_rotvec(t[..., None] * self.omega_0) @ self.R_A_O_0
         return R3(self.spin_rate * t) @ self._W0 @ R3(self.space_precession_rate * t) @ self._M0
 
+    attitude = finite_result(attitude)
+
 
 # --------------------------------------------------------------------------- heavy symmetric top
 
 
-@finite_result
 def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     """Example 5.3: the vertical (sleeping) top is stable iff L3² > 4 J'1 m g ℓ (5.72).
 
@@ -742,6 +757,9 @@ def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
     )
     margin = L3 * L3 - 4.0 * J_1 * mgl
     return bool(margin > 0)
+
+
+sleeping_top_is_stable = finite_result(sleeping_top_is_stable)
 
 
 #: the smallest normal float64: a scaled moment below it has lost its precision
@@ -858,7 +876,6 @@ class HeavySymmetricTop:
     True
     """
 
-    @finite_result
     def __init__(
         self, J_1, J_3, m_g_ell, *, theta, psi=0.0, phi=0.0, theta_dot=0.0, psi_dot=0.0, phi_dot=0.0
     ):
@@ -1013,6 +1030,8 @@ class HeavySymmetricTop:
         self._npl = d21 / one_minus_u1 if one_minus_u1 > 0 else 0.0
         self._nmi = -d21 / self._opu1 if self._opu1 > 0 else 0.0
 
+    __init__ = finite_result(__init__)
+
     def _f(self, x):
         b3, c2, c1, c0 = self._coef
         return ((b3 * x + c2) * x + c1) * x + c0
@@ -1027,7 +1046,6 @@ class HeavySymmetricTop:
                 return y
         return x
 
-    @finite_result
     def f(self, u) -> np.ndarray:
         """The cubic f(u) = u̇² (the book's 5.66–5.71 in u = cos θ)."""
         u = as_float_array(u, "u")
@@ -1035,7 +1053,8 @@ class HeavySymmetricTop:
         e = (2 * self._En - self._L3n**2 / self._J3n) / self._J1n
         return (e - self._beta * u) * (1 - u * u) - (a - self._b * u) ** 2
 
-    @finite_result
+    f = finite_result(f)
+
     def effective_potential(self, theta) -> np.ndarray:
         """Φ_eff(θ) = (L_z − L3 cos θ)²/(2J'1 sin²θ) − mgℓ(1 − cos θ) (5.70)."""
         th = as_float_array(theta, "theta")
@@ -1046,10 +1065,13 @@ class HeavySymmetricTop:
             ) - self._mgln * 2.0 * np.sin(th / 2) ** 2
         return np.ldexp(phi, self._k)
 
-    @property
+    effective_potential = finite_result(effective_potential)
+
     def reduced_energy(self) -> float:
         """E' = E − L3²/(2J3) − mgℓ (5.69)."""
         return math.ldexp(self._En - self._L3n**2 / (2 * self._J3n) - self._mgln, self._k)
+
+    reduced_energy = property(reduced_energy)
 
     def _arg(self, t):
         return self._kappa * t + self._w0
@@ -1061,7 +1083,6 @@ class HeavySymmetricTop:
             return math.inf
         return 2.0 * float(elliptic._quarter_period(np.float64(self._m1))) / self._kappa
 
-    @finite_result
     def u(self, t) -> np.ndarray:
         """u(t) = cos θ(t) = u1 + (u2 − u1) sn²(κt + w0 | m)."""
         t = as_float_array(t, "t")
@@ -1070,11 +1091,14 @@ class HeavySymmetricTop:
         sn, _, _, _ = elliptic.ellipj(self._arg(t), self._m, m1=self._m1)
         return self.roots[0] + self._d21 * sn * sn
 
-    @finite_result
+    u = finite_result(u)
+
     def theta(self, t) -> np.ndarray:
         """θ(t) from u(t), as atan2(sin θ, cos θ) with sin θ = √((1 − u)(1 + u))."""
         u = self.u(t)
         return np.arctan2(np.sqrt(np.maximum((1 - u) * (1 + u), 0.0)), u)
+
+    theta = finite_result(theta)
 
     def _integral(self, n, t):
         """∫₀^t dt'/(1 − n sn²(κt' + w0)) = t + [G(w) − G(w0)]/κ."""
@@ -1085,7 +1109,6 @@ class HeavySymmetricTop:
         )
         return t + ((G[:-1] - G[-1]) / self._kappa).reshape(np.shape(t))
 
-    @finite_result
     def psi(self, t) -> np.ndarray:
         """Precession angle ψ(t): ψ̇ = (a − bu)/(1 − u²) (5.67) integrated in closed form."""
         t = as_float_array(t, "t")
@@ -1098,7 +1121,8 @@ class HeavySymmetricTop:
             out = out + 0.5 * self._apb / self._opu1 * self._integral(self._nmi, t)
         return out
 
-    @finite_result
+    psi = finite_result(psi)
+
     def phi(self, t) -> np.ndarray:
         """Spin angle φ(t): φ̇ = L3/J3 − u ψ̇ (5.53), in closed form."""
         t = as_float_array(t, "t")
@@ -1111,7 +1135,8 @@ class HeavySymmetricTop:
             out = out + 0.5 * self._apb / self._opu1 * self._integral(self._nmi, t)
         return out
 
-    @finite_result
+    phi = finite_result(phi)
+
     def rates(self, t):
         """(θ̇, ψ̇, φ̇)(t) along the exact motion.
 
@@ -1135,12 +1160,14 @@ class HeavySymmetricTop:
         thd = -udot / np.sqrt(omu * opu)
         return thd, psid, phid
 
-    @finite_result
+    rates = finite_result(rates)
+
     def energy_at(self, t) -> np.ndarray:
         """E(t) from the exact motion (5.66); constant."""
         return self.integrals_at(t)[2]
 
-    @finite_result
+    energy_at = finite_result(energy_at)
+
     def integrals_at(self, t):
         """(L_z, L_3, E) evaluated along the exact motion, (5.55), (5.53), (5.66)."""
         thd, psid, phid = self.rates(t)
@@ -1151,11 +1178,12 @@ class HeavySymmetricTop:
         E = 0.5 * self._J1n * (thd**2 + psid**2 * S2) + L3**2 / (2 * self._J3n) + self._mgln * u
         return tuple(np.ldexp(x, self._k) for x in (Lz, L3, E))
 
+    integrals_at = finite_result(integrals_at)
+
 
 # --------------------------------------------------------------------------- Example 5.1
 
 
-@finite_result
 def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.0, 0.0, 0.0)):
     """Sphere rolling without slipping on a rough incline (Example 5.1).
 
@@ -1187,3 +1215,6 @@ def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.
     y = y0 - R * w0[0] * t
     omega = np.stack([np.full_like(t, w0[0]), w0[1] + alpha * t, np.full_like(t, w0[2])], -1)
     return x, y, omega
+
+
+spherical_top_on_incline = finite_result(spherical_top_on_incline)

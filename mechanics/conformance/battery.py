@@ -220,26 +220,29 @@ class ScenarioResult:
     figures: list[Figure] = field(default_factory=list)
     runs: list[Run] = field(default_factory=list)
 
-    @property
     def wall_time(self) -> float:
         """Wall time of the finest (last) run, s; nan when nothing ran."""
         return self.runs[-1].wall_time if self.runs else math.nan
 
-    @property
+    wall_time = property(wall_time)
+
     def order(self) -> float | None:
         f = self.figure("order")
         return None if f is None else f.value
 
+    order = property(order)
+
     def figure(self, name: str) -> Figure | None:
         return next((f for f in self.figures if f.name == name), None)
 
-    @property
     def worst(self) -> Figure | None:
         """The checked error or drift figure nearest to (or furthest beyond) its bound."""
         checked = [
             f for f in self.figures if f.kind != "order" and f.threshold and f.value is not None
         ]
         return max(checked, key=lambda f: f.value / f.threshold, default=None)
+
+    worst = property(worst)
 
 
 @dataclass
@@ -256,10 +259,11 @@ class Report:
                 return r
         raise KeyError(name)
 
-    @property
     def passed(self) -> bool:
         """No scenario failed or errored (unsupported ones are listed, not failures)."""
         return all(r.status in ("pass", "unsupported") for r in self.results)
+
+    passed = property(passed)
 
     def counts(self) -> dict[str, int]:
         return {s: sum(r.status == s for r in self.results) for s in STATUSES}

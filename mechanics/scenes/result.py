@@ -82,18 +82,21 @@ class Comparison:
     tolerance: float
     reason: str
 
-    @property
     def difference(self) -> float:
         return self.simulated - self.closed_form
 
-    @property
+    difference = property(difference)
+
     def relative_difference(self) -> float:
         d = abs(self.difference)
         return d / abs(self.closed_form) if self.closed_form != 0 else d
 
-    @property
+    relative_difference = property(relative_difference)
+
     def ok(self) -> bool:
         return bool(self.relative_difference <= self.tolerance)
+
+    ok = property(ok)
 
     def as_dict(self) -> dict:
         return {
@@ -119,9 +122,10 @@ class ConservedReport:
     tolerance: float
     since: float = 0.0
 
-    @property
     def ok(self) -> bool:
         return bool(self.drift <= self.tolerance)
+
+    ok = property(ok)
 
     def as_dict(self) -> dict:
         return {
@@ -144,9 +148,10 @@ class SelfCheck:
     tolerance: float
     reason: str
 
-    @property
     def ok(self) -> bool:
         return bool(self.violation <= self.tolerance)
+
+    ok = property(ok)
 
     def as_dict(self) -> dict:
         return {
@@ -168,13 +173,15 @@ class SceneResult:
     comparisons: list[Comparison] = field(default_factory=list)
     self_checks: list[SelfCheck] = field(default_factory=list)
 
-    @property
     def passed(self) -> bool:
         return all(c.ok for c in [*self.conserved, *self.comparisons, *self.self_checks])
 
-    @property
+    passed = property(passed)
+
     def method(self) -> str:
         return self.trajectory.method
+
+    method = property(method)
 
     def as_dict(self) -> dict:
         tr = self.trajectory

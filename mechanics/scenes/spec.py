@@ -182,9 +182,10 @@ class EffectSpec:
     index: int
     fields: dict[str, Any]
 
-    @property
     def where(self) -> str:
         return f"effects[{self.index}]"
+
+    where = property(where)
 
 
 @dataclass(frozen=True)
@@ -214,9 +215,10 @@ class Scene:
     def effects_of(self, kind: str) -> list[EffectSpec]:
         return [e for e in self.effects if e.type == kind]
 
-    @property
     def effect_types(self) -> tuple[str, ...]:
         return tuple(e.type for e in self.effects)
+
+    effect_types = property(effect_types)
 
     def error(self, field_: str, reason: str) -> SceneError:
         return SceneError(self.source, field_, reason)

@@ -136,13 +136,15 @@ class Hinge(Guide):
     h: float
     J_a: float
 
-    @property
     def W(self):
         return self.a[None, :]
 
-    @property
+    W = property(W)
+
     def M(self):
         return np.array([self.J_a])
+
+    M = property(M)
 
     def frame(self, phi):
         """r̂, a × r̂ and the rows of R_A_O at the angle(s) φ: shapes (..., 3), (..., 3, 3)."""
@@ -350,9 +352,10 @@ class Layout:
             }[kind]
         return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data, dict(guides))
 
-    @property
     def n(self) -> int:
         return len(self.kinds)
+
+    n = property(n)
 
     def _index(self):
         """Index arrays into the padded state (state, then the constants block)."""
@@ -387,23 +390,27 @@ class Layout:
         object.__setattr__(self, "_idx", idx)
         return idx
 
-    @property
     def fixed_bodies(self) -> tuple[int, ...]:
         return tuple(i for i, k in enumerate(self.kinds) if k == "fixed")
 
-    @property
+    fixed_bodies = property(fixed_bodies)
+
     def rigid_bodies(self) -> tuple[int, ...]:
         """The bodies that turn: free rigid bodies, pinned and guided ones."""
         return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned", "guided"))
 
-    @property
+    rigid_bodies = property(rigid_bodies)
+
     def moving_bodies(self) -> tuple[int, ...]:
         """The bodies that move (not fixed ones, nor tanks, whose water level is all)."""
         return tuple(i for i, k in enumerate(self.kinds) if k not in ("fixed", "tank"))
 
-    @property
+    moving_bodies = property(moving_bodies)
+
     def tanks(self) -> tuple[int, ...]:
         return tuple(i for i, k in enumerate(self.kinds) if k == "tank")
+
+    tanks = property(tanks)
 
     def gather(self, y):
         """(r, v, L_A, R_A_O) of every body from states of shape (..., size): shapes

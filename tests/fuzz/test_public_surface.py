@@ -47,19 +47,6 @@ SURFACE = public_callables()
 #: (entry, parameter) pairs that fail the rule in modules this branch may not change:
 #: ``xfail(strict=True)``, so a fix turns them into failures to clean up here
 KNOWN: dict[tuple[str, str], str] = {
-    **{
-        (f"mechanics.{name}", param): (
-            "1e300 overflows an intermediate: a numpy RuntimeWarning, not a ResultOverflowError "
-            "(known, issue 16)"
-        )
-        for name, param in [
-            ("dynamics.axis_reaction", "phidot"),
-            ("dynamics.bearing_reactions", "phidot"),
-            ("impact.centre_of_percussion", "r_G"),
-            ("impact.effective_mass", "r_1"),
-            ("inertia.inertia_tensor", "r"),
-        ]
-    },
     ("mechanics.dynamics.euler_equations_rhs", "J_principal"): (
         "a zero or negative moment is refused, but the message does not name J_principal"
     ),
@@ -72,59 +59,7 @@ KNOWN: dict[tuple[str, str], str] = {
             "RigidBody is a record that does not validate: NaN, inf, strings and None are kept "
             "and leak into m, J_G, ... (validated only later, by rigid_impact)"
         )
-        for p in ("m", "J_G", "r_G", "v_G", "omega")
-    },
-    **{
-        (f"mechanics.{name}", "<batch>"): (
-            "batches of 2 and 3 end in numpy's bare broadcasting ValueError (or are accepted), "
-            "not a ShapeError naming the arguments (known, issue 16)"
-        )
-        for name in (
-            "dynamics.angular_momentum_rigid",
-            "dynamics.axis_reaction",
-            "dynamics.bearing_reactions",
-            "dynamics.euler_equations_rhs",
-            "dynamics.fixed_axis_angular_acceleration",
-            "dynamics.pendulum_angular_velocity_at",
-            "dynamics.pendulum_axis_reaction",
-            "dynamics.pendulum_motion",
-            "dynamics.pendulum_period",
-            "dynamics.pendulum_small_period",
-            "dynamics.reduced_length",
-            "dynamics.rotational_kinetic_energy",
-            "impact.RigidBody",
-            "impact.centre_of_percussion",
-            "impact.compression_restitution_impulses",
-            "impact.direct_impact",
-            "impact.effective_mass",
-            "impact.energy_loss_direct",
-            "impact.hinged_effective_mass",
-            "impact.hinged_impact",
-            "impact.impulse_direct",
-            "impact.normal_relative_velocity",
-            "impact.rigid_impact",
-            "inertia.box",
-            "inertia.cylinder",
-            "inertia.cylindrical_shell",
-            "inertia.disc",
-            "inertia.four_particle_realisation",
-            "inertia.hollow_sphere",
-            "inertia.inertia_A_from_O",
-            "inertia.parallel_axis",
-            "inertia.rectangular_plate",
-            "inertia.ring",
-            "inertia.rod",
-            "inertia.rotate_inertia",
-            "inertia.solid_cone",
-            "inertia.solid_sphere",
-            "rotation.components_A_from_O",
-            "rotation.compose",
-            "rotation.compose_quat",
-            "rotation.matrix_from_axis_angle",
-            "rotation.matrix_from_euler",
-            "rotation.quat_multiply",
-            "rotation.rotate_vector",
-        )
+        for p in ("m", "J_G", "r_G", "v_G", "omega", "<batch>")
     },
     ("mechanics.rotation.nearest_rotation", "M"): (
         "the zero matrix has no nearest rotation (every rotation is equally near), yet one "

@@ -322,7 +322,10 @@ def test_direct_energy_loss_is_the_drop_of_kinetic_energy_6_39_6_41(masses, velo
     T_i = 0.5 * m1 * v1 * v1 + 0.5 * m2 * v2 * v2
     T_f = 0.5 * m1 * v1f * v1f + 0.5 * m2 * v2f * v2f
     assert Q >= 0.0
-    assert abs((T_i - T_f) - Q) <= ENERGY_RTOL * (T_i + T_f)
+    # below float64's normal range the test's own T_i and T_f (four rounded products, one
+    # subtraction) lose relative precision: each rounding is off by up to half a subnormal
+    # ulp, so the comparison allows 4 of them on top of the relative tolerance
+    assert abs((T_i - T_f) - Q) <= ENERGY_RTOL * (T_i + T_f) + 2 * SUBNORMAL_ATOL
     if e == 1.0:
         assert Q == 0.0
 

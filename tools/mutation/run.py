@@ -22,9 +22,16 @@ Usage (standard library only; mutmut must be on PATH or given with ``--mutmut``)
     python tools/mutation/run.py mechanics/rotation.py --report   # score of the last run
     python tools/mutation/run.py mechanics/rotation.py --names NAME...  # re-run some
     python tools/mutation/run.py mechanics/impact.py --sample 300  # a random sample
+    python tools/mutation/run.py mechanics/scenes --sample 40   # every module under a folder
 
 A sample (``--sample N``, seeded) runs N mutants drawn at random from all of the
-module's; the score then counts the mutants checked so far and says how many were not.
+module's; the score then counts the mutants checked so far and says how many were not,
+and gives the 95 % (Wilson) interval of the score that the sample's size allows.
+
+Several modules (or a folder, meaning every module of ``modules.toml`` under it) run in one
+copy of the project against the union of their tests: the tests are recorded once for all
+of them, mutmut still runs each mutant against only the tests that call its function, and
+a sample draws N mutants from each module.  The score is reported per module.
 """
 
 from __future__ import annotations
@@ -101,9 +108,33 @@ def _sync(src: Path, dst: Path) -> None:
             _sync(s, dst / rel)
 
 
-def prepare(module: str, tests: list[str]) -> Path:
-    """The module's copy of the project, its pyproject's mutmut table set for the module."""
-    work = WORK / module.removesuffix(".py").replace("/", "_")
+def expand(names: list[str], modules: dict[str, list[str]]) -> list[str]:
+    """The modules meant by the command line: a module path, or a folder meaning every
+    module of ``modules.toml`` under it; an unknown name is refused with the known ones."""
+    out: list[str] = []
+    for raw in names:
+        name = raw.removeprefix("./").rstrip("/")
+        if name in modules:
+            found = [name]
+        else:
+            found = sorted(m for m in modules if m.startswith(name + "/"))
+        if not found:
+            known = ", ".join(sorted(modules))
+            raise SystemExit(f"{raw!r} has no row in {MODULES.name} (known: {known})")
+        out += [m for m in found if m not in out]
+    return out
+
+
+def workdir(modules: list[str]) -> Path:
+    """The copy of the project for one module or for a set of them."""
+    if len(modules) == 1:
+        return WORK / modules[0].removesuffix(".py").replace("/", "_")
+    return WORK / ("group_" + "_".join(Path(m).stem.strip("_") for m in modules))[:120]
+
+
+def prepare(modules: list[str], tests: list[str]) -> Path:
+    """The copy of the project, its pyproject's mutmut table set for the modules."""
+    work = workdir(modules)
     work.mkdir(parents=True, exist_ok=True)
     for name in COPIED:
         if (ROOT / name).exists():
@@ -115,7 +146,7 @@ def prepare(module: str, tests: list[str]) -> Path:
         raise SystemExit(
             "pyproject.toml: [tool.mutmut] needs one pytest_add_cli_args_test_selection line"
         )
-    only = f"[tool.mutmut]\nonly_mutate = {_toml_list([module])}\n"
+    only = f"[tool.mutmut]\nonly_mutate = {_toml_list(modules)}\n"
     text = text.replace("[tool.mutmut]\n", only, 1)
     target = work / "pyproject.toml"
     if not target.exists() or target.read_text(encoding="utf-8") != text:
@@ -159,16 +190,34 @@ def report(
         f"{module}: {total} mutants, {killed} killed, {len(equiv)} equivalent (reviewed), "
         f"{len(open_)} survived: score {score:.1f} % = killed / (mutants - equivalent)"
     )
-    if unchecked:
-        line += f"  [{unchecked} of {len(everything)} mutants not checked: a sample]"
+    if not everything:
+        line = f"{module}: no mutants (nothing mutmut can change)"
+    elif unchecked:
+        lo, hi = wilson(killed, denom)
+        line += (
+            f"  [{unchecked} of {len(everything)} mutants not checked: a sample;"
+            f" 95 % interval {100 * lo:.0f}-{100 * hi:.0f} %]"
+        )
     return line, open_
 
 
-def generate(work: Path, module: str, mutmut: str, env: dict) -> list[str]:
+def wilson(k: int, n: int, z: float = 1.959963984540054) -> tuple[float, float]:
+    """The 95 % Wilson score interval of a proportion k/n (0..1 when n is 0)."""
+    if n == 0:
+        return 0.0, 1.0
+    p = k / n
+    centre = (p + z * z / (2 * n)) / (1 + z * z / n)
+    half = z * ((p * (1 - p) / n + z * z / (4 * n * n)) ** 0.5) / (1 + z * z / n)
+    return max(0.0, centre - half), min(1.0, centre + half)
+
+
+def generate(work: Path, module: str, mutmut: str, env: dict, others: tuple = ()) -> list[str]:
     """Every mutant name of the module: let ``mutmut run`` write its mutants and their
-    list (``mutants/<module>.meta``), then stop it before it runs them."""
+    list (``mutants/<module>.meta``, and those of ``others`` run in the same copy), then
+    stop it before it runs them."""
     meta = work / "mutants" / (module + ".meta")
-    if not meta.exists():
+    metas = [meta, *(work / "mutants" / (m + ".meta") for m in others)]
+    if not all(m.exists() for m in metas):
         proc = subprocess.Popen(
             [mutmut, "run", "--max-children", "1"],
             cwd=work,
@@ -178,20 +227,24 @@ def generate(work: Path, module: str, mutmut: str, env: dict) -> list[str]:
             stderr=subprocess.DEVNULL,
         )
         try:
-            while not meta.exists() and proc.poll() is None:
+            while not all(m.exists() for m in metas) and proc.poll() is None:
                 time.sleep(0.5)
         finally:
             if proc.poll() is None:
                 os.killpg(proc.pid, signal.SIGTERM)
                 proc.wait()
         time.sleep(0.5)
+    if not meta.exists():
+        return []
     data = json.loads(meta.read_text(encoding="utf-8"))
     return sorted(data["exit_code_by_key"])
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("module", help="e.g. mechanics/rotation.py")
+    ap.add_argument(
+        "modules", nargs="+", help="e.g. mechanics/rotation.py, or a folder: mechanics/scenes"
+    )
     ap.add_argument("--max-children", type=int, default=1)
     ap.add_argument("--mutmut", default=shutil.which("mutmut") or "mutmut")
     ap.add_argument("--report", action="store_true", help="only report the last run")
@@ -206,30 +259,43 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = ap.parse_args(argv)
 
-    modules = load_modules()
-    module = args.module.removeprefix("./")
-    if module not in modules:
-        known = ", ".join(sorted(modules))
-        raise SystemExit(f"{module!r} has no row in {MODULES.name} (known: {known})")
+    rows = load_modules()
+    chosen = expand(args.modules, rows)
+    tests = sorted({t for m in chosen for t in rows[m]})
     equivalent = load_equivalent()
-    work = prepare(module, modules[module])
+    work = prepare(chosen, tests)
     env = {**os.environ, "CI": "1"}
     env.pop("HYPOTHESIS_PROFILE", None)
     if args.restat:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     names = list(args.names or [])
     if args.sample and not args.report:
-        every = generate(work, module, args.mutmut, env)
-        names = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
-        print(f"a sample of {len(names)} of the {len(every)} mutants (seed {args.seed})")
-    if not args.report:
+        for module in chosen:
+            every = generate(work, module, args.mutmut, env, tuple(chosen))
+            drawn = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
+            print(f"{module}: a sample of {len(drawn)} of {len(every)} mutants (seed {args.seed})")
+            names += drawn
+        if not names:
+            print("no mutants to run")
+    if not args.report and (names or not args.sample):
         cmd = [args.mutmut, "run", "--max-children", str(args.max_children), *names]
-        print("$ (cd", work.relative_to(ROOT), "&&", " ".join(cmd) + ")", flush=True)
+        shown = cmd if len(names) <= 5 else [*cmd[: len(cmd) - len(names)], f"<{len(names)} names>"]
+        print("$ (cd", work.relative_to(ROOT), "&&", " ".join(shown) + ")", flush=True)
         rc = subprocess.run(cmd, cwd=work, env=env).returncode
         if rc:
             print(f"mutmut run exited with {rc}", file=sys.stderr)
             return rc
     status = results(work, args.mutmut)
+    for module in chosen:
+        report_module(module, status, equivalent, work, args)
+    return 0
+
+
+def report_module(
+    module: str, status: dict[str, str], equivalent: dict[str, str], work: Path, args
+) -> None:
+    """Print the module's score line, its open survivors (with diffs on ``--diff``) and
+    the stale entries of the reviewed list."""
     line, open_ = report(module, status, equivalent)
     prefix = module_prefix(module)
     stale = sorted(
@@ -248,7 +314,6 @@ def main(argv: list[str] | None = None) -> int:
                 print("    " + "\n    ".join(diff.splitlines()[1:]))
     if stale:
         print(f"listed as equivalent but killed or gone (remove them): {', '.join(stale)}")
-    return 0
 
 
 if __name__ == "__main__":

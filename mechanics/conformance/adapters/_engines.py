@@ -51,7 +51,6 @@ def require(module: str, extra: str, *, quiet: bool = False):
     return _require(module, extra, package=extra)
 
 
-@contextlib.contextmanager
 def quiet_stdout() -> Iterator[None]:
     """Send file descriptors 1 and 2 to the null device for the duration (C code's
     printf included: pybullet's build banner goes to stderr); a stream without a
@@ -77,6 +76,9 @@ def quiet_stdout() -> Iterator[None]:
         for fd, copy in saved:
             os.dup2(copy, fd)
             os.close(copy)
+
+
+quiet_stdout = contextlib.contextmanager(quiet_stdout)
 
 
 def _flush_c_stdio() -> None:

@@ -192,9 +192,10 @@ class Effect:
         self.fields = spec.fields
         self.ctx = ctx
 
-    @property
     def where(self) -> str:
         return self.spec.where
+
+    where = property(where)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.fields})"

@@ -59,9 +59,10 @@ class Slide(Guide):
     mu: float
     nq = 2
 
-    @property
     def W(self):
         return np.stack([np.zeros(3), self.a])
+
+    W = property(W)
 
     def place(self, q):
         s, th = q[..., 0], q[..., 1]

@@ -204,12 +204,13 @@ class Impact(Effect):
         a_s = body_radius(bodies[s])
         return [Feature(f, at, a, s, a_s, flip, lab) for at, a, lab in feats(f)]
 
-    @property
     def label(self) -> str:
         """The pair in words: "bodies 'a' and 'b'" or "body 'a' and the plane"."""
         if self.j is None:
             return f"body {self.fields['body']!r} and the plane"
         return f"bodies {self.fields['body']!r} and {self.fields['other']!r}"
+
+    label = property(label)
 
     def bodies(self) -> list[int]:
         """Indices of the moving bodies the impulse acts on."""

@@ -87,9 +87,10 @@ class Incline(Guide):
     M: np.ndarray
     alpha: float
 
-    @property
     def W(self):
         return (self.a / self.r)[None, :]
+
+    W = property(W)
 
     def place(self, q):
         s = q[..., 0]
@@ -131,9 +132,10 @@ class Track(Guide):
     M: np.ndarray
     M_eff: float
 
-    @property
     def W(self):
         return (-(self.R - self.r) / self.r * self.a)[None, :]
+
+    W = property(W)
 
     def _rho(self, psi):
         c, s = np.cos(psi)[..., None], np.sin(psi)[..., None]
