@@ -125,8 +125,8 @@ def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarr
     (symmetric, positive semidefinite, J1 + J2 ≥ J3; else NonPhysicalInertiaError;
     ``allow_singular=False`` also refuses a zero moment), ``omega`` any finite (..., 3); a result
     beyond float64 raises ResultOverflowError.  Moments near 1e308 overflow inside check_inertia
-    with a numpy warning (known, issue 16).  Batches that do not broadcast (2 against 3) end in
-    numpy's bare ValueError, not a ShapeError (known, issue 16).
+    with a numpy warning (known, issue 16).  Batches that do not broadcast (2 against 3) raise
+    ShapeError listing each argument's shape.
 
     Parameters
     ----------
@@ -166,8 +166,9 @@ def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.nd
 
     Domain: as :func:`angular_momentum_rigid`: ``J`` physical (check_inertia, else
     NonPhysicalInertiaError), ``omega`` finite (..., 3); a T beyond float64 raises
-    ResultOverflowError; moments near 1e308 overflow inside check_inertia with a numpy warning, and
-    non-broadcasting batches end in numpy's bare ValueError (both known, issue 16).
+    ResultOverflowError; moments near 1e308 overflow inside check_inertia with a numpy warning
+    (known, issue 16); batches that do not broadcast (2 against 3) raise ShapeError listing each
+    argument's shape.
 
     Examples
     --------
@@ -191,8 +192,8 @@ def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
     Domain: ``J_principal`` (..., 3) each > 0 (else NonPositiveParameterError, whose message does
     not name ``J_principal``: known, issue 16) and obeying the triangle inequality to 64 eps of the
     largest (else NonPhysicalInertiaError); any finite ``omega``, ``M`` (..., 3); a result beyond
-    float64 raises ResultOverflowError.  Batches that do not broadcast end in numpy's bare
-    ValueError (known, issue 16).
+    float64 raises ResultOverflowError.  Batches that do not broadcast raise ShapeError listing
+    each argument's shape.
 
     J1 ω̇1 + (J3 − J2) ω2 ω3 = M1, and cyclically.
 
@@ -244,7 +245,7 @@ def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
     """φ̈ = M_z / J_z for rotation about a fixed axis (the z-component of (4.42); (4.48)).
 
     Domain: ``J_axis`` > 0 (else NonPositiveParameterError), any finite ``M_axis``, broadcast
-    together (non-broadcasting batches: numpy's bare ValueError, known, issue 16).  The quotient is
+    together (else ShapeError listing each argument's shape).  The quotient is
     not checked: M_z/J_z beyond float64 (1e300/1e-300) is inf with a numpy RuntimeWarning.
 
     Examples
@@ -278,7 +279,7 @@ def reduced_length(J_axis, m, h) -> np.ndarray:
     """The reduced length ℓ = J_z/(m h) of a physical pendulum (4.49).
 
     Domain: ``J_axis``, ``m``, ``h`` > 0 (else NonPositiveParameterError naming it), broadcast
-    together (else numpy's bare ValueError, known, issue 16).  Not checked for overflow: a quotient
+    together (else ShapeError listing each argument's shape).  Not checked for overflow: a quotient
     beyond float64 (or m h underflowing to 0) gives inf with a numpy RuntimeWarning.
 
     Examples
@@ -302,7 +303,7 @@ def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
     """Small-oscillation period T_p = 2π √(J_z/(m g h)) = 2π √(ℓ/g) (4.51)–(4.52).
 
     Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError naming it),
-    broadcast together (else numpy's bare ValueError, known, issue 16); while m g h/J_z neither
+    broadcast together (else ShapeError listing each argument's shape); while m g h/J_z neither
     overflows nor underflows: at the extremes (1e-300 and 1e300 mixed) the period is 0 or inf with a
     numpy RuntimeWarning, not an error.
 
@@ -389,7 +390,7 @@ def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
 
     Domain: ``J_axis``, ``m``, ``g``, ``h``, ``theta_0`` as :func:`pendulum_period` (> 0, else
     NonPositiveParameterError; |θ0| ≤ π, else OutOfDomainError) and any finite ``t``, all broadcast
-    together (else numpy's bare ValueError, known, issue 16).  The phase ω0 t is not checked: beyond
+    together (else ShapeError listing each argument's shape).  The phase ω0 t is not checked: beyond
     float64 it overflows with a numpy RuntimeWarning; the error grows like eps·|ω0 t|.
 
     sin(φ/2) = k cd(ω0 t | k²), k = sin(θ0/2), written without the arcsine as
@@ -441,8 +442,8 @@ def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
 
     Domain: as :func:`pendulum_period` (> 0, else NonPositiveParameterError; |θ0| ≤ π, else
     OutOfDomainError), with a finite ``theta`` of |θ| ≤ |θ0| (else OutOfDomainError).  Not checked
-    for overflow: 4 m g h/J_z beyond float64 is inf with a numpy RuntimeWarning; non-broadcasting
-    batches end in numpy's bare ValueError (known, issue 16).
+    for overflow: 4 m g h/J_z beyond float64 is inf with a numpy RuntimeWarning; batches that do not
+    broadcast (2 against 3) raise ShapeError listing each argument's shape.
 
     φ̇² = (2 m g h/J_z)(cos φ − cos θ0) = (4 m g h/J_z)(s0 − s)(s0 + s), with
     s = sin(|φ|/2), s0 = sin(|θ0|/2): the difference of cosines without
@@ -489,9 +490,9 @@ def axis_reaction(m, h, phidot, phiddot, *, F_a_rho, F_a_phi) -> np.ndarray:
     """Reaction R from a fixed axis, polar components (R_ρ, R_φ) (4.70)–(4.71).
 
     Domain: ``m`` > 0, ``h`` ≥ 0 (else NonPositiveParameterError), any finite ``phidot``,
-    ``phiddot``, ``F_a_rho``, ``F_a_phi``, broadcast together (else numpy's bare ValueError, known,
-    issue 16).  Not checked for overflow: m h φ̇² beyond float64 (``phidot`` near 1e300) is inf with
-    a numpy RuntimeWarning, not a ResultOverflowError (known, issue 16).
+    ``phiddot``, ``F_a_rho``, ``F_a_phi``, broadcast together (else ShapeError listing each
+    argument's shape).  A result beyond float64 (m h φ̇² with ``phidot`` near 1e300) raises
+    ResultOverflowError.
 
     R_ρ = −m h φ̇² − F^a_ρ,  R_φ = m h φ̈ − F^a_φ: the momentum principle (4.66)
     with the acceleration of G on its circle of radius h (4.70).
@@ -538,7 +539,7 @@ def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
     Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError), any finite ``phi``
     and an energy ``E`` ≥ m g h (1 − cos φ) to 8 eps (else OutOfDomainError).  Not checked for
     overflow: products beyond float64 (parameters near 1e300) are inf with a numpy RuntimeWarning;
-    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    batches that do not broadcast (2 against 3) raise ShapeError listing each argument's shape.
 
     R_ρ = (2 m h/J_z)(m g h − E) − (1 + 2 m h²/J_z) m g cos φ,
     R_φ = (1 − m h²/J_z) m g sin φ, with E of (4.74).  No small-amplitude
@@ -583,9 +584,9 @@ def bearing_reactions(
     Domain: ``J_O`` (..., 3, 3) as :func:`~mechanics.inertia.check_inertia` about a point, singular
     allowed (else NonPhysicalInertiaError), ``m`` > 0 (else NonPositiveParameterError), ``z_A`` ≠ 0
     (else NonPositiveParameterError), any finite ``r_G``, ``F_a``, ``M_a`` (..., 3) and ``phidot``,
-    ``phiddot``; ``axial_at`` 'O' or 'A' (else UnknownOptionError).  Not checked for overflow: φ̇²
-    terms beyond float64 (``phidot`` near 1e300) are inf with a numpy RuntimeWarning (known, issue
-    16); non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    ``phiddot``; ``axial_at`` 'O' or 'A' (else UnknownOptionError).  A result beyond float64 (φ̇²
+    terms with ``phidot`` near 1e300) raises ResultOverflowError; batches that do not broadcast (2
+    against 3) raise ShapeError listing each argument's shape.
 
     Body axes, O at the origin, A at (0, 0, z_A); ω = φ̇ e_z.  The book's
     choice r_G = (h, 0, z_G) gives (4.78), (4.84), (4.85) exactly; any r_G is

@@ -371,7 +371,7 @@ def direct_impact(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
     together; any magnitudes, 1e-300 to 1e300 (operands are scaled by powers of two: no intermediate
     overflows), a result beyond float64 raising ResultOverflowError.  ``separating``: 'raise'
     (SeparatingContactError where ẋ_2 > ẋ_1) or 'ignore' (else UnknownOptionError).  Batches that do
-    not broadcast (2 against 3) end in numpy's bare ValueError, not a ShapeError (known, issue 16).
+    not broadcast (2 against 3) raise ShapeError listing each argument's shape.
 
     Parameters
     ----------
@@ -435,7 +435,8 @@ def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 
     Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
     [0, 1], any magnitudes (scaled by powers of two), a result beyond float64 raising
-    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    ResultOverflowError; batches that do not broadcast raise ShapeError listing each argument's
+    shape.
 
     Returns the x-component (≤ 0 for an impact: body 1 is behind and is
     pushed back); body 2 receives −S_12 (6.46).  S_12 = (1 + e) μ Δẋ with
@@ -471,8 +472,8 @@ def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 
     Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
     [0, 1], any magnitudes (no overflow of m_1 m_2 or Δẋ² where Q is representable), a Q beyond
-    float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError
-    (known, issue 16).
+    float64 raising ResultOverflowError; batches that do not broadcast raise ShapeError listing each
+    argument's shape.
 
     Evaluated as ½ μ (1 − e)(1 + e) Δẋ Δẋ with μ = m_1 · m_2/(m_1 + m_2), every
     factor positive and exact or carried in double-double on operands scaled by
@@ -513,7 +514,8 @@ def compression_restitution_impulses(m_1, m_2, v_1, v_2, e, *, separating: str =
 
     Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
     [0, 1] (down to the smallest normal keeps its digits), a result beyond float64 raising
-    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    ResultOverflowError; batches that do not broadcast raise ShapeError listing each argument's
+    shape.
 
     During compression the bodies reach the common velocity ẋ_G of the centre
     of mass, so S_1 = m_1 (ẋ_G − ẋ_1i) = μ Δẋ; during restitution
@@ -601,10 +603,10 @@ def effective_mass(m_1, J_1, r_1, n, m_2=None, J_2=None, r_2=None):
     Domain: ``m_1`` (and ``m_2``) > 0 (else NegativeMassError or NonPositiveParameterError), ``J_1``
     (``J_2``) positive definite as :func:`~mechanics.inertia.check_inertia` (else
     NonPhysicalInertiaError), finite arms ``r_1`` (``r_2``) (..., 3), a non-zero ``n`` (else
-    ZeroNormalError), body 2 given whole or not at all (else OutOfDomainError).  Not checked for
-    overflow: arms near 1e300 overflow (r × n)·J⁻¹(r × n) with a numpy RuntimeWarning, not a
-    ResultOverflowError (known, issue 16); non-broadcasting batches end in numpy's bare ValueError
-    (known, issue 16).
+    ZeroNormalError), body 2 given whole or not at all (else OutOfDomainError).  Arms so long that
+    (r × n)·J⁻¹(r × n) overflows (beyond about 1e154 radii of gyration) give μ = 0: the exact μ then
+    lies below about 1e-308, in the subnormals or below them; batches that do not broadcast raise
+    ShapeError listing each argument's shape.
 
     1/μ = 1/m_1 + (r_1 × n)·J_1⁻¹(r_1 × n) + 1/m_2 + (r_2 × n)·J_2⁻¹(r_2 × n),
     where r_k is the arm from the centre of mass G_k to the contact point and
@@ -675,8 +677,8 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
     Domain: bodies given as :class:`RigidBody` or 5-tuples (else OutOfDomainError), validated: ``m``
     > 0, ``J_G`` positive definite (NonPhysicalInertiaError), finite (..., 3) vectors; ``r_S``
     finite (..., 3), ``n`` non-zero (else ZeroNormalError).  Not checked for overflow: ω × (r_S −
-    r_G) beyond float64 is inf or NaN with a numpy RuntimeWarning; non-broadcasting batches end in
-    numpy's bare ValueError (known, issue 16).
+    r_G) beyond float64 is inf or NaN with a numpy RuntimeWarning; batches that do not broadcast
+    raise ShapeError listing each argument's shape.
 
     Examples
     --------
@@ -706,8 +708,8 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
     3), ``n`` non-zero (else ZeroNormalError), ``e`` in [0, 1] (else RestitutionRangeError),
     ``separating`` 'raise' (SeparatingContactError where v_n > 0) or 'ignore' (else
     UnknownOptionError).  Not checked for overflow: velocities or arms near 1e300 to 1e308 give inf
-    or NaN with a numpy RuntimeWarning; non-broadcasting batches end in numpy's bare ValueError
-    (known, issue 16).
+    or NaN with a numpy RuntimeWarning; batches that do not broadcast raise ShapeError listing each
+    argument's shape.
 
     The impulse S n at the contact point r_S changes the momenta by (6.19) and
     the angular momenta about the centres of mass by (6.21):
@@ -809,7 +811,7 @@ def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
     ``n`` (else ZeroNormalError).  A blow that cannot turn the body (``r_P`` on the axis, or ``n``
     in the plane of the axis and P) returns inf silently rather than being refused naming ``r_P``,
     and ``r_P`` near 1e300 overflows with a numpy RuntimeWarning (both known, issue 16);
-    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    batches that do not broadcast raise ShapeError listing each argument's shape.
 
     A blow S n at P turns the body by Δω = a·(AP × n) S/J_a, and P's velocity
     along n changes by S (a·(AP × n))²/J_a, so 1/μ = (a·(AP × n))²/J_a with
@@ -844,8 +846,9 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
     definite (else NonPhysicalInertiaError), finite ``r_G``, ``axis_point``, ``r_P``, ``S_P`` (...,
     3) and ``omega``, a non-zero ``axis`` (else ZeroNormalError); ``bearings`` two finite axial
     positions, different (else OutOfDomainError).  Not checked for overflow: AP × S_P beyond float64
-    (both near 1e300) is inf with a numpy RuntimeWarning; non-broadcasting batches end in numpy's
-    bare ValueError (known, issue 16).
+    (both near 1e300) is inf with a numpy RuntimeWarning; batches of ``m`` and ``J_A`` that do not
+    broadcast raise ShapeError listing each argument's shape (those of ``omega`` against the vectors
+    are not checked).
 
     The angular momentum about the axis (6.21) gives J_a Δω = a·(AP × S_P), so
     ω' = ω + a·(AP × S_P)/J_a; the momentum principle (6.19) for the whole body,
@@ -936,9 +939,9 @@ def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive
     definite (else NonPhysicalInertiaError), finite ``r_G`` and ``axis_point`` (..., 3), a non-zero
     ``axis`` (else ZeroNormalError), G off the axis by more than 4 eps of |AG| (else
-    OutOfDomainError).  Not checked for overflow: ``r_G`` near 1e300 overflows |AG|² with a numpy
-    RuntimeWarning, not a ResultOverflowError (known, issue 16); non-broadcasting batches end in
-    numpy's bare ValueError (known, issue 16).
+    OutOfDomainError).  ``r_G`` beyond about 1e154 overflows |AG|² and is refused as if G lay on the
+    axis (known, issue 16); batches that do not broadcast raise ShapeError listing each argument's
+    shape.
 
     Let a be the unit axis, h > 0 the distance of G from the axis, û the unit
     vector from the axis to G perpendicular to it, b = a × û, and J_xz = ûᵀ J_A a,

@@ -436,9 +436,8 @@ def inertia_tensor(m, r, *, about) -> np.ndarray:
 
     Domain: masses ``m`` (..., N) ≥ 0 (else NegativeMassError) with a positive total and N ≥ 1 (else
     ZeroTotalMassError), positions ``r`` (..., N, 3) matching ``m`` (else ShapeError), ``about`` any
-    finite (..., 3); a tensor beyond float64 raises ResultOverflowError.  Positions near 1e300
-    overflow the squares m s² with a numpy RuntimeWarning, not a ResultOverflowError (known, issue
-    16).
+    finite (..., 3); a tensor beyond float64 raises ResultOverflowError (positions near 1e300,
+    whose squares m s² overflow, included).
 
     Built in centre-of-mass coordinates: G is found relative to the heaviest
     particle, J_G = Σ m (|s|² 1 − s sᵀ) with s = r − G (diagonal entries as
@@ -607,8 +606,8 @@ def rotate_inertia(J_A, R_A_O) -> np.ndarray:
     Domain: ``J_A`` (..., 3, 3) symmetric to :data:`INERTIA_ATOL` of its largest entry (else
     NonPhysicalInertiaError), not necessarily physical; ``R_A_O`` a rotation as
     :func:`~mechanics.rotation.check_rotation` (else NotARotationError); a result beyond float64
-    raises ResultOverflowError.  Batches that do not broadcast end in numpy's bare ValueError, not a
-    ShapeError (known, issue 16).
+    raises ResultOverflowError.  Batches that do not broadcast (2 against 3) raise ShapeError
+    listing each argument's shape.
 
     ``R_A_O`` is the book's passive ^A R^O (rows: the e^A_i in O components).
     ``J_A`` must be symmetric (to :data:`INERTIA_ATOL` of its largest entry,
@@ -644,7 +643,7 @@ def inertia_A_from_O(J_O, R_A_O) -> np.ndarray:
 
     Domain: as :func:`rotate_inertia`: ``J_O`` symmetric (else NonPhysicalInertiaError), ``R_A_O`` a
     rotation (else NotARotationError), a result beyond float64 raising ResultOverflowError;
-    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    batches that do not broadcast raise ShapeError listing each argument's shape.
 
     Examples
     --------
@@ -779,8 +778,8 @@ def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J`` (..., 3, 3) as
     :func:`check_inertia` with a singular tensor allowed (else NonPhysicalInertiaError).  Not
     checked for overflow: moments over a tiny mass beyond float64 (J near 1e300, m near 1e-300) are
-    inf with a numpy RuntimeWarning; batches that do not broadcast end in numpy's bare ValueError
-    (known, issue 16).
+    inf with a numpy RuntimeWarning; batches that do not broadcast raise ShapeError listing each
+    argument's shape.
 
     In the principal basis, with J_x ≤ J_y ≤ J_z the principal moments, the
     particles are at (±a, 0, c) and (0, ±b, −c) (4.15)–(4.18) with
@@ -859,8 +858,8 @@ def rod(m, ell) -> np.ndarray:
 
     Domain: ``m`` ≥ 0 (else NegativeMassError) and ``ell`` > 0 (else NonPositiveParameterError),
     finite (else NonFiniteError), broadcast together; a tensor beyond float64 (m ℓ² near 1e308)
-    raises ResultOverflowError.  Batches that do not broadcast end in numpy's bare ValueError, not a
-    ShapeError (known, issue 16).
+    raises ResultOverflowError.  Batches that do not broadcast (2 against 3) raise ShapeError
+    listing each argument's shape.
 
     The tensor is singular (an ideal line mass): validate it with
     ``check_inertia(J, allow_singular=True)``.
@@ -880,8 +879,8 @@ def ring(m, R) -> np.ndarray:
     """Thin ring (hoop) of radius R in the e1e2-plane, about G: diag(mR²/2, mR²/2, mR²).
 
     Domain: ``m`` ≥ 0 (else NegativeMassError) and ``R`` > 0 (else NonPositiveParameterError),
-    finite, broadcast together; m R² beyond float64 raises ResultOverflowError; non-broadcasting
-    batches end in numpy's bare ValueError (known, issue 16).
+    finite, broadcast together; m R² beyond float64 raises ResultOverflowError; batches that do not
+    broadcast raise ShapeError listing each argument's shape.
 
     Examples
     --------
@@ -901,8 +900,8 @@ def disc(m, R) -> np.ndarray:
     """Thin homogeneous disc of radius R in the e1e2-plane, about G: diag(mR²/4, mR²/4, mR²/2).
 
     Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
-    result beyond float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare
-    ValueError (known, issue 16).
+    result beyond float64 raising ResultOverflowError; batches that do not broadcast raise
+    ShapeError listing each argument's shape.
 
     Examples
     --------
@@ -921,7 +920,7 @@ def cylinder(m, R, h) -> np.ndarray:
 
     Domain: ``m`` ≥ 0 (else NegativeMassError), ``R``, ``h`` > 0 (else NonPositiveParameterError
     naming it), finite, broadcast together; a result beyond float64 raises ResultOverflowError;
-    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    batches that do not broadcast raise ShapeError listing each argument's shape.
 
     diag(m(3R² + h²)/12, m(3R² + h²)/12, mR²/2).
 
@@ -946,7 +945,8 @@ def cylindrical_shell(m, R, h) -> np.ndarray:
     """Thin-walled open cylindrical shell (tube), radius R, height h, axis e3, about G.
 
     Domain: as :func:`cylinder`: ``m`` ≥ 0, ``R``, ``h`` > 0, a result beyond float64 raising
-    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    ResultOverflowError; batches that do not broadcast raise ShapeError listing each argument's
+    shape.
 
     diag(m(6R² + h²)/12, m(6R² + h²)/12, mR²); Problem 3.3's hollow wheels.
 
@@ -971,8 +971,8 @@ def solid_sphere(m, R) -> np.ndarray:
     """Homogeneous solid sphere about its centre: (2/5) m R² 1.
 
     Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
-    result beyond float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare
-    ValueError (known, issue 16).
+    result beyond float64 raising ResultOverflowError; batches that do not broadcast raise
+    ShapeError listing each argument's shape.
 
     Examples
     --------
@@ -990,8 +990,8 @@ def hollow_sphere(m, R) -> np.ndarray:
     """Thin homogeneous spherical shell about its centre: (2/3) m R² 1.
 
     Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
-    result beyond float64 raising ResultOverflowError; non-broadcasting batches end in numpy's bare
-    ValueError (known, issue 16).
+    result beyond float64 raising ResultOverflowError; batches that do not broadcast raise
+    ShapeError listing each argument's shape.
 
     Examples
     --------
@@ -1010,7 +1010,7 @@ def rectangular_plate(m, a, b) -> np.ndarray:
 
     Domain: ``m`` ≥ 0 (else NegativeMassError), ``a``, ``b`` > 0 (else NonPositiveParameterError
     naming it), finite, broadcast together; a result beyond float64 raises ResultOverflowError;
-    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    batches that do not broadcast raise ShapeError listing each argument's shape.
 
     diag(m b²/12, m a²/12, m(a² + b²)/12).
 
@@ -1038,7 +1038,8 @@ def box(m, a, b, c) -> np.ndarray:
 
     Domain: ``m`` ≥ 0 (else NegativeMassError), ``a``, ``b``, ``c`` > 0 (else
     NonPositiveParameterError naming it), finite, broadcast together; a result beyond float64 raises
-    ResultOverflowError; non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    ResultOverflowError; batches that do not broadcast raise ShapeError listing each argument's
+    shape.
 
     diag(m(b² + c²)/12, m(a² + c²)/12, m(a² + b²)/12).  A cube of side 2a
     (Problem 4.4) has (2/3) m a² 1.
@@ -1064,8 +1065,8 @@ def solid_cone(m, R, h) -> np.ndarray:
     """Homogeneous solid right circular cone, base radius R, height h, axis e3, about G.
 
     Domain: as :func:`cylinder`: ``m`` ≥ 0, ``R``, ``h`` > 0 (NegativeMassError,
-    NonPositiveParameterError), a result beyond float64 raising ResultOverflowError;
-    non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    NonPositiveParameterError), a result beyond float64 raising ResultOverflowError; batches that do
+    not broadcast raise ShapeError listing each argument's shape.
 
     G lies on the axis at h/4 above the base.  diag(3m(4R² + h²)/80,
     3m(4R² + h²)/80, 3mR²/10).

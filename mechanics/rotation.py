@@ -187,8 +187,8 @@ def rotate_vector(R_A_O, r_O) -> np.ndarray:
     """Turn ``r`` with the basis, r' = R_{O→A} r (2.21); components in O in and out.
 
     Domain: ``R_A_O`` a rotation as :func:`check_rotation` (else NotARotationError), ``r_O`` any
-    finite (..., 3); the leading axes broadcast, and batches that do not (2 against 3) end in
-    numpy's bare ValueError, not a ShapeError (known, issue 16).  The result is not checked: a
+    finite (..., 3); the leading axes broadcast, and batches that do not (2 against 3) raise
+    ShapeError listing each argument's shape.  The result is not checked: a
     component beyond float64 (``r_O`` near 1e308) turns to inf silently.
 
     Examples
@@ -210,7 +210,8 @@ def components_A_from_O(R_A_O, r_O) -> np.ndarray:
     """Components in the basis A of a vector given in O: r^A = ^A R^O r^O (2.20).
 
     Domain: as :func:`rotate_vector`: a rotation ``R_A_O`` (else NotARotationError) and any finite
-    ``r_O`` (..., 3); non-broadcasting batches end in numpy's bare ValueError (known, issue 16).
+    ``r_O`` (..., 3); batches that do not broadcast raise ShapeError listing each argument's shape.
+    The result is not checked, as in :func:`rotate_vector`.
     """
     R = check_rotation(R_A_O)
     r = as_float_array(r_O, "r_O", (3,))
@@ -224,8 +225,8 @@ def compose(R_B_A, R_A_O) -> np.ndarray:
     """^B R^O = ^B R^A ^A R^O, the chain of basis changes (2.34).
 
     Domain: two rotations (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
-    ``R_B_A`` or ``R_A_O``); the leading axes broadcast, and batches that do not end in numpy's bare
-    ValueError (known, issue 16).
+    ``R_B_A`` or ``R_A_O``); the leading axes broadcast, and batches that do not raise ShapeError
+    listing each argument's shape.
     """
     return check_rotation(R_B_A, name="R_B_A") @ check_rotation(R_A_O, name="R_A_O")
 
@@ -490,8 +491,8 @@ def matrix_from_euler(psi, theta, phi) -> np.ndarray:
     """^A R^O(ψ, θ, φ) = R3(φ) R1(θ) R3(ψ), written out as in (2.36).
 
     Domain: any finite ``psi``, ``theta``, ``phi`` (...), broadcast together (else NonFiniteError;
-    non-broadcasting batches end in numpy's bare ValueError, known, issue 16); ``theta`` need not
-    lie in [0, π].
+    batches that do not broadcast raise ShapeError listing each argument's shape); ``theta`` need
+    not lie in [0, π].
 
     Examples
     --------
@@ -644,8 +645,9 @@ def quat_multiply(p, q) -> np.ndarray:
     """Hamilton product p ⊗ q (scalar first); the operator of p after that of q.
 
     Domain: any finite ``p``, ``q`` of shape (..., 4), unit or not (no check of length); the leading
-    axes broadcast (batches that do not: numpy's bare ValueError, known, issue 16).  Products beyond
-    float64 (components near 1e300) overflow to inf with a numpy RuntimeWarning, not an error.
+    axes broadcast (batches that do not raise ShapeError listing each argument's shape).  Products
+    beyond float64 (components near 1e300) overflow to inf with a numpy RuntimeWarning, not an
+    error.
     """
     p = as_float_array(p, "p", (4,))
     q = as_float_array(q, "q", (4,))
@@ -669,8 +671,8 @@ def compose_quat(q_B_A, q_A_O) -> np.ndarray:
     """Quaternion of ^B R^O from those of ^B R^A and ^A R^O (as :func:`compose`).
 
     Domain: two unit quaternions (..., 4) with |q| − 1 within 64 eps (else NotARotationError; a zero
-    quaternion ZeroAxisError), renormalised before use; non-broadcasting batches end in numpy's bare
-    ValueError (known, issue 16).
+    quaternion ZeroAxisError), renormalised before use; batches that do not broadcast raise
+    ShapeError listing each argument's shape.
 
     The active operators compose in the opposite order to the basis matrices:
     R_{O→B} = R_{O→A} R_{A→B}, so q_B_O = q_A_O ⊗ q_B_A; returned with w ≥ 0.
@@ -1012,7 +1014,7 @@ def matrix_from_axis_angle(axis, angle) -> np.ndarray:
 
     Domain: ``axis`` any finite non-zero (..., 3) of any length, subnormal to 1e308 (its norm is
     taken by hypot; a zero axis raises ZeroAxisError), ``angle`` any finite (...); their leading
-    axes broadcast (batches that do not end in numpy's bare ValueError, known, issue 16).
+    axes broadcast (batches that do not raise ShapeError listing each argument's shape).
 
     ``axis`` is a direction: its length is divided out; a zero axis raises
     :class:`~mechanics.errors.ZeroAxisError`.

@@ -704,3 +704,20 @@ def test_principal_moment_checks_judge_each_row_of_a_batch():
 
 def test_kinetic_energy_accepts_a_singular_tensor_by_default():
     assert D.rotational_kinetic_energy(np.diag([0.0, 1.0, 1.0]), [0.0, 2.0, 0.0]) == 2.0
+
+
+# ------------------------------------------------- issue 16: the last known bad inputs
+
+
+def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
+    with pytest.raises(ShapeError, match=r"reduced_length: .* J_axis \(2,\), m \(3,\), h \(\)$"):
+        D.reduced_length([1.0, 1.0], [1.0, 1.0, 1.0], 1.0)
+    with pytest.raises(ShapeError, match=r"J \(2, 3, 3\), omega \(3, 3\)"):
+        D.angular_momentum_rigid(np.stack([np.eye(3)] * 2), np.ones((3, 3)))
+
+
+def test_no_domain_says_batches_end_in_numpys_bare_value_error():
+    """The Domain: paragraphs state what now happens (a ShapeError), not issue 16's old
+    failure."""
+    text = " ".join((getattr(D, n).__doc__ or "").replace("\n", " ") for n in D.__all__)
+    assert "bare ValueError" not in " ".join(text.split())

@@ -1019,3 +1019,16 @@ def test_rigid_impact_reports_the_normal_relative_velocity_before():
     v_n = im.normal_relative_velocity(ball, None, r_S=[0, 0, 0.0], n=[0, 0, 1.0])
     assert out.v_n == v_n
     assert float(v_n) == -2.0  # v_G + ω × (S − G) = (0.5 − 1, 0, −2): its e_z part
+
+
+# ------------------------------------------------- issue 16: the last known bad inputs
+
+
+def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
+    with pytest.raises(ShapeError, match=r"direct_impact: .* m_1 \(2,\), m_2 \(3,\), v_1 \(\)"):
+        im.direct_impact([1.0, 1.0], [1.0, 1.0, 1.0], 1.0, -1.0, 0.5)
+
+
+def test_no_domain_says_batches_end_in_numpys_bare_value_error():
+    text = " ".join((getattr(im, n).__doc__ or "") for n in im.__all__ if n != "DIRECT_ULPS")
+    assert "bare ValueError" not in " ".join(text.split())

@@ -955,3 +955,16 @@ def test_batched_shapes_follow_every_argument():
     for i in range(3):
         _, Pi = I.principal_subspaces(J_G[i])
         np.testing.assert_allclose(P[i], Pi, rtol=0, atol=ENTRY_ATOL * 8)
+
+
+# ------------------------------------------------- issue 16: the last known bad inputs
+
+
+def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
+    with pytest.raises(ShapeError, match=r"cylinder: .* m \(2,\), R \(3,\), h \(\)$"):
+        I.cylinder([1.0, 1.0], [1.0, 1.0, 1.0], 1.0)
+
+
+def test_no_domain_says_batches_end_in_numpys_bare_value_error():
+    text = " ".join((getattr(I, n).__doc__ or "") for n in I.__all__ if callable(getattr(I, n)))
+    assert "bare ValueError" not in " ".join(text.split())

@@ -1161,3 +1161,18 @@ def test_conversions_of_a_batch_larger_than_one_block_reach_every_row():
         assert_allclose(R[i], rot.matrix_from_rotvec(v[i]), rtol=0, atol=VECTORISE_ATOL)
     back = rot.rotvec_from_matrix(R)
     assert_allclose(back[-1], rot.rotvec_from_matrix(R[-1]), rtol=0, atol=VECTORISE_ATOL)
+
+
+# ------------------------------------------------- issue 16: the last known bad inputs
+
+
+def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
+    with pytest.raises(ShapeError, match=r"compose: .* R_B_A \(2, 3, 3\), R_A_O \(3, 3, 3\)$"):
+        rot.compose(np.stack([np.eye(3)] * 2), np.stack([np.eye(3)] * 3))
+
+
+def test_no_domain_says_batches_end_in_numpys_bare_value_error():
+    text = " ".join(
+        (getattr(rot, n).__doc__ or "") for n in rot.__all__ if callable(getattr(rot, n))
+    )
+    assert "bare ValueError" not in " ".join(text.split())
