@@ -100,8 +100,8 @@ def _principal_moments(J_principal) -> np.ndarray:
     bad = ~(J > 0)
     if bad.any():
         raise NonPositiveParameterError(
-            f"principal moments must be > 0 for Euler's equations (a moment 0 makes "
-            f"dω/dt undefined); found {float(J[bad].flat[0])!r}"
+            f"J_principal must be > 0 (each principal moment; a moment 0 makes dω/dt undefined "
+            f"in Euler's equations); found {float(J[bad].flat[0])!r}"
         )
     total = J.sum(axis=-1, keepdims=True)
     slack = total - 2.0 * J  # J_j + J_k − J_i for each i
@@ -189,11 +189,10 @@ rotational_kinetic_energy = broadcast_checked(rotational_kinetic_energy)
 def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
     """dω/dt from Euler's dynamic equations (4.47), body principal components.
 
-    Domain: ``J_principal`` (..., 3) each > 0 (else NonPositiveParameterError, whose message does
-    not name ``J_principal``: known, issue 16) and obeying the triangle inequality to 64 eps of the
-    largest (else NonPhysicalInertiaError); any finite ``omega``, ``M`` (..., 3); a result beyond
-    float64 raises ResultOverflowError.  Batches that do not broadcast raise ShapeError listing
-    each argument's shape.
+    Domain: ``J_principal`` (..., 3) each > 0 (else NonPositiveParameterError naming it) and
+    obeying the triangle inequality to 64 eps of the largest (else NonPhysicalInertiaError); any
+    finite ``omega``, ``M`` (..., 3); a result beyond float64 raises ResultOverflowError.  Batches
+    that do not broadcast raise ShapeError listing each argument's shape.
 
     J1 ω̇1 + (J3 − J2) ω2 ω3 = M1, and cyclically.
 

@@ -514,6 +514,20 @@ _AR = {"F_a_rho": 0.0, "F_a_phi": 0.0}
             id="euler-J-triangle-batched",
         ),
         pytest.param(
+            lambda: D.euler_equations_rhs([0.0, 3.0, 4.0], [0, 0, 1.0], [0, 0, 0.0]),
+            NonPositiveParameterError,
+            r"^J_principal must be > 0 \(each principal moment; .*\); found 0\.0$",
+            id="euler-J-zero",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs(
+                [[1.0, 2.0, 2.5], [1.0, -2.0, 2.5]], [0, 0, 1.0], [0, 0, 0.0]
+            ),
+            NonPositiveParameterError,
+            r"^J_principal must be > 0 .*; found -2\.0$",
+            id="euler-J-negative-batched",
+        ),
+        pytest.param(
             lambda: D.euler_equations_rhs([1.0, 2.0, 2.5], [0, 1.0], [0, 0, 0.0]),
             ShapeError,
             r"^omega has shape \(2,\); expected \(\.\.\., 3\)$",
