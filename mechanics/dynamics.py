@@ -100,8 +100,8 @@ def _principal_moments(J_principal) -> np.ndarray:
     bad = ~(J > 0)
     if bad.any():
         raise NonPositiveParameterError(
-            f"J_principal must be > 0 (each principal moment; a moment 0 makes dω/dt undefined "
-            f"in Euler's equations); found {float(J[bad].flat[0])!r}"
+            f"J_principal must be > 0 (each principal moment; a moment 0 makes d omega/dt "
+            f"undefined in Euler's equations); found {float(J[bad].flat[0])!r}"
         )
     total = J.sum(axis=-1, keepdims=True)
     slack = total - 2.0 * J  # J_j + J_k − J_i for each i

@@ -808,15 +808,17 @@ def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
 
     Domain: ``J_A`` positive definite as :func:`~mechanics.inertia.check_inertia` (else
     NonPhysicalInertiaError), finite ``axis_point`` and ``r_P`` (..., 3), non-zero ``axis`` and
-    ``n`` (else ZeroNormalError).  A blow that cannot turn the body (``r_P`` on the axis, or ``n``
-    in the plane of the axis and P) returns inf silently rather than being refused naming ``r_P``,
-    and ``r_P`` near 1e300 overflows with a numpy RuntimeWarning (both known, issue 16);
-    batches that do not broadcast raise ShapeError listing each argument's shape.
+    ``n`` (else ZeroNormalError).  A blow that cannot turn the body, with no lever arm
+    a·(AP × n) = 0 (``r_P`` on the axis, or ``n`` in the plane of the axis and P), is refused
+    naming ``r_P`` (OutOfDomainError: the effective mass is infinite).  A μ beyond float64 (a lever
+    arm near 1e-300) raises ResultOverflowError; a μ below the smallest subnormal (an arm near
+    1e300) is returned as 0, its rounded value.  Batches that do not broadcast raise ShapeError
+    listing each argument's shape.
 
     A blow S n at P turns the body by Δω = a·(AP × n) S/J_a, and P's velocity
     along n changes by S (a·(AP × n))²/J_a, so 1/μ = (a·(AP × n))²/J_a with
-    J_a = aᵀ J_A a the moment of inertia about the axis.  Returns ``inf``
-    where the blow cannot turn the body (n in the plane of the axis and P).
+    J_a = aᵀ J_A a the moment of inertia about the axis, evaluated as
+    (J_a/arm)/arm so that arm² cannot overflow where μ is representable.
 
     Examples
     --------
@@ -832,11 +834,18 @@ def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
     rP = as_float_array(r_P, "r_P", (3,)) - A
     nn = _unit(n, "n")
     arm = _dot(a, np.cross(rP, nn))
-    with np.errstate(divide="ignore"):
-        return (J_aa / (arm * arm))[()]
+    none = arm == 0
+    if np.any(none):
+        idx = _first(none) if none.ndim else ()
+        raise OutOfDomainError(
+            f"r_P gives the blow no lever arm about the axis (a.(AP x n) = 0 at index {idx}: P on "
+            "the axis, or n in the plane of the axis and P); the blow cannot turn the body and "
+            "its effective mass is infinite"
+        )
+    return (J_aa / arm / arm)[()]
 
 
-hinged_effective_mass = broadcast_checked(hinged_effective_mass)
+hinged_effective_mass = finite_result(hinged_effective_mass)
 
 
 def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=None) -> HingedImpact:

@@ -47,10 +47,6 @@ SURFACE = public_callables()
 #: (entry, parameter) pairs that fail the rule in modules this branch may not change:
 #: ``xfail(strict=True)``, so a fix turns them into failures to clean up here
 KNOWN: dict[tuple[str, str], str] = {
-    ("mechanics.impact.hinged_effective_mass", "r_P"): (
-        "r_P on the axis (0 or 1e-300) returns inf silently (no lever arm: the effective "
-        "mass is infinite; it should be refused naming r_P); 1e300 overflows with a warning"
-    ),
     **{
         ("mechanics.impact.RigidBody", p): (
             "RigidBody is a record that does not validate: NaN, inf, strings and None are kept "

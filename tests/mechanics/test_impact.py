@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import re
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -29,6 +30,8 @@ from mechanics.errors import (
 )
 
 EPS = float(np.finfo(float).eps)
+#: the fixed axis of the hinged bodies here
+Z3 = [0.0, 0.0, 1.0]
 
 #: Hand-computed values with a handful of roundings in the code under test.
 HAND_RTOL = 8 * EPS
@@ -455,12 +458,34 @@ def test_hinged_zero_axis_raises():
         )
 
 
-def test_hinged_effective_mass_is_infinite_for_a_blow_through_the_axis():
+@pytest.mark.parametrize(
+    ("r_P", "n"),
+    [
+        pytest.param([1.0, 0, 0], [1.0, 0, 0], id="n-in-the-plane-of-axis-and-P"),
+        pytest.param([0.0, 0, 0], [0, 1.0, 0], id="P-at-A"),
+        pytest.param([0.0, 0, 2.5], [0, 1.0, 0], id="P-on-the-axis"),
+        pytest.param([1e-300 * 0.0, 0, 0], [0, 1.0, 0], id="P-at-A-times-1e-300"),
+    ],
+)
+def test_hinged_effective_mass_refuses_a_blow_without_lever_arm_naming_r_P(r_P, n):
     _, J_A, _ = _rod_on_axis()
-    mu = im.hinged_effective_mass(
-        J_A, [1.0, 0, 0], [1.0, 0, 0], axis_point=[0, 0, 0], axis=[0, 0, 1]
-    )
-    assert mu == math.inf
+    with pytest.raises(OutOfDomainError, match=r"^r_P gives the blow no lever arm about the axis"):
+        im.hinged_effective_mass(J_A, r_P, n, axis_point=[0, 0, 0], axis=[0, 0, 1])
+
+
+def test_hinged_effective_mass_beyond_float64_is_a_result_overflow_error():
+    # a lever arm of 5e-301: mu = J_a/arm**2 ~ 1e601
+    _, J_A, _ = _rod_on_axis()
+    with pytest.raises(ResultOverflowError, match=r"^hinged_effective_mass: the result is not"):
+        im.hinged_effective_mass(J_A, [5e-301, 0, 0], [0, 1.0, 0], axis_point=[0] * 3, axis=Z3)
+
+
+def test_hinged_effective_mass_is_right_where_the_squared_arm_overflows():
+    # arm = 5e199, arm**2 = 2.5e399 overflows, mu = 4e300/2.5e399 = 1.6e-99 does not
+    J_A = 1e300 * np.diag([1.0, 4.0, 4.0])
+    mu = im.hinged_effective_mass(J_A, [5e199, 0, 0], [0, 1.0, 0], axis_point=[0] * 3, axis=Z3)
+    exact = Fraction(float(J_A[2, 2])) / Fraction(5e199) ** 2
+    assert abs(Fraction(float(mu)) - exact) <= 2 * (EPS / 2) * exact  # two roundings
 
 
 # ------------------------------------- promises checked where they are not trivial
