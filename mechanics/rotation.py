@@ -58,7 +58,7 @@ import math
 import numpy as np
 
 from ._validate import as_float_array, broadcast_checked
-from .errors import NotARotationError, ZeroAxisError
+from .errors import NonPositiveParameterError, NotARotationError, OutOfDomainError, ZeroAxisError
 
 __all__ = [
     "EPS",
@@ -105,6 +105,11 @@ ROTATION_ATOL = 256 * EPS
 ROUNDTRIP_ATOL = 4 * EPS
 
 _QUAT_NORM_ATOL = 64 * EPS  # |q| − 1 accepted before "not a unit quaternion" is raised
+
+#: Singular values of a 3 × 3 from LAPACK are within a few eps of the largest, s1: gaps
+#: (s2 − 0, or s2 − s3) below 8 eps·s1 are rounding, and :func:`nearest_rotation` refuses
+#: them as "no unique nearest rotation"
+_SINGULAR_RTOL = 8 * EPS
 
 
 # --------------------------------------------------------------------------- basics
@@ -356,14 +361,16 @@ def is_rotation(R, *, atol: float = ROTATION_ATOL) -> np.ndarray:
 def nearest_rotation(M) -> np.ndarray:
     """The rotation closest to ``M`` in the Frobenius norm (polar factor, by SVD).
 
-    Domain: any finite (..., 3, 3) (else NonFiniteError or ShapeError), entries up to 1e300.  A
-    singular ``M`` has no unique nearest rotation, yet one is returned; the zero matrix in
-    particular is not refused (it gives the identity; known, issue 16: it should be refused naming
-    ``M``).
+    Domain: any finite (..., 3, 3) (else NonFiniteError or ShapeError), entries up to 1e300, whose
+    nearest rotation is unique; else OutOfDomainError naming ``M`` and the condition.  With
+    singular values s1 ≥ s2 ≥ s3 it is unique unless two of them are zero (s2 = 0: rank ≤ 1, the
+    zero matrix included; every turn about the direction of s1 is equally near), or det M < 0 and
+    s2 = s3 (−1, say; the half turns about any axis in the plane of s2, s3 are equally near); "zero"
+    and "equal" to 8 eps of s1, the rounding of the singular values.
 
     Repairs the drift of long products of rotation matrices.  A matrix whose
-    determinant is not positive has no unique nearest rotation; the result then
-    flips the direction of the smallest singular value (the standard choice).
+    determinant is negative (with s2 > s3) has the rotation that flips the direction of the
+    smallest singular value as its unique nearest rotation.
 
     Notes
     -----
@@ -373,9 +380,25 @@ def nearest_rotation(M) -> np.ndarray:
     brings it to 2 eps (``tests/stability``) and moves Q by a few eps only.
     """
     a = as_float_array(M, "M", (3, 3))
-    U, _, Vt = np.linalg.svd(a)
+    U, s, Vt = np.linalg.svd(a)
     d = np.sign(np.linalg.det(U @ Vt))
     d = np.where(d == 0, 1.0, d)
+    tol = _SINGULAR_RTOL * s[..., 0]
+    rank1 = s[..., 1] <= tol
+    tie = (d < 0) & (s[..., 1] - s[..., 2] <= tol)
+    if np.any(rank1 | tie):
+        i = tuple(int(k) for k in np.argwhere(rank1 | tie)[0]) if rank1.ndim else ()
+        why = (
+            "two of its singular values are zero (rank <= 1: every turn about the remaining "
+            "direction is equally near)"
+            if rank1[i]
+            else "det M < 0 and its two smallest singular values are equal (several half turns "
+            "are equally near)"
+        )
+        raise OutOfDomainError(
+            f"M has no unique nearest rotation: {why}, to {_SINGULAR_RTOL / EPS:.0f} eps of the "
+            f"largest; singular values {s[i].tolist()} at index {i}"
+        )
     U = U.copy()
     U[..., :, 2] *= d[..., None]
     Q = U @ Vt

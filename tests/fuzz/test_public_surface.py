@@ -54,10 +54,6 @@ KNOWN: dict[tuple[str, str], str] = {
         )
         for p in ("m", "J_G", "r_G", "v_G", "omega", "<batch>")
     },
-    ("mechanics.rotation.nearest_rotation", "M"): (
-        "the zero matrix has no nearest rotation (every rotation is equally near), yet one "
-        "is returned; it should be refused naming M"
-    ),
 }
 
 

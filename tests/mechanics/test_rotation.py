@@ -22,7 +22,9 @@ from mechanics import rotation as rot
 from mechanics.errors import (
     MechanicsValueError,
     NonFiniteError,
+    NonPositiveParameterError,
     NotARotationError,
+    OutOfDomainError,
     ShapeError,
     ZeroAxisError,
 )
@@ -550,6 +552,34 @@ def test_nearest_rotation_of_a_reflection_flips_the_smallest_singular_direction(
     assert_allclose(
         rot.nearest_rotation(np.diag([3.0, 2.0, -1.0])), np.eye(3), atol=4 * EPS, rtol=0
     )
+
+
+@pytest.mark.parametrize(
+    ("M", "index", "why"),
+    [
+        pytest.param(np.zeros((3, 3)), r"\(\)", "two of its singular values are zero", id="zero"),
+        pytest.param(1e-300 * np.zeros((3, 3)), r"\(\)", "two of its singular", id="zero-1e-300"),
+        pytest.param(
+            np.outer([1.0, 2.0, 3.0], [0.0, 1.0, 1.0]), r"\(\)", "two of its singular", id="rank-1"
+        ),
+        pytest.param(
+            [np.eye(3), np.zeros((3, 3))], r"\(1,\)", "two of its singular", id="zero-in-batch"
+        ),
+        pytest.param(-np.eye(3), r"\(\)", r"det M < 0 and its two smallest", id="minus-identity"),
+    ],
+)
+def test_nearest_rotation_refuses_a_matrix_without_a_unique_nearest_rotation(M, index, why):
+    with pytest.raises(
+        OutOfDomainError,
+        match=rf"^M has no unique nearest rotation: {why}.*"
+        rf"at index {index}$",
+    ):
+        rot.nearest_rotation(M)
+
+
+def test_nearest_rotation_of_a_rank_2_matrix_is_unique_and_returned():
+    # diag(2, 1, 0): tr(Q^T M) <= 3 with equality only at Q = 1, the nearest rotation
+    assert_allclose(rot.nearest_rotation(np.diag([2.0, 1.0, 0.0])), np.eye(3), atol=4 * EPS, rtol=0)
 
 
 # ---------------------------------------------------------------------- bad input
