@@ -57,7 +57,7 @@ import math
 
 import numpy as np
 
-from ._validate import as_float_array, broadcast_checked
+from ._validate import as_float_array, as_float_scalar, broadcast_checked
 from .errors import NonPositiveParameterError, NotARotationError, OutOfDomainError, ZeroAxisError
 
 __all__ = [
@@ -309,13 +309,22 @@ def _rotation_deviation(R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return dev[..., 0], dev[..., 1]
 
 
+def _atol(atol) -> float:
+    """``atol`` as a finite Python float ≥ 0, else an error naming ``atol``."""
+    v = as_float_scalar(atol, "atol")
+    if not v >= 0:
+        raise NonPositiveParameterError(f"atol must be >= 0 (a tolerance); got {v!r}")
+    return v
+
+
 def check_rotation(R, *, atol: float = ROTATION_ATOL, name: str = "R_A_O") -> np.ndarray:
     """Validate a rotation matrix and return it as a float64 array.
 
     Domain: any finite array of shape (..., 3, 3) (else NonFiniteError or ShapeError); the check is
     the domain test of every function taking a matrix here.  Entries beyond about 1e154 overflow its
-    products to inf and are refused as not a rotation, without a numpy warning.  ``atol`` is used as
-    given (not validated).
+    products to inf and are refused as not a rotation, without a numpy warning.  ``atol`` a finite
+    number ≥ 0 (NaN, inf, a non-number: NonFiniteError or ShapeError; a negative one
+    NonPositiveParameterError, each naming ``atol``).
 
     Raises :class:`~mechanics.errors.NotARotationError` naming the measured
     deviation when max |R Rᵀ − 1| or |det R − 1| exceeds ``atol``.
@@ -327,6 +336,7 @@ def check_rotation(R, *, atol: float = ROTATION_ATOL, name: str = "R_A_O") -> np
     ...
     mechanics.errors.NotARotationError: R_A_O is not a rotation: |det R - 1| = 2 ... a reflection
     """
+    atol = _atol(atol)
     a = as_float_array(R, name, (3, 3))
     ortho, det = _rotation_deviation(a)
     bad = ~((ortho <= atol) & (det <= atol))
@@ -351,8 +361,10 @@ def is_rotation(R, *, atol: float = ROTATION_ATOL) -> np.ndarray:
 
     Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); the answer, a bool
     array (...), is False and never an error for a matrix that is not a rotation, entries beyond
-    1e154 included.
+    1e154 included.  ``atol`` as in :func:`check_rotation`: a finite number ≥ 0, else an error
+    naming it.
     """
+    atol = _atol(atol)
     a = as_float_array(R, "R", (3, 3))
     ortho, det = _rotation_deviation(a)
     return (ortho <= atol) & (det <= atol)
@@ -622,11 +634,12 @@ def _unit_scale_where(mask, a, b):
 def euler_near_gimbal_lock(theta, *, atol: float = 1e-6) -> np.ndarray:
     """True where sin θ < ``atol``: Euler-angle rates are ill-conditioned there.
 
-    Domain: any finite ``theta`` (...) (else NonFiniteError); ``atol`` is used as given (not
-    validated).
+    Domain: any finite ``theta`` (...) (else NonFiniteError); ``atol`` a finite number ≥ 0 (else
+    NonFiniteError, ShapeError or NonPositiveParameterError naming ``atol``).
 
     The default 1e-6 is where (2.69) inverted amplifies a rate error by 1e6.
     """
+    atol = _atol(atol)
     t = as_float_array(theta, "theta")
     return np.abs(np.sin(t)) < atol
 

@@ -936,7 +936,12 @@ _add(
 )
 _add(
     _r + "check_rotation",
-    Entry({"R": R}, {"R": (3, 3)}, bad={"R": _NOTROT}, skip={"atol": ATOL, "name": NAME}),
+    Entry(
+        {"R": R, "atol": 1e-12},
+        {"R": (3, 3)},
+        bad={"R": _NOTROT, "atol": NEG},
+        skip={"name": NAME},
+    ),
 )
 _add(
     _r + "components_A_from_O",
@@ -963,8 +968,8 @@ _add(
     ),
 )
 _add(_r + "euler_from_matrix", Entry({"R_A_O": R}, {"R_A_O": (3, 3)}, bad={"R_A_O": _NOTROT}))
-_add(_r + "euler_near_gimbal_lock", Entry({"theta": 0.3}, skip={"atol": ATOL}))
-_add(_r + "is_rotation", Entry({"R": R}, {"R": (3, 3)}, skip={"atol": ATOL}))
+_add(_r + "euler_near_gimbal_lock", Entry({"theta": 0.3, "atol": 1e-6}, bad={"atol": NEG}))
+_add(_r + "is_rotation", Entry({"R": R, "atol": 1e-12}, {"R": (3, 3)}, bad={"atol": NEG}))
 _add(
     _r + "matrix_from_axis_angle",
     Entry({"axis": Z, "angle": 0.3}, {"axis": (3,)}, bad={"axis": ZERO3}),

@@ -1206,3 +1206,42 @@ def test_no_domain_says_batches_end_in_numpys_bare_value_error():
         (getattr(rot, n).__doc__ or "") for n in rot.__all__ if callable(getattr(rot, n))
     )
     assert "bare ValueError" not in " ".join(text.split())
+
+
+_ATOL_TAKERS = [
+    pytest.param(lambda atol: rot.check_rotation(np.eye(3), atol=atol), id="check_rotation"),
+    pytest.param(lambda atol: rot.is_rotation(np.eye(3), atol=atol), id="is_rotation"),
+    pytest.param(lambda atol: rot.euler_near_gimbal_lock(0.1, atol=atol), id="gimbal_lock"),
+]
+
+
+@pytest.mark.parametrize("call", _ATOL_TAKERS)
+@pytest.mark.parametrize(
+    ("atol", "error", "match"),
+    [
+        pytest.param(np.nan, NonFiniteError, r"^atol must be finite; found nan", id="nan"),
+        pytest.param(np.inf, NonFiniteError, r"^atol must be finite; found inf", id="inf"),
+        pytest.param(
+            -1e-9,
+            NonPositiveParameterError,
+            r"^atol must be >= 0 \(a tolerance\); got -1e-09$",
+            id="negative",
+        ),
+        pytest.param("1e-9", ShapeError, r"^atol has dtype <U4; a real numeric", id="string"),
+        pytest.param(None, ShapeError, r"^atol has dtype object", id="None"),
+        pytest.param([1e-9, 1e-9], ShapeError, r"^atol must be a scalar; got shape", id="array"),
+    ],
+)
+def test_a_tolerance_that_is_not_a_finite_number_ge_0_is_refused_naming_atol(
+    call, atol, error, match
+):
+    with pytest.raises(error, match=match):
+        call(atol)
+
+
+def test_a_zero_tolerance_is_a_valid_exact_test():
+    # the identity is exactly orthogonal; R3(0.3) is not, to the last bit
+    assert_array_equal(rot.check_rotation(np.eye(3), atol=0.0), np.eye(3))
+    assert bool(rot.is_rotation(np.eye(3), atol=0))
+    assert not bool(rot.is_rotation(rot.R3(0.3) * (1 + EPS), atol=0.0))
+    assert not bool(rot.euler_near_gimbal_lock(0.0, atol=0.0))  # |sin 0| < 0 is false
