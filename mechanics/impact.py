@@ -77,6 +77,7 @@ from .errors import (
     RestitutionRangeError,
     ResultOverflowError,
     SeparatingContactError,
+    ShapeError,
     UnknownOptionError,
     ZeroNormalError,
     ZeroTotalMassError,
@@ -112,24 +113,75 @@ DIRECT_ULPS = 2.0
 _SEPARATING = ("raise", "ignore")
 
 
-class RigidBody(NamedTuple):
-    """A free rigid body's state, all vectors in one fixed basis O.
-
-    Domain: a record: it stores what it is given and validates nothing (NaN, inf, strings and None
-    are kept; known, issue 16).  Its fields are validated where it is used, by :func:`rigid_impact`
-    and :func:`normal_relative_velocity`: ``m`` > 0, ``J_G`` positive definite as
-    :func:`~mechanics.inertia.check_inertia`, finite ``r_G``, ``v_G``, ``omega`` (..., 3).
-
-    ``m`` (...), ``J_G`` (..., 3, 3) the inertia tensor about the centre of mass
-    G, ``r_G`` (..., 3) the position of G, ``v_G`` (..., 3) its velocity,
-    ``omega`` (..., 3) the angular velocity.
-    """
-
+class _RigidBodyFields(NamedTuple):
     m: np.ndarray
     J_G: np.ndarray
     r_G: np.ndarray
     v_G: np.ndarray
     omega: np.ndarray
+
+
+class RigidBody(_RigidBodyFields):
+    """A free rigid body's state, all vectors in one fixed basis O.
+
+    Domain: validated when built (``RigidBody(...)``, ``_replace``, ``_make``), each error naming
+    the field: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_G`` positive
+    definite as :func:`~mechanics.inertia.check_inertia` (else NonPhysicalInertiaError), finite
+    ``r_G``, ``v_G``, ``omega`` (..., 3); NaN, inf, strings, ``None`` and wrong shapes raise
+    NonFiniteError or ShapeError.  The batch axes of the fields must broadcast together, else
+    ShapeError listing each field's shape.  The fields are kept as float64 arrays, otherwise as
+    given (``J_G`` is not symmetrised).
+
+    ``m`` (...), ``J_G`` (..., 3, 3) the inertia tensor about the centre of mass
+    G, ``r_G`` (..., 3) the position of G, ``v_G`` (..., 3) its velocity,
+    ``omega`` (..., 3) the angular velocity.  A named tuple: it unpacks as
+    ``m, J_G, r_G, v_G, omega``.
+
+    Examples
+    --------
+    >>> RigidBody(-1.0, np.eye(3), [0, 0, 0], [0, 0, 0], [0, 0, 0])
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.NegativeMassError: m must be >= 0; found -1.0 at index ()
+    """
+
+    __slots__ = ()
+
+    def __new__(cls, m, J_G, r_G, v_G, omega):
+        return tuple.__new__(cls, _body_fields(m, J_G, r_G, v_G, omega, ""))
+
+    @classmethod
+    def _make(cls, iterable):  # namedtuple's own bypasses __new__ (and so would _replace)
+        return cls(*iterable)
+
+
+def _body_fields(m, J_G, r_G, v_G, omega, prefix: str) -> tuple[np.ndarray, ...]:
+    """The validated fields of a :class:`RigidBody`, errors naming ``prefix + field``."""
+    fields = (
+        _check_mass(m, prefix + "m", allow_zero=False),
+        check_inertia(J_G, name=prefix + "J_G"),
+        as_float_array(r_G, prefix + "r_G", (3,)),
+        as_float_array(v_G, prefix + "v_G", (3,)),
+        as_float_array(omega, prefix + "omega", (3,)),
+    )
+    batches = [fields[0].shape, fields[1].shape[:-2], *(f.shape[:-1] for f in fields[2:])]
+    try:
+        np.broadcast_shapes(*batches)
+    except ValueError:
+        shapes = ", ".join(
+            f"{prefix}{name} {f.shape}"
+            for name, f in zip(_RigidBodyFields._fields, fields, strict=True)
+        )
+        raise ShapeError(
+            f"the batch axes of the rigid body's fields do not broadcast: {shapes}"
+        ) from None
+    return fields
+
+
+def _trusted_body(m, J_G, r_G, v_G, omega) -> RigidBody:
+    """A :class:`RigidBody` of fields computed here from validated ones (the bodies after an
+    impact): not checked again (``finite_result`` checks them as a result)."""
+    return tuple.__new__(RigidBody, (m, J_G, r_G, v_G, omega))
 
 
 class RigidImpact(NamedTuple):
@@ -224,8 +276,16 @@ def _unit(n, name: str) -> np.ndarray:
 def _check_inertia(J, name: str) -> np.ndarray:
     """:func:`mechanics.inertia.check_inertia` (positive definite: J⁻¹ is needed),
     returned symmetrised so that the solves below see an exactly symmetric tensor."""
-    a = check_inertia(J, name=name)
-    return 0.5 * (a + np.swapaxes(a, -1, -2))
+    return _symmetrised(check_inertia(J, name=name))
+
+
+def _symmetrised(a: np.ndarray) -> np.ndarray:
+    """(J + Jᵀ)/2, exactly symmetric; halved first where J + Jᵀ would overflow."""
+    with np.errstate(over="ignore"):
+        s = 0.5 * (a + np.swapaxes(a, -1, -2))
+    if not np.isfinite(s).all():
+        s = 0.5 * a + 0.5 * np.swapaxes(a, -1, -2)
+    return s
 
 
 def _first(mask: np.ndarray) -> tuple[int, ...]:
@@ -564,20 +624,19 @@ compression_restitution_impulses = broadcast_checked(compression_restitution_imp
 
 
 def _body(body, name: str) -> RigidBody:
-    if not isinstance(body, RigidBody):
+    """``body`` (a RigidBody, validated when built, or a 5-tuple, validated here with errors
+    naming ``name.field``) with ``J_G`` symmetrised for the solves."""
+    if isinstance(body, RigidBody):
+        m, J, r, v, w = body
+    else:
         try:
-            body = RigidBody(*body)
-        except TypeError:
+            m, J, r, v, w = body
+        except (TypeError, ValueError):
             raise OutOfDomainError(
                 f"{name} must be a RigidBody(m, J_G, r_G, v_G, omega); got {body!r}"
             ) from None
-    return RigidBody(
-        _check_mass(body.m, f"{name}.m", allow_zero=False),
-        _check_inertia(body.J_G, f"{name}.J_G"),
-        as_float_array(body.r_G, f"{name}.r_G", (3,)),
-        as_float_array(body.v_G, f"{name}.v_G", (3,)),
-        as_float_array(body.omega, f"{name}.omega", (3,)),
-    )
+        m, J, r, v, w = _body_fields(m, J, r, v, w, f"{name}.")
+    return _trusted_body(m, _symmetrised(J), r, v, w)
 
 
 def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -781,10 +840,14 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
     S = np.where(approach, -(1.0 + ee) * mu * v_n, 0.0)
     Q = np.where(approach, 0.5 * mu * ((1.0 - ee) * (1.0 + ee)) * v_n * v_n, 0.0)
     P = S[..., None] * nn  # the impulse vector on body 1
-    new_1 = b1._replace(v_G=b1.v_G + P / b1.m[..., None], omega=b1.omega + S[..., None] * x1)
+    new_1 = _trusted_body(
+        b1.m, b1.J_G, b1.r_G, b1.v_G + P / b1.m[..., None], b1.omega + S[..., None] * x1
+    )
     new_2 = None
     if b2 is not None:
-        new_2 = b2._replace(v_G=b2.v_G - P / b2.m[..., None], omega=b2.omega - S[..., None] * x2)
+        new_2 = _trusted_body(
+            b2.m, b2.J_G, b2.r_G, b2.v_G - P / b2.m[..., None], b2.omega - S[..., None] * x2
+        )
     return RigidImpact(S[()], mu[()], v_n[()], Q[()], new_1, new_2)
 
 

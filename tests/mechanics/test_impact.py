@@ -7,6 +7,7 @@ to each), never copied from the code under test.
 from __future__ import annotations
 
 import math
+import pickle
 import re
 from fractions import Fraction
 
@@ -311,8 +312,10 @@ def test_rigid_separating_contact_raises_or_is_ignored():
     ],
 )
 def test_non_physical_inertia_tensor_raises_naming_the_condition(J, match):
-    body = im.RigidBody(1.0, J, np.zeros(3), np.zeros(3), np.zeros(3))
-    with pytest.raises(NonPhysicalInertiaError, match=match):
+    with pytest.raises(NonPhysicalInertiaError, match=rf"^J_G .*{match}"):
+        im.RigidBody(1.0, J, np.zeros(3), np.zeros(3), np.zeros(3))
+    body = (1.0, J, np.zeros(3), np.zeros(3), np.zeros(3))  # a 5-tuple: validated by the call
+    with pytest.raises(NonPhysicalInertiaError, match=rf"^body_1\.J_G .*{match}"):
         im.rigid_impact(body, None, r_S=[0, 0, -1.0], n=[0, 0, 1], e=0.5)
     with pytest.raises(NonPhysicalInertiaError, match="J_1"):
         im.effective_mass(1.0, J, [0, 0, 1.0], [1, 0, 0])
@@ -330,11 +333,13 @@ def test_zero_normal_and_zero_mass_raise():
     ball = _sphere(1.0, [0, 0, 1.0], v_G=[0.0, 0, -3.0])
     with pytest.raises(ZeroNormalError, match=r"n must be a non-zero vector; found \[0.0, 0.0"):
         im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 0], e=0.5)
-    massless = ball._replace(m=0.0)
+    with pytest.raises(NonPositiveParameterError, match=r"^m must be > 0 for a rigid body"):
+        ball._replace(m=0.0)  # a RigidBody is validated when built
+    massless = (0.0, *ball[1:])  # a 5-tuple is validated by the call
     with pytest.raises(NonPositiveParameterError, match=re.escape("body_1.m must be > 0")):
         im.rigid_impact(massless, None, r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
     with pytest.raises(NegativeMassError, match=re.escape("body_2.m")):
-        im.rigid_impact(ball, ball._replace(m=-1.0), r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
+        im.rigid_impact(ball, (-1.0, *ball[1:]), r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
     with pytest.raises(RestitutionRangeError):
         im.rigid_impact(ball, None, r_S=[0, 0, 0], n=[0, 0, 1], e=1.5)
 
@@ -753,6 +758,14 @@ def _ball(**kw):
     return im.RigidBody(**fields)
 
 
+def _ball_tuple(**kw):
+    """The fields of :func:`_ball` as a plain 5-tuple: validated by the function it is given
+    to, whose errors name ``body_1.field``."""
+    fields = dict(m=1.0, J_G=0.4 * np.eye(3), r_G=[0, 0, 1.0], v_G=[0, 0, -1.0], omega=[0, 0, 0.0])
+    fields.update(kw)
+    return tuple(fields[k] for k in ("m", "J_G", "r_G", "v_G", "omega"))
+
+
 _RIGID_KW = dict(r_S=[0, 0, 0.0], n=[0, 0, 1.0])
 
 
@@ -838,19 +851,21 @@ _RIGID_KW = dict(r_S=[0, 0, 0.0], n=[0, 0, 1.0])
             id="effective-r2-shape",
         ),
         pytest.param(
-            lambda: im.normal_relative_velocity(_ball(r_G=[0, 1.0]), None, **_RIGID_KW),
+            lambda: im.normal_relative_velocity(_ball_tuple(r_G=[0, 1.0]), None, **_RIGID_KW),
             ShapeError,
             r"^body_1\.r_G has shape \(2,\)",
             id="nrv-body1-r_G",
         ),
         pytest.param(
-            lambda: im.normal_relative_velocity(_ball(), _ball(v_G=[0, 1.0]), **_RIGID_KW),
+            lambda: im.normal_relative_velocity(_ball(), _ball_tuple(v_G=[0, 1.0]), **_RIGID_KW),
             ShapeError,
             r"^body_2\.v_G has shape \(2,\)",
             id="nrv-body2-v_G",
         ),
         pytest.param(
-            lambda: im.normal_relative_velocity(_ball(omega=[0, np.nan, 0]), None, **_RIGID_KW),
+            lambda: im.normal_relative_velocity(
+                _ball_tuple(omega=[0, np.nan, 0]), None, **_RIGID_KW
+            ),
             NonFiniteError,
             r"^body_1\.omega must be finite",
             id="nrv-omega-nan",
@@ -967,7 +982,7 @@ def test_effective_mass_broadcasts_one_contact_over_a_batch_of_tensors():
         ),
         pytest.param(
             lambda: im.rigid_impact(
-                _ball(J_G=np.diag([1.0, 1.0, 3.0])), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
+                _ball_tuple(J_G=np.diag([1.0, 1.0, 3.0])), None, r_S=[0, 0, 0], n=[0, 0, 1.0], e=0.5
             ),
             NonPhysicalInertiaError,
             r"^body_1\.J_G ",
@@ -975,7 +990,7 @@ def test_effective_mass_broadcasts_one_contact_over_a_batch_of_tensors():
         ),
         pytest.param(
             lambda: im.rigid_impact(
-                _ball(omega=[0, 1.0]), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
+                _ball_tuple(omega=[0, 1.0]), None, r_S=[0, 0, 0.0], n=[0, 0, 1.0], e=0.5
             ),
             ShapeError,
             r"^body_1\.omega has shape \(2,\)",
@@ -1057,3 +1072,68 @@ def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
 def test_no_domain_says_batches_end_in_numpys_bare_value_error():
     text = " ".join((getattr(im, n).__doc__ or "") for n in im.__all__ if n != "DIRECT_ULPS")
     assert "bare ValueError" not in " ".join(text.split())
+
+
+_FIELDS = dict(
+    m=2.0, J_G=np.diag([1.0, 2.0, 2.5]), r_G=[0.1, 0, 0], v_G=[0, 0, -1.0], omega=[0] * 3
+)
+
+
+@pytest.mark.parametrize("field", list(_FIELDS))
+@pytest.mark.parametrize(
+    ("bad", "error", "match"),
+    [
+        pytest.param(np.nan, NonFiniteError, "must be finite; found nan", id="nan"),
+        pytest.param(np.inf, NonFiniteError, "must be finite; found inf", id="inf"),
+        pytest.param("1.0", ShapeError, "has dtype <U3; a real numeric array", id="string"),
+        pytest.param(None, ShapeError, "has dtype object; a real numeric array", id="None"),
+    ],
+)
+def test_a_rigid_body_is_validated_when_built_naming_the_field(field, bad, error, match):
+    v = np.array(_FIELDS[field], dtype=float)
+    value = bad if isinstance(bad, str) or bad is None else np.where(v == v.flat[0], bad, v)
+    with pytest.raises(error, match=rf"^{field} {match}"):
+        im.RigidBody(**(_FIELDS | {field: value}))
+
+
+@pytest.mark.parametrize(
+    ("kw", "error", "match"),
+    [
+        pytest.param({"m": 0.0}, NonPositiveParameterError, r"^m must be > 0", id="zero-m"),
+        pytest.param({"m": -1.0}, NegativeMassError, r"^m must be >= 0", id="negative-m"),
+        pytest.param(
+            {"J_G": np.diag([1.0, 1.0, 3.0])}, NonPhysicalInertiaError, r"^J_G ", id="J_G-triangle"
+        ),
+        pytest.param({"v_G": [0, 1.0]}, ShapeError, r"^v_G has shape \(2,\)", id="v_G-shape"),
+        pytest.param(
+            {"m": [1.0, 1.0], "omega": np.zeros((3, 3))},
+            ShapeError,
+            r"^the batch axes of the rigid body's fields do not broadcast: m \(2,\), "
+            r"J_G \(3, 3\), r_G \(3,\), v_G \(3,\), omega \(3, 3\)$",
+            id="batches-2-against-3",
+        ),
+    ],
+)
+def test_a_rigid_body_refuses_unphysical_fields_and_batches_that_do_not_broadcast(kw, error, match):
+    with pytest.raises(error, match=match):
+        im.RigidBody(**(_FIELDS | kw))
+    good = im.RigidBody(**_FIELDS)
+    with pytest.raises(error, match=match):
+        good._replace(**kw)  # namedtuple's _replace goes through the same checks
+    with pytest.raises(error, match=match):
+        im.RigidBody._make((_FIELDS | kw).values())
+
+
+def test_a_rigid_body_keeps_its_fields_as_float64_arrays_and_unpacks_as_a_tuple():
+    b = im.RigidBody(2, [[1, 0, 0], [0, 2, 0], [0, 0, 3]], [1, 2, 3], [0, 0, -1], [0, 1, 0])
+    m, J, r, v, w = b
+    assert all(isinstance(f, np.ndarray) and f.dtype == np.float64 for f in b)
+    assert m == 2.0
+    assert r.tolist() == [1.0, 2.0, 3.0]
+    assert w.tolist() == [0.0, 1.0, 0.0]
+    assert_equal = np.testing.assert_array_equal
+    assert_equal(J, np.diag([1.0, 2.0, 3.0]))
+    assert_equal(v, [0.0, 0.0, -1.0])
+    assert_equal(pickle.loads(pickle.dumps(b)).J_G, J)
+    # a batch of bodies that broadcasts: one tensor for three velocities
+    assert im.RigidBody(1.0, np.eye(3), [0, 0, 0], np.zeros((3, 3)), [0, 0, 0]).v_G.shape == (3, 3)
