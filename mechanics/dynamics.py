@@ -244,8 +244,8 @@ def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
     """φ̈ = M_z / J_z for rotation about a fixed axis (the z-component of (4.42); (4.48)).
 
     Domain: ``J_axis`` > 0 (else NonPositiveParameterError), any finite ``M_axis``, broadcast
-    together (else ShapeError listing each argument's shape).  The quotient is
-    not checked: M_z/J_z beyond float64 (1e300/1e-300) is inf with a numpy RuntimeWarning.
+    together (else ShapeError listing each argument's shape).  A quotient beyond float64
+    (1e300/1e-300) raises ResultOverflowError.
 
     Examples
     --------
@@ -260,7 +260,7 @@ def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
     return Mz / J
 
 
-fixed_axis_angular_acceleration = broadcast_checked(fixed_axis_angular_acceleration)
+fixed_axis_angular_acceleration = finite_result(fixed_axis_angular_acceleration)
 
 
 # --------------------------------------------------------- the physical pendulum
@@ -274,12 +274,32 @@ def _pendulum(J_axis, m, g, h):
     return J, mm, gg, hh
 
 
+def _split(*xs):
+    """Each x as (f, e) with x = f 2**e, f in [1/2, 1) (exact)."""
+    return [np.frexp(x) for x in xs]
+
+
+def _omega0_squared(J, m, g, h):
+    """ω0² = m g h/J_z (4.51) as (q, e), ω0² = q 2**e: q = (m' g' h')/J' of the mantissas,
+    the same roundings as the plain quotient, with the powers of two carried apart (exactly),
+    so that no intermediate overflows or underflows (q lies in (1/8, 2))."""
+    (fJ, eJ), (fm, em), (fg, eg), (fh, eh) = _split(J, m, g, h)
+    return (fm * fg) * fh / fJ, em + eg + eh - eJ
+
+
+def _sqrt_parts(q, e):
+    """√(q 2**e) as (s, k), = s 2**k with s = √(q 2**(e mod 2)): the exponent halved exactly."""
+    k, odd = np.divmod(e, 2)
+    return np.sqrt(np.ldexp(q, odd)), k
+
+
 def reduced_length(J_axis, m, h) -> np.ndarray:
     """The reduced length ℓ = J_z/(m h) of a physical pendulum (4.49).
 
     Domain: ``J_axis``, ``m``, ``h`` > 0 (else NonPositiveParameterError naming it), broadcast
-    together (else ShapeError listing each argument's shape).  Not checked for overflow: a quotient
-    beyond float64 (or m h underflowing to 0) gives inf with a numpy RuntimeWarning.
+    together (else ShapeError listing each argument's shape).  Any magnitudes: the powers of two
+    are carried apart, so m h cannot overflow or underflow on the way; an ℓ beyond float64
+    (1e300/(1e-300 · 1)) raises ResultOverflowError.
 
     Examples
     --------
@@ -288,23 +308,28 @@ def reduced_length(J_axis, m, h) -> np.ndarray:
     >>> float(reduced_length(1.0 / 3.0, 1.0, 0.5)), 2.0 / 3.0
     (0.6666666666666666, 0.6666666666666666)
     """
-    return _positive(J_axis, "J_axis") / (_positive(m, "m") * _positive(h, "h"))
+    (fJ, eJ), (fm, em), (fh, eh) = _split(
+        _positive(J_axis, "J_axis"), _positive(m, "m"), _positive(h, "h")
+    )
+    return np.ldexp(fJ / (fm * fh), eJ - em - eh)
 
 
-reduced_length = broadcast_checked(reduced_length)
+reduced_length = finite_result(reduced_length)
 
 
 def _omega0(J, m, g, h):
-    return np.sqrt((m * g * h) / J)
+    s, k = _sqrt_parts(*_omega0_squared(J, m, g, h))
+    return np.ldexp(s, k)
 
 
 def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
     """Small-oscillation period T_p = 2π √(J_z/(m g h)) = 2π √(ℓ/g) (4.51)–(4.52).
 
     Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError naming it),
-    broadcast together (else ShapeError listing each argument's shape); while m g h/J_z neither
-    overflows nor underflows: at the extremes (1e-300 and 1e300 mixed) the period is 0 or inf with a
-    numpy RuntimeWarning, not an error.
+    broadcast together (else ShapeError listing each argument's shape).  Any magnitudes (1e-300
+    and 1e300 mixed): m g h/J_z is formed with its powers of two apart, so nothing overflows or
+    underflows on the way; a period beyond float64 raises ResultOverflowError (one below the
+    subnormals is 0, its rounded value).
 
     ``h`` is the distance from the axis to G (the book's h).
 
@@ -318,10 +343,11 @@ def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
     True
     """
     J, mm, gg, hh = _pendulum(J_axis, m, g, h)
-    return 2.0 * np.pi / _omega0(J, mm, gg, hh)
+    s, k = _sqrt_parts(*_omega0_squared(J, mm, gg, hh))
+    return np.ldexp(2.0 * np.pi / s, -k)
 
 
-pendulum_small_period = broadcast_checked(pendulum_small_period)
+pendulum_small_period = finite_result(pendulum_small_period)
 
 
 def _half_angle_sin_cos(theta_0) -> tuple[np.ndarray, np.ndarray]:
@@ -349,9 +375,9 @@ def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
     """Exact period T = 4 K(k²)/ω0 of a physical pendulum with amplitude θ0 (from (4.50)).
 
     Domain: as :func:`pendulum_small_period` for ``J_axis``, ``m``, ``g``, ``h`` (> 0, else
-    NonPositiveParameterError; at over- or underflowing m g h/J_z the result is 0 or inf with a
-    numpy warning), and ``theta_0`` in [−π, π] (else OutOfDomainError); |θ0| = fl(π) gives a finite
-    period.
+    NonPositiveParameterError; any magnitudes, a period beyond float64 raising
+    ResultOverflowError), and ``theta_0`` in [−π, π] (else OutOfDomainError); |θ0| = fl(π) gives a
+    finite period.
 
     k = sin(θ0/2), ω0 = √(m g h/J_z) (4.51).  K is evaluated as
     ``scipy.special.ellipkm1(k'²)`` with the complementary parameter
@@ -378,10 +404,11 @@ def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
     t0 = _amplitude(theta_0)
     _, kp = _half_angle_sin_cos(t0)
     K = special.ellipkm1(kp * kp)
-    return 4.0 * K / _omega0(J, mm, gg, hh)
+    s, k = _sqrt_parts(*_omega0_squared(J, mm, gg, hh))
+    return np.ldexp(4.0 * K / s, -k)
 
 
-pendulum_period = broadcast_checked(pendulum_period)
+pendulum_period = finite_result(pendulum_period)
 
 
 def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
@@ -389,8 +416,9 @@ def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
 
     Domain: ``J_axis``, ``m``, ``g``, ``h``, ``theta_0`` as :func:`pendulum_period` (> 0, else
     NonPositiveParameterError; |θ0| ≤ π, else OutOfDomainError) and any finite ``t``, all broadcast
-    together (else ShapeError listing each argument's shape).  The phase ω0 t is not checked: beyond
-    float64 it overflows with a numpy RuntimeWarning; the error grows like eps·|ω0 t|.
+    together (else ShapeError listing each argument's shape).  ω0 is formed without intermediate
+    overflow (as in :func:`pendulum_small_period`); a phase ω0 t beyond float64 raises
+    ResultOverflowError.  The error grows like eps·|ω0 t|.
 
     sin(φ/2) = k cd(ω0 t | k²), k = sin(θ0/2), written without the arcsine as
     tan(φ/2) = k cn(ω0 t | k²)/k' (since dn² − k² cn² = k'²), with
@@ -427,22 +455,29 @@ def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
     from .elliptic import ellipj  # lazy: keeps ``import mechanics.dynamics`` light
 
     k, kp = _half_angle_sin_cos(t0)
-    u = _omega0(J, mm, gg, hh) * tt
+    with np.errstate(over="ignore"):
+        u = _omega0(J, mm, gg, hh) * tt
+    if not np.isfinite(u).all():
+        raise ResultOverflowError(
+            "pendulum_motion: the phase omega0 t = sqrt(m g h/J_axis) t exceeds float64's range "
+            "(~1.8e308); rescale the inputs (choose units)"
+        )
     _, cn, _, _ = ellipj(u, k * k, m1=kp * kp)
     phi = 2.0 * np.arctan2(k * cn, kp)
     return np.where(t0 < 0, -phi, phi)
 
 
-pendulum_motion = broadcast_checked(pendulum_motion)
+pendulum_motion = finite_result(pendulum_motion)
 
 
 def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
     """|φ̇| at angle φ = ``theta`` for a pendulum released from rest at θ0, by energy (4.57).
 
     Domain: as :func:`pendulum_period` (> 0, else NonPositiveParameterError; |θ0| ≤ π, else
-    OutOfDomainError), with a finite ``theta`` of |θ| ≤ |θ0| (else OutOfDomainError).  Not checked
-    for overflow: 4 m g h/J_z beyond float64 is inf with a numpy RuntimeWarning; batches that do not
-    broadcast (2 against 3) raise ShapeError listing each argument's shape.
+    OutOfDomainError), with a finite ``theta`` of |θ| ≤ |θ0| (else OutOfDomainError).  Any
+    magnitudes: 4 m g h/J_z is formed with its powers of two apart, so nothing overflows on the
+    way; a |φ̇| beyond float64 raises ResultOverflowError.  Batches that do not broadcast (2
+    against 3) raise ShapeError listing each argument's shape.
 
     φ̇² = (2 m g h/J_z)(cos φ − cos θ0) = (4 m g h/J_z)(s0 − s)(s0 + s), with
     s = sin(|φ|/2), s0 = sin(|θ0|/2): the difference of cosines without
@@ -476,10 +511,12 @@ def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
         )
     s = np.sin(0.5 * np.abs(th))
     s0 = np.sin(0.5 * np.abs(t0))
-    return np.sqrt((4.0 * mm * gg * hh / J) * np.maximum((s0 - s) * (s0 + s), 0.0))
+    q, e = _omega0_squared(J, mm, gg, hh)
+    r, k = _sqrt_parts((4.0 * q) * np.maximum((s0 - s) * (s0 + s), 0.0), e)
+    return np.ldexp(r, k)
 
 
-pendulum_angular_velocity_at = broadcast_checked(pendulum_angular_velocity_at)
+pendulum_angular_velocity_at = finite_result(pendulum_angular_velocity_at)
 
 
 # ---------------------------------------------------------------------- reactions
@@ -536,9 +573,10 @@ def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
     """Axis reaction of the physical pendulum as a function of φ and E (4.76)–(4.77).
 
     Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError), any finite ``phi``
-    and an energy ``E`` ≥ m g h (1 − cos φ) to 8 eps (else OutOfDomainError).  Not checked for
-    overflow: products beyond float64 (parameters near 1e300) are inf with a numpy RuntimeWarning;
-    batches that do not broadcast (2 against 3) raise ShapeError listing each argument's shape.
+    and an energy ``E`` ≥ m g h (1 − cos φ) to 8 eps (else OutOfDomainError).  Products beyond
+    float64 on the way (parameters near 1e300, or 1e300 and 1e-300 mixed) raise
+    ResultOverflowError, even where the exact reaction would be representable; batches that do not
+    broadcast (2 against 3) raise ShapeError listing each argument's shape.
 
     R_ρ = (2 m h/J_z)(m g h − E) − (1 + 2 m h²/J_z) m g cos φ,
     R_φ = (1 − m h²/J_z) m g sin φ, with E of (4.74).  No small-amplitude
@@ -572,7 +610,7 @@ def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
     return np.stack(np.broadcast_arrays(R_rho, R_phi), axis=-1)
 
 
-pendulum_axis_reaction = broadcast_checked(pendulum_axis_reaction)
+pendulum_axis_reaction = finite_result(pendulum_axis_reaction)
 
 
 def bearing_reactions(

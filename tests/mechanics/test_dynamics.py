@@ -735,3 +735,81 @@ def test_no_domain_says_batches_end_in_numpys_bare_value_error():
     failure."""
     text = " ".join((getattr(D, n).__doc__ or "").replace("\n", " ") for n in D.__all__)
     assert "bare ValueError" not in " ".join(text.split())
+
+
+#: (J_axis, m, g, h) whose m g h (or m h) underflows and whose J/(m g h) overflows on the way,
+#: while every result below is representable: the powers of two 2^-600, 2^-300, 2^-800
+_TINY = (3.7 * 2.0**-600, 1.3 * 2.0**-300, 9.81, 0.9 * 2.0**-800)
+_UNIT = (3.7, 1.3, 9.81, 0.9)
+
+
+def test_reduced_length_of_mixed_magnitudes_is_that_of_the_mantissas_times_a_power_of_two():
+    J, m, _, h = _TINY
+    # exact route: l = (3.7/(1.3 0.9)) 2^(-600 + 300 + 800) = l(3.7, 1.3, 0.9) 2^500, bit for bit
+    assert D.reduced_length(J, m, h) == np.ldexp(D.reduced_length(3.7, 1.3, 0.9), 500)
+
+
+@pytest.mark.parametrize(
+    ("f", "extra", "power"),
+    [
+        pytest.param(D.pendulum_small_period, (), 250, id="small-period"),
+        pytest.param(D.pendulum_period, (2.5,), 250, id="period"),
+        pytest.param(lambda *a: D.pendulum_angular_velocity_at(0.3, *a), (2.5,), -250, id="phidot"),
+    ],
+)
+def test_pendulum_of_mixed_magnitudes_scales_by_the_exact_power_of_two(f, extra, power):
+    """J/(m g h) = (3.7/(1.3 · 9.81 · 0.9)) 2^500 exactly: periods scale by 2^250 and φ̇ by
+    2^-250, bit for bit (the plain formula underflowed m g h to 0: period inf, φ̇ 0)."""
+    assert f(*_TINY, *extra) == np.ldexp(f(*_UNIT, *extra), power)
+
+
+def test_the_pendulums_phase_is_exact_for_mixed_magnitudes():
+    # ω0 t with ω0 = ω0(unit) 2^-250 and t = t_unit 2^250: the same phase, the same angle
+    t = np.array([0.1, 0.7, 2.0])
+    phi = D.pendulum_motion(np.ldexp(t, 250), *_TINY, 2.5)
+    np.testing.assert_array_equal(phi, D.pendulum_motion(t, *_UNIT, 2.5))
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        pytest.param(
+            lambda: D.pendulum_small_period(1e300, 1e-300, 1e-300, 1e-300),
+            r"^pendulum_small_period: the result is not finite",
+            id="period-1e600",
+        ),
+        pytest.param(
+            lambda: D.pendulum_period(1e300, 1e-300, 1e-300, 1e-300, 0.5),
+            r"^pendulum_period: the result is not finite",
+            id="exact-period-1e600",
+        ),
+        pytest.param(
+            lambda: D.pendulum_angular_velocity_at(0.0, 1e-300, 1e300, 1e300, 1.0, 0.5),
+            r"^pendulum_angular_velocity_at: the result is not finite",
+            id="phidot-1e450",
+        ),
+        pytest.param(
+            lambda: D.pendulum_motion(1e300, 1e-300, 1.0, 9.81, 1.0, 0.5),
+            r"^pendulum_motion: the phase omega0 t = sqrt\(m g h/J_axis\) t exceeds float64",
+            id="phase-1e450",
+        ),
+        pytest.param(
+            lambda: D.reduced_length(1e300, 1e-300, 1.0),
+            r"^reduced_length: the result is not finite",
+            id="reduced-length-1e600",
+        ),
+        pytest.param(
+            lambda: D.fixed_axis_angular_acceleration(1e-300, 1e300),
+            r"^fixed_axis_angular_acceleration: the result is not finite",
+            id="phiddot-1e600",
+        ),
+        pytest.param(
+            lambda: D.pendulum_axis_reaction(1e-300, 1.0, 1e300, 9.81, 1e300, E=1e300),
+            r"^pendulum_axis_reaction: the result is not finite",
+            id="reaction-m-h-1e300",
+        ),
+    ],
+)
+def test_a_result_beyond_float64_is_a_result_overflow_error_not_a_warning(call, match):
+    with pytest.raises(_overflow_error(), match=match):
+        call()
