@@ -292,6 +292,22 @@ def _first(mask: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0])
 
 
+def _batches(what: str, **shapes: tuple[int, ...]) -> tuple[int, ...]:
+    """The common batch shape of the named arguments' batch axes (a body's: of all its
+    fields), else a ShapeError listing each one."""
+    try:
+        return np.broadcast_shapes(*shapes.values())
+    except ValueError:
+        listed = ", ".join(f"{k} {v}" for k, v in shapes.items())
+        raise ShapeError(
+            f"{what}: the batch axes of the arguments do not broadcast: {listed}"
+        ) from None
+
+
+def _body_batch(b: RigidBody) -> tuple[int, ...]:
+    return np.broadcast_shapes(b.m.shape, b.J_G.shape[:-2], *(f.shape[:-1] for f in b[2:]))
+
+
 def _separation(v_n: np.ndarray, separating: str, scale=None) -> np.ndarray:
     """The mask of approaching-or-grazing contacts; raise on separating ones if asked.
 
@@ -735,9 +751,9 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
 
     Domain: bodies given as :class:`RigidBody` or 5-tuples (else OutOfDomainError), validated: ``m``
     > 0, ``J_G`` positive definite (NonPhysicalInertiaError), finite (..., 3) vectors; ``r_S``
-    finite (..., 3), ``n`` non-zero (else ZeroNormalError).  Not checked for overflow: ω × (r_S −
-    r_G) beyond float64 is inf or NaN with a numpy RuntimeWarning; batches that do not broadcast
-    raise ShapeError listing each argument's shape.
+    finite (..., 3), ``n`` non-zero (else ZeroNormalError).  A v_n beyond float64 (ω × (r_S − r_G)
+    with both near 1e300) raises ResultOverflowError; batches that do not broadcast raise ShapeError
+    listing each argument's batch shape (a body's: that of its fields together).
 
     Examples
     --------
@@ -748,15 +764,18 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
     -2.0
     """
     b1 = _body(body_1, "body_1")
+    b2 = None if body_2 is None else _body(body_2, "body_2")
     rS = as_float_array(r_S, "r_S", (3,))
     nn = _unit(n, "n")
+    bodies = {"body_1": _body_batch(b1)} | ({} if b2 is None else {"body_2": _body_batch(b2)})
+    _batches("normal_relative_velocity", **bodies, r_S=rS.shape[:-1], n=nn.shape[:-1])
     rel = _contact_velocity(b1, rS)
-    if body_2 is not None:
-        rel = rel - _contact_velocity(_body(body_2, "body_2"), rS)
+    if b2 is not None:
+        rel = rel - _contact_velocity(b2, rS)
     return _dot(nn, rel)[()]
 
 
-normal_relative_velocity = broadcast_checked(normal_relative_velocity)
+normal_relative_velocity = finite_result(normal_relative_velocity)
 
 
 def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -> RigidImpact:
@@ -766,9 +785,10 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
     OutOfDomainError; ``m`` > 0, ``J_G`` positive definite, finite vectors), ``r_S`` finite (...,
     3), ``n`` non-zero (else ZeroNormalError), ``e`` in [0, 1] (else RestitutionRangeError),
     ``separating`` 'raise' (SeparatingContactError where v_n > 0) or 'ignore' (else
-    UnknownOptionError).  Not checked for overflow: velocities or arms near 1e300 to 1e308 give inf
-    or NaN with a numpy RuntimeWarning; batches that do not broadcast raise ShapeError listing each
-    argument's shape.
+    UnknownOptionError).  A result beyond float64 on the way (velocities or arms near 1e300, or
+    1e300 and 1e-300 mixed) raises ResultOverflowError, never inf, NaN or a numpy warning; batches
+    that do not broadcast raise ShapeError listing each argument's batch shape (a body's: that of
+    its fields together).
 
     The impulse S n at the contact point r_S changes the momenta by (6.19) and
     the angular momenta about the centres of mass by (6.21):
@@ -823,6 +843,8 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
     rS = as_float_array(r_S, "r_S", (3,))
     nn = _unit(n, "n")
     ee = _check_e(e)
+    bodies = {"body_1": _body_batch(b1)} | ({} if b2 is None else {"body_2": _body_batch(b2)})
+    _batches("rigid_impact", **bodies, r_S=rS.shape[:-1], n=nn.shape[:-1], e=ee.shape)
     # x_k = J_k⁻¹ (r_k × n): one solve per body serves μ and the new ω (the
     # impulse S n has the moment r_k × S n = S u_k).
     u1 = np.cross(rS - b1.r_G, nn)
@@ -836,6 +858,11 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
         rel = rel - _contact_velocity(b2, rS)
     mu = 1.0 / inv
     v_n = _dot(nn, rel)
+    if not np.isfinite(v_n).all():  # before the sign test: an inf v_n is no separation
+        raise ResultOverflowError(
+            "rigid_impact: the normal relative velocity v_n exceeds float64's range (~1.8e308) "
+            "for these finite inputs; rescale the inputs (choose units)"
+        )
     approach = _separation(v_n, separating)
     S = np.where(approach, -(1.0 + ee) * mu * v_n, 0.0)
     Q = np.where(approach, 0.5 * mu * ((1.0 - ee) * (1.0 + ee)) * v_n * v_n, 0.0)
@@ -851,7 +878,7 @@ def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -
     return RigidImpact(S[()], mu[()], v_n[()], Q[()], new_1, new_2)
 
 
-rigid_impact = broadcast_checked(rigid_impact)
+rigid_impact = finite_result(rigid_impact)
 
 
 # ------------------------------------------------------------ hinged body
@@ -917,10 +944,10 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive
     definite (else NonPhysicalInertiaError), finite ``r_G``, ``axis_point``, ``r_P``, ``S_P`` (...,
     3) and ``omega``, a non-zero ``axis`` (else ZeroNormalError); ``bearings`` two finite axial
-    positions, different (else OutOfDomainError).  Not checked for overflow: AP × S_P beyond float64
-    (both near 1e300) is inf with a numpy RuntimeWarning; batches of ``m`` and ``J_A`` that do not
-    broadcast raise ShapeError listing each argument's shape (those of ``omega`` against the vectors
-    are not checked).
+    positions, different (else OutOfDomainError).  A result beyond float64 on the way (AP × S_P
+    with both near 1e300, a moment over a J_a near 1e-300) raises ResultOverflowError; batches that
+    do not broadcast (``omega`` against the vectors included) raise ShapeError listing each
+    argument's batch shape.
 
     The angular momentum about the axis (6.21) gives J_a Δω = a·(AP × S_P), so
     ω' = ω + a·(AP × S_P)/J_a; the momentum principle (6.19) for the whole body,
@@ -975,6 +1002,17 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
     w = as_float_array(omega, "omega")
     AP = as_float_array(r_P, "r_P", (3,)) - A
     S = as_float_array(S_P, "S_P", (3,))
+    _batches(
+        "hinged_impact",
+        m=mm.shape,
+        J_A=J.shape[:-2],
+        r_G=AG.shape[:-1],
+        axis_point=A.shape[:-1],
+        axis=a.shape[:-1],
+        omega=w.shape,
+        r_P=AP.shape[:-1],
+        S_P=S.shape[:-1],
+    )
     moment = np.cross(AP, S)
     dw = _dot(a, moment) / J_aa
     S_axis = (mm * dw)[..., None] * np.cross(a, AG) - S
@@ -1002,7 +1040,7 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
     return HingedImpact((w + dw)[()], S_axis, M_axis, S_bearings)
 
 
-hinged_impact = broadcast_checked(hinged_impact)
+hinged_impact = finite_result(hinged_impact)
 
 
 def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion:
@@ -1011,9 +1049,9 @@ def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive
     definite (else NonPhysicalInertiaError), finite ``r_G`` and ``axis_point`` (..., 3), a non-zero
     ``axis`` (else ZeroNormalError), G off the axis by more than 4 eps of |AG| (else
-    OutOfDomainError).  ``r_G`` beyond about 1e154 overflows |AG|² and is refused as if G lay on the
-    axis (known, issue 16); batches that do not broadcast raise ShapeError listing each argument's
-    shape.
+    OutOfDomainError).  Any distance |AG| (scaled by a power of two for the distance h, which so
+    cannot overflow); a point beyond float64 raises ResultOverflowError; batches that do not
+    broadcast raise ShapeError listing each argument's shape.
 
     Let a be the unit axis, h > 0 the distance of G from the axis, û the unit
     vector from the axis to G perpendicular to it, b = a × û, and J_xz = ûᵀ J_A a,
@@ -1046,21 +1084,24 @@ def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion
     """
     mm = _check_mass(m, "m", allow_zero=False)
     J, AG, A, a, J_aa = _hinge(J_A, r_G, axis_point, axis)
-    perp = AG - _dot(AG, a)[..., None] * a
-    h = np.sqrt(_dot(perp, perp))
-    scale = np.sqrt(_dot(AG, AG))
-    on_axis = h <= 4 * EPS * scale  # G within rounding of the axis
+    # |AG|² overflows beyond 1e154: work on AG/2**k, its largest component in [1/2, 1)
+    _, k = np.frexp(np.abs(AG).max(axis=-1))
+    AGs = np.ldexp(AG, -k[..., None])
+    perp_s = AGs - _dot(AGs, a)[..., None] * a
+    h_s = np.sqrt(_dot(perp_s, perp_s))
+    on_axis = h_s <= 4 * EPS * np.sqrt(_dot(AGs, AGs))  # G within rounding of the axis
+    h = np.ldexp(h_s, k)
     if np.any(on_axis):
         idx = _first(on_axis) if on_axis.ndim else ()
         raise OutOfDomainError(
             f"the centre of mass lies on the axis (distance h = {float(h[idx])!r} at index "
             f"{idx}); no blow leaves the axis unloaded"
         )
-    u = perp / h[..., None]
+    u = perp_s / h_s[..., None]
     b = np.cross(a, u)
     J_xz = _dot(u, (J @ a[..., None])[..., 0])
-    mh = mm * h
-    point = A + (J_aa / mh)[..., None] * u - (J_xz / mh)[..., None] * a
+    # J/m/h, not J/(m h): m h may overflow where the distances do not
+    point = A + (J_aa / mm / h)[..., None] * u - (J_xz / mm / h)[..., None] * a
     return CentreOfPercussion(point, b)
 
 

@@ -1137,3 +1137,57 @@ def test_a_rigid_body_keeps_its_fields_as_float64_arrays_and_unpacks_as_a_tuple(
     assert_equal(pickle.loads(pickle.dumps(b)).J_G, J)
     # a batch of bodies that broadcasts: one tensor for three velocities
     assert im.RigidBody(1.0, np.eye(3), [0, 0, 0], np.zeros((3, 3)), [0, 0, 0]).v_G.shape == (3, 3)
+
+
+@pytest.mark.parametrize(
+    "body",
+    [
+        pytest.param(_FIELDS | {"m": 1e300, "v_G": [0, 0, -1e300]}, id="m-and-v_G-1e300"),
+        pytest.param(
+            _FIELDS | {"omega": [1e300, 0, 0], "r_G": [0, -1e300, 0]}, id="omega-arm-1e300"
+        ),
+        pytest.param(_FIELDS | {"J_G": 1e-300 * np.eye(3), "v_G": [0, 0, -1.0]}, id="J_G-1e-300"),
+    ],
+)
+def test_rigid_impact_beyond_float64_is_a_result_overflow_error_not_a_warning(body):
+    r_S = [1e300, 0, 0] if body["J_G"][0][0] < 1 else [0.1, 0, 0]  # a 1e300 arm over J_G 1e-300
+    with pytest.raises(
+        ResultOverflowError, match=r"^rigid_impact: the (result is not finite|norm)"
+    ):
+        im.rigid_impact(im.RigidBody(**body), None, r_S=r_S, n=[0, 0, 1.0], e=0.5)
+
+
+def test_normal_relative_velocity_beyond_float64_is_a_result_overflow_error():
+    spinning = im.RigidBody(**(_FIELDS | {"omega": [1e300, 0, 0]}))
+    with pytest.raises(ResultOverflowError, match=r"^normal_relative_velocity: the result is"):
+        im.normal_relative_velocity(spinning, r_S=[0, 1e300, 0], n=[0, 0, 1.0])
+
+
+def test_rigid_impact_batches_that_do_not_broadcast_name_each_argument_and_body():
+    two = im.RigidBody(**(_FIELDS | {"m": [1.0, 2.0]}))
+    with pytest.raises(
+        ShapeError,
+        match=r"^rigid_impact: the batch axes of the arguments do not broadcast: "
+        r"body_1 \(2,\), r_S \(3,\), n \(\), e \(\)$",
+    ):
+        im.rigid_impact(two, None, r_S=np.zeros((3, 3)), n=[0, 0, 1.0], e=0.5)
+
+
+def test_hinged_impact_batches_of_omega_that_do_not_broadcast_are_a_shape_error():
+    # omega enters only ω', m only S_axis: without the check the two came out unbroadcast
+    with pytest.raises(ShapeError, match=r"^hinged_impact: .* m \(2,\), .* omega \(3,\)"):
+        im.hinged_impact(
+            [1.0, 2.0], np.eye(3), [1.0, 0, 0], axis_point=[0] * 3, axis=Z3,
+            omega=[0.0, 1.0, 2.0], r_P=[1.0, 0, 0], S_P=[0, 1.0, 0],
+        )  # fmt: skip
+
+
+def test_centre_of_percussion_far_from_the_axis_is_that_of_the_scaled_body_exactly():
+    # m = 2^-600, |AG| = 1.5 2^600: m h = 1.5 as for m = 1, |AG| = 1.5; |AG|² overflowed before
+    J_A = np.diag([1e-3, 4.0, 4.0])
+    far = im.centre_of_percussion(
+        2.0**-600, J_A, [1.5 * 2.0**600, 0, 0], axis_point=[0] * 3, axis=Z3
+    )
+    near = im.centre_of_percussion(1.0, J_A, [1.5, 0, 0], axis_point=[0] * 3, axis=Z3)
+    np.testing.assert_array_equal(far.point, near.point)
+    np.testing.assert_array_equal(far.direction, near.direction)
