@@ -294,6 +294,14 @@ def _scale(moments: np.ndarray) -> np.ndarray:
     return np.maximum(np.abs(moments).max(axis=-1), np.finfo(np.float64).tiny)
 
 
+def _sqrt_quotient(x: np.ndarray, y: np.ndarray) -> np.ndarray:
+    """√(x/y) for x ≥ 0, y > 0: the quotient of the mantissas (the plain quotient's rounding)
+    and the exponent halved exactly, so that x/y cannot overflow or underflow on the way."""
+    (fx, ex), (fy, ey) = np.frexp(x), np.frexp(y)
+    k, odd = np.divmod(ex - ey, 2)
+    return np.ldexp(np.sqrt(np.ldexp(fx / fy, odd)), k)
+
+
 def _first(mask: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
 
@@ -776,10 +784,10 @@ def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
     """Four particles of mass m/4 with total mass m and inertia tensor J about G (Example 4.1).
 
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J`` (..., 3, 3) as
-    :func:`check_inertia` with a singular tensor allowed (else NonPhysicalInertiaError).  Not
-    checked for overflow: moments over a tiny mass beyond float64 (J near 1e300, m near 1e-300) are
-    inf with a numpy RuntimeWarning; batches that do not broadcast raise ShapeError listing each
-    argument's shape.
+    :func:`check_inertia` with a singular tensor allowed (else NonPhysicalInertiaError).  Any
+    magnitudes: the squared distances J/m are formed with their powers of two apart, so J near
+    1e300 over m near 1e-300 gives distances near 1e300, not an overflow; batches that do not
+    broadcast raise ShapeError listing each argument's shape.
 
     In the principal basis, with J_x ≤ J_y ≤ J_z the principal moments, the
     particles are at (±a, 0, c) and (0, ±b, −c) (4.15)–(4.18) with
@@ -816,9 +824,11 @@ def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
     Jx, Jy, Jz = (moments[..., k] for k in range(3))
     shape = np.broadcast_shapes(mm.shape, Jx.shape)
     mm = np.broadcast_to(mm, shape)
-    a = np.sqrt(np.maximum((Jz - Jx) + Jy, 0.0) / mm)
-    b = np.sqrt(np.maximum((Jz - Jy) + Jx, 0.0) / mm)
-    c = np.sqrt(np.maximum((Jx + Jy) - Jz, 0.0) / (2.0 * mm))
+    # √(x/m) with the powers of two apart: x/m may overflow (J 1e300, m 1e-300) where √ does
+    # not; c² = (x/2)/m, not x/(2 m): 2 m overflows for m near 1e308
+    a = _sqrt_quotient(np.maximum((Jz - Jx) + Jy, 0.0), mm)
+    b = _sqrt_quotient(np.maximum((Jz - Jy) + Jx, 0.0), mm)
+    c = _sqrt_quotient(0.5 * np.maximum((Jx + Jy) - Jz, 0.0), mm)
     z = np.zeros(shape)
     r_A = np.stack(
         [
@@ -833,7 +843,7 @@ def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
     return np.repeat((mm / 4.0)[..., None], 4, axis=-1), r_O
 
 
-four_particle_realisation = broadcast_checked(four_particle_realisation)
+four_particle_realisation = finite_result(four_particle_realisation)
 
 
 # -------------------------------------------------------------- homogeneous bodies

@@ -57,7 +57,7 @@ import math
 
 import numpy as np
 
-from ._validate import as_float_array, as_float_scalar, broadcast_checked
+from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
 from .errors import NonPositiveParameterError, NotARotationError, OutOfDomainError, ZeroAxisError
 
 __all__ = [
@@ -193,8 +193,8 @@ def rotate_vector(R_A_O, r_O) -> np.ndarray:
 
     Domain: ``R_A_O`` a rotation as :func:`check_rotation` (else NotARotationError), ``r_O`` any
     finite (..., 3); the leading axes broadcast, and batches that do not (2 against 3) raise
-    ShapeError listing each argument's shape.  The result is not checked: a
-    component beyond float64 (``r_O`` near 1e308) turns to inf silently.
+    ShapeError listing each argument's shape.  A component beyond float64 (``r_O`` near 1e308
+    turned by 45°) raises ResultOverflowError.
 
     Examples
     --------
@@ -208,7 +208,7 @@ def rotate_vector(R_A_O, r_O) -> np.ndarray:
     return np.einsum("...ji,...j->...i", R, r)
 
 
-rotate_vector = broadcast_checked(rotate_vector)
+rotate_vector = finite_result(rotate_vector)
 
 
 def components_A_from_O(R_A_O, r_O) -> np.ndarray:
@@ -216,14 +216,14 @@ def components_A_from_O(R_A_O, r_O) -> np.ndarray:
 
     Domain: as :func:`rotate_vector`: a rotation ``R_A_O`` (else NotARotationError) and any finite
     ``r_O`` (..., 3); batches that do not broadcast raise ShapeError listing each argument's shape.
-    The result is not checked, as in :func:`rotate_vector`.
+    A component beyond float64 raises ResultOverflowError, as in :func:`rotate_vector`.
     """
     R = check_rotation(R_A_O)
     r = as_float_array(r_O, "r_O", (3,))
     return np.einsum("...ij,...j->...i", R, r)
 
 
-components_A_from_O = broadcast_checked(components_A_from_O)
+components_A_from_O = finite_result(components_A_from_O)
 
 
 def compose(R_B_A, R_A_O) -> np.ndarray:
@@ -682,8 +682,8 @@ def quat_multiply(p, q) -> np.ndarray:
 
     Domain: any finite ``p``, ``q`` of shape (..., 4), unit or not (no check of length); the leading
     axes broadcast (batches that do not raise ShapeError listing each argument's shape).  Products
-    beyond float64 (components near 1e300) overflow to inf with a numpy RuntimeWarning, not an
-    error.
+    beyond float64 on the way (components near 1e300, or 1e200 times 1e200) raise
+    ResultOverflowError.
     """
     p = as_float_array(p, "p", (4,))
     q = as_float_array(q, "q", (4,))
@@ -700,7 +700,7 @@ def quat_multiply(p, q) -> np.ndarray:
     )
 
 
-quat_multiply = broadcast_checked(quat_multiply)
+quat_multiply = finite_result(quat_multiply)
 
 
 def compose_quat(q_B_A, q_A_O) -> np.ndarray:

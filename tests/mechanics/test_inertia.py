@@ -968,3 +968,25 @@ def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
 def test_no_domain_says_batches_end_in_numpys_bare_value_error():
     text = " ".join((getattr(I, n).__doc__ or "") for n in I.__all__ if callable(getattr(I, n)))
     assert "bare ValueError" not in " ".join(text.split())
+
+
+def test_four_particles_of_huge_moments_over_a_tiny_mass_are_the_scaled_ones_exactly():
+    """J 2^1000 over m 2^-1000: the squared distances J/m (2^2000) overflowed on the way; the
+    distances are 2^1000 times those of (m, J), bit for bit (an exact power-of-two scaling)."""
+    J = np.array([[2.0, 0.1, 0.0], [0.1, 3.0, 0.0], [0.0, 0.0, 4.0]])
+    masses, r = I.four_particle_realisation(4.0 * 2.0**-1000, J * 2.0**1000)
+    masses_1, r_1 = I.four_particle_realisation(4.0, J)
+    np.testing.assert_array_equal(r, np.ldexp(r_1, 1000))
+    np.testing.assert_array_equal(masses, np.ldexp(masses_1, -1000))
+    # and those are a realisation of J (the independent route: the particles' tensor)
+    np.testing.assert_allclose(
+        I.inertia_tensor(masses_1, r_1, about=ORIGIN), J, rtol=0, atol=ENTRY_ATOL * 4.0
+    )
+
+
+def test_four_particles_of_a_mass_near_float64s_limit_keep_their_distances():
+    # 2 m overflows for m = 1e308; c² = (x/2)/m does not
+    J = np.diag([1.0, 2.0, 2.5])
+    _, r = I.four_particle_realisation(1e308, J)
+    _, r_1 = I.four_particle_realisation(1.0, J)
+    np.testing.assert_allclose(r * 1e154, r_1, rtol=4 * EPS, atol=0)

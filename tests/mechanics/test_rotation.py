@@ -25,6 +25,7 @@ from mechanics.errors import (
     NonPositiveParameterError,
     NotARotationError,
     OutOfDomainError,
+    ResultOverflowError,
     ShapeError,
     ZeroAxisError,
 )
@@ -1245,3 +1246,30 @@ def test_a_zero_tolerance_is_a_valid_exact_test():
     assert bool(rot.is_rotation(np.eye(3), atol=0))
     assert not bool(rot.is_rotation(rot.R3(0.3) * (1 + EPS), atol=0.0))
     assert not bool(rot.euler_near_gimbal_lock(0.0, atol=0.0))  # |sin 0| < 0 is false
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        pytest.param(
+            lambda: rot.rotate_vector(rot.R3(np.pi / 4), [1.7e308, 1.7e308, 0]), id="rotate"
+        ),
+        pytest.param(
+            lambda: rot.components_A_from_O(rot.R3(np.pi / 4), [1.7e308, -1.7e308, 0]),
+            id="components",
+        ),
+        pytest.param(lambda: rot.quat_multiply([1e200, 1e200, 0, 0], [1e200, 0, 0, 0]), id="quat"),
+    ],
+)
+def test_a_result_beyond_float64_is_a_result_overflow_error_not_inf(call):
+    with pytest.raises(ResultOverflowError, match=r"^\w+: the result is not finite"):
+        call()
+
+
+def test_huge_but_representable_products_are_returned():
+    # |r| = 1.7e308 turned by 90°: no component grows; quaternions of 2^500 multiply to 2^1000
+    assert_array_equal(
+        rot.rotate_vector(rot.R3(np.pi / 2).round(), [1.7e308, 0, 0]), [0, 1.7e308, 0]
+    )
+    big = 2.0**500
+    assert_array_equal(rot.quat_multiply([big, 0, 0, 0], [0, big, 0, 0]), [0, big * big, 0, 0])
