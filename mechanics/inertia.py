@@ -306,16 +306,38 @@ def _first(mask: np.ndarray) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
 
 
+def _unit_scaled(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(a/2**k, k), k per matrix so that its largest |entry| lies in [1/2, 1) (a zero matrix
+    keeps k = 0).  The scaling is exact, and the checks are homogeneous in J, so they decide
+    exactly as on ``a``; but no sum of moments can overflow (near 1e308) or underflow."""
+    _, k = np.frexp(np.abs(a).max(axis=(-1, -2), initial=0.0))
+    return np.ldexp(a, -k[..., None, None]), k
+
+
 def _check_parts(
-    J: np.ndarray, moments: np.ndarray, *, allow_singular: bool, where: str, name: str
+    J: np.ndarray,
+    moments: np.ndarray,
+    *,
+    allow_singular: bool,
+    where: str,
+    name: str,
+    k: np.ndarray | None = None,
 ) -> None:
+    """The conditions of :func:`check_inertia` on ``J`` and its ``moments``, both given in
+    units of 2**k (:func:`_unit_scaled`; the messages print values in the caller's units)."""
+    k = np.zeros(moments.shape[:-1], dtype=int) if k is None else k
+
+    def unscaled(x: np.ndarray, i: tuple[int, ...]):
+        with np.errstate(over="ignore"):  # a value beyond float64 is printed as inf
+            return np.ldexp(x[i], k[i]).tolist()
+
     scale = _scale(moments)
     asym = np.abs(J - np.swapaxes(J, -1, -2)).max(axis=(-1, -2))
     bad = asym > INERTIA_ATOL * scale
     if bad.any():
         i = _first(bad)
         raise NonPhysicalInertiaError(
-            f"{name} is not symmetric: max |J - J^T| = {asym[i]:.3g} = "
+            f"{name} is not symmetric: max |J - J^T| = {unscaled(asym, i):.3g} = "
             f"{asym[i] / (EPS * scale[i]):.3g} eps of the largest moment, more than "
             f"{INERTIA_ATOL / EPS:.0f} eps (index {i})"
         )
@@ -326,7 +348,8 @@ def _check_parts(
         i = _first(bad)
         raise NonPhysicalInertiaError(
             f"{name} is not positive semidefinite: smallest principal moment J1 = "
-            f"{j_min[i]:.6g} < 0 (by {-j_min[i] / scale[i]:.3g} of the largest moment; index {i})"
+            f"{unscaled(j_min, i):.6g} < 0 (by {-j_min[i] / scale[i]:.3g} of the largest moment; "
+            f"index {i})"
         )
     if not allow_singular:
         bad = j_min <= tol
@@ -334,8 +357,8 @@ def _check_parts(
             i = _first(bad)
             raise NonPhysicalInertiaError(
                 f"{name} is not positive definite: smallest principal moment J1 = "
-                f"{j_min[i]:.6g} is zero to rounding ({j_min[i] / scale[i]:.3g} of the largest "
-                f"moment, index {i}); an ideal line mass or point has this: pass "
+                f"{unscaled(j_min, i):.6g} is zero to rounding ({j_min[i] / scale[i]:.3g} of the "
+                f"largest moment, index {i}); an ideal line mass or point has this: pass "
                 "allow_singular=True to accept it"
             )
     slack = moments[..., 0] + moments[..., 1] - moments[..., 2]
@@ -344,7 +367,7 @@ def _check_parts(
         i = _first(bad)
         raise NonPhysicalInertiaError(
             f"{name} breaks the triangle inequality J1 + J2 >= J3{where}: principal "
-            f"moments {moments[i].tolist()} give J1 + J2 - J3 = {slack[i]:.6g} "
+            f"moments {unscaled(moments, i)} give J1 + J2 - J3 = {unscaled(slack, i):.6g} "
             f"({slack[i] / scale[i]:.3g} of J3; index {i})"
         )
 
@@ -361,9 +384,8 @@ def check_inertia(
     Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); it is refused with
     NonPhysicalInertiaError when not symmetric, not positive definite (semidefinite with
     ``allow_singular``) or breaking J1 + J2 ≥ J3 by more than :data:`INERTIA_ATOL` of the largest
-    moment.  Moments from 1e-300 to about 5e307; near 1e308 the eigenvalue check overflows with a
-    numpy RuntimeWarning, or a LinAlgError with the warning masked (known, issue 16:
-    test_float_extremes.py::test_check_inertia_takes_moments_up_to_float64s_limit).
+    moment.  Any magnitudes, subnormal to float64's limit (moments near 1e308 included): the checks
+    run on ``J`` scaled by a power of two, exactly, its largest entry in [1/2, 1).
 
     Parameters
     ----------
@@ -408,9 +430,10 @@ def check_inertia(
     mechanics.errors.NonPhysicalInertiaError: J breaks the triangle inequality ... = -1 ...
     """
     a = as_float_array(J, name, (3, 3))
-    moments = np.linalg.eigvalsh(_sym(a)) if a.size else np.zeros((*a.shape[:-2], 3))
+    s, k = _unit_scaled(a)
+    moments = np.linalg.eigvalsh(_sym(s)) if a.size else np.zeros((*a.shape[:-2], 3))
     where = " about G" if about_centre_of_mass else " about the given point"
-    _check_parts(a, moments, allow_singular=allow_singular, where=where, name=name)
+    _check_parts(s, moments, allow_singular=allow_singular, where=where, name=name, k=k)
     return a
 
 
@@ -418,15 +441,15 @@ def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
     """Elementwise: does ``J`` (..., 3, 3) pass :func:`check_inertia`?  Shape (...).
 
     Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); the answer (...) is
-    False, never an error, for a tensor :func:`check_inertia` refuses.  Moments near 1e308 overflow
-    J1 + J2 with a numpy RuntimeWarning, as in :func:`check_inertia`.
+    False, never an error, for a tensor :func:`check_inertia` refuses; any magnitudes (checked on
+    ``J`` scaled by a power of two, as there).
 
     Examples
     --------
     >>> is_physical_inertia([np.eye(3), np.diag([1.0, 1.0, 2.5])]).tolist()
     [True, False]
     """
-    a = as_float_array(J, "J", (3, 3))
+    a, _ = _unit_scaled(as_float_array(J, "J", (3, 3)))
     m = np.linalg.eigvalsh(_sym(a))
     scale = _scale(m)
     tol = INERTIA_ATOL * scale
@@ -678,9 +701,9 @@ def principal_axes(J, *, allow_singular: bool = True) -> tuple[np.ndarray, np.nd
     """Principal moments (ascending) and principal axes of ``J`` (4.13)–(4.14).
 
     Domain: ``J`` (..., 3, 3) as :func:`check_inertia` (singular allowed by default; else
-    NonPhysicalInertiaError, NonFiniteError, ShapeError), moments from 1e-300 to about 5e307: near
-    1e308 the check's J1 + J2 overflows with a numpy RuntimeWarning (as :func:`check_inertia`);
-    moments beyond float64 raise ResultOverflowError.
+    NonPhysicalInertiaError, NonFiniteError, ShapeError), any magnitudes: the moments and the
+    check are computed on ``J`` scaled by a power of two (exactly; bit for bit the scaled results),
+    so entries near 1e308 are taken; a moment beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
@@ -720,11 +743,12 @@ def principal_axes(J, *, allow_singular: bool = True) -> tuple[np.ndarray, np.nd
     >>> bool(np.allclose(rotate_inertia(np.diag(moments), R), J, rtol=0, atol=4e-15))
     True
     """
-    a = as_float_array(J, "J", (3, 3))
-    with np.errstate(over="ignore", invalid="ignore"):
-        moments, R = _principal(a)
+    s, k = _unit_scaled(as_float_array(J, "J", (3, 3)))
+    moments_s, R = _principal(s)
+    _check_parts(s, moments_s, allow_singular=allow_singular, where="", name="J", k=k)
+    with np.errstate(over="ignore"):
+        moments = np.ldexp(moments_s, k[..., None])
     _finite_result(moments, "the principal moments (entries near the float64 limit)")
-    _check_parts(a, moments, allow_singular=allow_singular, where="", name="J")
     return moments, R
 
 

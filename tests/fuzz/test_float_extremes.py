@@ -19,6 +19,7 @@ import numpy as np
 import pytest
 
 from mechanics import inertia, tops
+from mechanics.errors import NonPhysicalInertiaError
 
 EPS = np.finfo(float).eps
 #: s·J rounds each moment once (≤ eps/2 relative); the motion's sensitivity to the
@@ -122,15 +123,31 @@ def test_inertia_of_s_J_is_s_times_that_of_J(s, exact):
     _close(inertia.rotate_inertia(s * JT, R), s * inertia.rotate_inertia(JT, R), exact)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="check_inertia (inertia.py; known, issue 16) overflows in its "
-    "eigenvalue check for a moment near 1e308 (a numpy RuntimeWarning, or LinAlgError with the "
-    "warning masked) instead of accepting the tensor or raising a ResultOverflowError",
-)
 @pytest.mark.parametrize(
-    "moments", [(1.0, 1e308, 1e308), (1e308, 1e308, 1e308)], ids=["1, 1e308, 1e308", "1e308 x3"]
+    "moments",
+    [(1.0, 1e308, 1e308), (1e308, 1e308, 1e308), (1.7e308, 1.5e308, 1.7e308)],
+    ids=["1, 1e308, 1e308", "1e308 x3", "1.7e308, 1.5e308, 1.7e308"],
 )
 def test_check_inertia_takes_moments_up_to_float64s_limit(moments):
+    """The checks run on J scaled by a power of two, so J1 + J2 near 2e308 cannot overflow:
+    the tensor is taken (a moment of 1 beside 1e308 is zero to rounding, a near line mass,
+    taken with ``allow_singular``) and its principal moments are the diagonal."""
     J = np.diag(moments)
-    np.testing.assert_array_equal(inertia.check_inertia(J), J)
+    singular = min(moments) / max(moments) <= inertia.INERTIA_ATOL
+    np.testing.assert_array_equal(inertia.check_inertia(J, allow_singular=singular), J)
+    assert bool(inertia.is_physical_inertia(J, allow_singular=singular))
+    vals, _ = inertia.principal_axes(J, allow_singular=singular)
+    np.testing.assert_array_equal(vals, np.sort(moments))
+
+
+def test_a_moment_zero_to_rounding_beside_1e308_is_refused_as_not_positive_definite():
+    with pytest.raises(NonPhysicalInertiaError, match=r"^J is not positive definite: .* J1 = 1 "):
+        inertia.check_inertia(np.diag([1.0, 1e308, 1e308]))
+
+
+def test_check_inertia_messages_give_values_beyond_1e154_in_the_callers_units():
+    with pytest.raises(
+        NonPhysicalInertiaError,
+        match=r"principal moments \[1e\+300, 1e\+300, 3e\+300\] give J1 \+ J2 - J3 = -1e\+300 ",
+    ):
+        inertia.check_inertia(np.diag([1e300, 1e300, 3e300]))

@@ -897,10 +897,18 @@ _ASYM = np.array([[2.0, 0.5, 0], [0, 2.0, 0], [0, 0, 2.0]])
             id="box-overflow",
         ),
         pytest.param(
-            lambda: I.principal_axes(np.full((3, 3), 1e308)),
+            # physical (moments 0.6, 1.5, 1.8 times 1e308), but 1.8e308 is beyond float64
+            lambda: I.principal_axes(1e308 * np.array([[1.2, 0.6, 0], [0.6, 1.2, 0], [0, 0, 1.5]])),
             _overflow_error(),
             r"^the principal moments \(entries near the float64 limit\) overflows float64",
             id="principal-overflow",
+        ),
+        pytest.param(
+            # moments (0, 0, 3e308): refused as unphysical first, the moment printed as inf
+            lambda: I.principal_axes(np.full((3, 3), 1e308)),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3: principal moments \[.*, inf\]",
+            id="principal-unphysical-near-1e308",
         ),
         pytest.param(
             lambda: I.check_inertia(np.array([np.eye(3), _ASYM])),
