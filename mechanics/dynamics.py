@@ -124,9 +124,9 @@ def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarr
     Domain: ``J`` (..., 3, 3) a physical inertia tensor as :func:`~mechanics.inertia.check_inertia`
     (symmetric, positive semidefinite, J1 + J2 ≥ J3; else NonPhysicalInertiaError;
     ``allow_singular=False`` also refuses a zero moment), ``omega`` any finite (..., 3); a result
-    beyond float64 raises ResultOverflowError.  Moments near 1e308 overflow inside check_inertia
-    with a numpy warning (known, issue 16).  Batches that do not broadcast (2 against 3) raise
-    ShapeError listing each argument's shape.
+    beyond float64 raises ResultOverflowError.  Moments up to float64's limit (near 1e308) are
+    checked without overflow.  Batches that do not broadcast (2 against 3) raise ShapeError listing
+    each argument's shape.
 
     Parameters
     ----------
@@ -166,9 +166,8 @@ def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.nd
 
     Domain: as :func:`angular_momentum_rigid`: ``J`` physical (check_inertia, else
     NonPhysicalInertiaError), ``omega`` finite (..., 3); a T beyond float64 raises
-    ResultOverflowError; moments near 1e308 overflow inside check_inertia with a numpy warning
-    (known, issue 16); batches that do not broadcast (2 against 3) raise ShapeError listing each
-    argument's shape.
+    ResultOverflowError; moments up to float64's limit are checked without overflow; batches that
+    do not broadcast (2 against 3) raise ShapeError listing each argument's shape.
 
     Examples
     --------

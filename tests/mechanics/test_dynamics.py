@@ -813,3 +813,11 @@ def test_the_pendulums_phase_is_exact_for_mixed_magnitudes():
 def test_a_result_beyond_float64_is_a_result_overflow_error_not_a_warning(call, match):
     with pytest.raises(_overflow_error(), match=match):
         call()
+
+
+def test_moments_near_float64s_limit_are_taken_and_overflowing_products_refused():
+    J = np.diag([1e308] * 3)
+    np.testing.assert_array_equal(D.angular_momentum_rigid(J, [1.0, 0.5, 0]), [1e308, 5e307, 0])
+    assert D.rotational_kinetic_energy(J, [1.0, 0, 0]) == 5e307
+    with pytest.raises(_overflow_error(), match=r"^L = J omega overflows float64"):
+        D.angular_momentum_rigid(J, [2.0, 0, 0])
