@@ -103,14 +103,18 @@ def _principal_moments(J_principal) -> np.ndarray:
             f"J_principal must be > 0 (each principal moment; a moment 0 makes d omega/dt "
             f"undefined in Euler's equations); found {float(J[bad].flat[0])!r}"
         )
-    total = J.sum(axis=-1, keepdims=True)
-    slack = total - 2.0 * J  # J_j + J_k − J_i for each i
-    bad = slack < -64 * EPS * J.max(axis=-1, keepdims=True)
+    # J_j + J_k − J_i for each i, of the moments over 4 where they near float64's limit (a
+    # power of two: exact), so that neither the sum nor 2 J_i overflows
+    scale = np.where(J.max(axis=-1, keepdims=True) > 2.0**1020, 0.25, 1.0)
+    Js = J * scale
+    slack = Js.sum(axis=-1, keepdims=True) - 2.0 * Js
+    bad = slack < -64 * EPS * Js.max(axis=-1, keepdims=True)
     if bad.any():
         idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        value = float(slack[idx]) / float(scale[(*idx[:-1], 0)])
         raise NonPhysicalInertiaError(
             f"J_principal breaks the triangle inequality: {J[idx[:-1]].tolist()} has "
-            f"J_j + J_k - J_i = {float(slack[idx]):.6g} < 0 for i = {idx[-1] + 1}"
+            f"J_j + J_k - J_i = {value:.6g} < 0 for i = {idx[-1] + 1}"
         )
     return J
 
@@ -236,7 +240,7 @@ def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
     return _finite(out, "d omega/dt")
 
 
-euler_equations_rhs = broadcast_checked(euler_equations_rhs)
+euler_equations_rhs = finite_result(euler_equations_rhs)
 
 
 def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:

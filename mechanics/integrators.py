@@ -1170,7 +1170,8 @@ def _check_moments(J) -> np.ndarray:
     if not (Jm > 0).all():
         idx = tuple(int(i) for i in np.argwhere(~(Jm > 0))[0])
         raise NonPhysicalInertiaError(
-            f"principal moments must be > 0; J{idx[-1] + 1} = {float(Jm[idx])!r} at index {idx}"
+            f"J (the principal moments) must be > 0; J{idx[-1] + 1} = {float(Jm[idx])!r} "
+            f"at index {idx}"
         )
     for i in range(3):
         j, k = (i + 1) % 3, (i + 2) % 3

@@ -430,7 +430,7 @@ def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray
     if (ratio <= COLLINEAR_RTOL).any():
         worst = float(np.min(ratio))
         raise CollinearPointsError(
-            f"the points are collinear (or coincide): smallest/largest eigenvalue of their "
+            f"the points r are collinear (or coincide): smallest/largest eigenvalue of their "
             f"spread matrix is {worst:.3g} <= {COLLINEAR_RTOL:.3g}; the rotation about their "
             "line is undetermined"
         )

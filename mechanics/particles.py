@@ -319,7 +319,7 @@ def _nonzero_mass(M: np.ndarray) -> None:
     zero = M == 0
     if zero.any():
         raise ZeroTotalMassError(
-            f"the total mass is 0 (index {_first_index(zero)}): the centre of mass of a "
+            f"the total mass of m is 0 (index {_first_index(zero)}): the centre of mass of a "
             "massless system is undefined"
         )
 

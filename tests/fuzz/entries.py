@@ -937,7 +937,8 @@ _add(
 _add(
     _r + "check_rotation",
     Entry(
-        {"R": R, "atol": 1e-12},
+        # name: the message names what the caller calls the matrix (default "R_A_O")
+        {"R": R, "atol": 1e-12, "name": "R"},
         {"R": (3, 3)},
         bad={"R": _NOTROT, "atol": NEG},
         skip={"name": NAME},

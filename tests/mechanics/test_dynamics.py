@@ -821,3 +821,16 @@ def test_moments_near_float64s_limit_are_taken_and_overflowing_products_refused(
     assert D.rotational_kinetic_energy(J, [1.0, 0, 0]) == 5e307
     with pytest.raises(_overflow_error(), match=r"^L = J omega overflows float64"):
         D.angular_momentum_rigid(J, [2.0, 0, 0])
+
+
+def test_euler_equations_take_moments_up_to_float64s_limit_and_refuse_a_broken_triangle_by_its_size():
+    """Moments near 1.7e308: the triangle check must not overflow (J1 + J2 + J3 and 2 J_i
+    are beyond float64 there); a spherical top's ω̇ is M/J, and a moment 9e307 against 2 and
+    2.5 breaks the triangle inequality by -9e307, not by -inf."""
+    from mechanics.errors import NonPhysicalInertiaError
+
+    big = 1.7e308
+    wdot = D.euler_equations_rhs([big] * 3, [0.3, -1.0, 0.7], [0.1, 0.2, 0.3])
+    np.testing.assert_array_equal(wdot, np.array([0.1, 0.2, 0.3]) / big)
+    with pytest.raises(NonPhysicalInertiaError, match=r"J_principal .* = -8\.98847e\+307 < 0"):
+        D.euler_equations_rhs([8.98846567431158e307, 2.0, 2.5], [0.3, -1.0, 0.7], [0.0] * 3)

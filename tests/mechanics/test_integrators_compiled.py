@@ -255,20 +255,23 @@ def test_a_python_rhs_runs_the_reference_path(monkeypatch):
 
 
 class _BrokenKernels:
-    """Stands for a numba whose compilation fails."""
+    """Stands for a numba whose compilation fails; counts its calls (per instance, so that
+    no run of a test sees another's count)."""
 
-    calls = 0
+    def __init__(self):
+        self.calls = 0
 
     def __getattr__(self, name):
         def fail(*args):
-            type(self).calls += 1
+            self.calls += 1
             raise RuntimeError(f"simulated JIT failure in {name}")
 
         return fail
 
 
 def test_a_failed_jit_falls_back_to_the_reference_with_one_warning(monkeypatch):
-    monkeypatch.setattr(integrators, "_KERNELS", _BrokenKernels())
+    broken = _BrokenKernels()
+    monkeypatch.setattr(integrators, "_KERNELS", broken)
     y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
     rhs = free_rigid_body_rhs(J_TOP)
     with pytest.warns(CompiledPathWarning, match="simulated JIT failure") as record:
@@ -279,7 +282,7 @@ def test_a_failed_jit_falls_back_to_the_reference_with_one_warning(monkeypatch):
     with warnings.catch_warnings():  # given up for the process: no second warning
         warnings.simplefilter("error")
         again = free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), (0.0, 5.0), 0.1)
-    assert _BrokenKernels.calls == 1
+    assert broken.calls == 1
     assert again.steps == 50
 
 

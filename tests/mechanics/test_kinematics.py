@@ -477,10 +477,12 @@ def test_nearly_collinear_points_are_still_accepted():
     [
         pytest.param(
             [[0.0, 0, 0], [1, 1, 1], [2, 2, 2]],
-            r"the points are collinear .*spread matrix",
+            r"the points r are collinear .*spread matrix",
             id="line",
         ),
-        pytest.param([[1.0, 2, 3]] * 4, r"the points are collinear \(or coincide\)", id="coincide"),
+        pytest.param(
+            [[1.0, 2, 3]] * 4, r"the points r are collinear \(or coincide\)", id="coincide"
+        ),
         pytest.param(
             [[0.0, 0, 0], [1, 1, 1]],
             r"^2 point\(s\) given; at least 3 non-collinear points are needed",

@@ -186,7 +186,7 @@ def test_non_finite_masses_and_positions_are_rejected(bad):
 
 
 def test_zero_total_mass_is_rejected():
-    with pytest.raises(ZeroTotalMassError, match="total mass is 0"):
+    with pytest.raises(ZeroTotalMassError, match="total mass of m is 0"):
         mp.centre_of_mass([0.0, 0.0], R3[:2])
     with pytest.raises(ZeroTotalMassError):
         mp.angular_momentum_decomposition([0.0], R3[:1], V3[:1], about=O)
