@@ -25,7 +25,9 @@ Usage (standard library only; mutmut must be on PATH or given with ``--mutmut``)
     python tools/mutation/run.py mechanics/scenes --sample 40   # every module under a folder
 
 A sample (``--sample N``, seeded) runs N mutants drawn at random from all of the
-module's; the score then counts the mutants checked so far and says how many were not,
+module's (those of them killed by an earlier run are not run again: tests are only ever
+added; ``--recheck`` runs them too); the score then counts the mutants checked so far and
+says how many were not,
 and gives the 95 % (Wilson) interval of the score that the sample's size allows.
 
 Several modules (or a folder, meaning every module of ``modules.toml`` under it) run in one
@@ -253,6 +255,11 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--sample", type=int, help="run this many mutants drawn at random")
     ap.add_argument("--seed", type=int, default=16, help="seed of --sample")
     ap.add_argument(
+        "--recheck",
+        action="store_true",
+        help="with --sample: run again the sampled mutants already killed",
+    )
+    ap.add_argument(
         "--restat",
         action="store_true",
         help="record again which tests call which function (after changing tests)",
@@ -275,6 +282,12 @@ def main(argv: list[str] | None = None) -> int:
             drawn = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
             print(f"{module}: a sample of {len(drawn)} of {len(every)} mutants (seed {args.seed})")
             names += drawn
+        if not args.recheck:  # a killed mutant stays killed while its tests stay
+            known = results(work, args.mutmut) if (work / "mutants").exists() else {}
+            done = [n for n in names if known.get(n) in KILLED]
+            names = [n for n in names if n not in done]
+            if done:
+                print(f"{len(done)} of the sample killed before: not run again (--recheck does)")
         if not names:
             print("no mutants to run")
     if not args.report and (names or not args.sample):
