@@ -78,6 +78,7 @@ def cases(module: str, conditions: dict, skip: frozenset = frozenset(), other: d
                     continue
                 # a field (callable) that returns NaN is named as the call that returned it
                 cond = FIELD_NONFINITE if callable(bad) else conditions[(fname, p)]
+                cond = other.get((fname, p, f"bad{i}"), cond)
                 yield pytest.param(
                     fname, p, bad, MechanicsValueError, cond, id=f"{fname}-{p}-bad{i}"
                 )
