@@ -11,6 +11,8 @@ F as the inverse of am.
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 import pytest
 import scipy.special as sc
@@ -297,3 +299,21 @@ def test_ellippi_at_n_one_and_m_zero_is_tan_phi(phi):
     # at n = 1 is the whole difference tan φ − φ
     got = float(el.ellippi(1.0, phi, 0.0))
     assert got == pytest.approx(np.tan(phi), rel=THIRD_KIND_RTOL, abs=0)
+
+
+def test_two_prod_is_exact_for_the_period_multiples_of_the_argument_reduction():
+    # a·b = p + e exactly (Dekker), checked in rational arithmetic: a an integer count of
+    # periods j (up to 2^40) and b a period 2K or π, as _reduced and _amplitude form them
+    rng = np.random.default_rng(SEED)
+    a = rng.integers(1, 2**40, size=200).astype(float)
+    b = rng.uniform(np.pi, 20.0, size=200)
+    p, e = el._two_prod(a, b)
+    wrong = [
+        (x, y)
+        for x, y, pp, ee in zip(a, b, p, e, strict=True)
+        if Fraction(pp) + Fraction(ee) != Fraction(x) * Fraction(y)
+    ]
+    assert not wrong, wrong[:3]
+    for x, y in zip(a[:50], b[:50], strict=True):
+        ps, es = el._two_prod_scalar(float(x), float(y))
+        assert Fraction(ps) + Fraction(es) == Fraction(float(x)) * Fraction(float(y)), (x, y)
