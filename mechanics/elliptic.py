@@ -370,7 +370,7 @@ def ellipk(m, *, m1=None):
     """
     m, m1 = _params(m, m1)
     if np.any(m > 1):
-        raise OutOfDomainError(f"ellipk needs m ≤ 1; got m = {m[m > 1].flat[0]!r}")
+        raise OutOfDomainError(f"ellipk needs m ≤ 1; got m = {float(m[m > 1].flat[0])!r}")
     return _quarter_period(np.maximum(m1, 0.0))
 
 
@@ -391,7 +391,7 @@ def ellipe(m, *, m1=None):
     """
     m, m1 = _params(m, m1)
     if np.any(m > 1):
-        raise OutOfDomainError(f"ellipe needs m ≤ 1; got m = {m[m > 1].flat[0]!r}")
+        raise OutOfDomainError(f"ellipe needs m ≤ 1; got m = {float(m[m > 1].flat[0])!r}")
     m1 = np.maximum(m1, 0.0)
     out = 2.0 * sc.elliprg(0.0, m1, 1.0)
     return np.where(m1 == 0, 1.0, out)
@@ -476,7 +476,7 @@ def _check_characteristic(n, limit_ok):
     if np.any(~limit_ok):
         raise OutOfDomainError(
             "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
-            f"got n = {np.asarray(n)[~limit_ok].flat[0]!r}"
+            f"got n = {float(np.asarray(n)[~limit_ok].flat[0])!r}"
         )
 
 

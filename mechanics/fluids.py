@@ -472,7 +472,8 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
         if calls[0] > STREAMLINE_MAX_EVALS:
             raise StepSizeError(
                 f"streamline: more than {STREAMLINE_MAX_EVALS} evaluations of v over "
-                f"s = [{ss[0]!r}, {ss[-1]!r}] at rtol = {rtol!r}; shorten s or loosen rtol"
+                f"s = [{float(ss[0])!r}, {float(ss[-1])!r}] at rtol = {rtol!r}; "
+                "shorten s or loosen rtol"
             )
         return _call(v, y, tt, "v", vector=True)
 

@@ -114,7 +114,9 @@ def _nonnegative(x, name: str) -> np.ndarray:
     a = as_float_array(x, name)
     if (a < 0).any():
         bad = a[a < 0].flat[0]
-        raise NegativeMassError(f"{name} must be ≥ 0 (mass flows are non-negative); got {bad!r}")
+        raise NegativeMassError(
+            f"{name} must be ≥ 0 (mass flows are non-negative); got {float(bad)!r}"
+        )
     return a
 
 
@@ -122,7 +124,7 @@ def _positive(x, name: str) -> np.ndarray:
     a = as_float_array(x, name)
     if (a <= 0).any():
         bad = a[a <= 0].flat[0]
-        raise NonPositiveParameterError(f"{name} must be > 0; got {bad!r}")
+        raise NonPositiveParameterError(f"{name} must be > 0; got {float(bad)!r}")
     return a
 
 
@@ -603,7 +605,7 @@ def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
     """
     ta = as_float_array(t, "t")
     if (ta < 0).any():
-        raise OutOfDomainError(f"t must be ≥ 0; got {ta[ta < 0].flat[0]!r}")
+        raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
     k = _positive(q, "q") * ta / _positive(m, "m")
     v0 = as_float_array(v_0, "v_0")
     return v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
@@ -706,10 +708,12 @@ def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
     xa = as_float_array(x, "x")
     L = _positive(ell, "ell")
     if ((xa < 0) | (xa > L)).any():
-        raise OutOfDomainError(f"x must lie in [0, ell]; got {xa[(xa < 0) | (xa > L)].flat[0]!r}")
+        raise OutOfDomainError(
+            f"x must lie in [0, ell]; got {float(xa[(xa < 0) | (xa > L)].flat[0])!r}"
+        )
     ha = as_float_array(h, "h")
     if (ha < 0).any():
-        raise OutOfDomainError(f"h must be ≥ 0; got {ha[ha < 0].flat[0]!r}")
+        raise OutOfDomainError(f"h must be ≥ 0; got {float(ha[ha < 0].flat[0])!r}")
     return _positive(lam, "lam") * _positive(g, "g") * (3.0 * xa + 2.0 * ha)
 
 
@@ -723,7 +727,7 @@ def _carousel_inputs(t, J_0, q, v, r, R):
     ta = as_float_array(t, "t")
     if (ta < 0).any():
         raise OutOfDomainError(
-            f"t must be ≥ 0 (shooting starts at t = 0); got {ta[ta < 0].flat[0]!r}"
+            f"t must be ≥ 0 (shooting starts at t = 0); got {float(ta[ta < 0].flat[0])!r}"
         )
     J0 = _positive(J_0, "J_0")
     qa = _nonnegative(q, "q")
@@ -833,7 +837,7 @@ def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     """
     ta = as_float_array(t, "t")
     if (ta < 0).any():
-        raise OutOfDomainError(f"t must be ≥ 0; got {ta[ta < 0].flat[0]!r}")
+        raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
     x = _positive(q, "q") * _positive(r, "r") ** 2 * ta / _positive(J_0, "J_0")
     if (x >= 1).any():
         raise OutOfDomainError("q r² t must be < J_0 (the wheel cannot expel all its inertia)")
@@ -859,7 +863,7 @@ def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
     w = as_float_array(omega, "omega")
     if (w < 0).any():
         raise OutOfDomainError(
-            f"omega must be ≥ 0 (the rockets push forward); got {w[w < 0].flat[0]!r}"
+            f"omega must be ≥ 0 (the rockets push forward); got {float(w[w < 0].flat[0])!r}"
         )
     ra = _positive(r, "r")
     return (

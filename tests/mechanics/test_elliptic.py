@@ -11,12 +11,16 @@ F as the inverse of am.
 
 from __future__ import annotations
 
+from fractions import Fraction
+
 import numpy as np
 import pytest
 import scipy.special as sc
 
 from mechanics import elliptic as el
-from mechanics.errors import NonFiniteError, OutOfDomainError, ShapeError
+from mechanics.errors import NonFiniteError, OutOfDomainError, ResultOverflowError, ShapeError
+
+from ._naming import cases, check_refusal, valid_kwargs
 
 EPS = np.finfo(float).eps
 
@@ -34,6 +38,9 @@ FD_ATOL = 1e-12
 FD_STEP = 1e-3
 
 SEED = 20261122
+
+#: Π = F + the R_J tail: F to a few eps, scipy's elliprj to about ten; their sum
+THIRD_KIND_RTOL = 16 * EPS
 
 
 def _close(actual, desired, atol, what=""):
@@ -224,3 +231,89 @@ def test_huge_arguments_stay_finite_or_raise_a_specific_error():
         el.ellipj(1e300, -1e300)
     with pytest.raises(OutOfDomainError, match=r"1\.8e308"):
         el.ellipj(1e300, 1e300)
+
+
+# ------------------------------------------- every parameter named, every overflow named
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("ellipe", "m"): r"^ellipe needs m ≤ 1; got m = 1\.5$",
+    ("ellipk", "m"): r"^ellipk needs m ≤ 1; got m = 1\.5$",
+    ("ellippi_jacobi", "m"): r"^ellippi_jacobi needs 0 ≤ m ≤ 1$",
+}
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"), list(cases("elliptic", _CONDITIONS))
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("elliptic", fname) | {param: value}
+    check_refusal(getattr(el, fname), kw, param, error, condition)
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        # the first offending value of a batch, printed as a plain float
+        (lambda: el.ellipk([0.5, 2.0]), "ellipk needs m ≤ 1; got m = 2.0"),
+        (lambda: el.ellipe([0.5, 3.0]), "ellipe needs m ≤ 1; got m = 3.0"),
+        (
+            lambda: el.ellippi([0.5, 2.0], 1.0, 0.3),
+            "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
+            "got n = 2.0",
+        ),
+        (
+            lambda: el.ellippi_jacobi(1.0, [0.5, 1.5], 0.3),
+            "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
+            "got n = 1.5",
+        ),
+    ],
+)
+def test_a_domain_message_reports_the_first_offending_value_plainly(call, message):
+    with pytest.raises(OutOfDomainError) as info:
+        call()
+    assert str(info.value) == message
+
+
+@pytest.mark.parametrize(
+    ("name", "call"),
+    [
+        # F ~ φ 2K/π: 1.7e308 · 2K(0.9)/π is beyond float64, though φ itself is not
+        ("ellipf", lambda: el.ellipf(1.7e308, 0.9)),
+        # F(1e308 | 0.9) = 1.6e308 is finite; Π(0.9; φ | 0.9) > F is not
+        ("ellippi", lambda: el.ellippi(0.9, 1.0e308, 0.9)),
+    ],
+)
+def test_an_integral_beyond_float64_is_an_overflow_error_naming_the_function(name, call):
+    with pytest.raises(ResultOverflowError) as info:
+        call()
+    assert str(info.value) == (
+        f"{name}: the integral exceeds float64's range (~1.8e308) for an argument this large"
+    )
+
+
+@pytest.mark.parametrize("phi", [0.5, 1.2, -0.7, 1e-3])
+def test_ellippi_at_n_one_and_m_zero_is_tan_phi(phi):
+    # Π(1; φ | 0) = ∫₀^φ dθ/(1 − sin²θ) = ∫₀^φ sec²θ dθ = tan φ (|φ| < π/2): the R_J tail
+    # at n = 1 is the whole difference tan φ − φ
+    got = float(el.ellippi(1.0, phi, 0.0))
+    assert got == pytest.approx(np.tan(phi), rel=THIRD_KIND_RTOL, abs=0)
+
+
+def test_two_prod_is_exact_for_the_period_multiples_of_the_argument_reduction():
+    # a·b = p + e exactly (Dekker), checked in rational arithmetic: a an integer count of
+    # periods j (up to 2^40) and b a period 2K or π, as _reduced and _amplitude form them
+    rng = np.random.default_rng(SEED)
+    a = rng.integers(1, 2**40, size=200).astype(float)
+    b = rng.uniform(np.pi, 20.0, size=200)
+    p, e = el._two_prod(a, b)
+    wrong = [
+        (x, y)
+        for x, y, pp, ee in zip(a, b, p, e, strict=True)
+        if Fraction(pp) + Fraction(ee) != Fraction(x) * Fraction(y)
+    ]
+    assert not wrong, wrong[:3]
+    for x, y in zip(a[:50], b[:50], strict=True):
+        ps, es = el._two_prod_scalar(float(x), float(y))
+        assert Fraction(ps) + Fraction(es) == Fraction(float(x)) * Fraction(float(y)), (x, y)

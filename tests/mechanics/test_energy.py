@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -15,8 +16,11 @@ from mechanics.errors import (
     NonPhysicalInertiaError,
     NonPositiveParameterError,
     OutOfDomainError,
+    ResultOverflowError,
     ShapeError,
 )
+
+from ._naming import cases, check_refusal, valid_kwargs, word
 
 EPS = np.finfo(float).eps
 
@@ -163,3 +167,158 @@ def test_bad_input_raises_a_specific_error_naming_the_value(func, args, error, m
     kwargs = {"g": [0.0, 0.0, -9.81]} if func is me.gravity_potential else {}
     with pytest.raises(error, match=match):
         func(*args, **kwargs)
+
+
+# ------------------------------------------- every parameter named, every overflow named
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("gravity_potential", "m"): r"must be >= 0; found -1\.0",
+    ("kinetic_energy_fixed_axis", "J_axis"): r"must be >= 0; found -1\.0",
+    ("kinetic_energy_rigid", "m"): r"must be >= 0; found -1\.0",
+    ("spring_force", "k"): r"k = -1\.0 must be >= 0",
+    ("spring_potential", "k"): r"k = -1\.0 must be >= 0",
+    ("spring_force", "ell_0"): r"ell_0 = -1\.0 must be >= 0",
+    ("spring_potential", "ell_0"): r"ell_0 = -1\.0 must be >= 0",
+    ("torsion_moment", "tau_0"): r"tau_0 = -1\.0 must be >= 0",
+    ("torsion_potential", "tau_0"): r"tau_0 = -1\.0 must be >= 0",
+    ("work_from_power", "t"): r"strictly increasing",
+}
+_OTHER = {
+    ("gravity_potential", "m", "shape"): r"r has shape \(1, 3\) but m has shape \(2,\)",
+    (
+        "work_from_power",
+        "P",
+        "shape",
+    ): r"must be \(K,\) with K >= 2 and P \(\.\.\., K\); got t \(4,\), P \(3,\)",
+    (
+        "work_from_power",
+        "t",
+        "shape",
+    ): r"must be \(K,\) with K >= 2 and P \(\.\.\., K\); got t \(3,\), P \(4,\)",
+}
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"),
+    list(cases("energy", _CONDITIONS, other=_OTHER)),
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("energy", fname) | {param: value}
+    check_refusal(getattr(me, fname), kw, param, error, condition)
+
+
+_BIG = 1e300  # squared or multiplied by another 1e300: beyond float64's 1.8e308
+_X = [_BIG, 0.0, 0.0]
+
+
+@pytest.mark.parametrize(
+    ("call", "what"),
+    [
+        pytest.param(
+            lambda: me.kinetic_energy_rigid(_BIG, _X, [0, 0, 0], np.eye(3)),
+            "the kinetic energy",
+            id="kinetic_energy_rigid",
+        ),
+        pytest.param(
+            lambda: me.kinetic_energy_fixed_axis(_BIG, _BIG),
+            "the kinetic energy",
+            id="kinetic_energy_fixed_axis",
+        ),
+        pytest.param(lambda: me.power([_X], [_X]), "the power", id="power"),
+        pytest.param(
+            lambda: me.work_from_power([1e308, 1e308, 1e308], [0.0, 1e10, 2e10]),
+            "the work",
+            id="work_from_power",
+        ),
+        pytest.param(
+            lambda: me.work_along_path([_X, _X], [[0, 0, 0], _X]), "the work", id="work_along_path"
+        ),
+        pytest.param(lambda: me.work_of_couple(_X, _X), "the work", id="work_of_couple"),
+        pytest.param(
+            lambda: me.rigid_body_power(_X, [0, 0, 0], _X, [0, 0, 0]),
+            "the power",
+            id="rigid_body_power",
+        ),
+        pytest.param(
+            lambda: me.gravity_potential([1e308], [[0, 0, 1.0]], g=[0, 0, -10.0]),
+            "m g",
+            id="gravity_potential-m_g",
+        ),
+        pytest.param(
+            lambda: me.gravity_potential([_BIG], [[0, 0, _BIG]], g=[0, 0, -10.0]),
+            "the potential energy",
+            id="gravity_potential",
+        ),
+        pytest.param(
+            lambda: me.spring_potential(_BIG, 0.0, [0, 0, 0], _X),
+            "the spring energy",
+            id="spring_potential",
+        ),
+        pytest.param(
+            lambda: me.spring_force(_BIG, 0.0, [0, 0, 0], _X), "the spring force", id="spring_force"
+        ),
+        pytest.param(
+            lambda: me.torsion_potential(_BIG, _BIG), "the torsion energy", id="torsion_potential"
+        ),
+        pytest.param(lambda: me.torsion_moment(_BIG, _BIG), "torsion_moment", id="torsion_moment"),
+        pytest.param(
+            lambda: me.contact_point_velocity([1e308, 0, 0], [0, 0, 1e308], [0, 1e308, 0]),
+            "contact_point_velocity",
+            id="contact_point_velocity",
+        ),
+        pytest.param(
+            lambda: me.contact_power(_X, _X, [0, 0, 0], [0, 0, 0]), "the power", id="contact_power"
+        ),
+        pytest.param(
+            lambda: me.rolling_contact_power(_X, _X, [0, 0, 0], [0, 0, 0]),
+            "the power",
+            id="rolling_contact_power",
+        ),
+        pytest.param(lambda: me.pair_power(_X, _X, [0, 0, 0]), "the power", id="pair_power"),
+    ],
+)
+def test_a_result_beyond_float64_is_an_overflow_error_naming_what_overflowed(call, what):
+    with pytest.raises(ResultOverflowError) as info:
+        call()
+    msg = str(info.value)
+    assert re.search(rf"^{re.escape(what)}\b", msg), msg
+    assert re.search(r"beyond float64|exceeds float64", msg), msg
+
+
+@pytest.mark.parametrize(
+    ("call", "first", "second"),
+    [
+        pytest.param(lambda a, b: me.power(a, b), "F", "v", id="power"),
+        pytest.param(lambda a, b: me.work_along_path(a, b), "F", "r", id="work_along_path"),
+        pytest.param(
+            lambda a, b: me.rigid_body_power(a, [0, 0, 1.0], b, [1.0, 0, 0]),
+            "F",
+            "v_A",
+            id="rigid_body_power-F",
+        ),
+        pytest.param(
+            lambda a, b: me.rigid_body_power([0, 0, 1.0], a, [1.0, 0, 0], b),
+            "M_A",
+            "omega",
+            id="rigid_body_power-M_A",
+        ),
+        pytest.param(
+            lambda a, b: me.contact_point_velocity(a, b, [0, 0, 1.0]),
+            "v_G",
+            "omega",
+            id="contact_point_velocity",
+        ),
+        pytest.param(lambda a, b: me.pair_power([0, 0, 1.0], a, b), "v_1", "v_2", id="pair_power"),
+    ],
+)
+def test_batches_that_do_not_broadcast_name_each_argument_with_its_own_shape(call, first, second):
+    # 2 and 3 rows along a leading axis: the message pairs each name with its own shape
+    a, b = np.ones((2, 2, 3)), np.ones((3, 2, 3))
+    with pytest.raises(ShapeError) as info:
+        call(a, b)
+    msg = str(info.value)
+    assert re.search(
+        rf"{word(first)} \(2, 2, 3\) and {word(second)} \(3, 2, 3\) do not broadcast", msg
+    ), msg

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
@@ -11,9 +13,13 @@ from mechanics.errors import (
     NonFiniteError,
     NonPositiveParameterError,
     OutOfDomainError,
+    ResultOverflowError,
     ShapeError,
+    StepSizeError,
 )
 from mechanics.rotation import EPS
+
+from ._naming import FIELD_NONFINITE, cases, check_refusal, valid_kwargs, word
 
 #: The fourth-order stencil is exact for cubic fields; what is left is rounding,
 #: about 1.5 eps |f| / h per derivative with h = H_REL (1 + |r|): for |f| ~ 10 and
@@ -164,4 +170,178 @@ def test_torricelli_with_a_moving_surface_satisfies_bernoulli_and_continuity():
 )
 def test_bad_input_is_named(call, error, match):
     with pytest.raises(error, match=match):
+        call()
+
+
+# ------------------------------------------- every parameter named, every overflow named
+_POS = r"must be > 0; got (0\.0|-1\.0)"
+_AREA = r"area_ratio = \(hole area\)/\(surface area\) must lie in \[0, 1\); got (1\.0|-0\.1)"
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("bernoulli_constant", "rho_0"): _POS,
+    ("euler_residual", "rho"): _POS,
+    ("drain_time", "h_0"): r"the initial level h_0 must be ≥ 0; got -1\.0",
+    ("drain_time", "g"): _POS,
+    ("drain_time", "area_ratio"): _AREA,
+    ("tank_level", "h_0"): r"the initial level h_0 must be ≥ 0; got -1\.0",
+    ("tank_level", "g"): _POS,
+    ("tank_level", "area_ratio"): _AREA,
+    ("torricelli_speed", "h"): r"the depth h must be ≥ 0; got -1\.0",
+    ("torricelli_speed", "g"): _POS,
+    ("torricelli_speed", "area_ratio"): _AREA,
+    ("streamline", "s"): r"s must be strictly increasing",
+    ("streamline", "rtol"): r"rtol must lie in \[2\.22e-14, 1\) .*; got (0\.0|-1\.0|1e-20|1\.5)",
+}
+#: s is a 1-D array of any length: its wrong shape is 2-D (a case of its own below)
+_SKIP = frozenset({("streamline", "s", "shape")})
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"),
+    list(cases("fluids", _CONDITIONS, skip=_SKIP)),
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("fluids", fname) | {param: value}
+    check_refusal(getattr(fluids, fname), kw, param, error, condition)
+
+
+def _nan_scalar(r, t):
+    return np.full(np.shape(r)[:-1], np.nan)
+
+
+def _scalar_of_vector_shape(r, t):
+    return np.asarray(r)[..., 0] * 0.0
+
+
+@pytest.mark.parametrize(
+    ("call", "name", "error", "condition"),
+    [
+        # each field is named by the name it has in the caller's call
+        (lambda: fluids.gradient(_nan_scalar, [0.1, 0.2, 0.3]), "f", NonFiniteError, "_FIELD"),
+        (
+            lambda: fluids.partial_time_derivative(_nan_scalar, [0.1, 0.2, 0.3]),
+            "f",
+            NonFiniteError,
+            "_FIELD",
+        ),
+        (
+            lambda: fluids.material_derivative(_nan_scalar, cubic_field, [0.1, 0.2, 0.3]),
+            "f",
+            NonFiniteError,
+            "_FIELD",
+        ),
+        (
+            lambda: fluids.velocity_gradient(_scalar_of_vector_shape, [0.1, 0.2, 0.3]),
+            "v",
+            ShapeError,
+            r"returned shape \(4, 3\) for r of shape \(4, 3, 3\); a vector field must return "
+            r"\(4, 3, 3\)",
+        ),
+        # a scalar for a streamline's velocity is refused as a vector field's wrong shape
+        (
+            lambda: fluids.streamline(_scalar_of_vector_shape, [0.1, 0.2, 0.3], [0.0, 1.0]),
+            "v",
+            ShapeError,
+            r"v\(r, t\) returned shape \(\) for r of shape \(3,\); a vector field must return "
+            r"\(3,\)",
+        ),
+        # rho and v finite, their product beyond float64: the flux is named as such
+        (
+            lambda: fluids.continuity_residual(
+                lambda r, t: 1e300 + 0.0 * r[..., 0], lambda r, t: 1e300 + 0.0 * r, [0.1, 0, 0]
+            ),
+            "rho*v",
+            NonFiniteError,
+            "_FIELD",
+        ),
+        (
+            lambda: fluids.streamline(cubic_field, [0.1, 0.2, 0.3], [[0.0], [1.0]]),
+            "s",
+            ShapeError,
+            r"s must be a 1-D array of parameter values; got shape \(2, 1\)",
+        ),
+        (
+            lambda: fluids.gradient(_nan_scalar, [0.1, 0.2, 0.3], h=-1.0),
+            "h",
+            NonPositiveParameterError,
+            r"the step h must be > 0; got -1\.0",
+        ),
+        (
+            lambda: fluids.partial_time_derivative(_nan_scalar, [0.1, 0.2, 0.3], h=0.0),
+            "h",
+            NonPositiveParameterError,
+            r"the step h must be > 0; got 0\.0",
+        ),
+        (
+            lambda: fluids.drain_time(1.0, g=9.8, area_ratio=0.0),
+            "area_ratio",
+            OutOfDomainError,
+            r"^area_ratio = 0 \(no hole\): the tank never drains$",
+        ),
+        (
+            lambda: fluids.tank_level(-1.0, h_0=1.0, g=9.8, area_ratio=0.1),
+            "t",
+            OutOfDomainError,
+            r"times must be ≥ 0 \(t = 0 is the start\); got -1\.0",
+        ),
+        (
+            lambda: fluids.torricelli_speed(1.0, g=9.8, area_ratio=[0.1, 0.2]),
+            "area_ratio",
+            ShapeError,
+            r"area_ratio must be a scalar; got shape \(2,\)",
+        ),
+    ],
+)
+def test_each_field_and_step_is_named_as_the_caller_named_it(call, name, error, condition):
+    cond = FIELD_NONFINITE if condition == "_FIELD" else condition
+    with pytest.raises(error) as info:
+        call()
+    msg = str(info.value)
+    assert msg.startswith(name) or re.search(word(name), msg), msg
+    assert re.search(cond, msg), msg
+
+
+def test_continuity_residual_evaluates_the_velocity_at_the_time_asked():
+    # rho = 1 + x (steady), v = (t, 0, 0): ∂ρ/∂t + ∇·(ρ v) = ∂x((1 + x) t) = t, exactly
+    # representable for the fourth-order stencil (the flux is linear in x)
+    def rho(r, t):
+        return 1.0 + r[..., 0]
+
+    def v(r, t):
+        return np.stack([t + 0.0 * r[..., 0], 0.0 * r[..., 1], 0.0 * r[..., 2]], axis=-1)
+
+    res = fluids.continuity_residual(rho, v, [[0.5, 0.0, 0.0], [2.0, 1.0, 0.0]], t=3.0)
+    np.testing.assert_allclose(res, [3.0, 3.0], rtol=0, atol=STENCIL_ATOL)
+
+
+def test_a_streamline_that_needs_too_many_evaluations_reports_the_whole_interval(monkeypatch):
+    monkeypatch.setattr(fluids, "STREAMLINE_MAX_EVALS", 3)
+    v = fluids.rigid_velocity_field([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    with pytest.raises(StepSizeError) as info:
+        fluids.streamline(v, [1.0, 0.0, 0.0], [0.0, 1.0, 2.0, 3.0])
+    msg = str(info.value)
+    assert "more than 3 evaluations of v over s = [0.0, 3.0] at rtol = 1e-12" in msg, msg
+
+
+@pytest.mark.parametrize(
+    ("fname", "call"),
+    [
+        (
+            "bernoulli_constant",
+            lambda: fluids.bernoulli_constant([1e300, 0, 0], 1.0, 1.0, rho_0=1.0, g=1.0),
+        ),
+        ("torricelli_speed", lambda: fluids.torricelli_speed(1e300, g=1e300)),
+        ("drain_time", lambda: fluids.drain_time(1e300, g=1e-300, area_ratio=0.5)),
+        (
+            "material_derivative",
+            lambda: fluids.material_derivative(
+                lambda r, t: 1e200 * r, lambda r, t: 1e200 * r, [1e100, 0, 0]
+            ),
+        ),
+    ],
+)
+def test_a_result_beyond_float64_is_an_overflow_error_naming_the_function(fname, call):
+    with pytest.raises(ResultOverflowError, match=rf"^{fname}: .*float64"):
         call()

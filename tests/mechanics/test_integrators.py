@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pytest
 
+from mechanics import integrators
 from mechanics.dynamics import euler_equations_rhs
 from mechanics.errors import (
     NonFiniteError,
@@ -29,6 +30,7 @@ from mechanics.errors import (
 )
 from mechanics.integrators import (
     METHODS,
+    SPLITTING_ORDERS,
     Solution,
     free_rigid_body_rhs,
     free_rigid_body_splitting,
@@ -41,6 +43,8 @@ from mechanics.integrators import (
 from mechanics.kinematics import angular_velocity_from_matrix_rate, omega_matrix_from_vector
 from mechanics.rotation import R1, R3, ROTATION_ATOL, matrix_from_rotvec
 from mechanics.tops import FreeAsymmetricTop
+
+from ._naming import cases, check_refusal, valid_kwargs
 
 EPS = float(np.finfo(float).eps)
 
@@ -583,3 +587,83 @@ def test_dop853_output_on_a_step_end_is_that_steps_state():
     coarse = integrate(oscillator, [1.0, 0.0], DENSE_GRID[::100], method="dop853", rtol=1e-9)
     fine = integrate(oscillator, [1.0, 0.0], DENSE_GRID, method="dop853", rtol=1e-9)
     np.testing.assert_array_equal(coarse.y, fine.y[::100])
+
+
+# ------------------------------------------- every parameter named, every overflow named
+_POS = r"must be > 0; got (0\.0|-1\.0)"
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("free_rigid_body_rhs", "J"): r"J \(the principal moments\) must be > 0; J1 = 0\.0 at index",
+    ("free_rigid_body_splitting", "J"): (
+        r"J \(the principal moments\) must be > 0; J1 = 0\.0 at index"
+        r"|J breaks the triangle inequality J1 \+ J2 ≥ J3: moments \[1\.0, 1\.0, 3\.0\]"
+    ),
+    ("free_rigid_body_splitting", "h"): _POS,
+    ("free_rigid_body_splitting", "order"): r"order must be one of \(2, 4, 6, 8\); got 3$",
+    ("integrate", "h"): _POS,
+    ("integrate", "t"): r"t must be strictly increasing; t\[1\] = 0\.0 ≤ t\[0\] = 1\.0",
+    ("time_grid", "h"): _POS,
+    ("time_grid", "n"): r"n must be an integer ≥ 1; got (-1|2\.5)$",
+    ("DOP853Stepper", "rtol"): _POS,
+    ("DOP853Stepper", "atol"): r"must be > 0; got -1\.0",
+}
+_GRID = r"t must be a 1-D grid of at least two output times \(a span \(t0, t1\)\); got shape \(1,\)"
+_OTHER = {
+    ("free_rigid_body_splitting", "t", "shape"): _GRID,
+    ("integrate", "t", "shape"): _GRID,
+    ("integrate", "rhs", "bad0"): r"^rhs returned a non-finite value at t=0\.0: nan at index",
+}
+#: n counts steps (an integer, refused as such below); y0 is 1-D of any length
+_SKIP = frozenset(
+    {("time_grid", "n", "nan"), ("time_grid", "n", "str"), ("DOP853Stepper", "y0", "shape")}
+)
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"),
+    list(cases("integrators", _CONDITIONS, skip=_SKIP, other=_OTHER)),
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("integrators", fname) | {param: value}
+    check_refusal(getattr(integrators, fname), kw, param, error, condition)
+
+
+@pytest.mark.parametrize("n", [math.nan, "1.0", 0])
+def test_a_step_count_that_is_not_a_positive_integer_is_refused_naming_it(n):
+    with pytest.raises(NonPositiveParameterError) as info:
+        time_grid(0.0, 0.1, n)
+    assert str(info.value) == f"n must be an integer ≥ 1; got {n!r}"
+
+
+def test_the_step_budget_counts_the_whole_grid_not_its_first_interval():
+    # t = [0, 1, 100] at h = 0.1: 1000 steps over the whole grid (10 in its first interval)
+    with pytest.raises(StepSizeError) as info:
+        integrators.integrate(
+            lambda t, y: -y, [1.0], [0.0, 1.0, 100.0], method="rk4", h=0.1, max_steps=50
+        )
+    msg = str(info.value)
+    assert msg.startswith("h = 0.1 over t = [0.0, 100.0] takes 1e+03 steps, more than "), msg
+    assert "max_steps = 50" in msg, msg
+
+
+#: a schedule's fractions, each a product of at most three triple-jump coefficients and
+#: summed over up to 109 sub-flows: 2^7 eps
+SCHEDULE_ATOL = 2**7 * EPS
+
+
+@pytest.mark.parametrize("order", SPLITTING_ORDERS)
+def test_each_splitting_order_is_yoshidas_triple_jump_of_strang(order):
+    # Strang (5 sub-flows, head τ/2) composed p/2 − 1 times by Yoshida's triple jump
+    # γ1 = 1/(2 − 2^(1/(q+1))), q = 2, 4, ..., order − 2: 3 copies, 2 merges at each joint
+    sched = integrators._schedule(order)
+    assert sched == integrators._SCHEDULES[order]  # the one the solver runs
+    jumps = range(2, order, 2)
+    assert len(sched) == 4 * 3 ** len(jumps) + 1
+    head = 0.5 * math.prod(1.0 / (2.0 - 2.0 ** (1.0 / (q + 1))) for q in jumps)
+    assert sched[0] == (0, pytest.approx(head, rel=SCHEDULE_ATOL))
+    assert sched[-1] == sched[0]  # symmetric
+    for axis in (0, 1, 2):  # consistent: each axis turns for the whole step
+        total = math.fsum(c for a, c in sched if a == axis)
+        assert abs(total - 1.0) <= SCHEDULE_ATOL

@@ -27,6 +27,8 @@ from mechanics.errors import (
     ZeroAngularVelocityError,
 )
 
+from ._naming import cases, check_refusal, valid_kwargs
+
 EPS = np.finfo(float).eps
 
 # ω from an exact matrix rate: entries of Ṙ Rᵀ are sums of nine products of
@@ -672,3 +674,59 @@ def test_instantaneous_centre_plane_beyond_float64_raises_naming_the_inputs():
     # y_C = xdot_A/ω = 1e500: not representable, so an error, never inf.
     with pytest.raises(ResultOverflowError, match="1e-200"):
         kin.instantaneous_centre_plane([0.0, 0.0], [1e300, 0.0], 1e-200)
+
+
+# ------------------------------------------- every parameter named, every overflow named
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("angular_velocity_from_matrix_rate", "R_A_O"): (
+        r"is not a rotation: max \|R R\^T - 1\| = 3 exceeds atol"
+    ),
+    ("euler_rates_from_angular_velocity", "theta"): (
+        r"theta = (0\.0|3\.14159\d*) gives \|sin\(theta\)\| <= .*: Euler-angle rates are "
+        r"undefined at gimbal lock"
+    ),
+    ("instantaneous_axis", "omega"): (
+        r"omega = \[0\.0, 0\.0, 0\.0\] is zero: a translating body has no instantaneous axis"
+    ),
+    ("instantaneous_centre_plane", "omega_z"): (
+        r"omega_z = 0: a translating body has no instantaneous centre"
+    ),
+    ("rigid_velocity_from_points", "r"): r"the points r are collinear \(or coincide\)",
+}
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"), list(cases("kinematics", _CONDITIONS))
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("kinematics", fname) | {param: value}
+    check_refusal(getattr(kin, fname), kw, param, error, condition)
+
+
+def test_an_instantaneous_axis_beyond_float64_names_the_inputs_of_its_own_row():
+    # row 1 of the batch: |AC| = |v_A|/|omega| = 1e300/1e-300 is beyond float64; row 0 is fine
+    v = [[1.0, 0.0, 0.0], [0.0, 1e300, 0.0]]
+    w = [[0.0, 0.0, 1.0], [0.0, 0.0, 1e-300]]
+    with pytest.raises(ResultOverflowError) as info:
+        kin.instantaneous_axis(v, w)
+    msg = str(info.value)
+    assert msg.startswith(
+        "the instantaneous axis of v_A = [0.0, 1e+300, 0.0], omega = [0.0, 0.0, 1e-300] "
+        "(index (1,)) is beyond float64"
+    ), msg
+
+
+def test_an_instantaneous_centre_beyond_float64_names_the_inputs_of_its_own_row():
+    # row 1: y_C = xdot_A/omega = 1e300/1e-200 is beyond float64
+    with pytest.raises(ResultOverflowError) as info:
+        kin.instantaneous_centre_plane(
+            [[0.0, 0.0], [1.0, 2.0]], [[1.0, 0.0], [1e300, 0.0]], [2.0, 1e-200]
+        )
+    msg = str(info.value)
+    assert msg.startswith(
+        "the instantaneous centre of r_A = [1.0, 2.0], v_A = [1e+300, 0.0], omega_z = 1e-200 "
+        "(index (1,)) is beyond float64"
+    ), msg

@@ -19,9 +19,12 @@ from mechanics.errors import (
     NonFiniteError,
     NonPositiveParameterError,
     OutOfDomainError,
+    ResultOverflowError,
     ShapeError,
     UnknownOptionError,
 )
+
+from ._naming import cases, check_refusal, valid_kwargs
 
 EPS = np.finfo(float).eps
 #: scipy's quad asked for epsrel = 1e-13 (its own error estimate): 2^12 eps = 9e-13
@@ -365,3 +368,345 @@ def test_rim_rockets_round_trip_and_domain():
         osys.rim_rocket_angular_velocity(1e6 / (2.0 * 2500.0), **kw)  # all inertia expelled
     with pytest.raises(OutOfDomainError):
         osys.rim_rocket_spin_up_time(-0.1, **kw)
+
+
+# ------------------------------------------- every parameter named, every overflow named
+_POS = r"must be > 0; got (0\.0|-1\.0)"
+_NONNEG = r"must be ≥ 0 \(mass flows are non-negative\); got -1\.0"
+_M_F = r"m_f must be ≥ 0 .*got -1\.0|m_f must be < m_0 .*got m_f = 20\.0 with m_0 = 10\.0"
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("angular_momentum_rate", "q_out"): _NONNEG,
+    ("burn_out_time", "m_f"): _NONNEG,
+    ("burn_out_time", "q"): _POS,
+    ("carousel_angular_acceleration", "J_0"): _POS,
+    ("carousel_angular_acceleration", "q"): _NONNEG,
+    ("carousel_angular_acceleration", "R"): _POS,
+    ("carousel_angular_velocity", "J_0"): _POS,
+    ("carousel_angular_velocity", "q"): _NONNEG,
+    ("carousel_angular_velocity", "R"): _POS,
+    ("carousel_limit_angular_velocity", "R"): _POS,
+    ("falling_chain_table_force", "lam"): _POS,
+    ("falling_chain_table_force", "ell"): _POS,
+    ("falling_chain_table_force", "x"): r"x must lie in \[0, ell\]; got (-0\.1|2\.0)",
+    ("jet_velocity", "m"): _POS,
+    ("jet_velocity", "q"): _POS,
+    ("mass_rate", "q_out"): _NONNEG,
+    ("mass_rate", "q_in"): _NONNEG,
+    ("momentum_rate", "q_out"): _NONNEG,
+    ("open_system_acceleration", "m"): _POS,
+    ("open_system_acceleration", "q_out"): _NONNEG,
+    ("pipe_bend_force", "q"): _NONNEG,
+    ("pipe_bend_force_magnitude", "q"): _NONNEG,
+    ("rim_rocket_angular_velocity", "J_0"): _POS,
+    ("rim_rocket_angular_velocity", "q"): _POS,
+    ("rim_rocket_angular_velocity", "r"): _POS,
+    ("rim_rocket_spin_up_time", "J_0"): _POS,
+    ("rim_rocket_spin_up_time", "q"): _POS,
+    ("rim_rocket_spin_up_time", "r"): _POS,
+    ("rocket_height", "m_0"): _POS,
+    ("rocket_height", "q"): _POS,
+    ("rocket_height", "m_f"): _M_F,
+    ("rocket_height", "t"): r"t must be ≥ 0 \(the burn starts at t = 0\); got -1\.0",
+    ("rocket_velocity", "m_0"): _POS,
+    ("rocket_velocity", "q"): _POS,
+    ("rocket_velocity", "m_f"): _M_F,
+    ("rocket_velocity", "t"): r"t must be ≥ 0 \(the burn starts at t = 0\); got -1\.0",
+    ("rocket_mass", "m_0"): _POS,
+    ("rocket_mass", "q"): _POS,
+    ("rocket_mass", "m_f"): _M_F,
+    ("thrust", "q"): _NONNEG,
+}
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"), list(cases("open_systems", _CONDITIONS))
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("open_systems", fname) | {param: value}
+    check_refusal(getattr(osys, fname), kw, param, error, condition)
+
+
+_V3 = [0.3, -0.2, 0.5]
+_RIM = {"J_0": 2.0, "q": 0.1, "u": 50.0, "r": 0.5}
+_CAR = {"J_0": 10.0, "q": 0.5, "v": 2.0, "r": 0.5, "R": 1.0}
+_ROCK = {"m_0": 10.0, "q": 1.0, "u": 100.0, "m_f": 4.0, "g": 9.81}
+
+
+@pytest.mark.parametrize(
+    ("fname", "kwargs", "param", "error", "condition"),
+    [
+        # the inflows, which the fuzz entries leave out: each named, not its outflow twin
+        (
+            "momentum_rate",
+            {"F_e": _V3, "q_in": -1.0, "v_in": _V3},
+            "q_in",
+            NegativeMassError,
+            _NONNEG,
+        ),
+        (
+            "momentum_rate",
+            {"F_e": _V3, "q_in": 1.0, "v_in": [0, np.nan, 0]},
+            "v_in",
+            NonFiniteError,
+            "must be finite",
+        ),
+        (
+            "momentum_rate",
+            {"F_e": _V3, "q_in": 1.0, "v_in": [0, 1.0]},
+            "v_in",
+            ShapeError,
+            r"has shape \(2,\)",
+        ),
+        (
+            "momentum_rate",
+            {"F_e": _V3, "q_in": 1.0},
+            "v_in",
+            ShapeError,
+            r"q_in and v_in must be given together",
+        ),
+        (
+            "momentum_rate",
+            {"F_e": _V3, "v_out": _V3},
+            "q_out",
+            ShapeError,
+            r"q_out and v_out must be given together",
+        ),
+        (
+            "momentum_rate",
+            {"F_e": _V3, "q_in": [1.0, 2.0], "v_in": [_V3] * 3},
+            "v_in",
+            ShapeError,
+            r"q_in has shape \(2,\) and v_in \(3, 3\); expected \(\.\.\., n\) and \(\.\.\., n, 3\)",
+        ),
+        (
+            "open_system_acceleration",
+            {"m": 1.0, "F_e": _V3, "q_in": 1.0, "u_in": [np.inf, 0, 0]},
+            "u_in",
+            NonFiniteError,
+            "must be finite",
+        ),
+        (
+            "open_system_acceleration",
+            {"m": 1.0, "F_e": _V3, "q_in": -1.0, "u_in": _V3},
+            "q_in",
+            NegativeMassError,
+            _NONNEG,
+        ),
+        (
+            "open_system_acceleration",
+            {"m": 1.0, "F_e": _V3, "u_in": _V3},
+            "q_in",
+            ShapeError,
+            r"q_in and u_in must be given together",
+        ),
+        (
+            "open_system_acceleration",
+            {"m": 1.0, "F_e": _V3, "q_out": 1.0},
+            "u_out",
+            ShapeError,
+            r"q_out and u_out must be given together",
+        ),
+        (
+            "angular_momentum_rate",
+            {"M_e": _V3, "about": _V3, "q_in": 1.0, "r_in": [np.nan, 0, 0], "v_in": _V3},
+            "r_in",
+            NonFiniteError,
+            "must be finite",
+        ),
+        (
+            "angular_momentum_rate",
+            {"M_e": _V3, "about": _V3, "q_in": 1.0, "r_in": _V3, "v_in": [np.nan, 0, 0]},
+            "v_in",
+            NonFiniteError,
+            "must be finite",
+        ),
+        (
+            "angular_momentum_rate",
+            {"M_e": _V3, "about": _V3, "q_in": -1.0, "r_in": _V3, "v_in": _V3},
+            "q_in",
+            NegativeMassError,
+            _NONNEG,
+        ),
+        (
+            "angular_momentum_rate",
+            {"M_e": _V3, "about": _V3, "q_in": 1.0, "v_in": _V3},
+            "r_in",
+            ShapeError,
+            r"q_in, r_in, v_in must be given together",
+        ),
+        (
+            "angular_momentum_rate",
+            {"M_e": _V3, "about": _V3, "q_out": 1.0, "r_out": _V3},
+            "v_out",
+            ShapeError,
+            r"q_out, r_out, v_out must be given together",
+        ),
+        ("mass_rate", {"q_in": [1.0, -2.0]}, "q_in", NegativeMassError, r"got -2\.0"),
+        # the value a domain message reports is the first offending one, not the first entry
+        (
+            "jet_velocity",
+            {"t": [0.0, -2.0], "m": 10.0, "q": 1.0, "w": 3.0, "v_0": 0.0},
+            "t",
+            OutOfDomainError,
+            r"t must be ≥ 0; got -2\.0",
+        ),
+        (
+            "jet_velocity",
+            {"t": 1.0, "m": 10.0, "q": 1.0, "w": 0.0, "v_0": 0.0},
+            "w",
+            NonPositiveParameterError,
+            _POS,
+        ),
+        (
+            "falling_chain_table_force",
+            {"x": 0.3, "lam": 0.2, "h": [0.5, -2.0], "g": 9.81, "ell": 1.0},
+            "h",
+            OutOfDomainError,
+            r"h must be ≥ 0; got -2\.0",
+        ),
+        (
+            "falling_chain_table_force",
+            {"x": [0.5, -0.1], "lam": 0.2, "h": 0.0, "g": 9.81, "ell": 1.0},
+            "x",
+            OutOfDomainError,
+            r"got -0\.1",
+        ),
+        (
+            "falling_chain_table_force",
+            {"x": 0.3, "lam": 0.2, "h": 0.0, "g": 0.0, "ell": 1.0},
+            "g",
+            NonPositiveParameterError,
+            _POS,
+        ),
+        (
+            "carousel_angular_velocity",
+            {"t": [0.0, -1.0], **_CAR},
+            "t",
+            OutOfDomainError,
+            r"t must be ≥ 0 \(shooting starts at t = 0\); got -1\.0",
+        ),
+        (
+            "carousel_angular_acceleration",
+            {"t": [0.0, -1.0], **_CAR},
+            "t",
+            OutOfDomainError,
+            r"t must be ≥ 0 \(shooting starts at t = 0\); got -1\.0",
+        ),
+        (
+            "carousel_angular_velocity",
+            {"t": 1.0, **_CAR, "phidot_0": np.nan},
+            "phidot_0",
+            NonFiniteError,
+            "must be finite",
+        ),
+        (
+            "carousel_angular_acceleration",
+            {"t": 1.0, **_CAR, "phidot_0": np.nan},
+            "phidot_0",
+            NonFiniteError,
+            "must be finite",
+        ),
+        (
+            "carousel_angular_velocity",
+            {"t": 1.0, **_CAR | {"r": -1.5}},
+            "r",
+            OutOfDomainError,
+            r"^the bullets miss: \|r\| must be ≤ R$",
+        ),
+        (
+            "carousel_limit_angular_velocity",
+            {"v": 2.0, "r": 1.5, "R": 1.0},
+            "r",
+            OutOfDomainError,
+            r"^the bullets miss: \|r\| must be ≤ R$",
+        ),
+        (
+            "rim_rocket_angular_velocity",
+            {"t": [0.0, -1.0], **_RIM},
+            "t",
+            OutOfDomainError,
+            r"t must be ≥ 0; got -1\.0",
+        ),
+        (
+            "rim_rocket_angular_velocity",
+            {"t": 1.0, **_RIM | {"u": 0.0}},
+            "u",
+            NonPositiveParameterError,
+            _POS,
+        ),
+        # q r² t = J_0 exactly (0.5 · 2² · 1 = 2): the wheel has no inertia left
+        (
+            "rim_rocket_angular_velocity",
+            {"t": 1.0, **_RIM | {"q": 0.5, "r": 2.0}},
+            "J_0",
+            OutOfDomainError,
+            r"q r² t must be < J_0",
+        ),
+        (
+            "rim_rocket_spin_up_time",
+            {"omega": [0.0, -1.0], **_RIM},
+            "omega",
+            OutOfDomainError,
+            r"omega must be ≥ 0 \(the rockets push forward\); got -1\.0",
+        ),
+        (
+            "rim_rocket_spin_up_time",
+            {"omega": 1.0, **_RIM | {"u": 0.0}},
+            "u",
+            NonPositiveParameterError,
+            _POS,
+        ),
+        (
+            "rocket_velocity",
+            {"t": 1.0, **_ROCK | {"g": -1.0}},
+            "g",
+            OutOfDomainError,
+            r"g is the magnitude of gravity .* must be ≥ 0; got -1\.0",
+        ),
+        ("rocket_velocity", {"t": 1.0, **_ROCK | {"u": 0.0}}, "u", NonPositiveParameterError, _POS),
+        (
+            "rocket_height",
+            {"t": 1.0, **_ROCK | {"u": 50.0, "g": 100.0}},
+            "u",
+            OutOfDomainError,
+            r"no lift-off: the thrust q u = 50\.0 is less than the weight m_0 g = 1000\.0",
+        ),
+        (
+            "rocket_mass",
+            {"t": [1.0, 5.0], "m_0": 10.0, "q": 1.0, "m_f": 4.0},
+            "t",
+            OutOfDomainError,
+            r"t = 5\.0 is beyond burn-out T = m_f/q = 4\.0; pass after_burn_out='coast'",
+        ),
+    ],
+)
+def test_each_domain_message_names_the_parameter_the_condition_and_the_offending_value(
+    fname, kwargs, param, error, condition
+):
+    check_refusal(getattr(osys, fname), kwargs, param, error, condition)
+
+
+@pytest.mark.parametrize(
+    ("fname", "kwargs"),
+    [
+        ("thrust", {"q": 1e300, "u_rel": [1e300, 0, 0]}),
+        ("momentum_rate", {"F_e": _V3, "q_out": 1e300, "v_out": [1e300, 0, 0]}),
+        ("mass_rate", {"q_out": [1e308, 1e308]}),
+        ("open_system_acceleration", {"m": 1e-300, "F_e": [1e300, 0, 0]}),
+        (
+            "angular_momentum_rate",
+            {"M_e": _V3, "about": _V3, "q_in": 1e300, "r_in": [0, 1e300, 0], "v_in": [1e300, 0, 0]},
+        ),
+        ("burn_out_time", {"m_f": 1e300, "q": 1e-300}),
+        ("pipe_bend_force", {"q": 1e300, "v": 1e300, "angle": 1.0}),
+        ("pipe_bend_force_magnitude", {"q": 1e300, "v": 1e300, "angle": 1.0}),
+        ("falling_chain_table_force", {"x": 0.3, "lam": 1e300, "h": 0.0, "g": 1e300, "ell": 1.0}),
+        ("carousel_limit_angular_velocity", {"v": 1e300, "r": 1e-10, "R": 1e-10}),
+    ],
+)
+def test_a_result_beyond_float64_is_an_overflow_error_naming_the_function(fname, kwargs):
+    with pytest.raises(ResultOverflowError, match=rf"^{fname}: .*float64"):
+        getattr(osys, fname)(**kwargs)

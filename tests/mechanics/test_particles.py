@@ -19,6 +19,8 @@ from mechanics.errors import (
     ZeroTotalMassError,
 )
 
+from ._naming import cases, check_refusal, entries_of, valid_kwargs
+
 EPS = np.finfo(float).eps
 
 M3 = np.array([1.0, 2.0, 0.5])
@@ -269,3 +271,221 @@ def test_koenig_parts_of_T_at_a_speed_of_1e8():
     T_G, T_cm = mp.kinetic_energy_decomposition([1.0, 1.0], [[1e8 + 1, 0, 0], [1e8 - 1, 0, 0]])
     assert T_G == 1.0
     assert T_cm == 1e16
+
+
+# ------------------------------------------- every parameter named, every overflow named
+_M_COND = (
+    r"m must be >= 0; found -2\.0 at index \(1,\)"
+    r"|the total mass of m is 0 \(index \(\)\): the centre of mass of a massless system is "
+    r"undefined"
+)
+_RHO_COND = (
+    r"rho must be >= 0; found -2\.0 at index \(1,\)"
+    r"|^rho is zero everywhere: the total mass is 0 and the centre of mass of a massless body "
+    r"is undefined$"
+)
+#: the condition an unphysical value of each parameter violates (tests.fuzz.entries)
+_BY_PARAM = {
+    "m": _M_COND,
+    "rho": _RHO_COND,
+    "axis": r"axis = \[0\.0, 0\.0, 0\.0\] has zero length",
+    "cell_volume": r"cell_volume = (0\.0|-1\.0) must be > 0",
+}
+_CONDITIONS = {
+    (fname, p): _BY_PARAM[p] for fname, e in entries_of("particles").items() for p in e.bad
+}
+#: masses and densities are 1-D of any length N: their wrong shape is a scalar (below)
+_SKIP = frozenset((fname, p, "shape") for fname in entries_of("particles") for p in ("m", "rho"))
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"),
+    list(cases("particles", _CONDITIONS, skip=_SKIP)),
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("particles", fname) | {param: value}
+    check_refusal(getattr(mp, fname), kw, param, error, condition)
+
+
+_B = 1e300  # a product of two is beyond float64
+_H = 1.7e308  # a difference of two of opposite signs is beyond float64
+_Z3 = [0.0, 0.0, 0.0]
+
+
+@pytest.mark.parametrize(
+    ("call", "what"),
+    [
+        pytest.param(lambda: mp.total_mass([1e308, 1e308]), "the total mass", id="total_mass"),
+        pytest.param(lambda: mp.momentum([_B, _B], [[_B, 0, 0]] * 2), "the momentum", id="p"),
+        pytest.param(
+            lambda: mp.angular_momentum([1.0], [[_H, 0, 0]], [[0, 1, 0]], about=[-_H, 0, 0]),
+            "the offsets r - about",
+            id="L-offsets",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum(
+                [1.0], [[1, 0, 0]], [[_H, 0, 0]], about=_Z3, about_velocity=[-_H, 0, 0]
+            ),
+            "the offsets r - about_velocity",
+            id="L-about_velocity",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum([_B], [[_B, 0, 0]], [[0, 1, 0]], about=_Z3),
+            "m_j AP_j",
+            id="L-m_AP",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum([1.0], [[_B, 0, 0]], [[0, _B, 0]], about=_Z3),
+            "the angular momentum",
+            id="L",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_decomposition(
+                [1.0, 1e-300], [[_H, 0, 0], [-_H, 0, 0]], [[0, 1, 0]] * 2, about=_Z3
+            ),
+            "the offsets r - r_G",
+            id="decomposition-r_G",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_decomposition(
+                [1.0, 1e-300], [[1, 0, 0], [-1, 0, 0]], [[_H, 0, 0], [-_H, 0, 0]], about=_Z3
+            ),
+            "the offsets r - v_G",
+            id="decomposition-v_G",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_decomposition(
+                [_B, _B], [[1, 0, 0], [-1, 0, 0]], [[_B, 0, 0]] * 2, about=_Z3
+            ),
+            "the momentum",
+            id="decomposition-p",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_decomposition(
+                [1.0, 1.0], [[_B, 0, 0], [-_B, 0, 0]], [[0, _B, 0], [0, -_B, 0]], about=_Z3
+            ),
+            "L_G",
+            id="decomposition-L_G",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_decomposition(
+                [1.0, 1.0], [[_B, 0, 0]] * 2, [[0, _B, 0]] * 2, about=_Z3
+            ),
+            "AG x p",
+            id="decomposition-AG_x_p",
+        ),
+        pytest.param(
+            lambda: mp.moving_base_point_term([1.0], [[0, _B, 0]], about_velocity=[_B, 0, 0]),
+            "v_B x p",
+            id="moving_base_point_term",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_rate(
+                [_B], [_Z3], [_Z3], [[_B, 0, 0]], about=_Z3, about_velocity=_Z3
+            ),
+            "m_j a_j",
+            id="rate-m_a",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_rate(
+                [_B], [_Z3], [[_B, 0, 0]], [_Z3], about=_Z3, about_velocity=_Z3
+            ),
+            "m_j v_j",
+            id="rate-m_v",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_rate(
+                [1.0], [[_B, 0, 0]], [_Z3], [[0, _B, 0]], about=_Z3, about_velocity=_Z3
+            ),
+            "dL_B/dt",
+            id="rate",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_rate(
+                [1.0], [[_H, 0, 0]], [_Z3], [_Z3], about=[-_H, 0, 0], about_velocity=_Z3
+            ),
+            "the offsets r - about",
+            id="rate-offsets",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_forces([[_B, 0, 0]], [[0, _B, 0]], about=_Z3),
+            "the moment",
+            id="moment_of_forces",
+        ),
+        pytest.param(
+            lambda: mp.internal_forces(
+                np.array([[[0, 0, 0], [_H, 0, 0], [_H, 0, 0]], [_Z3] * 3, [_Z3] * 3])
+            ),
+            "the internal forces",
+            id="internal_forces",
+        ),
+        pytest.param(
+            lambda: mp.internal_moment(
+                [[_B, 0, 0], _Z3], np.array([[_Z3, [0, _B, 0]], [[0, -_B, 0], _Z3]])
+            ),
+            "the internal moment",
+            id="internal_moment",
+        ),
+        pytest.param(
+            lambda: mp.internal_moment(
+                [[_H, 0, 0], [-_H, 0, 0]], np.array([[_Z3, [0, 1, 0]], [[0, -1, 0], _Z3]])
+            ),
+            "r_jk",
+            id="internal_moment-r_jk",
+        ),
+        pytest.param(lambda: mp.kinetic_energy([1.0], [[_B, 0, 0]]), "v_j^2", id="T-v2"),
+        pytest.param(
+            lambda: mp.kinetic_energy([1e308, 1e308], [[1.5, 0, 0]] * 2),
+            "the kinetic energy",
+            id="T",
+        ),
+        pytest.param(
+            lambda: mp.kinetic_energy_decomposition([_B], [[_B, 0, 0]]),
+            "1/2 m v_G^2",
+            id="T-decomposition",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_inertia_about_axis([_B], [[_B, 0, 0]], about=_Z3, axis=[0, 0, 1]),
+            "J_z",
+            id="J_z",
+        ),
+    ],
+)
+def test_a_result_beyond_float64_is_an_overflow_error_naming_what_overflowed(call, what):
+    with pytest.raises(ResultOverflowError) as info:
+        call()
+    msg = str(info.value)
+    assert msg.startswith(f"{what} is beyond float64 (index "), msg
+    assert msg.endswith("the exact result exceeds 1.8e308 in magnitude"), msg
+
+
+@pytest.mark.parametrize(
+    ("call", "name"),
+    [
+        (lambda: mp.total_mass(5.0), "m"),
+        (lambda: mp.check_masses(5.0, "masses"), "masses"),
+        (lambda: mp.masses_from_density(5.0, cell_volume=1.0), "rho"),
+        (lambda: mp.continuous_momentum(5.0, [[1.0, 0, 0]], cell_volume=1.0), "rho"),
+    ],
+)
+def test_a_scalar_for_the_masses_is_refused_naming_them_and_the_shape_wanted(call, name):
+    with pytest.raises(ShapeError) as info:
+        call()
+    msg = str(info.value)
+    assert msg == f"{name} has shape (); expected (..., N) with N >= 1 particles", msg
+
+
+def test_a_unit_axis_is_normalised_row_by_row_in_a_batch():
+    # two axes of different lengths along the same batch: each row is normalised by its
+    # own length (2 and 3), so x · e reads off x_z and x_x
+    x = np.array([[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]])
+    out = mp.axial_component(x, axis=[[0.0, 0.0, 2.0], [3.0, 0.0, 0.0]])
+    np.testing.assert_array_equal(out, [3.0, 4.0])
+
+
+def test_a_system_of_no_particles_has_no_internal_forces():
+    # the sum over no partners is an empty (0, 3) array, not an error
+    out = mp.internal_forces(np.zeros((0, 0, 3)))
+    assert out.shape == (0, 3)

@@ -29,7 +29,14 @@ from mechanics.errors import (
 )
 from mechanics.rotation import matrix_from_euler
 
+from ._naming import cases, check_refusal, valid_kwargs
+
 EPS = np.finfo(float).eps
+#: L_O = R^T J ω at the separatrix: ω and R each to a few eps (the module's worst measured
+#: 0.51 eps of |ω| on the attitude), a product and a sum of three: 16 eps of |L|
+SEPARATRIX_L_ATOL = 16 * EPS
+#: ω·Jω − 2E: three products of values each to a few eps, summed
+POINSOT_RTOL = 32 * EPS
 #: central differences of the incline trajectory (quadratic in t: no truncation error)
 #: with rounding ~ eps |x| / h for |x| ~ 1: 2^23 eps = 1.9e-9
 FD_ATOL = 2**23 * EPS
@@ -496,3 +503,153 @@ def test_separatrix_distance_is_in_the_units_given_and_refuses_overflow():
     assert tops.FreeAsymmetricTop(2.0**100 * J, w).separatrix_distance == d * 2.0**200
     with pytest.raises(ResultOverflowError, match="separatrix_distance"):
         _ = tops.FreeAsymmetricTop(1e200 * J, w).separatrix_distance
+
+
+# ------------------------------------------- every parameter named, every overflow named
+_ROT = r"R_A_O_0 is not a rotation: (max \|R R\^T - 1\| = 3|\|det R - 1\| = 2) exceeds atol"
+_POS = r"must be > 0; got (0\.0|-1\.0)"
+_TRIANGLE_J = r"J breaks the triangle inequality J1 \+ J2 ≥ J3: J3 exceeds J1 \+ J2 by 1"
+_POSITIVE_J = r"J must be positive: J1 = (0\.0|-2\.0) ≤ 0"
+_SYM = r"\(J1, J1, J3\) (must be positive|breaks the triangle inequality)"
+#: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
+_CONDITIONS = {
+    ("FreeAsymmetricTop", "J"): f"{_POSITIVE_J}|{_TRIANGLE_J}",
+    ("FreeAsymmetricTop", "R_A_O_0"): _ROT,
+    ("FreeSymmetricTop", "J1"): _SYM,
+    ("FreeSymmetricTop", "J3"): _SYM,
+    ("FreeSymmetricTop", "R_A_O_0"): _ROT,
+    ("HeavySymmetricTop", "J_1"): _POS,
+    ("HeavySymmetricTop", "J_3"): (
+        f"{_POS}|J_3 = 5\\.0 exceeds 2 J_1 = 4\\.0: the moments of a symmetric body obey the "
+        "triangle inequality"
+    ),
+    ("HeavySymmetricTop", "m_g_ell"): _POS,
+    ("HeavySymmetricTop", "theta"): (
+        r"theta = 0 or π with theta_dot ≠ 0: the Euler angles are singular"
+        r"|theta must lie in \[0, π\]; got 4\.0"
+    ),
+    ("check_principal_moments", "J"): f"{_POSITIVE_J}|{_TRIANGLE_J}",
+    ("principal_axis_stability", "J"): f"{_POSITIVE_J}|{_TRIANGLE_J}",
+    ("principal_axis_stability", "axis"): r"axis must be 1, 2 or 3; got (0|4|1\.5)$",
+    ("sleeping_top_is_stable", "J_1"): _POS,
+    ("sleeping_top_is_stable", "m_g_ell"): _POS,
+    ("steady_precession_rates", "J_1"): _POS,
+    ("steady_precession_rates", "m_g_ell"): _POS,
+    ("spherical_top_on_incline", "m"): _POS,
+    ("spherical_top_on_incline", "R"): _POS,
+    ("spherical_top_on_incline", "J"): _POS,
+    ("spherical_top_on_incline", "g"): _POS,
+}
+
+
+#: axis is an option (1, 2 or 3): its NaN and string are unknown options, not bad numbers
+_SKIP = frozenset({("principal_axis_stability", "axis", k) for k in ("nan", "str")})
+
+
+@pytest.mark.parametrize(
+    ("fname", "param", "value", "error", "condition"), list(cases("tops", _CONDITIONS, skip=_SKIP))
+)
+def test_every_parameter_of_every_function_is_named_with_the_condition_it_breaks(
+    fname, param, value, error, condition
+):
+    kw = valid_kwargs("tops", fname) | {param: value}
+    check_refusal(getattr(tops, fname), kw, param, error, condition)
+
+
+def _free():
+    return tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.4, 0.2, 1.0])
+
+
+def _sym():
+    return tops.FreeSymmetricTop(2.0, 3.0, [0.3, -0.2, 0.5])
+
+
+def _heavy():
+    return tops.HeavySymmetricTop(
+        J_1=2.0, J_3=1.0, m_g_ell=3.0, theta=0.5, psi=0.1, phi=0.2,
+        theta_dot=0.1, psi_dot=1.0, phi_dot=8.0,
+    )  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("make", "method", "param"),
+    [
+        (_free, "omega", "t"),
+        (_free, "state", "t"),
+        (_free, "angular_momentum_body", "t"),
+        (_free, "precession_angle", "t"),
+        (_free, "attitude", "t"),
+        (_free, "omega_space", "t"),
+        (_free, "poinsot_residuals", "t"),
+        (_sym, "omega", "t"),
+        (_sym, "attitude", "t"),
+        (_heavy, "f", "u"),
+        (_heavy, "effective_potential", "theta"),
+        (_heavy, "u", "t"),
+        (_heavy, "theta", "t"),
+        (_heavy, "psi", "t"),
+        (_heavy, "phi", "t"),
+        (_heavy, "rates", "t"),
+        (_heavy, "energy_at", "t"),
+        (_heavy, "integrals_at", "t"),
+    ],
+)
+def test_every_method_names_its_argument_when_it_is_not_finite(make, method, param):
+    fn = getattr(make(), method)
+    for bad in ([0.5, np.nan], np.inf):
+        check_refusal(lambda b=bad: fn(b), {}, param, NonFiniteError, r"must be finite; found")
+
+
+@pytest.mark.parametrize(
+    ("call", "name"),
+    [
+        (lambda w: tops.FreeAsymmetricTop([1.0, 2.0, 3.0], w), "omega_0"),
+        (lambda w: tops.FreeSymmetricTop(1.0, 2.0, w), "omega_0"),
+        (
+            lambda w: tops.spherical_top_on_incline(
+                0.5, m=1.0, R=0.1, J=0.004, beta=0.3, g=9.81, omega_0=w
+            ),
+            "omega_0",
+        ),
+    ],
+)
+def test_a_batch_of_initial_spins_is_refused_naming_the_shape_wanted(call, name):
+    with pytest.raises(ShapeError) as info:
+        call(np.ones((2, 3)))
+    assert str(info.value) == f"{name} must have shape (3,); got (2, 3)"
+
+
+@pytest.mark.parametrize("scale", [1.0, 2.0**40, 2.0**-40, 1e150])
+def test_free_symmetric_tops_L_and_E_are_those_of_the_spin_given_at_any_scale(scale):
+    # |L| = |(J1 ω1, J1 ω2, J3 ω3)| and E = ½ Σ J ω², formed directly: the top scales ω by
+    # a power of two inside, and must scale the results back by the right powers
+    J1, J3 = 2.0, 3.0
+    w0 = np.array([0.3, -0.2, 0.5]) * scale
+    top = tops.FreeSymmetricTop(J1, J3, w0)
+    Jw = np.array([J1, J1, J3]) * w0
+    assert top.angular_momentum_norm == pytest.approx(math.hypot(*Jw), rel=4 * EPS)
+    assert top.energy == pytest.approx(0.5 * float(Jw @ w0), rel=4 * EPS)
+    np.testing.assert_allclose(top.angular_momentum_space, Jw, rtol=4 * EPS)
+
+
+def test_poinsot_residuals_vanish_at_one_instant_and_over_a_grid_of_times():
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [1.0, 0.1, 0.5], R0)
+    ell, plane = top.poinsot_residuals(2.5)
+    assert np.shape(ell) == ()
+    assert np.shape(plane) == ()
+    assert abs(ell) <= POINSOT_RTOL * top.energy
+    ell, plane = top.poinsot_residuals(np.linspace(0.0, 5.0, 6).reshape(2, 3))
+    assert ell.shape == plane.shape == (2, 3)
+    assert np.abs(ell).max() <= POINSOT_RTOL * top.energy
+
+
+def test_on_the_separatrix_one_instant_keeps_the_angular_momentum_fixed_in_space():
+    # J = (3, 4, 6), ω = (2, 1/2, 1): L² − 2 E J2 = −3·4 + 6·2·1 = 0 exactly, the separatrix;
+    # the attitude of one instant (the scalar path) carries J ω back to L_O
+    top = tops.FreeAsymmetricTop([3.0, 4.0, 6.0], [2.0, 0.5, 1.0])
+    assert top.regime == "separatrix"
+    for t in (0.7, -2.0, 15.0):
+        R, w = top.attitude(t), top.omega(t)
+        L_O = R.T @ (top.J * w)
+        L = np.abs(top.angular_momentum_space).max()
+        assert np.abs(L_O - top.angular_momentum_space).max() <= SEPARATRIX_L_ATOL * L
