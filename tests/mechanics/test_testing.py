@@ -411,13 +411,13 @@ def test_shapes_broadcast_like_numpys():
     ("tol", "shown"), [(-1e-300, "-1e-300"), (math.nan, "nan"), (math.inf, "inf")]
 )
 def test_a_tolerance_that_is_negative_or_not_finite_is_refused_naming_it(call, name, tol, shown):
-    with pytest.raises(ValueError) as info:
+    with pytest.raises(ValueError, match=r"must be a finite number >= 0") as info:
         call(tol)
     assert str(info.value) == f"{name}={shown} must be a finite number >= 0"
 
 
 @pytest.mark.parametrize(("scale", "shown"), [(-1.0, "-1.0"), ([1.0, -2.0], "[1.0, -2.0]")])
 def test_a_negative_scale_is_refused_naming_it(scale, shown):
-    with pytest.raises(ValueError) as info:
+    with pytest.raises(ValueError, match=r"\bscale must be >= 0") as info:
         assert_allclose_eps([1.0, 1.0], [1.0, 1.0], scale=scale)
     assert str(info.value) == f"scale must be >= 0; got {shown}"
