@@ -492,14 +492,26 @@ def test_options_default_to_seed_0_and_no_profile(pytester):
 
 
 def test_help_lists_the_options_in_their_group_with_their_metavars(pytester):
+    # a project's conftest can add its own options to the group by its name, bodycheck
+    pytester.makeconftest(
+        """
+        def pytest_addoption(parser):
+            parser.getgroup("bodycheck").addoption("--my-extra", help="a project's own")
+        """
+    )
     result = pytester.runpytest("--help")
     assert result.ret == pytest.ExitCode.OK
-    result.stdout.fnmatch_lines(
-        ["bodycheck (mechanics testing):", "  --bodycheck-profile=NAME*", "  --bodycheck-seed=N *"]
-    )
+    lines = result.stdout.lines
+    start = lines.index("bodycheck (mechanics testing):")
+    section = lines[start + 1 : lines.index("", start)]  # the group, up to its blank line
+    options = [line.split()[0] for line in section if line.startswith("  --")]
+    assert options == ["--bodycheck-profile=NAME", "--bodycheck-seed=N", "--my-extra=MY_EXTRA"]
     text = " ".join(result.stdout.str().split())
     names = "bodycheck-ci, bodycheck-dev, bodycheck-explore"
-    assert f"--bodycheck-profile=NAME load a bodycheck hypothesis profile: {names}" in text
+    assert (
+        f"--bodycheck-profile=NAME load a bodycheck hypothesis profile: {names} "
+        "(overrides the ini setting bodycheck_profile)" in text
+    )
     assert (
         "--bodycheck-seed=N an integer >= 0 mixed into every bodycheck_rng seed (default 0)" in text
     )
