@@ -452,6 +452,14 @@ INI = "the ini setting bodycheck_profile"
         ),
         (["--bodycheck-profile=bodycheck-ci"], True, True, "bodycheck-ci", "--bodycheck-profile"),
         (["--hypothesis-profile=bodycheck-dev"], False, True, None, None),
+        # without hypothesis' own plugin (its option then does not exist)
+        (
+            ["-p", "no:hypothesispytest", "--bodycheck-profile=bodycheck-dev"],
+            True,
+            True,
+            "bodycheck-dev",
+            "--bodycheck-profile",
+        ),
         (["-o", "bodycheck_profile=bodycheck-ci"], False, True, "bodycheck-ci", INI),
         (
             ["-o", "bodycheck_profile=bodycheck-ci", "--bodycheck-profile=bodycheck-dev"],
