@@ -491,6 +491,28 @@ def test_configure_registers_when_asked_or_hypothesis_is_imported_and_loads_what
         assert header == f"bodycheck: hypothesis profile {loads!r} (from {source})"
 
 
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (
+            ["--bodycheck-profile=bodycheck-fast"],
+            UNKNOWN_PROFILE.format(source="--bodycheck-profile", name="bodycheck-fast"),
+        ),
+        (["-o", "bodycheck_profile=ci"], UNKNOWN_PROFILE.format(source=INI, name="ci")),
+        (
+            ["--bodycheck-profile=bodycheck-ci", "--hypothesis-profile=default"],
+            "ERROR: --bodycheck-profile='bodycheck-ci' and --hypothesis-profile='default' "
+            "were both given; give one",
+        ),
+    ],
+)
+def test_configure_refuses_an_unknown_profile_or_both_options_naming_them(pytester, args, message):
+    config = pytester.parseconfig(*args)
+    with pytest.raises(pytest.UsageError, match="profile") as info:
+        plugin.pytest_configure(config)
+    assert "ERROR: " + str(info.value) == message
+
+
 def test_options_default_to_seed_0_and_no_profile(pytester):
     config = pytester.parseconfig()
     assert config.getoption("bodycheck_seed") == 0  # "--bodycheck-seed (default 0)"
