@@ -9,17 +9,46 @@ every test here restores the profile that was loaded before it.
 
 from __future__ import annotations
 
+import argparse
 import json
+import math
 import re
 import subprocess
 import sys
+import types
 from importlib.metadata import version
 
 import numpy as np
 import pytest
-from hypothesis import settings
+from hypothesis import HealthCheck, Phase, Verbosity, settings
+
+from mechanics import pytest_plugin as plugin
 
 pytest_plugins = ["pytester"]
+
+EPS = float(np.finfo(np.float64).eps)
+
+# What the plugin's docstring and the README promise (not read from the code):
+# "bodycheck-ci (derandomised, 100 examples), bodycheck-dev (random, 100) or
+# bodycheck-explore (random, 1000); none has a deadline" or the too_slow health check;
+# ci prints a @reproduce_failure blob; all derive from hypothesis' default profile.
+PROMISED_PROFILES = {
+    "bodycheck-ci": {"derandomize": True, "max_examples": 100, "print_blob": True},
+    "bodycheck-dev": {"derandomize": False, "max_examples": 100},
+    "bodycheck-explore": {"derandomize": False, "max_examples": 1000},
+}
+#: hypothesis settings the profiles leave as the default profile has them
+INHERITED = (
+    "database",
+    "verbosity",
+    "phases",
+    "stateful_step_count",
+    "report_multiple_bugs",
+    "print_blob",
+    "backend",
+)
+#: the documented default of eps_close and its two methods: 4 eps
+EPS_CLOSE_DEFAULT = 4
 
 UNKNOWN_PROFILE = (
     "ERROR: {source} is {name!r}, which is not a bodycheck profile; choose one of "
@@ -321,3 +350,308 @@ def test_the_plugin_imports_nothing_heavy():
     )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert proc.stdout.strip() == "[]", proc.stdout + proc.stderr
+
+
+# -- in process: the profiles, the configure hook, the options, the fixtures ----------
+#
+# The runs above go through pytester; the tests below call the plugin's functions in this
+# process, so that a change to them is seen whatever pytest did at start-up.
+
+
+@pytest.fixture
+def other_profile_loaded():
+    """A loaded profile unlike hypothesis' default (the autouse fixture restores the old)."""
+    settings.register_profile(
+        "bodycheck-test-not-default",
+        max_examples=3,
+        derandomize=True,
+        deadline=1234,
+        verbosity=Verbosity.quiet,
+        stateful_step_count=7,
+        report_multiple_bugs=False,
+        print_blob=True,
+        phases=[Phase.explicit, Phase.generate],
+        suppress_health_check=[HealthCheck.filter_too_much],
+    )
+    settings.load_profile("bodycheck-test-not-default")
+
+
+def test_register_profiles_registers_the_three_documented_names_and_no_other(monkeypatch):
+    import hypothesis
+
+    seen = []
+
+    class Spy:  # hypothesis' settings class is immutable: stand in for it where it is imported
+        get_profile = staticmethod(settings.get_profile)
+
+        def __call__(self, *args, **kwargs):
+            return settings(*args, **kwargs)
+
+        def register_profile(self, name, parent=None, **kwargs):
+            seen.append(name)
+            settings.register_profile(name, parent, **kwargs)
+
+    monkeypatch.setattr(hypothesis, "settings", Spy())
+    plugin.register_profiles()
+    assert sorted(seen) == sorted(PROMISED_PROFILES)
+    assert sorted(plugin.PROFILE_NAMES) == sorted(PROMISED_PROFILES)
+
+
+@pytest.mark.parametrize("name", list(PROMISED_PROFILES))
+def test_each_profile_has_the_documented_settings_whatever_profile_is_loaded(
+    other_profile_loaded, name
+):
+    plugin.register_profiles()
+    s = settings.get_profile(name)
+    default = settings.get_profile("default")
+    promised = PROMISED_PROFILES[name]
+    for key, value in promised.items():
+        assert getattr(s, key) == value, key
+    assert s.deadline is None
+    assert set(s.suppress_health_check) == {*default.suppress_health_check, HealthCheck.too_slow}
+    for key in INHERITED:
+        if key == "database" and s.derandomize:
+            continue  # hypothesis keeps no example database for a derandomised profile
+        if key not in promised and hasattr(default, key):
+            assert getattr(s, key) == getattr(default, key), key
+    assert current_profile() == "bodycheck-test-not-default", "registering loads nothing"
+
+
+def _configure(pytester, monkeypatch, args, hypothesis_imported):
+    """Run the plugin's pytest_configure on a freshly parsed config; did it register?"""
+    config = pytester.parseconfig(*args)
+    calls = []
+    real = plugin.register_profiles
+
+    def counting():
+        calls.append(1)
+        real()
+
+    monkeypatch.setattr(plugin, "register_profiles", counting)
+    if not hypothesis_imported:  # as in a run whose conftests never import hypothesis
+        monkeypatch.setattr(plugin, "sys", types.SimpleNamespace(modules={}))
+    plugin.pytest_configure(config)
+    return config, bool(calls)
+
+
+INI = "the ini setting bodycheck_profile"
+
+
+@pytest.mark.parametrize(
+    ("args", "hypothesis_imported", "registers", "loads", "source"),
+    [
+        ([], True, True, None, None),
+        ([], False, False, None, None),
+        (["-o", "bodycheck_profile="], False, False, None, None),
+        (
+            ["--bodycheck-profile=bodycheck-explore"],
+            False,
+            True,
+            "bodycheck-explore",
+            "--bodycheck-profile",
+        ),
+        (["--bodycheck-profile=bodycheck-ci"], True, True, "bodycheck-ci", "--bodycheck-profile"),
+        (["--hypothesis-profile=bodycheck-dev"], False, True, None, None),
+        # without hypothesis' own plugin (its option then does not exist)
+        (
+            ["-p", "no:hypothesispytest", "--bodycheck-profile=bodycheck-dev"],
+            True,
+            True,
+            "bodycheck-dev",
+            "--bodycheck-profile",
+        ),
+        (["-o", "bodycheck_profile=bodycheck-ci"], False, True, "bodycheck-ci", INI),
+        (
+            ["-o", "bodycheck_profile=bodycheck-ci", "--bodycheck-profile=bodycheck-dev"],
+            False,
+            True,
+            "bodycheck-dev",
+            "--bodycheck-profile",
+        ),
+        (
+            ["-o", "bodycheck_profile=bodycheck-ci", "--hypothesis-profile=default"],
+            True,
+            True,
+            None,
+            None,
+        ),
+    ],
+)
+def test_configure_registers_when_asked_or_hypothesis_is_imported_and_loads_what_wins(
+    pytester, monkeypatch, args, hypothesis_imported, registers, loads, source
+):
+    before = current_profile()
+    config, registered = _configure(pytester, monkeypatch, args, hypothesis_imported)
+    assert registered is registers
+    assert current_profile() == (loads or before)
+    header = plugin.pytest_report_header(config)
+    if loads is None:
+        assert header is None
+    else:
+        assert header == f"bodycheck: hypothesis profile {loads!r} (from {source})"
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (
+            ["--bodycheck-profile=bodycheck-fast"],
+            UNKNOWN_PROFILE.format(source="--bodycheck-profile", name="bodycheck-fast"),
+        ),
+        (["-o", "bodycheck_profile=ci"], UNKNOWN_PROFILE.format(source=INI, name="ci")),
+        (
+            ["--bodycheck-profile=bodycheck-ci", "--hypothesis-profile=default"],
+            "ERROR: --bodycheck-profile='bodycheck-ci' and --hypothesis-profile='default' "
+            "were both given; give one",
+        ),
+    ],
+)
+def test_configure_refuses_an_unknown_profile_or_both_options_naming_them(pytester, args, message):
+    config = pytester.parseconfig(*args)
+    with pytest.raises(pytest.UsageError, match="profile") as info:
+        plugin.pytest_configure(config)
+    assert "ERROR: " + str(info.value) == message
+
+
+def test_options_default_to_seed_0_and_no_profile(pytester):
+    config = pytester.parseconfig()
+    assert config.getoption("bodycheck_seed") == 0  # "--bodycheck-seed (default 0)"
+    assert config.getoption("bodycheck_profile") is None
+    assert config.getini("bodycheck_profile") == ""  # an unset string ini reads as ""
+    assert pytester.parseconfig("--bodycheck-seed", "7").getoption("bodycheck_seed") == 7
+
+
+def test_help_lists_the_options_in_their_group_with_their_metavars(pytester):
+    # a project's conftest can add its own options to the group by its name, bodycheck
+    pytester.makeconftest(
+        """
+        def pytest_addoption(parser):
+            parser.getgroup("bodycheck").addoption("--my-extra", help="a project's own")
+        """
+    )
+    result = pytester.runpytest("--help")
+    assert result.ret == pytest.ExitCode.OK
+    lines = result.stdout.lines
+    start = lines.index("bodycheck (mechanics testing):")
+    section = lines[start + 1 : lines.index("", start)]  # the group, up to its blank line
+    options = [line.split()[0] for line in section if line.startswith("  --")]
+    assert options == ["--bodycheck-profile=NAME", "--bodycheck-seed=N", "--my-extra=MY_EXTRA"]
+    text = " ".join(result.stdout.str().split())
+    names = "bodycheck-ci, bodycheck-dev, bodycheck-explore"
+    assert (
+        f"--bodycheck-profile=NAME load a bodycheck hypothesis profile: {names} "
+        "(overrides the ini setting bodycheck_profile)" in text
+    )
+    assert (
+        "--bodycheck-seed=N an integer >= 0 mixed into every bodycheck_rng seed (default 0)" in text
+    )
+    assert f"bodycheck_profile (string): a bodycheck hypothesis profile to load: {names}" in text
+
+
+@pytest.mark.parametrize(("text", "value"), [("0", 0), ("7", 7), (str(2**64 - 1), 2**64 - 1)])
+def test_the_seed_option_takes_an_integer_from_0(text, value):
+    assert plugin._seed_arg(text) == value
+
+
+@pytest.mark.parametrize("text", ["-1", "0x2", "1.5", "", "seven"])
+def test_the_seed_option_refuses_anything_else_naming_it(text):
+    with pytest.raises(argparse.ArgumentTypeError, match="is not an integer >= 0") as info:
+        plugin._seed_arg(text)
+    assert str(info.value) == f"{text!r} is not an integer >= 0"
+
+
+def test_seeds_are_64_bit_the_same_every_time_and_differ_by_node_id_and_base():
+    ids = [f"tests/test_x.py::test_{i}" for i in range(64)]
+    seeds = [plugin._seed(i, 0) for i in ids]
+    assert all(isinstance(s, int) and 0 <= s < 2**64 for s in seeds)
+    assert max(seeds) >= 2**63, "the top bit is used (64 seeds all below 2**63: odds 2**-64)"
+    assert len(set(seeds)) == len(ids)
+    assert [plugin._seed(i, 0) for i in ids] == seeds
+    assert all(plugin._seed(i, 1) != s for i, s in zip(ids, seeds, strict=True))
+
+
+def test_bodycheck_rng_is_the_generator_of_the_seed_it_prints(capsys, bodycheck_rng, request):
+    printed = capsys.readouterr().out
+    m = re.fullmatch(
+        r"bodycheck_rng: numpy\.random\.default_rng\((\d+)\) \(--bodycheck-seed=(\d+)\)\n",
+        printed,
+    )
+    assert m, printed
+    assert int(m.group(2)) == request.config.getoption("bodycheck_seed")
+    again = np.random.default_rng(int(m.group(1)))
+    assert bodycheck_rng.integers(2**62, size=8).tolist() == again.integers(2**62, size=8).tolist()
+
+
+def _off_by(k, kind):
+    """Arguments for eps_close's `kind` whose error is exactly k eps."""
+    if kind == "call":  # relative error |1 + k eps - 1| / 1
+        return 1.0 + k * EPS, 1.0
+    if kind == "rotations":
+        R2 = np.eye(3)
+        R2[2, 0] = -k * EPS
+        return np.eye(3), R2
+    return [0.0, 0.0, 1.0, 0.0], [0.0, k * EPS, -1.0, 0.0]  # closer with -q2
+
+
+def _method(eps_close, kind):
+    return eps_close if kind == "call" else getattr(eps_close, kind)
+
+
+KINDS = ["call", "rotations", "quaternions"]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_eps_close_defaults_to_four_eps(eps_close, kind):
+    f = _method(eps_close, kind)
+    f(*_off_by(EPS_CLOSE_DEFAULT, kind))
+    with pytest.raises(AssertionError, match=rf"\b{EPS_CLOSE_DEFAULT + 1} eps\b.*\b4 eps\b"):
+        f(*_off_by(EPS_CLOSE_DEFAULT + 1, kind))
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize("eps", [0, 16, 256.0])
+def test_eps_close_takes_eps_as_the_tolerance_in_units_of_eps(eps_close, kind, eps):
+    f = _method(eps_close, kind)
+    f(*_off_by(eps, kind), eps=eps)
+    with pytest.raises(AssertionError, match=rf"\b{eps + 1:g} eps\b.*\b{eps:g} eps\b"):
+        f(*_off_by(eps + 1, kind), eps=eps)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_eps_close_prefixes_err_msg(eps_close, kind):
+    with pytest.raises(AssertionError) as info:
+        _method(eps_close, kind)(*_off_by(100, kind), err_msg="step 3")
+    assert str(info.value).startswith("step 3: ")
+    assert "100 eps" in str(info.value)
+
+
+def test_eps_close_passes_scale_on():
+    # 6 eps absolute against scale 1 is 12 eps relative to 0.5
+    eps_close = plugin.EpsClose()
+    eps_close(0.5 + 6 * EPS, 0.5, scale=1, eps=6)
+    with pytest.raises(AssertionError, match=r"relative error 12 eps at index \(\)"):
+        eps_close(0.5 + 6 * EPS, 0.5, eps=6)
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize(("eps", "shown"), [(-1, "-1"), (math.nan, "nan"), (math.inf, "inf")])
+def test_eps_close_refuses_a_bad_eps_naming_it(eps_close, kind, eps, shown):
+    with pytest.raises(ValueError, match=r"^eps=") as info:
+        _method(eps_close, kind)(*_off_by(0, kind), eps=eps)
+    assert str(info.value) == f"eps={shown} must be a finite number >= 0"
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_eps_close_failures_point_at_the_caller_not_the_plugin(eps_close, kind):
+    """pytest leaves out a frame whose locals set ``__tracebackhide__`` (its documented
+    mechanism): no frame of the plugin is shown for a failed eps_close."""
+    with pytest.raises(AssertionError) as info:
+        _method(eps_close, kind)(*_off_by(100, kind))
+    own = []
+    tb = info.value.__traceback__
+    while tb is not None:
+        if tb.tb_frame.f_code.co_filename == plugin.__file__:
+            own.append(bool(tb.tb_frame.f_locals.get("__tracebackhide__")))
+        tb = tb.tb_next
+    assert own, "no frame of mechanics/pytest_plugin.py in the traceback"
+    assert all(own), f"a frame of mechanics/pytest_plugin.py is shown by pytest: {own}"
