@@ -336,8 +336,7 @@ def test_pair_forces_keep_the_documented_magnitudes(fmax):
         non_central,
         lambda f: (
             not np.all(
-                (perp(f) >= 5e-4 * fmax * (1 - PERP_RTOL))
-                & (perp(f) <= 0.25 * fmax * (1 + PERP_RTOL))
+                (perp(f) >= (5e-4 - PERP_ATOL) * fmax) & (perp(f) <= (0.25 + PERP_ATOL) * fmax)
             )
         ),
     )
