@@ -219,43 +219,61 @@ def test_every_documented_regime_has_a_reachability_test():
 # ------------------------------------------------------------------- validity
 
 
-@given(ms.impact_masses())
-def test_impact_masses_are_positive_and_within_the_default_bounds(m):
-    assert 1e-15 <= m <= 1e15
+def test_impact_masses_are_positive_and_within_the_default_bounds():
+    @given(ms.impact_masses())
+    def check(m):
+        assert 1e-15 <= m <= 1e15
+
+    check()
 
 
-@given(ms.restitution_coefficients())
-def test_restitution_coefficients_lie_in_zero_one(e):
-    assert 0.0 <= e <= 1.0
+def test_restitution_coefficients_lie_in_zero_one():
+    @given(ms.restitution_coefficients())
+    def check(e):
+        assert 0.0 <= e <= 1.0
+
+    check()
 
 
-@given(ms.direct_velocities())
-def test_direct_velocities_approach(v):
-    assert v[0] >= v[1]  # Δẋ = ẋ_2 − ẋ_1 <= 0
-    assert max(abs(v[0]), abs(v[1])) <= 1e6
+def test_direct_velocities_approach():
+    @given(ms.direct_velocities())
+    def check(v):
+        assert v[0] >= v[1]  # Δẋ = ẋ_2 − ẋ_1 <= 0
+        assert max(abs(v[0]), abs(v[1])) <= 1e6
+
+    check()
 
 
-@given(ms.contact_normals())
-def test_contact_normals_are_unit(n):
-    assert abs(math.hypot(*n) - 1.0) <= 2 * EPS
+def test_contact_normals_are_unit():
+    @given(ms.contact_normals())
+    def check(n):
+        assert abs(math.hypot(*n) - 1.0) <= 2 * EPS
+
+    check()
 
 
-@given(ms.impact_inertia_tensors())
-def test_impact_inertia_tensors_are_physical(J):
-    # Accepted by the library's own validation: symmetric, positive definite,
-    # triangle inequality within its documented slack.
-    im.effective_mass(1.0, J, [0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
-    lam = _moments(J)
-    assert lam[0] > 0
-    assert lam[0] + lam[1] >= lam[2] * (1 - MOMENT_RTOL)
+def test_impact_inertia_tensors_are_physical():
+    @given(ms.impact_inertia_tensors())
+    def check(J):
+        # Accepted by the library's own validation: symmetric, positive definite,
+        # triangle inequality within its documented slack.
+        im.effective_mass(1.0, J, [0.0, 0.0, 0.0], [1.0, 0.0, 0.0])
+        lam = _moments(J)
+        assert lam[0] > 0
+        assert lam[0] + lam[1] >= lam[2] * (1 - MOMENT_RTOL)
+
+    check()
 
 
-@CONTACT_SETTINGS
-@given(ms.contacts())
-def test_contacts_are_impacts(c):
-    v_n = im.normal_relative_velocity(c.body_1, c.body_2, r_S=c.r_S, n=c.n)
-    assert v_n <= -1e-3  # approach speed >= 1e-2, rounding far below
-    assert 0.0 <= c.e <= 1.0
+def test_contacts_are_impacts():
+    @CONTACT_SETTINGS
+    @given(ms.contacts())
+    def check(c):
+        v_n = im.normal_relative_velocity(c.body_1, c.body_2, r_S=c.r_S, n=c.n)
+        assert v_n <= -1e-3  # approach speed >= 1e-2, rounding far below
+        assert 0.0 <= c.e <= 1.0
+
+    check()
 
 
 #: J_G + m (|d|² 1 − d dᵀ) from an exact d: a few rounded products and sums per entry
@@ -268,31 +286,34 @@ def _hinged_example(m, J_G, d, A, axis) -> ms.HingedBody:
     return ms.HingedBody(m, 0.5 * (J_A + J_A.T), A + d, A, axis, J_G)
 
 
-@CONTACT_SETTINGS
-@given(ms.hinged_bodies())
-@example(  # found on a fresh clone: r_G = 1 + 0.1 rounds, and r_G − A ≠ 0.1 by 1e-17
-    _hinged_example(
-        1.0,
-        1e-3 * np.eye(3),
-        np.array([0.0, 0.0, 0.1]),
-        np.array([0.0, 0, 1]),
-        np.array([1.0, 0, 0]),
+def test_hinged_bodies_obey_the_parallel_axis_theorem():
+    @CONTACT_SETTINGS
+    @given(ms.hinged_bodies())
+    @example(  # found on a fresh clone: r_G = 1 + 0.1 rounds, and r_G − A ≠ 0.1 by 1e-17
+        _hinged_example(
+            1.0,
+            1e-3 * np.eye(3),
+            np.array([0.0, 0.0, 0.1]),
+            np.array([0.0, 0, 1]),
+            np.array([1.0, 0, 0]),
+        )
     )
-)
-def test_hinged_bodies_obey_the_parallel_axis_theorem(h):
-    d = h.r_G - h.axis_point
-    expected = h.J_G + h.m * (float(d @ d) * np.eye(3) - np.outer(d, d))
-    # d is formed here from the rounded r_G = A + d₀ (one rounding of the strategy's
-    # sum) and rounds once more in the subtraction: |d − d₀| ≤ δ = eps (|r_G| + |d|).
-    # The tensor then moves by at most m (4 |d| δ + 2 δ²) in each entry.
-    delta = EPS * (np.linalg.norm(h.r_G) + np.linalg.norm(d))
-    input_rounding = h.m * (4 * np.linalg.norm(d) * delta + 2 * delta * delta)
-    tol = PARALLEL_AXIS_RTOL * np.abs(expected).max() + input_rounding
-    assert np.abs(h.J_A - expected).max() <= tol
-    assert abs(math.hypot(*h.axis) - 1.0) <= 2 * EPS
-    # G is off the axis: a centre of percussion exists.
-    perp = d - (d @ h.axis) * h.axis
-    assert np.linalg.norm(perp) >= 0.1 * (1 - 1e-12)
+    def check(h):
+        d = h.r_G - h.axis_point
+        expected = h.J_G + h.m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+        # d is formed here from the rounded r_G = A + d₀ (one rounding of the strategy's
+        # sum) and rounds once more in the subtraction: |d − d₀| ≤ δ = eps (|r_G| + |d|).
+        # The tensor then moves by at most m (4 |d| δ + 2 δ²) in each entry.
+        delta = EPS * (np.linalg.norm(h.r_G) + np.linalg.norm(d))
+        input_rounding = h.m * (4 * np.linalg.norm(d) * delta + 2 * delta * delta)
+        tol = PARALLEL_AXIS_RTOL * np.abs(expected).max() + input_rounding
+        assert np.abs(h.J_A - expected).max() <= tol
+        assert abs(math.hypot(*h.axis) - 1.0) <= 2 * EPS
+        # G is off the axis: a centre of percussion exists.
+        perp = d - (d @ h.axis) * h.axis
+        assert np.linalg.norm(perp) >= 0.1 * (1 - 1e-12)
+
+    check()
 
 
 # ------------------------------------------------------------------- shrinking
@@ -301,14 +322,14 @@ def test_hinged_bodies_obey_the_parallel_axis_theorem(h):
 @pytest.mark.parametrize(
     ("strategy", "simplest"),
     [
-        pytest.param(ms.impact_masses(), 1.0, id="mass-1"),
-        pytest.param(ms.mass_pairs(), (1.0, 1.0), id="pair-equal"),
-        pytest.param(ms.restitution_coefficients(), 0.0, id="e-0"),
-        pytest.param(ms.impact_inertia_tensors(), np.eye(3).tolist(), id="sphere-identity"),
+        pytest.param(ms.impact_masses, 1.0, id="mass-1"),
+        pytest.param(ms.mass_pairs, (1.0, 1.0), id="pair-equal"),
+        pytest.param(ms.restitution_coefficients, 0.0, id="e-0"),
+        pytest.param(ms.impact_inertia_tensors, np.eye(3).tolist(), id="sphere-identity"),
     ],
 )
 def test_strategies_shrink_to_the_simple_case(strategy, simplest):
-    value = find(strategy, lambda x: True, settings=SHRINK_SETTINGS)
+    value = find(strategy(), lambda x: True, settings=SHRINK_SETTINGS)
     got = value if isinstance(value, tuple | float) else np.asarray(value).tolist()
     if isinstance(simplest, list):  # a unit sphere tensor: J2 shrinks to the top of its range
         got = (np.asarray(got) / np.asarray(got)[0][0]).tolist()

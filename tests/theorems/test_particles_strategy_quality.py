@@ -107,49 +107,61 @@ def test_particle_systems_restricted_to_one_regime_stay_in_it(regime):
 # ------------------------------------------------------------------- validity
 
 
-@given(ms.particle_systems())
-def test_particle_systems_are_valid(s):
-    n = len(s.m)
-    assert 1 <= n <= 50
-    assert s.r.shape == (n, 3)
-    assert s.v.shape == (n, 3)
-    assert np.all((s.m >= 1e-6) & (s.m <= 1e6))
-    assert np.isfinite(s.r).all()
-    assert np.isfinite(s.v).all()
+def test_particle_systems_are_valid():
+    @given(ms.particle_systems())
+    def check(s):
+        n = len(s.m)
+        assert 1 <= n <= 50
+        assert s.r.shape == (n, 3)
+        assert s.v.shape == (n, 3)
+        assert np.all((s.m >= 1e-6) & (s.m <= 1e6))
+        assert np.isfinite(s.r).all()
+        assert np.isfinite(s.v).all()
+
+    check()
 
 
-@given(
-    ms.particle_systems(max_particles=12).flatmap(
-        lambda s: st.tuples(st.just(s), ms.pair_forces(s.r))
+def test_pair_forces_obey_newtons_third_law_and_their_bound():
+    @given(
+        ms.particle_systems(max_particles=12).flatmap(
+            lambda s: st.tuples(st.just(s), ms.pair_forces(s.r))
+        )
     )
-)
-def test_pair_forces_obey_newtons_third_law_and_their_bound(data):
-    s, f = data
-    n = len(s.m)
-    assert f.shape == (n, n, 3)
-    assert np.array_equal(f, -np.swapaxes(f, 0, 1))  # f_jk = −f_kj exactly (1.19)
-    assert not np.diagonal(f, axis1=0, axis2=1).any()
-    assert np.linalg.norm(f, axis=-1).max(initial=0.0) <= 1e3
+    def check(data):
+        s, f = data
+        n = len(s.m)
+        assert f.shape == (n, n, 3)
+        assert np.array_equal(f, -np.swapaxes(f, 0, 1))  # f_jk = −f_kj exactly (1.19)
+        assert not np.diagonal(f, axis1=0, axis2=1).any()
+        assert np.linalg.norm(f, axis=-1).max(initial=0.0) <= 1e3
+
+    check()
 
 
-@given(
-    ms.particle_systems(max_particles=12).flatmap(
-        lambda s: st.tuples(st.just(s), ms.pair_forces(s.r, regimes=["central"]))
+def test_central_pair_forces_are_parallel_to_the_particle_separation():
+    @given(
+        ms.particle_systems(max_particles=12).flatmap(
+            lambda s: st.tuples(st.just(s), ms.pair_forces(s.r, regimes=["central"]))
+        )
     )
-)
-def test_central_pair_forces_are_parallel_to_the_particle_separation(data):
-    s, f = data
-    rkj = s.r[:, None, :] - s.r[None, :, :]
-    cross = np.linalg.norm(np.cross(rkj, f), axis=-1)
-    size = np.linalg.norm(rkj, axis=-1) * np.linalg.norm(f, axis=-1)
-    assert np.all(cross <= 8 * np.finfo(float).eps * size + 1e-300)
+    def check(data):
+        s, f = data
+        rkj = s.r[:, None, :] - s.r[None, :, :]
+        cross = np.linalg.norm(np.cross(rkj, f), axis=-1)
+        size = np.linalg.norm(rkj, axis=-1) * np.linalg.norm(f, axis=-1)
+        assert np.all(cross <= 8 * np.finfo(float).eps * size + 1e-300)
+
+    check()
 
 
-@given(st.integers(1, 10), st.integers(0, 10), st.data())
-def test_masses_respect_the_particle_count_bounds(lo, extra, data):
-    m = data.draw(ms.masses(min_particles=lo, max_particles=lo + extra))
-    assert lo <= len(m) <= lo + extra
-    assert np.all((m >= 1e-6) & (m <= 1e6))
+def test_masses_respect_the_particle_count_bounds():
+    @given(st.integers(1, 10), st.integers(0, 10), st.data())
+    def check(lo, extra, data):
+        m = data.draw(ms.masses(min_particles=lo, max_particles=lo + extra))
+        assert lo <= len(m) <= lo + extra
+        assert np.all((m >= 1e-6) & (m <= 1e6))
+
+    check()
 
 
 # ------------------------------------------------------------------- shrinking
