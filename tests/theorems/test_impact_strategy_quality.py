@@ -468,6 +468,9 @@ def test_restitution_coefficients_each_regime_spans_its_documented_interval(regi
         _found(strategy, lambda e: e <= 1e-14)
         _found(strategy, lambda e: e >= 1e-7)
         assert find(strategy, lambda e: True, settings=SHRINK_SETTINGS) == 1e-6
+    if regime == "interior":
+        _found(strategy, lambda e: 0 < e <= 0.1)
+        _found(strategy, lambda e: 0.9 <= e < 1)
     if regime == "near-one":
         _found(strategy, lambda e: e == b)
         _found(strategy, lambda e: e <= 1 - 1e-7)
@@ -511,9 +514,9 @@ def test_direct_velocities_each_regime_shrinks_to_its_largest_speed():
         assert v == pytest.approx(simplest, rel=2 * EPS), regime
 
 
-@pytest.mark.parametrize("top", [1e6, 1e302])
+@pytest.mark.parametrize("top", [1.0, 1e6, 1e302])
 def test_direct_velocities_mixed_magnitudes_come_from_the_documented_tiers(top):
-    tiers = [(0.0, 0.0), (1e-250, 1e-100), (1e-3, 1e3), (top / 2e10, top / 2)]
+    tiers = [(0.0, 0.0), (1e-250, 1e-100), (1e-3, min(1e3, top / 2)), (top / 2e10, top / 2)]
     strategy = ms.direct_velocities(max_speed=top, regimes=["mixed-magnitude"])
 
     def tier_of(x):
@@ -570,6 +573,10 @@ def test_impact_inertia_tensors_regimes_reach_the_ends_of_their_ratios():
     _found(_diagonal("symmetric"), lambda J: J[2, 2] >= 1.9 * J[1, 1])
     _found(_diagonal("symmetric"), lambda J: J[2, 2] <= 0.1 * J[1, 1])
     _found(_diagonal("general"), lambda J: J[0, 0] <= 0.05 * J[1, 1])
+    # J3 = max(J2 − J1 + 2 t J1, J2/100): from the floor J2/100 to the edge J1 + J2
+    for regime in ("general", "near-degenerate"):
+        _found(_diagonal(regime), lambda J: J[2, 2] <= 0.05 * J[1, 1])
+        _found(_diagonal(regime), lambda J: J[2, 2] >= 0.99 * (J[0, 0] + J[1, 1]))
 
 
 def _perp(c, body):
@@ -584,6 +591,9 @@ def _along(c, body):
 
 #: r_S = fl(r_G + offset) with |r_G| ≤ 10: r_S − r_G is the offset to a few ulps of 10.
 POSITION_SLACK = 2**4 * EPS * 10
+
+#: G_2 = S − a_2 n = G_1 − (a_1 + a_2) n: the arms come back to a few ulps of 16.
+ARM_SLACK = 2**4 * EPS * 16
 
 #: v_n is set to −speed by one shift of v_G along n: the rounding is a few eps of the
 #: velocities involved (|v| up to ~1e2 with ω ~ 10 and arms ~ 5).
@@ -609,6 +619,13 @@ def test_contacts_each_regime_builds_its_documented_geometry(regime):
     if regime == "central":
         _never(strategy, lambda c: max(_perp(c, c.body_1), _perp(c, c.body_2)) > 1e-12)
         _never(strategy, lambda c: not (_along(c, c.body_1) > 0 > _along(c, c.body_2)))
+        # the arms |G − S| are 0.05 … 3 for each body
+        arms = lambda c: (_along(c, c.body_1), -_along(c, c.body_2))  # noqa: E731
+        _never(
+            strategy, lambda c: not all(0.05 - ARM_SLACK <= a <= 3.0 + ARM_SLACK for a in arms(c))
+        )
+        _found(strategy, lambda c: min(arms(c)) <= 0.1)
+        _found(strategy, lambda c: max(arms(c)) >= 2.9)
         return
     # G1 is off the normal: r_S − G1 is an offset with components within 3, and every
     # position of G within the default 10 of impact_bodies.
@@ -661,6 +678,14 @@ def test_hinged_bodies_keep_g_within_their_documented_distances(regime):
     _found(strategy, lambda h: parts(h)[1] <= 0.2)
     _found(strategy, lambda h: parts(h)[1] >= 4.5)
     _never(strategy, lambda h: not 1e-3 <= h.m <= 1e3)
+    _found(strategy, lambda h: h.m <= 1e-2)
+    _found(strategy, lambda h: h.m >= 1e2)
+    # J_G is the mass times a tensor of scale J2 in 1e-3 … 1e3, whose largest moment is
+    # in [J2, 2 J2] (J3 ≤ J1 + J2 ≤ 2 J2)
+    _never(
+        strategy,
+        lambda h: not 1e-3 <= np.linalg.eigvalsh(h.J_G / h.m)[2] <= 2e3 * (1 + MOMENT_RTOL),
+    )
     if regime == "planar":
         _never(strategy, lambda h: h.axis_point.any() or h.axis.tolist() != [0.0, 0.0, 1.0])
         _never(strategy, lambda h: h.r_G[2] != 0.0 or h.J_G[0, 2] != 0 or h.J_G[1, 2] != 0)

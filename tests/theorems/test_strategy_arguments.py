@@ -35,6 +35,8 @@ EVENT_SETTINGS = settings(max_examples=300, database=None, phases=[Phase.generat
 #: What a drawn value shrinks to.
 SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
+EPS = float(np.finfo(float).eps)
+
 R2 = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
 
 
@@ -475,3 +477,27 @@ def test_log_uniform_refuses_a_shrink_direction_other_than_lo_or_hi():
 def test_log_uniform_shrinks_to_the_end_it_is_told(shrink_to, end):
     x = find(_common.log_uniform(1e-3, 1e3, shrink_to=shrink_to), lambda x: True)
     assert x == end
+
+
+@pytest.mark.parametrize(
+    ("name", "kwargs", "holds"),
+    [
+        pytest.param(
+            "mass_pairs",
+            {"max_ratio": 1e6, "regimes": ["heavy-1"]},
+            lambda p: p[0] / p[1] == pytest.approx(1e6, rel=4 * EPS),
+            id="max_ratio-1e6",
+        ),
+        pytest.param(
+            "direct_velocities",
+            {"max_speed": 1.0},
+            lambda v: max(abs(v[0]), abs(v[1])) <= 1.0,
+            id="max_speed-1",
+        ),
+        pytest.param("masses", {"min_particles": 1, "max_particles": 1}, lambda m: len(m) == 1),
+        pytest.param("pair_forces", {"max_magnitude": 1e-300}, lambda f: np.abs(f).max() <= 1e-300),
+    ],
+)
+def test_the_smallest_allowed_bound_is_accepted_and_kept(name, kwargs, holds):
+    strategy = _factory(name)(**kwargs)
+    _never(strategy, lambda x: not holds(x))
