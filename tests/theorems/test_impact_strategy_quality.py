@@ -442,9 +442,8 @@ def test_mass_pairs_generic_masses_reach_both_ends_of_1e_minus_3_to_1e3():
     _found(strategy, lambda p: max(p) >= 1e2)
 
 
-def test_mass_pairs_shrink_to_unit_masses_whatever_the_regime():
-    # The first regime drawn alone shrinks to its simplest pair: the top of the base range
-    # (1e3, the log-uniform's "hi") for a generic pair.
+def test_mass_pairs_shrink_to_equal_unit_masses_and_generic_pairs_to_the_top_of_1e3():
+    # Alone, the generic regime shrinks to its log-uniform's "hi" end: both masses 1e3.
     pair = find(ms.mass_pairs(regimes=["generic"]), lambda p: True, settings=SHRINK_SETTINGS)
     assert pair == (1e3, 1e3)
     assert find(ms.mass_pairs(), lambda p: True, settings=SHRINK_SETTINGS) == (1.0, 1.0)
