@@ -52,7 +52,13 @@ def check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ..
 
 
 def log_uniform(lo: float, hi: float, *, shrink_to: str) -> st.SearchStrategy[float]:
-    """Floats in [lo, hi] (0 < lo ≤ hi), log-uniform, shrinking toward ``"lo"`` or ``"hi"``."""
+    """Floats in [lo, hi] (0 < lo ≤ hi), log-uniform, shrinking toward ``"lo"`` or ``"hi"``.
+
+    Any other ``shrink_to`` is refused (``ValueError``): a misspelt ``"low"`` used to
+    shrink silently toward ``hi``.
+    """
+    if shrink_to not in ("lo", "hi"):
+        raise ValueError(f"shrink_to={shrink_to!r} must be 'lo' or 'hi'")
     a, b = math.log10(lo), math.log10(hi)
     if shrink_to == "lo":
         return st.floats(0.0, 1.0).map(lambda t: min(hi, max(lo, 10.0 ** (a + (b - a) * t))))

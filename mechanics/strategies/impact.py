@@ -96,9 +96,9 @@ RESTITUTION_REGIMES = ("zero", "one", "interior", "near-zero", "near-one")
 #: (opposite signs); chase (same sign); body 2 at rest; a relative velocity
 #: 1e-12 … 1e-6 of the velocities themselves (Δẋ cancels); mixed magnitudes
 #: (|ẋ_1| and |ẋ_2| drawn independently from the tiers 0, 1e-250 … 1e-100,
-#: 1e-3 … 1e3 and the top ten decades below ``max_speed``/2, head-on or chase: with
-#: ``max_speed`` = 1e302 they span the float range, and a scaling that follows
-#: only one of them overflows).  The tiny tier stops at 1e-250 so that the
+#: 1e-3 … min(1e3, ``max_speed``/2) and the top ten decades below ``max_speed``/2,
+#: head-on or chase: with ``max_speed`` = 1e302 they span the float range, and a
+#: scaling that follows only one of them overflows).  The tiny tier stops at 1e-250 so that the
 #: velocities after, down to 1e-15 of it, are normal numbers.
 DIRECT_VELOCITY_REGIMES = ("head-on", "chase", "at-rest", "small-relative", "mixed-magnitude")
 
@@ -265,7 +265,8 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
     speed = log_uniform(1e-6, top / 2, shrink_to="hi")
     # tiers, so that extremes meet in one pair: 0, tiny, order 1, the top ten decades
     any_speed = st.one_of(
-        log_uniform(1e-3, 1e3, shrink_to="hi"),
+        # capped at max_speed/2 like every tier (it drew up to 1e3 for a max_speed of 1)
+        log_uniform(1e-3, min(1e3, top / 2), shrink_to="hi"),
         st.just(0.0),
         # not below 1e-250: times a mass fraction down to 1e-15 the velocities
         # after stay normal numbers, where relative accuracy is promised

@@ -87,13 +87,15 @@ class ParticleSystem(NamedTuple):
 # ------------------------------------------------------------------ validation
 
 
-def _check_mass_bounds(min_value, max_value) -> tuple[float, float]:
-    lo = check_real(min_value, "min_mass")
-    hi = check_real(max_value, "max_mass")
+def _check_mass_bounds(min_value, max_value, names: tuple[str, str]) -> tuple[float, float]:
+    """The bounds as floats, 0 < lo ≤ hi; errors name the caller's parameters ``names``."""
+    lo_name, hi_name = names
+    lo = check_real(min_value, lo_name)
+    hi = check_real(max_value, hi_name)
     if lo <= 0:
-        raise InvalidArgument(f"min_mass={min_value!r} must be > 0 (masses are drawn positive)")
+        raise InvalidArgument(f"{lo_name}={min_value!r} must be > 0 (masses are drawn positive)")
     if lo > hi:
-        raise InvalidArgument(f"min_mass={min_value!r} exceeds max_mass={max_value!r}")
+        raise InvalidArgument(f"{lo_name}={min_value!r} exceeds {hi_name}={max_value!r}")
     return lo, hi
 
 
@@ -158,7 +160,7 @@ def masses(
         raise InvalidArgument(
             f"min_particles={min_particles!r} exceeds max_particles={max_particles!r}"
         )
-    lo, hi = _check_mass_bounds(min_value, max_value)
+    lo, hi = _check_mass_bounds(min_value, max_value, ("min_value", "max_value"))
     names = check_regimes(regimes, MASS_REGIMES, "masses")
     if not lo <= 1.0 <= hi:
         names = tuple(r for r in names if r != "unit")
@@ -200,7 +202,7 @@ def particle_systems(
         raise InvalidArgument(
             f"min_particles={min_particles!r} exceeds max_particles={max_particles!r}"
         )
-    lo, hi = _check_mass_bounds(min_mass, max_mass)
+    lo, hi = _check_mass_bounds(min_mass, max_mass, ("min_mass", "max_mass"))
     names = check_regimes(regimes, SYSTEM_REGIMES, "particle_systems")
     signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 3).map(np.array)
     unit_ok = lo <= 1.0 <= hi

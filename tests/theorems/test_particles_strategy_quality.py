@@ -8,13 +8,14 @@ to the simple case, and reject bad arguments by quoting them.
 
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
 import pytest
 from hypothesis import Phase, find, given, settings
 from hypothesis import strategies as st
-from hypothesis.errors import InvalidArgument
+from hypothesis.errors import InvalidArgument, NoSuchExample
 
 from mechanics import strategies as ms
 from mechanics.particles import internal_moment
@@ -106,49 +107,61 @@ def test_particle_systems_restricted_to_one_regime_stay_in_it(regime):
 # ------------------------------------------------------------------- validity
 
 
-@given(ms.particle_systems())
-def test_particle_systems_are_valid(s):
-    n = len(s.m)
-    assert 1 <= n <= 50
-    assert s.r.shape == (n, 3)
-    assert s.v.shape == (n, 3)
-    assert np.all((s.m >= 1e-6) & (s.m <= 1e6))
-    assert np.isfinite(s.r).all()
-    assert np.isfinite(s.v).all()
+def test_particle_systems_are_valid():
+    @given(ms.particle_systems())
+    def check(s):
+        n = len(s.m)
+        assert 1 <= n <= 50
+        assert s.r.shape == (n, 3)
+        assert s.v.shape == (n, 3)
+        assert np.all((s.m >= 1e-6) & (s.m <= 1e6))
+        assert np.isfinite(s.r).all()
+        assert np.isfinite(s.v).all()
+
+    check()
 
 
-@given(
-    ms.particle_systems(max_particles=12).flatmap(
-        lambda s: st.tuples(st.just(s), ms.pair_forces(s.r))
+def test_pair_forces_obey_newtons_third_law_and_their_bound():
+    @given(
+        ms.particle_systems(max_particles=12).flatmap(
+            lambda s: st.tuples(st.just(s), ms.pair_forces(s.r))
+        )
     )
-)
-def test_pair_forces_obey_newtons_third_law_and_their_bound(data):
-    s, f = data
-    n = len(s.m)
-    assert f.shape == (n, n, 3)
-    assert np.array_equal(f, -np.swapaxes(f, 0, 1))  # f_jk = −f_kj exactly (1.19)
-    assert not np.diagonal(f, axis1=0, axis2=1).any()
-    assert np.linalg.norm(f, axis=-1).max(initial=0.0) <= 1e3
+    def check(data):
+        s, f = data
+        n = len(s.m)
+        assert f.shape == (n, n, 3)
+        assert np.array_equal(f, -np.swapaxes(f, 0, 1))  # f_jk = −f_kj exactly (1.19)
+        assert not np.diagonal(f, axis1=0, axis2=1).any()
+        assert np.linalg.norm(f, axis=-1).max(initial=0.0) <= 1e3
+
+    check()
 
 
-@given(
-    ms.particle_systems(max_particles=12).flatmap(
-        lambda s: st.tuples(st.just(s), ms.pair_forces(s.r, regimes=["central"]))
+def test_central_pair_forces_are_parallel_to_the_particle_separation():
+    @given(
+        ms.particle_systems(max_particles=12).flatmap(
+            lambda s: st.tuples(st.just(s), ms.pair_forces(s.r, regimes=["central"]))
+        )
     )
-)
-def test_central_pair_forces_are_parallel_to_the_particle_separation(data):
-    s, f = data
-    rkj = s.r[:, None, :] - s.r[None, :, :]
-    cross = np.linalg.norm(np.cross(rkj, f), axis=-1)
-    size = np.linalg.norm(rkj, axis=-1) * np.linalg.norm(f, axis=-1)
-    assert np.all(cross <= 8 * np.finfo(float).eps * size + 1e-300)
+    def check(data):
+        s, f = data
+        rkj = s.r[:, None, :] - s.r[None, :, :]
+        cross = np.linalg.norm(np.cross(rkj, f), axis=-1)
+        size = np.linalg.norm(rkj, axis=-1) * np.linalg.norm(f, axis=-1)
+        assert np.all(cross <= 8 * np.finfo(float).eps * size + 1e-300)
+
+    check()
 
 
-@given(st.integers(1, 10), st.integers(0, 10), st.data())
-def test_masses_respect_the_particle_count_bounds(lo, extra, data):
-    m = data.draw(ms.masses(min_particles=lo, max_particles=lo + extra))
-    assert lo <= len(m) <= lo + extra
-    assert np.all((m >= 1e-6) & (m <= 1e6))
+def test_masses_respect_the_particle_count_bounds():
+    @given(st.integers(1, 10), st.integers(0, 10), st.data())
+    def check(lo, extra, data):
+        m = data.draw(ms.masses(min_particles=lo, max_particles=lo + extra))
+        assert lo <= len(m) <= lo + extra
+        assert np.all((m >= 1e-6) & (m <= 1e6))
+
+    check()
 
 
 # ------------------------------------------------------------------- shrinking
@@ -204,3 +217,147 @@ def test_pair_forces_reject_bad_arguments_quoting_them(args, kwargs, quoted):
 def test_masses_reject_a_unit_regime_outside_the_bounds():
     with pytest.raises(InvalidArgument, match="'unit'"):
         ms.masses(min_value=2.0, max_value=3.0, regimes=["unit"])
+
+
+# ------------------------------------------------------- each regime's bounds
+#
+# Each regime drawn alone stays within the bounds its docstring states and reaches both
+# ends of them.  The strategies are built inside the tests.
+
+NEVER_SETTINGS = settings(max_examples=500, database=None, phases=[Phase.generate])
+
+
+def _never(strategy, predicate) -> None:
+    with pytest.raises(NoSuchExample):
+        find(strategy, predicate, settings=NEVER_SETTINGS)
+
+
+@pytest.mark.parametrize(("lo", "hi"), [(1e-6, 1e6), (0.3, 5.0), (2.0, 3.0)])
+def test_masses_each_regime_stays_within_the_bounds(lo, hi):
+    def regime(r):
+        return ms.masses(min_value=lo, max_value=hi, regimes=[r])
+
+    def inside(m):
+        return bool(np.all((m >= lo) & (m <= hi)))
+
+    if lo <= 1.0 <= hi:
+        _never(regime("unit"), lambda m: not np.all(m == 1.0))
+    _never(regime("equal"), lambda m: not (inside(m) and np.all(m == m[0])))
+    _found(regime("equal"), lambda m: m[0] <= lo * 1.1)
+    _found(regime("equal"), lambda m: m[0] >= hi / 1.1)
+    _never(regime("log-uniform"), lambda m: not inside(m))
+    _found(regime("log-uniform"), lambda m: len(set(m.tolist())) >= 3)
+    _found(regime("log-uniform"), lambda m: m.min() <= lo * 1.1)
+    _found(regime("log-uniform"), lambda m: m.max() >= hi / 1.1)
+    # extreme-ratio: every mass at a bound, both bounds present from two particles on
+    ends = {lo, hi}
+    _never(regime("extreme-ratio"), lambda m: not set(m.tolist()) <= ends)
+    _never(regime("extreme-ratio"), lambda m: len(m) >= 2 and set(m.tolist()) != ends)
+    _found(regime("extreme-ratio"), lambda m: len(m) >= 3 and (m == hi).sum() >= 2)
+    _found(regime("extreme-ratio"), lambda m: len(m) >= 3 and (m == lo).sum() >= 2)
+    # all regimes together, unit left out when 1 is outside the bounds
+    _never(ms.masses(min_value=lo, max_value=hi), lambda m: not inside(m))
+
+
+def test_log_uniform_masses_at_the_extreme_unit_draws_are_exactly_the_bounds(monkeypatch):
+    # 10**log10(5.0) rounds above 5.0 and 10**log10(0.3) below 0.3: the bounds must clip.
+    lo, hi = 0.3, 5.0
+    assert 10.0 ** math.log10(hi) > hi
+    assert 10.0 ** math.log10(lo) < lo
+    for u, expected in ((-1.0, hi), (0.0, lo)):
+        monkeypatch.setattr(ms.particles, "_signed_units", lambda k, u=u: st.just(np.full(k, u)))
+        strategy = ms.masses(min_value=lo, max_value=hi, regimes=["log-uniform"])
+        m = find(strategy, lambda m: True, settings=SHRINK_SETTINGS)
+        assert m.tolist() == [expected] * len(m)
+
+
+@pytest.mark.parametrize(("lo", "hi"), [(0.5, 1.0), (1.0, 2.0)])
+def test_the_unit_regime_is_kept_when_one_is_a_bound(lo, hi):
+    _never(ms.masses(min_value=lo, max_value=hi, regimes=["unit"]), lambda m: not np.all(m == 1))
+    systems = ms.particle_systems(min_mass=lo, max_mass=hi, regimes=["simple"])
+    _never(systems, lambda s: not np.all(s.m == 1.0))
+    generic = ms.particle_systems(min_mass=lo, max_mass=hi, regimes=["generic"])
+    _found(generic, lambda s: len(s.m) >= 2 and bool(np.all(s.m == 1.0)))
+
+
+def test_particle_systems_outside_unit_bounds_draw_equal_simple_masses_within_them():
+    simple = ms.particle_systems(min_mass=2.0, max_mass=3.0, regimes=["simple"])
+    _never(simple, lambda s: not (np.all(s.m == s.m[0]) and 2.0 <= s.m[0] <= 3.0))
+    every = ms.particle_systems(min_mass=2.0, max_mass=3.0)
+    _never(every, lambda s: not np.all((s.m >= 2.0) & (s.m <= 3.0)))
+
+
+def test_generic_particle_systems_draw_masses_of_every_mass_regime():
+    generic = ms.particle_systems(regimes=["generic"])
+    for predicate in MASS_REGIMES.values():
+        _found(generic, lambda s, p=predicate: p(s.m))
+
+
+@pytest.mark.parametrize(
+    ("regime", "field", "centre"),
+    [
+        ("far-offset", "r", ms.FAR_OFFSET),
+        ("fast-translation", "v", 1e6),
+    ],
+)
+def test_far_and_fast_systems_are_offset_by_the_documented_magnitude_either_way(
+    regime, field, centre
+):
+    # each coordinate within 1 of ±(1 … 2) × the offset, with signs drawn per coordinate
+    strategy = ms.particle_systems(regimes=[regime])
+
+    def x(s):
+        return getattr(s, field)
+
+    _never(
+        strategy,
+        lambda s: not np.all((np.abs(x(s)) >= centre - 1) & (np.abs(x(s)) <= 2 * centre + 1)),
+    )
+    for k in range(3):
+        _found(strategy, lambda s, k=k: x(s)[0, k] > 0)
+        _found(strategy, lambda s, k=k: x(s)[0, k] < 0)
+    _found(strategy, lambda s: np.abs(x(s)).max() >= 1.9 * centre)
+    _found(strategy, lambda s: np.abs(x(s)).min() <= 1.1 * centre)
+    other = "v" if field == "r" else "r"
+    bound = 1.0 if field == "r" else 10.0
+    _never(strategy, lambda s: np.abs(getattr(s, other)).max() > bound)
+    _found(strategy, lambda s: np.abs(getattr(s, other)).max() >= 0.9 * bound)
+
+
+#: Perpendicular part of a pair force, measured by subtracting its projection on e_kj:
+#: a few roundings of the whole force, |f| ≤ max_magnitude (so relative to that bound).
+PERP_ATOL = 2**4 * np.finfo(float).eps
+
+
+@pytest.mark.parametrize("fmax", [1e3, 2.0])
+def test_pair_forces_keep_the_documented_magnitudes(fmax):
+    rkj = R3[:, None, :] - R3[None, :, :]
+    apart = ~np.eye(3, dtype=bool)
+    e = rkj[apart] / np.linalg.norm(rkj[apart], axis=-1, keepdims=True)
+
+    def perp(f):
+        g = f[apart]
+        return np.linalg.norm(g - (g * e).sum(-1, keepdims=True) * e, axis=-1)
+
+    central = ms.pair_forces(R3, max_magnitude=fmax, regimes=["central"])
+    _never(central, lambda f: np.linalg.norm(f, axis=-1).max() > fmax)
+    _found(central, lambda f: np.linalg.norm(f, axis=-1).max() >= 0.4 * fmax)
+    non_central = ms.pair_forces(R3, max_magnitude=fmax, regimes=["non-central"])
+    _never(non_central, lambda f: np.linalg.norm(f, axis=-1).max() > fmax)
+    _never(
+        non_central,
+        lambda f: (
+            not np.all(
+                (perp(f) >= (5e-4 - PERP_ATOL) * fmax) & (perp(f) <= (0.25 + PERP_ATOL) * fmax)
+            )
+        ),
+    )
+    _found(non_central, lambda f: perp(f).min() <= 1e-3 * fmax)
+    _found(non_central, lambda f: perp(f).max() >= 0.2 * fmax)
+    _never(ms.pair_forces(R3, max_magnitude=fmax, regimes=["none"]), lambda f: f.any())
+
+
+def test_pair_forces_between_coincident_particles_are_zero_when_central():
+    r = np.zeros((2, 3))
+    _never(ms.pair_forces(r, regimes=["central"]), lambda f: f.any())
+    _found(ms.pair_forces(r, regimes=["non-central"]), lambda f: f.any())

@@ -215,30 +215,39 @@ def test_rotation_angles_restricted_to_one_regime_stay_in_it(regime):
 # ------------------------------------------------------------------- validity
 
 
-@given(ms.unit_vectors())
-def test_unit_vectors_have_unit_length(u):
-    assert u.shape == (3,)
-    assert abs(math.hypot(*u) - 1.0) <= UNIT_NORM_ATOL
+def test_unit_vectors_have_unit_length():
+    @given(ms.unit_vectors())
+    def check(u):
+        assert u.shape == (3,)
+        assert abs(math.hypot(*u) - 1.0) <= UNIT_NORM_ATOL
+
+    check()
 
 
-@given(
-    st.floats(0.0, math.pi).flatmap(
-        lambda lo: st.tuples(st.just(lo), ms.rotation_angles(min_value=lo))
+def test_rotation_angles_respect_the_lower_bound():
+    @given(
+        st.floats(0.0, math.pi).flatmap(
+            lambda lo: st.tuples(st.just(lo), ms.rotation_angles(min_value=lo))
+        )
     )
-)
-def test_rotation_angles_respect_the_lower_bound(lo_and_angle):
-    lo, a = lo_and_angle
-    assert lo <= a <= math.pi
+    def check(lo_and_angle):
+        lo, a = lo_and_angle
+        assert lo <= a <= math.pi
+
+    check()
 
 
-@given(
-    st.floats(0.0, math.pi).flatmap(
-        lambda hi: st.tuples(st.just(hi), ms.rotation_angles(max_value=hi))
+def test_rotation_angles_respect_the_upper_bound():
+    @given(
+        st.floats(0.0, math.pi).flatmap(
+            lambda hi: st.tuples(st.just(hi), ms.rotation_angles(max_value=hi))
+        )
     )
-)
-def test_rotation_angles_respect_the_upper_bound(hi_and_angle):
-    hi, a = hi_and_angle
-    assert 0.0 <= a <= hi
+    def check(hi_and_angle):
+        hi, a = hi_and_angle
+        assert 0.0 <= a <= hi
+
+    check()
 
 
 def test_bounded_rotation_angles_still_reach_the_hard_regimes_inside_the_bounds():
@@ -248,10 +257,13 @@ def test_bounded_rotation_angles_still_reach_the_hard_regimes_inside_the_bounds(
     _found(inside, lambda a: 0 < math.pi - a <= 1e-8 + PI_ROUNDING)
 
 
-@given(ms.rotvecs(regimes=["axis-angle"]))
-def test_rotvecs_axis_angle_have_angles_in_zero_to_pi(v):
-    assert v.shape == (3,)
-    assert math.hypot(*v) <= math.pi * (1 + 2 * EPS)
+def test_rotvecs_axis_angle_have_angles_in_zero_to_pi():
+    @given(ms.rotvecs(regimes=["axis-angle"]))
+    def check(v):
+        assert v.shape == (3,)
+        assert math.hypot(*v) <= math.pi * (1 + 2 * EPS)
+
+    check()
 
 
 @pytest.mark.parametrize(
@@ -275,30 +287,42 @@ def test_rotvecs_lengths_stay_in_their_regime_range(regime, lo, hi):
     check()
 
 
-@given(ms.rotvecs(regimes=["mixed"]))
-def test_rotvecs_mixed_components_are_finite_and_non_zero(v):
-    assert np.isfinite(v).all()
-    assert np.all(np.abs(v) >= 1e-300 * (1 - 4 * EPS))
+def test_rotvecs_mixed_components_are_finite_and_non_zero():
+    @given(ms.rotvecs(regimes=["mixed"]))
+    def check(v):
+        assert np.isfinite(v).all()
+        assert np.all(np.abs(v) >= 1e-300 * (1 - 4 * EPS))
+
+    check()
 
 
-@given(ms.quaternions())
-def test_quaternions_are_unit(q):
-    assert q.shape == (4,)
-    assert abs(math.hypot(*q) - 1.0) <= QUAT_NORM_ATOL
+def test_quaternions_are_unit():
+    @given(ms.quaternions())
+    def check(q):
+        assert q.shape == (4,)
+        assert abs(math.hypot(*q) - 1.0) <= QUAT_NORM_ATOL
+
+    check()
 
 
-@given(ms.rotation_matrices())
-def test_rotation_matrices_are_rotations(R):
-    assert R.shape == (3, 3)
-    assert is_rotation(R, atol=MATRIX_ORTHO_ATOL)
+def test_rotation_matrices_are_rotations():
+    @given(ms.rotation_matrices())
+    def check(R):
+        assert R.shape == (3, 3)
+        assert is_rotation(R, atol=MATRIX_ORTHO_ATOL)
+
+    check()
 
 
-@given(ms.euler_angles())
-def test_euler_angles_are_in_the_documented_ranges(e):
-    psi, theta, phi = e
-    assert -math.pi <= psi <= math.pi
-    assert -math.pi <= phi <= math.pi
-    assert 0.0 <= theta <= math.pi
+def test_euler_angles_are_in_the_documented_ranges():
+    @given(ms.euler_angles())
+    def check(e):
+        psi, theta, phi = e
+        assert -math.pi <= psi <= math.pi
+        assert -math.pi <= phi <= math.pi
+        assert 0.0 <= theta <= math.pi
+
+    check()
 
 
 # ------------------------------------------------------------------- shrinking
@@ -307,16 +331,16 @@ def test_euler_angles_are_in_the_documented_ranges(e):
 @pytest.mark.parametrize(
     ("strategy", "simplest"),
     [
-        pytest.param(ms.rotation_angles(), 0.0, id="angle-0"),
-        pytest.param(ms.rotvecs(), [0.0, 0.0, 0.0], id="rotvec-0"),
-        pytest.param(ms.euler_angles(), (0.0, 0.0, 0.0), id="euler-0"),
-        pytest.param(ms.quaternions(), [1.0, 0.0, 0.0, 0.0], id="quat-identity"),
-        pytest.param(ms.rotation_matrices(), np.eye(3).tolist(), id="matrix-identity"),
-        pytest.param(ms.unit_vectors(), [1.0, 0.0, 0.0], id="unit-e1"),
+        pytest.param(ms.rotation_angles, 0.0, id="angle-0"),
+        pytest.param(ms.rotvecs, [0.0, 0.0, 0.0], id="rotvec-0"),
+        pytest.param(ms.euler_angles, (0.0, 0.0, 0.0), id="euler-0"),
+        pytest.param(ms.quaternions, [1.0, 0.0, 0.0, 0.0], id="quat-identity"),
+        pytest.param(ms.rotation_matrices, np.eye(3).tolist(), id="matrix-identity"),
+        pytest.param(ms.unit_vectors, [1.0, 0.0, 0.0], id="unit-e1"),
     ],
 )
 def test_strategies_shrink_to_the_simple_case(strategy, simplest):
-    value = find(strategy, lambda x: True, settings=SHRINK_SETTINGS)
+    value = find(strategy(), lambda x: True, settings=SHRINK_SETTINGS)
     got = value if isinstance(value, tuple | float) else np.asarray(value).tolist()
     assert got == simplest
 
