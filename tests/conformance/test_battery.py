@@ -481,7 +481,7 @@ def test_state_errors_scale_by_the_largest_speed_and_distance_over_samples_and_b
     v[2, 0] = (4.0, 0.0, 0.0)
     ref = _traj(position=r, velocity=v)
     R = np.array(ref.R_A_O)
-    R[2, 1, 0, 2] += 2.0**-10
+    R[2, 1, 0, 2] -= 2.0**-10  # an entry too small: the error is its absolute value
     tr = _traj(
         position=_with(r, (2, 1, 2), 1.0),
         velocity=_with(v, (1, 0, 0), -0.5),
@@ -500,6 +500,7 @@ def test_state_errors_of_small_fast_turning_bodies_scale_by_size_and_spin():
     v[1, 1, 2] = 2.0
     w = np.zeros((3, 2, 3))
     w[2, 0, 0] = -3.0
+    w[0, 1] = (0.0, 2.0, 2.0)  # another sample and body: |ω| 2.8 < 3
     ref = _traj(position=r, velocity=v, omega=w)
     tr = _traj(
         position=_with(r, (0, 0, 0), 0.25),
@@ -524,9 +525,14 @@ def test_state_errors_of_bodies_at_rest_scale_by_the_shape_and_one_metre_per_sec
 
 
 def test_mass_error_is_relative_to_the_initial_mass_and_inf_when_masses_are_missing():
-    s = _still(thrust=Thrust(0, 0.25, 10.0, 1.0))
-    ref = _traj(masses=np.ones((3, 2)))
-    assert state_errors(s, ref, _traj(masses=_with(ref.masses, (2, 1), -0.125)))["mass"] == 0.125
+    s = dataclasses.replace(
+        _still(thrust=Thrust(0, 0.25, 10.0, 1.0)),
+        bodies=(Body("a", 4.0, (4.0, 4.0, 4.0)), Body("b", 2.0, (2.0, 2.0, 2.0))),
+    )
+    ref = _traj(masses=np.array([[4.0, 2.0]] * 3))
+    # 0.5 kg off on each: 1/8 of body a's 4 kg, 1/4 of body b's 2 kg
+    off = _with(_with(ref.masses, (1, 0), -0.5), (2, 1), 0.5)
+    assert state_errors(s, ref, _traj(masses=off))["mass"] == 0.25
     assert state_errors(s, ref, _traj())["mass"] == math.inf
     assert "mass" not in state_errors(_still(), ref, _traj(masses=ref.masses))
 
@@ -567,6 +573,7 @@ def test_a_derived_figure_is_relative_to_the_exact_value_absolute_at_zero_inf_on
     # the largest difference over the largest exact value
     assert battery._relative([1.0, 2.5], [1.0, 2.0]) == 0.25
     assert battery._relative([1.5, 2.0], [1.0, -2.0]) == 2.0
+    assert battery._relative([0.75], [0.5]) == 0.5
     assert battery._relative([-0.5], [0.0]) == 0.5
     assert battery._relative([1.0, 2.0], [1.0]) == math.inf
 
@@ -703,5 +710,7 @@ def test_a_report_passes_with_unsupported_scenarios_and_not_with_a_failure_or_er
 
 
 def test_a_scenario_that_is_neither_a_name_nor_a_scenario_is_named_by_type_and_value():
-    with pytest.raises(UnknownScenarioError, match=r"must be a name or a Scenario; got int 3$"):
+    with pytest.raises(
+        UnknownScenarioError, match=r"^a scenario must be a name or a Scenario; got int 3$"
+    ):
         run_battery(ExactAdapter(), scenarios=[3])
