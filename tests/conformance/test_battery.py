@@ -386,12 +386,27 @@ def test_an_order_threshold_is_a_lower_bound(toy):
 @pytest.mark.parametrize(
     ("thresholds", "message"),
     [
-        ({"velocty": 1e-3}, r"unknown threshold key\(s\) 'velocty'; a key is a figure"),
-        ({"parabola.theta": 1e-3, "x": 1}, r"unknown threshold key\(s\) 'parabola.theta', 'x'"),
-        ({"velocity": -1.0}, r"threshold 'velocity' must be a finite number >= 0.*got -1.0"),
-        ({"velocity": "tight"}, r"threshold 'velocity' must be .*got 'tight'"),
-        ({"order": math.nan}, r"threshold 'order' must be .*got nan"),
-        ([("velocity", 1.0)], r"thresholds must be a dict.*got list"),
+        (
+            {"velocty": 1e-3},
+            r"^unknown threshold key\(s\) 'velocty'; a key is a figure \(E_drift, .*, "
+            r"velocity\) or 'scenario\.figure'$",
+        ),
+        (
+            {"parabola.theta": 1e-3, "x": 1},
+            r"^unknown threshold key\(s\) 'parabola\.theta', 'x'; a key is a figure \(",
+        ),
+        (
+            {"velocity": -1.0},
+            r"^threshold 'velocity' must be a finite number >= 0 \(or None\); got -1\.0$",
+        ),
+        ({"velocity": "tight"}, r"^threshold 'velocity' must be a finite .*; got 'tight'$"),
+        ({"velocity": True}, r"^threshold 'velocity' must be a finite .*; got True$"),
+        ({"velocity": None, "order": math.inf}, r"^threshold 'order' must be .*; got inf$"),
+        ({"order": math.nan}, r"^threshold 'order' must be .*; got nan$"),
+        (
+            [("velocity", 1.0)],
+            r"^thresholds must be a dict of figure name -> number; got list$",
+        ),
     ],
 )
 def test_bad_thresholds_are_refused_naming_them(thresholds, message):
@@ -714,3 +729,15 @@ def test_a_scenario_that_is_neither_a_name_nor_a_scenario_is_named_by_type_and_v
         UnknownScenarioError, match=r"^a scenario must be a name or a Scenario; got int 3$"
     ):
         run_battery(ExactAdapter(), scenarios=[3])
+
+
+def test_thresholds_at_zero_and_integers_are_accepted_as_floats_and_none_kept():
+    got = battery.resolve_thresholds({"velocity": 0, "position": 1, "parabola.apex_height": None})
+    assert got == {"velocity": 0.0, "position": 1.0, "parabola.apex_height": None}
+    assert [type(v) for v in got.values()] == [float, float, type(None)]
+    assert battery.resolve_thresholds(None) == {}
+    # a user's own scenario's keys are known when it is passed
+    own = _still()
+    assert battery.resolve_thresholds({"still.omega": 0.5}, [own]) == {"still.omega": 0.5}
+    with pytest.raises(ThresholdError, match=r"^unknown threshold key\(s\) 'still\.omega';"):
+        battery.resolve_thresholds({"still.omega": 0.5})
