@@ -737,7 +737,7 @@ def test_thresholds_at_zero_and_integers_are_accepted_as_floats_and_none_kept():
     assert [type(v) for v in got.values()] == [float, float, type(None)]
     assert battery.resolve_thresholds(None) == {}
     # a user's own scenario's keys are known when it is passed
-    own = _still()
-    assert battery.resolve_thresholds({"still.omega": 0.5}, [own]) == {"still.omega": 0.5}
-    with pytest.raises(ThresholdError, match=r"^unknown threshold key\(s\) 'still\.omega';"):
-        battery.resolve_thresholds({"still.omega": 0.5})
+    own = dataclasses.replace(get_scenario("parabola"), name="mine")
+    assert battery.resolve_thresholds({"mine.position": 0.5}, [own]) == {"mine.position": 0.5}
+    with pytest.raises(ThresholdError, match=r"^unknown threshold key\(s\) 'mine\.position';"):
+        battery.resolve_thresholds({"mine.position": 0.5})
