@@ -741,3 +741,32 @@ def test_thresholds_at_zero_and_integers_are_accepted_as_floats_and_none_kept():
     assert battery.resolve_thresholds({"mine.position": 0.5}, [own]) == {"mine.position": 0.5}
     with pytest.raises(ThresholdError, match=r"^unknown threshold key\(s\) 'mine\.position';"):
         battery.resolve_thresholds({"mine.position": 0.5})
+
+
+def test_a_failure_names_every_figure_beyond_its_bound_in_order_joined_by_semicolons(toy):
+    th = {k: None for k in DEFAULT_THRESHOLDS if k != "order"}
+    th.update({"parabola.position": 0.0, "parabola.velocity": 0.0})
+    r = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
+    pos, vel = r.figure("position").value, r.figure("velocity").value
+    assert pos > 0
+    assert vel > 0
+    assert r.status == "fail"
+    assert r.message == (
+        f"position {pos:.3g} violates threshold <= 0; velocity {vel:.3g} violates threshold <= 0"
+    )
+
+
+def test_an_order_is_a_figure_only_for_an_adapter_that_takes_a_step():
+    plain = run_battery(ExactAdapter(), scenarios=["parabola"])["parabola"]
+    assert plain.figure("order") is None
+    assert len(plain.runs) == 1
+    assert plain.runs[0].step is None
+
+    class Stepping(ExactAdapter):
+        takes_step = True
+
+    r = run_battery(Stepping(), scenarios=["parabola"])["parabola"]
+    assert [x.step for x in r.runs] == list(get_scenario("parabola").steps)
+    f = r.figure("order")  # unchecked by default: reported with why there is none
+    assert (f.value, f.threshold, f.passed) == (None, None, None)
+    assert f.note == "errors at rounding level: no order to read"
