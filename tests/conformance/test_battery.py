@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import re
 import subprocess
 import sys
 
@@ -31,6 +32,7 @@ from mechanics.conformance.adapters import (
     SceneEngineAdapter,
     require,
 )
+from mechanics.conformance.adapters.reference import SPHERE_INERTIA_RTOL, scene_from_scenario
 from mechanics.conformance.battery import (
     ORDER_FLOOR,
     Figure,
@@ -770,3 +772,81 @@ def test_an_order_is_a_figure_only_for_an_adapter_that_takes_a_step():
     f = r.figure("order")  # unchecked by default: reported with why there is none
     assert (f.value, f.threshold, f.passed) == (None, None, None)
     assert f.note == "errors at rounding level: no order to read"
+
+
+# -- the scene engine's reasons (scene_from_scenario builds a dict: no engine runs) ----
+
+
+def _body(s, k=0, **changes):
+    bodies = list(s.bodies)
+    bodies[k] = dataclasses.replace(bodies[k], **changes)
+    return dataclasses.replace(s, bodies=tuple(bodies))
+
+
+def _sphere_scaled(s, k, factor):
+    return _body(s, k, inertia=tuple(x * factor for x in s.bodies[k].inertia))
+
+
+def test_scene_engine_names_each_scenario_it_cannot_express():
+    uniform = "the scene engine samples uniformly from 0 to the duration"
+    parabola, impact = get_scenario("parabola"), get_scenario("two_body_impact")
+    heavy, rocket = get_scenario("heavy_top"), get_scenario("rocket")
+    T = parabola.sample_times
+    moved = (*T[:2], T[2] + 2**-10, *T[3:])  # one sample off the uniform grid
+    cases = [
+        (dataclasses.replace(parabola, sample_times=T[:1]), uniform),  # one sample
+        (dataclasses.replace(parabola, sample_times=moved), uniform),
+        (
+            _body(rocket, omega=(0.0, 0.0, 1.0)),
+            "the scene engine's thrust is space-fixed: the rocket must not spin",
+        ),
+        (
+            _sphere_scaled(impact, 0, 1.5),  # the first of the pair
+            "body 'a' collides: the scene engine collides solid spheres only",
+        ),
+        (
+            _sphere_scaled(impact, 1, 1.5),  # the second of the pair
+            "body 'b' collides: the scene engine collides solid spheres only",
+        ),
+    ]
+    axis3 = "the scene engine's fixed point lies on body axis 3 below G"
+    for point in [(0.0, 0.0, 0.0), (0.0, 0.0, 0.1), (1e-3, 0.0, -0.1), (0.0, -1e-3, -0.1)]:
+        cases.append(
+            (dataclasses.replace(heavy, pivot=dataclasses.replace(heavy.pivot, point=point)), axis3)
+        )
+    for s, why in cases:
+        assert scene_from_scenario(s) == why, (s.name, why)
+        assert SceneEngineAdapter().supports(s) == why
+        with pytest.raises(ValueError, match=f"^{re.escape(why)}$"):
+            SceneEngineAdapter().run(s, None)
+
+
+def test_a_sphere_within_the_inertia_tolerance_collides_and_one_beyond_does_not():
+    ball = get_scenario("bouncing_ball")
+    assert SceneEngineAdapter().supports(ball) is None
+    inside = _sphere_scaled(ball, 0, 1 + SPHERE_INERTIA_RTOL / 2)
+    assert isinstance(scene_from_scenario(inside), dict)
+    for factor in (1 + 2 * SPHERE_INERTIA_RTOL, 1 - 2 * SPHERE_INERTIA_RTOL):
+        why = scene_from_scenario(_sphere_scaled(ball, 0, factor))
+        assert (
+            why
+            == f"body {ball.bodies[0].name!r} collides: the scene engine collides solid spheres only"
+        )
+    a_box = _body(ball, shape=Shape("box", (0.1, 0.1, 0.1)))
+    assert "solid spheres only" in scene_from_scenario(a_box)
+    no_shape = _body(ball, shape=None)
+    assert "solid spheres only" in scene_from_scenario(no_shape)
+
+
+def test_the_scene_carries_the_method_and_only_the_tolerances_given():
+    s = get_scenario("parabola")
+    head = scene_from_scenario(s)["scene"]
+    assert head == {
+        "name": "parabola",
+        "duration": s.duration,
+        "samples": len(s.sample_times),
+        "method": "integrate",
+    }
+    head = scene_from_scenario(s, method="auto", rtol=1e-9, atol=1e-10)["scene"]
+    assert (head["method"], head["rtol"], head["atol"]) == ("auto", 1e-9, 1e-10)
+    assert SceneEngineAdapter("auto").name == "bodycheck scene engine (auto)"
