@@ -245,3 +245,38 @@ def test_json_of_a_hand_built_comparison_carries_every_cell_and_only_the_reasons
         "",
     ]
     assert [list(r) for r in data["rows"]] == [[*cells, "wall_time", "message"]] * 6
+
+
+#: the adapter modules of ENGINE_MODULES, written out
+ENGINES = ("mujoco", "pybullet", "drake")
+
+
+def test_engine_adapters_list_each_variant_or_the_missing_engines_reason_once(
+    monkeypatch,
+) -> None:
+    import importlib
+
+    from mechanics.conformance.adapters import MissingExtraError, SceneEngineAdapter
+
+    def missing(extra):
+        def variants():
+            raise MissingExtraError(f"pip install 'bodycheck[{extra}]'")
+
+        return variants
+
+    mods = {m: importlib.import_module(f"mechanics.conformance.adapters.{m}") for m in ENGINES}
+    monkeypatch.setattr(mods["mujoco"], "variants", lambda: ["mj-a", "mj-b"])
+    monkeypatch.setattr(mods["pybullet"], "variants", missing("pybullet"))
+    monkeypatch.setattr(mods["drake"], "variants", lambda: ["dk"])
+    got = engine_adapters()
+    assert [type(a) for _, a in got[:2]] == [ExactAdapter, SceneEngineAdapter]
+    assert got[2:] == [
+        ("MuJoCo", "mj-a"),
+        ("MuJoCo", "mj-b"),
+        ("PyBullet", "pip install 'bodycheck[pybullet]'"),
+        ("Drake", "dk"),
+    ]
+    # compare() runs no battery for a reason: it lists the engine as not run
+    c = compare([("PyBullet", "pip install 'bodycheck[pybullet]'")], scenarios=["parabola"])
+    assert c.reports == []
+    assert c.missing == [("PyBullet", "pip install 'bodycheck[pybullet]'")]
