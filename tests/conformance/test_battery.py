@@ -7,6 +7,7 @@ from __future__ import annotations
 import dataclasses
 import json
 import math
+import re
 import subprocess
 import sys
 
@@ -20,6 +21,7 @@ from mechanics.conformance import (
     ConformanceError,
     ThresholdError,
     UnknownScenarioError,
+    battery,
     get_scenario,
     reference,
     run_battery,
@@ -30,7 +32,17 @@ from mechanics.conformance.adapters import (
     SceneEngineAdapter,
     require,
 )
-from mechanics.conformance.battery import ORDER_FLOOR
+from mechanics.conformance.adapters.reference import SPHERE_INERTIA_RTOL, scene_from_scenario
+from mechanics.conformance.battery import (
+    ORDER_FLOOR,
+    Figure,
+    Report,
+    Run,
+    ScenarioResult,
+    state_errors,
+)
+from mechanics.conformance.protocol import Body, Scenario, Shape, Thrust, Trajectory
+from mechanics.conformance.scenarios import figure_names, invariant_names
 from mechanics.tops import FreeAsymmetricTop
 
 from .toys import (
@@ -376,12 +388,27 @@ def test_an_order_threshold_is_a_lower_bound(toy):
 @pytest.mark.parametrize(
     ("thresholds", "message"),
     [
-        ({"velocty": 1e-3}, r"unknown threshold key\(s\) 'velocty'; a key is a figure"),
-        ({"parabola.theta": 1e-3, "x": 1}, r"unknown threshold key\(s\) 'parabola.theta', 'x'"),
-        ({"velocity": -1.0}, r"threshold 'velocity' must be a finite number >= 0.*got -1.0"),
-        ({"velocity": "tight"}, r"threshold 'velocity' must be .*got 'tight'"),
-        ({"order": math.nan}, r"threshold 'order' must be .*got nan"),
-        ([("velocity", 1.0)], r"thresholds must be a dict.*got list"),
+        (
+            {"velocty": 1e-3},
+            r"^unknown threshold key\(s\) 'velocty'; a key is a figure \(E_drift, .*, "
+            r"velocity\) or 'scenario\.figure'$",
+        ),
+        (
+            {"parabola.theta": 1e-3, "x": 1},
+            r"^unknown threshold key\(s\) 'parabola\.theta', 'x'; a key is a figure \(",
+        ),
+        (
+            {"velocity": -1.0},
+            r"^threshold 'velocity' must be a finite number >= 0 \(or None\); got -1\.0$",
+        ),
+        ({"velocity": "tight"}, r"^threshold 'velocity' must be a finite .*; got 'tight'$"),
+        ({"velocity": True}, r"^threshold 'velocity' must be a finite .*; got True$"),
+        ({"velocity": None, "order": math.inf}, r"^threshold 'order' must be .*; got inf$"),
+        ({"order": math.nan}, r"^threshold 'order' must be .*; got nan$"),
+        (
+            [("velocity", 1.0)],
+            r"^thresholds must be a dict of figure name -> number; got list$",
+        ),
     ],
 )
 def test_bad_thresholds_are_refused_naming_them(thresholds, message):
@@ -417,3 +444,409 @@ def test_importing_the_battery_and_its_adapters_is_light():
     )
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert proc.stdout.strip() == "[]", proc.stdout + proc.stderr
+
+
+# -- defaults, scales and bounds, on hand-made inputs (no engine runs) ----------------
+
+
+def test_every_default_threshold_is_2_to_the_minus_10_and_order_is_unchecked():
+    # called, not read: DEFAULT_THRESHOLDS is built once at import
+    d = battery._defaults()
+    assert d.pop("order") is None
+    assert set(d.values()) == {2.0**-10}  # docs/conformance.md: 2^-10 ≈ 0.1 %
+    expected = {"position", "velocity", "attitude", "omega", "mass"}
+    for s in SCENARIOS.values():
+        expected.update(figure_names(s))
+        expected.update(f"{q}_drift" for q in invariant_names(s))
+    assert set(d) == expected
+    assert {"apex_height", "E_drift", "L_z_drift"} <= set(d)  # a figure, drifts
+
+
+def _still(shape=None, thrust=None, m=3) -> Scenario:
+    b = Body("b", 1.0, (1.0, 1.0, 1.0), shape)  # radius of gyration 1
+    times = tuple(float(k) for k in range(m))
+    return Scenario("still", "", "", (b, b), times[-1], times, thrust=thrust)
+
+
+def _traj(m=3, position=None, velocity=None, omega=None, masses=None, R=None) -> Trajectory:
+    z = np.zeros((m, 2, 3))
+    R = np.broadcast_to(np.eye(3), (m, 2, 3, 3)).copy() if R is None else R
+    return Trajectory(
+        np.arange(float(m)),
+        z.copy() if position is None else position,
+        z.copy() if velocity is None else velocity,
+        R,
+        z.copy() if omega is None else omega,
+        masses,
+    )
+
+
+def _with(a, where, delta):
+    a = np.array(a, dtype=float)
+    a[where] += delta
+    return a
+
+
+def test_state_errors_scale_by_the_largest_speed_and_distance_over_samples_and_bodies():
+    # two samples and both bodies move: the scales are the largest |r| and |v| of one
+    # body at one sample (5), not a norm over the whole array
+    r = np.zeros((3, 2, 3))
+    r[1, 0] = (3.0, 4.0, 0.0)
+    r[2, 1] = (0.0, 3.0, 0.0)
+    v = np.zeros((3, 2, 3))
+    v[0, 1] = (0.0, 3.0, 4.0)
+    v[2, 0] = (4.0, 0.0, 0.0)
+    ref = _traj(position=r, velocity=v)
+    R = np.array(ref.R_A_O)
+    R[2, 1, 0, 2] -= 2.0**-10  # an entry too small: the error is its absolute value
+    tr = _traj(
+        position=_with(r, (2, 1, 2), 1.0),
+        velocity=_with(v, (1, 0, 0), -0.5),
+        omega=_with(np.zeros((3, 2, 3)), (0, 1, 1), 0.25),
+        R=R,
+    )
+    errs = state_errors(_still(), ref, tr)
+    # nothing turns: the angular scale is V / L = 1 rad/s
+    assert errs == {"position": 0.2, "velocity": 0.1, "attitude": 2.0**-10, "omega": 0.25}
+
+
+def test_state_errors_of_small_fast_turning_bodies_scale_by_size_and_spin():
+    # |r| ≤ 0.5 < the bodies' size 1: L = 1; max|ω| = 3 makes V = L·3 > max|v| = 2
+    r = np.full((3, 2, 3), 0.25)
+    v = np.zeros((3, 2, 3))
+    v[1, 1, 2] = 2.0
+    w = np.zeros((3, 2, 3))
+    w[2, 0, 0] = -3.0
+    w[0, 1] = (0.0, 2.0, 2.0)  # another sample and body: |ω| 2.8 < 3
+    ref = _traj(position=r, velocity=v, omega=w)
+    tr = _traj(
+        position=_with(r, (0, 0, 0), 0.25),
+        velocity=_with(v, (2, 1, 1), 0.75),
+        omega=_with(w, (1, 1, 2), 1.5),
+    )
+    errs = state_errors(_still(), ref, tr)
+    assert errs == {"position": 0.25, "velocity": 0.25, "attitude": 0.0, "omega": 0.5}
+
+
+def test_state_errors_of_bodies_at_rest_scale_by_the_shape_and_one_metre_per_second():
+    # a sphere of radius 2 (larger than the radius of gyration 1): L = 2, V = 1 m/s,
+    # the angular scale V / L = 0.5 rad/s
+    ref = _traj()
+    tr = _traj(
+        position=_with(ref.position, (1, 0, 1), 1.0),
+        velocity=_with(ref.velocity, (1, 0, 1), 0.5),
+        omega=_with(ref.omega, (1, 0, 1), 0.25),
+    )
+    errs = state_errors(_still(Shape("sphere", (2.0,))), ref, tr)
+    assert errs == {"position": 0.5, "velocity": 0.5, "attitude": 0.0, "omega": 0.5}
+
+
+def test_mass_error_is_relative_to_the_initial_mass_and_inf_when_masses_are_missing():
+    s = dataclasses.replace(
+        _still(thrust=Thrust(0, 0.25, 10.0, 1.0)),
+        bodies=(Body("a", 4.0, (4.0, 4.0, 4.0)), Body("b", 2.0, (2.0, 2.0, 2.0))),
+    )
+    ref = _traj(masses=np.array([[4.0, 2.0]] * 3))
+    # 0.5 kg off on each: 1/8 of body a's 4 kg, 1/4 of body b's 2 kg
+    off = _with(_with(ref.masses, (1, 0), -0.5), (2, 1), 0.5)
+    assert state_errors(s, ref, _traj(masses=off))["mass"] == 0.25
+    assert state_errors(s, ref, _traj())["mass"] == math.inf
+    assert "mass" not in state_errors(_still(), ref, _traj(masses=ref.masses))
+
+
+def test_a_figure_exactly_at_its_threshold_passes_and_one_ulp_beyond_fails(toy):
+    exact = run_battery(ExactAdapter(), scenarios=["parabola"])["parabola"]
+    apex = exact.figure("apex_height").value
+    assert apex > 0
+    at = run_battery(ExactAdapter(), scenarios=["parabola"], thresholds={"apex_height": apex})
+    assert at["parabola"].figure("apex_height").passed is True
+    below = math.nextafter(apex, 0.0)
+    over = run_battery(ExactAdapter(), scenarios=["parabola"], thresholds={"apex_height": below})
+    assert over["parabola"].figure("apex_height").passed is False
+    assert over["parabola"].status == "fail"
+    # an order is a lower bound: the measured order itself passes, one ulp more fails
+    order = run_battery(toy, scenarios=["parabola"], thresholds=TOY_THRESHOLDS)["parabola"].order
+    for bound, ok in [(order, True), (math.nextafter(order, math.inf), False)]:
+        th = {**TOY_THRESHOLDS, "order": bound}
+        res = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
+        assert res.figure("order").passed is ok
+        assert res.status == ("pass" if ok else "fail")
+
+
+def test_no_order_is_read_below_two_runs_or_from_errors_at_the_rounding_floor():
+    assert battery._order([]) == (None, "")
+    assert battery._order([Run(0.1, 0.0, 1.0)]) == (None, "")
+    rounding = (None, "errors at rounding level: no order to read")
+    at_floor = [Run(0.1, 0.0, 1e-3), Run(0.05, 0.0, ORDER_FLOOR), Run(0.025, 0.0, ORDER_FLOOR)]
+    assert battery._order(at_floor) == rounding  # the floor itself is rounding
+    assert battery._order([Run(None, 0.0, 1e-3), Run(None, 0.0, 1e-4)]) == rounding
+    # errors 4e-6, 1e-6 at steps 2h, h: slope log 4 / log 2 = 2
+    order, note = battery._order([Run(0.1, 0.0, 4e-6), Run(0.05, 0.0, 1e-6), Run(0.025, 0.0, 0)])
+    assert note == ""
+    assert abs(order - 2.0) < 2**4 * EPS  # two logs and a least-squares slope
+
+
+def test_a_derived_figure_is_relative_to_the_exact_value_absolute_at_zero_inf_on_shape():
+    # the largest difference over the largest exact value
+    assert battery._relative([1.0, 2.5], [1.0, 2.0]) == 0.25
+    assert battery._relative([1.5, 2.0], [1.0, -2.0]) == 2.0
+    assert battery._relative([0.75], [0.5]) == 0.5
+    assert battery._relative([-0.5], [0.0]) == 0.5
+    assert battery._relative([1.0, 2.0], [1.0]) == math.inf
+
+
+@pytest.mark.parametrize(
+    ("figure", "text"),
+    [
+        (Figure("position", "error", 0.00123456, None, None), "position 0.00123"),
+        (Figure("position", "error", 0.25, 0.5, True), "position 0.25 within threshold <= 0.5"),
+        (Figure("omega", "error", None, None, None), "omega n/a"),
+        (
+            Figure("E_drift", "drift", 0.75, 0.5, False),
+            "E_drift 0.75 violates threshold <= 0.5",
+        ),
+        (Figure("order", "order", 3.999, 4.0, False), "order 4 violates threshold >= 4"),
+        (Figure("order", "order", 1.0, 0.5, True), "order 1 within threshold >= 0.5"),
+        (
+            Figure("apex_height", "error", math.inf, 0.25, False, "no apex"),
+            "apex_height inf violates threshold <= 0.25 (no apex)",
+        ),
+    ],
+)
+def test_a_figure_describes_its_value_bound_and_verdict(figure, text):
+    assert figure.describe() == text
+
+
+def _hand_report() -> Report:
+    ok = ScenarioResult(
+        "parabola",
+        "",
+        "",
+        "pass",
+        figures=[
+            Figure("position", "error", 1e-12, 2.0**-10, True),
+            Figure("velocity", "error", 1e-9, 1.0, True),  # larger, but further from its bound
+            Figure("apex_height", "error", 0.5, None, None),  # unchecked: never the worst
+            Figure("omega", "error", None, 2.0**-10, None),  # not measured
+            Figure("order", "order", 0.5, 1.0, False),  # a lower bound: never the worst
+        ],
+        runs=[Run(0.1, 1.0, 1e-3), Run(0.05, 0.25, 1e-4)],
+    )
+    bad = ScenarioResult(
+        "rocket",
+        "",
+        "",
+        "fail",
+        "E_drift 0.75 violates threshold <= 0.5",
+        figures=[Figure("E_drift", "drift", 0.75, 0.5, False)],
+        runs=[Run(None, 2.0, 0.75)],
+    )
+    no = ScenarioResult("heavy_top", "", "", "unsupported", "no pivots")
+    err = ScenarioResult("bouncing_ball", "", "", "error", "run raised RuntimeError: boom")
+    return Report("hand", [ok, bad, no, err], {"velocity": 1.0})
+
+
+def test_worst_figure_is_the_checked_one_nearest_its_bound():
+    r = _hand_report()
+    assert r["parabola"].worst.name == "position"
+    assert r["rocket"].worst.name == "E_drift"
+    assert r["heavy_top"].worst is None
+    assert r["parabola"].order == 0.5
+    assert r["rocket"].order is None
+    assert r["parabola"].wall_time == 0.25
+    assert math.isnan(r["heavy_top"].wall_time)
+    with pytest.raises(KeyError, match="no_such"):
+        r["no_such"]
+
+
+def test_hand_built_report_markdown_is_the_documented_table():
+    assert _hand_report().to_markdown() == (
+        "# Conformance: hand\n"
+        "\n"
+        "1 pass, 1 fail, 1 unsupported, 1 error\n"
+        "\n"
+        "| scenario | status | worst figure | threshold | order | wall time (s) |\n"
+        "|---|---|---|---|---|---|\n"
+        "| parabola | pass | position 1e-12 | 0.000977 | 0.50 | 0.25 |\n"
+        "| rocket | fail | E_drift 0.75 | 0.5 |  | 2 |\n"
+        "| heavy_top | unsupported |  |  |  |  |\n"
+        "| bouncing_ball | error |  |  |  |  |\n"
+        "\n"
+        "- rocket (fail): E_drift 0.75 violates threshold <= 0.5\n"
+        "- heavy_top (unsupported): no pivots\n"
+        "- bouncing_ball (error): run raised RuntimeError: boom\n"
+    )
+    only_pass = Report("p", [_hand_report()["parabola"]], {})
+    assert only_pass.to_markdown().endswith(
+        "| parabola | pass | position 1e-12 | 0.000977 | 0.50 | 0.25 |\n"
+    )
+
+
+def test_hand_built_report_json_has_every_field_and_no_bare_non_finite_number():
+    r = _hand_report()
+    r.results[0].figures.append(Figure("mass", "error", math.inf, None, None))
+    r.results[0].figures.append(Figure("p_drift", "drift", -math.inf, None, None))
+    text = r.to_json()
+    assert text.startswith('{\n  "adapter": "hand",\n  "passed": false,\n  "counts": {\n')
+    d = json.loads(text)  # strict JSON: no NaN or Infinity literals
+    assert "NaN" not in text
+    assert "Infinity" not in text
+    assert d["passed"] is False
+    assert d["counts"] == {"pass": 1, "fail": 1, "unsupported": 1, "error": 1}
+    assert d["thresholds"] == {"velocity": 1.0}
+    by = {s["scenario"]: s for s in d["scenarios"]}
+    assert list(by) == ["parabola", "rocket", "heavy_top", "bouncing_ball"]
+    assert [by[k]["status"] for k in by] == ["pass", "fail", "unsupported", "error"]
+    assert [by[k]["wall_time"] for k in by] == [0.25, 2.0, None, None]
+    assert [by[k]["order"] for k in by] == [0.5, None, None, None]
+    assert by["heavy_top"]["message"] == "no pivots"
+    figs = {f["name"]: f for f in by["parabola"]["figures"]}
+    assert figs["mass"]["value"] == "inf"
+    assert figs["p_drift"]["value"] == "-inf"
+    assert figs["omega"]["value"] is None
+    assert figs["position"] == {
+        "name": "position",
+        "kind": "error",
+        "value": 1e-12,
+        "threshold": 2.0**-10,
+        "passed": True,
+        "note": "",
+    }
+    assert by["parabola"]["runs"] == [
+        {"step": 0.1, "wall_time": 1.0, "error": 1e-3},
+        {"step": 0.05, "wall_time": 0.25, "error": 1e-4},
+    ]
+
+
+def test_a_report_passes_with_unsupported_scenarios_and_not_with_a_failure_or_error():
+    r = _hand_report()
+    assert r.passed is False
+    assert Report("x", [r["parabola"], r["heavy_top"]], {}).passed is True
+    assert Report("x", [r["parabola"], r["bouncing_ball"]], {}).passed is False
+    assert Report("x", [r["rocket"]], {}).passed is False
+
+
+def test_a_scenario_that_is_neither_a_name_nor_a_scenario_is_named_by_type_and_value():
+    with pytest.raises(
+        UnknownScenarioError, match=r"^a scenario must be a name or a Scenario; got int 3$"
+    ):
+        run_battery(ExactAdapter(), scenarios=[3])
+
+
+def test_thresholds_at_zero_and_integers_are_accepted_as_floats_and_none_kept():
+    got = battery.resolve_thresholds({"velocity": 0, "position": 1, "parabola.apex_height": None})
+    assert got == {"velocity": 0.0, "position": 1.0, "parabola.apex_height": None}
+    assert [type(v) for v in got.values()] == [float, float, type(None)]
+    assert battery.resolve_thresholds(None) == {}
+    # a user's own scenario's keys are known when it is passed
+    own = dataclasses.replace(get_scenario("parabola"), name="mine")
+    assert battery.resolve_thresholds({"mine.position": 0.5}, [own]) == {"mine.position": 0.5}
+    with pytest.raises(ThresholdError, match=r"^unknown threshold key\(s\) 'mine\.position';"):
+        battery.resolve_thresholds({"mine.position": 0.5})
+
+
+def test_a_failure_names_every_figure_beyond_its_bound_in_order_joined_by_semicolons(toy):
+    th = {k: None for k in DEFAULT_THRESHOLDS if k != "order"}
+    th.update({"parabola.position": 0.0, "parabola.velocity": 0.0})
+    r = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
+    pos, vel = r.figure("position").value, r.figure("velocity").value
+    assert pos > 0
+    assert vel > 0
+    assert r.status == "fail"
+    assert r.message == (
+        f"position {pos:.3g} violates threshold <= 0; velocity {vel:.3g} violates threshold <= 0"
+    )
+
+
+def test_an_order_is_a_figure_only_for_an_adapter_that_takes_a_step():
+    plain = run_battery(ExactAdapter(), scenarios=["parabola"])["parabola"]
+    assert plain.figure("order") is None
+    assert len(plain.runs) == 1
+    assert plain.runs[0].step is None
+
+    class Stepping(ExactAdapter):
+        takes_step = True
+
+    r = run_battery(Stepping(), scenarios=["parabola"])["parabola"]
+    assert [x.step for x in r.runs] == list(get_scenario("parabola").steps)
+    f = r.figure("order")  # unchecked by default: reported with why there is none
+    assert (f.value, f.threshold, f.passed) == (None, None, None)
+    assert f.note == "errors at rounding level: no order to read"
+
+
+# -- the scene engine's reasons (scene_from_scenario builds a dict: no engine runs) ----
+
+
+def _body(s, k=0, **changes):
+    bodies = list(s.bodies)
+    bodies[k] = dataclasses.replace(bodies[k], **changes)
+    return dataclasses.replace(s, bodies=tuple(bodies))
+
+
+def _sphere_scaled(s, k, factor):
+    return _body(s, k, inertia=tuple(x * factor for x in s.bodies[k].inertia))
+
+
+def test_scene_engine_names_each_scenario_it_cannot_express():
+    uniform = "the scene engine samples uniformly from 0 to the duration"
+    parabola, impact = get_scenario("parabola"), get_scenario("two_body_impact")
+    heavy, rocket = get_scenario("heavy_top"), get_scenario("rocket")
+    T = parabola.sample_times
+    moved = (*T[:2], T[2] + 2**-10, *T[3:])  # one sample off the uniform grid
+    cases = [
+        (dataclasses.replace(parabola, sample_times=T[:1]), uniform),  # one sample
+        (dataclasses.replace(parabola, sample_times=moved), uniform),
+        (
+            _body(rocket, omega=(0.0, 0.0, 1.0)),
+            "the scene engine's thrust is space-fixed: the rocket must not spin",
+        ),
+        (
+            _sphere_scaled(impact, 0, 1.5),  # the first of the pair
+            "body 'a' collides: the scene engine collides solid spheres only",
+        ),
+        (
+            _sphere_scaled(impact, 1, 1.5),  # the second of the pair
+            "body 'b' collides: the scene engine collides solid spheres only",
+        ),
+    ]
+    axis3 = "the scene engine's fixed point lies on body axis 3 below G"
+    for point in [(0.0, 0.0, 0.0), (0.0, 0.0, 0.1), (1e-3, 0.0, -0.1), (0.0, -1e-3, -0.1)]:
+        cases.append(
+            (dataclasses.replace(heavy, pivot=dataclasses.replace(heavy.pivot, point=point)), axis3)
+        )
+    for s, why in cases:
+        assert scene_from_scenario(s) == why, (s.name, why)
+        assert SceneEngineAdapter().supports(s) == why
+        with pytest.raises(ValueError, match=f"^{re.escape(why)}$"):
+            SceneEngineAdapter().run(s, None)
+
+
+def test_a_sphere_within_the_inertia_tolerance_collides_and_one_beyond_does_not():
+    ball = get_scenario("bouncing_ball")
+    assert SceneEngineAdapter().supports(ball) is None
+    inside = _sphere_scaled(ball, 0, 1 + SPHERE_INERTIA_RTOL / 2)
+    assert isinstance(scene_from_scenario(inside), dict)
+    for factor in (1 + 2 * SPHERE_INERTIA_RTOL, 1 - 2 * SPHERE_INERTIA_RTOL):
+        why = scene_from_scenario(_sphere_scaled(ball, 0, factor))
+        assert (
+            why
+            == f"body {ball.bodies[0].name!r} collides: the scene engine collides solid spheres only"
+        )
+    a_box = _body(ball, shape=Shape("box", (0.1, 0.1, 0.1)))
+    assert "solid spheres only" in scene_from_scenario(a_box)
+    no_shape = _body(ball, shape=None)
+    assert "solid spheres only" in scene_from_scenario(no_shape)
+
+
+def test_the_scene_carries_the_method_and_only_the_tolerances_given():
+    s = get_scenario("parabola")
+    head = scene_from_scenario(s)["scene"]
+    assert head == {
+        "name": "parabola",
+        "duration": s.duration,
+        "samples": len(s.sample_times),
+        "method": "integrate",
+    }
+    head = scene_from_scenario(s, method="auto", rtol=1e-9, atol=1e-10)["scene"]
+    assert (head["method"], head["rtol"], head["atol"]) == ("auto", 1e-9, 1e-10)
+    assert SceneEngineAdapter("auto").name == "bodycheck scene engine (auto)"
