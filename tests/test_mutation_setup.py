@@ -104,3 +104,23 @@ def test_a_folder_means_every_module_of_it_and_an_unknown_name_is_refused():
     assert len(scenes) > 5
     with pytest.raises(SystemExit, match=r"mechanics/nothing\.py"):
         run.expand(["mechanics/nothing.py"], rows)
+
+
+def test_the_score_counts_reviewed_equivalents_out_and_names_an_unmeasured_module():
+    run = _run_module()
+    status = {
+        "mechanics.x.x_f__mutmut_1": "killed",
+        "mechanics.x.x_f__mutmut_2": "survived",
+        "mechanics.x.x_f__mutmut_3": "survived",
+        "mechanics.x.x_f__mutmut_4": "timeout",
+        "mechanics.y.x_g__mutmut_1": "survived",  # another module's: not counted
+    }
+    line, open_ = run.report("mechanics/x.py", status, {"mechanics.x.x_f__mutmut_3": "why"})
+    assert "4 mutants, 2 killed, 1 equivalent (reviewed), 1 survived: score 66.7 %" in line
+    assert open_ == ["mechanics.x.x_f__mutmut_2"]
+    unchecked = {k: "not checked" for k in status}
+    line, open_ = run.report("mechanics/x.py", unchecked, {})
+    assert line == "mechanics/x.py: not measured (none of its 4 mutants checked)"
+    assert open_ == []
+    line, _ = run.report("mechanics/z.py", status, {})
+    assert line == "mechanics/z.py: no mutants (nothing mutmut can change)"

@@ -26,8 +26,8 @@ Usage (standard library only; mutmut must be on PATH or given with ``--mutmut``)
 
 A sample (``--sample N``, seeded) runs N mutants drawn at random from all of the
 module's (those of them killed by an earlier run are not run again: tests are only ever
-added; ``--recheck`` runs them too); the score then counts the mutants checked so far and
-says how many were not,
+added; ``--recheck`` runs them too); the score then counts that sample's mutants only
+(``--report --sample N --seed S`` reports it again) and says how many were not checked,
 and gives the 95 % (Wilson) interval of the score that the sample's size allows.
 
 Several modules (or a folder, meaning every module of ``modules.toml`` under it) run in one
@@ -194,6 +194,8 @@ def report(
     )
     if not everything:
         line = f"{module}: no mutants (nothing mutmut can change)"
+    elif not mine:
+        line = f"{module}: not measured (none of its {len(everything)} mutants checked)"
     elif unchecked:
         lo, hi = wilson(killed, denom)
         line += (
@@ -276,12 +278,17 @@ def main(argv: list[str] | None = None) -> int:
     if args.restat:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     names = list(args.names or [])
-    if args.sample and not args.report:
+    sample: set[str] | None = None
+    if args.sample:
+        drawn_all: list[str] = []
         for module in chosen:
             every = generate(work, module, args.mutmut, env, tuple(chosen))
             drawn = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
             print(f"{module}: a sample of {len(drawn)} of {len(every)} mutants (seed {args.seed})")
-            names += drawn
+            drawn_all += drawn
+        sample = set(drawn_all)
+    if sample is not None and not args.report:
+        names = sorted(sample)
         if not args.recheck:  # a killed mutant stays killed while its tests stay
             known = results(work, args.mutmut) if (work / "mutants").exists() else {}
             done = [n for n in names if known.get(n) in KILLED]
@@ -299,6 +306,8 @@ def main(argv: list[str] | None = None) -> int:
             print(f"mutmut run exited with {rc}", file=sys.stderr)
             return rc
     status = results(work, args.mutmut)
+    if sample is not None:  # the score of this sample only, not of earlier runs' mutants
+        status = {k: (v if k in sample else "not checked") for k, v in status.items()}
     for module in chosen:
         report_module(module, status, equivalent, work, args)
     return 0
