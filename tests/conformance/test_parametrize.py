@@ -1,0 +1,106 @@
+"""``conformance_tests``: the battery as a pytest parametrisation, checked in this process
+(tests/conformance/test_user_project.py runs it in a user's project; mutmut cannot run
+that one, so these are what hold the parametrisation's promises under mutation testing)."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import pytest
+
+from mechanics.conformance import conformance_tests
+from mechanics.conformance.adapters import ExactAdapter
+from mechanics.conformance.scenarios import SCENARIOS
+
+#: a position error far beyond the battery's default threshold (2^-10, relative)
+OFFSET = 0.5
+
+
+def _marks(test):
+    (mark,) = [m for m in test.pytestmark if m.name == "parametrize"]
+    return mark
+
+
+class _Unsupported(ExactAdapter):
+    name = "cannot"
+
+    def supports(self, scenario):
+        return "no such joint here"
+
+
+class _Raising(ExactAdapter):
+    name = "raising"
+
+    def run(self, scenario, step):
+        raise RuntimeError("engine exploded")
+
+
+class _Offset(ExactAdapter):
+    name = "offset"
+
+    def run(self, scenario, step):
+        tr = super().run(scenario, step)
+        return dataclasses.replace(tr, position=tr.position + OFFSET)
+
+
+class _Nameless:
+    takes_step = False
+    supports = ExactAdapter.supports
+    run = ExactAdapter.run
+
+
+def test_one_test_per_scenario_named_by_it_and_every_scenario_by_default():
+    mark = _marks(conformance_tests(ExactAdapter()))
+    names = list(SCENARIOS)
+    assert mark.args == ("scenario_name", names)
+    assert mark.kwargs == {"ids": names}
+    chosen = _marks(conformance_tests(ExactAdapter(), scenarios=["parabola"]))
+    assert chosen.args == ("scenario_name", ["parabola"])
+    assert chosen.kwargs == {"ids": ["parabola"]}
+
+
+def test_the_exact_adapter_passes_and_the_test_says_what_it_runs():
+    test = conformance_tests(ExactAdapter(), scenarios=["parabola"])
+    assert test("parabola") is None
+    assert test.__doc__ == "The conformance battery on exact (closed forms), one scenario per test."
+    assert test.__name__ == "test_conformance"
+
+
+def test_an_unsupported_scenario_is_skipped_with_the_adapters_reason():
+    test = conformance_tests(_Unsupported(), scenarios=["parabola"])
+    with pytest.raises(pytest.skip.Exception) as info:
+        test("parabola")
+    assert str(info.value) == "cannot does not support parabola: no such joint here"
+
+
+def test_an_adapter_that_raises_fails_naming_the_scenario_and_the_error():
+    test = conformance_tests(_Raising(), scenarios=["parabola"])
+    with pytest.raises(pytest.fail.Exception) as info:
+        test("parabola")
+    msg = str(info.value)
+    assert msg.startswith("raising, scenario parabola: adapter error: ")
+    assert "RuntimeError" in msg
+    assert "engine exploded" in msg
+    assert info.value.pytrace is False
+
+
+def test_a_wrong_answer_fails_with_the_figure_and_its_threshold():
+    test = conformance_tests(_Offset(), scenarios=["parabola"])
+    with pytest.raises(pytest.fail.Exception) as info:
+        test("parabola")
+    msg = str(info.value)
+    assert msg.startswith("offset, scenario parabola: ")
+    assert " violates threshold <= " in msg  # the figure, its value and the threshold
+    assert info.value.pytrace is False
+
+
+def test_an_adapter_without_a_name_is_called_by_its_class():
+    test = conformance_tests(_Nameless(), scenarios=["parabola"])
+    assert test.__doc__ == "The conformance battery on _Nameless, one scenario per test."
+
+
+def test_thresholds_and_scenario_names_are_checked_when_the_tests_are_made():
+    with pytest.raises(ValueError, match="no-such-scenario"):
+        conformance_tests(ExactAdapter(), scenarios=["no-such-scenario"])
+    with pytest.raises(ValueError, match="no-such-figure"):
+        conformance_tests(ExactAdapter(), thresholds={"no-such-figure": 1.0})
