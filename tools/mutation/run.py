@@ -153,6 +153,9 @@ def prepare(modules: list[str], tests: list[str]) -> Path:
     target = work / "pyproject.toml"
     if not target.exists() or target.read_text(encoding="utf-8") != text:
         target.write_text(text, encoding="utf-8")
+        # a new test selection makes mutmut forget every verdict of this copy
+        (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
+        shutil.rmtree(work / "mutants", ignore_errors=True)
     return work
 
 
