@@ -683,7 +683,11 @@ def test_hinged_bodies_keep_g_within_their_documented_distances(regime):
     # in [J2, 2 J2] (J3 ≤ J1 + J2 ≤ 2 J2)
     _never(
         strategy,
-        lambda h: not 1e-3 <= np.linalg.eigvalsh(h.J_G / h.m)[2] <= 2e3 * (1 + MOMENT_RTOL),
+        lambda h: (
+            not 1e-3 * (1 - MOMENT_RTOL)  # eigvalsh of the turned tensor rounds, both ways
+            <= np.linalg.eigvalsh(h.J_G / h.m)[2]
+            <= 2e3 * (1 + MOMENT_RTOL)
+        ),
     )
     if regime == "planar":
         _never(strategy, lambda h: h.axis_point.any() or h.axis.tolist() != [0.0, 0.0, 1.0])
