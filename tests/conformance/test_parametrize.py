@@ -10,6 +10,7 @@ import pytest
 
 from mechanics.conformance import conformance_tests
 from mechanics.conformance.adapters import ExactAdapter
+from mechanics.conformance.battery import DEFAULT_THRESHOLDS
 from mechanics.conformance.scenarios import SCENARIOS
 
 #: a position error far beyond the battery's default threshold (2^-10, relative)
@@ -104,3 +105,50 @@ def test_thresholds_and_scenario_names_are_checked_when_the_tests_are_made():
         conformance_tests(ExactAdapter(), scenarios=["no-such-scenario"])
     with pytest.raises(ValueError, match="no-such-figure"):
         conformance_tests(ExactAdapter(), thresholds={"no-such-figure": 1.0})
+
+
+class _OnlyParabola(ExactAdapter):
+    """Runs the parabola only: any other scenario is unsupported."""
+
+    name = "parabola-only"
+
+    def supports(self, scenario):
+        return None if scenario.name == "parabola" else "only the parabola here"
+
+
+def _lob():
+    """The parabola under another name: a user's own Scenario, not in SCENARIOS."""
+    return dataclasses.replace(SCENARIOS["parabola"], name="lob")
+
+
+def test_a_users_own_scenario_object_is_taken_as_it_is_not_looked_up_by_name():
+    lob = _lob()
+    test = conformance_tests(ExactAdapter(), scenarios=[lob])
+    mark = _marks(test)
+    assert mark.args == ("scenario_name", ["lob"])
+    assert mark.kwargs == {"ids": ["lob"]}
+    assert test("lob") is None  # get_scenario("lob") would raise: the battery has no lob
+
+
+def test_each_test_runs_its_own_scenario_only():
+    # the adapter supports the parabola alone: were the test to run another scenario
+    # (the first of the list, or the whole battery), it would be skipped
+    test = conformance_tests(_OnlyParabola(), scenarios=["free_top_axis1", "parabola"])
+    assert test("parabola") is None
+    with pytest.raises(pytest.skip.Exception) as info:
+        test("free_top_axis1")
+    assert str(info.value) == (
+        "parabola-only does not support free_top_axis1: only the parabola here"
+    )
+
+
+def test_the_users_thresholds_reach_the_battery_including_keys_of_their_own_scenarios():
+    # None reports without checking: with every figure unchecked, the offset parabola
+    # (0.5 m off, far beyond the default bounds) passes; with the defaults it fails
+    lob = _lob()
+    unchecked = dict.fromkeys(DEFAULT_THRESHOLDS)
+    unchecked["lob.apex_height"] = None  # a key only the user's scenario makes known
+    test = conformance_tests(_Offset(), thresholds=unchecked, scenarios=[lob])
+    assert test("lob") is None
+    with pytest.raises(pytest.fail.Exception):
+        conformance_tests(_Offset(), scenarios=[lob])("lob")
