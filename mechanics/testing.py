@@ -32,6 +32,8 @@ AssertionError: not close: relative error 8 eps at index () exceeds 4 eps (actua
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 
 from .rotation import EPS, ROUNDTRIP_ATOL
@@ -91,10 +93,19 @@ def _broadcast(actual, desired, tail: tuple[int, ...], names=("actual", "desired
 
 
 def _check_tolerance(value: float, name: str) -> float:
+    # a real number only: a string such as "1e-9" or a bool is refused, not coerced
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(
+            f"{name}={value!r} must be a finite number >= 0; got a {type(value).__name__}"
+        )
     v = float(value)
     if not np.isfinite(v) or v < 0:
         raise ValueError(f"{name}={value!r} must be a finite number >= 0")
     return v
+
+
+#: how a message shows an error too large for float64
+_BEYOND = f"beyond {np.finfo(np.float64).max:.3g}"
 
 
 def _worst(err: np.ndarray) -> tuple[int, ...]:
@@ -205,14 +216,26 @@ def assert_allclose_eps(
         if (s < 0).any():
             raise ValueError(f"scale must be >= 0; got {scale!r}")
         kind = "error"
-    diff = np.abs(a - d)
-    # In units of eps·scale; a zero scale allows only an exact match.
-    with np.errstate(divide="ignore", invalid="ignore"):
+    # In units of eps·scale; a zero scale allows only an exact match.  Two huge values
+    # of opposite signs differ by more than float64 holds: their halves' difference (exact
+    # halving, as both are huge) gives the units then.  Units beyond float64's range
+    # (a huge error against a tiny scale) are inf, and reported as beyond that range.
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        diff = np.abs(a - d)
+        huge = np.isinf(diff)
+        if huge.any():
+            diff = np.where(huge, np.abs(0.5 * a - 0.5 * d), diff)
         units = np.where(diff == 0, 0.0, np.where(s > 0, diff / (EPS * s), np.inf))
+        units = np.where(huge, 2.0 * units, units)
     if units.size == 0 or not units.max() > k:
         return
     idx = _worst(units)
-    what = f"{units[idx]:.3g} eps" if np.isfinite(units[idx]) else f"{float(diff[idx])!r} (scale 0)"
+    if s[idx] == 0:
+        what = f"{float(diff[idx])!r} (scale 0)" if not huge[idx] else f"{_BEYOND} (scale 0)"
+    elif np.isfinite(units[idx]):
+        what = f"{units[idx]:.3g} eps"
+    else:
+        what = f"{_BEYOND} eps"
     prefix = f"{err_msg}: " if err_msg else ""
     raise AssertionError(
         f"{prefix}not close: {kind} {what} at index {idx} exceeds {k:.3g} eps "

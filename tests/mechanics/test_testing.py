@@ -154,16 +154,29 @@ def test_allclose_against_a_zero_scale_needs_an_exact_match_and_says_scale_0(sca
     )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=RuntimeWarning,
-    reason="bug left open: diff / (EPS * |desired|) overflows for a tiny nonzero desired "
-    "(a RuntimeWarning, an error under filterwarnings=error; without it the message says "
-    "'(scale 0)' of a scale that is not 0)",
-)
 def test_allclose_reports_a_relative_error_beyond_float64_against_a_tiny_desired():
-    with pytest.raises(AssertionError, match=r"at index \(\) exceeds 4 eps"):
+    # 1e300 / (eps · 1e-300) = 4.5e615: no float64 holds it, and no warning escapes
+    with pytest.raises(AssertionError) as info:
         assert_allclose_eps(1e300, 1e-300)
+    assert str(info.value) == (
+        "not close: relative error beyond 1.8e+308 eps at index () exceeds 4 eps "
+        "(actual 1e+300, desired 1e-300)"
+    )
+
+
+def test_allclose_measures_opposite_huge_values_whose_difference_overflows():
+    # |1e308 − (−1e308)| = 2e308 overflows; relative to 1e308 it is 2, that is 2/eps
+    with pytest.raises(AssertionError) as info:
+        assert_allclose_eps([1.0, 1e308], [1.0, -1e308])
+    assert str(info.value) == (
+        f"not close: relative error {2 / EPS:.3g} eps at index (1,) exceeds 4 eps "
+        "(actual 1e+308, desired -1e+308)"
+    )
+    with pytest.raises(AssertionError) as info:
+        assert_allclose_eps(1e308, -1e308, scale=0.0)
+    assert "error beyond 1.8e+308 (scale 0) at index ()" in str(info.value)
+    # two huge values within tolerance still pass
+    assert_allclose_eps(1e308 * (1 + 2 * EPS), 1e308)
 
 
 def test_rotations_name_the_worst_entry_its_error_in_eps_and_the_values():
@@ -414,6 +427,30 @@ def test_a_tolerance_that_is_negative_or_not_finite_is_refused_naming_it(call, n
     with pytest.raises(ValueError, match=r"must be a finite number >= 0") as info:
         call(tol)
     assert str(info.value) == f"{name}={shown} must be a finite number >= 0"
+
+
+@pytest.mark.parametrize(
+    ("call", "name"),
+    [
+        (lambda t: assert_allclose_eps(1.0, 1.0, eps_multiple=t), "eps_multiple"),
+        (lambda t: assert_rotations_close(np.eye(3), np.eye(3), atol=t), "atol"),
+        (lambda t: assert_quaternions_close(Q_IDENTITY, Q_IDENTITY, atol=t), "atol"),
+    ],
+)
+@pytest.mark.parametrize(
+    ("tol", "shown", "kind"),
+    [("4", "'4'", "str"), (True, "True", "bool"), (None, "None", "NoneType")],
+)
+def test_a_tolerance_that_is_not_a_real_number_is_refused_not_coerced(call, name, tol, shown, kind):
+    with pytest.raises(ValueError, match=r"must be a finite number >= 0; got a") as info:
+        call(tol)
+    assert str(info.value) == f"{name}={shown} must be a finite number >= 0; got a {kind}"
+
+
+def test_a_tolerance_may_be_an_integer_or_a_numpy_scalar():
+    assert_allclose_eps(1.0 + 2 * EPS, 1.0, eps_multiple=np.float32(2))
+    with pytest.raises(AssertionError, match=r"exceeds 1 eps"):
+        assert_allclose_eps(1.0 + 2 * EPS, 1.0, eps_multiple=np.int64(1))
 
 
 @pytest.mark.parametrize(("scale", "shown"), [(-1.0, "-1.0"), ([1.0, -2.0], "[1.0, -2.0]")])
