@@ -192,7 +192,10 @@ class Figure:
         if self.threshold is None:
             return f"{self.name} {v}"
         rel = ">=" if self.kind == "order" else "<="
-        word = "within" if self.passed else "violates"
+        if self.passed is None:  # a threshold, but no value to judge (e.g. no order)
+            word = "not checked against"
+        else:
+            word = "within" if self.passed else "violates"
         text = f"{self.name} {v} {word} threshold {rel} {self.threshold:.3g}"
         return f"{text} ({self.note})" if self.note else text
 

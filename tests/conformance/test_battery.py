@@ -616,6 +616,18 @@ def test_a_derived_figure_is_relative_to_the_exact_value_absolute_at_zero_inf_on
         (Figure("order", "order", 3.999, 4.0, False), "order 4 violates threshold >= 4"),
         (Figure("order", "order", 1.0, 0.5, True), "order 1 within threshold >= 0.5"),
         (
+            Figure("order", "order", None, 2.0, None, "one step"),
+            "order n/a not checked against threshold >= 2 (one step)",
+        ),
+        (
+            Figure("omega", "error", None, 0.5, None),
+            "omega n/a not checked against threshold <= 0.5",
+        ),
+        (
+            Figure("omega", "error", 0.75, 0.5, None),
+            "omega 0.75 not checked against threshold <= 0.5",
+        ),
+        (
             Figure("apex_height", "error", math.inf, 0.25, False, "no apex"),
             "apex_height inf violates threshold <= 0.25 (no apex)",
         ),
