@@ -679,9 +679,17 @@ class FreeSymmetricTop:
 
     def __init__(self, J1, J3, omega_0, R_A_O_0=None):
         for x, name in ((J1, "J1"), (J3, "J3")):
-            if as_float_array(x, name).shape != ():
+            a = as_float_array(x, name)
+            if a.shape != ():
                 raise ShapeError(f"{name} must be a scalar moment of inertia; got {x!r}")
-        J = check_principal_moments([J1, J1, J3], name="(J1, J1, J3)")
+            if not a > 0:
+                raise NonPhysicalInertiaError(f"{name} must be positive: {name} = {float(a)!r} ≤ 0")
+        if float(J3) > 2.0 * float(J1):
+            raise NonPhysicalInertiaError(
+                f"J3 = {float(J3)!r} exceeds 2 J1 = {2.0 * float(J1)!r}: the moments of a "
+                "symmetric body obey the triangle inequality J3 ≤ J1 + J2 = 2 J1"
+            )
+        J = check_principal_moments([J1, J1, J3], name="J")  # the checks above passed
         self.J1, self.J3 = float(J[0]), float(J[2])
         w0 = _vec3(omega_0, "omega_0")
         R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")

@@ -510,13 +510,15 @@ _ROT = r"R_A_O_0 is not a rotation: (max \|R R\^T - 1\| = 3|\|det R - 1\| = 2) e
 _POS = r"must be > 0; got (0\.0|-1\.0)"
 _TRIANGLE_J = r"J breaks the triangle inequality J1 \+ J2 ≥ J3: J3 exceeds J1 \+ J2 by 1"
 _POSITIVE_J = r"J must be positive: J1 = (0\.0|-2\.0) ≤ 0"
-_SYM = r"\(J1, J1, J3\) (must be positive|breaks the triangle inequality)"
 #: the condition an unphysical value of each fuzz entry violates (tests.fuzz.entries)
 _CONDITIONS = {
     ("FreeAsymmetricTop", "J"): f"{_POSITIVE_J}|{_TRIANGLE_J}",
     ("FreeAsymmetricTop", "R_A_O_0"): _ROT,
-    ("FreeSymmetricTop", "J1"): _SYM,
-    ("FreeSymmetricTop", "J3"): _SYM,
+    ("FreeSymmetricTop", "J1"): r"^J1 must be positive: J1 = (0\.0|-2\.0|-1\.0) ≤ 0$",
+    ("FreeSymmetricTop", "J3"): (
+        r"^J3 must be positive: J3 = (0\.0|-2\.0|-1\.0) ≤ 0$|^J3 = \d.* exceeds 2 J1 = .*: the "
+        r"moments of a symmetric body obey the triangle inequality J3 ≤ J1 \+ J2 = 2 J1$"
+    ),
     ("FreeSymmetricTop", "R_A_O_0"): _ROT,
     ("HeavySymmetricTop", "J_1"): _POS,
     ("HeavySymmetricTop", "J_3"): (
