@@ -813,7 +813,9 @@ def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
     ra, Ra = as_float_array(r, "r"), _positive(R, "R")
     if (np.abs(ra) > Ra).any():
         raise OutOfDomainError("the bullets miss: |r| must be ≤ R")
-    return -ra * as_float_array(v, "v") / Ra**2
+    # (r/R)·v/R: |r/R| ≤ 1, so no step overflows unless the result does, and R² (which
+    # underflows to a subnormal or 0 for R below about 1e-154) is never formed
+    return -(ra / Ra) * as_float_array(v, "v") / Ra
 
 
 carousel_limit_angular_velocity = finite_result(carousel_limit_angular_velocity)

@@ -7,6 +7,7 @@ Reference values come from the book (Examples 7.1–7.3), from hand computation
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -334,6 +335,17 @@ def test_carousel_starts_at_rest_and_tends_to_the_limit():
     w = osys.carousel_angular_velocity(np.array([1e3, 1e6, 1e9]), **CAROUSEL)
     assert np.all(np.diff(w) < 0)
     assert np.all(w > lim)
+
+
+@pytest.mark.parametrize("scale", [2.0**-530, 2.0**-1000, 2.0**500, 1.0])
+def test_carousel_limit_keeps_its_accuracy_for_a_tiny_or_huge_carousel(scale):
+    # −r v/R² for r, R → s r, s R is (−r v/R²)/s; R² would underflow below R ≈ 1e-154
+    # (to a subnormal, losing digits, or to 0): the limit must stay within two roundings
+    # (r/R, then /R) of the exact Fraction, at every scale a power of two (exact)
+    r, R, v = 0.7 * scale, 1.1 * scale, 400.0  # R² with all 53 bits set in its mantissa
+    exact = -Fraction(r) * Fraction(v) / Fraction(R) ** 2
+    got = float(osys.carousel_limit_angular_velocity(v=v, r=r, R=R))
+    assert abs(Fraction(got) - exact) <= 2 * Fraction(EPS) * abs(exact)
 
 
 def test_carousel_angular_acceleration_is_the_derivative():
