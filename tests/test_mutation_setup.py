@@ -124,3 +124,13 @@ def test_the_score_counts_reviewed_equivalents_out_and_names_an_unmeasured_modul
     assert open_ == []
     line, _ = run.report("mechanics/z.py", status, {})
     assert line == "mechanics/z.py: no mutants (nothing mutmut can change)"
+
+
+def test_a_path_to_mutmut_is_made_absolute_a_bare_name_is_left_for_path(tmp_path, monkeypatch):
+    # the Makefile passes .venv/bin/mutmut, relative to the project; mutmut then runs in
+    # the copy under build/mutation/, where that relative path names nothing
+    run = _run_module()
+    monkeypatch.chdir(tmp_path)
+    assert run.executable(".venv/bin/mutmut") == str(tmp_path / ".venv/bin/mutmut")
+    assert run.executable("/opt/bin/mutmut") == "/opt/bin/mutmut"
+    assert run.executable("mutmut") == "mutmut"

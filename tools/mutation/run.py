@@ -247,6 +247,12 @@ def generate(work: Path, module: str, mutmut: str, env: dict, others: tuple = ()
     return sorted(data["exit_code_by_key"])
 
 
+def executable(path: str) -> str:
+    """mutmut runs in the copy of the project: a path to it (``.venv/bin/mutmut``, as the
+    Makefile gives it) is made absolute; a bare name is looked up on PATH as it is."""
+    return str(Path(path).resolve()) if os.sep in path else path
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument(
@@ -270,6 +276,7 @@ def main(argv: list[str] | None = None) -> int:
         help="record again which tests call which function (after changing tests)",
     )
     args = ap.parse_args(argv)
+    args.mutmut = executable(args.mutmut)
 
     rows = load_modules()
     chosen = expand(args.modules, rows)
