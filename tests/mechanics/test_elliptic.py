@@ -13,6 +13,7 @@ from __future__ import annotations
 
 from fractions import Fraction
 
+import mpmath
 import numpy as np
 import pytest
 import scipy.special as sc
@@ -317,3 +318,123 @@ def test_two_prod_is_exact_for_the_period_multiples_of_the_argument_reduction():
     for x, y in zip(a[:50], b[:50], strict=True):
         ps, es = el._two_prod_scalar(float(x), float(y))
         assert Fraction(ps) + Fraction(es) == Fraction(float(x)) * Fraction(float(y)), (x, y)
+
+
+# -------------------------------------------- one number in, one number out, against mpmath
+#
+# Python floats and 0-d arrays, as a user calls the functions for one value: each result is
+# a float64 of shape () equal, within the stated accuracy, to mpmath at 40 digits (and more
+# where m = 1 − m1 must be resolved), in the hard regions: m near 1 through m1, m < 0 and
+# m > 1, tiny and large amplitudes, negative amplitudes, n near 1.
+
+#: F, E, K, Π: Carlson's R_F/R_G/R_J (scipy, a few eps each) plus the amplitude reduction
+#: φ − jπ, which costs eps·|φ| absolutely (tests/stability: measured ≤ 3 eps)
+INTEGRAL_EPS = 64
+
+
+def _mp_digits(m1):
+    return 40 if m1 is None or m1 == 0 or m1 > 1e-20 else 50 + int(-np.log10(m1))
+
+
+def _scalar_forms(x):
+    """A Python float and a 0-d array of it."""
+    return (float(x), np.array(float(x)))
+
+
+def _assert_near(got, ref, phi=0.0, what=""):
+    assert np.shape(got) == (), np.shape(got)
+    assert np.asarray(got).dtype == np.float64
+    err = abs(mpmath.mpf(float(got)) - ref)
+    assert err <= INTEGRAL_EPS * EPS * (abs(ref) + abs(phi)), (what, float(got), ref)
+
+
+#: (φ, m, m1): small and large |φ|, negative φ, m < 0 (down to −1e10), m > 1 (|φ| below
+#: asin(1/√m)), m near 1 with and without m1, m = 1 within |φ| < π/2
+ELLIPF_CASES = [
+    (1e-8, 0.5, None),
+    (0.3, 0.0, None),
+    (-0.9, 0.7, None),
+    (1.2, -5.0, None),
+    (0.8, -1e10, None),
+    (7.0, 0.5, None),
+    (-100.3, 0.9, None),
+    (1e5, 0.2, None),
+    (0.5, 2.5, None),
+    (-0.6, 1.5, None),
+    (1.5, 1.0 - 1e-12, None),
+    (1.5707963, 1.0, 1e-300),
+    (4.0, 1.0, 1e-300),
+    (1.3, 1.0, 0.0),
+]
+
+
+@pytest.mark.parametrize(("phi", "m", "m1"), ELLIPF_CASES)
+def test_ellipf_of_scalars_agrees_with_mpmath(phi, m, m1):
+    with mpmath.workdps(_mp_digits(m1)):
+        M = mpmath.mpf(m) if m1 is None else 1 - mpmath.mpf(m1)
+        ref = mpmath.ellipf(mpmath.mpf(phi), M)
+        for p, mm in zip(_scalar_forms(phi), _scalar_forms(m), strict=True):
+            kw = {} if m1 is None else {"m1": m1}
+            _assert_near(el.ellipf(p, mm, **kw), ref, phi, (phi, m, m1))
+
+
+@pytest.mark.parametrize(
+    ("m", "m1"),
+    [(0.0, None), (0.5, None), (-3.0, None), (-1e10, None), (1 - 1e-12, None), (1.0, 1e-300)],
+)
+def test_ellipk_and_ellipe_of_scalars_agree_with_mpmath(m, m1):
+    kw = {} if m1 is None else {"m1": m1}
+    with mpmath.workdps(_mp_digits(m1)):
+        M = mpmath.mpf(m) if m1 is None else 1 - mpmath.mpf(m1)
+        for mm in _scalar_forms(m):
+            _assert_near(el.ellipk(mm, **kw), mpmath.ellipk(M), what=("K", m, m1))
+            _assert_near(el.ellipe(mm, **kw), mpmath.ellipe(M), what=("E", m, m1))
+
+
+#: (n, φ, m, m1): n near 1 inside |φ| < π/2 and beyond it (Π(n|m) ~ 1/√(1 − n) large),
+#: n ≪ 0, n sin²φ just below 1, φ large and negative with j ≠ 0, m < 0, m > 1, m near 1
+ELLIPPI_CASES = [
+    (1 - 1e-9, 1.2, 0.5, None),
+    (1 - 1e-9, 4.0, 0.5, None),
+    (0.99, -7.5, 0.3, None),
+    (-50.0, 2.0, 0.5, None),
+    (-0.5, -30.0, 0.8, None),
+    (1.0, 0.7, 0.2, None),
+    (1.5, 0.6, 0.3, None),
+    (0.4, 1.1, -4.0, None),
+    (-2.0, 0.5, 2.0, None),
+    (0.5, 1.3, 1.0 - 1e-12, None),
+    (-3.0, 5.0, 1.0, 1e-300),
+    (0.7, 1e-6, 0.6, None),
+]
+
+
+@pytest.mark.parametrize(("n", "phi", "m", "m1"), ELLIPPI_CASES)
+def test_ellippi_of_scalars_agrees_with_mpmath(n, phi, m, m1):
+    kw = {} if m1 is None else {"m1": m1}
+    with mpmath.workdps(_mp_digits(m1)):
+        M = mpmath.mpf(m) if m1 is None else 1 - mpmath.mpf(m1)
+        ref = mpmath.ellippi(mpmath.mpf(n), mpmath.mpf(phi), M)
+        for nn, p in zip(_scalar_forms(n), _scalar_forms(phi), strict=True):
+            _assert_near(el.ellippi(nn, p, m, **kw), ref, phi, (n, phi, m, m1))
+
+
+def _separatrix_excess(u, n):
+    """∫₀^u n tanh²v / (1 − n tanh²v) dv by mpmath's quadrature (sn = tanh at m = 1)."""
+    f = lambda v: n * mpmath.tanh(v) ** 2 / (1 - n * mpmath.tanh(v) ** 2)  # noqa: E731
+    pts = [0, u] if abs(u) <= 5 else [0, mpmath.sign(u) * 5, u]
+    return mpmath.quad(f, pts)
+
+
+@pytest.mark.parametrize("n", [-3.0, -0.25, 0.5, 0.9])
+@pytest.mark.parametrize("u", [0.7, -2.5, 40.0, -300.0])
+def test_ellippi_jacobi_on_the_separatrix_agrees_with_quadrature_for_either_sign_of_n(u, n):
+    # m = 1: the closed form takes atan for n < 0 and atanh for 0 < n < 1
+    with mpmath.workdps(40):
+        ref = mpmath.mpf(u) + _separatrix_excess(mpmath.mpf(u), mpmath.mpf(n))
+        for uu, nn in zip(_scalar_forms(u), _scalar_forms(n), strict=True):
+            got = el.ellippi_jacobi(uu, nn, 1.0)
+            assert np.shape(got) == ()
+            # the formula adds n u and √|n| atan(√|n| tanh u), each within an ulp, over 1 − n
+            tol = 8 * EPS * (abs(ref) + abs(u * n / (1 - n)))
+            assert abs(mpmath.mpf(float(got)) - ref) <= tol, (u, n, float(got), ref)

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import importlib.util
 import json
+import math
 from pathlib import Path
 
 import mpmath
@@ -203,3 +204,298 @@ def test_ellipj_hypothesis_search_stays_within_64_eps(params):
         ]
     target(max(errs), label="ellipj error in eps")
     assert max(errs) <= el.ELLIPJ_EPS, (params, errs)
+
+
+# ------------------------------------------ the kernels one float at a time (issue 15)
+#
+# The free top evaluates one instant through the scalar kernels (``_*_scalar``), the
+# hyperbolic amplitude recurrence through ``_asinh_r_sinh``.  Each is checked here on
+# its own against mpmath, in every branch: ψ on both sides of 350 and of the overflow
+# of cosh, r = 0, both AGM forms and their stopping rule, the period reduction with
+# j ≠ 0 and the quarter-period flip, and the separatrix m = 1 (K = inf) in closed form.
+
+#: asinh(r sinh ψ) formed directly (ψ ≤ 350): sinh (1 ulp), the product (½ ulp), asinh
+#: (1 ulp; its condition number x asinh'(x)/asinh(x) is ≤ 1): within 4 eps relative
+ASINH_DIRECT_EPS = 4.0
+#: ψ > 350 through log y = log r + ψ − log 2: three roundings of terms of size ≤ |log r| + ψ,
+#: an absolute error of log y that exp turns into a relative one (f < 1) and that
+#: log y + log 2 keeps absolute (f > 1): 2 eps (|log r| + ψ + 1) min(1, f), plus the final rounding
+ASINH_LOG_EPS = 2.0
+#: a_N: six arithmetic-geometric means, each a mean of values already within a few ulps
+#: (a mean does not amplify a relative error), one rounding each: within 8 eps
+AGM_A_EPS = 8.0
+#: c_{n+1} = c_n²/(4 a_{n+1}) doubles the relative error of c_n and adds 2 roundings, so
+#: c_n/a_n is within (2^n · 3 + 1) eps: 4 · 2^n eps bounds it
+AGM_RATIO_EPS = 4.0
+
+
+def _mpf(x):
+    return mpmath.mpf(float(x))
+
+
+def _asinh_tolerance(r, psi, ref):
+    """The error bound of _asinh_r_sinh's branch for (r, ψ), in mpmath."""
+    if psi <= 350.0:
+        return ASINH_DIRECT_EPS * EPS * abs(ref)
+    log_r = abs(mpmath.log(r)) if r > 0 else 0
+    return ASINH_LOG_EPS * EPS * ((log_r + psi + 1) * min(1, abs(ref)) + abs(ref)) + TINY
+
+
+#: (r, ψ): the direct branch up to ψ = 350 (its boundary), tiny r where the log route would
+#: cost 20–30 eps; beyond it the huge branch (log y > 40) and the small one (asinh(e^{log y})),
+#: and r = 0, as the AGM gives at m = 1
+ASINH_CASES = [
+    (0.3, 1.0),
+    (1e-3, 20.0),
+    (0.7, 1e-9),
+    (1.0, 0.0),
+    (0.9, 349.5),
+    (0.3, 350.0),
+    (1e-160, 350.0),
+    (3e-160, 350.0),
+    (0.3, 350.5),
+    (0.3, 400.0),
+    (1e-12, 700.0),
+    (1e-140, 360.0),
+    (2e-149, 390.0),
+    (1e-300, 351.0),
+    (0.0, 400.0),
+]
+
+
+def _asinh_reference(r, psi):
+    with mpmath.workdps(60):
+        return mpmath.asinh(_mpf(r) * mpmath.sinh(_mpf(psi)))
+
+
+@pytest.mark.parametrize(("r", "psi"), ASINH_CASES)
+def test_asinh_r_sinh_of_one_float_is_within_its_branch_bound_of_mpmath(r, psi):
+    ref = _asinh_reference(r, psi)
+    got = el._asinh_r_sinh_scalar(r, psi)
+    assert isinstance(got, float)
+    assert abs(mpmath.mpf(got) - ref) <= _asinh_tolerance(r, psi, ref), (r, psi, got, ref)
+
+
+def test_asinh_r_sinh_of_arrays_mixing_both_branches_is_within_their_bounds_of_mpmath():
+    # one call with ψ on both sides of 350 (np.where picks per element), and one with
+    # every ψ ≤ 350 (the early return)
+    for cases in (ASINH_CASES, [c for c in ASINH_CASES if c[1] <= 350.0]):
+        r = np.array([c[0] for c in cases])
+        psi = np.array([c[1] for c in cases])
+        got = el._asinh_r_sinh(r, psi)
+        assert got.shape == r.shape
+        for (rr, pp), g in zip(cases, got, strict=True):
+            ref = _asinh_reference(rr, pp)
+            assert abs(mpmath.mpf(float(g)) - ref) <= _asinh_tolerance(rr, pp, ref), (rr, pp, g)
+
+
+def _agm_reference(p1_exact, hyper, ymax):
+    """a_n and c_n/a_n of AGM(1, √p1) (trig, c₀ = √p) or AGM(1, √p) (hyperbolic, c₀ = √p1),
+    by the definition c_{n+1} = (a_n − b_n)/2, at a precision that resolves p = 1 − p1;
+    and the number of steps the documented rule takes: the first n with
+    (c_n/a_n) · exp(min(2ⁿ a_n y_max, 700)) < 2⁻⁶⁴ (the exp only in hyperbolic form), ≤ 6."""
+    digits = 1300  # resolves (a − b)/2 down to the 1e-1200 of the deepest step compared
+    with mpmath.workdps(digits):
+        p1 = mpmath.mpf(p1_exact)
+        p = 1 - p1
+        a, b = mpmath.mpf(1), mpmath.sqrt(p if hyper else p1)
+        a_s, ratios = [], []
+        for _ in range(el._N_AGM):
+            a, b, c = (a + b) / 2, mpmath.sqrt(a * b), (a - b) / 2
+            a_s.append(a)
+            ratios.append(c / a)
+        steps = el._N_AGM
+        for n in range(1, el._N_AGM + 1):
+            grow = mpmath.exp(min(2**n * a_s[n - 1] * ymax, 700)) if hyper else 1
+            if ratios[n - 1] * grow < mpmath.mpf(2) ** -64:
+                steps = n
+                break
+    return a_s, ratios, steps
+
+
+#: (p, p1, hyperbolic, y_max) with p1 = 1 − p exact (dyadic, or p = 1 to rounding with the
+#: tiny p1 authoritative); hyperbolic form for p > 1/2, where it takes longer for large y_max
+AGM_CASES = [
+    (0.3125, 0.6875, False, 0.0),
+    (0.5, 0.5, False, 0.0),
+    (0.0, 1.0, False, 0.0),
+    (0.75, 0.25, True, 0.4),
+    (0.75, 0.25, True, 3.0),
+    (1 - 2.0**-30, 2.0**-30, True, 10.0),
+    (1.0, 2.0**-996, True, 170.0),
+    (0.5009765625, 0.4990234375, True, 300.0),
+]
+
+
+def _check_agm(a, ratios, case):
+    _, p1, hyper, ymax = case
+    a_s, refs, steps = _agm_reference(p1, hyper, ymax)
+    assert len(ratios) == steps, (case, len(ratios), steps)
+    assert abs(mpmath.mpf(float(a)) - a_s[steps - 1]) <= AGM_A_EPS * EPS * a_s[steps - 1], case
+    for n, (got, ref) in enumerate(zip(ratios, refs, strict=False), start=1):
+        tol = AGM_RATIO_EPS * 2**n * EPS * ref + TINY
+        assert abs(mpmath.mpf(float(got)) - ref) <= tol, (case, n, got, ref)
+
+
+@pytest.mark.parametrize("case", AGM_CASES)
+def test_agm_ratios_of_one_parameter_follow_the_mean_and_stop_by_the_documented_rule(case):
+    p, p1, hyper, ymax = case
+    a, ratios = el._agm_ratios_scalar(p, p1, hyper, ymax)
+    _check_agm(a, ratios, case)
+
+
+@pytest.mark.parametrize("case", AGM_CASES)
+def test_agm_ratios_of_a_constant_parameter_array_are_those_of_the_parameter(case):
+    p, p1, hyper, ymax = case
+    a, ratios = el._agm_ratios(np.full(5, p), np.full(5, p1), hyper, ymax)
+    _check_agm(a, ratios, case)
+
+
+def test_agm_ratios_of_mixed_parameters_are_each_parameters_own():
+    # two parameters in one array: every element iterates until the slowest stops
+    cases = [(0.75, 0.25, True, 3.0), (1 - 2.0**-30, 2.0**-30, True, 3.0)]
+    a, ratios = el._agm_ratios(
+        np.array([c[0] for c in cases]), np.array([c[1] for c in cases]), True, 3.0
+    )
+    steps = max(_agm_reference(c[1], True, 3.0)[2] for c in cases)
+    assert len(ratios) == steps
+    for i, case in enumerate(cases):
+        a_s, refs, _ = _agm_reference(case[1], True, 3.0)
+        assert abs(mpmath.mpf(float(a[i])) - a_s[steps - 1]) <= AGM_A_EPS * EPS, case
+        for n, r in enumerate(ratios, start=1):
+            assert (
+                abs(mpmath.mpf(float(r[i])) - refs[n - 1])
+                <= AGM_RATIO_EPS * 2**n * EPS * refs[n - 1] + TINY
+            ), (case, n)
+
+
+def _scalar_kernel_args(p, p1):
+    """(K, trig_agm) as the free top forms them once per parameter, K from mpmath (inf at
+    p1 = 0) and the trigonometric AGM (checked above) for p ≤ 1/2."""
+    with mpmath.workdps(_dps(p1)):
+        K = float(mpmath.ellipk(1 - mpmath.mpf(p1))) if p1 > 0 else math.inf
+    return K, (el._agm_ratios_scalar(p, p1, False, 0.0) if p <= 0.5 else None)
+
+
+def _dps(p1):
+    """Digits that resolve m = 1 − p1 and leave 40 over."""
+    return 40 if p1 == 0 or p1 > 1e-20 else 50 + int(-math.log10(p1))
+
+
+#: (p, p1) with p1 = 1 − p exact: m = 0, the trigonometric AGM up to its boundary 1/2, the
+#: hyperbolic one just above it and near m = 1, m = 1 to rounding with p1 = 1e-300, and the
+#: separatrix p1 = 0 (K = inf: no reduction, sn = tanh, cn = dn = sech)
+SCALAR_PARAMETERS = [
+    (0.0, 1.0),
+    (0.3125, 0.6875),
+    (0.5, 0.5),
+    (0.5009765625, 0.4990234375),
+    (0.8125, 0.1875),
+    (1 - 2.0**-30, 2.0**-30),
+    (1.0, 1e-300),
+    (1.0, 0.0),
+]
+#: arguments in units of K: tiny, below and above the flip at K/2, K itself, beyond the
+#: half period (j = 1, sign flips), negative, several periods out
+SCALAR_ARGUMENTS_IN_K = [1e-9, 0.37, -0.37, 0.49, 0.51, 1.0, 1.7, 2.3, -3.1, 7.6]
+#: at p1 = 0 in plain units: up to and beyond 710, where cosh overflows and sech underflows
+SEPARATRIX_ARGUMENTS = [1e-9, 0.5, -3.0, 20.0, -30.0, 709.5, 710.5, 800.0]
+
+
+def _scalar_cases():
+    for p, p1 in SCALAR_PARAMETERS:
+        K, _ = _scalar_kernel_args(p, p1)
+        us = SEPARATRIX_ARGUMENTS if math.isinf(K) else [x * K for x in SCALAR_ARGUMENTS_IN_K]
+        for u in us:
+            yield pytest.param(u, p, p1, id=f"m1={p1:.3g}-u={u:.4g}")
+
+
+@pytest.mark.parametrize(("u", "p", "p1"), list(_scalar_cases()))
+def test_ellipj_of_one_float_is_within_64_eps_of_mpmath_in_every_branch(u, p, p1):
+    K, trig = _scalar_kernel_args(p, p1)
+    got = el._ellipj_scalar(u, p, p1, K, trig)
+    assert all(isinstance(x, float) for x in got)
+    with mpmath.workdps(_dps(p1)):
+        M = 1 - mpmath.mpf(p1)
+        refs = [mpmath.ellipfun(f, _mpf(u), m=M) for f in ("sn", "cn", "dn")]
+        sn, cn, dn = refs
+        errs = [
+            _err_eps(f, r, u, d)
+            for f, r, d in zip(got, refs, (cn * dn, -sn * dn, -M * sn * cn), strict=True)
+        ]
+    assert max(errs) <= el.ELLIPJ_EPS, (u, p, p1, got, errs)
+
+
+#: G(u) = ∫₀^u n sn²/(1 − n sn²) dv adds the R_J tail (scipy, ~10 eps) to 2j(Π(n|m) − K)
+#: and the reduced argument's phase error: within 32 eps of the size of the terms,
+#: |G| + |u n/(1 − n)| (the integrand is at most |n|/(1 − n) in size, for n < 1)
+THIRD_KIND_SCALAR_EPS = 32.0
+
+
+def _third_kind_reference(u, n, p1):
+    """G(u) in mpmath: by quadrature of n tanh²/(1 − n tanh²) at p1 = 0; otherwise from
+    Legendre's form, u = 2jK + r with |r| ≤ K, am u = jπ + asin sn(r):
+    G = 2jΠ(n|m) + Π(n; asin sn(r) | m) − u.  Also Π(n|m) − K, the caller's ``full``."""
+    with mpmath.workdps(_dps(p1)):
+        U, N = _mpf(u), _mpf(n)
+        if p1 == 0:
+            t2 = lambda v: mpmath.tanh(v) ** 2  # noqa: E731
+            pts = [0, U] if abs(U) <= 5 else [0, mpmath.sign(U) * 5, U]
+            return mpmath.quad(lambda v: N * t2(v) / (1 - N * t2(v)), pts), None
+        M = 1 - mpmath.mpf(p1)
+        K = mpmath.ellipk(M)
+        j = mpmath.nint(U / (2 * K))
+        r = U - 2 * j * K
+        phi = mpmath.asin(mpmath.ellipfun("sn", r, m=M))
+        full = mpmath.ellippi(N, M)
+        G = 2 * j * full + mpmath.ellippi(N, phi, M) - U
+        return G, full - K
+
+
+def _third_kind_cases():
+    for p, p1 in SCALAR_PARAMETERS:
+        K, _ = _scalar_kernel_args(p, p1)
+        if math.isinf(K):
+            us = [0.5, -3.0, 20.0, 700.0]
+        elif p1 < 1e-160:
+            # not the flipped quarter (K/2 < |r| ≤ K): scipy's R_J is wrong there (below)
+            us = [x * K for x in (0.37, -0.45, 2.3, 7.6)]
+        else:
+            us = [x * K for x in (0.37, 0.8, -1.3, 2.3, 7.6)]
+        for n in (-3.0, -0.25, 0.5, 0.9):
+            for u in us:
+                yield pytest.param(u, n, p, p1, id=f"m1={p1:.3g}-n={n}-u={u:.4g}")
+
+
+@pytest.mark.parametrize(("u", "n", "p", "p1"), list(_third_kind_cases()))
+def test_third_kind_excess_of_one_float_agrees_with_mpmath(u, n, p, p1):
+    K, trig = _scalar_kernel_args(p, p1)
+    ref, full = _third_kind_reference(u, n, p1)
+    full = 0.0 if full is None else float(full)
+    got = el._third_kind_excess_scalar(u, n, p, p1, K, trig, full)
+    assert isinstance(got, float)
+    scale = abs(ref) + abs(u * n / (1 - n))
+    assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="scipy 1.17's elliprj(x, y, 1, p) is off by ~2e-3 relative for 1e-300 ≤ x, y ≤ "
+    "1e-160 (7e12 eps at x = y/2 = 1e-170; elliprf is right there): ellippi_jacobi with "
+    "m1 < 1e-160 passes such cn², dn² in the flipped quarter K/2 < |r| ≤ K",
+)
+@pytest.mark.parametrize("n", [-3.0, 0.5])
+def test_third_kind_in_jacobis_form_near_the_separatrix_in_the_flipped_quarter(n):
+    # m1 = 1e-300, u = 0.8 K: sn(u) = tanh(u) to 1e-60 (sn departs from tanh only where
+    # e^{-2u} ~ m1), so G(u) is the separatrix's closed form to far below eps
+    p1 = 1e-300
+    K, trig = _scalar_kernel_args(1.0, p1)
+    u = 0.8 * K
+    ref, full = _third_kind_reference(u, n, p1)
+    sep, _ = _third_kind_reference(u, n, 0.0)
+    assert abs(ref - sep) <= EPS * abs(ref)  # the reference is sound
+    scale = abs(ref) + abs(u * n / (1 - n))
+    got_array = float(el.ellippi_jacobi(u, n, 1.0, m1=p1)) - u
+    got_scalar = el._third_kind_excess_scalar(u, n, 1.0, p1, K, trig, float(full))
+    for got in (got_array, got_scalar):
+        assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
