@@ -1,0 +1,541 @@
+"""Unit tests of the engine's small pieces (:mod:`mechanics.scenes.engine`), each against
+a hand derivation: the initial attitude R3(φ) R1(θ) R3(ψ) and the body ω from the Euler
+rates (2.59) and back, a top's angles and d(cos θ)/dt = −sin θ θ̇, free flight
+r0 + v0 τ + ½ g τ², the sum of gravities, the exact flow chosen for each effect set, the
+whole-scene checks word for word, and the series of a short exact run."""
+
+from __future__ import annotations
+
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from mechanics.scenes import SceneError, parse_scene
+from mechanics.scenes import engine as en
+from mechanics.scenes.engine import Engine
+
+EPS = float(np.finfo(float).eps)
+#: products and sums of a few sines and cosines of O(1) angles: a few roundings each
+TRIG_ATOL = 8 * EPS
+#: a central difference of step 1e-5: truncation h² |f'''|/6 ≈ 2e-11, rounding
+#: eps/h ≈ 2e-11; 2^22 eps ≈ 9e-10 leaves a margin of 20
+FD_ATOL = 2**22 * EPS
+#: free flight r0 + v0 τ + ½ g τ² of O(10) numbers: three roundings of the largest term
+FLIGHT_ATOL = 8 * 10 * EPS
+
+
+def R1(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, s], [0.0, -s, c]])
+
+
+def R3(a):
+    c, s = math.cos(a), math.sin(a)
+    return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _scene(bodies, effects=(), **scene):
+    return parse_scene(
+        {
+            "scene": {"name": "unit", "duration": 1.0, "samples": 3, **scene},
+            "bodies": list(bodies),
+            "effects": list(effects),
+        },
+        source="unit.toml",
+    )
+
+
+def _point(name="p", position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0), mass=1.0, **kw):
+    return {
+        "name": name,
+        "shape": "point",
+        "mass": mass,
+        "initial": {"position": list(position), "velocity": list(velocity)},
+        **kw,
+    }
+
+
+def _ball(name="ball", position=(0.0, 0.0, 1.0), velocity=(0.0, 0.0, 0.0), radius=0.1):
+    return {
+        "name": name,
+        "shape": "solid_sphere",
+        "mass": 1.0,
+        "radius": radius,
+        "initial": {"position": list(position), "velocity": list(velocity)},
+    }
+
+
+def _box(name="b", **initial):
+    return {
+        "name": name,
+        "shape": "box",
+        "mass": 12.0,  # J = (b² + c², a² + c², a² + b²) = (0.05, 0.1, 0.13)
+        "a": 0.3,
+        "b": 0.2,
+        "c": 0.1,
+        "initial": initial,
+    }
+
+
+GRAVITY = {"type": "gravity", "g": 9.81}
+
+
+# ----------------------------------------------------------- attitudes and rates
+
+
+def test_the_initial_attitude_is_r3_phi_r1_theta_r3_psi() -> None:
+    want = R3(0.2) @ R1(0.5) @ R3(0.3)
+    got = en._attitude({"psi": 0.3, "theta": 0.5, "phi": 0.2})
+    np.testing.assert_allclose(got, want, rtol=0, atol=TRIG_ATOL)
+    # one angle alone is enough to leave the identity
+    np.testing.assert_allclose(en._attitude({"theta": 0.5}), R1(0.5), rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(en._attitude({"phi": -1.0}), R3(-1.0), rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_array_equal(en._attitude({}), np.eye(3))
+    np.testing.assert_array_equal(en._attitude({"position": [1.0, 2.0, 3.0]}), np.eye(3))
+
+
+def test_the_body_omega_of_single_euler_rates() -> None:
+    # θ̇ alone turns about the line of nodes, body components (cos φ, −sin φ, 0) θ̇
+    np.testing.assert_allclose(
+        en._omega_from_rates(0.7, 0.0, 2.0, 0.0, 0.0), [2.0, 0.0, 0.0], rtol=0, atol=0
+    )
+    np.testing.assert_allclose(
+        en._omega_from_rates(0.7, math.pi / 2, 2.0, 0.0, 0.0), [0.0, -2.0, 0.0], atol=TRIG_ATOL
+    )
+    # φ̇ alone spins about the body axis e3
+    np.testing.assert_array_equal(en._omega_from_rates(0.7, 0.4, 0.0, 0.0, 3.0), [0.0, 0.0, 3.0])
+    # ψ̇ alone turns about the space z axis: its body components are row 3 of R
+    R = en._attitude({"theta": 0.7, "phi": 0.4})
+    np.testing.assert_allclose(
+        en._omega_from_rates(0.7, 0.4, 0.0, 1.5, 0.0), 1.5 * R[:, 2], rtol=0, atol=TRIG_ATOL
+    )
+
+
+def test_the_body_omega_from_euler_rates_matches_the_attitude_derivative() -> None:
+    """Ṙ = −[ω]× R for the passive ^A R^O: ω from a central difference of R(t) along
+    ψ(t), θ(t), φ(t) moving at the given rates."""
+    psi, theta, phi = 0.3, 1.1, -0.4
+    psd, thd, phd = 0.9, -0.6, 2.3
+    h = 1e-5
+
+    def R(t):
+        return R3(phi + phd * t) @ R1(theta + thd * t) @ R3(psi + psd * t)
+
+    Rdot = (R(h) - R(-h)) / (2 * h)
+    W = -Rdot @ R(0.0).T  # = [ω]×
+    w_fd = np.array([W[2, 1], W[0, 2], W[1, 0]])
+    w = en._omega_from_rates(theta, phi, thd, psd, phd)
+    np.testing.assert_allclose(w, w_fd, rtol=0, atol=FD_ATOL)
+    # and back: (θ̇, ψ̇, φ̇) from ω
+    back = en._rates_from_omega(theta, phi, w)
+    np.testing.assert_allclose(back, (thd, psd, phd), rtol=0, atol=TRIG_ATOL)
+    # an initial table with rates gives that ω; with omega, omega itself
+    ini = {"theta": theta, "phi": phi, "theta_dot": thd, "psi_dot": psd, "phi_dot": phd}
+    np.testing.assert_allclose(en._omega(ini), w, rtol=0, atol=0)
+    np.testing.assert_array_equal(en._omega({"omega": [1, 2, 3], "theta": 0.5}), [1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(en._omega({}), [0.0, 0.0, 0.0])
+
+
+def test_the_angles_of_a_top_and_the_rate_of_cos_theta() -> None:
+    """Samples of R(t) = R3(φ) R1(θ) R3(ψ) with ψ passing π (unwrapped, not jumping
+    by −2π), and ω from the rates: cos θ̇ = −sin θ θ̇."""
+    t = np.array([0.0, 0.1, 0.2])
+    psi, theta, phi = 3.0 + 1.0 * t, 1.0 + 0.5 * t, -3.0 - 1.2 * t
+    R = np.array([R3(c) @ R1(b) @ R3(a) for a, b, c in zip(psi, theta, phi, strict=True)])
+    w = np.array(
+        [en._omega_from_rates(b, c, 0.5, 1.0, -1.2) for b, c in zip(theta, phi, strict=True)]
+    )
+    out = en._top_angles(R, w)
+    np.testing.assert_allclose(out["theta"], theta, rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(out["psi"], psi, rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(out["phi"], phi, rtol=0, atol=TRIG_ATOL)
+    e3 = np.stack([np.sin(theta) * np.sin(psi), -np.sin(theta) * np.cos(psi), np.cos(theta)], -1)
+    for k, c in enumerate("xyz"):
+        np.testing.assert_allclose(out[f"axis_{c}"], e3[:, k], rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(out["cos_theta"], np.cos(theta), rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(out["cos_theta_dot"], -np.sin(theta) * 0.5, rtol=0, atol=TRIG_ATOL)
+
+
+# ------------------------------------------------------------ small engine pieces
+
+
+def test_free_flight_is_r0_plus_v0_tau_plus_half_g_tau_squared() -> None:
+    eng = Engine(_scene([_point(position=(1.0, 2.0, 3.0), velocity=(4.0, -1.0, 2.0))], [GRAVITY]))
+    g = np.array([0.0, 0.0, -9.81])
+    np.testing.assert_array_equal(eng._gvec(), g)
+    at = eng._flight(0.5, eng.y0, g, {})
+    r, v, _, _ = eng.layout.gather(at(1.5))  # τ = 1
+    np.testing.assert_allclose(r[0], [5.0, 1.0, 5.0 - 4.905], rtol=0, atol=FLIGHT_ATOL)
+    np.testing.assert_allclose(v[0], [4.0, -1.0, 2.0 - 9.81], rtol=0, atol=FLIGHT_ATOL)
+    both = at(np.array([0.5, 1.5]))
+    assert both.shape == (2, eng.y0.size)
+    np.testing.assert_array_equal(both[0], eng.y0)
+
+
+def test_the_gravities_of_a_scene_add_up() -> None:
+    down = {"type": "gravity", "g": 2.0}
+    side = {"type": "gravity", "g": 3.0, "direction": [1.0, 0.0, 0.0]}
+    eng = Engine(_scene([_point()], [down, side]))
+    np.testing.assert_allclose(eng._gvec(), [3.0, 0.0, -2.0], rtol=0, atol=0)
+    np.testing.assert_array_equal(Engine(_scene([_point()]))._gvec(), np.zeros(3))
+
+
+def test_masses_stay_m0_without_mass_loss() -> None:
+    eng = Engine(_scene([_point(mass=2.0), _point("q", position=(5, 0, 0), mass=3.0)]))
+    np.testing.assert_array_equal(eng.masses(0.7), [2.0, 3.0])
+    np.testing.assert_array_equal(eng.masses(np.array([0.0, 1.0])), [[2.0, 3.0], [2.0, 3.0]])
+
+
+def test_the_closed_form_contact_time_of_a_falling_ball() -> None:
+    # gap 1 − 0.1 above the floor z = 0, from rest, g = 9.81: τ = √(2·0.9/9.81)
+    scene = _scene([_ball()], [GRAVITY, {"type": "impact", "body": "ball", "restitution": 0.5}])
+    eng = Engine(scene)
+    imp = eng.impacts[0]
+    s = eng.snapshot(0.0, eng.y0)
+    tau = eng._contact_time(imp, imp.features[0], s, eng._gvec())
+    assert tau == pytest.approx(math.sqrt(2 * 0.9 / 9.81), rel=4 * EPS, abs=0)
+    # two spheres closing head on: τ = (gap between surfaces)/(relative speed)
+    two = _scene(
+        [_ball("a", (0, 0, 0), (1, 0, 0)), _ball("b", (1.2, 0, 0), (-1, 0, 0))],
+        [{"type": "impact", "body": "a", "other": "b", "restitution": 1.0}],
+    )
+    eng = Engine(two)
+    imp = eng.impacts[0]
+    tau = eng._contact_time(imp, imp.features[0], eng.snapshot(0.0, eng.y0), np.zeros(3))
+    assert tau == pytest.approx(0.5, rel=4 * EPS, abs=0)
+
+
+def test_the_messages_of_a_resting_contact_and_of_a_fall_in() -> None:
+    scene = _scene([_point()], duration=2.5)
+    err = en._zeno(scene, 1.25, "impact effects[1]")
+    assert (err.source, err.field) == ("unit.toml", "scene.duration")
+    assert err.reason == (
+        "impact effects[1] come to rest in contact (the impacts accumulate, or e = 0) near "
+        "t = 1.25 s before the end 2.5 s: shorten the duration (impacts do not become a "
+        "resting contact; a round body resting or rolling on a plane is the "
+        "coulomb_friction joint's)"
+    )
+    assert en._zeno(scene, 1.0).reason.startswith("the bodies come to rest in contact")
+    imp, ft = SimpleNamespace(where="effects[0]"), SimpleNamespace(label="'a' and 'b'")
+    err = en._falls_in(scene, imp, ft, 0.5)
+    assert (err.field, err.reason) == (
+        "effects[0]",
+        "'a' and 'b' touch at t = 0.5 s and then fall in, with no separation that float64 "
+        "can resolve: a resting contact, which no effect provides (shorten the duration)",
+    )
+
+
+def test_rows_turn_a_dense_output_into_time_major_rows() -> None:
+    at = en._rows(lambda t: np.array([np.asarray(t) * 1.0, np.asarray(t) * 2.0]))
+    assert at.vectorized
+    np.testing.assert_array_equal(at(np.array([1.0, 3.0])), [[1.0, 2.0], [3.0, 6.0]])
+    np.testing.assert_array_equal(at(2.0), [2.0, 4.0])
+
+
+# ------------------------------------------------------------------ the exact flows
+
+
+@pytest.mark.parametrize(
+    ("bodies", "effects", "how"),
+    [
+        ([_point()], [], "exact: uniform motion"),
+        ([_point()], [GRAVITY], "exact: free flight under uniform gravity"),
+        (
+            [_ball()],
+            [GRAVITY, {"type": "impact", "body": "ball", "restitution": 0.5}],
+            "exact: free flight under uniform gravity, impacts solved in closed form",
+        ),
+        (
+            [_box(omega=[0.0, 0.0, 1.0])],
+            [],
+            "exact: uniform motion; torque-free rotation (Jacobi elliptic functions)",
+        ),
+        (
+            [_point()],
+            [
+                GRAVITY,
+                {
+                    "type": "thrust",
+                    "body": "p",
+                    "mass_flow": 0.1,
+                    "exhaust_speed": 100.0,
+                    "fuel_mass": 0.5,
+                    "direction": [0.0, 0.0, 1.0],
+                },
+            ],
+            "exact: rocket flight (7.30) with uniform gravity",
+        ),
+        ([_point()], [{"type": "drag", "body": "p", "linear": 0.1}], None),
+        (
+            [_point()],
+            [{"type": "spring", "body": "p", "anchor": [0.0, 0.0, 1.0], "stiffness": 1.0}],
+            None,
+        ),
+        # a rigid body on a plane touches it at a corner, not through its centre
+        ([_box(position=[0, 0, 1.0])], [{"type": "impact", "body": "b", "restitution": 0.5}], None),
+        # friction at the impact: no closed form
+        (
+            [_ball()],
+            [GRAVITY, {"type": "impact", "body": "ball", "restitution": 0.5, "friction": 0.3}],
+            None,
+        ),
+        # a fixed body among free ones
+        ([_point(), _point("w", position=(3, 0, 0), fixed=True)], [], None),
+    ],
+    ids=[
+        "uniform",
+        "gravity",
+        "impacts",
+        "spinning",
+        "rocket",
+        "drag",
+        "spring",
+        "box on plane",
+        "friction",
+        "fixed body",
+    ],
+)
+def test_the_exact_flow_is_chosen_by_the_effect_set(bodies, effects, how) -> None:
+    assert Engine(_scene(bodies, effects)).exact_flow() == how
+
+
+def test_a_rocket_steered_in_body_frame_has_no_exact_flow() -> None:
+    thrust = {
+        "type": "thrust",
+        "body": "b",
+        "mass_flow": 0.1,
+        "exhaust_speed": 100.0,
+        "fuel_mass": 0.5,
+        "direction": [0.0, 0.0, 1.0],
+        "frame": "body",
+    }
+    assert Engine(_scene([_box()], [thrust])).exact_flow() is None
+
+
+def test_exact_requested_where_there_is_none_names_the_effects() -> None:
+    scene = _scene(
+        [_point()],
+        [{"type": "drag", "body": "p", "linear": 0.1}, GRAVITY],
+        method="exact",
+    )
+    with pytest.raises(SceneError) as info:
+        Engine(scene).run()
+    assert (info.value.field, info.value.reason) == (
+        "scene.method",
+        "'exact' requested but the effects ['drag', 'gravity'] of this scene have no exact "
+        "flow here; use 'auto' or 'integrate'",
+    )
+
+
+# --------------------------------------------------------------- whole-scene checks
+
+
+def _refusal(bodies, effects) -> tuple[str, str]:
+    with pytest.raises(SceneError) as info:
+        _scene(bodies, effects)
+    assert str(info.value).startswith("unit.toml: ")
+    return info.value.field, info.value.reason
+
+
+def test_one_joint_per_body() -> None:
+    fp = {"type": "fixed_point", "body": "b", "distance": 0.1}
+    fa = {"type": "fixed_axis", "body": "b"}
+    assert _refusal([_box()], [fp, dict(fp)]) == (
+        "effects[1].type",
+        "'fixed_point' is listed twice for body 'b'",
+    )
+    assert _refusal([_box()], [fa, fp]) == (
+        "effects[1].type",
+        "'fixed_point' cannot be combined with 'fixed_axis' (effects[0]) on body 'b': one "
+        "joint per body",
+    )
+
+
+def test_a_tank_takes_its_outflow_only() -> None:
+    tank = {"name": "t", "shape": "tank", "area": 1.0, "initial": {"level": 1.0}}
+    out = {"type": "tank_outflow", "body": "t", "hole_area": 0.01}
+    assert _refusal([tank], [GRAVITY]) == ("bodies[0].shape", "a tank needs a tank_outflow effect")
+    assert _refusal([tank], [GRAVITY, out, {"type": "torsion", "body": "t", "stiffness": 1.0}]) == (
+        "effects[2].type",
+        "a tank's only effect is its tank_outflow; a 'torsion' cannot act on it",
+    )
+
+
+def test_the_initial_state_of_a_free_body() -> None:
+    keys = "position, velocity, omega, psi, theta, phi"
+    assert _refusal([_box(angle=0.5)], []) == (
+        "bodies[0].initial.angle",
+        f"a free body takes {keys}",
+    )
+    # a pinned body may give Euler rates instead of omega, but not both
+    fp = {"type": "fixed_point", "body": "b", "distance": 0.1}
+    assert _refusal([_box(theta_dot=1.0)], []) == (
+        "bodies[0].initial.theta_dot",
+        f"a free body takes {keys}",
+    )
+    assert _refusal([_box(omega=[0, 0, 1.0], psi_dot=1.0)], [fp]) == (
+        "bodies[0].initial.omega",
+        "give either omega or the Euler rates",
+    )
+    _scene([_box(theta=0.5, psi_dot=1.0, phi_dot=2.0)], [fp])  # accepted
+
+
+def test_a_fixed_body_stays_at_rest_and_a_point_does_not_turn() -> None:
+    wall = _point("w", velocity=(1.0, 0.0, 0.0), fixed=True)
+    assert _refusal([wall], []) == ("bodies[0].initial.velocity", "a fixed body stays at rest")
+    still = _box(omega=[0.0, 0.5, 0.0])
+    still["fixed"] = True
+    assert _refusal([still], []) == ("bodies[0].initial.omega", "a fixed body stays at rest")
+    _scene([_point("w", fixed=True)])  # at rest: accepted
+    spin = _point()
+    spin["initial"]["omega"] = [0.0, 0.0, 1.0]
+    assert _refusal([spin], []) == (
+        "bodies[0].initial.omega",
+        "a point has no attitude and no rotation",
+    )
+    turned = _point()
+    turned["initial"]["theta"] = 0.5
+    assert _refusal([turned], []) == (
+        "bodies[0].initial.psi",
+        "a point has no attitude and no rotation",
+    )
+
+
+def test_a_body_cannot_spin_about_an_axis_of_zero_moment() -> None:
+    rod = {"name": "r", "shape": "rod", "mass": 1.0, "length": 1.0}
+    _scene([{**rod, "initial": {"omega": [1.0, 0.0, 0.0]}}])  # across the rod: fine
+    assert _refusal([{**rod, "initial": {"omega": [0.0, 0.0, 2.0]}}], []) == (
+        "bodies[0].initial.omega",
+        "a rod has a zero principal moment [0.08333333333333333, 0.08333333333333333, 0.0]: "
+        "it cannot spin about that axis; got omega = [0.0, 0.0, 2.0]",
+    )
+
+
+def test_bodies_overlapping_at_the_start_are_named() -> None:
+    field, reason = _refusal(
+        [_ball("a", (0, 0, 0)), _ball("b", (0.15, 0, 0))],
+        [{"type": "impact", "body": "a", "other": "b", "restitution": 0.5}],
+    )
+    assert field == "effects[0]"
+    assert reason == "bodies 'a' and 'b' overlap at t = 0 s (gap -0.05 m < 0)"
+    # exactly touching is no overlap
+    _scene(
+        [_ball("a", (0, 0, 0)), _ball("b", (0.25, 0, 0), radius=0.15)],
+        [{"type": "impact", "body": "a", "other": "b", "restitution": 0.5}],
+    )
+
+
+# ------------------------------------------------------------------ the series
+
+
+def test_the_series_and_invariants_of_two_points_in_uniform_motion() -> None:
+    """a (1 kg) at (1, 0, 0) with v (0, 1, 0), b (2 kg) at (0, 2, 0) with v (0.5, 0, 0):
+    E = ½(1 + 2·¼) = 3/4, p = (1, 1, 0), L = (1, t, 0) × (0, 1, 0) + (t/2, 2, 0) × (1, 0, 0)
+    = (0, 0, 1 − 2), all constant."""
+    a = _point("a", (1.0, 0.0, 0.0), (0.0, 1.0, 0.0), mass=1.0)
+    b = _point("b", (0.0, 2.0, 0.0), (0.5, 0.0, 0.0), mass=2.0)
+    tr = Engine(_scene([a, b])).run()
+    assert tr.method == "exact: uniform motion"
+    np.testing.assert_array_equal(tr.t, [0.0, 0.5, 1.0])
+    per_body = [f"{n}.{k}" for n in "ab" for k in ("x", "y", "z", "vx", "vy", "vz")]
+    totals = ["E"] + [f"{q}_{c}" for q in "pL" for c in "xyz"]
+    assert set(tr.series) == set(per_body + totals)
+    t = tr.t
+    want = {
+        "a.x": 1.0 + 0 * t,
+        "a.y": t,
+        "a.vy": 1.0 + 0 * t,
+        "b.x": 0.5 * t,
+        "b.y": 2.0 + 0 * t,
+        "b.vx": 0.5 + 0 * t,
+        "a.z": 0 * t,
+        "b.vy": 0 * t,
+        "E": 0.75 + 0 * t,
+        "p_x": 1.0 + 0 * t,
+        "p_y": 1.0 + 0 * t,
+        "p_z": 0 * t,
+        "L_x": 0 * t,
+        "L_z": -1.0 + 0 * t,
+    }
+    for k, v in want.items():
+        np.testing.assert_allclose(tr.series[k], v, rtol=0, atol=TRIG_ATOL, err_msg=k)
+    assert set(tr.conserved) == set(totals)  # no effect: everything is kept
+    assert tr.conserved_across_events == frozenset(totals)
+    assert tr.conserved_from == {}
+    scales = tr.extra["scales"]
+    assert scales["E"] == 0.75  # max |T| + max |E − T|
+    assert scales["p_x"] == scales["p_z"] == 2.0  # Σ m |v| = 1 + 1
+    # Σ |r| m |v| at its largest (t = 1): √2·1·1 + √(1/4 + 4)·2·½
+    assert scales["L_y"] == pytest.approx(math.sqrt(2.0) + math.sqrt(4.25), rel=4 * EPS)
+    assert tr.extra["length_scale"] == 2.0  # the largest |coordinate|, no radii
+    assert tr.extra["gaps"] == {}
+    assert "orthogonality" not in tr.extra
+    state = tr.state_at(0.5)
+    assert set(state) == set(per_body)
+    assert state["a.y"] == pytest.approx(0.5, abs=TRIG_ATOL)
+    assert state["b.x"] == pytest.approx(0.25, abs=TRIG_ATOL)
+
+
+def test_the_series_of_a_spinning_box_name_its_spin() -> None:
+    """ω = (0, 0, 2) about the principal axis e3 (J3 = 0.13), v = (1, 0, 0) from the
+    origin: E = ½·12·1 + ½·0.13·4, the spin L = (0, 0, 0.26) kept, ω in space the same."""
+    tr = Engine(_scene([_box(omega=[0.0, 0.0, 2.0], velocity=[1.0, 0.0, 0.0])])).run()
+    assert tr.method == "exact: uniform motion; torque-free rotation (Jacobi elliptic functions)"
+    s = tr.series
+    for k, v in {"omega3": 2.0, "wz": 2.0, "omega1": 0.0, "wx": 0.0, "vx": 1.0}.items():
+        np.testing.assert_allclose(s[k], v, rtol=0, atol=32 * EPS, err_msg=k)
+    np.testing.assert_allclose(s["x"], tr.t, rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(s["E"], 6.0 + 0.26, rtol=16 * EPS)
+    np.testing.assert_allclose(s["L_z"], 0.26, rtol=32 * EPS)
+    np.testing.assert_allclose(s["p_x"], 12.0, rtol=0, atol=0)
+    spin = [f"L_{c} (spin about G)" for c in "xyz"]
+    assert set(spin) <= set(tr.conserved)
+    assert set(spin) <= tr.conserved_across_events
+    np.testing.assert_allclose(tr.conserved["L_z (spin about G)"], 0.26, rtol=32 * EPS)
+    assert tr.extra["scales"]["L_z (spin about G)"] == pytest.approx(0.26, rel=32 * EPS)
+    assert 0.0 <= tr.extra["orthogonality"] <= 16 * EPS
+    state = tr.state_at(0.25)
+    assert state["omega3"] == pytest.approx(2.0, abs=32 * EPS)
+    assert state["wz"] == pytest.approx(2.0, abs=32 * EPS)
+    assert state["x"] == pytest.approx(0.25, abs=TRIG_ATOL)
+
+
+def test_gravity_keeps_the_horizontal_momentum_and_the_vertical_angular_momentum() -> None:
+    # a force along −z: p_x, p_y and L_z about the origin are kept, and E with the
+    # potential m g z; p_z and L_x, L_y change
+    p = _point("a", (1.0, 0.0, 0.0), (0.0, 1.0, 0.0))
+    q = _point("b", (0.0, 1.0, 0.0), (1.0, 0.0, 0.0))
+    tr = Engine(_scene([p, q], [GRAVITY])).run()
+    assert set(tr.conserved) == {"E", "p_x", "p_y", "L_z"}
+    np.testing.assert_allclose(tr.series["p_z"], -2 * 9.81 * tr.t, rtol=4 * EPS)
+
+
+def test_a_push_that_ends_breaks_the_momentum_only_until_then() -> None:
+    push = {"type": "force", "body": "p", "force": [1.0, 0.0, 0.0], "end": 0.5}
+    tr = Engine(_scene([_point()], [push])).run()
+    assert tr.method == (
+        "integrated: DOP853 (mechanics.integrators), contacts located on each step's "
+        "dense polynomial"
+    )
+    assert tr.conserved_from["p_x"] == 0.5
+    assert {"p_x", "p_y", "p_z"} <= set(tr.conserved)
+    # v = t until 0.5, then 0.5: at t = 1, x = 1/8 + 1/4
+    np.testing.assert_allclose(tr.series["vx"][-1], 0.5, rtol=0, atol=FLIGHT_ATOL)
+    np.testing.assert_allclose(tr.series["x"][-1], 0.375, rtol=0, atol=2**20 * EPS)
+
+
+def test_the_splitting_reports_its_step_order_and_the_half_step_drift() -> None:
+    spring = {"type": "spring", "body": "p", "anchor": [0.0, 0.0, 0.0], "stiffness": 8.0}
+    p = _point(position=(1.0, 0.0, 0.0), velocity=(0.0, 0.5, 0.0), mass=2.0)
+    tr = Engine(_scene([p], [spring], method="splitting", order=2, step=0.25)).run()
+    assert tr.method == (
+        "integrated: splitting of order 2 (kicks of the loads, exact free flight and "
+        "torque-free rotation), step 0.25 s"
+    )
+    info = tr.extra["splitting"]
+    assert (info["order"], info["step"]) == (2, 0.25)
+    # Strang's energy error is O(h²): at half the step about a quarter of the swing
+    ratio = float(np.ptp(tr.series["E"])) / info["E_drift_half"]
+    assert 3.0 <= ratio <= 5.0, ratio
