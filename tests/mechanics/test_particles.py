@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -489,3 +490,487 @@ def test_a_system_of_no_particles_has_no_internal_forces():
     # the sum over no partners is an empty (0, 3) array, not an error
     out = mp.internal_forces(np.zeros((0, 0, 3)))
     assert out.shape == (0, 3)
+
+
+# ------------------------------------- batches against exact rational arithmetic (Fraction)
+#
+# Leading axes of different lengths (2 and 5 particles, or a (3, 1) batch broadcast against
+# (2,)), so that a sum over the wrong axis, a slice of the wrong axis or a transposed batch
+# gives a different number or shape.  The oracle is exact: each float is a binary rational,
+# the sums of products are formed in fractions.Fraction and compared with the result.
+#
+# The sums of the module are compensated (Sum2/Dot2, Ogita, Rump & Oishi 2005): within one
+# rounding of the exact sum, plus (4 N eps)² Σ|terms| for the compensation's own rounding
+# (N terms, a tree of depth log₂N ≤ N).  One ulp of the exact value bounds the first.
+
+RNG_SEED = 20261126
+
+
+def _F(x) -> Fraction:
+    return Fraction(float(x))
+
+
+def _assert_exact_sum(got, exact, size, n_terms, what=""):
+    """|got − exact| ≤ ulp(exact) + (4 N eps)² size, elementwise (exact: nested lists)."""
+    got = np.asarray(got, dtype=float)
+    ex = np.empty(got.shape, dtype=object)
+    ex[...] = exact if got.shape == () else _nested_to_array(exact, got.shape)
+    sz = np.broadcast_to(np.asarray(size, dtype=object), got.shape)
+    for i in np.ndindex(got.shape):
+        e = ex[i]
+        tol = Fraction(math.ulp(float(e))) + Fraction((4 * n_terms * EPS) ** 2) * sz[i]
+        assert abs(_F(got[i]) - e) <= tol, (what, i, float(got[i]), float(e))
+
+
+def _nested_to_array(nested, shape):
+    out = np.empty(shape, dtype=object)
+    for i in np.ndindex(shape):
+        x = nested
+        for k in i:
+            x = x[k]
+        out[i] = x
+    return out
+
+
+def _vec(x):
+    return [_F(c) for c in x]
+
+
+def _cross(a, b):
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+
+def _system_data(lead=(2,), n=5, per_batch_masses=True):
+    """Masses (lead, n) or (n,), positions and velocities (lead, n, 3): full-width floats."""
+    rng = np.random.default_rng(RNG_SEED)
+    m = rng.uniform(0.1, 3.0, (*lead, n) if per_batch_masses else (n,))
+    r = rng.normal(size=(*lead, n, 3)) * 10.0 ** rng.integers(-3, 4, size=(*lead, n, 1))
+    v = rng.normal(size=(*lead, n, 3))
+    return m, r, v
+
+
+def _masses_of(m, b):
+    return m[b] if m.ndim > 1 else m
+
+
+@pytest.mark.parametrize("per_batch_masses", [True, False])
+def test_batched_mass_centre_and_momentum_are_each_rows_exact_sums(per_batch_masses):
+    m, r, v = _system_data(per_batch_masses=per_batch_masses)
+    M, rG, vG, p = (
+        mp.total_mass(m),
+        mp.centre_of_mass(m, r),
+        mp.centre_of_mass_velocity(m, v),
+        mp.momentum(m, v),
+    )
+    assert rG.shape == vG.shape == p.shape == (2, 3)
+    assert M.shape == ((2,) if per_batch_masses else ())
+    for b in range(2):
+        mb = [_F(x) for x in _masses_of(m, b)]
+        Mx = sum(mb)
+        Sr = [sum(mj * _F(r[b, j, c]) for j, mj in enumerate(mb)) for c in range(3)]
+        Sv = [sum(mj * _F(v[b, j, c]) for j, mj in enumerate(mb)) for c in range(3)]
+        size_r = [sum(mj * abs(_F(r[b, j, c])) for j, mj in enumerate(mb)) for c in range(3)]
+        size_v = [sum(mj * abs(_F(v[b, j, c])) for j, mj in enumerate(mb)) for c in range(3)]
+        _assert_exact_sum(M[b] if per_batch_masses else M, Mx, Mx, 5, "M")
+        _assert_exact_sum(p[b], Sv, size_v, 5, "p")
+        # r_G = S/M: two sums within an ulp each and a division, 3 ulps (2 roundings + ½)
+        for got, S, size in ((rG[b], Sr, size_r), (vG[b], Sv, size_v)):
+            for c in range(3):
+                want = S[c] / Mx
+                tol = 3 * Fraction(math.ulp(float(want))) + Fraction((20 * EPS) ** 2) * size[c] / Mx
+                assert abs(_F(got[c]) - want) <= tol, (b, c, float(got[c]), float(want))
+
+
+def test_batched_angular_momentum_about_each_rows_point_is_the_exact_sum():
+    m, r, v = _system_data()
+    A = np.array([[0.5, -1.0, 2.0], [3.0, 0.25, -4.0]])
+    vA = np.array([[0.1, 0.2, -0.3], [-1.5, 0.0, 2.0]])
+    L = mp.angular_momentum(m, r, v, about=A)
+    L_rel = mp.angular_momentum(m, r, v, about=A, about_velocity=vA)
+    assert L.shape == L_rel.shape == (2, 3)
+    for b in range(2):
+        for got, vel_ref in ((L[b], [0, 0, 0]), (L_rel[b], vA[b])):
+            terms = [
+                [
+                    _F(m[b, j]) * t
+                    for t in _cross(
+                        [_F(r[b, j, c]) - _F(A[b, c]) for c in range(3)],
+                        [_F(v[b, j, c]) - _F(vel_ref[c]) for c in range(3)],
+                    )
+                ]
+                for j in range(5)
+            ]
+            exact = [sum(t[c] for t in terms) for c in range(3)]
+            # the offsets r − A and v − v_A are rounded once each (½ ulp of each factor)
+            size = [
+                sum(
+                    _F(m[b, j])
+                    * (abs(_F(r[b, j, k]) - _F(A[b, k])) + abs(_F(r[b, j, k2]) - _F(A[b, k2])))
+                    * (
+                        abs(_F(v[b, j, k]) - _F(vel_ref[k]))
+                        + abs(_F(v[b, j, k2]) - _F(vel_ref[k2]))
+                    )
+                    for j in range(5)
+                )
+                for k, k2 in ((1, 2), (2, 0), (0, 1))
+            ]
+            for c in range(3):
+                tol = Fraction(math.ulp(float(exact[c]))) + Fraction(2 * EPS) * size[c]
+                assert abs(_F(got[c]) - exact[c]) <= tol, (b, c, float(got[c]), float(exact[c]))
+
+
+def test_batched_kinetic_energy_and_its_koenig_parts_are_each_rows_exact_values():
+    m, _, v = _system_data()
+    T = mp.kinetic_energy(m, v)
+    T_G, T_cm = mp.kinetic_energy_decomposition(m, v)
+    assert T.shape == T_G.shape == T_cm.shape == (2,)
+    for b in range(2):
+        mb = [_F(x) for x in m[b]]
+        vb = [_vec(x) for x in v[b]]
+        exact = sum(mj * sum(c * c for c in vj) for mj, vj in zip(mb, vb, strict=True)) / 2
+        _assert_exact_sum(T[b], exact, exact, 15, "T")
+        M = sum(mb)
+        vG = [sum(mj * vj[c] for mj, vj in zip(mb, vb, strict=True)) / M for c in range(3)]
+        T_cm_exact = M * sum(c * c for c in vG) / 2
+        # T = T' + ½ M v_G² (Koenig, 3.7), each part ≥ 0: T' and T_cm within 8 eps of T
+        # (T' from offsets v − v_G with v_G rounded, T_cm from the rounded M and v_G)
+        tol = Fraction(8 * EPS) * exact
+        assert abs(_F(T_cm[b]) - T_cm_exact) <= tol
+        assert abs(_F(T_G[b]) - (exact - T_cm_exact)) <= tol
+
+
+def test_batched_forces_moments_and_rates_are_each_rows_exact_values():
+    m, r, v = _system_data()
+    a = np.random.default_rng(RNG_SEED + 1).normal(size=(2, 5, 3))
+    B = np.array([[0.0, 1.0, 0.0], [2.0, 0.0, -1.0]])
+    vB = np.array([[1.0, 0.0, 0.5], [0.0, -2.0, 0.0]])
+    F = m[..., None] * a
+    M_B = mp.moment_of_forces(r, F, about=B)
+    Ldot = mp.angular_momentum_rate(m, r, v, a, about=B, about_velocity=vB)
+    vxp = mp.moving_base_point_term(m, v, about_velocity=vB)
+    assert M_B.shape == Ldot.shape == vxp.shape == (2, 3)
+    for b in range(2):
+        d = [[_F(r[b, j, c]) - _F(B[b, c]) for c in range(3)] for j in range(5)]
+        moment = [sum(_cross(d[j], _vec(F[b, j]))[c] for j in range(5)) for c in range(3)]
+        p = [sum(_F(m[b, j]) * _F(v[b, j, c]) for j in range(5)) for c in range(3)]
+        # (1.47)–(1.50): dL_B/dt = Σ BP_j × m_j a_j − v_B × p
+        rate = [
+            sum(_cross(d[j], [_F(m[b, j]) * _F(a[b, j, c]) for c in range(3)])[c] for j in range(5))
+            - _cross(_vec(vB[b]), p)[c]
+            for c in range(3)
+        ]
+        vb_x_p = _cross(_vec(vB[b]), p)
+        # scale of the terms: Σ |BP| |m a| (+ |v_B| Σ m |v|); offsets rounded once each
+        s_f = sum(
+            sum(abs(x) for x in d[j]) * sum(abs(_F(F[b, j, c])) for c in range(3)) for j in range(5)
+        )
+        s_p = sum(abs(_F(vB[b, c])) for c in range(3)) * sum(
+            _F(m[b, j]) * sum(abs(_F(v[b, j, c])) for c in range(3)) for j in range(5)
+        )
+        for c in range(3):
+            assert abs(_F(M_B[b, c]) - moment[c]) <= 4 * EPS * s_f
+            assert abs(_F(Ldot[b, c]) - rate[c]) <= 4 * EPS * (s_f + s_p)
+            assert abs(_F(vxp[b, c]) - vb_x_p[c]) <= 4 * EPS * s_p
+
+
+def test_batched_pair_forces_give_each_rows_internal_forces_and_moment():
+    rng = np.random.default_rng(RNG_SEED + 2)
+    r = rng.normal(size=(2, 5, 3))
+    f = rng.normal(size=(2, 5, 5, 3))
+    Fi = mp.internal_forces(f)
+    Mi = mp.internal_moment(r, f)
+    assert Fi.shape == (2, 5, 3)
+    assert Mi.shape == (2, 3)
+    for b in range(2):
+        for k in range(5):
+            exact = [sum(_F(f[b, k, j, c]) for j in range(5)) for c in range(3)]
+            size = [sum(abs(_F(f[b, k, j, c])) for j in range(5)) for c in range(3)]
+            _assert_exact_sum(Fi[b, k], exact, size, 5, "F^i")
+        # (1.31): M^i = ½ Σ_jk r_jk × f_jk, r_jk = r_j − r_k rounded once
+        pairs = [(j, k) for j in range(5) for k in range(5)]
+        rjk = {(j, k): [_F(r[b, j, c]) - _F(r[b, k, c]) for c in range(3)] for j, k in pairs}
+        exact = [sum(_cross(rjk[jk], _vec(f[b][jk]))[c] for jk in pairs) / 2 for c in range(3)]
+        size = sum(sum(abs(x) for x in rjk[jk]) * sum(abs(_F(x)) for x in f[b][jk]) for jk in pairs)
+        for c in range(3):
+            assert abs(_F(Mi[b, c]) - exact[c]) <= 4 * EPS * size
+
+
+def test_a_batch_of_3_by_1_broadcast_against_2_gives_each_pair_its_own_result():
+    # m (3, 1, 5) against r (2, 5, 3): the leading axes broadcast to (3, 2)
+    rng = np.random.default_rng(RNG_SEED + 3)
+    m = rng.uniform(0.5, 2.0, (3, 1, 5))
+    r = rng.normal(size=(2, 5, 3))
+    rG = mp.centre_of_mass(m, r)
+    assert rG.shape == (3, 2, 3)
+    for i in range(3):
+        for b in range(2):
+            mb = [_F(x) for x in m[i, 0]]
+            for c in range(3):
+                want = sum(mj * _F(r[b, j, c]) for j, mj in enumerate(mb)) / sum(mb)
+                size = sum(mj * abs(_F(r[b, j, c])) for j, mj in enumerate(mb)) / sum(mb)
+                assert abs(_F(rG[i, b, c]) - want) <= 3 * math.ulp(float(want)) + 4 * EPS**2 * size
+
+
+def test_rows_of_very_different_magnitude_are_each_scaled_by_their_own_exponent():
+    # one batch row near 1e300 and one near 1e-300: each is scaled by a power of two of
+    # its own before the products, so neither overflows nor underflows; m r exact rationals
+    m = np.array([[1e300, 3e300], [1e-300, 3e-300]])
+    r = np.array([[[1e8, 0.0, -4.0], [5e7, 2.0, 4.0]], [[-8.0, 1e-8, 0.0], [4.0, 3e-8, 1.0]]])
+    v = r[..., ::-1].copy()
+    rG = mp.centre_of_mass(m, r)
+    for b in range(2):
+        mb = [_F(x) for x in m[b]]
+        for c in range(3):
+            want = sum(mj * _F(r[b, j, c]) for j, mj in enumerate(mb)) / sum(mb)
+            assert abs(_F(rG[b, c]) - want) <= 3 * Fraction(math.ulp(float(want))), (b, c)
+    M = mp.total_mass(m)
+    assert M.tolist() == [4e300, 4e-300]
+    p = mp.momentum(m[1:], v[1:])
+    for c in range(3):
+        exact = sum(_F(m[1, j]) * _F(v[1, j, c]) for j in range(2))
+        _assert_exact_sum(p[0, c], exact, abs(exact), 2, "p at 1e-300")
+    # the moment of inertia about the z axis: Σ m (x² + y²), row 0 near 1e316 overflows
+    J = mp.moment_of_inertia_about_axis(m[1:], r[1:], about=[0.0, 0.0, 0.0], axis=[0, 0, 3.0])
+    exact = sum(_F(m[1, j]) * (_F(r[1, j, 0]) ** 2 + _F(r[1, j, 1]) ** 2) for j in range(2))
+    assert abs(_F(J[0]) - exact) <= 4 * EPS * exact
+
+
+def test_batched_axis_quantities_use_each_rows_axis_and_point():
+    # axes along coordinate directions with lengths 2 and 3 (normalised exactly), two
+    # different base points: ρ, z, J_z and ω_av by hand
+    r = np.array([[[1.0, 2.0, 3.0], [0.0, -1.0, 2.0]], [[4.0, 0.0, 1.0], [-2.0, 2.0, 5.0]]])
+    v = np.array([[[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]], [[0.0, 0.0, 2.0], [1.0, 1.0, 0.0]]])
+    m = np.array([2.0, 1.0])
+    axis = np.array([[0.0, 0.0, 2.0], [3.0, 0.0, 0.0]])
+    A = np.array([[0.0, 0.0, 0.0], [0.0, 1.0, 1.0]])
+    J = mp.moment_of_inertia_about_axis(m, r, about=A, axis=axis)
+    # row 0, axis z through O: ρ² = x² + y² = 5, 1 → J = 2·5 + 1·1 = 11
+    # row 1, axis x through (0, 1, 1): ρ² = (y − 1)² + (z − 1)² = 1 + 0 = 1, 1 + 16 = 17 → 2 + 17
+    assert J.tolist() == [11.0, 19.0]
+    w = mp.average_angular_velocity(m, r, v, about=A, axis=axis)
+    # L_Az = Σ m ((r − A) × v)·e: row 0: 2·(1·1 − 2·0) + 1·(0·0 − (−1)·1) = 3 → 3/11
+    # row 1 (e = x): 2·((−1)·2 − 0·0) + 1·(1·0 − 4·1) = −8 → −8/19
+    np.testing.assert_allclose(w, [3 / 11, -8 / 19], rtol=2 * EPS, atol=0)
+    x = mp.axial_component(v[:, 0], axis=axis)
+    assert x.tolist() == [0.0, 0.0]
+    c = mp.cylindrical_components(r[:, 0], v[:, 0], about=A, axis=axis)
+    # row 0: (1, 2, 3) about z: ρ = √5, z = 3; row 1: d = (4, −1, 0) about x: ρ = 1, z = 4
+    np.testing.assert_allclose(c.rho, [math.sqrt(5.0), 1.0], rtol=EPS, atol=0)
+    assert c.z.tolist() == [3.0, 4.0]
+    assert c.zdot.tolist() == [0.0, 0.0]
+
+
+# ------------------------------------------- every shape guard, one argument wrong at a time
+
+_O = np.zeros(3)
+_M4, _R4, _V4 = np.ones(4), np.ones((4, 3)), np.ones((4, 3))
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        pytest.param(
+            lambda: mp.centre_of_mass(_M4, np.ones((3, 3))),
+            ShapeError,
+            "r has shape (3, 3) but m has shape (4,): expected r of shape (..., N, 3) with "
+            "N = 4 particles",
+            id="r-N",
+        ),
+        pytest.param(
+            lambda: mp.centre_of_mass(np.ones(3), np.ones(3)),
+            ShapeError,
+            "r has shape (3,) but m has shape (3,): expected r of shape (..., N, 3) with "
+            "N = 3 particles",
+            id="r-no-particle-axis",
+        ),
+        pytest.param(
+            lambda: mp.kinetic_energy(_M4, np.ones((5, 3))),
+            ShapeError,
+            "v has shape (5, 3) but m has shape (4,): expected v of shape (..., N, 3) with "
+            "N = 4 particles",
+            id="T-v-N",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum(_M4, _R4, np.ones((3, 3)), about=_O),
+            ShapeError,
+            "v has shape (3, 3) but m has shape (4,): expected v of shape (..., N, 3) with "
+            "N = 4 particles",
+            id="L-v-N",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_rate(
+                _M4, _R4, _V4, np.ones((2, 3)), about=_O, about_velocity=_O
+            ),
+            ShapeError,
+            "a has shape (2, 3) but m has shape (4,): expected a of shape (..., N, 3) with "
+            "N = 4 particles",
+            id="rate-a-N",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum(
+                np.ones((2, 4)), np.ones((3, 4, 3)), np.ones((4, 3)), about=_O
+            ),
+            ShapeError,
+            "leading (batch) axes do not broadcast: m (2, 4), r (3, 4, 3), v (4, 3)",
+            id="L-batch",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum(_M4, np.ones((2, 4, 3)), _V4, about=np.zeros((5, 3))),
+            ShapeError,
+            "about has shape (5, 3); its leading axes do not broadcast against the system's (2,)",
+            id="L-about-batch",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum(
+                _M4, np.ones((2, 4, 3)), _V4, about=_O, about_velocity=np.zeros((5, 3))
+            ),
+            ShapeError,
+            "about_velocity has shape (5, 3); its leading axes do not broadcast against the "
+            "system's (2,)",
+            id="L-about_velocity-batch",
+        ),
+        pytest.param(
+            lambda: mp.moving_base_point_term(
+                np.ones((2, 4)), np.ones((2, 4, 3)), about_velocity=np.zeros((3, 3))
+            ),
+            ShapeError,
+            "about_velocity has shape (3, 3); its leading axes do not broadcast against the "
+            "system's (2,)",
+            id="vB-batch",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_forces(np.ones(3), np.ones((1, 3)), about=_O),
+            ShapeError,
+            "r and F must both have shape (..., N, 3) with the same N; got (3,) and (1, 3)",
+            id="M-r-no-particle-axis",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_forces(np.ones((1, 3)), np.ones(3), about=_O),
+            ShapeError,
+            "r and F must both have shape (..., N, 3) with the same N; got (1, 3) and (3,)",
+            id="M-F-no-particle-axis",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_forces(np.ones((2, 3)), np.ones((3, 3)), about=_O),
+            ShapeError,
+            "r and F must both have shape (..., N, 3) with the same N; got (2, 3) and (3, 3)",
+            id="M-N",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_forces(np.ones((2, 1, 3)), np.ones((3, 1, 3)), about=_O),
+            ShapeError,
+            "leading axes of r (2, 1, 3) and F (3, 1, 3) do not broadcast",
+            id="M-batch",
+        ),
+        pytest.param(
+            lambda: mp.internal_moment(np.ones(3), np.zeros((1, 1, 3))),
+            ShapeError,
+            "r has shape (3,) but f has shape (1, 1, 3): N must agree",
+            id="Mi-r-no-particle-axis",
+        ),
+        pytest.param(
+            lambda: mp.internal_moment(np.ones((2, 3)), np.zeros((3, 3, 3))),
+            ShapeError,
+            "r has shape (2, 3) but f has shape (3, 3, 3): N must agree",
+            id="Mi-N",
+        ),
+        pytest.param(
+            lambda: mp.internal_forces(np.zeros((3, 3))),
+            ShapeError,
+            "f has shape (3, 3); expected (..., N, N, 3) (f[k, j] = f_kj)",
+            id="f-no-pair-axes",
+        ),
+        pytest.param(
+            lambda: mp.internal_forces(np.zeros((2, 3, 3))),
+            ShapeError,
+            "f has shape (2, 3, 3); expected (..., N, N, 3) (f[k, j] = f_kj)",
+            id="f-not-square",
+        ),
+        pytest.param(
+            lambda: mp.cylindrical_components(
+                np.ones((2, 3)), np.ones((3, 3)), about=_O, axis=[0, 0, 1]
+            ),
+            ShapeError,
+            "r (2, 3) and v (3, 3) do not broadcast",
+            id="cyl-r-v",
+        ),
+        pytest.param(
+            lambda: mp.cylindrical_components(
+                np.ones((2, 3)), np.ones((2, 3)), about=_O, axis=np.ones((3, 3))
+            ),
+            ShapeError,
+            "axis has shape (3, 3); its leading axes do not broadcast against the system's (2,)",
+            id="cyl-axis-batch",
+        ),
+        pytest.param(
+            lambda: mp.masses_from_density([1.0], cell_volume=[1.0, 2.0]),
+            ShapeError,
+            "cell_volume must be a scalar; got shape (2,)",
+            id="cell_volume-shape",
+        ),
+        pytest.param(
+            lambda: mp.masses_from_density([1.0], cell_volume=-2.5),
+            NonPositiveParameterError,
+            "cell_volume = -2.5 must be > 0",
+            id="cell_volume-negative",
+        ),
+        pytest.param(
+            lambda: mp.total_mass(np.zeros((2, 0))),
+            ShapeError,
+            "m has shape (2, 0); expected (..., N) with N >= 1 particles",
+            id="m-no-particles",
+        ),
+        pytest.param(
+            lambda: mp.total_mass([[1.0, 2.0, 0.5], [3.0, 0.0, -1.0]]),
+            NegativeMassError,
+            "m must be >= 0; found -1.0 at index (1, 2)",
+            id="m-negative-in-a-batch",
+        ),
+        pytest.param(
+            lambda: mp.centre_of_mass([[1.0, 2.0, 1.0], [0.0, 0.0, 0.0]], np.ones((2, 3, 3))),
+            ZeroTotalMassError,
+            "the total mass of m is 0 (index (1,)): the centre of mass of a massless system "
+            "is undefined",
+            id="m-massless-row",
+        ),
+        pytest.param(
+            lambda: mp.continuous_centre_of_mass(
+                [[1.0, 1.0, 1.0], [0.0, 0.0, 0.0]], np.ones((2, 3, 3)), cell_volume=1.0
+            ),
+            ZeroTotalMassError,
+            "rho is zero everywhere: the total mass is 0 and the centre of mass of a massless "
+            "body is undefined",
+            id="rho-zero-row",
+        ),
+        pytest.param(
+            lambda: mp.axial_component(np.ones((2, 3)), axis=[[0, 0, 1], [0, 0, 0]]),
+            ZeroAxisError,
+            "axis = [0.0, 0.0, 0.0] has zero length",
+            id="axis-zero-row",
+        ),
+        pytest.param(
+            lambda: mp.cylindrical_components(
+                [[1.0, 0, 0], [0, 0, 2.0]], [[1.0, 0, 0], [0, 0, 1.0]], about=_O, axis=[0, 0, 1]
+            ),
+            OutOfDomainError,
+            "point [0.0, 0.0, 2.0] lies on the axis (rho = 0): phi and phidot are undefined there",
+            id="on-axis-row",
+        ),
+        pytest.param(
+            lambda: mp.average_angular_velocity(
+                [1.0],
+                [[[1.0, 0, 0]], [[0, 0, 2.0]], [[0, 1.0, 0]]],
+                [[[0, 1.0, 0]], [[1.0, 0, 0]], [[1.0, 0, 0]]],
+                about=_O,
+                axis=[0, 0, 1],
+            ),
+            OutOfDomainError,
+            "J_z = 0 at index (1,): all mass is on the axis, omega_av is undefined",
+            id="Jz-zero-row",
+        ),
+    ],
+)
+def test_each_guard_refuses_its_own_argument_with_the_exact_message(call, error, message):
+    with pytest.raises(error) as info:
+        call()
+    assert str(info.value) == message
