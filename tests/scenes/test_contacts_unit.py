@@ -354,3 +354,19 @@ def test_strict_root_refines_on_the_exact_gap_only_if_it_is_negative_at_hi() -> 
     # exactly zero at hi (not below): the polynomial is used instead
     got = ct._strict_root(p, lambda x: 1.0 - x, 0.25, 1.0)
     assert got == pytest.approx(0.5, rel=0, abs=BRENT_ATOL)
+
+
+def test_refine_must_bracket_the_piece_that_holds_the_crossing() -> None:
+    # x² − 1/4 falls through zero on the piece [−1, 0] (the extremum at 0 cuts the step);
+    # the exact gap x² − 1/5 brackets that piece (4/5 ≥ 0 > −1/5): its root −√(1/5)
+    x = ct.first_downward_crossing(
+        _cheb(-0.25, 0.0, 1.0), start_tol=0.0, refine=lambda x: x * x - 0.2
+    )
+    assert x == pytest.approx(-math.sqrt(0.2), rel=0, abs=BRENT_ATOL)
+
+
+def test_strict_root_probes_no_closer_than_two_to_the_minus_sixty() -> None:
+    # x(2^−60.5 − x): positive only below 2^−60.5 of the piece, which the last probe
+    # lo + 2^−60 (hi − lo) misses: the gap is taken as never having left zero
+    c = 2.0**-60.5
+    assert ct._strict_root(_cheb(0.0, c, -1.0), None, 0.0, 1.0) == 0.0
