@@ -259,7 +259,10 @@ def main(argv: list[str] | None = None) -> int:
         "modules", nargs="+", help="e.g. mechanics/rotation.py, or a folder: mechanics/scenes"
     )
     ap.add_argument("--max-children", type=int, default=1)
-    ap.add_argument("--mutmut", default=shutil.which("mutmut") or "mutmut")
+    beside = Path(sys.executable).parent / "mutmut"  # the venv's, when run by its python
+    ap.add_argument(
+        "--mutmut", default=shutil.which("mutmut") or (str(beside) if beside.exists() else "mutmut")
+    )
     ap.add_argument("--report", action="store_true", help="only report the last run")
     ap.add_argument("--diff", action="store_true", help="show each open survivor's diff")
     ap.add_argument("--names", nargs="+", help="run only these mutants")
