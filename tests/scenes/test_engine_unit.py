@@ -539,3 +539,43 @@ def test_the_splitting_reports_its_step_order_and_the_half_step_drift() -> None:
     # Strang's energy error is O(h²): at half the step about a quarter of the swing
     ratio = float(np.ptp(tr.series["E"])) / info["E_drift_half"]
     assert 3.0 <= ratio <= 5.0, ratio
+
+
+# ------------------------------------------------------------------ simulate
+
+
+def test_simulate_runs_the_engine_and_adds_the_derived_quantities() -> None:
+    """A rocket of 1.5 kg with 0.5 kg of fuel burnt at 0.1 kg/s (burn-out at 5 s),
+    exhaust speed 100 m/s, straight up against g = 9.81: the speed gained by burn-out
+    is u ln(m0/m_f) − g t_b = 100 ln 1.5 − 49.05 (7.30), in the exact flow too."""
+    from mechanics.scenes import simulate
+
+    thrust = {
+        "type": "thrust",
+        "body": "p",
+        "mass_flow": 0.1,
+        "exhaust_speed": 100.0,
+        "fuel_mass": 0.5,
+        "direction": [0.0, 0.0, 1.0],
+    }
+    scene = _scene([_point(mass=1.5)], [GRAVITY, thrust], duration=6.0)
+    tr = simulate.simulate(scene)
+    assert tr.method == "exact: rocket flight (7.30) with uniform gravity"
+    ((name, exact, measured),) = tr.extra["derived"]
+    assert name == "speed gained by burn-out (7.30)"
+    want = 100.0 * math.log(1.5) - 9.81 * 5.0
+    assert exact == pytest.approx(want, rel=8 * EPS)
+    assert measured == pytest.approx(want, rel=2**10 * EPS)  # the sampled flow at t_b
+    assert [(e.t, e.kind) for e in tr.events] == [(pytest.approx(5.0, rel=4 * EPS), "burn_out")]
+
+
+def test_simulate_validate_checks_the_combination() -> None:
+    import dataclasses
+
+    from mechanics.scenes import simulate
+
+    scene = _scene([_point()])
+    assert simulate.validate(scene) is None
+    body = dataclasses.replace(scene.bodies[0], initial={"omega": [0.0, 0.0, 1.0]})
+    with pytest.raises(SceneError, match="a point has no attitude and no rotation"):
+        simulate.validate(dataclasses.replace(scene, bodies=(body,)))
