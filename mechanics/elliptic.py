@@ -505,7 +505,11 @@ def ellippi(n, phi, m, *, m1=None):
     _check_characteristic(n, (1.0 - n * s * s > 0) & ((j == 0) | (n < 1)))
     f = ellipf(phi, m, m1=m1)
     tail = _third_kind_tail(s, c, d2, n)
-    full = np.where(j != 0, _complete_tail(n, np.maximum(m1, 0.0)), 0.0)
+    # at m = 1 beyond |φ| = π/2 the value is ±inf (Π(n|1) = +inf for every n < 1: its
+    # integrand grows as 1/cos θ at π/2), carried by F's 2jK; Π − K = −inf for n < 0 would
+    # make it inf − inf = NaN (issue 16)
+    sep = (m1 <= 0) & (j != 0)
+    full = np.where((j != 0) & ~sep, _complete_tail(n, np.maximum(m1, 0.0)), 0.0)
     with np.errstate(over="ignore"):
         out = f + tail + 2.0 * j * full
     return _no_overflow(out, m1, "ellippi")

@@ -406,6 +406,9 @@ ELLIPPI_CASES = [
     (0.5, 1.3, 1.0 - 1e-12, None),
     (-3.0, 5.0, 1.0, 1e-300),
     (0.7, 1e-6, 0.6, None),
+    (0.0, 0.5, 1.0, None),
+    (-2.0, 1.2, 1.0, None),
+    (0.5, -1.0, 1.0, None),
 ]
 
 
@@ -438,3 +441,17 @@ def test_ellippi_jacobi_on_the_separatrix_agrees_with_quadrature_for_either_sign
             # the formula adds n u and √|n| atan(√|n| tanh u), each within an ulp, over 1 − n
             tol = 8 * EPS * (abs(ref) + abs(u * n / (1 - n)))
             assert abs(mpmath.mpf(float(got)) - ref) <= tol, (u, n, float(got), ref)
+
+
+@pytest.mark.parametrize("n", [-2.0, -0.25, 0.0, 0.5])
+def test_ellippi_at_m_one_beyond_a_quarter_turn_is_infinite_with_the_sign_of_phi(n):
+    # Π(n|1) = ∫₀^{π/2} dθ / ((1 − n sin²θ) cos θ) = +inf for every n < 1, so by
+    # Π(φ + jπ) = Π(φ) + 2jΠ(n|1) the value beyond |φ| = π/2 is ±inf: not NaN (for n < 0,
+    # Π − K = −inf against F's +inf), and without a warning (the suite turns one into an error)
+    phi = np.array([4.0, -4.0, 10.0, 1.2])
+    got = el.ellippi(n, phi, 1.0)
+    np.testing.assert_array_equal(got[:3], [np.inf, -np.inf, np.inf])
+    with mpmath.workdps(40):
+        ref = mpmath.ellippi(n, 1.2, 1)
+    assert abs(mpmath.mpf(float(got[3])) - ref) <= INTEGRAL_EPS * EPS * abs(ref)
+    np.testing.assert_array_equal(el.ellipf(phi[:3], 1.0), [np.inf, -np.inf, np.inf])
