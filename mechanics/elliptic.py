@@ -412,7 +412,8 @@ def _amplitude(phi, m, m1, name):
     if np.any(delta2 < 0):
         i = np.argmin(delta2)
         raise OutOfDomainError(
-            f"{name} needs m sin²φ ≤ 1 (real integrand); got m = {m.flat[i]!r}, φ = {phi.flat[i]!r}"
+            f"{name} needs m sin²φ ≤ 1 (real integrand); got m = {float(m.flat[i])!r}, "
+            f"φ = {float(phi.flat[i])!r}"
         )
     hi = (m > 1) & (j != 0)
     if np.any(hi):

@@ -455,3 +455,51 @@ def test_ellippi_at_m_one_beyond_a_quarter_turn_is_infinite_with_the_sign_of_phi
         ref = mpmath.ellippi(n, 1.2, 1)
     assert abs(mpmath.mpf(float(got[3])) - ref) <= INTEGRAL_EPS * EPS * abs(ref)
     np.testing.assert_array_equal(el.ellipf(phi[:3], 1.0), [np.inf, -np.inf, np.inf])
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        # the first offending element of a batch, its values printed as plain floats
+        (
+            lambda: el.ellipj([1.0, 1e300], 1e300),
+            "ellipj needs |u|·√max(|m|, 1 − m) < 1.8e308 for the modulus transformation; "
+            "got u = 1e+300 with scale 1e+150",
+        ),
+        (
+            lambda: el.ellipj([1.0, 1e300], -1e300),
+            "ellipj needs |u|·√max(|m|, 1 − m) < 1.8e308 for the modulus transformation; "
+            "got u = 1e+300 with scale 1e+150",
+        ),
+        (
+            lambda: el.ellipk([0.5, 0.25], m1=[0.5, 0.5]),
+            "m1 must equal 1 − m to rounding; got m = 0.25, m1 = 0.5 (m + m1 − 1 = 0.25)",
+        ),
+        (
+            lambda: el.ellipf([0.1, 1.4], 2.0),
+            "ellipf needs m sin²φ ≤ 1 (real integrand); got m = 2.0, φ = 1.4",
+        ),
+        (
+            lambda: el.ellippi(0.1, [0.2, 1.4], [2.0, 1.5]),
+            "ellippi needs m sin²φ ≤ 1 (real integrand); got m = 1.5, φ = 1.4",
+        ),
+        (
+            lambda: el.ellipf(3.0, 1.5),
+            "ellipf for m > 1 needs |φ| ≤ asin(1/√m) < π/2; got larger φ",
+        ),
+        (
+            lambda: el.ellippi(-1.0, -3.0, 1.5),
+            "ellippi for m > 1 needs |φ| ≤ asin(1/√m) < π/2; got larger φ",
+        ),
+        (lambda: el.ellippi_jacobi(1.0, 0.5, -0.5), "ellippi_jacobi needs 0 ≤ m ≤ 1"),
+        (
+            lambda: el.ellippi([0.5, 1.0], 4.0, 0.3),
+            "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
+            "got n = 1.0",
+        ),
+    ],
+)
+def test_each_domain_refusal_names_its_condition_and_the_offending_values(call, message):
+    with pytest.raises(OutOfDomainError) as info:
+        call()
+    assert str(info.value) == message
