@@ -974,3 +974,90 @@ def test_each_guard_refuses_its_own_argument_with_the_exact_message(call, error,
     with pytest.raises(error) as info:
         call()
     assert str(info.value) == message
+
+
+def test_batched_koenig_parts_of_L_are_each_rows_exact_values():
+    # L_A = L_G + AG × p (1.12), with r_G, v_G, p exact rationals: L_G = Σ m (r − r_G) × (v − v_G)
+    # (the rounding of r_G, v_G enters only at second order: Σ m r' = Σ m v' = 0), and
+    # AG × p from r_G within 3 ulps and p within 1: 8 eps of |AG| |p| per component
+    m, r, v = _system_data()
+    A = np.array([[1.0, 2.0, -3.0], [-0.5, 0.0, 4.0]])
+    L_G, L_ext = mp.angular_momentum_decomposition(m, r, v, about=A)
+    assert L_G.shape == L_ext.shape == (2, 3)
+    for b in range(2):
+        mb = [_F(x) for x in m[b]]
+        M = sum(mb)
+        rG = [sum(mj * _F(r[b, j, c]) for j, mj in enumerate(mb)) / M for c in range(3)]
+        vG = [sum(mj * _F(v[b, j, c]) for j, mj in enumerate(mb)) / M for c in range(3)]
+        p = [M * x for x in vG]
+        d = [[_F(r[b, j, c]) - rG[c] for c in range(3)] for j in range(5)]
+        w = [[_F(v[b, j, c]) - vG[c] for c in range(3)] for j in range(5)]
+        LG = [sum(mb[j] * _cross(d[j], w[j])[c] for j in range(5)) for c in range(3)]
+        size = sum(mb[j] * sum(map(abs, d[j])) * sum(map(abs, w[j])) for j in range(5))
+        AG = [rG[c] - _F(A[b, c]) for c in range(3)]
+        ext = _cross(AG, p)
+        size_ext = sum(map(abs, AG)) * sum(map(abs, p))
+        for c in range(3):
+            assert abs(_F(L_G[b, c]) - LG[c]) <= 16 * EPS * size, (b, c)
+            assert abs(_F(L_ext[b, c]) - ext[c]) <= 8 * EPS * size_ext, (b, c)
+
+
+def test_batched_cylindrical_components_measure_phi_from_each_rows_own_reference():
+    # row 0: axis e_z, ϕ from e_x; row 1: axis e_x, ϕ from e_y (the coordinate axis least
+    # aligned with e, the first of the two), e_y × ... right-handed about e_x: ϕ from e_y to e_z
+    r = np.array([[1.0, 2.0, 3.0], [4.0, 0.0, 1.0]])
+    v = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 2.0]])
+    axis = np.array([[0.0, 0.0, 2.0], [3.0, 0.0, 0.0]])
+    A = np.array([[0.0, 0.0, 0.0], [0.0, 1.0, 1.0]])
+    c = mp.cylindrical_components(r, v, about=A, axis=axis)
+    # row 0: (x, y) = (1, 2): ρ̇ = (x ẋ + y ẏ)/ρ = 2/√5, ϕ̇ = (x ẏ − y ẋ)/ρ² = 1/5
+    # row 1: d = (4, −1, 0): (x, y) = (d·e_y, d·e_z) = (−1, 0), (ẋ, ẏ) = (0, 2): ϕ = π,
+    #        ρ̇ = 0, ϕ̇ = −2
+    np.testing.assert_allclose(c.phi, [math.atan2(2.0, 1.0), math.pi], rtol=EPS, atol=0)
+    np.testing.assert_allclose(c.rhodot, [2 / math.sqrt(5.0), 0.0], rtol=2 * EPS, atol=0)
+    np.testing.assert_allclose(c.phidot, [0.2, -2.0], rtol=2 * EPS, atol=0)
+
+
+def test_the_compensated_sums_run_block_by_block_over_a_long_particle_axis_of_a_batch():
+    # 100 configurations of 600 particles: momentum's rows are 3 × 100, so the blocks are 256
+    # particles long (3 blocks, the last of 88); integer-valued data, so every partial sum
+    # is exact and the exact totals are numpy's int64 sums
+    rng = np.random.default_rng(RNG_SEED + 4)
+    m = rng.integers(1, 10, size=(100, 600))
+    v = rng.integers(-1000, 1001, size=(100, 600, 3))
+    p = mp.momentum(m.astype(float), v.astype(float))
+    np.testing.assert_array_equal(p, np.einsum("bj,bjc->bc", m, v).astype(float))
+    T = mp.kinetic_energy(m.astype(float), v.astype(float))
+    np.testing.assert_array_equal(T, 0.5 * np.einsum("bj,bjc->b", m, v * v).astype(float))
+    np.testing.assert_array_equal(mp.total_mass(m.astype(float)), m.sum(axis=-1).astype(float))
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        pytest.param(
+            lambda: mp.momentum(
+                [[1.0, 1.0], [1e300, 1e300]], [[[1.0, 0, 0]] * 2, [[1e10, 1, 0]] * 2]
+            ),
+            "the momentum is beyond float64 (index (1, 0)): the exact result exceeds 1.8e308 "
+            "in magnitude",
+            id="p-row-1-x",
+        ),
+        pytest.param(
+            lambda: mp.total_mass([1e308, 1e308]),
+            "the total mass is beyond float64 (index ()): the exact result exceeds 1.8e308 in "
+            "magnitude",
+            id="M-scalar",
+        ),
+        pytest.param(
+            lambda: mp.kinetic_energy([[1.0], [1.0]], [[[1.0, 0, 0]], [[0, 0, 1e200]]]),
+            "v_j^2 is beyond float64 (index (1, 0, 2)): the exact result exceeds 1.8e308 in "
+            "magnitude",
+            id="v2-element",
+        ),
+    ],
+)
+def test_an_overflow_message_points_at_the_first_element_beyond_float64(call, message):
+    with pytest.raises(ResultOverflowError) as info:
+        call()
+    assert str(info.value) == message
