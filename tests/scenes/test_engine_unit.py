@@ -579,3 +579,121 @@ def test_simulate_validate_checks_the_combination() -> None:
     body = dataclasses.replace(scene.bodies[0], initial={"omega": [0.0, 0.0, 1.0]})
     with pytest.raises(SceneError, match="a point has no attitude and no rotation"):
         simulate.validate(dataclasses.replace(scene, bodies=(body,)))
+
+
+# ------------------------------------------------------ accelerations and pressing
+
+
+def test_point_accelerations_are_a_g_plus_alpha_cross_rho_plus_centripetal() -> None:
+    """A box (m = 12, J3 = 0.13) spinning at ω = 2 about e3, pushed by F = (1, 0, 0) at
+    G and turned by a body torque (0, 0, 0.13): a_G = F/m = (1/12, 0, 0), α = (0, 0, 1);
+    at ρ = (0.15, 0, 0) from G: α × ρ = (0, 0.15, 0), ω × (ω × ρ) = −4 ρ = (−0.6, 0, 0)."""
+    push = {"type": "force", "body": "b", "force": [1.0, 0.0, 0.0]}
+    turn = {"type": "torque", "body": "b", "torque": [0.0, 0.0, 0.13], "frame": "body"}
+    eng = Engine(_scene([_box(omega=[0.0, 0.0, 2.0])], [push, turn]))
+    s = eng.snapshot(0.0, eng.y0)
+    acc = eng._point_accelerations(0.0, eng.y0, s, {0: np.array([0.15, 0.0, 0.0]), None: 0})
+    assert set(acc) == {0}
+    np.testing.assert_allclose(acc[0], [1 / 12 - 0.6, 0.15, 0.0], rtol=0, atol=TRIG_ATOL)
+    origin, base, w, alpha = eng._kinematics(s, eng.rhs(0.0, eng.y0), 0)
+    np.testing.assert_array_equal(origin, [0.0, 0.0, 0.0])
+    np.testing.assert_allclose(base, [1 / 12, 0.0, 0.0], rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(w, [0.0, 0.0, 2.0], rtol=0, atol=TRIG_ATOL)
+    np.testing.assert_allclose(alpha, [0.0, 0.0, 1.0], rtol=0, atol=TRIG_ATOL)
+
+
+def test_a_point_has_no_rotation_and_a_fixed_body_no_acceleration() -> None:
+    p = _point("p", position=(1.0, 2.0, 3.0), velocity=(1.0, 0.0, 0.0))
+    wall = _point("w", position=(5.0, 0.0, 0.0), fixed=True)
+    eng = Engine(_scene([p, wall], [GRAVITY]))
+    s = eng.snapshot(0.0, eng.y0)
+    origin, base, w, alpha = eng._kinematics(s, eng.rhs(0.0, eng.y0), 0)
+    np.testing.assert_array_equal(origin, [1.0, 2.0, 3.0])  # a point's origin: itself
+    np.testing.assert_array_equal(base, [0.0, 0.0, -9.81])
+    np.testing.assert_array_equal([w, alpha], np.zeros((2, 3)))
+    acc = eng._point_accelerations(0.0, eng.y0, s, {0: s.r[0], 1: s.r[1]})
+    assert set(acc) == {0}  # the fixed body is left out
+    np.testing.assert_array_equal(acc[0], [0.0, 0.0, -9.81])
+
+
+def _resting_ball(effects):
+    ball = _ball(position=(0.0, 0.0, 0.1))  # radius 0.1: touching the floor z = 0
+    eng = Engine(_scene([ball], [*effects, {"type": "impact", "body": "ball", "restitution": 0.5}]))
+    imp = eng.impacts[0]
+    return eng, imp, imp.features[0]
+
+
+def test_a_ball_on_the_floor_is_pressed_by_gravity_alone() -> None:
+    eng, imp, ft = _resting_ball([GRAVITY])
+    assert eng._pressed(imp, ft, 0.0, eng.y0) == pytest.approx(9.81, rel=4 * EPS)
+    eng, imp, ft = _resting_ball([])
+    assert eng._pressed(imp, ft, 0.0, eng.y0) == 0.0
+
+
+@pytest.mark.parametrize(
+    ("after", "before", "gap_scale", "stalls"),
+    [
+        (1.9e-9, 1.0, 0.0, True),  # below ZENO_SPEED (1 + |v before|) = 2e-9
+        (2e-9, 1.0, 0.0, False),  # at it: followed (a hop above the gap's rounding)
+        (1e-6, 0.0, 1.0, True),  # a hop v²/2a = 5e-14 below 2^8 eps of a 1 m gap
+        (1e-6, 0.0, 1e-6, False),  # the same hop above the rounding of a 1 µm gap
+        (1.0, 1.0, 1.0, False),
+    ],
+)
+def test_impacts_stall_when_the_rebound_is_too_slow_to_follow(after, before, gap_scale, stalls):
+    eng, imp, ft = _resting_ball([GRAVITY])
+    detail = {"normal_speed_after": after, "normal_speed_before": before, "gap_scale": gap_scale}
+    assert eng._stalls(imp, ft, 0.0, eng.y0, detail) is stalls
+    # not pressed (no gravity): never a stall, however slow
+    eng, imp, ft = _resting_ball([])
+    assert eng._stalls(imp, ft, 0.0, eng.y0, detail) is False
+
+
+# --------------------------------------------------------------- a top's exact flow
+
+
+def _top(theta=0.5, shape=None):
+    body = shape or {"name": "top", "shape": "cylinder", "mass": 1.0, "radius": 0.1, "height": 0.4}
+    return {**body, "initial": {"theta": theta, "omega": [0.0, 0.0, 20.0]}}
+
+
+PIN = {"type": "fixed_point", "body": "top", "distance": 0.2}
+
+
+@pytest.mark.parametrize(
+    ("body", "effects", "how"),
+    [
+        (_top(), [PIN], "exact: torque-free top about C, Jacobi elliptic functions (5.3)"),
+        (_top(), [PIN, GRAVITY], "exact: heavy symmetric top, elliptic integrals (5.2.2–5.2.5)"),
+        (_top(), [PIN, GRAVITY, {"type": "gravity", "g": 1.0}], None),  # two gravities
+        (_top(), [PIN, {**GRAVITY, "direction": [1.0, 0.0, 0.0]}], None),  # not along −z
+        (_top(), [PIN, {**GRAVITY, "direction": [0.0, 0.0, 1.0]}], None),  # along +z
+        (_top(theta=0.0), [PIN, GRAVITY], None),  # upright: θ0 not in (0, π)
+        (_top(theta=math.pi), [PIN, GRAVITY], None),
+        (
+            _top(shape={"name": "top", "shape": "box", "mass": 1.0, "a": 0.3, "b": 0.2, "c": 0.1}),
+            [PIN, GRAVITY],
+            None,  # J1 ≠ J2: not symmetric
+        ),
+        (_top(), [PIN, {"type": "drag", "body": "top", "angular_linear": 0.1}], None),
+    ],
+    ids=[
+        "free",
+        "heavy",
+        "two gravities",
+        "sideways",
+        "upward",
+        "upright",
+        "hanging",
+        "box",
+        "drag",
+    ],
+)
+def test_the_exact_flow_of_a_top_on_its_fixed_point(body, effects, how) -> None:
+    assert Engine(_scene([body], effects)).exact_flow() == how
+
+
+def test_two_pinned_tops_have_no_exact_flow() -> None:
+    other = {**_top(), "name": "second"}
+    pin2 = {**PIN, "body": "second"}
+    assert Engine(_scene([_top(), other], [PIN, pin2])).exact_flow() is None
