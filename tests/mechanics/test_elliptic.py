@@ -392,7 +392,8 @@ def test_ellipk_and_ellipe_of_scalars_agree_with_mpmath(m, m1):
 
 
 #: (n, φ, m, m1): n near 1 inside |φ| < π/2 and beyond it (Π(n|m) ~ 1/√(1 − n) large),
-#: n ≪ 0, n sin²φ just below 1, φ large and negative with j ≠ 0, m < 0, m > 1, m near 1
+#: n ≪ 0, n sin²φ just below 1, φ large and negative with j ≠ 0, m < 0 (down to −1e300,
+#: where R_J's arguments are scaled into its range), m > 1, m near 1, m = 1
 ELLIPPI_CASES = [
     (1 - 1e-9, 1.2, 0.5, None),
     (1 - 1e-9, 4.0, 0.5, None),
@@ -408,6 +409,8 @@ ELLIPPI_CASES = [
     (0.7, 1e-6, 0.6, None),
     (0.0, 0.5, 1.0, None),
     (-2.0, 1.2, 1.0, None),
+    (0.4, 1.1, -1e300, None),
+    (-3.0, -0.7, -1e200, None),
     (0.5, -1.0, 1.0, None),
 ]
 
