@@ -1061,3 +1061,16 @@ def test_an_overflow_message_points_at_the_first_element_beyond_float64(call, me
     with pytest.raises(ResultOverflowError) as info:
         call()
     assert str(info.value) == message
+
+
+def test_an_axis_of_any_magnitude_is_normalised_by_its_own_power_of_two():
+    # (3, 0, 4)·s has length 5 s for any s: x · e = (3 x + 4 z)/5 = (3 + 12)/5 = 3; a
+    # squared norm of 1e-600 or 1e616 would underflow or overflow without the scaling
+    x = [1.0, 2.0, 3.0]
+    for s in (1e-300, 1.0, 1e300):
+        assert float(mp.axial_component(x, axis=[3.0 * s, 0.0, 4.0 * s])) == pytest.approx(
+            3.0, rel=4 * EPS, abs=0
+        )
+    # a batch: a subnormal axis along z, and one of 1e308 along x + y: x_z and (x + y)/√2
+    out = mp.axial_component(x, axis=[[0.0, 0.0, 1e-320], [1e308, 1e308, 0.0]])
+    np.testing.assert_allclose(out, [3.0, 3.0 / math.sqrt(2.0)], rtol=4 * EPS, atol=0)
