@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from mechanics.scenes import SceneError, parse_scene
-from mechanics.scenes.effects import CONSERVED, Loads, Snapshot
+from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads, Snapshot
 from mechanics.scenes.effects.newton_gravity import G_NEWTON
 from mechanics.scenes.engine import Engine
 
@@ -900,3 +900,74 @@ def test_a_torsion_spring_acts_on_the_body_it_names() -> None:
     assert e.i == 1
     assert e.hinge is eng.layout.guides[1]
     assert e.tau_0 == 2.0
+
+
+def test_effects_built_without_a_scene_read_their_own_fields() -> None:
+    """(``ctx=None``: no body index, no guide; the fields alone.)"""
+    sc = scene_of(
+        [{**SPHERE, "initial": {"angle": 0.5}}],
+        [
+            {"type": "gravity", "g": 2.0, "direction": [0.0, 0.0, -4.0]},
+            {"type": "fixed_axis", "body": "a", "axis": [1.0, 0.0, 0.0]},
+            {"type": "torsion", "body": "a", "stiffness": 3.0},
+            {"type": "buoyancy", "body": "a", "density": 5.0, "level": -1.0},
+        ],
+    )
+    gravity, _, torsion, buoyancy = (REGISTRY[e.type](e) for e in sc.effects)
+    assert gravity.g == 2.0
+    np.testing.assert_array_equal(gravity.vector, [0.0, 0.0, -2.0])
+    assert torsion.tau_0 == 3.0
+    assert torsion.i == 0  # no scene: no body index but the first
+    assert torsion.hinge is None
+    assert torsion.ctx is None
+    assert (buoyancy.rho, buoyancy.level) == (5.0, -1.0)
+    assert not hasattr(buoyancy, "a")  # the radius comes from the scene
+
+
+def test_torsion_and_gravity_know_their_scene() -> None:
+    (gravity, _, torsion), eng = build(HINGED, [{"type": "gravity", "g": 1.0}, *TWIST])
+    assert gravity.ctx.index == torsion.ctx.index == {"a": 0, "b": 1}
+    assert torsion.ctx.guides is eng.layout.guides
+
+
+def test_a_linear_drag_alone_is_minus_b_v_and_a_linear_spin_drag_alone_minus_c_omega() -> None:
+    (lin, spin), _ = build(
+        [SPHERE, BOX],
+        [
+            {"type": "drag", "body": "b", "linear": 0.5},
+            {"type": "drag", "body": "a", "angular_linear": 0.25},
+        ],
+    )
+    s = two_at_rest()
+    s.v[1] = [3.0, 0.0, 4.0]
+    s.v[0] = [1.0, 2.0, 2.0]
+    s.omega[0] = [0.0, 2.0, -4.0]
+    s.omega[1] = [1.0, 1.0, 1.0]
+    out = loads_of(lin, s, 2)
+    np.testing.assert_array_equal(out.F, [[0, 0, 0], [-1.5, 0.0, -2.0]])
+    np.testing.assert_array_equal(out.M_A, np.zeros((2, 3)))
+    out = loads_of(spin, s, 2)
+    np.testing.assert_array_equal(out.F, np.zeros((2, 3)))
+    np.testing.assert_array_equal(out.M_A, [[0.0, -0.5, 1.0], [0, 0, 0]])
+
+
+LISTED = [
+    {"type": "gravity", "g": 1.0},
+    {"type": "newton_gravity", "G": 1.0},
+    {"type": "spring", "body": "a", "other": "b", "stiffness": 1.0},
+    {"type": "damper", "body": "a", "other": "b", "damping": 1.0},
+    {"type": "drag", "body": "a", "linear": 1.0},
+    {"type": "force", "body": "a", "force": [1.0, 0.0, 0.0]},
+    {"type": "torque", "body": "a", "torque": [1.0, 0.0, 0.0]},
+    {"type": "thrust", "body": "a", "mass_flow": 0.1, "exhaust_speed": 1.0, "fuel_mass": 0.5},
+    {"type": "buoyancy", "body": "a", "density": 1.0},
+]
+
+
+def test_each_effect_holds_its_spec_and_its_scene() -> None:
+    effects, eng = build([SPHERE, BOX], LISTED)
+    for e, spec in zip(effects, eng.scene.effects, strict=True):
+        assert e.spec is spec
+        assert e.fields is spec.fields
+        assert e.ctx.index == {"a": 0, "b": 1}
+        assert e.ctx.scene is eng.scene

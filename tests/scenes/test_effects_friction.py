@@ -92,6 +92,8 @@ def test_the_slide_is_built_from_the_slope_the_body_and_the_friction() -> None:
     gd = eng.layout.guides[0]
     assert gd.k == 2
     np.testing.assert_array_equal(gd.n, [0.0, 0.0, 1.0])
+    assert f.ctx.guides is eng.layout.guides
+    assert f.spec is eng.scene.effects[-1]
     assert f.alpha == 0.0
     assert f.mu == 0.2
     assert f.i == 0
