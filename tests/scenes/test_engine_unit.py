@@ -567,6 +567,8 @@ def test_simulate_runs_the_engine_and_adds_the_derived_quantities() -> None:
     assert exact == pytest.approx(want, rel=8 * EPS)
     assert measured == pytest.approx(want, rel=2**10 * EPS)  # the sampled flow at t_b
     assert [(e.t, e.kind) for e in tr.events] == [(pytest.approx(5.0, rel=4 * EPS), "burn_out")]
+    # the mass series: m0 − q t until burn-out, then m_f (samples at 0, 3, 6 s)
+    np.testing.assert_allclose(tr.series["mass"], [1.5, 1.2, 1.0], rtol=4 * EPS, atol=0)
 
 
 def test_simulate_validate_checks_the_combination() -> None:
@@ -697,3 +699,25 @@ def test_two_pinned_tops_have_no_exact_flow() -> None:
     other = {**_top(), "name": "second"}
     pin2 = {**PIN, "body": "second"}
     assert Engine(_scene([_top(), other], [PIN, pin2])).exact_flow() is None
+
+
+def test_the_series_of_a_heavy_symmetric_top() -> None:
+    """A cylinder (m = 1, a = 0.1: J3 = m a²/2 = 0.005) on its pivot 0.2 below G, θ0 =
+    0.5, spinning at 20 about e3: L_3 = J3 ω3 = 0.1 is kept (the moments about C are
+    perpendicular to e3); the angles start at θ = 0.5, ψ = φ = 0; a reaction is reported."""
+    tr = Engine(_scene([_top()], [PIN, GRAVITY])).run()
+    s = tr.series
+    np.testing.assert_allclose(s["L_3"], 0.1, rtol=8 * EPS)
+    assert "L_3" in tr.conserved
+    assert "L_3" in tr.conserved_across_events
+    # the scale: the largest |L_A| over the samples, 0.1 at the start, more as it nutates
+    assert tr.extra["scales"]["L_3"] >= 0.1 * (1 - 8 * EPS)
+    # θ(0) by the top's elliptic solution, through R and atan2 again (measured 9 eps)
+    top_atol = 64 * EPS
+    assert (s["theta"][0], s["psi"][0], s["phi"][0]) == pytest.approx((0.5, 0.0, 0.0), abs=top_atol)
+    np.testing.assert_allclose(s["cos_theta"], np.cos(s["theta"]), rtol=0, atol=8 * EPS)
+    assert {"reaction_x", "reaction_y", "reaction_z"} <= set(s)
+    assert tr.extra["scales"]["reaction_z"] > 0
+    state = tr.state_at(0.0)
+    assert state["cos_theta"] == pytest.approx(math.cos(0.5), abs=top_atol)
+    assert state["cos_theta_dot"] == pytest.approx(0.0, abs=top_atol)  # θ̇ = 0 at the start
