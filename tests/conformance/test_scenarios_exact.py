@@ -605,7 +605,7 @@ def test_a_figure_that_cannot_be_read_says_why():
         s, bodies=(dataclasses.replace(b, inertia=(3.0, 2.0, 4.0), omega=(0.0, 2.0, 0.2)),)
     )
     tr = reference(s).trajectory
-    tr = dataclasses.replace(tr, omega=np.zeros_like(tr.omega) + [1.0, 1.0, 1.0])
+    tr = dataclasses.replace(tr, omega=np.ones_like(tr.omega))
     assert measure(swapped, tr)["omega_period"] == (
         "ω1 crosses zero 0 time(s) in the samples; 2 are needed for the period"
     )
