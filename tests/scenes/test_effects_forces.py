@@ -646,6 +646,14 @@ def test_an_applied_force_at_the_centre_of_a_point_is_fine() -> None:
                               "at": [0.0, 0.0, 0.0], "end": 1.0}])  # fmt: skip
     assert e.at is None
     assert e.switch_times() == [1.0]
+    scene_of([POINT], [{"type": "force", "body": "p", "force": [1.0, 0.0, 0.0]}])  # no at
+
+
+def test_a_zero_force_keeps_everything() -> None:
+    (e,), _ = build([SPHERE], [{"type": "force", "body": "a", "force": [0.0, 0.0, 0.0]}])
+    s = random_snap(np.random.default_rng(2), 1)
+    np.testing.assert_array_equal(loads_of(e, s, 1).F, np.zeros((1, 3)))
+    assert all(e.keeps(q) for q in CONSERVED)
 
 
 # ------------------------------------------------------------------ thrust
