@@ -23,8 +23,11 @@ from mechanics.conformance.scenarios import (
     INVARIANTS,
     SCENARIOS,
     UnknownScenarioError,
+    body_sizes,
+    crossings,
     figure_names,
     get_scenario,
+    interpolate,
     invariant_names,
     invariants,
     measure,
@@ -936,3 +939,210 @@ def test_the_impact_reference_follows_the_bodies_along_any_line_and_listed_in_an
     np.testing.assert_allclose(got["v1_after"], -1.6 * n, atol=CLOSED_ATOL, rtol=0)
     assert got["restitution"] == pytest.approx(0.6, rel=READ_RTOL)
     assert got["impact_time"] == pytest.approx(5 / 12, rel=READ_RTOL)
+
+
+# --------------------------------------------------------------------------- invariants
+
+
+def _two_bodies(kind, **changes):
+    """Two spheres (1 kg r 0.1, 3 kg r 0.15) of the impact, relabelled ``kind``."""
+    return dataclasses.replace(SCENARIOS["two_body_impact"], extra={"kind": kind}, **changes)
+
+
+def _made_up(masses=None):
+    """Two samples of two bodies, every component different, by hand."""
+    t = np.array([0.0, 1.0])
+    pos = np.array([[[1.0, 2.0, 3.0], [-1.0, 0.5, 2.0]], [[0.0, 1.0, -2.0], [2.0, -1.0, 0.5]]])
+    vel = np.array([[[0.5, -1.0, 2.0], [1.0, 0.0, -0.5]], [[-2.0, 1.0, 0.0], [0.25, 0.5, 1.0]]])
+    Rz = _R3(0.4)
+    Rx = _R1(-0.3)
+    R = np.array([[Rz, Rx], [Rx @ Rz, np.eye(3)]])
+    w = np.array([[[1.0, -2.0, 0.5], [0.0, 3.0, 1.0]], [[2.0, 0.0, -1.0], [-1.0, 1.0, 2.0]]])
+    return Trajectory(t, pos, vel, R, w, masses)
+
+
+def test_energy_momentum_and_angular_momentum_of_a_made_up_motion_by_hand():
+    s = _two_bodies("free_top", gravity=(0.5, -1.0, -9.0))
+    tr = _made_up()
+    inv = invariants(s, tr)
+    m = np.array([1.0, 3.0])
+    J = np.array([0.004, 0.027])
+    g = np.array([0.5, -1.0, -9.0])
+    E, T, V, P, L, p_sizes, L_sizes = [], [], [], [], [], [], []
+    for k in range(2):
+        Tk = Vk = 0.0
+        Pk, Lk = np.zeros(3), np.zeros(3)
+        ps = ls = 0.0
+        for i in range(2):
+            r, v, R, w = tr.position[k, i], tr.velocity[k, i], tr.R_A_O[k, i], tr.omega[k, i]
+            Tk += 0.5 * m[i] * v @ v + 0.5 * J[i] * w @ w
+            Vk -= m[i] * g @ r
+            Pk += m[i] * v
+            spin = R.T @ (J[i] * w)  # J ω in space components
+            Lk += np.cross(r, m[i] * v) + spin
+            ps += m[i] * np.linalg.norm(v)
+            ls += np.linalg.norm(r) * m[i] * np.linalg.norm(v) + np.linalg.norm(spin)
+        T.append(Tk)
+        V.append(Vk)
+        E.append(Tk + Vk)
+        P.append(Pk)
+        L.append(Lk)
+        p_sizes.append(ps)
+        L_sizes.append(ls)
+    values, scale = inv["E"]
+    np.testing.assert_allclose(values, E, rtol=CLOSED_ATOL, atol=0)
+    assert scale == pytest.approx(max(np.abs(T).max(), np.abs(V).max()), rel=CLOSED_ATOL)
+    values, scale = inv["p"]
+    np.testing.assert_allclose(values, P, rtol=CLOSED_ATOL, atol=0)
+    # the bodies' spin momentum m · size · max |ω| is smaller here than Σ m |v|
+    assert scale == pytest.approx(max(p_sizes), rel=CLOSED_ATOL)
+    values, scale = inv["L"]
+    np.testing.assert_allclose(values, L, rtol=CLOSED_ATOL, atol=CLOSED_ATOL)
+    assert scale == pytest.approx(max(L_sizes), rel=CLOSED_ATOL)
+
+
+def test_a_trajectorys_own_masses_make_its_kinetic_energy():
+    s = _two_bodies("free_top")
+    tr = _made_up(masses=np.array([[1.0, 3.0], [0.5, 2.0]]))
+    E, _ = invariants(s, tr)["E"]
+    # at t = 1 the masses are 0.5 and 2: ½ 0.5 |v1|² + ½ 2 |v2|² + the spins (no gravity)
+    v1, v2 = tr.velocity[1]
+    spins = (
+        0.5 * 0.004 * tr.omega[1, 0] @ tr.omega[1, 0]
+        + 0.5 * 0.027 * tr.omega[1, 1] @ tr.omega[1, 1]
+    )
+    assert E[1] == pytest.approx(0.25 * v1 @ v1 + v2 @ v2 + spins, rel=CLOSED_ATOL)
+
+
+def test_the_momentum_scale_of_bodies_that_only_turn_is_their_points_momentum():
+    # a free top at rest in translation: the scale is m · size · max |ω| with the size the
+    # larger of √(max J/m) and |shape dims|: for the 1 kg box, |(√7.5, √4.5, √1.5)| = √13.5
+    s = SCENARIOS["free_top_axis1"]
+    tr = reference(s).trajectory
+    _, scale = invariants(s, tr)["p"]
+    w_max = np.linalg.norm(tr.omega[:, 0], axis=-1).max()
+    assert scale == pytest.approx(math.sqrt(13.5) * w_max, rel=CLOSED_ATOL)
+    np.testing.assert_allclose(body_sizes(s), [math.sqrt(13.5)], rtol=4 * EPS, atol=0)
+    # without a shape, the radius of gyration √(max J/m); a shape smaller than that: the same
+    r = SCENARIOS["rocket"]
+    np.testing.assert_allclose(body_sizes(r), [math.sqrt(0.1 / 10.0)], rtol=4 * EPS, atol=0)
+    tiny = dataclasses.replace(r.bodies[0], shape=Shape("sphere", (0.01,)))
+    np.testing.assert_allclose(
+        body_sizes(dataclasses.replace(r, bodies=(tiny,))), [0.1], rtol=4 * EPS, atol=0
+    )
+
+
+def test_nothing_moving_has_invariant_scales_of_1e_minus_300_not_zero():
+    s = _two_bodies("free_top")
+    t = np.array([0.0, 1.0])
+    still = Trajectory(
+        t,
+        np.zeros((2, 2, 3)),
+        np.zeros((2, 2, 3)),
+        np.broadcast_to(np.eye(3), (2, 2, 3, 3)),
+        np.zeros((2, 2, 3)),
+    )
+    inv = invariants(s, still)
+    assert [inv[k][1] for k in ("E", "p", "L")] == [1e-300, 1e-300, 1e-300]
+    h = SCENARIOS["heavy_top"]
+    one = Trajectory(
+        t,
+        np.zeros((2, 1, 3)),
+        np.zeros((2, 1, 3)),
+        np.broadcast_to(np.eye(3), (2, 1, 3, 3)),
+        np.zeros((2, 1, 3)),
+    )
+    inv = invariants(h, one)
+    assert inv["L_3"][1] == 1e-300
+    assert inv["L_z"][1] == 1e-300
+
+
+def test_heavy_top_invariants_are_about_the_pivots_anchor():
+    s = dataclasses.replace(
+        SCENARIOS["heavy_top"], pivot=Pivot(0, (0.0, 0.0, -0.1), (1.0, 2.0, 0.0))
+    )
+    t = np.array([0.0])
+    # G at (1, 2.5, 0) moving along x at 2 m/s, body axes = space axes, ω = (0, 1, 4)
+    tr = Trajectory(
+        t,
+        np.array([[[1.0, 2.5, 0.0]]]),
+        np.array([[[2.0, 0.0, 0.0]]]),
+        np.eye(3)[None, None],
+        np.array([[[0.0, 1.0, 4.0]]]),
+    )
+    inv = invariants(s, tr)
+    # L_z about the anchor: (r − a) × m v = (0, 0.5, 0) × (2, 0, 0) = (0, 0, −1), plus J3 ω3 = 2
+    assert inv["L_z"][0][0] == pytest.approx(-1.0 + 2.0, rel=CLOSED_ATOL)
+    assert inv["L_3"][0][0] == 0.5 * 4.0
+    assert inv["L_3"][1] == 2.0
+    # E = ½ m v² + ½ (0.3·1 + 0.5·16) − m g·r = 2 + 4.15 + 0 (z = 0)
+    assert inv["E"][0][0] == pytest.approx(2.0 + 4.15, rel=CLOSED_ATOL)
+
+
+def test_the_parabolas_and_bounces_momentum_invariants_are_the_parts_along_the_ground():
+    tr = _made_up()
+    P = 1.0 * tr.velocity[:, 0] + 3.0 * tr.velocity[:, 1]
+    inv = invariants(_two_bodies("parabola"), tr)
+    np.testing.assert_allclose(inv["p_horizontal"][0], P[:, :2], rtol=CLOSED_ATOL, atol=0)
+    n = np.array([0.0, 0.6, 0.8])
+    s = _two_bodies("bounce", ground=Ground(0.5, tuple(n)))
+    got, _ = invariants(s, tr)["p_tangential"]
+    np.testing.assert_allclose(got, P - np.outer(P @ n, n), rtol=0, atol=CLOSED_ATOL)
+    assert invariants(SCENARIOS["rocket"], reference(SCENARIOS["rocket"]).trajectory) == {}
+
+
+# --------------------------------------------------------------------------- helpers
+
+
+def test_crossings_are_the_roots_of_a_sampled_polynomial_to_rounding():
+    # y = (t − 0.3)(t − 1.1)(t − 2.05): a cubic, reproduced exactly by the degree-5 local
+    # polynomial; rising at 0.3 and 2.05, falling at 1.1
+    t = np.arange(0, 41) / 16
+    y = (t - 0.3) * (t - 1.1) * (t - 2.05)
+    np.testing.assert_allclose(crossings(t, y), [0.3, 1.1, 2.05], rtol=0, atol=2**4 * EPS)
+    np.testing.assert_allclose(crossings(t, y, direction=1), [0.3, 2.05], rtol=0, atol=2**4 * EPS)
+    np.testing.assert_allclose(crossings(t, y, direction=-1), [1.1], rtol=0, atol=2**4 * EPS)
+    # a degree of 1 keeps the secant through the two samples: not the root of the cubic
+    lin = crossings(t, y, deg=1)
+    assert np.abs(lin - [0.3, 1.1, 2.05]).max() > 1e-4
+    # the secant's root is exact for a line, whatever the degree
+    np.testing.assert_allclose(crossings(t, 0.7 - t), [0.7], rtol=0, atol=4 * EPS)
+
+
+def test_a_zero_at_a_sample_counts_once_on_the_side_it_ends():
+    t = np.arange(0, 9) / 4
+    y = t - 1.0  # zero at the sample t = 1: rises through it once
+    np.testing.assert_allclose(crossings(t, y), [1.0], rtol=0, atol=4 * EPS)
+    np.testing.assert_allclose(crossings(t, -y), [1.0], rtol=0, atol=4 * EPS)
+    assert crossings(t, -y, direction=1).size == 0
+    # touching zero from above at a sample and going back up: a fall into 0, no rise
+    np.testing.assert_allclose(crossings(t, (t - 1.0) ** 2), [1.0], rtol=0, atol=4 * EPS)
+    assert crossings(t, (t - 1.0) ** 2, direction=1).size == 0
+    assert crossings(t, t + 1.0).size == 0
+
+
+def test_interpolate_reproduces_a_polynomial_of_its_degree_anywhere_in_the_samples():
+    t = np.arange(0, 33) / 8
+    y = 1.0 - 2.0 * t + 0.5 * t**3 - 0.125 * t**5
+
+    def p(x):
+        return 1.0 - 2.0 * x + 0.5 * x**3 - 0.125 * x**5
+
+    for tau in (0.0, 0.01, 1.3, 2.0, 3.99, 4.0):
+        assert interpolate(t, y, tau) == pytest.approx(p(tau), rel=2**8 * EPS, abs=2**8 * EPS)
+    # degree 2 through three samples: exact for a parabola, not for the quintic
+    q = 3.0 - t + 0.25 * t**2
+    assert interpolate(t, q, 2.3, deg=2) == pytest.approx(3.0 - 2.3 + 0.25 * 2.3**2, rel=2**4 * EPS)
+    assert abs(interpolate(t, y, 2.3, deg=2) - p(2.3)) > 1e-4
+
+
+def test_interpolate_uses_the_samples_next_to_the_time():
+    # sin 3t at 64 samples per unit: the local quintic's remainder is 3⁶/6! |Π (t − t_i)|
+    # ≤ 3.5 h⁶ = 5e-11 inside, ~1e-10 at the ends (the window held inside the samples);
+    # 2^-33 = 1.2e-10 bounds both, a window away from τ does far worse
+    t = np.arange(0, 513) / 64
+    y = np.sin(3.0 * t)
+    for tau in (0.003, 0.03, 2.51, 4.0, 7.97, 7.999):
+        assert abs(interpolate(t, y, tau) - math.sin(3.0 * tau)) < 2**-33, tau
+    z = crossings(t, y)
+    np.testing.assert_allclose(z, np.arange(1, 8) * math.pi / 3, rtol=0, atol=2**-33)
