@@ -1055,6 +1055,24 @@ def test_the_compensated_sums_run_block_by_block_over_a_long_particle_axis_of_a_
             "magnitude",
             id="v2-element",
         ),
+        pytest.param(
+            lambda: mp.kinetic_energy_decomposition(
+                [1.0, 1e-300], [[1.7e308, 0, 0], [-1.7e308, 0, 0]]
+            ),
+            "the offsets r - v_G is beyond float64 (index (1, 0)): the exact result exceeds "
+            "1.8e308 in magnitude",
+            id="T-decomposition-v_G",
+        ),
+        pytest.param(
+            # the helper on its own (every public caller also masks numpy's warnings): it
+            # names the offset and raises, without a RuntimeWarning of its own
+            lambda: mp._offsets(
+                np.array([[1.0, 0, 0], [1.7e308, 0, 0]]), np.array([-1.7e308, 0, 0]), "about"
+            ),
+            "the offsets r - about is beyond float64 (index (1, 0)): the exact result exceeds "
+            "1.8e308 in magnitude",
+            id="offsets-helper",
+        ),
     ],
 )
 def test_an_overflow_message_points_at_the_first_element_beyond_float64(call, message):
