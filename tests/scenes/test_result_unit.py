@@ -1,4 +1,5 @@
-"""Unit tests of :mod:`mechanics.scenes.result` on hand-built results (issue 16).
+"""Unit tests of :mod:`mechanics.scenes.result` and :mod:`mechanics.scenes.trajectory` on
+hand-built results (issue 16).
 
 Every object here is built by hand (no scene is simulated: ``run_scene`` gets a
 hand-built trajectory in place of :func:`simulate`), so each expected number is a
@@ -16,6 +17,7 @@ import numpy as np
 import pytest
 
 from mechanics.scenes import result as result_module
+from mechanics.scenes import trajectory as trajectory_module
 from mechanics.scenes.result import (
     CONSERVED_RTOL,
     CONSERVED_RTOL_INTEGRATED,
@@ -31,7 +33,15 @@ from mechanics.scenes.result import (
     self_checks,
 )
 from mechanics.scenes.spec import EffectSpec, Scene
-from mechanics.scenes.trajectory import Event, Trajectory
+from mechanics.scenes.trajectory import (
+    Event,
+    Trajectory,
+    dense_from_segments,
+    energy_scale,
+    sample_dense,
+    sample_segments,
+    vectorized,
+)
 
 EPS = float(np.finfo(float).eps)
 #: one division (rtol / 1e-12 is rounded once, times a power of two exactly)
@@ -806,3 +816,109 @@ def test_two_body_impacts_with_zero_scales_divide_by_the_floor() -> None:
         ("momentum across two-body impacts (2 impacts)", over_floor),
         ("angular momentum across two-body impacts (2 impacts)", over_floor),
     ]
+
+
+# ---------------------------------------------------------------- the trajectory
+
+
+def test_eps_is_float64s() -> None:
+    assert trajectory_module.EPS == 2.0**-52
+    assert type(trajectory_module.EPS) is float
+
+
+def test_a_quantity_is_checked_between_events_in_time_order() -> None:
+    tr = trajectory(events=[Event(2.0, "impact"), Event(0.5, "impact")])
+    assert tr.segments("E") == [(0.0, 0.5), (0.5, 2.0), (2.0, math.inf)]
+    assert tr.segments() == [(0.0, 0.5), (0.5, 2.0), (2.0, math.inf)]
+    assert trajectory().segments("E") == [(0.0, math.inf)]
+
+
+def test_a_quantity_the_events_keep_is_checked_over_the_whole_run() -> None:
+    tr = trajectory(events=[Event(1.0, "impact")], across=frozenset({"p_x"}))
+    assert tr.segments("p_x") == [(0.0, math.inf)]
+    assert tr.segments("E") == [(0.0, 1.0), (1.0, math.inf)]
+
+
+def test_each_event_has_its_own_details() -> None:
+    a, b = Event(1.0, "impact"), Event(2.0, "impact")
+    a.detail["x"] = 1
+    assert b.detail == {}
+
+
+def pieces():
+    """Three pieces [0, 1), [1, 2), [2, 3] whose dense functions say which they are."""
+    return [(float(k), float(k + 1), lambda t, k=k: np.array([k, 10.0 * t])) for k in range(3)]
+
+
+def test_a_dense_function_from_pieces_uses_the_piece_a_time_falls_in() -> None:
+    at = dense_from_segments(pieces())
+    # before the first piece: the first; at a piece's start: that piece; past the end: the last
+    for t, k in [(-1.0, 0), (0.0, 0), (0.5, 0), (1.0, 1), (1.999, 1), (2.0, 2), (3.0, 2), (7.0, 2)]:
+        np.testing.assert_array_equal(at(t), [k, 10.0 * t])
+
+
+def test_vectorized_marks_a_function_and_returns_it() -> None:
+    def f(t):
+        return t
+
+    assert vectorized(f) is f
+    assert f.vectorized is True
+
+
+def test_sampling_a_dense_function_calls_a_vectorised_one_once() -> None:
+    calls = []
+
+    def dense(t):
+        calls.append(np.array(t, copy=True))
+        return np.stack([t, 2 * t], axis=-1)
+
+    t = np.array([0.0, 0.5, 1.0])
+    out = sample_dense(vectorized(dense), t)
+    np.testing.assert_array_equal(out, [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]])
+    assert out.dtype == float
+    assert len(calls) == 1
+    np.testing.assert_array_equal(calls[0], t)
+
+
+def test_sampling_a_scalar_dense_function_calls_it_per_time() -> None:
+    calls = []
+
+    def dense(t):
+        calls.append(t)
+        return [t, 2 * t]
+
+    out = sample_dense(dense, np.array([0.0, 0.5, 1.0]))
+    np.testing.assert_array_equal(out, [[0.0, 0.0], [0.5, 1.0], [1.0, 2.0]])
+    assert calls == [0.0, 0.5, 1.0]
+
+
+def test_sampling_pieces_takes_each_sample_from_its_piece_and_the_end_from_the_last() -> None:
+    calls = []
+
+    def piece(k):
+        def dense(t):
+            calls.append((k, np.array(t, copy=True)))
+            return np.stack([np.full_like(t, k), t, -t], axis=-1)
+
+        return vectorized(dense)
+
+    segs = [(0.0, 1.0, piece(0)), (1.0, 2.0, piece(1))]
+    t = np.array([0.0, 0.5, 1.0, 1.5, 2.0])
+    out = sample_segments(segs, t)
+    np.testing.assert_array_equal(
+        out, [[0, 0.0, -0.0], [0, 0.5, -0.5], [1, 1.0, -1.0], [1, 1.5, -1.5], [1, 2.0, -2.0]]
+    )
+    assert [k for k, _ in calls] == [0, 1]  # one call per piece
+    np.testing.assert_array_equal(calls[0][1], [0.0, 0.5])
+    np.testing.assert_array_equal(calls[1][1], [1.0, 1.5, 2.0])
+    # a time before the first piece falls in it; an unvectorised piece is sampled per time
+    segs = [(0.0, 1.0, lambda tt: [tt, 1.0]), (1.0, 2.0, lambda tt: [tt, 2.0])]
+    np.testing.assert_array_equal(sample_segments(segs, [-0.5, 1.25]), [[-0.5, 1.0], [1.25, 2.0]])
+
+
+def test_the_energy_scale_is_the_largest_kinetic_plus_the_largest_potential_energy() -> None:
+    # T = (1, 3, 2), E = (−1, 0, 0.5): V = E − T = (−2, −3, −1.5); 3 + 3
+    assert energy_scale(np.array([1.0, 3.0, 2.0]), [-1.0, 0.0, 0.5]) == 6.0
+    # T = (0.5, 0.25), E = (4.5, 0.25): V = (4, 0); 0.5 + 4
+    assert energy_scale(np.array([0.5, 0.25]), [4.5, 0.25]) == 4.5
+    assert type(energy_scale(np.array([1.0]), [1.0])) is float
