@@ -979,3 +979,11 @@ def test_each_effect_holds_its_spec_and_its_scene() -> None:
         assert e.fields is spec.fields
         assert e.ctx.index == {"a": 0, "b": 1}
         assert e.ctx.scene is eng.scene
+
+
+def test_buoyancy_adds_its_lift_to_the_other_loads() -> None:
+    (gravity, e), _ = build([SPHERE, BOX], WATER)
+    s = floating(0.5)  # wholly immersed: lift ρ g 4π a³/3 = 6 π/6 = π
+    out = loads_of(gravity, s, 2)  # the weight m g = 4 down
+    e.loads(0.0, s, out)
+    np.testing.assert_allclose(out.F, [[0, 0, math.pi - 4.0], [0, 0, -6.0]], rtol=FORCE_RTOL)
