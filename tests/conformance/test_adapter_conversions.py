@@ -735,3 +735,210 @@ def test_mujoco_refuses_to_run_a_rocket_saying_why():
     with pytest.raises(MechanicsValueError) as info:
         MuJoCoAdapter().run(s, 0.125)
     assert str(info.value) == "scenario 'made_up': MuJoCo cannot run it: " + common_unsupported(s)
+
+
+# --------------------------------------------------------------------------- PyBullet
+
+
+def _pybullet():
+    with quiet_stdout():
+        return pytest.importorskip(
+            "pybullet", reason="PyBullet is not installed: pip install 'bodycheck[pybullet]'"
+        )
+
+
+def test_pybullet_quaternions_are_scalar_last():
+    from mechanics.conformance.adapters.pybullet import _R_A_O, _xyzw
+
+    assert _xyzw(Q_Z_WXYZ) == [0.0, 0.0, math.sin(0.4), math.cos(0.4)]
+    assert _xyzw([1.0, 2.0, 3.0, 4.0]) == [2.0, 3.0, 4.0, 1.0]
+    np.testing.assert_allclose(
+        _R_A_O([0.0, 0.0, math.sin(0.4), math.cos(0.4)]), R_Z, atol=ROUNDTRIP_ATOL, rtol=0
+    )
+    np.testing.assert_array_equal(_R_A_O([0.0, 0.0, 0.0, 1.0]), np.eye(3))
+
+
+def test_pybullet_per_body_restitutions_whose_products_give_each_contact():
+    from mechanics.conformance.adapters.pybullet import _restitutions
+
+    shaped, bare = _ball(), _ball(name="bare", shape=None)
+    # the ground's e on every body with a shape (the plane gets 1), 1 on the others
+    assert _restitutions(_scenario([shaped, bare], ground=Ground(0.6))) == ([0.6, 1.0], None)
+    # a pair alone: √e each
+    r, why = _restitutions(_scenario([shaped, shaped], pair_restitution=((0, 1, 0.25),)))
+    assert (r, why) == ([0.5, 0.5], None)
+    # a third body paired with one already set: e / r
+    r, why = _restitutions(_scenario([shaped] * 3, pair_restitution=((0, 1, 0.25), (1, 2, 0.125))))
+    assert why is None
+    assert r == pytest.approx([0.5, 0.5, 0.25], rel=4 * EPS)
+    r, why = _restitutions(_scenario([shaped] * 3, pair_restitution=((0, 1, 0.25), (2, 1, 0.125))))
+    assert why is None
+    assert r == pytest.approx([0.5, 0.5, 0.25], rel=4 * EPS)
+    # a partner of restitution 0 makes any e; the body then takes 0
+    r, why = _restitutions(
+        _scenario([shaped, bare, shaped], ground=Ground(0.0), pair_restitution=((0, 1, 0.0),))
+    )
+    assert (r, why) == ([0.0, 0.0, 0.0], None)
+    r, why = _restitutions(
+        _scenario([bare, shaped], ground=Ground(0.0), pair_restitution=((0, 1, 0.0),))
+    )
+    assert (r, why) == ([0.0, 0.0], None)
+    # no per-body values: the ground's 0.5 on both and a pair of 0.9
+    r, why = _restitutions(
+        _scenario([shaped, shaped], ground=Ground(0.5), pair_restitution=((0, 1, 0.9),))
+    )
+    assert r is None
+    assert why == (
+        "PyBullet restitutes a contact with the product of the two bodies' coefficients; no "
+        "per-body values give pair (0, 1) its e = 0.9 together with the scenario's other contacts"
+    )
+    # e / r above 1: refused too
+    r, why = _restitutions(
+        _scenario([shaped, bare], ground=Ground(0.25), pair_restitution=((0, 1, 0.5),))
+    )
+    assert r is None
+    assert "pair (0, 1) its e = 0.5" in why
+
+
+def test_pybullet_says_why_it_cannot_run_a_scenario():
+    _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    a = PyBulletAdapter()
+    rocket = _scenario([_box()], thrust=Thrust(0, 0.1, 10.0, 1.0))
+    assert a.supports(rocket) == common_unsupported(rocket)
+    clash = _scenario([_ball(), _ball()], ground=Ground(0.5), pair_restitution=((0, 1, 0.9),))
+    assert a.supports(clash).startswith("PyBullet restitutes a contact with the product")
+    assert a.supports(_scenario([_ball()], ground=Ground(0.5))) is None
+    with pytest.raises(MechanicsValueError) as info:
+        a.run(clash, 0.125)
+    assert str(info.value) == "scenario 'made_up': PyBullet cannot run it: " + a.supports(clash)
+    with pytest.raises(MechanicsValueError) as info:
+        a.build(clash, 0.125)
+    assert str(info.value) == "scenario 'made_up': " + a.supports(clash)
+
+
+def test_pybullet_adapter_names_itself_and_its_variants():
+    _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter, pybullet_version, variants
+
+    v = pybullet_version()
+    assert v[0].isdigit()
+    assert (
+        PyBulletAdapter().name == f"PyBullet {v} default (one step, 50 iterations), tuned contact"
+    )
+    a = PyBulletAdapter("fine", "default")
+    assert a.name == f"PyBullet {v} fine (8 substeps, 200 iterations), default contact"
+    assert repr(a) == "PyBulletAdapter('fine', 'default')"
+    assert a.takes_step is True
+    assert [(x.variant, x.contact) for x in variants()] == [
+        ("default", "default"),
+        ("default", "tuned"),
+        ("fine", "default"),
+        ("fine", "tuned"),
+    ]
+
+
+def test_pybullet_holds_the_attitude_the_space_omega_and_no_damping():
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    w = np.array([0.3, -0.2, 1.1])
+    s = _scenario(
+        [
+            _box(
+                R_A_O=_rows(R_Z),
+                omega=tuple(w),
+                position=(1.0, 2.0, 3.0),
+                velocity=(0.5, 0.0, -1.0),
+            )
+        ],
+        ground=Ground(0.5),
+    )
+    a = PyBulletAdapter("default", "tuned")
+    cid, ids = a.build(s, 0.01)
+    try:
+        ((uid, link),) = ids
+        assert link == -1
+        x, q = p.getBasePositionAndOrientation(uid, physicsClientId=cid)
+        np.testing.assert_allclose(x, [1.0, 2.0, 3.0], atol=ROUNDTRIP_ATOL, rtol=0)
+        np.testing.assert_allclose(
+            q, [0.0, 0.0, math.sin(0.4), math.cos(0.4)], atol=ROUNDTRIP_ATOL, rtol=0
+        )
+        # PyBullet's matrix, row-major, has the body axes as columns: (^A R^O)ᵀ
+        M = np.array(p.getMatrixFromQuaternion(q)).reshape(3, 3)
+        np.testing.assert_allclose(M, R_Z.T, atol=ROUNDTRIP_ATOL, rtol=0)
+        v, w_O = p.getBaseVelocity(uid, physicsClientId=cid)
+        np.testing.assert_allclose(w_O, R_Z.T @ w, atol=ROUNDTRIP_ATOL, rtol=0)
+        np.testing.assert_allclose(v, [0.5, 0.0, -1.0], atol=ROUNDTRIP_ATOL, rtol=0)
+        info = p.getDynamicsInfo(uid, -1, physicsClientId=cid)
+        assert info[0] == 2.0
+        assert info[1] == 0.0  # lateral friction
+        np.testing.assert_array_equal(info[2], [1.0, 2.0, 2.5])
+        assert info[5] == 0.5  # the ground's e on the body
+        assert info[6] == info[7] == 0.0  # rolling and spinning friction
+        pos, vel, R, om = a._read(cid, ids)
+        np.testing.assert_allclose(R[0], R_Z, atol=ROUNDTRIP_ATOL, rtol=0)
+        np.testing.assert_allclose(om[0], w, atol=ROUNDTRIP_ATOL, rtol=0)
+        np.testing.assert_allclose(pos[0], [1.0, 2.0, 3.0], atol=ROUNDTRIP_ATOL, rtol=0)
+        np.testing.assert_allclose(vel[0], [0.5, 0.0, -1.0], atol=ROUNDTRIP_ATOL, rtol=0)
+    finally:
+        p.disconnect(cid)
+
+
+def test_pybullet_free_fall_and_principal_spin_by_semi_implicit_euler():
+    _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    # v_{n+1} = v_n + g h, x_{n+1} = x_n + h v_{n+1}: after n steps v0 + g n h and
+    # x0 + v0 n h + g h² n(n + 1)/2; no damping: the spin about axis 3 stays 2 rad/s
+    h = 2.0**-5
+    s = _scenario(
+        [
+            _box(
+                R_A_O=_rows(R_GENERAL),
+                omega=(0.0, 0.0, 2.0),
+                position=(1.0, 2.0, 3.0),
+                velocity=(0.5, 0.0, 4.0),
+            )
+        ],
+        gravity=(0.0, 0.0, -9.81),
+    )
+    tr = PyBulletAdapter().run(s, h)
+    n = np.array([0, 4, 8])
+    np.testing.assert_allclose(tr.velocity[:, 0, 2], 4.0 - G * n * h, atol=STEP_ATOL, rtol=0)
+    np.testing.assert_allclose(tr.velocity[:, 0, :2], [[0.5, 0.0]] * 3, atol=STEP_ATOL, rtol=0)
+    np.testing.assert_allclose(
+        tr.position[:, 0, 2],
+        3.0 + 4.0 * n * h - G * h * h * n * (n + 1) / 2,
+        atol=STEP_ATOL,
+        rtol=0,
+    )
+    np.testing.assert_allclose(tr.omega[:, 0], [[0.0, 0.0, 2.0]] * 3, atol=2**4 * STEP_ATOL, rtol=0)
+    for k, tk in enumerate(n * h):
+        np.testing.assert_allclose(
+            tr.R_A_O[k, 0], _R3(2.0 * tk) @ R_GENERAL, atol=2**4 * STEP_ATOL, rtol=0
+        )
+
+
+def test_pybullet_pivoted_link_starts_with_its_body_omega():
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    w = np.array([0.0, 0.5, 2.0])
+    s = _scenario(
+        [_box(R_A_O=_rows(R_GENERAL), omega=tuple(w))],
+        pivot=Pivot(0, (0.0, 0.0, -0.25), (1.0, 2.0, 3.0)),
+    )
+    a = PyBulletAdapter()
+    cid, ids = a.build(s, 0.01)
+    try:
+        assert ids[0][1] == 0
+        pos, vel, R, om = a._read(cid, ids)
+    finally:
+        p.disconnect(cid)
+    arm = R_GENERAL.T @ [0.0, 0.0, 0.25]
+    np.testing.assert_allclose(R[0], R_GENERAL, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(om[0], w, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(pos[0], np.array([1.0, 2.0, 3.0]) + arm, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(vel[0], np.cross(R_GENERAL.T @ w, arm), atol=ROUNDTRIP_ATOL, rtol=0)
