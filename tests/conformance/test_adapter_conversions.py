@@ -942,3 +942,258 @@ def test_pybullet_pivoted_link_starts_with_its_body_omega():
     np.testing.assert_allclose(om[0], w, atol=ROUNDTRIP_ATOL, rtol=0)
     np.testing.assert_allclose(pos[0], np.array([1.0, 2.0, 3.0]) + arm, atol=ROUNDTRIP_ATOL, rtol=0)
     np.testing.assert_allclose(vel[0], np.cross(R_GENERAL.T @ w, arm), atol=ROUNDTRIP_ATOL, rtol=0)
+
+
+# --------------------------------------------------------------------------- Drake
+
+
+def _drake():
+    return pytest.importorskip(
+        "pydrake.all", reason="Drake is not installed: pip install 'bodycheck[drake]'"
+    )
+
+
+def _hc_law(c, e):
+    """ln((1 + c)/(1 − c e)) − c (1 + e): zero at the Hunt–Crossley c of restitution e."""
+    return math.log((1 + c) / (1 - c * e)) - c * (1 + e)
+
+
+def test_hunt_crossley_dissipation_solves_its_law_and_scales_with_the_speed():
+    from mechanics.conformance.adapters.drake import E_FLOOR, hunt_crossley_dissipation
+
+    for e in (0.2, 0.5, 0.8, 0.999):
+        c = hunt_crossley_dissipation(e, 1.0)
+        assert 0 < c < 1 / e
+        # bisected to the last bit: the law changes sign across c's neighbours (to the
+        # rounding of log((1 + c)/(1 − c e)), steep near c = 1/e: 1 − c e = 0.016 at e = 0.2)
+        assert _hc_law(np.nextafter(c, 0.0), e) <= 2**8 * EPS
+        assert _hc_law(np.nextafter(c, np.inf), e) >= -(2**8) * EPS
+        assert abs(_hc_law(c, e)) <= 2**8 * EPS
+        assert hunt_crossley_dissipation(e, 4.0) == pytest.approx(c / 4.0, rel=2 * EPS)
+    # near e = 1 the first order c = (3/2)(1 − e)
+    # (second order: a relative δ = 2^-10)
+    assert hunt_crossley_dissipation(1 - 2**-10, 1.0) == pytest.approx(1.5 * 2**-10, rel=2**-8)
+    assert hunt_crossley_dissipation(1.0, 3.0) == 0.0
+    assert hunt_crossley_dissipation(0.0, 1.0) == hunt_crossley_dissipation(E_FLOOR, 1.0)
+    assert E_FLOOR == 2.0**-20
+
+
+def test_hunt_crossley_dissipation_refuses_by_name():
+    from mechanics.conformance.adapters.drake import hunt_crossley_dissipation
+    from mechanics.errors import ResultOverflowError
+
+    with pytest.raises(
+        RestitutionRangeError,
+        match=r"^e \(a coefficient of restitution\) must lie in \[0, 1\]; got 1.5$",
+    ):
+        hunt_crossley_dissipation(1.5, 1.0)
+    with pytest.raises(MechanicsValueError, match=r"\bv_ref\b"):
+        hunt_crossley_dissipation(0.5, 0.0)
+    with pytest.raises(ResultOverflowError) as info:
+        hunt_crossley_dissipation(0.5, 5e-324)
+    assert str(info.value) == "hunt_crossley_dissipation: d = c/v_ref overflows for v_ref = 5e-324"
+
+
+def test_support_distance_of_each_shape_along_a_normal():
+    from mechanics.conformance.adapters.drake import _support_distance
+
+    n = np.array([0.0, 0.0, 1.0])
+    assert _support_distance(Shape("sphere", (0.3,)), R_GENERAL, n) == 0.3
+    # a box reaches Σ |n_i| a_i with n in body components (R n)
+    nb = R_GENERAL @ n
+    box = Shape("box", (0.5, 0.4, 0.3))
+    assert _support_distance(box, R_GENERAL, n) == pytest.approx(
+        np.abs(nb) @ [0.5, 0.4, 0.3], rel=4 * EPS
+    )
+    assert _support_distance(box, np.eye(3), n) == 0.3
+    assert _support_distance(box, np.eye(3), np.array([1.0, 0.0, 0.0])) == 0.5
+    # a cylinder: the rim r √(1 − n3²) plus the half length h |n3|
+    cyl = Shape("cylinder", (0.2, 0.7))
+    assert _support_distance(cyl, R_GENERAL, n) == pytest.approx(
+        0.2 * math.sqrt(1 - nb[2] ** 2) + 0.7 * abs(nb[2]), rel=4 * EPS
+    )
+    assert _support_distance(cyl, np.eye(3), n) == 0.7
+    assert _support_distance(cyl, np.eye(3), np.array([0.0, 1.0, 0.0])) == 0.2
+
+
+def test_approach_speeds_of_a_fall_a_throw_and_a_pair():
+    from mechanics.conformance.adapters.drake import _approach_speeds
+
+    # a ball whose lowest point is 1 m above the ground z = 0.5, at rest: √(2 g · 1)
+    fall = _scenario(
+        [_ball(position=(0.0, 0.0, 1.6))],
+        gravity=(0.0, 0.0, -9.81),
+        ground=Ground(0.7, (0.0, 0.0, 1.0), 0.5),
+    )
+    ((i, j, e, v),) = _approach_speeds(fall)
+    assert (i, j, e) == (0, -1, 0.7)
+    assert v == pytest.approx(math.sqrt(2 * G), rel=4 * EPS)
+    # thrown down at 3 m/s without gravity: 3; thrown up: never arrives, the 1 m/s default
+    down = _scenario(
+        [_ball(position=(0.0, 0.0, 2.0), velocity=(1.0, 0.0, -3.0))], ground=Ground(0.7)
+    )
+    assert _approach_speeds(down) == [(0, -1, 0.7, 3.0)]
+    up = _scenario([_ball(position=(0.0, 0.0, 2.0), velocity=(0.0, 0.0, 3.0))], ground=Ground(0.7))
+    assert _approach_speeds(up) == [(0, -1, 0.7, 1.0)]
+    # a normal not of unit length and a box, tilted: the gap to its lowest point
+    box = _box(position=(0.0, 0.0, 2.0))
+    tilted = _scenario([box], gravity=(0.0, 0.0, -4.0), ground=Ground(0.5, (0.0, 0.0, 2.0), 0.0))
+    ((_, _, _, v),) = _approach_speeds(tilted)
+    assert v == pytest.approx(math.sqrt(2 * 4.0 * (2.0 - 0.3)), rel=4 * EPS)
+    # shapeless and pivoted bodies do not touch the ground; a pair: the relative speed
+    two = _scenario(
+        [
+            _ball(velocity=(1.0, 0.0, 0.0)),
+            _ball(position=(1.0, 0.0, 0.0), velocity=(-2.0, 4.0, 0.0)),
+            _ball(shape=None),
+        ],
+        ground=Ground(0.5),
+        pair_restitution=((0, 1, 0.9),),
+        pivot=Pivot(1, (0.0, 0.0, -0.1)),
+    )
+    assert _approach_speeds(two) == [(0, -1, 0.5, 1.0), (0, 1, 0.9, 5.0)]
+    still = _scenario([_ball(), _ball(position=(1.0, 0.0, 0.0))], pair_restitution=((0, 1, 0.9),))
+    assert _approach_speeds(still) == [(0, 1, 0.9, 1.0)]
+
+
+def test_frame_with_axis_is_right_handed_with_the_axis_in_its_place():
+    from mechanics.conformance.adapters.drake import _frame_with_axis
+
+    for a in ([0.0, 0.0, 2.0], [1.0, -2.0, 0.5], [3.0, 0.0, 0.0]):
+        for k in range(3):
+            F = _frame_with_axis(np.array(a), k)
+            np.testing.assert_allclose(
+                F[:, k], np.array(a) / np.linalg.norm(a), atol=4 * EPS, rtol=0
+            )
+            np.testing.assert_allclose(F.T @ F, np.eye(3), atol=4 * EPS, rtol=0)
+            assert np.linalg.det(F) == pytest.approx(1.0, abs=4 * EPS)
+
+
+def test_drake_refuses_a_pivot_line_along_gravity_and_names_itself():
+    _drake()
+    from mechanics.conformance.adapters.drake import DrakeAdapter, _version, variants
+
+    a = DrakeAdapter()
+    reason = (
+        "the pivot's line to G starts along gravity, where Drake's only ball joint "
+        "(BallRpyJoint, roll-pitch-yaw) is singular"
+    )
+    hanging = _scenario([_box()], gravity=(0.0, 0.0, -9.81), pivot=Pivot(0, (0.0, 0.0, 0.3)))
+    assert a.supports(hanging) == reason
+    # without gravity the joint's F z axis is space z: the same line is singular
+    assert a.supports(dataclasses.replace(hanging, gravity=(0.0, 0.0, 0.0))) == reason
+    # gravity along x: a line along z is fine, along x is not
+    sideways = dataclasses.replace(hanging, gravity=(-9.81, 0.0, 0.0))
+    assert a.supports(sideways) is None
+    assert a.supports(dataclasses.replace(sideways, pivot=Pivot(0, (0.3, 0.0, 0.0)))) == reason
+    # 2e-3 rad off the line: supported (the limit is 1e-3)
+    off = (0.3 * math.sin(2e-3), 0.0, -0.3 * math.cos(2e-3))
+    assert a.supports(dataclasses.replace(hanging, pivot=Pivot(0, off))) is None
+    # a pivot at G: no line
+    assert a.supports(dataclasses.replace(hanging, pivot=Pivot(0, (0.0, 0.0, 0.0)))) is None
+    rocket = _scenario([_box()], thrust=Thrust(0, 0.1, 10.0, 1.0), pivot=Pivot(0, (0.0, 0.0, 0.3)))
+    assert a.supports(rocket) == common_unsupported(rocket)
+    with pytest.raises(MechanicsValueError) as info:
+        a.run(hanging, 0.125)
+    assert str(info.value) == "scenario 'made_up': Drake cannot run it: " + reason
+    v = _version()
+    assert a.name == f"Drake {v} discrete (lagged), point contact"
+    c = DrakeAdapter("continuous", "hydroelastic")
+    assert c.name == f"Drake {v} continuous (RK3, accuracy 1e-08), hydroelastic contact"
+    assert (a.takes_step, c.takes_step) == (True, False)
+    assert repr(c) == "DrakeAdapter('continuous', 'hydroelastic')"
+    assert [(x.mode, x.contact) for x in variants()] == [
+        ("discrete", "point"),
+        ("discrete", "hydroelastic"),
+        ("continuous", "point"),
+        ("continuous", "hydroelastic"),
+    ]
+
+
+def test_drake_holds_the_attitude_and_world_omega_it_is_given():
+    _drake()
+    from mechanics.conformance.adapters.drake import DrakeAdapter
+
+    w = np.array([0.3, -0.2, 1.1])
+    s = _scenario(
+        [
+            _box(
+                R_A_O=_rows(R_Z),
+                omega=tuple(w),
+                position=(1.0, 2.0, 3.0),
+                velocity=(0.5, 0.0, -1.0),
+            )
+        ]
+    )
+    a = DrakeAdapter()
+    sim, plant, bodies = a.build(s, 0.125)
+    ctx = plant.GetMyContextFromRoot(sim.get_context())
+    X = plant.EvalBodyPoseInWorld(ctx, bodies[0])
+    # Drake's R_WB has the body axes as columns: (^A R^O)ᵀ; its velocity is in world
+    np.testing.assert_allclose(X.rotation().matrix(), R_Z.T, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(
+        X.rotation().ToQuaternion().wxyz(), Q_Z_WXYZ, atol=ROUNDTRIP_ATOL, rtol=0
+    )
+    np.testing.assert_allclose(X.translation(), [1.0, 2.0, 3.0], atol=ROUNDTRIP_ATOL, rtol=0)
+    V = plant.EvalBodySpatialVelocityInWorld(ctx, bodies[0])
+    np.testing.assert_allclose(V.rotational(), R_Z.T @ w, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(V.translational(), [0.5, 0.0, -1.0], atol=ROUNDTRIP_ATOL, rtol=0)
+    pos, vel, R, om = a._read(plant, ctx, bodies)
+    np.testing.assert_allclose(R[0], R_Z, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(om[0], w, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(pos[0], [1.0, 2.0, 3.0], atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(vel[0], [0.5, 0.0, -1.0], atol=ROUNDTRIP_ATOL, rtol=0)
+
+
+def test_drake_discrete_free_fall_and_the_work_of_a_continuous_run():
+    _drake()
+    from mechanics.conformance.adapters.drake import DrakeAdapter
+
+    # the discrete update v ← v + h g, x ← x + h v (the new v): after n steps
+    # v0 + g n h and x0 + v0 n h + g h² n(n + 1)/2
+    h = 2.0**-5
+    s = _scenario(
+        [_box(position=(1.0, 2.0, 3.0), velocity=(0.5, 0.0, 4.0))], gravity=(0.0, 0.0, -9.81)
+    )
+    a = DrakeAdapter()
+    tr = a.run(s, h)
+    n = np.array([0, 4, 8])
+    np.testing.assert_allclose(tr.velocity[:, 0, 2], 4.0 - G * n * h, atol=STEP_ATOL, rtol=0)
+    np.testing.assert_allclose(
+        tr.position[:, 0, 2],
+        3.0 + 4.0 * n * h - G * h * h * n * (n + 1) / 2,
+        atol=STEP_ATOL,
+        rtol=0,
+    )
+    np.testing.assert_allclose(tr.position[:, 0, 0], 1.0 + 0.5 * n * h, atol=STEP_ATOL, rtol=0)
+    assert a.last_stats == {}
+    c = DrakeAdapter("continuous")
+    tr = c.run(s, None)
+    t = np.array(s.sample_times)
+    np.testing.assert_allclose(
+        tr.position[:, 0, 2], 3.0 + 4.0 * t - G * t * t / 2, atol=2**10 * STEP_ATOL, rtol=0
+    )
+    assert set(c.last_stats) == {"steps", "derivative_evaluations"}
+    assert 0 < c.last_stats["steps"] < c.last_stats["derivative_evaluations"]
+
+
+def test_drake_drops_only_its_deformable_half_space_notice():
+    import logging
+
+    from mechanics.conformance.adapters.drake import (
+        _DEFORMABLE_NOTICE,
+        _DropDeformableNotice,
+        _quiet_deformable_notice,
+    )
+
+    f = _DropDeformableNotice()
+
+    def record(msg):
+        return logging.LogRecord("drake", logging.WARNING, __file__, 1, msg, None, None)
+
+    assert f.filter(record(f"x {_DEFORMABLE_NOTICE} y")) is False
+    assert f.filter(record("another warning")) is True
+    _quiet_deformable_notice()
+    _quiet_deformable_notice()
+    log = logging.getLogger("drake")
+    assert sum(isinstance(x, _DropDeformableNotice) for x in log.filters) == 1
