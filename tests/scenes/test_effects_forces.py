@@ -987,3 +987,58 @@ def test_buoyancy_adds_its_lift_to_the_other_loads() -> None:
     out = loads_of(gravity, s, 2)  # the weight m g = 4 down
     e.loads(0.0, s, out)
     np.testing.assert_allclose(out.F, [[0, 0, math.pi - 4.0], [0, 0, -6.0]], rtol=FORCE_RTOL)
+
+
+@pytest.mark.parametrize("kind", ["damper", "spring"])
+@pytest.mark.parametrize("scale", [1.0, 0.1])
+def test_the_damping_force_is_minus_c_times_the_rate_of_the_length(kind, scale) -> None:
+    """The closing speed (v_P − v_Q)·u is d|PQ|/dt: a central difference of the length
+    along the motion (both bodies moving and turning, P and Q off their centres; at
+    scale 0.1 the ends are closer than 1).  A spring with ℓ0 = |PQ| pulls with its
+    damping alone."""
+    rng = np.random.default_rng(21)
+    at, other_at = np.array([0.3, -0.2, 0.4]), np.array([-0.1, 0.5, 0.2])
+    for _ in range(3):
+        s = random_snap(rng, 2)
+        s.r *= scale
+        s.r[1] = s.r[0] + scale * (rng.normal(size=3) + 0.5)
+        P = s.point(0, at * scale)
+        Q = s.point(1, other_at * scale)
+        length = float(np.linalg.norm(P - Q))
+        spec = {"type": kind, "body": "a", "other": "b", "at": list(at * scale),
+                "other_at": list(other_at * scale), "damping": 0.7}  # fmt: skip
+        if kind == "spring":
+            spec |= {"stiffness": 5.0, "rest_length": length}
+        (e,), _ = build([SPHERE, BOX], [spec])
+
+        def length_at(h, s=s):
+            m = moved(s, h)
+            return float(np.linalg.norm(m.point(0, at * scale) - m.point(1, other_at * scale)))
+
+        rate = (length_at(FD_STEP) - length_at(-FD_STEP)) / (2 * FD_STEP)
+        u = (P - Q) / length
+        F = loads_of(e, s, 2).F
+        want = -0.7 * rate * u
+        size = 0.7 * float(np.linalg.norm(s.v).sum() + np.linalg.norm(s.omega).sum())
+        np.testing.assert_allclose(F[0], want, rtol=0, atol=FD_RTOL * size)
+        np.testing.assert_allclose(F[1], -want, rtol=0, atol=FD_RTOL * size)
+
+
+def test_a_spring_without_rest_length_pulls_with_minus_k_times_the_whole_length() -> None:
+    (e,), _ = build([SPHERE, BOX], [{"type": "spring", "body": "a", "anchor": [1.0, 0.0, 0.0],
+                                     "stiffness": 3.0}])  # fmt: skip
+    s = two_at_rest()  # a at (1, 2, 0): P − anchor = (0, 2, 0)
+    np.testing.assert_array_equal(loads_of(e, s, 2).F, [[0, -6.0, 0], [0, 0, 0]])
+    assert float(e.potential(s)) == 6.0  # ½·3·2²
+
+
+def test_a_spring_shorter_than_the_float_resolution_still_pulls_with_minus_k_d() -> None:
+    """|d|² underflows to 0 for |d| = 1e-170: the length reads 0, the zero-length branch
+    pulls with −k d (and the damping of the whole relative velocity)."""
+    (e,), _ = build([SPHERE, BOX], [{"type": "spring", "body": "a", "other": "b",
+                                     "stiffness": 3.0}])  # fmt: skip
+    s = two_at_rest()
+    s.r[1] = [0.0, 0.0, 0.0]
+    s.r[0] = [1e-170, 0.0, 0.0]
+    F = loads_of(e, s, 2).F
+    np.testing.assert_allclose(F, [[-3e-170, 0.0, 0.0], [3e-170, 0.0, 0.0]], rtol=FORCE_RTOL)
