@@ -1151,3 +1151,104 @@ def test_interpolate_uses_the_samples_next_to_the_time():
         assert abs(interpolate(t, y, tau) - math.sin(3.0 * tau)) < 2**-33, tau
     z = crossings(t, y)
     np.testing.assert_allclose(z, np.arange(1, 8) * math.pi / 3, rtol=0, atol=2**-33)
+
+
+# --------------------------------------------------------------------------- variants
+
+
+def test_a_heavy_top_released_with_a_general_spin_agrees_with_the_integration():
+    # every Euler angle and every body component of ω non-zero: the reference turns them
+    # into Euler rates (2.59) and back; the integration starts from them directly
+    s = _fresh("heavy_top")
+    R0 = _passive(0.3, 0.6, 0.5)
+    w0 = np.array([0.7, -0.4, 6.0])
+    b = dataclasses.replace(s.bodies[0], R_A_O=tuple(map(tuple, R0)), omega=tuple(w0))
+    s = dataclasses.replace(s, bodies=(b,), duration=0.5, sample_times=_times(0.5, 2.0**-4))
+    t = np.array(s.sample_times)
+    tr = reference(s).trajectory
+    sol = _integrate(np.array([0.31, 0.31, 0.5]), R0, w0, t, torque=_heavy_torque)
+    R = sol.y[:9].T.reshape(-1, 3, 3)
+    np.testing.assert_allclose(tr.R_A_O[:, 0], R, atol=IVP_ATOL, rtol=0)
+    np.testing.assert_allclose(tr.omega[:, 0], sol.y[9:].T, atol=IVP_ATOL, rtol=0)
+    rho = 0.1 * R[:, 2]
+    w_O = np.einsum("tji,tj->ti", R, sol.y[9:].T)
+    np.testing.assert_allclose(tr.velocity[:, 0], np.cross(w_O, rho), atol=IVP_ATOL, rtol=0)
+
+
+def test_a_free_top_that_also_drifts_moves_its_centre_uniformly():
+    s = _fresh("free_top_axis3")
+    b = dataclasses.replace(s.bodies[0], position=(1.0, 2.0, 3.0), velocity=(0.5, -1.0, 2.0))
+    s = dataclasses.replace(s, bodies=(b,), duration=1.0, sample_times=_times(1.0, 0.25))
+    tr = reference(s).trajectory
+    t = np.array(s.sample_times)
+    np.testing.assert_allclose(
+        tr.position[:, 0],
+        np.array([1.0, 2.0, 3.0]) + np.outer(t, [0.5, -1.0, 2.0]),
+        atol=CLOSED_ATOL,
+        rtol=0,
+    )
+    np.testing.assert_array_equal(tr.velocity[:, 0], np.broadcast_to([0.5, -1.0, 2.0], (t.size, 3)))
+
+
+def test_a_rocket_that_starts_moving_adds_its_initial_motion():
+    s = _fresh("rocket")
+    b = dataclasses.replace(s.bodies[0], position=(1.0, 2.0, 3.0), velocity=(0.5, -1.0, 2.0))
+    s = dataclasses.replace(s, bodies=(b,), duration=1.0, sample_times=_times(1.0, 0.5))
+    tr = reference(s).trajectory
+    d = TILT[2]
+    t = np.array(s.sample_times)
+    m = 10.0 - 0.5 * t
+    v = 20.0 * np.log(10.0 / m)
+    x = 20.0 * (t - (m / 0.5) * np.log(10.0 / m))
+    v0, x0 = np.array([0.5, -1.0, 2.0]), np.array([1.0, 2.0, 3.0])
+    np.testing.assert_allclose(
+        tr.velocity[:, 0], v0 + v[:, None] * d, atol=2**3 * CLOSED_ATOL, rtol=0
+    )
+    np.testing.assert_allclose(
+        tr.position[:, 0], x0 + np.outer(t, v0) + x[:, None] * d, atol=2**3 * CLOSED_ATOL, rtol=0
+    )
+    got = measure(s, tr)
+    assert got["delta_v"] == pytest.approx(20.0 * math.log(10.0 / 9.5), rel=READ_RTOL)
+
+
+def test_a_bounce_on_a_tilted_ground_follows_its_normal_and_keeps_the_drift_along_it():
+    # the ground n·x = 0.5 with n = (0.6, 0, 0.8), gravity −9.81 n, a drift along y (v·n = 0
+    # exactly) and a start off along (0.8, 0, −0.6)
+    n = np.array([0.6, 0.0, 0.8])
+    tang = np.array([0.0, 1.0, 0.0])
+    s = _fresh("bouncing_ball")
+    p0 = (0.5 + 0.1 + 1.275) * n + 2.0 * np.array([0.8, 0.0, -0.6])  # lowest point 1.275 up
+    b = dataclasses.replace(s.bodies[0], position=tuple(p0), velocity=tuple(0.5 * tang))
+    s = dataclasses.replace(
+        s, bodies=(b,), ground=Ground(0.8, tuple(n), 0.5), gravity=tuple(-G * n)
+    )
+    ref = reference(s)
+    t = np.array(s.sample_times)
+    z, vz = _bounce_by_hand(t, 1.275, 0.8, G)
+    want = p0 + np.outer(t, 0.5 * tang) + np.outer(z - 1.275, n)
+    np.testing.assert_allclose(ref.trajectory.position[:, 0], want, atol=2**3 * CLOSED_ATOL, rtol=0)
+    np.testing.assert_allclose(
+        ref.trajectory.velocity[:, 0], 0.5 * tang + np.outer(vz, n), atol=2**3 * CLOSED_ATOL, rtol=0
+    )
+    got = measure(s, ref.trajectory)
+    np.testing.assert_allclose(
+        got["apex_heights"], [1.275 * 0.8 ** (2 * k) for k in (1, 2, 3)], rtol=2**8 * EPS, atol=0
+    )
+    np.testing.assert_allclose(
+        got["apex_times"], ref.figures["apex_times"], rtol=2**8 * EPS, atol=0
+    )
+
+
+def test_spinning_spheres_keep_their_free_rotation_through_the_impact():
+    s = _fresh("two_body_impact")
+    a, b = s.bodies
+    w = np.array([0.0, 1.0, 2.0])
+    s = dataclasses.replace(s, bodies=(dataclasses.replace(a, omega=tuple(w)), b))
+    tr = reference(s).trajectory
+    t = np.array(s.sample_times)
+    for k in (0, 13, 14, 32):
+        np.testing.assert_allclose(tr.R_A_O[k, 0], expm(-_hat(w) * t[k]), atol=CLOSED_ATOL, rtol=0)
+    np.testing.assert_allclose(
+        tr.omega[:, 0], np.broadcast_to(w, (t.size, 3)), atol=CLOSED_ATOL, rtol=0
+    )
+    np.testing.assert_array_equal(tr.R_A_O[:, 1], np.broadcast_to(np.eye(3), (t.size, 3, 3)))
