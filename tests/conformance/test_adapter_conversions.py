@@ -1197,3 +1197,78 @@ def test_drake_drops_only_its_deformable_half_space_notice():
     _quiet_deformable_notice()
     log = logging.getLogger("drake")
     assert sum(isinstance(x, _DropDeformableNotice) for x in log.filters) == 1
+
+
+#: the dissipation Drake holds against our own root of the Hunt–Crossley law (brentq to
+#: 1e-15 on c ~ 0.5, the mean of up to three values): 2^12 eps
+HC_RTOL = 2**12 * EPS
+
+
+def _hc_by_brentq(e, v):
+    from scipy.optimize import brentq
+
+    # the law is −(1 − e²) c²/2 + O(c³) near 0 and → +∞ at 1/e; e ≤ 0.8 roots are > 0.1
+    c = brentq(lambda c: _hc_law(c, e), 0.01, (1 - 1e-12) / e, xtol=1e-16, rtol=4 * EPS)
+    return c / v
+
+
+@pytest.mark.parametrize("contact", ["point", "hydroelastic"])
+def test_drake_geometry_sizes_dissipations_and_filters(contact):
+    pd = _drake()
+    from mechanics.conformance.adapters.drake import HYDRO_MODULUS, RESOLUTION_HINT, DrakeAdapter
+
+    bodies = (
+        Body("a", 1.0, (1.0, 2.0, 2.5), Shape("box", (0.5, 0.4, 0.3)), position=(0.0, 0.0, 2.0)),
+        Body("b", 1.0, (1.0, 1.0, 2.0), Shape("cylinder", (0.2, 0.7)), position=(2.0, 0.0, 2.0)),
+        Body("c", 0.5, (0.002,) * 3, Shape("sphere", (0.1,)), position=(4.0, 0.0, 2.0)),
+    )
+    s = _scenario(
+        bodies,
+        gravity=(0.0, 0.0, -9.81),
+        ground=Ground(0.5, (0.0, 0.0, 2.0), 0.25),
+        pair_restitution=((0, 2, 0.8),),
+    )
+    sim, _, _ = DrakeAdapter("discrete", contact).build(s, 0.125)
+    (sg,) = [x for x in sim.get_system().GetSystems() if isinstance(x, pd.SceneGraph)]
+    insp = sg.model_inspector()
+    gid = {insp.GetName(g): g for g in insp.GetAllGeometryIds()}
+    box, cyl, sph = (insp.GetShape(gid[k]) for k in ("g0", "g1", "g2"))
+    assert (box.width(), box.depth(), box.height()) == (1.0, 0.8, 0.6)  # full widths
+    assert (cyl.radius(), cyl.length()) == (0.2, 1.4)
+    assert sph.radius() == 0.1
+    ground = insp.GetPoseInFrame(gid["ground"])
+    np.testing.assert_allclose(ground.translation(), [0.0, 0.0, 0.25], atol=4 * EPS, rtol=0)
+    np.testing.assert_allclose(
+        ground.rotation().matrix()[:, 2], [0.0, 0.0, 1.0], atol=4 * EPS, rtol=0
+    )
+    # the approach speeds by hand: each body's lowest point falls to the plane z = 0.25
+    fall = {
+        k: math.sqrt(2 * G * (2.0 - 0.25 - reach))
+        for k, reach in (("g0", 0.3), ("g1", 0.7), ("g2", 0.1))
+    }
+    ground_d = {k: _hc_by_brentq(0.5, v) for k, v in fall.items()}
+    pair_d = _hc_by_brentq(0.8, 1.0)  # the pair starts at the same velocity: 1 m/s
+    want = {
+        "g0": (ground_d["g0"] + pair_d) / 2,
+        "g1": ground_d["g1"],
+        "g2": (ground_d["g2"] + pair_d) / 2,
+        "ground": sum(ground_d.values()) / 3,
+    }
+    for name, d in want.items():
+        props = insp.GetProximityProperties(gid[name])
+        assert props.GetProperty("material", "hunt_crossley_dissipation") == pytest.approx(
+            d, rel=HC_RTOL
+        ), name
+        assert props.GetProperty("material", "coulomb_friction").static_friction() == 0.0
+        assert props.GetProperty("material", "coulomb_friction").dynamic_friction() == 0.0
+        compliant = props.HasProperty("hydroelastic", "hydroelastic_modulus")
+        assert compliant == (contact == "hydroelastic" and name != "ground"), name
+        if compliant:
+            assert props.GetProperty("hydroelastic", "hydroelastic_modulus") == HYDRO_MODULUS
+            assert props.GetProperty("hydroelastic", "resolution_hint") == RESOLUTION_HINT
+        assert props.HasProperty("hydroelastic", "compliance_type") == (contact == "hydroelastic")
+    # only the listed pair and the ground touch
+    assert insp.CollisionFiltered(gid["g0"], gid["g1"])
+    assert insp.CollisionFiltered(gid["g1"], gid["g2"])
+    assert not insp.CollisionFiltered(gid["g0"], gid["g2"])
+    assert not any(insp.CollisionFiltered(gid[k], gid["ground"]) for k in ("g0", "g1", "g2"))
