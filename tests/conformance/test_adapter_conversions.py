@@ -856,7 +856,12 @@ def test_pybullet_holds_the_attitude_the_space_omega_and_no_damping():
         ground=Ground(0.5),
     )
     a = PyBulletAdapter("default", "tuned")
-    cid, ids = a.build(s, 0.01)
+    other = p.connect(p.DIRECT)  # a second server: each call must name the adapter's
+    try:
+        cid, ids = a.build(s, 0.01)
+    finally:
+        p.disconnect(other)
+    assert cid != other
     try:
         ((uid, link),) = ids
         assert link == -1
@@ -1272,3 +1277,34 @@ def test_drake_geometry_sizes_dissipations_and_filters(contact):
     assert insp.CollisionFiltered(gid["g1"], gid["g2"])
     assert not insp.CollisionFiltered(gid["g0"], gid["g2"])
     assert not any(insp.CollisionFiltered(gid[k], gid["ground"]) for k in ("g0", "g1", "g2"))
+
+
+@pytest.mark.parametrize(
+    ("variant", "substeps", "iterations"), [("default", 0, 50), ("fine", 8, 200)]
+)
+def test_pybullet_engine_parameters_of_each_variant(variant, substeps, iterations):
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    s = _scenario([_ball(position=(0.0, 0.0, 1.0))], gravity=(0.5, -1.0, -9.81), ground=Ground(0.5))
+    other = p.connect(p.DIRECT)
+    try:
+        cid, _ = PyBulletAdapter(variant).build(s, 2.0**-7)
+    finally:
+        p.disconnect(other)
+    try:
+        got = p.getPhysicsEngineParameters(physicsClientId=cid)
+    finally:
+        p.disconnect(cid)
+    assert got["fixedTimeStep"] == 2.0**-7
+    assert got["numSubSteps"] == substeps
+    assert got["numSolverIterations"] == iterations
+    assert (
+        got["gravityAccelerationX"],
+        got["gravityAccelerationY"],
+        got["gravityAccelerationZ"],
+    ) == (
+        0.5,
+        -1.0,
+        -9.81,
+    )
