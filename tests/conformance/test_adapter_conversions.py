@@ -1308,3 +1308,64 @@ def test_pybullet_engine_parameters_of_each_variant(variant, substeps, iteration
         -1.0,
         -9.81,
     )
+
+
+def test_pybullet_shapes_ground_restitutions_and_contact_filters():
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    bodies = (
+        Body("a", 1.0, (1.0, 2.0, 2.5), Shape("box", (0.5, 0.4, 0.3)), position=(0.0, 0.0, 2.0)),
+        Body("b", 1.0, (1.0, 1.0, 2.0), Shape("cylinder", (0.2, 0.7)), position=(0.1, 0.0, 2.0)),
+        Body("c", 0.5, (0.002,) * 3, Shape("sphere", (0.1,)), position=(0.0, 0.1, 2.0)),
+    )
+    # all three overlap; only (0, 2) is listed: e 0.25 = 0.5 · 0.5 with the ground's 0.5
+    s = _scenario(
+        bodies, ground=Ground(0.5, (0.0, 0.0, 1.0), 0.25), pair_restitution=((0, 2, 0.25),)
+    )
+    cid, ids = PyBulletAdapter().build(s, 0.01)
+    try:
+        kw = {"physicsClientId": cid}
+        shapes = [p.getCollisionShapeData(uid, link, **kw)[0] for uid, link in ids]
+        assert [(x[2], x[3]) for x in shapes] == [
+            (p.GEOM_BOX, (1.0, 0.8, 0.6)),  # full extents
+            (p.GEOM_CYLINDER, (1.4, 0.2, 0.0)),  # length 2h, radius
+            (p.GEOM_SPHERE, (0.1, 0.1, 0.1)),
+        ]
+        assert [p.getDynamicsInfo(uid, link, **kw)[5] for uid, link in ids] == [0.5, 0.5, 0.5]
+        ground = p.getNumBodies(**kw) - len(ids) - 1  # the ground is made first
+        plane = p.getCollisionShapeData(ground, -1, **kw)[0]
+        assert (plane[2], plane[3]) == (p.GEOM_PLANE, (0.0, 0.0, 1.0))
+        assert p.getBasePositionAndOrientation(ground, **kw)[0] == (0.0, 0.0, 0.25)
+        assert p.getDynamicsInfo(ground, -1, **kw)[5] == 1.0
+        p.performCollisionDetection(**kw)
+        (a, _), (b, _), (c, _) = ids
+        assert p.getContactPoints(a, c, **kw)
+        assert not p.getContactPoints(a, b, **kw)
+        assert not p.getContactPoints(b, c, **kw)
+    finally:
+        p.disconnect(cid)
+
+
+def test_pybullet_pivot_is_a_free_spherical_joint_with_g_off_the_link_frame():
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    s = _scenario(
+        [_box()], gravity=(0.0, 0.0, -9.81), pivot=Pivot(0, (0.0, 0.0, -0.25), (1.0, 2.0, 3.0))
+    )
+    cid, ((uid, link),) = PyBulletAdapter().build(s, 0.01)
+    try:
+        kw = {"physicsClientId": cid}
+        assert link == 0
+        assert p.getBasePositionAndOrientation(uid, **kw)[0] == (1.0, 2.0, 3.0)
+        info = p.getDynamicsInfo(uid, 0, **kw)
+        assert info[0] == 2.0
+        np.testing.assert_array_equal(info[2], [1.0, 2.0, 2.5])
+        np.testing.assert_array_equal(info[3], [0.0, 0.0, 0.25])  # G = −point
+        joint = p.getJointInfo(uid, 0, **kw)
+        assert joint[2] == p.JOINT_SPHERICAL
+        assert joint[6] == 0.0  # no joint damping
+        assert p.getDynamicsInfo(uid, -1, **kw)[0] == 0.0  # a fixed, massless base
+    finally:
+        p.disconnect(cid)
