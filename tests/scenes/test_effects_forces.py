@@ -553,15 +553,15 @@ def test_drag_refuses_all_coefficients_zero_and_a_spin_drag_on_a_point() -> None
 
 def test_a_space_fixed_force_acts_in_its_window_at_its_point() -> None:
     (e,), _ = build([SPHERE, BOX], [{"type": "force", "body": "b", "force": [0, 0, 3.0],
-                                     "at": [0.0, 1.0, 0.0], "start": 0.5, "end": 2.0}])  # fmt: skip
+                                     "at": [1.0, 0.0, 0.0], "start": 0.5, "end": 2.0}])  # fmt: skip
     s = two_at_rest()
     for phase, on in ((0.25, False), (0.5, True), (1.0, True), (2.0, False), (3.0, False)):
         s.phase = phase
         out = loads_of(e, s, 2)
         np.testing.assert_array_equal(out.F, [[0, 0, 0], [0, 0, 3.0 * on]])
-        # the body y is space z: the force is along the lever, no moment... the body
-        # point (0, 1, 0) is space (0, 0, 1), parallel to F: zero moment
-        np.testing.assert_array_equal(out.M_A, np.zeros((2, 3)))
+        # the body point (1, 0, 0) is space (0, 1, 0) from G: moment (0, 1, 0) × (0, 0, 3)
+        # = (3, 0, 0) in space, (0, 0, 3) in body components (space x is the body z)
+        np.testing.assert_array_equal(out.M_A, [[0, 0, 0], [0, 0, 3.0 * on]])
     assert e.switch_times() == [0.5, 2.0]
     assert e.acts_until() == 2.0
 
