@@ -349,7 +349,8 @@ def _assert_near(got, ref, phi=0.0, what=""):
 
 
 #: (φ, m, m1): small and large |φ|, negative φ, m < 0 (down to −1e10), m > 1 (|φ| below
-#: asin(1/√m)), m near 1 with and without m1, m = 1 within |φ| < π/2
+#: asin(1/√m)), m near 1 with and without m1, m = 1 within |φ| < π/2, and the float ±π/2,
+#: whose sine rounds to exactly ±1 (F = ±K there, to the rounding of π/2)
 ELLIPF_CASES = [
     (1e-8, 0.5, None),
     (0.3, 0.0, None),
@@ -365,6 +366,9 @@ ELLIPF_CASES = [
     (1.5707963, 1.0, 1e-300),
     (4.0, 1.0, 1e-300),
     (1.3, 1.0, 0.0),
+    (np.pi / 2, 0.5, None),
+    (-np.pi / 2, 0.3, None),
+    (np.pi / 2, 0.999, None),
 ]
 
 
@@ -506,3 +510,28 @@ def test_each_domain_refusal_names_its_condition_and_the_offending_values(call, 
     with pytest.raises(OutOfDomainError) as info:
         call()
     assert str(info.value) == message
+
+
+def test_an_integral_in_jacobis_form_beyond_float64_is_an_overflow_error():
+    # u + G(u) ~ u/(1 − n) = 10 u for n = 0.9: beyond float64 for u = ±1.7e308, on and off
+    # the separatrix; an error naming the function, not a numpy warning
+    for u, m in ((1.7e308, 0.5), (-1.7e308, 1.0)):
+        with pytest.raises(ResultOverflowError) as info:
+            el.ellippi_jacobi(u, 0.9, m)
+        assert str(info.value) == (
+            "ellippi_jacobi: the integral exceeds float64's range (~1.8e308) for an argument "
+            "this large"
+        )
+
+
+def test_m1_within_8_eps_of_one_minus_m_is_accepted_and_beyond_refused():
+    # the tolerance of "m1 = 1 − m to rounding": 8 eps of max(1, |m|, |m1|); at m = 1/2,
+    # m1 = 1/2 + 8 eps (exactly 8 eps off, 16 ulps of 1/2) is accepted, 1/2 + 9 eps is not
+    ok = 0.5 + 8 * EPS
+    assert (0.5 - 1.0) + ok == 8 * EPS
+    # accepted: K of m = 1 − m1, to the accuracy of the complete integrals
+    with mpmath.workdps(40):
+        want = mpmath.ellipk(1 - mpmath.mpf(ok))
+    assert abs(mpmath.mpf(float(el.ellipk(0.5, m1=ok))) - want) <= 8 * EPS * want
+    with pytest.raises(OutOfDomainError, match=r"m1 must equal 1 − m to rounding"):
+        el.ellipk(0.5, m1=0.5 + 9 * EPS)

@@ -28,6 +28,7 @@ from __future__ import annotations
 import importlib.util
 import json
 import math
+from fractions import Fraction
 from pathlib import Path
 
 import mpmath
@@ -499,3 +500,27 @@ def test_third_kind_in_jacobis_form_near_the_separatrix_in_the_flipped_quarter(n
     got_scalar = el._third_kind_excess_scalar(u, n, 1.0, p1, K, trig, float(full))
     for got in (got_array, got_scalar):
         assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
+
+
+def test_two_prod_drops_the_error_term_where_the_split_would_overflow():
+    # Dekker's split multiplies by 2^27 + 1: for |a| ≳ 1.3e300 that overflows and the error
+    # term is not computable; it is 0 then (documented), so a · b = p + 0 stays finite
+    for a, b in ((1e305, 3.5), (-1.7e308, 0.25), (2.0**1000, 7.0)):
+        p, e = el._two_prod_scalar(a, b)
+        assert (p, e) == (a * b, 0.0)
+        pa, ea = el._two_prod(np.array([a, 3.0]), np.array([b, 0.1]))
+        assert pa[0] == a * b
+        assert ea[0] == 0.0
+        assert Fraction(float(pa[1])) + Fraction(float(ea[1])) == Fraction(3.0) * Fraction(0.1)
+
+
+@pytest.mark.parametrize(("p", "p1"), [(0.3125, 0.6875), (0.8125, 0.1875)])
+@pytest.mark.parametrize("u", [1e308, -1.7e308, 1e305])
+def test_ellipj_of_one_float_near_float64s_limit_is_finite_and_on_the_unit_circle(u, p, p1):
+    # beyond 4K/eps the phase is lost (documented): finite values on sn² + cn² = 1 and
+    # dn² + m sn² = 1 (each product within an ulp), never NaN from the period count's split
+    K, trig = _scalar_kernel_args(p, p1)
+    sn, cn, dn = el._ellipj_scalar(u, p, p1, K, trig)
+    assert all(math.isfinite(x) for x in (sn, cn, dn))
+    assert abs(sn * sn + cn * cn - 1.0) <= 4 * EPS
+    assert abs(dn * dn + p * sn * sn - 1.0) <= 4 * EPS
