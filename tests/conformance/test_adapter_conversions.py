@@ -1369,3 +1369,34 @@ def test_pybullet_pivot_is_a_free_spherical_joint_with_g_off_the_link_frame():
         assert p.getDynamicsInfo(uid, -1, **kw)[0] == 0.0  # a fixed, massless base
     finally:
         p.disconnect(cid)
+
+
+def test_mujoco_fails_loudly_when_its_model_does_not_hold_the_scenarios_body():
+    _mujoco()
+    from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
+    from mechanics.conformance.protocol import ConformanceError
+
+    class Altered(MuJoCoAdapter):
+        def __init__(self, old, new):
+            super().__init__()
+            self.old, self.new = old, new
+
+        def mjcf(self, scenario, step):
+            return super().mjcf(scenario, step).replace(self.old, self.new)
+
+    s = _scenario([_box(position=(0.0, 0.0, 1.0))])
+    for old, new in (
+        ('diaginertia="1.0 2.0 2.5"', 'diaginertia="1.0 2.0 2.6"'),
+        ('mass="2.0"', 'mass="2.5"'),
+        ('diaginertia="1.0 2.0 2.5"', 'fullinertia="1.0 2.0 2.5 0.1 0 0"'),
+    ):
+        with pytest.raises(ConformanceError) as info:
+            Altered(old, new).build(s, 0.125)
+        msg = str(info.value)
+        assert msg.startswith(
+            "scenario 'made_up': MuJoCo changed body 'box''s mass or principal inertia: mass "
+        )
+        assert msg.endswith("; the scenario's are 2.0, [1.  2.  2.5]")
+    # within 4 eps: the same model
+    model, _ = Altered('mass="2.0"', f'mass="{2.0 * (1 + 2 * EPS)!r}"').build(s, 0.125)
+    assert model.body_mass[1] == 2.0 * (1 + 2 * EPS)
