@@ -1400,3 +1400,45 @@ def test_mujoco_fails_loudly_when_its_model_does_not_hold_the_scenarios_body():
     # within 4 eps: the same model
     model, _ = Altered('mass="2.0"', f'mass="{2.0 * (1 + 2 * EPS)!r}"').build(s, 0.125)
     assert model.body_mass[1] == 2.0 * (1 + 2 * EPS)
+
+
+def test_pybullet_fails_loudly_and_disconnects_when_it_does_not_hold_the_body():
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+    from mechanics.conformance.protocol import ConformanceError
+
+    class Heavier:
+        """pybullet, but its dynamics info reports the mass 1 % off (or the inertia)."""
+
+        def __init__(self, which):
+            self.which, self.clients = which, []
+
+        def __getattr__(self, name):
+            return getattr(p, name)
+
+        def connect(self, *args, **kw):
+            self.clients.append(p.connect(*args, **kw))
+            return self.clients[-1]
+
+        def getDynamicsInfo(self, *args, **kw):
+            info = list(p.getDynamicsInfo(*args, **kw))
+            if self.which == "mass":
+                info[0] *= 1.01
+            else:
+                info[2] = (info[2][0], info[2][1], info[2][2] * 1.01)
+            return tuple(info)
+
+    s = _scenario([_box(position=(0.0, 0.0, 1.0))])
+    for which, held in (
+        ("mass", "mass 2.02 and inertia (1.0, 2.0, 2.5)"),
+        ("inertia", "mass 2.0 and inertia (1.0, 2.0, 2.525)"),
+    ):
+        a = PyBulletAdapter()
+        a._p = Heavier(which)
+        with pytest.raises(ConformanceError) as info:
+            a.build(s, 0.125)
+        assert str(info.value) == (
+            f"scenario 'made_up': PyBullet holds body 'box' with {held}, not the scenario's 2.0, [1.  2.  2.5]"
+        )
+        (cid,) = a._p.clients
+        assert p.getConnectionInfo(cid)["isConnected"] == 0
