@@ -1442,3 +1442,30 @@ def test_pybullet_fails_loudly_and_disconnects_when_it_does_not_hold_the_body():
         )
         (cid,) = a._p.clients
         assert p.getConnectionInfo(cid)["isConnected"] == 0
+
+
+def test_drake_fails_loudly_when_its_plant_does_not_hold_the_body():
+    pd = _drake()
+    from mechanics.conformance.adapters.drake import DrakeAdapter
+    from mechanics.conformance.protocol import ConformanceError
+
+    class Off:
+        """pydrake, but the moments it is given come out 1 % off on axis 3."""
+
+        def __getattr__(self, name):
+            return getattr(pd, name)
+
+        @staticmethod
+        def RotationalInertia(a, b, c):
+            return pd.RotationalInertia(a, b, c * 1.01)
+
+    a = DrakeAdapter()
+    a._pd = Off()
+    with pytest.raises(ConformanceError) as info:
+        a.build(_scenario([_box(position=(0.0, 0.0, 1.0))]), 0.125)
+    msg = str(info.value)
+    assert msg.startswith(
+        "scenario 'made_up': Drake holds body 'box' with mass 2.0 and inertia [1. "
+    )
+    assert "2.525" in msg
+    assert msg.endswith(", not the scenario's 2.0, [1.  2.  2.5]")
