@@ -1469,3 +1469,23 @@ def test_drake_fails_loudly_when_its_plant_does_not_hold_the_body():
     )
     assert "2.525" in msg
     assert msg.endswith(", not the scenario's 2.0, [1.  2.  2.5]")
+
+
+@pytest.mark.parametrize(
+    ("mode", "contact"), [("discrete", "point"), ("continuous", "hydroelastic")]
+)
+def test_drake_plant_settings_of_each_mode(mode, contact):
+    pd = _drake()
+    from mechanics.conformance.adapters.drake import CONTINUOUS_ACCURACY, DrakeAdapter
+
+    s = _scenario([_ball(position=(0.0, 0.0, 1.0))], gravity=(0.5, -1.0, -9.81))
+    sim, plant, _ = DrakeAdapter(mode, contact).build(s, 2.0**-7)
+    np.testing.assert_array_equal(plant.gravity_field().gravity_vector(), [0.5, -1.0, -9.81])
+    if mode == "discrete":
+        assert plant.time_step() == 2.0**-7
+        assert plant.get_contact_model() == pd.ContactModel.kPoint
+    else:
+        assert plant.time_step() == 0.0
+        assert plant.get_contact_model() == pd.ContactModel.kHydroelasticWithFallback
+        assert sim.get_integrator().get_target_accuracy() == CONTINUOUS_ACCURACY
+    assert sim.get_context().get_time() == 0.0
