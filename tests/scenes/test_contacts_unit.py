@@ -370,3 +370,20 @@ def test_strict_root_probes_no_closer_than_two_to_the_minus_sixty() -> None:
     # lo + 2^−60 (hi − lo) misses: the gap is taken as never having left zero
     c = 2.0**-60.5
     assert ct._strict_root(_cheb(0.0, c, -1.0), None, 0.0, 1.0) == 0.0
+
+
+def test_strict_root_probes_down_to_two_to_the_minus_sixty() -> None:
+    # x(2^−59.5 − x): positive below 2^−59.5 of the piece, which the last probe
+    # lo + 2^−60 (hi − lo) reaches: a root found (to brentq's absolute 4 eps), not lo
+    x = ct._strict_root(_cheb(0.0, 2.0**-59.5, -1.0), None, 0.0, 1.0)
+    assert 0.0 < x <= BRENT_ATOL
+
+
+def test_strict_root_skips_a_probe_where_the_gap_only_touches_zero() -> None:
+    # x (x − 1/2)² (3/4 − x): a touch at the probe 1/2 (zero, not positive), positive at
+    # the next probe 1/4, the fall through zero at 3/4 (the refined gap itself)
+    def gap(x):
+        return x * (x - 0.5) ** 2 * (0.75 - x)
+
+    x = ct._strict_root(_cheb(0.0, 1.0, -1.0), gap, 0.0, 1.0)
+    assert x == pytest.approx(0.75, rel=0, abs=BRENT_ATOL)
