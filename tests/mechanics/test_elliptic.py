@@ -554,3 +554,19 @@ def test_integrals_at_large_amplitudes_keep_their_relative_accuracy(phi, m):
             float(got),
             ref,
         )
+
+
+@pytest.mark.parametrize("j", [3, 1000, 318310])
+@pytest.mark.parametrize("m", [-1e10, -1e4])
+def test_integrals_at_a_float_multiple_of_pi_keep_the_tail_of_pi(j, m):
+    # φ = fl(jπ): the reduced amplitude r = φ − jπ is tiny, where dF/dφ = 1, while
+    # F ≈ 2jK is small for m ≪ −1 (K ~ ln(4√−m)/√−m): the 2j·1.2e-16 by which fl(π) misses π
+    # is thousands of eps of F here, so it must be carried
+    with mpmath.workdps(60):
+        phi = float(j * mpmath.pi)
+        refs = (mpmath.ellipf(mpmath.mpf(phi), m), mpmath.ellippi(-2.0, mpmath.mpf(phi), m))
+    for got, ref in zip((el.ellipf(phi, m), el.ellippi(-2.0, phi, m)), refs, strict=True):
+        assert abs(mpmath.mpf(float(got)) - ref) <= LARGE_AMPLITUDE_EPS * EPS * abs(ref), (
+            float(got),
+            ref,
+        )
