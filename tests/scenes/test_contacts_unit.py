@@ -319,6 +319,8 @@ def test_after_a_touch_a_fall_within_rounding_is_not_a_contact() -> None:
     # x(1/2 − x)/8: its lowest value −1/16 on (0, 1] lies within start_tol = 1/8
     p = _cheb(0.0, 0.0625, -0.125)
     assert ct.first_downward_crossing(p, start_tol=0.125, after=0.0) is None
+    # x(1/2 − x) ends at −1/2, exactly −start_tol: still within the rounding
+    assert ct.first_downward_crossing(_cheb(0.0, 0.5, -1.0), start_tol=0.5, after=0.0) is None
     # a gap that only rises after the touch
     assert ct.first_downward_crossing(_cheb(0.0, 1.0), start_tol=1e-12, after=0.0) is None
 
