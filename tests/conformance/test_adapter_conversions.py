@@ -396,6 +396,9 @@ def test_the_scene_engine_says_what_it_cannot_run():
     assert scene_from_scenario(dataclasses.replace(p, sample_times=(0.0, 0.75, 1.4))) == (
         "the scene engine samples uniformly from 0 to the duration"
     )
+    # two samples, the start and the end, are uniform
+    ends = scene_from_scenario(dataclasses.replace(p, sample_times=(0.0, 1.5)))
+    assert ends["scene"]["samples"] == 2
     r = SCENARIOS["rocket"]
     spinning = dataclasses.replace(
         r, bodies=(dataclasses.replace(r.bodies[0], omega=(0.0, 0.0, 1.0)),)
