@@ -501,6 +501,12 @@ def test_ellippi_at_m_one_beyond_a_quarter_turn_is_infinite_with_the_sign_of_phi
         ),
         (lambda: el.ellippi_jacobi(1.0, 0.5, -0.5), "ellippi_jacobi needs 0 ≤ m ≤ 1"),
         (
+            # the documented domain n < 1, at its edge
+            lambda: el.ellippi_jacobi(0.5, [0.5, 1.0], 0.3),
+            "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
+            "got n = 1.0",
+        ),
+        (
             lambda: el.ellippi([0.5, 1.0], 4.0, 0.3),
             "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
             "got n = 1.0",

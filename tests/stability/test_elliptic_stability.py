@@ -325,6 +325,9 @@ AGM_CASES = [
     (1 - 2.0**-30, 2.0**-30, True, 10.0),
     (1.0, 2.0**-996, True, 170.0),
     (0.5009765625, 0.4990234375, True, 300.0),
+    # y_max where the growth e^{2ⁿ a_n y_max} decides between 5 and 6 steps (2 bits of margin)
+    (0.625, 0.375, True, 0.325),
+    (0.75, 0.25, True, 0.575),
 ]
 
 
