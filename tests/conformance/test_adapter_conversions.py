@@ -1492,3 +1492,22 @@ def test_drake_plant_settings_of_each_mode(mode, contact):
         assert plant.get_contact_model() == pd.ContactModel.kHydroelasticWithFallback
         assert sim.get_integrator().get_target_accuracy() == CONTINUOUS_ACCURACY
     assert sim.get_context().get_time() == 0.0
+
+
+def test_the_scene_engine_takes_sample_times_uniform_to_rounding_only():
+    p = SCENARIOS["parabola"]
+    # 2^6 eps of max(duration, 1): 4 eps off the end is uniform, 1e-12 is not
+    near = dataclasses.replace(p, sample_times=(0.0, 0.75, 1.5 * (1 + 4 * EPS)))
+    assert isinstance(scene_from_scenario(near), dict)
+    far = dataclasses.replace(p, sample_times=(0.0, 0.75, 1.5 + 1e-12))
+    assert scene_from_scenario(far) == "the scene engine samples uniformly from 0 to the duration"
+    # a short run: the tolerance is 2^6 eps absolute (of 1 s), not of its 0.25 s
+    short = dataclasses.replace(p, duration=0.25, sample_times=(0.0, 0.125, 0.25 + 2**5 * EPS))
+    assert isinstance(scene_from_scenario(short), dict)
+
+
+def test_the_scene_engine_adapter_keeps_its_method_and_tolerances():
+    a = SceneEngineAdapter("integrate", rtol=1e-9, atol=1e-12)
+    assert (a.method, a.rtol, a.atol) == ("integrate", 1e-9, 1e-12)
+    b = SceneEngineAdapter()
+    assert (b.method, b.rtol, b.atol) == ("integrate", None, None)
