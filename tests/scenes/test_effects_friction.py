@@ -498,3 +498,131 @@ def test_friction_refuses_a_body_that_is_not_round_or_a_slope_out_of_range() -> 
         [ball()], [gravity, {"type": "coulomb_friction", "body": "ball", "mu": 0.2, "angle": 2.0}]
     )
     assert err.field == "effects[1].angle"
+
+
+# ------------------------------------------------------------------ a ring: exact numbers
+
+#: a ring of mass 2 and radius 1/2 rolling about its axis z: J = m r² = 1/2, so the
+#: stick force is −Q_s/2 + Q_θ/(2 r) and every number below is a dyadic rational
+RING = {"name": "ring", "shape": "ring", "mass": 2.0, "radius": 0.5}
+
+
+def ring_on(effects, mu=0.25, **initial):
+    friction = {"type": "coulomb_friction", "body": "ring", "mu": mu}
+    eng = Engine(scene_of([{**RING, "initial": initial}], [*effects, friction]))
+    return eng.effects[-1], eng
+
+
+def test_at_an_exact_tie_of_the_stick_force_and_mu_n_it_rolls() -> None:
+    """Level plane, g = 10, a push P = 10 along t: N = 20, F_stick = −J P/(J + m r²) =
+    −5 = −μ N with μ = 1/4: static friction just holds (|F_stick| ≤ μ N)."""
+    push = {"type": "force", "body": "ring", "force": [10.0, 0.0, 0.0]}
+    f, eng = ring_on([{"type": "gravity", "g": 10.0}, push])
+    s = eng.snapshot(0.0, eng.y0)
+    out = other_loads(eng, s)
+    f.begin(0.0, s, out)
+    assert f.mode == 0.0
+    g, _ = f.switch_function(0.0, s, out)
+    assert g == 0.0
+    f, eng = ring_on([{"type": "gravity", "g": 10.0}, push], mu=0.25 - 2**-20)
+    f.begin(0.0, s, other_loads(eng, s))
+    assert f.mode == 1.0  # just too weak: it slips forward
+
+
+def test_in_the_exact_flow_a_tie_at_the_switch_rolls_on() -> None:
+    """Gravity (5, 0, −10) on a level plane: N = 20, D = 10, F_stick = −5 = −μ N.  Spun
+    forward (slip −1): friction +μ N = 5, s̈ = 15/2, θ̈ = −5, the slip rises at 10 and
+    vanishes at t = 1/10, where static friction just holds: it rolls."""
+    _, eng = ring_on([{"type": "gravity", "g": 1.0}], spin=2.0)
+    slope = type("G", (), {"type": "gravity", "vector": np.array([5.0, 0.0, -10.0])})()
+    gd = eng.layout.guides[0]
+    _, _, events = gd.exact([slope], 2.0, np.zeros(2), np.array([0.0, 2.0]), 1.0)
+    (ev,) = events
+    assert ev.kind == "rolling"
+    assert math.isclose(ev.t, 0.1, rel_tol=EXACT_RTOL)
+
+
+def test_a_switch_exactly_at_the_end_of_the_run_is_an_event() -> None:
+    """g = 8, μ = 1/4: N = 16, friction −4: s̈ = −2, θ̈ = r 4/J = 4; the slip 2 falls at
+    4 and vanishes at t = 1/2 exactly: a run of 1/2 s sees it."""
+    _, eng = ring_on([{"type": "gravity", "g": 8.0}], speed=2.0)
+    gd = eng.layout.guides[0]
+    _, flow, events = gd.exact(eng.effects[:1], 2.0, np.zeros(2), np.array([2.0, 0.0]), 0.5)
+    assert events == [Event(0.5, "rolling", {"speed": 1.0})]
+    q, qd = flow(0.5)
+    np.testing.assert_array_equal(qd, [1.0, 2.0])
+    np.testing.assert_array_equal(q, [0.75, 0.5])
+
+
+def test_a_light_body_still_presses_on_the_plane() -> None:
+    """N = m g = 2·0.25 = 0.5 < 1 N: the exact flow and the loads hold all the same."""
+    f, eng = ring_on([{"type": "gravity", "g": 0.25}], speed=1.0)
+    gd = eng.layout.guides[0]
+    found = gd.exact(eng.effects[:1], 2.0, np.zeros(2), np.array([1.0, 0.0]), 1.0)
+    assert found is not None
+    s = eng.snapshot(0.0, eng.y0)
+    out = other_loads(eng, s)
+    f.begin(0.0, s, out)
+    f.loads(0.0, s, out)  # friction −μ N = −1/8 on top of the weight
+    np.testing.assert_array_equal(out.F, [[-0.125, 0.0, -0.5]])
+
+
+def test_a_couple_about_the_axis_enters_the_stick_force_and_the_switch_size() -> None:
+    """Level plane, g = 10, a couple τ = 1 about a = e_y: Q_s = 0, Q_θ = 1, F_stick =
+    m r Q_θ/(J + m r²) = 1; switch function μ N − 1 with the size μ N + |Q_θ|/r."""
+    couple = {"type": "torque", "body": "ring", "torque": [0.0, 1.0, 0.0]}
+    f, eng = ring_on([{"type": "gravity", "g": 10.0}, couple], speed=1.0, spin=2.0)
+    s = eng.snapshot(0.0, eng.y0)
+    out = other_loads(eng, s)
+    f.begin(0.0, s, out)
+    assert f.mode == 0.0
+    assert f.switch_function(0.0, s, out) == (5.0 - 1.0, 5.0 + 2.0)
+    f.loads(0.0, s, out)
+    np.testing.assert_array_equal(out.F, [[1.0, 0.0, -20.0]])
+
+
+def test_friction_pushes_only_its_own_body() -> None:
+    rock = {"name": "rock", "shape": "point", "mass": 1.0}
+    f, eng = sliding(first=rock, speed=2.0)
+    s = eng.snapshot(0.0, eng.y0)
+    out = other_loads(eng, s)
+    f.begin(0.0, s, out)
+    f.loads(0.0, s, out)
+    np.testing.assert_array_equal(out.F[0], [0.0, 0.0, -10.0])  # the rock's weight only
+    np.testing.assert_array_equal(out.M_A[0], [0.0, 0.0, 0.0])
+    np.testing.assert_allclose(out.F[1], [-0.2 * 20.0, 0.0, -20.0], rtol=EXACT_RTOL)
+
+
+def test_a_new_friction_rolls_until_its_start_decides() -> None:
+    f, eng = sliding(speed=2.0)
+    assert f.mode == 0.0
+    assert f.mode0 == 0.0
+    assert f.acts_until([], "E") == 0.0
+    s = eng.snapshot(0.0, eng.y0)
+    out = other_loads(eng, s)
+    f.loads(0.0, s, out)  # the stick force on a level floor: none
+    np.testing.assert_array_equal(out.F, [[0.0, 0.0, -20.0]])
+
+
+def test_a_friction_built_without_a_scene_reads_its_fields() -> None:
+    spec = scene_of(
+        [ball()],
+        [{"type": "gravity", "g": 1.0},
+         {"type": "coulomb_friction", "body": "ball", "mu": 0.3, "angle": 0.25}],
+    ).effects[1]  # fmt: skip
+    f = type(sliding()[0])(spec)
+    assert (f.mu, f.alpha, f.i, f.guide, f.ctx) == (0.3, 0.25, 0, None, None)
+    assert f._flat is False
+    flat = type(f)(scene_of([ball()], [{"type": "gravity", "g": 1.0},
+                                       {"type": "coulomb_friction", "body": "ball",
+                                        "mu": 0.3}]).effects[1])  # fmt: skip
+    assert flat._flat is True
+
+
+def test_the_flow_at_a_switch_time_is_the_projected_state() -> None:
+    """At t = t_s the flow gives the next phase's start: exactly on zero slip."""
+    for v0 in (0.3, 1.1, 2.9, 3.7, 5.3, 7.1, 9.7):
+        _, eng = sliding(mu=0.3, speed=v0)
+        _, f, (ev,) = exact_of(eng, duration=50.0)
+        _, qd = f(ev.t)
+        assert qd[1] == qd[0] / RADIUS
