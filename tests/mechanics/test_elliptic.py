@@ -11,6 +11,7 @@ F as the inverse of am.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import mpmath
@@ -576,3 +577,17 @@ def test_integrals_at_a_float_multiple_of_pi_keep_the_tail_of_pi(j, m):
             float(got),
             ref,
         )
+
+
+def test_an_amplitude_on_the_edge_of_the_real_domain_is_accepted_for_m_above_one():
+    # m > 1: the integrand is real up to sin φ = 1/√m, where Δ = 0. This (φ, m) pair of floats
+    # has cos²φ + (1 − m) sin²φ = 0 exactly in float arithmetic: on the edge, inside the domain.
+    # There F = K(1/m)/√m (reciprocal modulus, DLMF 19.7.4 with β = π/2).
+    phi, m = 0.3, 11.450531251495654
+    s, c = math.sin(phi), math.cos(phi)
+    assert c * c + (1.0 - m) * (s * s) == 0.0
+    with mpmath.workdps(40):
+        want = mpmath.ellipk(1 / mpmath.mpf(m)) / mpmath.sqrt(mpmath.mpf(m))
+    got = el.ellipf(phi, m)
+    assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * want
+    assert np.isfinite(el.ellippi(0.3, phi, m))
