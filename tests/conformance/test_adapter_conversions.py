@@ -1511,3 +1511,28 @@ def test_the_scene_engine_adapter_keeps_its_method_and_tolerances():
     assert (a.method, a.rtol, a.atol) == ("integrate", 1e-9, 1e-12)
     b = SceneEngineAdapter()
     assert (b.method, b.rtol, b.atol) == ("integrate", None, None)
+
+
+def test_step_counts_tolerance_is_2_to_the_6_eps_of_a_second_below_one_second():
+    s = _scenario([_box()])
+    # near 0.5 s the allowance is 2^6 eps absolute (of max(T, 1) = 1 s)
+    ok = dataclasses.replace(s, sample_times=(0.0, 0.5 + 32 * EPS))
+    np.testing.assert_array_equal(step_counts(ok, 0.5)[1], [0, 1])
+    off = dataclasses.replace(s, sample_times=(0.0, 0.5 + 100 * EPS))
+    with pytest.raises(MechanicsValueError, match=r"is not a whole number of steps 0.5$"):
+        step_counts(off, 0.5)
+
+
+def test_body_rows_are_float_arrays_whatever_numbers_the_bodies_hold():
+    b = Body(
+        "ints",
+        1,
+        (1, 2, 3),
+        position=(1, 2, 3),
+        velocity=(4, 5, 6),
+        R_A_O=((1, 0, 0), (0, 1, 0), (0, 0, 1)),
+        omega=(0, 0, 7),
+    )
+    rows = body_rows(_scenario([b]))
+    assert [x.dtype for x in rows] == [np.float64] * 4
+    assert [x.shape for x in rows] == [(1, 3), (1, 3), (1, 3, 3), (1, 3)]
