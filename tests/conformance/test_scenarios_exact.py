@@ -1252,3 +1252,17 @@ def test_spinning_spheres_keep_their_free_rotation_through_the_impact():
         tr.omega[:, 0], np.broadcast_to(w, (t.size, 3)), atol=CLOSED_ATOL, rtol=0
     )
     np.testing.assert_array_equal(tr.R_A_O[:, 1], np.broadcast_to(np.eye(3), (t.size, 3, 3)))
+
+
+def test_head_on_means_within_2_to_the_6_eps_of_the_line():
+    # d = (1.5, δ, 0), Δv = (−3, 0, 0): |d × Δv| = 3δ against 2^6 eps |d| |Δv| = 2^6 eps 4.5,
+    # so δ up to 96 eps is head-on (rounding), 120 eps is not
+    s = _fresh("two_body_impact")
+    a, b = s.bodies
+    for dy, ok in ((80 * EPS, True), (120 * EPS, False)):
+        moved = dataclasses.replace(s, bodies=(a, dataclasses.replace(b, position=(0.5, dy, 0.0))))
+        if ok:
+            assert reference(moved).figures["restitution"] == 0.6
+        else:
+            with pytest.raises(MechanicsValueError, match="the impact must be head-on"):
+                reference(moved)
