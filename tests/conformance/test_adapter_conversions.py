@@ -603,7 +603,11 @@ def test_mujoco_model_text_of_a_ball_over_the_ground_and_a_pair():
     from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
 
     s = _scenario(
-        [_ball(position=(0.0, 0.0, 1.0)), _ball(name="other", position=(1.0, 0.0, 1.0))],
+        [
+            _ball(position=(0.0, 0.0, 1.0)),
+            _ball(name="other", position=(1.0, 0.0, 1.0)),
+            _box(name="bare", shape=None, position=(3.0, 0.0, 1.0)),  # touches nothing
+        ],
         gravity=(0.0, 0.0, -9.81),
         ground=Ground(0.5, (0.0, 0.0, 2.0), 1.0),
         pair_restitution=((0, 1, 0.8),),
@@ -618,7 +622,9 @@ def test_mujoco_model_text_of_a_ball_over_the_ground_and_a_pair():
     assert '<body name="b0" pos="0.0 0.0 1.0" quat="1.0 0.0 0.0 0.0">' in xml
     assert '<inertial pos="0 0 0" mass="0.5" diaginertia="0.002 0.002 0.002"/>' in xml
     assert '<geom name="g1" type="sphere" size="0.1" contype="0" conaffinity="0"/>' in xml
-    assert xml.count("<freejoint/>") == 2
+    assert xml.count("<freejoint/>") == 3
+    assert xml.count("</body>") == 3
+    assert 'name="g2"' not in xml
     assert xml.count('<pair geom1="ground" geom2="g') == 2
     assert '<pair geom1="g0" geom2="g1" condim="1" solref=' in xml
     assert xml.startswith("<mujoco>\n")
