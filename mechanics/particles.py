@@ -403,6 +403,10 @@ def centre_of_mass(m, r) -> np.ndarray:
     sS, kS = _dot_scaled(mm[..., None, :], np.moveaxis(rr, -1, -2))
     with np.errstate(over="ignore"):
         rG = np.ldexp(sS / sM[..., None], kS - kM[..., None])
+    # a mean with weights ≥ 0 lies within the range of the positions: clip the rounding of
+    # the ratio back into it (particles all at 1.79e308 would otherwise round to inf, and
+    # coincident particles off their common position by an ulp) (issue 16)
+    rG = np.clip(rG, rr.min(axis=-2), rr.max(axis=-2))
     return _finite_result(rG, "the centre of mass")
 
 

@@ -1092,3 +1092,32 @@ def test_an_axis_of_any_magnitude_is_normalised_by_its_own_power_of_two():
     # a batch: a subnormal axis along z, and one of 1e308 along x + y: x_z and (x + y)/√2
     out = mp.axial_component(x, axis=[[0.0, 0.0, 1e-320], [1e308, 1e308, 0.0]])
     np.testing.assert_allclose(out, [3.0, 3.0 / math.sqrt(2.0)], rtol=4 * EPS, atol=0)
+
+
+def test_the_centre_of_mass_lies_within_the_range_of_the_positions_to_the_last_bit():
+    # a mean with weights ≥ 0 lies between the smallest and largest position in each
+    # component: particles all at the largest float have r_G there (the ratio of the
+    # compensated sums used to round above it, to inf: a false overflow error), and
+    # coincident particles have r_G exactly at their common position
+    big = np.finfo(float).max
+    rng = np.random.default_rng(RNG_SEED + 5)
+    m = rng.uniform(0.01, 1.0, (20, 4))
+    at_max = np.broadcast_to([big, -big, np.nextafter(big, 0.0)], (20, 4, 3))
+    np.testing.assert_array_equal(
+        mp.centre_of_mass(m, at_max), np.broadcast_to(at_max[:, 0], (20, 3))
+    )
+    x = rng.normal(size=(20, 1, 3)) * 10.0 ** rng.integers(-5, 5, size=(20, 1, 1))
+    coincident = np.broadcast_to(x, (20, 4, 3))
+    np.testing.assert_array_equal(mp.centre_of_mass(m, coincident), x[:, 0])
+    np.testing.assert_array_equal(mp.centre_of_mass_velocity(m, coincident), x[:, 0])
+
+
+def test_one_point_about_two_axes_gives_two_sets_of_cylindrical_coordinates():
+    # the axes' batch (2,) against a single point: (1, 2, 3) about e_z is ρ = √5, z = 3, and
+    # about e_x is ρ = √13, z = 1
+    c = mp.cylindrical_components(
+        [1.0, 2.0, 3.0], [0.0, 1.0, 0.0], about=[0.0, 0.0, 0.0], axis=[[0, 0, 1.0], [1.0, 0, 0]]
+    )
+    np.testing.assert_allclose(c.rho, [math.sqrt(5.0), math.sqrt(13.0)], rtol=EPS, atol=0)
+    assert c.z.tolist() == [3.0, 1.0]
+    assert c.zdot.tolist() == [0.0, 0.0]
