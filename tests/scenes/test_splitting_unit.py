@@ -351,3 +351,16 @@ def test_one_strang_step_kicks_the_spin_by_the_moment_of_an_off_centre_spring() 
     got = eng.layout.gather(segs[0][2](0.1))
     for name, g, want in zip("rvLR", got, (r, v, L, R), strict=True):
         np.testing.assert_allclose(g[0], want, rtol=0, atol=TOP_ATOL, err_msg=name)
+
+
+def test_a_run_near_the_separatrix_stops_naming_scene_method(monkeypatch) -> None:
+    import mechanics.tops
+
+    def refuse(*a, **kw):
+        raise OutOfDomainError("too close to the separatrix")
+
+    eng = Engine(_scene([_box()], [], duration=0.5))
+    monkeypatch.setattr(mechanics.tops, "FreeAsymmetricTop", refuse)
+    with pytest.raises(SceneError, match="within float64's reach of the separatrix") as info:
+        splitting.run(eng, 2, None)
+    assert str(info.value).startswith("split.toml: scene.method: 'splitting': ")
