@@ -721,3 +721,62 @@ def test_the_series_of_a_heavy_symmetric_top() -> None:
     state = tr.state_at(0.0)
     assert state["cos_theta"] == pytest.approx(math.cos(0.5), abs=top_atol)
     assert state["cos_theta_dot"] == pytest.approx(0.0, abs=top_atol)  # θ̇ = 0 at the start
+
+
+# ------------------------------------------------------------ runaway event counts
+
+
+def test_a_run_whose_modes_switch_too_often_stops_naming_the_effect(monkeypatch) -> None:
+    """A tank emptying (one switch of its mode, integrated): with MAX_EVENTS lowered to 0
+    that one switch is already too many: one line naming scene.duration and the effect."""
+    tank = {"name": "t", "shape": "tank", "area": 1.0, "initial": {"level": 1.0}}
+    out = {"type": "tank_outflow", "body": "t", "hole_area": 0.1}
+    scene = _scene([tank], [GRAVITY, out], duration=10.0, method="integrate")
+    monkeypatch.setattr(en, "MAX_EVENTS", 0)
+    with pytest.raises(SceneError) as info:
+        Engine(scene).run()
+    assert info.value.field == "scene.duration"
+    assert info.value.reason.startswith("effects[1] come to rest in contact")
+
+
+@pytest.mark.parametrize("method", ["auto", "integrate"])
+def test_a_run_with_too_many_impacts_stops_naming_the_impact(monkeypatch, method) -> None:
+    # a ball dropped on the floor: its first bounce is already more than MAX_EVENTS = 0
+    scene = _scene(
+        [_ball(position=(0.0, 0.0, 1.0))],
+        [GRAVITY, {"type": "impact", "body": "ball", "restitution": 0.5}],
+        method=method,
+    )
+    monkeypatch.setattr(en, "MAX_EVENTS", 0)
+    with pytest.raises(SceneError) as info:
+        Engine(scene).run()
+    assert info.value.field == "scene.duration"
+    assert "come to rest in contact" in info.value.reason
+    assert "'ball'" in info.value.reason
+
+
+def test_too_many_rounds_of_simultaneous_impacts_stop_with_one_line(monkeypatch) -> None:
+    """A Newton's cradle: a at 1 m/s onto b touching c needs two rounds of impulses at
+    t = 0.5 s (a on b, then b on c); with MAX_SWEEPS = 1 the second is one too many."""
+    balls = [
+        _ball("a", (0.0, 0.0, 0.0), (1.0, 0.0, 0.0)),
+        _ball("b", (0.7, 0.0, 0.0)),
+        _ball("c", (0.9, 0.0, 0.0)),
+    ]
+    impacts = [
+        {"type": "impact", "body": "a", "other": "b", "restitution": 1.0},
+        {"type": "impact", "body": "b", "other": "c", "restitution": 1.0},
+    ]
+    monkeypatch.setattr(en, "MAX_SWEEPS", 1)
+    with pytest.raises(SceneError) as info:
+        Engine(_scene(balls, impacts)).run()
+    assert (info.value.field, info.value.reason) == (
+        "effects",
+        "more than 1 rounds of simultaneous impacts at t = 0.5 s",
+    )
+    monkeypatch.setattr(en, "MAX_SWEEPS", 2)  # two rounds: a stops, c leaves at 1 m/s
+    tr = Engine(_scene(balls, impacts)).run()
+    assert [e.detail["bodies"] for e in tr.events] == [["a", "b"], ["b", "c"]]
+    np.testing.assert_allclose(
+        [tr.series[f"{n}.vx"][-1] for n in "abc"], [0.0, 0.0, 1.0], rtol=0, atol=4 * EPS
+    )
