@@ -1006,6 +1006,12 @@ def test_energy_momentum_and_angular_momentum_of_a_made_up_motion_by_hand():
     values, scale = inv["L"]
     np.testing.assert_allclose(values, L, rtol=CLOSED_ATOL, atol=CLOSED_ATOL)
     assert scale == pytest.approx(max(L_sizes), rel=CLOSED_ATOL)
+    # the impact conserves the same p and L about the origin (no gravity in its sums)
+    impact = invariants(_two_bodies("impact"), tr)
+    assert tuple(impact) == ("p", "L")
+    np.testing.assert_allclose(impact["p"][0], P, rtol=CLOSED_ATOL, atol=0)
+    np.testing.assert_allclose(impact["L"][0], L, rtol=CLOSED_ATOL, atol=CLOSED_ATOL)
+    assert impact["L"][1] == pytest.approx(max(L_sizes), rel=CLOSED_ATOL)
 
 
 def test_a_trajectorys_own_masses_make_its_kinetic_energy():
