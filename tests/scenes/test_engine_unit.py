@@ -780,3 +780,47 @@ def test_too_many_rounds_of_simultaneous_impacts_stop_with_one_line(monkeypatch)
     np.testing.assert_allclose(
         [tr.series[f"{n}.vx"][-1] for n in "abc"], [0.0, 0.0, 1.0], rtol=0, atol=4 * EPS
     )
+
+
+# ------------------------------------------------------- a rim on a hinged body
+
+
+def test_a_coin_turning_on_a_hinge_strikes_the_floor_with_its_rim() -> None:
+    """A disc (a = 0.5) turning at Ω = 2 about a horizontal diameter through G at
+    height 1, flat at the start, over a floor at 0.75: its rim reaches down a sin φ, so
+    it strikes at sin φc = 0.25/0.5, t_c = (π/6)/Ω, with normal speed a cos φc Ω; the
+    hinge takes the impulse's other components, so ω' = −e Ω (e = 1/2) and the normal
+    speed after is e times that before (Chapter 6)."""
+    scene = _scene(
+        [
+            {
+                "name": "d",
+                "shape": "disc",
+                "mass": 1.0,
+                "radius": 0.5,
+                "initial": {"angle": 0.0, "angular_velocity": 2.0},
+            }
+        ],
+        [
+            {
+                "type": "fixed_axis",
+                "body": "d",
+                "axis": [1.0, 0.0, 0.0],
+                "body_axis": "x",
+                "point": [0.0, 0.0, 1.0],
+            },
+            {"type": "impact", "body": "d", "restitution": 0.5, "plane_point": [0.0, 0.0, 0.75]},
+        ],
+        duration=0.5,
+    )
+    tr = Engine(scene).run()
+    assert tr.method.startswith("integrated: DOP853")
+    (ev,) = tr.events
+    stepped = 2**10 * EPS  # DOP853 on a uniform turn, the crossing refined to 4 eps
+    assert ev.t == pytest.approx(math.pi / 12, rel=stepped)
+    v_n = 0.5 * math.cos(math.pi / 6) * 2.0
+    assert ev.detail["normal_speed_before"] == pytest.approx(v_n, rel=stepped)
+    assert ev.detail["normal_speed_after"] == pytest.approx(0.5 * v_n, rel=stepped)
+    assert tr.series["phidot"][-1] == pytest.approx(-1.0, rel=stepped)
+    # φ = π/6 at the strike, then back at 1 rad/s for 0.5 − π/12 s
+    assert tr.series["phi"][-1] == pytest.approx(math.pi / 6 - (0.5 - math.pi / 12), rel=stepped)
