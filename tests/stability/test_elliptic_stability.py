@@ -482,12 +482,47 @@ def test_third_kind_excess_of_one_float_agrees_with_mpmath(u, n, p, p1):
     assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="scipy 1.17's elliprj(x, y, 1, p) is off by ~2e-3 relative for 1e-300 ≤ x, y ≤ "
-    "1e-160 (7e12 eps at x = y/2 = 1e-170; elliprf is right there): ellippi_jacobi with "
-    "m1 < 1e-160 passes such cn², dn² in the flipped quarter K/2 < |r| ≤ K",
+#: R_J by one duplication step, then scipy's R_J and R_C: measured 2.0 eps at worst on
+#: the grid below against mpmath (scipy alone: 7e12 eps at x = y/2 = 1e-170)
+RJ_EPS = 4
+
+
+@pytest.mark.parametrize("p", [0.5, 4.0, 1e-10, 0.999])
+@pytest.mark.parametrize(
+    ("x", "y"),
+    [
+        (1e-160, 2e-160),
+        (1e-170, 2e-170),
+        (1e-300, 1e-300),
+        (5e-324, 1e-200),  # the smallest subnormal beside a tiny normal
+        (2.0**-401, 2.0**-401),  # just below the switch to the duplication
+        (2.0**-400, 2.0**-400),  # at it: scipy's own R_J
+        (0.0, 1e-200),  # a zero argument: scipy is right there, no duplication
+        (1e-170, 0.5),  # one tiny argument only: scipy's own R_J
+        (0.3, 0.7),
+    ],
 )
+def test_rj_is_accurate_where_both_first_arguments_are_tiny(x, y, p):
+    # scipy 1.17's elliprj(x, y, 1, p) is off by ~2e-3 relative for 1e-300 ≤ x, y ≤
+    # 1e-160 (found by the flipped-quarter test below); el._rj lifts x and y by one step
+    # of Carlson's duplication theorem there
+    ref = mpmath.elliprj(x, y, 1, p)
+    got = el._rj(np.array([x, 0.3]), np.array([y, 0.7]), 1.0, p)[0]
+    got_scalar = el._rj_scalar(x, y, 1.0, p)
+    got_0d = el._rj(x, y, 1.0, p)
+    for g in (got, got_scalar, float(got_0d)):
+        assert abs(mpmath.mpf(g) - ref) <= RJ_EPS * EPS * abs(ref), (g, ref)
+
+
+def test_the_duplication_step_agrees_with_scipys_rj_where_scipy_is_accurate():
+    # the identity R_J = 2 R_J(x + λ, ...) + 3 R_C(α², β²) checked at ordinary arguments
+    # (a wrong λ, α or β, or a wrong factor 2 or 3, is far off here)
+    x, y, z, p = np.array([0.3, 1e-3, 2.0]), np.array([0.7, 0.5, 3.0]), 1.0, 0.4
+    ref = np.array([float(mpmath.elliprj(a, b, z, p)) for a, b in zip(x, y, strict=True)])
+    got = el._rj_duplicated(x, y, z, p)
+    np.testing.assert_allclose(got, ref, rtol=RJ_EPS * EPS, atol=0)
+
+
 @pytest.mark.parametrize("n", [-3.0, 0.5])
 def test_third_kind_in_jacobis_form_near_the_separatrix_in_the_flipped_quarter(n):
     # m1 = 1e-300, u = 0.8 K: sn(u) = tanh(u) to 1e-60 (sn departs from tanh only where
