@@ -824,3 +824,29 @@ def test_a_coin_turning_on_a_hinge_strikes_the_floor_with_its_rim() -> None:
     assert tr.series["phidot"][-1] == pytest.approx(-1.0, rel=stepped)
     # φ = π/6 at the strike, then back at 1 rad/s for 0.5 − π/12 s
     assert tr.series["phi"][-1] == pytest.approx(math.pi / 6 - (0.5 - math.pi / 12), rel=stepped)
+
+
+def test_the_touching_pair_that_closes_fastest_is_resolved_first() -> None:
+    """b at rest between a (touching it, closing at 1 m/s) and c (touching it, closing
+    at 2 m/s): the sequential impulses take b–c first; a pair closing from afar, or
+    touching at rest, is not resolved now."""
+    impacts = [
+        {"type": "impact", "body": "a", "other": "b", "restitution": 1.0},
+        {"type": "impact", "body": "b", "other": "c", "restitution": 1.0},
+    ]
+
+    def closing(va, vc, xc=0.4):
+        balls = [
+            _ball("a", (0.0, 0.0, 0.0), (va, 0.0, 0.0)),
+            _ball("b", (0.2, 0.0, 0.0)),
+            _ball("c", (xc, 0.0, 0.0), (vc, 0.0, 0.0)),
+        ]
+        eng = Engine(_scene(balls, impacts))
+        found = eng._closing_now(eng.snapshot(0.0, eng.y0))
+        return None if found is None else found[0].where
+
+    assert closing(1.0, -2.0) == "effects[1]"
+    assert closing(2.0, -1.0) == "effects[0]"
+    assert closing(0.0, 0.0) is None  # touching at rest: no impact
+    assert closing(0.0, -2.0, xc=0.5) is None  # c closes from 0.1 m away: not now
+    assert closing(-1.0, 2.0) is None  # both separating
