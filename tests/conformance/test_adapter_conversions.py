@@ -1542,3 +1542,26 @@ def test_body_rows_are_float_arrays_whatever_numbers_the_bodies_hold():
     rows = body_rows(_scenario([b]))
     assert [x.dtype for x in rows] == [np.float64] * 4
     assert [x.shape for x in rows] == [(1, 3), (1, 3), (1, 3, 3), (1, 3)]
+
+
+def test_drake_takes_integer_numbers_and_returns_float_times():
+    _drake()
+    from mechanics.conformance.adapters.drake import DrakeAdapter
+
+    # a pivot point, sample times and a duration written as integers
+    # body axis 3 along −y (row 3 of ^A R^O): G at (0, −1, 0), the arm horizontal
+    top = Body("top", 1, (1, 1, 2), position=(0, -1, 0), R_A_O=((1, 0, 0), (0, 0, 1), (0, -1, 0)))
+    s = Scenario(
+        "ints",
+        "integers",
+        "(none)",
+        (top,),
+        1,
+        (0, 1),
+        gravity=(0, 0, -10),
+        pivot=Pivot(0, (0, 0, -1)),
+    )
+    tr = DrakeAdapter().run(s, 0.5)
+    assert tr.t.dtype == np.float64
+    np.testing.assert_array_equal(tr.t, [0.0, 1.0])
+    np.testing.assert_allclose(tr.position[0, 0], [0.0, -1.0, 0.0], atol=ROUNDTRIP_ATOL, rtol=0)
