@@ -806,14 +806,20 @@ def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
     >>> bool(abs(J1 * c * slow**2 - L3 * slow + mgl) < 1e-14)
     True
     """
-    J_1, mgl, L3 = _scaled(
-        _positive(J_1, "J_1"), _positive(m_g_ell, "m_g_ell"), as_float_scalar(L_3, "L_3")
-    )
-    if min(J_1, mgl) < _TINY:
-        raise OutOfDomainError(
-            "J_1 or m_g_ell is below 1e-308 of the largest of J_1, |L_3|, m_g_ell: the ratio "
-            "underflows float64 (rescale, or treat the top as free)"
-        )
+    given = {
+        "J_1": _positive(J_1, "J_1"),
+        "m_g_ell": _positive(m_g_ell, "m_g_ell"),
+        "L_3": as_float_scalar(L_3, "L_3"),
+    }
+    J_1, mgl, L3 = _scaled(*given.values())
+    for name, x in (("J_1", J_1), ("m_g_ell", mgl)):
+        if x < _TINY:  # its ratio to the largest is below float64's normal range
+            largest = max(abs(v) for v in given.values())
+            raise OutOfDomainError(
+                f"{name} = {given[name]!r} is below 1e-308 of the largest of J_1, |L_3|, "
+                f"m_g_ell ({largest!r}): the ratio underflows float64 (rescale, or treat the "
+                "top as free)"
+            )
     c = math.cos(as_float_scalar(theta, "theta"))
     disc = L3 * L3 - 4.0 * J_1 * mgl * c
     if disc < 0:

@@ -655,3 +655,33 @@ def test_on_the_separatrix_one_instant_keeps_the_angular_momentum_fixed_in_space
         L_O = R.T @ (top.J * w)
         L = np.abs(top.angular_momentum_space).max()
         assert np.abs(L_O - top.angular_momentum_space).max() <= SEPARATRIX_L_ATOL * L
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "name", "shown", "largest"),
+    [
+        ({"J_1": 1e-300, "L_3": 1e10, "m_g_ell": 1.0}, "J_1", "1e-300", "10000000000.0"),
+        ({"J_1": 1.0, "L_3": -1e10, "m_g_ell": 1e-300}, "m_g_ell", "1e-300", "10000000000.0"),
+        ({"J_1": 1e300, "L_3": 0.0, "m_g_ell": 1e-10}, "m_g_ell", "1e-10", "1e+300"),
+    ],
+)
+def test_steady_precession_refuses_a_ratio_below_float64s_range_naming_it(
+    kwargs, name, shown, largest
+):
+    # J'1/max or mgℓ/max below 2^-1022: the scaled quadratic would lose that coefficient
+    with pytest.raises(OutOfDomainError) as info:
+        tops.steady_precession_rates(theta=0.5, **kwargs)
+    assert str(info.value) == (
+        f"{name} = {shown} is below 1e-308 of the largest of J_1, |L_3|, m_g_ell ({largest}): "
+        "the ratio underflows float64 (rescale, or treat the top as free)"
+    )
+
+
+def test_steady_precession_takes_ratios_down_to_float64s_normal_range():
+    # J'1 cos θ Ω² − L3 Ω + mgℓ = 0 is homogeneous in (J'1, L3, mgℓ): dividing
+    # (2^-1000, 1, 2^-1000) by 2^-1000 gives (1, 2^1000, 1), the same roots Ω; the ratio
+    # 2^-1000 is still normal, so both are computed, and agree to a few roundings
+    a = tops.steady_precession_rates(2.0**-1000, 1.0, 2.0**-1000, 0.5)
+    b = tops.steady_precession_rates(1.0, 2.0**1000, 1.0, 0.5)
+    assert a == pytest.approx(b, rel=4 * EPS)
+    assert 0 < a[0] < a[1]  # slow and fast, both finite
