@@ -12,6 +12,7 @@ restitution laws, step plans, scene dicts) against hand derivations.  No long ru
 from __future__ import annotations
 
 import dataclasses
+import itertools
 import math
 import os
 
@@ -490,7 +491,6 @@ def test_mujoco_no_tension_restitution_by_its_closed_form():
     from mechanics.conformance.adapters.mujoco import restitution_without_tension
 
     assert restitution_without_tension(0.0) == 1.0
-    assert restitution_without_tension(1.0) == 0.0
     # ζ = 1/2: the body lets go at ω_d t = π − 2 arcsin ½ = 2π/3, e = exp(−½ (2π/3)/√(3/4))
     assert restitution_without_tension(0.5) == pytest.approx(
         math.exp(-math.pi / (3 * math.sqrt(0.75))), rel=8 * EPS
@@ -511,7 +511,7 @@ def test_mujoco_zeta_without_tension_is_bisected_to_the_last_bit():
     )
 
     assert zeta_without_tension(1.0) == 0.0
-    assert zeta_without_tension(0.0) == 1.0
+    assert zeta_without_tension(math.exp(-2)) == 1.0  # the least e: critical damping
     for e in (0.2, 0.5, 0.8, 0.99):  # above e^-2, the law's floor (the next test)
         z = zeta_without_tension(e)
         # e(ζ) decreases: the neighbours of ζ bracket e
@@ -525,19 +525,50 @@ def test_mujoco_zeta_without_tension_is_bisected_to_the_last_bit():
         zeta_without_tension(-0.1)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="library bug (issue 16): restitution_without_tension(1) returns 0, but the "
-    "critically damped no-tension contact lets go at ωt = 2 with speed v e^-2; e(ζ) tends "
-    "to e^-2 = 0.135 as ζ → 1, so e below that has no ζ (zeta_without_tension(0.1) gives 1)",
-)
 def test_mujoco_no_tension_restitution_is_continuous_at_critical_damping():
+    # (a library bug found in issue 16: e(1) was 0, and zeta_without_tension(0.1) gave 1)
     from mechanics.conformance.adapters.mujoco import restitution_without_tension
 
     # ζ = 1: x = v t e^(−ωt), ẋ = v (1 − ωt) e^(−ωt); the force ω² x + 2ω ẋ vanishes at
-    # ωt = 2, where ẋ = −v e^(−2)
-    assert restitution_without_tension(1 - 2**-40) == pytest.approx(math.exp(-2), rel=2**-15)
-    assert restitution_without_tension(1.0) == pytest.approx(math.exp(-2), rel=8 * EPS)
+    # ωt = 2, where ẋ = −v e^(−2).  Near ζ = 1, with ε = 1 − ζ: π − 2 arcsin ζ ≈ 2√(2ε),
+    # √(1 − ζ²) ≈ √(2ε), so e ≈ exp(−2ζ(1 + ε/3)) to O(ε²): within 2^-60 at ε = 2^-40
+    z = 1 - 2.0**-40
+    assert restitution_without_tension(z) == pytest.approx(
+        math.exp(-2 * z * (1 + 2.0**-40 / 3)), rel=2**6 * EPS
+    )
+    assert restitution_without_tension(1.0) == math.exp(-2)
+    # e(ζ) keeps falling up to ζ = 1 (its floor is approached from above)
+    zs = 1 - np.array([2.0**-10, 2.0**-20, 2.0**-30, 0.0])
+    es = [restitution_without_tension(float(x)) for x in zs]
+    assert all(a > b for a, b in itertools.pairwise(es))
+
+
+@pytest.mark.parametrize("e", [0.0, 0.1, math.exp(-2) * (1 - 2 * EPS)])
+def test_mujoco_zeta_without_tension_refuses_a_restitution_below_its_floor(e):
+    from mechanics.conformance.adapters.mujoco import zeta_without_tension
+
+    with pytest.raises(OutOfDomainError) as info:
+        zeta_without_tension(e)
+    assert str(info.value) == (
+        f"e = {e!r} is below e^-2 = 0.135335: a spring-damper that cannot pull rebounds at "
+        "least that fast for any damping ratio zeta <= 1"
+    )
+
+
+def test_mujoco_tuned_contact_does_not_support_a_restitution_below_its_floor():
+    _mujoco()
+    from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
+
+    ball = SCENARIOS["bouncing_ball"]
+    low = dataclasses.replace(ball, ground=Ground(0.1))
+    assert MuJoCoAdapter("RK4", "tuned").supports(ball) is None
+    assert MuJoCoAdapter("RK4", "tuned").supports(low) == (
+        "a restitution e = 0.1 below e^-2 = 0.1353: the tuned contact (a spring-damper that "
+        "cannot pull, zeta <= 1) rebounds faster; the default contact takes it"
+    )
+    assert MuJoCoAdapter("RK4", "default").supports(low) is None
+    pair = dataclasses.replace(SCENARIOS["two_body_impact"], pair_restitution=((0, 1, 0.05),))
+    assert "e = 0.05 below e^-2" in MuJoCoAdapter("Euler", "tuned").supports(pair)
 
 
 def test_mujoco_textbook_zeta_by_hand():

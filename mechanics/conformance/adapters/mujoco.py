@@ -51,13 +51,16 @@ parameters").  With d held constant the depth x obeys an oscillator of frequency
 
       e(ζ) = exp(−ζ (π − 2 arcsin ζ) / √(1 − ζ²)),
 
-  solved for ζ by bisection (:func:`zeta_without_tension`).  The numbers and their
+  solved for ζ by bisection (:func:`zeta_without_tension`).  e(ζ) falls from 1 at ζ = 0
+  to e⁻² ≈ 0.135 at critical damping (ζ = 1: x = −v t e^(−ωt) lets go at ωt = 2 with
+  speed v e⁻²), so a restitution below e⁻² has no ζ ≤ 1: the tuned contact does not
+  support it (:meth:`MuJoCoAdapter.supports` says so).  The numbers and their
   measured rebounds come from ``tests/scenes/test_mujoco_reference.py`` (issue 14):
   e(1 − 1.8e-4) at a 1 µs step; what is left is the climb out of the dent,
   2 g τ ζ²/(e v), and a step error of about 2h/τ (≤ 0.1 at the floor τ = 20 h).
 - e = 1 has ζ = 0, an infinite stiffness in (τ, ζ); it is written in MuJoCo's direct
   form ``solref = (−1/τ², 0)`` (a spring of frequency 1/τ and no damping, which lets go
-  at the speed it came in).  e = 0 is ζ = 1 (critical damping) in both settings.
+  at the speed it came in).  e = 0 is ζ = 1 (critical damping) in the default setting.
 
 Integrators and steps (:func:`variants`)
 ----------------------------------------
@@ -79,7 +82,7 @@ import math
 
 import numpy as np
 
-from ...errors import MechanicsValueError, RestitutionRangeError
+from ...errors import MechanicsValueError, OutOfDomainError, RestitutionRangeError
 from ...rotation import matrix_from_quat, quat_from_matrix
 from ..protocol import ConformanceError, Scenario, Trajectory
 from ._engines import (
@@ -96,6 +99,7 @@ __all__ = [
     "CONTACTS",
     "DEFAULT_SOLIMP",
     "DEFAULT_TIMECONST",
+    "E_MIN_WITHOUT_TENSION",
     "INTEGRATORS",
     "TUNED_SOLIMP",
     "TUNED_STEPS_PER_TIMECONST",
@@ -126,32 +130,41 @@ TUNED_STEPS_PER_TIMECONST = 20
 INERTIA_RTOL = 4 * EPS
 
 
+#: the no-tension restitution at critical damping, e(1) = e⁻²: the least e(ζ) for ζ ≤ 1
+E_MIN_WITHOUT_TENSION = math.exp(-2.0)
+
+
 def restitution_without_tension(zeta: float) -> float:
     """Speed ratio at which a spring-damper of damping ratio ζ ∈ [0, 1] that cannot
-    pull lets go: exp(−ζ (π − 2 arcsin ζ)/√(1 − ζ²)); 0 at ζ = 1.
+    pull lets go: exp(−ζ (π − 2 arcsin ζ)/√(1 − ζ²)); e⁻² at ζ = 1 (its limit, and the
+    critically damped contact's own value: it lets go at ωt = 2 with speed v e⁻²).
 
     Domain: ζ in [0, 1] (a NaN, an infinity or a value outside is refused naming
     ``zeta``); the result is in [0, 1].
 
     Examples
     --------
-    >>> restitution_without_tension(0.0), restitution_without_tension(1.0)
-    (1.0, 0.0)
+    >>> restitution_without_tension(0.0), restitution_without_tension(1.0) == math.exp(-2)
+    (1.0, True)
     >>> round(restitution_without_tension(0.06), 4)  # ζ = 0.060 for e = 5/6 (issue 14)
     0.8339
     """
     zeta = unit_interval(zeta, "zeta", "a damping ratio")
-    if zeta >= 1.0:
-        return 0.0
     c = math.sqrt((1.0 - zeta) * (1.0 + zeta))
-    return math.exp(-zeta * (math.pi - 2.0 * math.atan2(zeta, c)) / c)
+    if c == 0.0:
+        return E_MIN_WITHOUT_TENSION
+    # π − 2 arcsin ζ = 2 atan2(c, ζ): no cancellation as ζ → 1, where the ratio
+    # atan2(c, ζ)/c → 1/ζ and e → e⁻²
+    return math.exp(-2.0 * zeta * math.atan2(c, zeta) / c)
 
 
 def zeta_without_tension(e: float) -> float:
     """The damping ratio ζ whose no-tension restitution is ``e`` (bisection to the last
-    bit: e(ζ) decreases from 1 at ζ = 0 to 0 at ζ = 1).
+    bit: e(ζ) decreases from 1 at ζ = 0 to e⁻² at ζ = 1).
 
-    Domain: e in [0, 1] (refused naming ``e`` outside); the result is in [0, 1].
+    Domain: e in [e⁻², 1] (:data:`E_MIN_WITHOUT_TENSION`: below it no ζ ≤ 1 rebounds so
+    little, an OutOfDomainError says so; outside [0, 1] a RestitutionRangeError names
+    ``e``); the result is in [0, 1].
 
     Examples
     --------
@@ -162,7 +175,12 @@ def zeta_without_tension(e: float) -> float:
     e = unit_interval(e, "e", "a coefficient of restitution", error=RestitutionRangeError)
     if e >= 1.0:
         return 0.0
-    if e <= 0.0:
+    if e < E_MIN_WITHOUT_TENSION:
+        raise OutOfDomainError(
+            f"e = {e!r} is below e^-2 = {E_MIN_WITHOUT_TENSION:.6g}: a spring-damper that "
+            "cannot pull rebounds at least that fast for any damping ratio zeta <= 1"
+        )
+    if e == E_MIN_WITHOUT_TENSION:
         return 1.0
     lo, hi = 0.0, 1.0
     while True:
@@ -226,8 +244,21 @@ class MuJoCoAdapter:
     # ------------------------------------------------------------------ model
 
     def supports(self, scenario: Scenario) -> str | None:
-        """``None``, or why MuJoCo cannot run ``scenario`` (a Thrust)."""
-        return common_unsupported(scenario)
+        """``None``, or why MuJoCo cannot run ``scenario`` (a Thrust; with the tuned
+        contact, a restitution below e⁻²)."""
+        why = common_unsupported(scenario)
+        if why is None and self.contact == "tuned":
+            es = [e for *_, e in scenario.pair_restitution]
+            if scenario.ground is not None:
+                es.append(scenario.ground.restitution)
+            low = [e for e in es if e < E_MIN_WITHOUT_TENSION]
+            if low:
+                why = (
+                    f"a restitution e = {min(low)!r} below e^-2 = {E_MIN_WITHOUT_TENSION:.4g}: "
+                    "the tuned contact (a spring-damper that cannot pull, zeta <= 1) rebounds "
+                    "faster; the default contact takes it"
+                )
+        return why
 
     def _solref(self, e: float, step: float) -> tuple[str, str]:
         if self.contact == "default":
