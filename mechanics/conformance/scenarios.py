@@ -510,11 +510,18 @@ def _ref_bounce(s: Scenario) -> Reference:
     b, gr = s.bodies[0], s.ground
     g, r, h0, tf, e = _bounce_numbers(s)
     nrm = np.asarray(gr.normal, dtype=float)
-    # impacts at tf (1 + 2e + … + 2e^{k−1}); between them free flight
+    # impacts at tf (1 + 2e + … + 2e^{k−1}); between them free flight.  For e < 1 they
+    # accumulate at t_rest = tf (1 + e)/(1 − e) (infinitely many; at once for e = 0), after
+    # which the ball rests on the ground: the list stops where the next impact no longer
+    # moves the time in float64 (issue 16: the loop ran forever past t_rest)
+    t_rest = math.inf if e >= 1 else tf * (1.0 + e) / (1.0 - e)
     impacts = [tf]
     while impacts[-1] <= t[-1]:
         k = len(impacts)
-        impacts.append(impacts[-1] + 2.0 * tf * e**k)
+        following = impacts[-1] + 2.0 * tf * e**k
+        if following == impacts[-1]:
+            break
+        impacts.append(following)
     n_apex = sum(1 for k in range(1, len(impacts)) if impacts[k - 1] + tf * e**k <= t[-1])
     apex_t = np.array([impacts[k - 1] + tf * e**k for k in range(1, n_apex + 1)])
     apex_h = h0 * e ** (2.0 * np.arange(1, n_apex + 1))
@@ -524,8 +531,9 @@ def _ref_bounce(s: Scenario) -> Reference:
     v_up = np.where(k == 0, 0.0, g * tf * e**k)
     z0 = np.where(k == 0, h0, 0.0)
     tau = t - start
-    zn = z0 + v_up * tau - 0.5 * g * tau**2
-    vn = v_up - g * tau
+    at_rest = t >= t_rest
+    zn = np.where(at_rest, 0.0, z0 + v_up * tau - 0.5 * g * tau**2)
+    vn = np.where(at_rest, 0.0, v_up - g * tau)
     v0 = np.asarray(b.velocity, dtype=float)
     v_t = v0 - np.dot(v0, nrm) * nrm  # tangential, kept by the smooth impacts
     base = np.asarray(b.position, dtype=float) - (np.dot(b.position, nrm) - gr.height - r) * nrm

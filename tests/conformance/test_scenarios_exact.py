@@ -840,25 +840,9 @@ class _Hung(Exception):
     pass
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=_Hung,
-    reason="library bug (issue 16): the bounce reference loops forever on a duration past "
-    "the time t_f (1 + e)/(1 − e) at which the ball comes to rest (infinitely many impacts)",
-)
-def test_the_bouncing_ball_reference_of_a_run_past_the_rest_time_returns():
+def _reference_within_half_a_second(s):
+    """reference(s), or _Hung: a run past the rest time once looped forever (issue 16)."""
     import signal
-
-    # e = 0.5, g = 4, h0 = 2: t_f = 1, impacts at 1, 2, 2.5, 2.75, ... → rest at 3 s
-    s = _fresh("bouncing_ball")
-    s = dataclasses.replace(
-        s,
-        bodies=(dataclasses.replace(s.bodies[0], position=(0.0, 0.0, 2.1)),),
-        ground=Ground(0.5),
-        gravity=(0.0, 0.0, -4.0),
-        duration=3.5,
-        sample_times=_times(3.5, 2.0**-3),
-    )
 
     def hung(*_):
         raise _Hung("reference() still running after 0.5 s (it takes milliseconds)")
@@ -866,10 +850,59 @@ def test_the_bouncing_ball_reference_of_a_run_past_the_rest_time_returns():
     old = signal.signal(signal.SIGALRM, hung)
     signal.setitimer(signal.ITIMER_REAL, 0.5)
     try:
-        reference(s)
+        return reference(s)
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0.0)
         signal.signal(signal.SIGALRM, old)
+
+
+def _drop(e, duration):
+    # h0 = 2 (r = 0.1 above z = 0), g = 4: t_f = 1, impacts at 1, 1 + 2e, 1 + 2e + 2e², ...
+    s = _fresh("bouncing_ball")
+    return dataclasses.replace(
+        s,
+        bodies=(dataclasses.replace(s.bodies[0], position=(0.0, 0.0, 2.1)),),
+        ground=Ground(e),
+        gravity=(0.0, 0.0, -4.0),
+        duration=duration,
+        sample_times=_times(duration, 2.0**-3),
+    )
+
+
+def test_the_bouncing_ball_comes_to_rest_at_tf_1_plus_e_over_1_minus_e():
+    # e = 0.5: the impacts accumulate at t_f (1 + e)/(1 − e) = 3 s (a geometric series);
+    # after it the ball lies on the ground (it looped forever there before issue 16)
+    s = _drop(0.5, 3.5)
+    ref = _reference_within_half_a_second(s)
+    t = np.array(s.sample_times)
+    tr = ref.trajectory
+    before = t < 2.75  # by hand, flight by flight, up to the fourth impact
+    z, vz = _bounce_by_hand(t[before], 2.0, 0.5, 4.0)
+    np.testing.assert_allclose(tr.position[before, 0, 2], 0.1 + z, atol=CLOSED_ATOL, rtol=0)
+    np.testing.assert_allclose(tr.velocity[before, 0, 2], vz, atol=CLOSED_ATOL, rtol=0)
+    rest = t >= 3.0
+    assert rest.sum() == 5  # 3, 3.125, ..., 3.5
+    np.testing.assert_allclose(tr.position[rest, 0, 2], 0.1, atol=CLOSED_ATOL, rtol=0)
+    assert np.all(tr.velocity[rest, 0, 2] == 0.0)
+    # the apexes e^(2k) h0 at 1 + 2e + … + e^k: 0.5 at 1.5, 0.125 at 2.25, …, all before 3
+    apex_t, apex_h = ref.figures["apex_times"], ref.figures["apex_heights"]
+    np.testing.assert_allclose(apex_t[:2], [1.5, 2.25], rtol=READ_RTOL, atol=0)
+    np.testing.assert_allclose(apex_h[:2], [0.5, 0.125], rtol=READ_RTOL, atol=0)
+    assert np.all(apex_t < 3.0)
+    assert np.all(np.diff(apex_t) > 0)
+
+
+def test_a_ball_that_does_not_rebound_rests_from_its_first_impact():
+    # e = 0: one impact at t_f = 1, then at rest (the list of impacts stood still at t_f)
+    s = _drop(0.0, 2.0)
+    ref = _reference_within_half_a_second(s)
+    t = np.array(s.sample_times)
+    z = ref.trajectory.position[:, 0, 2]
+    vz = ref.trajectory.velocity[:, 0, 2]
+    np.testing.assert_allclose(z[t < 1], 2.1 - 2.0 * t[t < 1] ** 2, atol=CLOSED_ATOL, rtol=0)
+    np.testing.assert_allclose(z[t >= 1], 0.1, atol=CLOSED_ATOL, rtol=0)
+    assert np.all(vz[t >= 1] == 0.0)
+    assert ref.figures["apex_times"].size == 0
 
 
 @pytest.mark.parametrize(
