@@ -20,7 +20,8 @@ Conventions (the same as every module of :mod:`mechanics`)
 - A shape is centred on G with its axes along the body axes: a sphere of radius r, a
   box of half extents (a, b, c) along axes 1, 2, 3, a cylinder of radius r and half
   length h along axis 3.
-- A :class:`Ground` is the plane ``normal · x = height`` (bodies above it); a contact
+- A :class:`Ground` is the plane ``normal · x = height`` (bodies above it), ``normal`` a
+  unit vector (refused otherwise, so that ``height`` is along it); a contact
   with it, or between two bodies, obeys Newton's law of restitution (6.6) with the
   coefficient given, smooth (no friction).
 - A :class:`Pivot` fixes one point of a body in space (a ball joint to the world):
@@ -35,6 +36,7 @@ that divide them (the battery only asks for such steps).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Protocol, runtime_checkable
 
@@ -67,6 +69,9 @@ ORTHOGONALITY_ATOL = 2**10 * EPS
 #: returned times must equal the scenario's: a fixed step n·h rounds to within a few eps
 #: of T; 2^6 eps relative to max(T, 1) allows t accumulated as t0 + n·h, not t += h
 SAMPLE_TIME_RTOL = 2**6 * EPS
+#: a ground normal written with a few digits, (0.6, 0.8, 0) or normalised in float64, has
+#: its length within a few roundings of 1
+UNIT_NORMAL_RTOL = 2**4 * EPS
 
 
 class ConformanceError(MechanicsValueError):
@@ -110,6 +115,18 @@ class Ground:
     restitution: float
     normal: tuple[float, float, float] = (0.0, 0.0, 1.0)
     height: float = 0.0
+
+    def __post_init__(self) -> None:
+        # one plane, one reading: with a unit normal, n · x = height and "height along
+        # the normal" agree (issue 16 found the engines' adapters reading the second, the
+        # scene engine's the first, for a normal of length 2)
+        n = np.asarray(self.normal, dtype=float)
+        length = float(np.linalg.norm(n)) if n.shape == (3,) else math.nan
+        if not abs(length - 1.0) <= UNIT_NORMAL_RTOL:
+            raise MechanicsValueError(
+                f"Ground.normal must be a unit vector (3 components, length 1 within "
+                f"{UNIT_NORMAL_RTOL / EPS:g} eps); got {self.normal!r} of length {length!r}"
+            )
 
 
 @dataclass(frozen=True)

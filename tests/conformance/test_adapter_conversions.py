@@ -346,15 +346,15 @@ def test_the_scene_of_the_heavy_top_holds_its_point_below_g_at_the_anchor():
 
 
 def test_the_scene_of_the_bounce_and_of_the_impact_collide_solid_spheres():
-    s = dataclasses.replace(SCENARIOS["bouncing_ball"], ground=Ground(0.7, (0.0, 0.0, 2.0), 3.0))
+    s = dataclasses.replace(SCENARIOS["bouncing_ball"], ground=Ground(0.7, (0.0, 0.0, 1.0), 3.0))
     scene = scene_from_scenario(s)
     (b,) = scene["bodies"]
     assert (b["name"], b["shape"], b["radius"], b["mass"]) == ("b0_ball", "solid_sphere", 0.1, 0.5)
     imp = scene["effects"][1]
     assert (imp["type"], imp["body"], imp["restitution"]) == ("impact", "b0_ball", 0.7)
-    # the plane n·x = 3 with n = (0, 0, 2): the point 3 n/|n|² = (0, 0, 1.5)
-    np.testing.assert_array_equal(imp["plane_point"], [0.0, 0.0, 1.5])
-    np.testing.assert_array_equal(imp["plane_normal"], [0.0, 0.0, 2.0])
+    # the plane n·x = 3 with n = (0, 0, 1): the point 3 n = (0, 0, 3)
+    np.testing.assert_array_equal(imp["plane_point"], [0.0, 0.0, 3.0])
+    np.testing.assert_array_equal(imp["plane_normal"], [0.0, 0.0, 1.0])
     scene = scene_from_scenario(SCENARIOS["two_body_impact"])
     assert [b["name"] for b in scene["bodies"]] == ["b0_a", "b1_b"]
     assert [b["radius"] for b in scene["bodies"]] == [0.1, 0.15]
@@ -640,12 +640,12 @@ def test_mujoco_model_text_of_a_ball_over_the_ground_and_a_pair():
             _box(name="bare", shape=None, position=(3.0, 0.0, 1.0)),  # touches nothing
         ],
         gravity=(0.0, 0.0, -9.81),
-        ground=Ground(0.5, (0.0, 0.0, 2.0), 1.0),
+        ground=Ground(0.5, (0.0, 0.0, 1.0), 1.0),
         pair_restitution=((0, 1, 0.8),),
     )
     xml = MuJoCoAdapter("Euler").mjcf(s, 0.001)
     assert '<option integrator="Euler" timestep="0.001" gravity="0.0 0.0 -9.81"/>' in xml
-    # the plane n·x = 1 with n = (0, 0, 2): through (0, 0, 1), zaxis the unit normal
+    # the plane n·x = 1 with n = (0, 0, 1): through (0, 0, 1), zaxis the normal
     assert (
         '<geom name="ground" type="plane" size="0 0 1" pos="0.0 0.0 1.0" zaxis="0.0 0.0 1.0" contype="0" conaffinity="0"/>'
         in xml
@@ -1080,9 +1080,9 @@ def test_approach_speeds_of_a_fall_a_throw_and_a_pair():
     assert _approach_speeds(down) == [(0, -1, 0.7, 3.0)]
     up = _scenario([_ball(position=(0.0, 0.0, 2.0), velocity=(0.0, 0.0, 3.0))], ground=Ground(0.7))
     assert _approach_speeds(up) == [(0, -1, 0.7, 1.0)]
-    # a normal not of unit length and a box, tilted: the gap to its lowest point
+    # a box: the gap to its lowest point
     box = _box(position=(0.0, 0.0, 2.0))
-    tilted = _scenario([box], gravity=(0.0, 0.0, -4.0), ground=Ground(0.5, (0.0, 0.0, 2.0), 0.0))
+    tilted = _scenario([box], gravity=(0.0, 0.0, -4.0), ground=Ground(0.5, (0.0, 0.0, 1.0), 0.0))
     ((_, _, _, v),) = _approach_speeds(tilted)
     assert v == pytest.approx(math.sqrt(2 * 4.0 * (2.0 - 0.3)), rel=4 * EPS)
     # shapeless and pivoted bodies do not touch the ground; a pair: the relative speed
@@ -1270,7 +1270,7 @@ def test_drake_geometry_sizes_dissipations_and_filters(contact):
     s = _scenario(
         bodies,
         gravity=(0.0, 0.0, -9.81),
-        ground=Ground(0.5, (0.0, 0.0, 2.0), 0.25),
+        ground=Ground(0.5, (0.0, 0.0, 1.0), 0.25),
         pair_restitution=((0, 2, 0.8),),
     )
     sim, _, _ = DrakeAdapter("discrete", contact).build(s, 0.125)

@@ -17,6 +17,7 @@ from mechanics.conformance.protocol import (
     Body,
     ConformanceError,
     Event,
+    Ground,
     Scenario,
     Trajectory,
     check_trajectory,
@@ -222,3 +223,26 @@ def test_a_zero_mass_alone_is_refused() -> None:
     assert refused(answer(masses=m)) == (
         "scenario 'pair': trajectory field 'masses' must be > 0; got 0.0 at sample 2, body 0"
     )
+
+
+@pytest.mark.parametrize(
+    ("normal", "length"),
+    [((0.0, 0.0, 2.0), "2.0"), ((0.0, 0.0, 0.0), "0.0"), ((0.6, 0.8, 1e-7), "1.0000000000000049")],
+)
+def test_a_ground_normal_that_is_not_a_unit_vector_is_refused(normal, length):
+    # n · x = height and "height along the normal" are one plane only for |n| = 1: the
+    # engines' adapters read the second, the scene engine the first (issue 16)
+    with pytest.raises(MechanicsValueError) as info:
+        Ground(0.5, normal, 1.0)
+    assert str(info.value) == (
+        f"Ground.normal must be a unit vector (3 components, length 1 within 16 eps); "
+        f"got {normal!r} of length {length}"
+    )
+
+
+def test_a_unit_ground_normal_within_a_few_roundings_is_taken():
+    n = np.array([1.0, 2.0, 3.0]) / np.sqrt(14.0)
+    assert Ground(0.5, tuple(n), 1.0).normal == tuple(n)
+    assert Ground(0.5, (0.6, 0.8, 0.0)).normal == (0.6, 0.8, 0.0)
+    with pytest.raises(MechanicsValueError, match=r"3 components"):
+        Ground(0.5, (0.0, 1.0), 1.0)
