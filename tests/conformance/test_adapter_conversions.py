@@ -675,6 +675,33 @@ def test_mujoco_model_of_a_pivot_is_a_ball_joint_at_the_anchor_with_g_off_it():
     assert "<contact>" not in xml
 
 
+def test_mujoco_reads_a_pivoted_body_beside_a_free_one_by_its_own_joint():
+    # qpos holds the ball joint's 4 numbers, then the free joint's 7: each body's state
+    # is read from its own slice (a slice one too long would take the next joint's x)
+    _mujoco()
+    from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
+
+    top = _box(R_A_O=_rows(R_GENERAL), omega=(0.0, 0.0, 2.0), position=(1.0, 2.0, 3.0))
+    free = _ball(name="free", position=(5.0, 0.0, 0.0), velocity=(0.0, 1.0, 0.0))
+    arm = (0.0, 0.0, -0.25)
+    anchor = tuple(np.asarray(top.position) + R_GENERAL.T @ np.asarray(arm))
+    s = _scenario([top, free], pivot=Pivot(0, arm, anchor))
+    tr = MuJoCoAdapter("RK4").run(s, 0.125)
+    np.testing.assert_allclose(tr.R_A_O[0, 0], R_GENERAL, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(tr.position[0, 0], top.position, atol=ROUNDTRIP_ATOL, rtol=0)
+    np.testing.assert_allclose(tr.omega[0, 0], top.omega, atol=ROUNDTRIP_ATOL, rtol=0)
+    # the free ball in free space: uniform motion, exact under RK4
+    np.testing.assert_allclose(
+        tr.position[:, 1],
+        [[5.0, 0.0, 0.0], [5.0, 0.125, 0.0], [5.0, 0.25, 0.0]],
+        atol=ROUNDTRIP_ATOL,
+        rtol=0,
+    )
+    np.testing.assert_allclose(
+        tr.R_A_O[:, 1], np.broadcast_to(np.eye(3), (3, 3, 3)), atol=ROUNDTRIP_ATOL, rtol=0
+    )
+
+
 def test_mujoco_holds_the_attitude_and_body_omega_it_is_given():
     mj = _mujoco()
     from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
@@ -1222,8 +1249,11 @@ def test_drake_discrete_free_fall_and_the_work_of_a_continuous_run():
     assert 0 < c.last_stats["steps"] < c.last_stats["derivative_evaluations"]
 
 
-def test_drake_drops_only_its_deformable_half_space_notice():
+def test_drake_drops_only_its_deformable_half_space_notice(monkeypatch):
     import logging
+
+    # start from a drake logger without filters: another test may have built an adapter
+    monkeypatch.setattr(logging.getLogger("drake"), "filters", [])
 
     from mechanics.conformance.adapters.drake import (
         _DEFORMABLE_NOTICE,
