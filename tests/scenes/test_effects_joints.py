@@ -542,18 +542,19 @@ def test_the_tanks_exact_flow_empties_at_t_2_and_its_volume_is_kept():
 
 
 def test_the_tank_reports_h_u_the_volume_out_and_the_kept_total():
-    (_, e), _ = build([TANK], DRAIN)
+    """A tank of area A = 2 with the hole a = 1/2: 1 − (a/A)² = 15/16, u = √(2·3·h·16/15)
+    = √(6.4 h); the total A h + volume out."""
+    (_, e), _ = build([{**TANK, "area": 2.0}], DRAIN)
     s = tank_snap([2.0, 1.0], [0.5, 3.0])
     x = e.series(s)
     np.testing.assert_array_equal(x["h"], [4.0, 1.0])
-    # u = √(2·3·h/(3/4)) = √(8 h)
-    np.testing.assert_allclose(x["u"], [math.sqrt(32.0), math.sqrt(8.0)], rtol=FORMULA_RTOL)
+    np.testing.assert_allclose(x["u"], [math.sqrt(25.6), math.sqrt(6.4)], rtol=FORMULA_RTOL)
     np.testing.assert_array_equal(x["volume_out"], [0.5, 3.0])
-    np.testing.assert_array_equal(x["volume_total"], [4.5, 4.0])
+    np.testing.assert_array_equal(x["volume_total"], [8.5, 5.0])
     ((name, (value, size)),) = e.conserved(s).items()
     assert name == "volume_total"
-    np.testing.assert_array_equal(value, [4.5, 4.0])
-    assert size == 4.0 + 3.0  # A max h + max |volume out|
+    np.testing.assert_array_equal(value, [8.5, 5.0])
+    assert size == 2.0 * 4.0 + 3.0  # A max h + max |volume out|
     assert all(e.keeps(q) for q in CONSERVED)
     assert not e.exerts_moment(0)
 
