@@ -1,0 +1,364 @@
+"""The impact effect (``mechanics/scenes/effects/impact.py``) on its own, on snapshots of
+tiny scenes: its refusals word for word, its features and gaps, what it keeps and on
+which bodies it exerts a moment (with and without friction), and the impulse against
+hand-worked cases (Chapter 6: a ball on a plane, a box struck at a corner, a direct
+impact of two balls, a sliding ball that slips or sticks).  Fast: no run."""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from mechanics.errors import SeparatingContactError
+from mechanics.scenes import SceneError, parse_scene
+from mechanics.scenes.effects import CONSERVED
+from mechanics.scenes.engine import Engine
+
+EPS = float(np.finfo(float).eps)
+#: an impulse of a few O(1) products and one 3×3 solve: a few dozen roundings
+IMPULSE_RTOL = 32 * EPS
+
+
+def scene_of(bodies, effects):
+    return parse_scene(
+        {"scene": {"name": "unit", "duration": 1.0}, "bodies": bodies, "effects": effects},
+        source="unit.toml",
+    )
+
+
+def build(bodies, effects):
+    eng = Engine(scene_of(bodies, effects))
+    return eng.effects, eng
+
+
+def refusal(bodies, effects) -> SceneError:
+    with pytest.raises(SceneError) as info:
+        scene_of(bodies, effects)
+    assert str(info.value).startswith("unit.toml: ")
+    return info.value
+
+
+#: where each body starts unless a test says: apart, and 2 m above the floor
+APART = {"a": 0.0, "c": 5.0, "f": 10.0, "b": 20.0, "r": 30.0, "d": 40.0, "y": 50.0, "p": 60.0}
+
+
+def at(name):
+    return {"position": [APART[name], 0.0, 2.0]}
+
+
+def ball(name="a", m=2.0, radius=0.5, **initial):
+    initial = initial or at(name)
+    return {"name": name, "shape": "solid_sphere", "mass": m, "radius": radius, "initial": initial}
+
+
+BOX = {"name": "b", "shape": "box", "mass": 3.0, "a": 1.0, "b": 0.5, "c": 0.25, "initial": at("b")}
+ROD = {"name": "r", "shape": "rod", "mass": 1.0, "length": 2.0, "initial": at("r")}
+DISC = {"name": "d", "shape": "disc", "mass": 1.0, "radius": 0.5, "initial": at("d")}
+CYLINDER = {
+    "name": "y", "shape": "cylinder", "mass": 1.0, "radius": 0.5, "height": 1.0, "initial": at("y")
+}  # fmt: skip
+POINT = {"name": "p", "shape": "point", "mass": 1.0, "initial": at("p")}
+CUSTOM = {"name": "x", "shape": "custom", "mass": 1.0, "inertia": [1.0, 1.0, 1.0]}
+
+
+def hit(body="a", **extra):
+    return {"type": "impact", "body": body, "restitution": 0.5, **extra}
+
+
+# ------------------------------------------------------------------ refusals
+
+MODELLED = (
+    "point, solid_sphere, hollow_sphere, box, rectangular_plate, rod, disc, ring, cylinder, "
+    "cylindrical_shell"
+)
+
+
+@pytest.mark.parametrize(
+    ("bodies", "spec", "field", "reason"),
+    [
+        ([ball()], hit(other="a"), "effects[0].other", "a body cannot hit itself"),
+        ([ball(), ball("c")], hit(other="c", plane_point=[0.0, 0.0, 0.0]), "effects[0].other",
+         "give either another body or a plane, not both"),
+        ([ball(), ball("c")], hit(other="c", plane_normal=[0.0, 0.0, 1.0]), "effects[0].other",
+         "give either another body or a plane, not both"),
+        ([CUSTOM], hit("x"), "effects[0].body",
+         f"contacts of a custom are not modelled (only {MODELLED}); body 'x'"),
+        ([ball(), CUSTOM], hit(other="x"), "effects[0].other",
+         f"contacts of a custom are not modelled (only {MODELLED}); body 'x'"),
+        ([DISC, ball()], hit("d", other="a"), "effects[0].body",
+         "the rim of a disc ('d') meets only a plane, not a body"),
+        ([ball(), CYLINDER], hit(other="y"), "effects[0].other",
+         "the rim of a cylinder ('y') meets only a plane, not a body"),
+        ([BOX, ROD], hit("b", other="r"), "effects[0].other",
+         "contacts between two polyhedral bodies (box, rod) are not modelled: one of the "
+         "pair must be a sphere or a point"),
+        ([{**ball(), "fixed": True}], hit(), "effects[0].body", "a fixed body cannot hit a plane"),
+        ([{**ball(), "fixed": True}, {**ball("c"), "fixed": True}], hit(other="c"),
+         "effects[0].other", "two fixed bodies never meet"),
+    ],
+)  # fmt: skip
+def test_an_impact_refuses_word_for_word(bodies, spec, field, reason):
+    err = refusal(bodies, [spec])
+    assert (err.field, err.reason) == (field, reason)
+
+
+@pytest.mark.parametrize(
+    ("bodies", "spec"),
+    [
+        ([{**ball(), "fixed": True}, ball("c")], hit(other="c")),  # one fixed: it can be hit
+        ([ball(), {**ball("c"), "fixed": True}], hit(other="c")),
+        ([BOX, ball()], hit("b", other="a")),  # a corner against a sphere
+        ([POINT, ROD], hit("p", other="r")),
+        ([DISC], hit("d", plane_point=[0.0, 0.0, -1.0])),
+    ],
+)
+def test_an_impact_takes_a_fixed_partner_a_sphere_and_a_corner_or_a_rim_and_a_plane(bodies, spec):
+    assert scene_of(bodies, [spec]).effects[0].type == "impact"
+
+
+# ------------------------------------------------------------------ features, keeps
+
+
+def test_an_impact_reads_its_fields_and_defaults_to_the_floor_z_0_smooth():
+    (e,), _ = build([ball()], [hit()])
+    assert (e.i, e.j, e.e, e.mu_f) == (0, None, 0.5, 0.0)
+    np.testing.assert_array_equal(e.point, [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(e.normal, [0.0, 0.0, 1.0])
+    (e,), _ = build(
+        [ball(), ball("c")],
+        [hit("c", plane_point=[1.0, 2.0, 3.0], plane_normal=[0.0, -2.0, 0.0], friction=0.25)],
+    )
+    assert (e.i, e.j, e.mu_f) == (1, None, 0.25)
+    np.testing.assert_array_equal(e.point, [1.0, 2.0, 3.0])
+    np.testing.assert_array_equal(e.normal, [0.0, -1.0, 0.0])
+
+
+def test_a_sphere_touches_with_its_centre_a_box_with_its_corners_a_rim_with_its_circles():
+    (e,), _ = build([ball()], [hit()])
+    assert [(f.body, f.at, f.a, f.sphere, f.flip) for f in e.features] == [
+        (0, None, 0.5, None, False)
+    ]
+    assert e.features[0].label == "body 'a' and the plane"
+    (e,), _ = build([BOX], [hit("b")])
+    assert len(e.features) == 8
+    np.testing.assert_array_equal(e.features[0].at, [-0.5, -0.25, -0.125])
+    np.testing.assert_array_equal(e.features[7].at, [0.5, 0.25, 0.125])
+    assert e.features[3].label == "body 'b' and the plane (corner 3 of 'b')"
+    (e,), _ = build([DISC], [hit("d")])
+    assert [(f.support, f.label) for f in e.features] == [
+        ((0.5, 0.0), "body 'd' and the plane (the rim of 'd')")
+    ]
+    (e,), _ = build([CYLINDER], [hit("y")])
+    assert [f.support for f in e.features] == [(0.5, 0.5), (0.5, -0.5)]
+    assert e.features[0].label.endswith("(the rim of 'y', its +e3 end)")
+    assert e.features[1].label.endswith("(the rim of 'y', its −e3 end)")
+
+
+def test_a_pair_takes_the_sphere_as_the_sphere_and_the_other_bodys_corners_flipped():
+    (e,), _ = build([ball(), ball("c", radius=0.25)], [hit(other="c")])
+    assert e.label == "bodies 'a' and 'c'"
+    assert [(f.body, f.a, f.sphere, f.a_s, f.flip) for f in e.features] == [
+        (0, 0.5, 1, 0.25, False)
+    ]
+    (e,), _ = build([ball(), ROD], [hit(other="r")])
+    # the rod's two ends against the ball: the feature belongs to ``other``, flipped
+    assert [(f.body, f.a, f.sphere, f.a_s, f.flip) for f in e.features] == [
+        (1, 0.0, 0, 0.5, True)
+    ] * 2
+    assert e.features[1].label == "bodies 'a' and 'r' (corner 1 of 'r')"
+    (e,), _ = build([ROD, ball()], [hit("r", other="a")])
+    assert [(f.body, f.sphere, f.flip) for f in e.features] == [(0, 1, False)] * 2
+
+
+@pytest.mark.parametrize(
+    ("normal", "kept"),
+    [
+        # a smooth impulse along the plane's normal n: p across n, L_O along n
+        ([0.0, 0.0, 1.0], ["p_x", "p_y", "L_z"]),
+        ([-3.0, 0.0, 0.0], ["p_y", "p_z", "L_x"]),
+        ([0.0, 0.6, 0.8], ["p_x"]),
+    ],
+)
+def test_a_smooth_impact_on_a_plane_keeps_what_a_force_along_its_normal_keeps(normal, kept):
+    (e,), _ = build([ball()], [hit(plane_point=[5.0, 0.0, 0.0], plane_normal=normal)])
+    assert [q for q in CONSERVED if e.keeps(q)] == kept
+
+
+def test_a_rough_impact_on_a_plane_keeps_nothing():
+    (e,), _ = build([ball()], [hit(friction=0.5)])
+    assert [q for q in CONSERVED if e.keeps(q)] == []
+
+
+@pytest.mark.parametrize(
+    ("extra", "kept"),
+    [
+        # two free bodies: internal impulses keep p and L; E only if elastic and smooth
+        ({"restitution": 0.5}, ["p_x", "p_y", "p_z", "L_x", "L_y", "L_z"]),
+        ({"restitution": 1.0}, list(CONSERVED)),
+        ({"restitution": 1.0, "friction": 0.5}, ["p_x", "p_y", "p_z", "L_x", "L_y", "L_z"]),
+    ],
+)
+def test_an_impact_of_two_free_bodies_keeps_p_and_l_and_e_only_when_elastic_and_smooth(extra, kept):
+    (e,), _ = build([ball(), ball("c")], [{**hit(other="c"), **extra}])
+    assert [q for q in CONSERVED if e.keeps(q)] == kept
+
+
+def test_an_impact_with_a_fixed_body_keeps_nothing():
+    (e,), _ = build([ball(), {**ball("c"), "fixed": True}], [hit(other="c", restitution=1.0)])
+    assert e.fixed == {1}
+    assert e.bodies() == [0]
+    assert [q for q in CONSERVED if e.keeps(q)] == []
+
+
+def test_a_smooth_impact_turns_a_body_struck_at_a_corner_or_rim_never_a_sphere():
+    """A smooth impulse is along n: through a sphere's centre (no moment); at a corner or
+    a rim point off G's line it turns the body."""
+    (e,), _ = build([ball()], [hit()])
+    assert not e.exerts_moment(0)
+    (e,), _ = build([BOX, ball()], [hit("b")])
+    assert e.exerts_moment(0)
+    assert not e.exerts_moment(1)
+    (e,), _ = build([ball(), DISC], [hit("d")])
+    assert e.exerts_moment(1)
+    assert not e.exerts_moment(0)
+    (e,), _ = build([ball(), ROD, ball("c")], [hit(other="r")])
+    assert [e.exerts_moment(k) for k in range(3)] == [False, True, False]
+    (e,), _ = build([ball(), ball("c")], [hit(other="c")])
+    assert [e.exerts_moment(k) for k in range(2)] == [False, False]
+
+
+def test_a_rough_impact_turns_every_moving_body_it_strikes():
+    """With friction the impulse has a part across n: a moment about every centre."""
+    (e,), _ = build([ball(), ball("c"), ball("f")], [hit(other="c", friction=0.5)])
+    assert [e.exerts_moment(k) for k in range(3)] == [True, True, False]
+    (e,), _ = build([ball(), {**ball("c"), "fixed": True}], [hit(other="c", friction=0.5)])
+    assert [e.exerts_moment(k) for k in range(2)] == [True, False]
+    (e,), _ = build([ball("f"), ball()], [hit(friction=0.5)])
+    assert [e.exerts_moment(k) for k in range(2)] == [False, True]
+
+
+# ------------------------------------------------------------------ gaps
+
+
+def test_a_plane_gap_is_the_height_along_n_minus_the_radius_and_a_pair_gap_the_distance_minus_radii():
+    (e,), eng = build(
+        [ball(position=[1.0, 2.0, 0.75])],
+        [hit(plane_point=[5.0, 5.0, 0.125], plane_normal=[0.0, 0.0, 4.0])],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    # (0.75 − 0.125) − 0.5
+    assert e.gap(s, e.features[0]) == 0.125
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 0.0]), ball("c", radius=0.25, position=[3.0, 4.0, 0.0])],
+        [hit(other="c")],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    assert e.gap(s, e.features[0]) == 5.0 - 0.5 - 0.25
+
+
+# ------------------------------------------------------------------ impulses
+
+
+def test_a_smooth_ball_rebounds_from_the_floor_with_minus_e_v_n_losing_half_mu_1_minus_e2_v_n2():
+    """m = 2, v = (1, 0, −3), e = ½: v' = (1, 0, 3/2); loss ½·2·(3/4)·9 = 27/4."""
+    (e,), eng = build([ball(position=[0.0, 0.0, 0.5], velocity=[1.0, 0.0, -3.0])], [hit()])
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[0]
+    assert e.approach(s, ft) == 3.0
+    S, n = e.contact(s, ft)
+    np.testing.assert_array_equal(S, [0.0, 0.0, 0.0])
+    np.testing.assert_array_equal(n, [0.0, 0.0, 1.0])
+    d = e.apply(s, ft)
+    np.testing.assert_array_equal(s.v[0], [1.0, 0.0, 1.5])
+    np.testing.assert_array_equal(s.omega[0], [0.0, 0.0, 0.0])
+    assert d["energy_loss"] == 6.75
+    assert (d["normal_speed_before"], d["normal_speed_after"]) == (3.0, 1.5)
+    assert (d["kinetic_energy_before"], d["kinetic_energy_after"]) == (10.0, 3.25)
+    assert d["body"] == "a"
+    assert d["friction"] == "smooth"
+    assert d["feature"] == "body 'a' and the plane"
+    assert d["gap"] == 0.0
+    assert "external_impulse" not in d
+
+
+def test_an_impact_refuses_to_resolve_a_separating_contact():
+    (e,), eng = build([ball(position=[0.0, 0.0, 0.5], velocity=[0.0, 0.0, 3.0])], [hit()])
+    s = eng.snapshot(0.0, eng.y0)
+    with pytest.raises(SeparatingContactError, match=r"the contact separates \(v_n = 3\.0 ≥ 0\)"):
+        e.apply(s, e.features[0])
+
+
+def test_a_box_struck_at_a_corner_turns_with_the_impulse_of_its_effective_mass():
+    """Box m = 3, edges 1, ½, ¼: J = m (b²+c², a²+c², a²+b²)/12 = (5/64, 17/64, 5/16).
+    Falling at 1 onto its corner ρ = (−½, −¼, −⅛): ρ × n = (−¼, ½, 0),
+    1/μ = 1/3 + (1/16)/(5/64) + (1/4)/(17/64) = 1/3 + 4/5 + 16/17, P = (1 + e) μ;
+    v_z = −1 + P/3, ω = P J⁻¹ (ρ × n) = P (−16/5, 32/17, 0)."""
+    (e,), eng = build(
+        [{**BOX, "initial": {"position": [0.0, 0.0, 0.125], "velocity": [0.0, 0.0, -1.0]}}],
+        [hit("b", restitution=0.25)],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[0]
+    inv_mu = Fraction(1, 3) + Fraction(4, 5) + Fraction(16, 17)
+    P = Fraction(5, 4) / inv_mu
+    e.apply(s, ft)
+    np.testing.assert_allclose(
+        s.v[0], [0.0, 0.0, float(-1 + P / 3)], rtol=IMPULSE_RTOL, atol=4 * EPS
+    )
+    np.testing.assert_allclose(
+        s.omega[0],
+        [float(-P * Fraction(16, 5)), float(P * Fraction(32, 17)), 0.0],
+        rtol=IMPULSE_RTOL,
+        atol=4 * EPS,
+    )
+    # Newton's law at the corner: it leaves at e·1
+    assert abs(-e.approach(s, ft) - 0.25) <= IMPULSE_RTOL
+
+
+def test_two_balls_meet_head_on_with_the_direct_impact_velocities():
+    """m_a = 2 at 1, m_c = 1 at −1 along x, e = ½: centre-of-mass speed 1/3; v_a' = 0,
+    v_c' = 1 (relative −1 = −e·2); loss ½ (2/3)(3/4)·4 = 1."""
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 0.0], velocity=[1.0, 0.0, 0.0]),
+         ball("c", m=1.0, radius=0.25, position=[0.75, 0.0, 0.0], velocity=[-1.0, 0.0, 0.0])],
+        [hit(other="c")],
+    )  # fmt: skip
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[0]
+    S, n = e.contact(s, ft)
+    np.testing.assert_array_equal(S, [0.5, 0.0, 0.0])
+    np.testing.assert_array_equal(n, [-1.0, 0.0, 0.0])  # into ``body`` from ``other``
+    assert e.approach(s, ft) == 2.0
+    assert e.speed_scale(s, ft) == 2.0
+    d = e.apply(s, ft)
+    np.testing.assert_array_equal(s.v, [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+    assert abs(d["energy_loss"] - 1.0) <= IMPULSE_RTOL
+    assert d["bodies"] == ["a", "c"]
+    assert d["momentum_before"] == d["momentum_after"] == [1.0, 0.0, 0.0]
+
+
+@pytest.mark.parametrize(
+    ("mu", "mode", "v_x", "omega_y"),
+    [
+        # slip: P = P_n (n − μ t̂), P_n = m v = 2 (e = 0, n·K·(n − μ t̂) = 1/m):
+        # v_x = 1 − μ P_n/m, ω_y = (a μ P_n)/J with J = 2/5 m a² = 1/5
+        (0.1, "slip", 0.9, 0.5),
+        # stick: the contact stops, K_tt = 1/m + a²/J = 7/4, P_t = −4/7: v_x = 5/7, ω_y = 10/7
+        (1.0, "stick", 5.0 / 7.0, 10.0 / 7.0),
+    ],
+)
+def test_a_sliding_ball_on_a_rough_floor_slips_or_sticks(mu, mode, v_x, omega_y):
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 0.5], velocity=[1.0, 0.0, -1.0])],
+        [hit(restitution=0.0, friction=mu)],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    d = e.apply(s, e.features[0])
+    assert d["friction"] == mode
+    np.testing.assert_allclose(s.v[0], [v_x, 0.0, 0.0], rtol=IMPULSE_RTOL, atol=4 * EPS)
+    np.testing.assert_allclose(s.omega[0], [0.0, omega_y, 0.0], rtol=IMPULSE_RTOL, atol=4 * EPS)
+    # the loss is the kinetic energy's drop: 2 − (v_x² + ½·(1/5) ω_y²)
+    lost = 2.0 - (v_x**2 + 0.1 * omega_y**2)
+    assert abs(d["energy_loss"] - lost) <= IMPULSE_RTOL * 2.0
