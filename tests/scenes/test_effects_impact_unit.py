@@ -362,3 +362,71 @@ def test_a_sliding_ball_on_a_rough_floor_slips_or_sticks(mu, mode, v_x, omega_y)
     # the loss is the kinetic energy's drop: 2 − (v_x² + ½·(1/5) ω_y²)
     lost = 2.0 - (v_x**2 + 0.1 * omega_y**2)
     assert abs(d["energy_loss"] - lost) <= IMPULSE_RTOL * 2.0
+
+
+def test_a_ball_sticks_at_the_edge_of_the_friction_cone():
+    """v = (7/4, 0, −1), e = 0: sticking needs P_t = −(7/4)/K_tt = −1 (K_tt = 7/4) and
+    P_n = 2, on the cone's edge for μ = ½: it sticks (|P_t| ≤ μ P_n) and rolls off,
+    v_x = 7/4 − ½ = 5/4, ω_y = (½·1)/(1/5) = 5/2, the contact at rest."""
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 0.5], velocity=[1.75, 0.0, -1.0])],
+        [hit(restitution=0.0, friction=0.5)],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    d = e.apply(s, e.features[0])
+    assert d["friction"] == "stick"
+    np.testing.assert_allclose(s.v[0], [1.25, 0.0, 0.0], rtol=IMPULSE_RTOL, atol=4 * EPS)
+    np.testing.assert_allclose(s.omega[0], [0.0, 2.5, 0.0], rtol=IMPULSE_RTOL, atol=4 * EPS)
+
+
+def test_the_speed_scale_adds_the_spins_part_of_the_contact_velocity():
+    """Spin ω = 2 e_y, arm (0, 0, −½): ω × ρ = (−1, 0, 0); |v| = √2: scale √2 + 1; the
+    spin does not change the approach speed 1."""
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 0.5], velocity=[1.0, 0.0, -1.0], omega=[0.0, 2.0, 0.0])], [hit()]
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    assert e.approach(s, e.features[0]) == 1.0
+    assert abs(e.speed_scale(s, e.features[0]) - (2.0**0.5 + 1.0)) <= 4 * EPS
+
+
+def test_a_rod_end_strikes_a_ball_above_it_along_the_normal_into_the_ball():
+    """The ball 'a' (2 kg, radius ½, at z = 2) is ``body``; the rod's upper end, at
+    z = 3/2, is the feature (flipped): n = +e_z into the ball.  The rod (1 kg) rising at
+    1 hits the ball at rest, e = ½: common speed 1/3, ball 1/3 + ½·(1/3)·1 = ½, rod 0."""
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 2.0]),
+         {**ROD, "initial": {"position": [0.0, 0.0, 0.5], "velocity": [0.0, 0.0, 1.0]}}],
+        [hit(other="r")],
+    )  # fmt: skip
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[1]
+    np.testing.assert_array_equal(e.feature_point(s, ft), [0.0, 0.0, 1.5])
+    S, n = e.contact(s, ft)
+    np.testing.assert_array_equal(S, [0.0, 0.0, 1.5])
+    np.testing.assert_array_equal(n, [0.0, 0.0, 1.0])
+    assert e.approach(s, ft) == 1.0
+    e.apply(s, ft)
+    np.testing.assert_array_equal(s.v, [[0.0, 0.0, 0.5], [0.0, 0.0, 0.0]])
+
+
+def test_a_hinged_rod_struck_at_its_end_rebounds_with_its_moment_about_the_axis():
+    """A rod (1 kg, length 2) on the y axis, G 1 from it: J_a = 1/3 + 1 = 4/3.  With no
+    gravity φ is measured from e_x: the rod lies along +x, its free end at (2, 0, 0);
+    u1 = e_y × e_x = −e_z, so φ̇ = 1 drives that end down at 2 into the floor z = 0.
+    μ = J_a/2² = 1/3, P = (1 + e) μ 2 = 1 with e = ½: φ̇' = 1 − 2 P/J_a = −½ (the end
+    leaves at e·2); loss ½ μ (1 − e²) 2² = ½; the axis takes an impulse too."""
+    (_, e), eng = build(
+        [{**ROD, "initial": {"angle": 0.0, "angular_velocity": 1.0}}],
+        [{"type": "fixed_axis", "body": "r", "axis": [0.0, 1.0, 0.0], "distance": 1.0,
+          "body_axis": "y"},
+         hit("r")],
+    )  # fmt: skip
+    s = eng.snapshot(0.0, eng.y0)
+    (ft,) = [f for f in e.features if e.feature_point(s, f)[0] > 1.0]
+    np.testing.assert_allclose(e.feature_point(s, ft), [2.0, 0.0, 0.0], rtol=0, atol=4 * EPS)
+    assert abs(e.approach(s, ft) - 2.0) <= IMPULSE_RTOL
+    d = e.apply(s, ft)
+    assert abs(float(s.coords[0][1][0]) + 0.5) <= IMPULSE_RTOL
+    assert abs(d["energy_loss"] - 0.5) <= IMPULSE_RTOL
+    assert d["external_impulse"] == "the pivot, bearings or track of a joint"
