@@ -134,3 +134,22 @@ def test_a_path_to_mutmut_is_made_absolute_a_bare_name_is_left_for_path(tmp_path
     assert run.executable(".venv/bin/mutmut") == str(tmp_path / ".venv/bin/mutmut")
     assert run.executable("/opt/bin/mutmut") == "/opt/bin/mutmut"
     assert run.executable("mutmut") == "mutmut"
+
+
+def test_a_packages_own_mutants_belong_to_its_init_and_not_to_its_submodules():
+    # mutmut names the mutants of mechanics/scenes/__init__.py without __init__; the
+    # report counted none of them ("no mutants") before issue 16's third session
+    run = _run_module()
+    own = "mechanics.scenes.x_builtin_path__mutmut_3"
+    method = "mechanics.scenes.xǁScenesǁf__mutmut_1"
+    sub = "mechanics.scenes.contacts.x_first_downward_crossing__mutmut_42"
+    assert run.of_module(own, "mechanics/scenes/__init__.py")
+    assert run.of_module(method, "mechanics/scenes/__init__.py")
+    assert not run.of_module(sub, "mechanics/scenes/__init__.py")
+    assert run.of_module(sub, "mechanics/scenes/contacts.py")
+    assert not run.of_module(own, "mechanics/scenes/contacts.py")
+    assert not run.of_module("mechanics.scenesx.x_f__mutmut_1", "mechanics/scenes/__init__.py")
+    status = {own: "survived", sub: "killed"}
+    line, open_ = run.report("mechanics/scenes/__init__.py", status, {})
+    assert "1 mutants, 0 killed, 0 equivalent (reviewed), 1 survived" in line
+    assert open_ == [own]

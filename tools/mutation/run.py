@@ -90,8 +90,20 @@ def load_equivalent(path: Path = EQUIVALENT) -> dict[str, str]:
 
 
 def module_prefix(module: str) -> str:
-    """``mechanics/rotation.py`` → ``mechanics.rotation.``, the prefix of its mutant names."""
-    return module.removesuffix(".py").replace("/", ".") + "."
+    """``mechanics/rotation.py`` → ``mechanics.rotation.``, the prefix of its mutant names
+    (a package's ``__init__.py``: the package's, ``mechanics.scenes.``)."""
+    return module.removesuffix(".py").removesuffix("/__init__").replace("/", ".") + "."
+
+
+def of_module(name: str, module: str) -> bool:
+    """Is the mutant ``name`` one of ``module``'s?  mutmut names a package's own mutants
+    without ``__init__`` (``mechanics.scenes.x_builtin_path__mutmut_3``): right after the
+    package's prefix comes the function (``x_``) or method (``xǁ``), where a submodule's
+    name would come (``mechanics.scenes.contacts.x_...``)."""
+    prefix = module_prefix(module)
+    if not name.startswith(prefix):
+        return False
+    return not module.endswith("/__init__.py") or name[len(prefix) :].startswith(("x_", "xǁ"))
 
 
 def _sync(src: Path, dst: Path) -> None:
@@ -180,8 +192,7 @@ def report(
     module: str, status: dict[str, str], equivalent: dict[str, str]
 ) -> tuple[str, list[str]]:
     """The score line and the survivors that are not in the reviewed list."""
-    prefix = module_prefix(module)
-    everything = {k: v for k, v in status.items() if k.startswith(prefix)}
+    everything = {k: v for k, v in status.items() if of_module(k, module)}
     mine = {k: v for k, v in everything.items() if v != "not checked"}
     unchecked = len(everything) - len(mine)
     killed = sum(v in KILLED for v in mine.values())
@@ -332,9 +343,8 @@ def report_module(
     """Print the module's score line, its open survivors (with diffs on ``--diff``) and
     the stale entries of the reviewed list."""
     line, open_ = report(module, status, equivalent)
-    prefix = module_prefix(module)
     stale = sorted(
-        k for k in equivalent if k.startswith(prefix) and status.get(k, "gone") in KILLED | {"gone"}
+        k for k in equivalent if of_module(k, module) and status.get(k, "gone") in KILLED | {"gone"}
     )
     print()
     print(line)
