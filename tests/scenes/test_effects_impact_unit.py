@@ -430,3 +430,28 @@ def test_a_hinged_rod_struck_at_its_end_rebounds_with_its_moment_about_the_axis(
     assert abs(float(s.coords[0][1][0]) + 0.5) <= IMPULSE_RTOL
     assert abs(d["energy_loss"] - 0.5) <= IMPULSE_RTOL
     assert d["external_impulse"] == "the pivot, bearings or track of a joint"
+
+
+def test_a_rod_end_striking_a_ball_off_its_centre_line_turns_the_rod_and_pushes_both_apart():
+    """The rod (1 kg, length 2, J = 1/3 across it) upright at G = (0, 0, ½) moving at 1
+    along x; its upper end (0, 0, 3/2) touches the ball (2 kg) at (½, 0, 3/2): n = e_x
+    into the ball, the rod's arm ρ = e_z, ρ × n = e_y.  1/μ = ½ + 1 + 3 = 9/2, e = ½:
+    P = (3/2)(2/9) = 1/3.  Ball: 1/6; rod: 1 − 1/3 = 2/3 and ω = 3 (e_z × (−P e_x))
+    = −e_y; its end then moves at −1/3, half the approach speed 1 behind the ball."""
+    (e,), eng = build(
+        [ball(position=[0.5, 0.0, 1.5]),
+         {**ROD, "initial": {"position": [0.0, 0.0, 0.5], "velocity": [1.0, 0.0, 0.0]}}],
+        [hit(other="r")],
+    )  # fmt: skip
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[1]
+    assert e.approach(s, ft) == 1.0
+    d = e.apply(s, ft)
+    np.testing.assert_allclose(
+        s.v, [[1 / 6, 0.0, 0.0], [2 / 3, 0.0, 0.0]], rtol=IMPULSE_RTOL, atol=4 * EPS
+    )
+    np.testing.assert_allclose(s.omega[1], [0.0, -1.0, 0.0], rtol=IMPULSE_RTOL, atol=4 * EPS)
+    np.testing.assert_array_equal(s.omega[0], [0.0, 0.0, 0.0])
+    assert abs(-e.approach(s, ft) - 0.5) <= IMPULSE_RTOL
+    # loss ½ μ (1 − e²) v_n² = ½ (2/9)(3/4) = 1/12
+    assert abs(d["energy_loss"] - 1 / 12) <= IMPULSE_RTOL
