@@ -432,16 +432,21 @@ def test_a_hinged_rod_struck_at_its_end_rebounds_with_its_moment_about_the_axis(
     assert d["external_impulse"] == "the pivot, bearings or track of a joint"
 
 
-def test_a_rod_end_striking_a_ball_off_its_centre_line_turns_the_rod_and_pushes_both_apart():
+@pytest.mark.parametrize(("friction", "mode"), [(0.0, "smooth"), (0.5, "stick")])
+def test_a_rod_end_striking_a_ball_off_its_centre_line_turns_the_rod_and_pushes_both_apart(
+    friction, mode
+):
     """The rod (1 kg, length 2, J = 1/3 across it) upright at G = (0, 0, ½) moving at 1
     along x; its upper end (0, 0, 3/2) touches the ball (2 kg) at (½, 0, 3/2): n = e_x
     into the ball, the rod's arm ρ = e_z, ρ × n = e_y.  1/μ = ½ + 1 + 3 = 9/2, e = ½:
     P = (3/2)(2/9) = 1/3.  Ball: 1/6; rod: 1 − 1/3 = 2/3 and ω = 3 (e_z × (−P e_x))
-    = −e_y; its end then moves at −1/3, half the approach speed 1 behind the ball."""
+    = −e_y; its end then moves at −1/3, half the approach speed 1 behind the ball.
+    With friction: no sliding at the contact, K = diag(9/2, 9/2, 3/2) has no coupling of
+    n to the tangent, the sticking impulse is the same P n."""
     (e,), eng = build(
         [ball(position=[0.5, 0.0, 1.5]),
          {**ROD, "initial": {"position": [0.0, 0.0, 0.5], "velocity": [1.0, 0.0, 0.0]}}],
-        [hit(other="r")],
+        [hit(other="r", friction=friction)],
     )  # fmt: skip
     s = eng.snapshot(0.0, eng.y0)
     ft = e.features[1]
@@ -455,3 +460,24 @@ def test_a_rod_end_striking_a_ball_off_its_centre_line_turns_the_rod_and_pushes_
     assert abs(-e.approach(s, ft) - 0.5) <= IMPULSE_RTOL
     # loss ½ μ (1 − e²) v_n² = ½ (2/9)(3/4) = 1/12
     assert abs(d["energy_loss"] - 1 / 12) <= IMPULSE_RTOL
+
+
+def test_a_box_corner_slipping_on_a_rough_floor_stops_along_the_normal_for_e_0():
+    """The box of the corner test falls at 1 and slides at 1 along x, e = 0, μ = 1/8.
+    Slip (sticking would need |P_t| ~ 1/K_tt ~ 1.7 ≫ μ P_n): P = P_n (n − μ e_x) with
+    n·K·(n − μ e_x) = 1/μ_n − μ (ρ × n)·J⁻¹(ρ × e_x), ρ × e_x = (0, −1/8, 1/4):
+    (ρ × n)·J⁻¹(ρ × e_x) = ½·(64/17)·(−1/8) = −4/17, so P_n = 1/(1/μ_n + 1/34);
+    v' = (1 − μ P_n/3, 0, −1 + P_n/3) and the corner no longer approaches."""
+    (e,), eng = build(
+        [{**BOX, "initial": {"position": [0.0, 0.0, 0.125], "velocity": [1.0, 0.0, -1.0]}}],
+        [hit("b", restitution=0.0, friction=0.125)],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[0]
+    P_n = 1 / (Fraction(1, 3) + Fraction(4, 5) + Fraction(16, 17) + Fraction(1, 34))
+    d = e.apply(s, ft)
+    assert d["friction"] == "slip"
+    np.testing.assert_allclose(
+        s.v[0], [float(1 - P_n / 24), 0.0, float(-1 + P_n / 3)], rtol=IMPULSE_RTOL, atol=4 * EPS
+    )
+    assert abs(e.approach(s, ft)) <= IMPULSE_RTOL
