@@ -324,6 +324,30 @@ def test_require_names_the_engine_and_the_extra_and_is_an_import_error():
     assert require("json", "none") is json
 
 
+def test_require_names_a_known_engine_by_its_own_name_for_a_missing_part_of_it():
+    # pydrake is installed; a missing submodule of it is still a missing extra, and the
+    # message names the engine from ENGINE_NAMES (Drake), not the module path
+    pytest.importorskip("pydrake", reason="Drake is not installed: pip install 'bodycheck[drake]'")
+    with pytest.raises(MissingExtraError) as info:
+        require("pydrake.bodycheck_no_such_part", "drake", package="drake")
+    assert str(info.value) == (
+        "the Drake adapter needs the drake package: pip install 'bodycheck[drake]'"
+    )
+
+
+def test_require_shows_a_broken_packages_own_import_error(tmp_path, monkeypatch):
+    # a package that is there but imports a dependency that is not: its own error, not
+    # "install the extra" (which would not help)
+    pkg = tmp_path / "bodycheck_broken_engine"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("import bodycheck_missing_dependency_xyz\n")
+    monkeypatch.syspath_prepend(str(tmp_path))
+    with pytest.raises(ModuleNotFoundError) as info:
+        require("bodycheck_broken_engine", "mujoco")
+    assert not isinstance(info.value, MissingExtraError)
+    assert info.value.name == "bodycheck_missing_dependency_xyz"
+
+
 def test_an_object_that_is_not_an_adapter_is_refused_naming_what_it_lacks():
     with pytest.raises(ConformanceError, match="has no 'takes_step'"):
         run_battery(type("A", (), {"name": "x"})())

@@ -152,3 +152,24 @@ def test_the_users_thresholds_reach_the_battery_including_keys_of_their_own_scen
     assert test("lob") is None
     with pytest.raises(pytest.fail.Exception):
         conformance_tests(_Offset(), scenarios=[lob])("lob")
+
+
+def test_the_package_gives_conformance_tests_lazily_and_refuses_other_names():
+    # mechanics.conformance imports pytest only when conformance_tests is asked for: its
+    # module __getattr__ hands it out (called here at test time, not at import)
+    import mechanics.conformance as conf
+    import mechanics.conformance.adapters as adapters
+    from mechanics.conformance import parametrize
+    from mechanics.conformance.adapters import reference as reference_adapters
+
+    assert conf.__getattr__("conformance_tests") is parametrize.conformance_tests
+    with pytest.raises(AttributeError) as info:
+        conf.__getattr__("conformance_test")
+    assert str(info.value) == ("module 'mechanics.conformance' has no attribute 'conformance_test'")
+    assert adapters.__getattr__("ExactAdapter") is reference_adapters.ExactAdapter
+    assert adapters.__getattr__("SceneEngineAdapter") is reference_adapters.SceneEngineAdapter
+    with pytest.raises(AttributeError) as info:
+        adapters.__getattr__("MuJoCoAdapter")
+    assert str(info.value) == (
+        "module 'mechanics.conformance.adapters' has no attribute 'MuJoCoAdapter'"
+    )
