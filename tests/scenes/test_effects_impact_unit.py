@@ -481,3 +481,30 @@ def test_a_box_corner_slipping_on_a_rough_floor_stops_along_the_normal_for_e_0()
         s.v[0], [float(1 - P_n / 24), 0.0, float(-1 + P_n / 3)], rtol=IMPULSE_RTOL, atol=4 * EPS
     )
     assert abs(e.approach(s, ft)) <= IMPULSE_RTOL
+
+
+def test_a_rim_touches_the_floor_at_its_lowest_point_or_flat_where_it_turns_down():
+    """A disc on its edge (θ = π/2: e3 along −e_y) touches with the rim point a below G.
+    Lying flat every rim point is lowest: the one that approaches fastest, along
+    ω × n: with ω = e_x that is −a e_y (its velocity e_x × (−a e_y) = −a e_z); with no
+    spin, the face's centre.  A flat cylinder's two circles sit at ±h/2 on e3."""
+    (e,), eng = build(
+        [{**DISC, "initial": {"position": [0.0, 0.0, 2.0], "theta": np.pi / 2}}], [hit("d")]
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    np.testing.assert_allclose(
+        e.feature_point(s, e.features[0]), [0.0, 0.0, 1.5], rtol=0, atol=4 * EPS
+    )
+    assert abs(e.gap(s, e.features[0]) - 1.5) <= 4 * EPS
+    (e,), eng = build([{**DISC, "initial": {"position": [0.0, 0.0, 2.0]}}], [hit("d")])
+    s = eng.snapshot(0.0, eng.y0)
+    np.testing.assert_array_equal(e.feature_point(s, e.features[0]), [0.0, 0.0, 2.0])
+    (e,), eng = build(
+        [{**DISC, "initial": {"position": [0.0, 0.0, 2.0], "omega": [1.0, 0.0, 0.0]}}], [hit("d")]
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    np.testing.assert_array_equal(e.feature_point(s, e.features[0]), [0.0, -0.5, 2.0])
+    (e,), eng = build([{**CYLINDER, "initial": {"position": [0.0, 0.0, 2.0]}}], [hit("y")])
+    s = eng.snapshot(0.0, eng.y0)
+    np.testing.assert_array_equal(e.feature_point(s, e.features[0]), [0.0, 0.0, 2.5])
+    np.testing.assert_array_equal(e.feature_point(s, e.features[1]), [0.0, 0.0, 1.5])
