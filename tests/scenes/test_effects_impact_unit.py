@@ -388,6 +388,12 @@ def test_the_speed_scale_adds_the_spins_part_of_the_contact_velocity():
     s = eng.snapshot(0.0, eng.y0)
     assert e.approach(s, e.features[0]) == 1.0
     assert abs(e.speed_scale(s, e.features[0]) - (2.0**0.5 + 1.0)) <= 4 * EPS
+    # the kinetic energy ½ m v² + ½ J ω² = 2 + ½·(1/5)·4 = 12/5; the angular momentum's
+    # scale |ρ| m |v| + |J ω| = ½·2·√2 + 2/5 (a smooth impulse leaves the spin)
+    d = e.apply(s, e.features[0])
+    assert abs(d["kinetic_energy_before"] - 2.4) <= 4 * EPS
+    assert abs(d["angular_momentum_scale"] - (2.0**0.5 + 0.4)) <= 4 * EPS
+    np.testing.assert_allclose(s.omega[0], [0.0, 2.0, 0.0], rtol=4 * EPS)
 
 
 def test_a_rod_end_strikes_a_ball_above_it_along_the_normal_into_the_ball():
@@ -511,17 +517,20 @@ def test_a_rim_touches_the_floor_at_its_lowest_point_or_flat_where_it_turns_down
 
 
 def test_an_impacts_details_report_the_gap_its_scale_and_the_totals_before_and_after():
-    """The ball (2 kg, radius ½) 1/4 above the floor (apply does not look at the gap):
-    gap (3/4 − 0) − ½ = ¼, its scale |x|₁ + |r_G|₁ + |p|₁ + a = ¾ + ¾ + 0 + ½ = 2;
-    S = (0, 0, ¼); the momentum (2, 0, −6) → (2, 0, 3), its scale m|v| = 2√10; about S
+    """The ball (2 kg, radius ½) 1/4 above the plane z = ½ through p = (1, −2, ½)
+    (apply does not look at the gap): gap (5/4 − ½) − ½ = ¼, its scale
+    |x|₁ + |r_G|₁ + |p|₁ + a = 5/4 + 5/4 + 7/2 + ½ = 13/2; S = (0, 0, ¾); the momentum (2, 0, −6) → (2, 0, 3), its scale m|v| = 2√10; about S
     the angular momentum (0, 0, ½) × m v = (0, 1, 0) before and after (the impulse
     passes through S), its scale ½·2·√10."""
-    (e,), eng = build([ball(position=[0.0, 0.0, 0.75], velocity=[1.0, 0.0, -3.0])], [hit()])
+    (e,), eng = build(
+        [ball(position=[0.0, 0.0, 1.25], velocity=[1.0, 0.0, -3.0])],
+        [hit(plane_point=[1.0, -2.0, 0.5])],
+    )
     s = eng.snapshot(0.0, eng.y0)
     d = e.apply(s, e.features[0])
     assert d["gap"] == 0.25
-    assert d["gap_scale"] == 2.0
-    assert (d["contact_point"], d["normal"]) == ([0.0, 0.0, 0.25], [0.0, 0.0, 1.0])
+    assert d["gap_scale"] == 6.5
+    assert (d["contact_point"], d["normal"]) == ([0.0, 0.0, 0.75], [0.0, 0.0, 1.0])
     assert (d["momentum_before"], d["momentum_after"]) == ([2.0, 0.0, -6.0], [2.0, 0.0, 3.0])
     assert abs(d["momentum_scale"] - 2 * 10**0.5) <= 4 * EPS
     assert d["angular_momentum_before"] == d["angular_momentum_after"] == [0.0, 1.0, 0.0]
@@ -529,7 +538,7 @@ def test_an_impacts_details_report_the_gap_its_scale_and_the_totals_before_and_a
     assert d["attitude_defect"] == 0.0
     (b0,) = d["bodies_before"]
     assert (b0["index"], b0["m"], b0["r_G"], b0["v_G"], b0["omega"]) == (
-        0, 2.0, [0.0, 0.0, 0.75], [1.0, 0.0, -3.0], [0.0, 0.0, 0.0]
+        0, 2.0, [0.0, 0.0, 1.25], [1.0, 0.0, -3.0], [0.0, 0.0, 0.0]
     )  # fmt: skip
     # J = 2/5 m a² = 1/5 about every axis
     np.testing.assert_allclose(b0["J_G"], 0.2 * np.eye(3), rtol=4 * EPS, atol=0)
