@@ -610,3 +610,32 @@ def test_builtin_path_names_the_unknown_scene_and_lists_the_known_ones():
     assert info.value.args == (
         f"unknown built-in scene 'no_such_scene' (known: {', '.join(known)})",
     )
+
+
+#: the pendulum's amplitude ψ0 = 1e-6 shifts its frequency by ψ0²/16 ~ 6e-14 relative;
+#: the elliptic functions round to a few eps: 2^20 eps = 2.3e-10 of ψ0 leaves a wide margin
+SMALL_ANGLE_RTOL = 2**20 * EPS
+
+
+def test_a_track_under_gravity_released_from_rest_swings_as_its_equivalent_pendulum():
+    """4.64: T = ½ M_eff (R − r)² ψ̇², U = −m g (R − r) cos ψ: ω² = m g/(M_eff (R − r))
+    = 2·9.81/(3·3/8) for the cylinder (M_eff = 3/2 m); small ψ0: ψ0 cos ω t."""
+    eng = Engine(scene_of([CYL], [GRAVITY, track()]))
+    gravity, gd = eng.effects[0], eng.layout.guides[0]
+    psi0 = 1e-6
+    how, f, ev = gd.exact([gravity], 2.0, np.array([psi0]), np.array([0.0]), 1.0)
+    assert "4.64" in how
+    assert ev == []
+    w = math.sqrt(2.0 * 9.81 / (3.0 * 0.375))
+    t = np.array([0.25, 0.5, 1.0])
+    q, qd = f(t)
+    np.testing.assert_allclose(
+        q[..., 0], psi0 * np.cos(w * t), rtol=0, atol=SMALL_ANGLE_RTOL * psi0
+    )
+    np.testing.assert_allclose(
+        qd[..., 0], -psi0 * w * np.sin(w * t), rtol=0, atol=SMALL_ANGLE_RTOL * psi0 * w
+    )
+    # moving, beyond the top, or under two loads: no closed form here
+    assert gd.exact([gravity], 2.0, np.array([psi0]), np.array([0.5]), 1.0) is None
+    assert gd.exact([gravity], 2.0, np.array([3.5]), np.array([0.0]), 1.0) is None
+    assert gd.exact([gravity, gravity], 2.0, np.array([psi0]), np.array([0.0]), 1.0) is None
