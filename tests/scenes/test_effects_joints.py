@@ -635,6 +635,8 @@ def test_a_track_under_gravity_released_from_rest_swings_as_its_equivalent_pendu
     np.testing.assert_allclose(
         qd[..., 0], -psi0 * w * np.sin(w * t), rtol=0, atol=SMALL_ANGLE_RTOL * psi0 * w
     )
+    # released at the top itself, |ψ0| = π, still (4.64 covers |ψ0| ≤ π)
+    assert "4.64" in gd.exact([gravity], 2.0, np.array([math.pi]), np.array([0.0]), 1.0)[0]
     # moving, beyond the top, or under two loads: no closed form here
     assert gd.exact([gravity], 2.0, np.array([psi0]), np.array([0.5]), 1.0) is None
     assert gd.exact([gravity], 2.0, np.array([3.5]), np.array([0.0]), 1.0) is None
