@@ -254,8 +254,12 @@ def test_wide_scales_stay_1e20_away_from_one_with_the_default_bounds():
     _never(strategy, lambda J: 2.0 / lo < J[2] < 0.5 * lo)
     _found(strategy, lambda J: 0.1 / lo <= J[2] <= 2.0 / lo)
     _found(strategy, lambda J: 0.5 * lo <= J[2] <= 10.0 * lo)
-    _found(strategy, lambda J: J[2] >= 0.5 * hi)
-    _found(strategy, lambda J: J[2] <= 2.0 / hi)
+    # the far ends of the bands (J3 within a factor 4 of 1e±100) are a small slice of a
+    # log-uniform exponent: over 8 seeds the first hit came at draw 6 … 126, but a
+    # fresh `make test` once found none in 2000 (issue 16, third session): the joint
+    # budget of 10^4 draws
+    _found(strategy, lambda J: J[2] >= 0.5 * hi, FIND_SETTINGS_JOINT)
+    _found(strategy, lambda J: J[2] <= 2.0 / hi, FIND_SETTINGS_JOINT)
 
 
 def test_wide_scales_bounded_at_1e20_either_way_draw_only_the_two_ends():
