@@ -1626,3 +1626,59 @@ def test_drake_takes_integer_numbers_and_returns_float_times():
     assert tr.t.dtype == np.float64
     np.testing.assert_array_equal(tr.t, [0.0, 1.0])
     np.testing.assert_allclose(tr.position[0, 0], [0.0, -1.0, 0.0], atol=ROUNDTRIP_ATOL, rtol=0)
+
+
+def test_pybullet_builds_a_cylinder_on_its_own_server_with_another_open():
+    # the cylinder's collision shape, like every call, names the adapter's server: made on
+    # the other one, the body would get no shape (or another server's) of its own
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    cyl = Body("c", 1.0, (1.0, 1.0, 2.0), Shape("cylinder", (0.2, 0.7)), position=(0.0, 0.0, 2.0))
+    s = _scenario([cyl], ground=Ground(0.5))
+    a = PyBulletAdapter("default", "tuned")
+    other = p.connect(p.DIRECT)
+    try:
+        cid, ids = a.build(s, 0.01)
+    finally:
+        p.disconnect(other)
+    try:
+        ((uid, _),) = ids
+        (shape,) = p.getCollisionShapeData(uid, -1, physicsClientId=cid)
+        assert shape[2] == p.GEOM_CYLINDER
+        # PyBullet reports a cylinder's (length, radius, 0): the full length 2h = 1.4
+        np.testing.assert_allclose(shape[3][:2], [1.4, 0.2], atol=ROUNDTRIP_ATOL, rtol=0)
+    finally:
+        p.disconnect(cid)
+
+
+@pytest.mark.parametrize(("field", "value"), [("variant", "coarse"), ("contact", "soft")])
+def test_pybullet_refuses_an_unknown_option_naming_the_engine_and_the_choices(field, value):
+    _pybullet()
+    from mechanics.conformance.adapters.pybullet import CONTACTS, VARIANTS, PyBulletAdapter
+
+    allowed = VARIANTS if field == "variant" else CONTACTS
+    with pytest.raises(UnknownOptionError) as info:
+        PyBulletAdapter(**{field: value})
+    assert str(info.value) == f"PyBullet {field} must be one of {allowed}; got {value!r}"
+
+
+def test_the_scene_engine_adapter_takes_a_scenario_with_integer_fields():
+    # a user's scenario may be written with integers (a ground normal (0, 0, 1), g = -10,
+    # whole seconds): the scene built from it holds floats, which the scene file's parser
+    # requires, and the run's times come back as floats
+    ball = SCENARIOS["bouncing_ball"]
+    s = dataclasses.replace(
+        ball,
+        ground=Ground(1, (0, 0, 1), 0),
+        gravity=(0, 0, -10),
+        duration=1,
+        sample_times=(0, 1),
+    )
+    scene = scene_from_scenario(s)
+    (imp,) = [e for e in scene["effects"] if e["type"] == "impact"]
+    assert all(isinstance(x, float) for x in imp["plane_normal"])
+    assert all(isinstance(x, float) for x in imp["plane_point"])
+    tr = SceneEngineAdapter().run(s, None)
+    assert tr.t.dtype == np.float64
+    np.testing.assert_array_equal(tr.t, [0.0, 1.0])
