@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 
 import numpy as np
 import pytest
@@ -403,6 +404,14 @@ def test_an_impulse_that_would_add_energy_is_refused_with_one_line() -> None:
     with pytest.raises(SceneError, match=r"would add .* J of kinetic energy") as info:
         run_scene(_scene([box], effects, duration=0.45))
     assert info.value.field == "effects[1].friction"
+    # the whole line a user reads: which impulse, the friction and e, the gain, the name
+    # of the paradox and what to change (the numbers' digits are the run's own)
+    assert re.fullmatch(
+        r"engine\.toml: effects\[1\]\.friction: body 'box' and the plane \(corner \d of 'box'\) "
+        r"at t = \S+ s: the slip impulse with friction 1 and e = 1 would add \S+ J of kinetic "
+        r"energy \(Newton's restitution with friction, Kane's paradox\); lower the friction or e",
+        str(info.value),
+    )
     effects[1]["friction"] = 0.0  # smooth: the same drop is fine
     assert run_scene(_scene([box], effects, duration=0.45)).passed
 
