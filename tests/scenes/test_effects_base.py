@@ -7,13 +7,14 @@ what the base class contributes (nothing)."""
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 import pytest
 
-from mechanics.scenes import SceneError, parse_scene
+from mechanics.scenes import SceneError
 from mechanics.scenes.effects import base
+
+from ._effects import assert_says, refusal, scene_of
 
 EPS = float(np.finfo(float).eps)
 #: a product of a rotation matrix and a vector, summed over 3 terms, of O(1) values: a few
@@ -55,31 +56,6 @@ def two_bodies(**kw) -> base.Snapshot:
         J=[[1.0, 1.0, 1.0], [1.0, 2.0, 2.0]],
         **kw,
     )
-
-
-def word(text: str) -> str:
-    return rf"(?<![A-Za-z0-9_]){re.escape(text)}(?![A-Za-z0-9_])"
-
-
-def assert_says(err: SceneError, field: str, *phrases: str) -> None:
-    """The error names exactly ``field`` and says each phrase as words of its own."""
-    assert err.field == field
-    for p in phrases:
-        assert re.search(word(p), err.reason), (p, err.reason)
-
-
-def scene_of(bodies, effects):
-    return parse_scene(
-        {"scene": {"name": "unit", "duration": 1.0}, "bodies": bodies, "effects": effects},
-        source="unit.toml",
-    )
-
-
-def refusal(bodies, effects) -> SceneError:
-    with pytest.raises(SceneError) as info:
-        scene_of(bodies, effects)
-    assert str(info.value).startswith("unit.toml: ")
-    return info.value
 
 
 ROD = {"name": "rod", "shape": "box", "mass": 1.0, "a": 1.0, "b": 0.5, "c": 0.25}

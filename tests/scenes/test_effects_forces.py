@@ -6,15 +6,14 @@ against the rates its loads give, its switch times and its refusals.  Fast: no r
 from __future__ import annotations
 
 import math
-import re
 
 import numpy as np
 import pytest
 
-from mechanics.scenes import SceneError, parse_scene
 from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads, Snapshot
 from mechanics.scenes.effects.newton_gravity import G_NEWTON
-from mechanics.scenes.engine import Engine
+
+from ._effects import assert_says, build, refusal, scene_of
 
 EPS = float(np.finfo(float).eps)
 #: a force of a few O(1) factors, each rounded once, and a unit vector (a norm, a
@@ -30,37 +29,6 @@ FD_STEP = 2.0**-16
 
 
 # ------------------------------------------------------------------ set-up
-
-
-def scene_of(bodies, effects):
-    return parse_scene(
-        {"scene": {"name": "unit", "duration": 1.0}, "bodies": bodies, "effects": effects},
-        source="unit.toml",
-    )
-
-
-def build(bodies, effects):
-    """The engine's effect objects, and the engine (its layout, its guides)."""
-    eng = Engine(scene_of(bodies, effects))
-    return eng.effects, eng
-
-
-def refusal(bodies, effects) -> SceneError:
-    with pytest.raises(SceneError) as info:
-        scene_of(bodies, effects)
-    assert str(info.value).startswith("unit.toml: ")
-    return info.value
-
-
-def word(text: str) -> str:
-    return rf"(?<![A-Za-z0-9_]){re.escape(text)}(?![A-Za-z0-9_])"
-
-
-def assert_says(err: SceneError, field: str, *phrases: str) -> None:
-    """The error names exactly ``field`` and says each phrase as words of its own."""
-    assert err.field == field
-    for p in phrases:
-        assert re.search(word(p), err.reason), (p, err.reason)
 
 
 SPHERE = {"name": "a", "shape": "solid_sphere", "mass": 2.0, "radius": 0.5}

@@ -12,32 +12,13 @@ import numpy as np
 import pytest
 
 from mechanics.errors import SeparatingContactError
-from mechanics.scenes import SceneError, parse_scene
 from mechanics.scenes.effects import CONSERVED
-from mechanics.scenes.engine import Engine
+
+from ._effects import build, refusal, scene_of
 
 EPS = float(np.finfo(float).eps)
 #: an impulse of a few O(1) products and one 3×3 solve: a few dozen roundings
 IMPULSE_RTOL = 32 * EPS
-
-
-def scene_of(bodies, effects):
-    return parse_scene(
-        {"scene": {"name": "unit", "duration": 1.0}, "bodies": bodies, "effects": effects},
-        source="unit.toml",
-    )
-
-
-def build(bodies, effects):
-    eng = Engine(scene_of(bodies, effects))
-    return eng.effects, eng
-
-
-def refusal(bodies, effects) -> SceneError:
-    with pytest.raises(SceneError) as info:
-        scene_of(bodies, effects)
-    assert str(info.value).startswith("unit.toml: ")
-    return info.value
 
 
 #: where each body starts unless a test says: apart, and 2 m above the floor

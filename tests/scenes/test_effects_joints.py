@@ -13,32 +13,15 @@ import numpy as np
 import pytest
 
 import mechanics.scenes
-from mechanics.scenes import SceneError, builtin_path, parse_scene
+from mechanics.scenes import builtin_path
 from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads, Snapshot
 from mechanics.scenes.engine import Engine
+
+from ._effects import build, refusal, scene_of
 
 EPS = float(np.finfo(float).eps)
 #: a product or quotient of two or three O(1) factors: a few roundings
 FORMULA_RTOL = 8 * EPS
-
-
-def scene_of(bodies, effects):
-    return parse_scene(
-        {"scene": {"name": "unit", "duration": 1.0}, "bodies": bodies, "effects": effects},
-        source="unit.toml",
-    )
-
-
-def build(bodies, effects):
-    eng = Engine(scene_of(bodies, effects))
-    return eng.effects, eng
-
-
-def refusal(bodies, effects) -> SceneError:
-    with pytest.raises(SceneError) as info:
-        scene_of(bodies, effects)
-    assert str(info.value).startswith("unit.toml: ")
-    return info.value
 
 
 def guide_of(bodies, effects, g_vector, which=0):

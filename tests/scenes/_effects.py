@@ -1,0 +1,43 @@
+"""Shared set-up of the effects' unit tests: a tiny scene parsed from tables, the
+engine's effect objects built from it, a refusal and its words."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from mechanics.scenes import SceneError, parse_scene
+from mechanics.scenes.engine import Engine
+
+
+def scene_of(bodies, effects, *, duration=1.0):
+    return parse_scene(
+        {"scene": {"name": "unit", "duration": duration}, "bodies": bodies, "effects": effects},
+        source="unit.toml",
+    )
+
+
+def build(bodies, effects):
+    """The engine's effect objects, and the engine (its layout, its guides)."""
+    eng = Engine(scene_of(bodies, effects))
+    return eng.effects, eng
+
+
+def refusal(bodies, effects, *, duration=1.0) -> SceneError:
+    """The scene's refusal, which names the scene file first."""
+    with pytest.raises(SceneError) as info:
+        scene_of(bodies, effects, duration=duration)
+    assert str(info.value).startswith("unit.toml: ")
+    return info.value
+
+
+def word(text: str) -> str:
+    return rf"(?<![A-Za-z0-9_]){re.escape(text)}(?![A-Za-z0-9_])"
+
+
+def assert_says(err: SceneError, field: str, *phrases: str) -> None:
+    """The error names exactly ``field`` and says each phrase as words of its own."""
+    assert err.field == field
+    for p in phrases:
+        assert re.search(word(p), err.reason), (p, err.reason)
