@@ -997,7 +997,7 @@ class Engine:
         v = detail["normal_speed_after"]
         if v < ZENO_SPEED * (1.0 + abs(detail["normal_speed_before"])):
             return True
-        return v * v <= 2.0 * a * GAP_ROUNDING * 4 * detail.get("gap_scale", 0.0)
+        return v * v <= 2.0 * a * GAP_ROUNDING * 4 * detail["gap_scale"]
 
     def _kinematics(self, s, dy, k):
         """(origin, its acceleration, ω, α), space components, of body k at the snapshot

@@ -524,3 +524,31 @@ def test_an_impacts_details_report_the_gap_its_scale_and_the_totals_before_and_a
     # J = 2/5 m a² = 1/5 about every axis
     np.testing.assert_allclose(b0["J_G"], 0.2 * np.eye(3), rtol=4 * EPS, atol=0)
     assert d["bodies_after"][0]["v_G"] == [1.0, 0.0, 1.5]
+
+
+def test_a_ball_pinned_off_the_origin_swings_back_with_its_centre_moving_about_the_pivot():
+    """A ball (2 kg, radius ½, J_G = 2/5·2·¼ = 1/5) on a fixed point C = (10, 0, 3) one
+    metre below G (θ = 0: G = (10, 0, 4)), turning at ω = e_y, so G moves at
+    ω × (G − C) = e_x into the wall x = 10.5 (normal −e_x).  The contact S = (10.5, 0, 4),
+    S − C = (½, 0, 1): approach ω × (S − C) · e_x = 1, (S − C) × n = −e_y, J_C = 1/5 + 2·1²
+    = 11/5 about e_y: 1/μ = 5/11, P = (1 + ½)·1·11/5 = 33/10, Δω = −P/J_C e_y = −3/2 e_y.
+    After: ω = −½ e_y, G moves at −½ e_x about C, the point S at −½ = −e · 1."""
+    pinned = {**ball(), "initial": {"theta": 0.0, "omega": [0.0, 1.0, 0.0]}}
+    (_, e), eng = build(
+        [pinned],
+        [{"type": "fixed_point", "body": "a", "distance": 1.0, "point": [10.0, 0.0, 3.0]},
+         hit(plane_point=[10.5, 0.0, 0.0], plane_normal=[-1.0, 0.0, 0.0])],
+    )  # fmt: skip
+    s = eng.snapshot(0.0, eng.y0)
+    np.testing.assert_allclose(s.r[0], [10.0, 0.0, 4.0], rtol=0, atol=16 * EPS)
+    np.testing.assert_allclose(s.v[0], [1.0, 0.0, 0.0], rtol=0, atol=16 * EPS)
+    (ft,) = e.features
+    assert abs(e.approach(s, ft) - 1.0) <= IMPULSE_RTOL
+    d = e.apply(s, ft)
+    np.testing.assert_allclose(s.omega[0], [0.0, -0.5, 0.0], rtol=0, atol=IMPULSE_RTOL)
+    # G's velocity about the pivot C, not about the origin nor −C
+    np.testing.assert_allclose(s.v[0], [-0.5, 0.0, 0.0], rtol=0, atol=IMPULSE_RTOL)
+    assert abs(d["normal_speed_after"] - 0.5) <= IMPULSE_RTOL
+    # loss ½ μ (1 − e²) v_n² = ½ (11/5)(3/4) = 33/40
+    assert abs(d["energy_loss"] - 33 / 40) <= IMPULSE_RTOL
+    assert d["external_impulse"] == "the pivot, bearings or track of a joint"

@@ -567,6 +567,7 @@ def test_simulate_runs_the_engine_and_adds_the_derived_quantities() -> None:
     assert exact == pytest.approx(want, rel=8 * EPS)
     assert measured == pytest.approx(want, rel=2**10 * EPS)  # the sampled flow at t_b
     assert [(e.t, e.kind) for e in tr.events] == [(pytest.approx(5.0, rel=4 * EPS), "burn_out")]
+    assert tr.events[0].detail == {"body": "p"}  # whose fuel ran out
     # the mass series: m0 − q t until burn-out, then m_f (samples at 0, 3, 6 s)
     np.testing.assert_allclose(tr.series["mass"], [1.5, 1.2, 1.0], rtol=4 * EPS, atol=0)
 
@@ -649,6 +650,55 @@ def test_impacts_stall_when_the_rebound_is_too_slow_to_follow(after, before, gap
     # not pressed (no gravity): never a stall, however slow
     eng, imp, ft = _resting_ball([])
     assert eng._stalls(imp, ft, 0.0, eng.y0, detail) is False
+
+
+def test_a_contact_found_on_its_exit_side_is_refused_with_its_time_and_the_cause() -> None:
+    """The ball touches the floor but leaves it at 3 m/s: no impulse can be applied, and
+    the scene error names the impact, the feature, the time to the last digit and the
+    separating speed."""
+    ball = _ball(position=(0.0, 0.0, 0.1), velocity=(0.0, 0.0, 3.0))
+    eng = Engine(_scene([ball], [{"type": "impact", "body": "ball", "restitution": 0.5}]))
+    imp = eng.impacts[0]
+    ft = imp.features[0]
+    events: list = []
+    with pytest.raises(SceneError) as info:
+        eng._resolve(1 / 3, eng.y0, imp, ft, events)
+    assert info.value.field == imp.where == "effects[0]"
+    assert info.value.reason == (
+        f"{ft.label}: the contact at t = 0.33333333333333331 s was found on the exit side "
+        "(the bodies separate there): the contact separates (v_n = 3.0 ≥ 0)"
+    )
+    assert events == []
+
+
+def test_the_reactions_evaluate_the_loads_at_each_samples_own_time(monkeypatch) -> None:
+    """An effect's loads are a function of (t, state): the joints' reactions at the
+    samples hand each effect the sample's own time, as a float.  (Of the built-in
+    effects only friction's lift-off message reads t, so the time is checked where it is
+    handed over.)  The reaction itself: the top held at rest at θ = 0.5 has
+    F_C = m a_G − m g with a_G = α × (G − C), α = J_C⁻¹ (G − C) × m g."""
+    top = {**_top(), "initial": {"theta": 0.5, "omega": [0.0, 0.0, 0.0]}}
+    eng = Engine(_scene([top], [PIN, GRAVITY]))
+    (grav,) = [e for e in eng.forces if e.type == "gravity"]
+    seen, loads = [], grav.loads
+    monkeypatch.setattr(grav, "loads", lambda t, s, out: (seen.append(t), loads(t, s, out)))
+    out, size = eng._reactions(np.array([0.0, 0.5]), np.stack([eng.y0, eng.y0]))
+    # (the rates behind a_G evaluate the loads too, at the same time)
+    assert all(type(t) is float for t in seen)
+    assert sorted(set(seen)) == [0.0, 0.5]
+    # by hand: R = R1(θ) (ψ = φ = 0), whose third row is e3 = (0, −sin θ, cos θ) in space
+    th, m, ell = 0.5, 1.0, 0.2
+    J1 = m * (3 * 0.1**2 + 0.4**2) / 12 + m * ell**2  # a cylinder's J across e3, about C
+    rho = ell * np.array([0.0, -math.sin(th), math.cos(th)])
+    weight = np.array([0.0, 0.0, -9.81 * m])
+    alpha = np.cross(rho, weight) / J1  # about e_x, which is a principal axis at C
+    want = m * np.cross(alpha, rho) - weight
+    scale = 2**6 * EPS * 9.81
+    for row in out[0]["reaction"]:
+        np.testing.assert_allclose(row, want, rtol=0, atol=scale)
+    # the size its rounding is relative to: |m a_G| + |m g|
+    a_G = float(np.linalg.norm(m * np.cross(alpha, rho)))
+    assert abs(size[0]["reaction"] - (a_G + 9.81 * m)) <= scale
 
 
 # --------------------------------------------------------------- a top's exact flow
