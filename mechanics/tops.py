@@ -27,13 +27,16 @@ pick the side of the separatrix: D > 0, ω circulates about axis 3,
 and the parameter m and its complement m1 = (J3−J1)|D|/(…) are computed in
 exact rational arithmetic from the float inputs and rounded once, so that the
 distance from the separatrix is never lost to cancellation.  The attitude:
-L is fixed in space; in a body frame whose third axis is the axis that ω does
-*not* circulate (so that L never comes near it and the Euler angles stay away
-from gimbal lock), the unit vector L_A/|L| fixes θ and φ, and the precession
-about L is the closed form
+L is fixed in space; in a body frame whose third axis (the pole) is axis 1 or 3
+(L never reaches either: it circulates one and stays off the other), the unit vector
+L_A/|L| fixes θ and φ, and the precession about L is the closed form
 ψ(t) = ψ(0) + |L| t/J_c ± (C/λ)[G(u) − G(u0)], G(u) = ∫₀^u n sn²/(1 − n sn²) dv,
 the elliptic integral of the third kind in Jacobi's form (Carlson's R_J,
-:func:`mechanics.elliptic.ellippi_jacobi`), not a quadrature.
+:func:`mechanics.elliptic.ellippi_jacobi`), not a quadrature.  The two poles' n
+multiply to m; the pole of the smaller |n| is taken, where ψ is nearest uniform: the
+axis ω does not circulate, except for a nearly symmetric body, whose symmetry axis
+it is (n = 0 exactly for a symmetric one; the other choice cancels, 2e-9 of the
+attitude lost for J_mid 4 ulps from J_max).
 Steady rotations (ω along a principal axis or in a degenerate plane, the
 spherical top, ω = 0) are exact constant-ω motions, never NaN.
 
@@ -295,33 +298,41 @@ class FreeAsymmetricTop:
             self.regime = "steady"
         else:
             self._branch3 = D >= 0
-            # the pole (third axis of the Euler angles) is an axis ω does not circulate;
-            # for a symmetric body it is the symmetry axis and the precession is uniform
-            self._uniform = (D >= 0 and J1 == J2) or (D < 0 and J2 == J3)
+            # The pole (third axis of the Euler angles) is axis 1 or axis 3: with pole 1,
+            # ψ = L t/J3 − (C/λ)(G − G0); with pole 3, ψ = L t/J1 + (C/λ)(G − G0), G the
+            # excess of the third kind (:func:`mechanics.elliptic._third_kind_excess`) of
+            # characteristic n1 or n3, where ψ̇ = L (J_a ω_a² + J_b ω_b²)/(J_a² ω_a² +
+            # J_b² ω_b²) over the other two axes a, b puts its denominator in the form
+            # 1 − n sn².  n1 n3 = m: the pole of the smaller |n| is taken, for which ψ
+            # is nearest uniform (n = 0 for a symmetric body: its symmetry axis, the
+            # uniform precession).  The other one cancels: for J_mid a few ulps from J_max,
+            # n3 ≈ −1e12 and L t/J1 and (C/λ) G agreed to 3e-9 of a turn (issue 16).
             if D >= 0:
                 self.regime = "separatrix" if D == 0 else "axis3"
                 m = (J2 - J1) * A / ((J3 - J2) * B)
                 m1 = (J3 - J1) * D / ((J3 - J2) * B)
                 amp = (A / (J1 * (J3 - J1)), A / (J2 * (J3 - J2)), B / (J3 * (J3 - J1)))
                 lam2 = (J3 - J2) * B / (J1 * J2 * J3)
-                n = -J1 * A / (J3 * B)
-                C = (J3 - J1) / (J1 * J3)
+                n1 = -J1 * A / (J3 * B)
+                n3 = -J3 * (J2 - J1) / (J1 * (J3 - J2))
                 s_circ = 1 if w3 > 0 else -1
                 sigma = (1 if w1 > 0 else -1) if D == 0 else 1
-                self._pole_first = not self._uniform
-                self._uniform_rate = float(Fraction(1) / J1)
+                self._pole_first = abs(n1) <= abs(n3)
             else:
                 self.regime = "axis1"
                 m = (J3 - J2) * B / ((J2 - J1) * A)
                 m1 = (J3 - J1) * (-D) / ((J2 - J1) * A)
                 amp = (A / (J1 * (J3 - J1)), B / (J2 * (J2 - J1)), B / (J3 * (J3 - J1)))
                 lam2 = (J2 - J1) * A / (J1 * J2 * J3)
-                n = -J3 * B / (J1 * A)
-                C = (J3 - J1) / (J1 * J3)
+                n1 = -J1 * (J3 - J2) / (J3 * (J2 - J1))
+                n3 = -J3 * B / (J1 * A)
                 s_circ = 1 if w1 > 0 else -1
                 sigma = 1
-                self._pole_first = self._uniform
-                self._uniform_rate = float(Fraction(1) / J3)
+                self._pole_first = abs(n1) < abs(n3)
+            C = (J3 - J1) / (J1 * J3)
+            n = n1 if self._pole_first else n3
+            self._uniform = n == 0
+            self._uniform_rate = float(Fraction(1) / (J3 if self._pole_first else J1))
             self.m, self.m1 = float(m), float(m1)
             if m1 > 0 and self.m1 < 2.0**-1022:
                 e2 = m1.numerator.bit_length() - m1.denominator.bit_length()
@@ -461,7 +472,7 @@ class FreeAsymmetricTop:
                 u, self._n, self.m, self.m1, self._K, self._trig_agm, self._full
             )
             J1, J3 = Js[0], Js[2]
-            if self._branch3:
+            if self._pole_first:
                 psi = Lm * t / J3 - (self._C / self._lam) * (G - self._G0)
             else:
                 psi = Lm * t / J1 + (self._C / self._lam) * (G - self._G0)
@@ -526,7 +537,7 @@ class FreeAsymmetricTop:
         u = self._lam * t + self._u0
         G = self._excess(np.ascontiguousarray(u).ravel(), _reduced).reshape(u.shape)
         J1, _, J3 = self._Js
-        if self._branch3:
+        if self._pole_first:
             return Lm * t / J3 - (self._C / self._lam) * (G - self._G0)
         return Lm * t / J1 + (self._C / self._lam) * (G - self._G0)
 

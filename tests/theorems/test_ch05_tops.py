@@ -26,7 +26,6 @@ import math
 from fractions import Fraction
 
 import numpy as np
-import pytest
 from hypothesis import HealthCheck, example, given, settings, target
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
@@ -260,16 +259,38 @@ def test_heavy_top_conserves_its_three_integrals(case):
     assert np.abs(Lz - top.L_z).max() <= 1e-9 * lscale
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known loss (found by hypothesis, open): for J_max within ~1e-13 … 1e-8 "
-    "(relative) of J_mid, ω near their plane, the exact attitude is off by up to 3e-9 "
-    "after 3 rotations (ψ = L t/J + (C/λ)(G − G0) with λ → 0 cancels); ω stays exact",
-)
-@pytest.mark.parametrize("ulps", [4, 16, 256])  # measured 2.3e-9, 2.7e-9, 2.0e-9
-def test_exact_free_top_attitude_with_two_moments_a_few_ulps_apart(ulps):
-    J = np.array([13.5 * (1 + ulps * 2.0**-53), 9.0, 13.5])
-    w0, R0 = np.array([0.0, -1e-6, 1.0]), np.eye(3)
+#: DOP853 (rtol 1e-13, atol 1e-15) over three turns at |ω| ≈ 1: its own error on the
+#: attitude, measured 2.3e-13 here; 2^13 eps = 1.8e-12 leaves a margin of 8, and fails
+#: the 2e-9 that the exact attitude lost before its pole was chosen by the smaller
+#: characteristic (issue 16: J_max a few ulps from J_mid, ψ's two terms cancelled)
+NEAR_SYMMETRIC_ATTITUDE_ATOL = 2**13 * EPS
+
+
+@st.composite
+def nearly_symmetric_tops(draw):
+    """Two moments k·2^e ulps apart (1 ulp … 2^48 ulps, log-uniform in e): J_max ≈ J_mid
+    with ω near their plane (ω then circulates the distinct axis 1 slowly), or
+    J_min ≈ J_mid with ω near theirs; the small components from 1e-9 to 1e-1."""
+    delta = draw(st.integers(1, 7)) * 2.0 ** draw(st.integers(0, 45)) * 2.0**-53
+    small = [draw(st.sampled_from([-1.0, 0.0, 1.0])) * 10.0 ** draw(st.floats(-9, -1))
+             for _ in range(2)]  # fmt: skip
+    if small[1] == 0.0:
+        small[1] = 1e-6  # ω off the plane of the two moments: a motion, not a steady spin
+    if draw(st.booleans()):
+        return np.array([13.5 * (1 + delta), 9.0, 13.5]), np.array([small[0], small[1], 1.0])
+    return np.array([9.0 * (1 - delta), 9.0, 13.5]), np.array([1.0, small[0], small[1]])
+
+
+@given(nearly_symmetric_tops())
+@example((np.array([13.5 * (1 + 4 * 2.0**-53), 9.0, 13.5]), np.array([0.0, -1e-6, 1.0])))
+@example((np.array([13.5 * (1 + 16 * 2.0**-53), 9.0, 13.5]), np.array([0.0, -1e-6, 1.0])))
+@example((np.array([13.5 * (1 + 256 * 2.0**-53), 9.0, 13.5]), np.array([0.0, -1e-6, 1.0])))
+@settings(max_examples=20, deadline=None)
+def test_exact_free_top_attitude_with_two_moments_a_few_ulps_apart(case):
+    """The exact attitude of a nearly symmetric body agrees with DOP853 to the
+    integrator's own error (before the fix: 2.3e-9, 2.7e-9, 2.0e-9 at 4, 16, 256 ulps)."""
+    J, w0 = case
+    R0 = np.eye(3)
     top = tops.FreeAsymmetricTop(J, w0, R0)
     ts = np.linspace(0, 3 * 2 * np.pi, 7)
     sol = solve_ivp(
@@ -282,4 +303,7 @@ def test_exact_free_top_attitude_with_two_moments_a_few_ulps_apart(ulps):
         t_eval=ts,
     )
     assert np.abs(top.omega(ts) - sol.y[:3].T).max() <= ODE_RTOL
-    assert np.abs(top.attitude(ts) - sol.y[3:].T.reshape(-1, 3, 3)).max() <= ODE_RTOL * 10
+    R_ode = sol.y[3:].T.reshape(-1, 3, 3)
+    assert np.abs(top.attitude(ts) - R_ode).max() <= NEAR_SYMMETRIC_ATTITUDE_ATOL
+    # one instant (the scalar path) the same
+    assert np.abs(top.attitude(float(ts[-1])) - R_ode[-1]).max() <= NEAR_SYMMETRIC_ATTITUDE_ATOL
