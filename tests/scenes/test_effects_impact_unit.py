@@ -284,10 +284,14 @@ def test_a_box_struck_at_a_corner_turns_with_the_impulse_of_its_effective_mass()
     ft = e.features[0]
     inv_mu = Fraction(1, 3) + Fraction(4, 5) + Fraction(16, 17)
     P = Fraction(5, 4) / inv_mu
-    e.apply(s, ft)
+    d = e.apply(s, ft)
     np.testing.assert_allclose(
         s.v[0], [0.0, 0.0, float(-1 + P / 3)], rtol=IMPULSE_RTOL, atol=4 * EPS
     )
+    # the size the corner's gap rounds relative to: its position G + ρ is made of
+    # Σ|S| = ½ + ¼, Σ|G| = ⅛ and the arm Σ|ρ| = ⅞ (all exact in binary)
+    np.testing.assert_array_equal(d["contact_point"], [-0.5, -0.25, 0.0])
+    assert d["gap_scale"] == 1.75
     np.testing.assert_allclose(
         s.omega[0],
         [float(-P * Fraction(16, 5)), float(P * Fraction(32, 17)), 0.0],
