@@ -1030,7 +1030,6 @@ class HeavySymmetricTop:
             omu2 = self._amb**2 / (beta * (s2h - x1) * u3m1)
             x2 = s2h - omu2
         self._opu1, self._omu2 = max(opu1, 0.0), max(omu2, 0.0)
-        self._x = (x1, x2, x3)
         self.roots = (
             -1.0 + self._opu1 if self._opu1 < 1e-3 else u0 + x1,
             1.0 - self._omu2 if self._omu2 < 1e-3 else u0 + x2,
