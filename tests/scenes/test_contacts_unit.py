@@ -274,6 +274,33 @@ def test_a_start_within_the_tolerance_and_falling_is_a_contact_now() -> None:
     assert ct.first_downward_crossing(_cheb(-0.75, -0.5), start_tol=0.25) == -1.0
 
 
+def test_a_start_within_the_tolerance_falling_to_exactly_zero_is_a_contact_now() -> None:
+    # ¼(1 − x): ½ at the start (within start_tol ½), 0 at the end: c0 − Σ|c_k| = 0, the
+    # cheap bound does not rule it out; touching and closing: the contact is now
+    assert ct.first_downward_crossing(_cheb(0.25, -0.25), start_tol=0.5) == -1.0
+    # the same fall from beyond the tolerance reaches zero only at the end: no crossing
+    assert ct.first_downward_crossing(_cheb(0.25, -0.25), start_tol=0.25) is None
+
+
+def test_past_a_graze_the_search_goes_on_to_the_crossing_after_it() -> None:
+    # (x + ½)²(½ − x) − 1e-10: a dip to −1e-10 at x = −½ (within start_tol 1e-9, and
+    # rising again: a graze), then the fall through zero at ½ − 1e-10 (to first order:
+    # q'(½) = −1)
+    p = _cheb(0.125 - 1e-10, 0.25, -0.5, -1.0)
+    x = ct.first_downward_crossing(p, start_tol=1e-9)
+    assert x == pytest.approx(0.5 - 1e-10, rel=0, abs=BRENT_ATOL)
+    # with a tolerance below the dip, the dip itself is the first crossing, near
+    # −½ − 1e-5 (the double root split by the dip): mpmath's root at 30 digits; the
+    # slope there is only ~2e-5, so the polynomial's 8 eps of rounding move it by
+    # 8 eps / 2e-5
+    import mpmath
+
+    with mpmath.workdps(30):
+        want = float(mpmath.findroot(lambda x: (x + 0.5) ** 2 * (0.5 - x) - 1e-10, -0.50001))
+    x = ct.first_downward_crossing(p, start_tol=1e-11)
+    assert x == pytest.approx(want, rel=0, abs=8 * EPS / 2e-5)
+
+
 def test_a_gap_that_stays_exactly_zero_is_no_contact() -> None:
     # bodies moving together: the gap is 0 all along, neither falling nor below zero
     assert ct.first_downward_crossing(np.zeros(3), start_tol=0.0) is None

@@ -524,6 +524,21 @@ def test_the_tanks_exact_flow_empties_at_t_2_and_its_volume_is_kept():
     np.testing.assert_allclose(y[:, 1], [0.0, 1.5, 2.0, 2.0], rtol=FORMULA_RTOL, atol=4 * EPS)
 
 
+def test_a_wider_tanks_exact_flow_drains_at_its_own_area_ratio():
+    """A = 2, a = ½ (a/A = ¼), g = 3, h0 = 2: A ḣ = −a u with u = √(2 g h/(1 − 1/16)) gives
+    d√h/dt = −(a/A) √(2g/(15/16))/2 = −√6.4/8 = −c, so T = √2/c = √20; the volume out is
+    A (h0 − h) = 2 (2 − (√2 − c t)²) (the water is kept)."""
+    (_, e), _ = build([{**TANK, "area": 2.0}], DRAIN)
+    _, f, events = e.exact(5.0)
+    c, T = math.sqrt(6.4) / 8, math.sqrt(20.0)
+    assert [(ev.t, ev.kind) for ev in events] == [(pytest.approx(T, rel=FORMULA_RTOL), "empty")]
+    t = np.array([0.0, 1.0, 3.0, T, 5.0])
+    w = np.maximum(math.sqrt(2.0) - c * np.minimum(t, T), 0.0)
+    y = f(t)
+    np.testing.assert_allclose(y[:, 0], w, rtol=FORMULA_RTOL, atol=8 * EPS)
+    np.testing.assert_allclose(y[:, 1], 2.0 * (2.0 - w * w), rtol=FORMULA_RTOL, atol=8 * EPS)
+
+
 def test_the_tank_reports_h_u_the_volume_out_and_the_kept_total():
     """A tank of area A = 2 with the hole a = 1/2: 1 − (a/A)² = 15/16, u = √(2·3·h·16/15)
     = √(6.4 h); the total A h + volume out."""

@@ -825,6 +825,34 @@ def test_pressing_evaluates_the_loads_at_the_time_asked(monkeypatch) -> None:
     assert set(seen) == {0.7}
 
 
+@pytest.mark.parametrize(
+    ("body", "scale"),
+    [
+        (_ball(position=(0.0, 0.0, 1.0), radius=0.1), 1.1),  # |r| + the radius
+        (_box(position=[0.0, 0.0, 1.0]), 1.15),  # |r| + the farthest vertex (0.15, ·, ·)
+    ],
+    ids=["ball", "box"],
+)
+def test_the_length_scale_of_the_no_interpenetration_check(body, scale) -> None:
+    """At rest 1 m above the floor: the depth of an interpenetration is judged relative
+    to the largest |r| plus the largest radius and the farthest vertex from G."""
+    hit = {"type": "impact", "body": body["name"], "restitution": 0.5}
+    tr = Engine(_scene([body], [hit])).run()
+    assert tr.extra["length_scale"] == scale
+
+
+def test_a_pinned_symmetric_top_among_other_bodies_keeps_its_own_named_l3() -> None:
+    """A cylinder on its pivot beside a falling point: the moments about C (gravity's and
+    the pivot's) are perpendicular to e3, so its L_3 = J3 ω3 = 0.005 × 20 = 0.1 is kept,
+    reported under the top's own name."""
+    p = _point("p", position=(1.0, 0.0, 0.0))
+    tr = Engine(_scene([_top(), p], [PIN, GRAVITY], duration=0.2)).run()
+    assert "L_3" not in tr.series
+    assert "top.L_3" in tr.conserved
+    # DOP853 keeps it to its tolerance (rtol 1e-12 of L_C, ~0.1): a few roundings here
+    np.testing.assert_allclose(tr.series["top.L_3"], 0.1, rtol=2**10 * EPS)
+
+
 # --------------------------------------------------------------- a top's exact flow
 
 

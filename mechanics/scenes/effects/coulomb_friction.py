@@ -189,7 +189,7 @@ class CoulombFriction(Effect):
         self._flat = self.alpha == 0 and others <= {"gravity", self.type}
 
     # ------------------------------------------------------------------ the forces
-    def _parts(self, t, s, out):
+    def _parts(self, s, out):
         """(N, F_stick, Q scale) from the other loads already in ``out``."""
         i, gd = self.i, self.guide
         F_o = out.F[i]
@@ -199,7 +199,7 @@ class CoulombFriction(Effect):
         return N, gd.stick_force(Q_s, Q_th), abs(Q_s) + abs(Q_th) / gd.r
 
     def loads(self, t, s, out) -> None:
-        N, F_stick, _ = self._parts(t, s, out)
+        N, F_stick, _ = self._parts(s, out)
         if not N > 0:
             raise self.ctx.scene.error(
                 f"{self.where}.body",
@@ -216,7 +216,7 @@ class CoulombFriction(Effect):
         return float(qd[0] - self.guide.r * qd[1]), abs(float(qd[0])) + abs(self.guide.r * qd[1])
 
     def _decide(self, t, s, out) -> float:
-        N, F_stick, _ = self._parts(t, s, out)
+        N, F_stick, _ = self._parts(s, out)
         return 0.0 if abs(F_stick) <= self.mu * N else -math.copysign(1.0, F_stick)
 
     def begin(self, t, s, out) -> None:
@@ -230,7 +230,7 @@ class CoulombFriction(Effect):
         if self.mode != 0:
             slip, size = self._slip(s)
             return self.mode * slip, size
-        N, F_stick, Q = self._parts(t, s, out)
+        N, F_stick, Q = self._parts(s, out)
         return self.mu * N - abs(F_stick), self.mu * abs(N) + Q
 
     def switch(self, t, s, out) -> Event:
@@ -242,7 +242,7 @@ class CoulombFriction(Effect):
             s.coords[self.i] = (q, qd)
             self.mode = self._decide(t, s, out)
             return _event(t, self.mode, float(qd[0]))
-        _, F_stick, _ = self._parts(t, s, out)
+        _, F_stick, _ = self._parts(s, out)
         self.mode = -math.copysign(1.0, F_stick)
         return Event(t, "slip", {"speed": float(s.coords[self.i][1][0])})
 

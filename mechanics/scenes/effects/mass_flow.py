@@ -52,16 +52,15 @@ class MassFlow(Effect):
     def check(cls, spec, scene, index) -> None:
         check_on_fixed_axis(spec, scene, what="mass flows onto a body turning on a fixed axis")
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec, ctx) -> None:
         super().__init__(spec, ctx)
         self.q = float(self.fields["rate"])
         self.v = float(self.fields["speed"])
         self.r = float(self.fields["offset"])
         self.R = float(self.fields["radius"])
-        self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
-        self.hinge = ctx.guides.get(self.i) if ctx is not None else None
-        others = {e.type for e in ctx.scene.effects} if ctx is not None else set()
-        self._alone = others <= {"fixed_axis", self.type}
+        self.i = ctx.index[self.fields["body"]]
+        self.hinge = ctx.guides.get(self.i)
+        self._alone = {e.type for e in ctx.scene.effects} <= {"fixed_axis", self.type}
 
     def inertia_added(self, t, i) -> np.ndarray | float:
         """q R² t, shape (..., 1), added to the axis inertia of body i (0 for the others)."""
