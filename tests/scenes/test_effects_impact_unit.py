@@ -556,3 +556,16 @@ def test_a_ball_pinned_off_the_origin_swings_back_with_its_centre_moving_about_t
     # loss ½ μ (1 − e²) v_n² = ½ (11/5)(3/4) = 33/40
     assert abs(d["energy_loss"] - 33 / 40) <= IMPULSE_RTOL
     assert d["external_impulse"] == "the pivot, bearings or track of a joint"
+
+
+def test_a_face_lying_flat_offers_the_rim_point_that_approaches_fastest():
+    """A cylinder (radius ½, height 1) lying flat on the floor, tipping at ω = 2 e_x: every
+    point of its lower rim is lowest; the one chosen moves down fastest, along
+    ω × e3 = (0, −2, 0): the rim point at −a e_y of the lower face, (50, −½, 0), which
+    moves at ω × (0, −½, −½) = (0, 1, −1): down at 2a = 1."""
+    flat = {**CYLINDER, "initial": {"position": [50.0, 0.0, 0.5], "omega": [2.0, 0.0, 0.0]}}
+    (e,), eng = build([flat], [hit("y")])
+    s = eng.snapshot(0.0, eng.y0)
+    (lower,) = [ft for ft in e.features if ft.support[1] < 0]
+    np.testing.assert_allclose(e.feature_point(s, lower), [50.0, -0.5, 0.0], rtol=0, atol=4 * EPS)
+    assert abs(e.approach(s, lower) - 1.0) <= IMPULSE_RTOL

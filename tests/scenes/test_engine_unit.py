@@ -853,6 +853,14 @@ def test_a_pinned_symmetric_top_among_other_bodies_keeps_its_own_named_l3() -> N
     np.testing.assert_allclose(tr.series["top.L_3"], 0.1, rtol=2**10 * EPS)
 
 
+def test_the_angular_momentum_scale_adds_each_bodys_spin_magnitude() -> None:
+    """The box (J = (0.05, 0.1, 0.13)) at rest at the origin spinning at ω = (2, 1, 0):
+    no orbital term; its spin J ω = (0.1, 0.1, 0) has |J ω| = 0.1 √2 at every sample
+    (the free top keeps |L|), the size L's components are rounded relative to."""
+    tr = Engine(_scene([_box(omega=[2.0, 1.0, 0.0])])).run()
+    assert tr.extra["scales"]["L_x"] == pytest.approx(0.1 * math.sqrt(2.0), rel=8 * EPS)
+
+
 # --------------------------------------------------------------- a top's exact flow
 
 
