@@ -145,8 +145,10 @@ def _window(n: int, k: int, size: int) -> slice:
 
 
 def _local_poly(t, y, k, deg):
+    """The polynomial through the samples around the interval [t_k, t_k+1] (k < n − 1),
+    in x = (t − t_k)/h with h that interval's length."""
     s = _window(t.size, k, deg + 1)
-    h = t[k + 1] - t[k] if k + 1 < t.size else t[k] - t[k - 1]
+    h = t[k + 1] - t[k]
     x = (t[s] - t[k]) / h
     coef = np.polynomial.polynomial.polyfit(x, y[s], min(deg, x.size - 1))
     return coef, h

@@ -226,6 +226,24 @@ def test_require_imports_or_names_the_extra_and_the_package():
     with pytest.raises(MissingExtraError) as info:
         require("no_such_engine_here", "engines", quiet=True)
     assert "needs the engines package" in str(info.value)
+    # an ImportError that names the missing module, as Python's own do
+    assert info.value.name == "no_such_engine_here"
+
+
+def test_require_leaves_the_descriptors_alone_unless_asked_to_be_quiet(monkeypatch):
+    """Only pybullet's import is silenced (its C banner): by default nothing redirects
+    stdout and stderr, so what a user's engine prints on import still shows."""
+    calls = []
+
+    def spy():
+        calls.append(1)
+        return quiet_stdout()
+
+    monkeypatch.setattr(_engines, "quiet_stdout", spy)
+    assert _engines.require("math", "none") is math
+    assert calls == []
+    assert _engines.require("math", "none", quiet=True) is math
+    assert calls == [1]
 
 
 def test_quiet_stdout_silences_the_descriptors_and_restores_them(tmp_path, monkeypatch):
@@ -1470,6 +1488,11 @@ def test_mujoco_fails_loudly_when_its_model_does_not_hold_the_scenarios_body():
     # within 4 eps: the same model
     model, _ = Altered('mass="2.0"', f'mass="{2.0 * (1 + 2 * EPS)!r}"').build(s, 0.125)
     assert model.body_mass[1] == 2.0 * (1 + 2 * EPS)
+    # an inertia off by exactly 4 eps of the largest moment (2.5 + 10 eps, exact in
+    # binary: five ulps of 2.5) is still the same model
+    J3 = 2.5 + 10 * EPS
+    model, _ = Altered('diaginertia="1.0 2.0 2.5"', f'diaginertia="1.0 2.0 {J3!r}"').build(s, 0.125)
+    assert model.body_inertia[1][2] == J3
 
 
 def test_pybullet_fails_loudly_and_disconnects_when_it_does_not_hold_the_body():
@@ -1512,6 +1535,40 @@ def test_pybullet_fails_loudly_and_disconnects_when_it_does_not_hold_the_body():
         )
         (cid,) = a._p.clients
         assert p.getConnectionInfo(cid)["isConnected"] == 0
+
+
+def test_pybullet_names_its_own_client_in_every_call():
+    """Every call the adapter makes after connecting names that client
+    (physicsClientId): a user's own simulation in the same process, on PyBullet's default
+    client, is never touched, the tuned contact's settings included."""
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    class Spy:
+        def __init__(self):
+            self.calls = []
+
+        def __getattr__(self, name):
+            f = getattr(p, name)
+            if not callable(f):
+                return f
+
+            def call(*args, **kw):
+                self.calls.append((name, kw.get("physicsClientId")))
+                return f(*args, **kw)
+
+            return call
+
+    s = _scenario([_box(position=(0.0, 0.0, 1.0))], ground=Ground(0.5))
+    a = PyBulletAdapter("default", "tuned")
+    a._p = spy = Spy()
+    cid, _ = a.build(s, 0.125)
+    try:
+        named = [c for c in spy.calls if c[0] != "connect"]
+        assert ("setPhysicsEngineParameter", cid) in named
+        assert [c for c in named if c[1] != cid] == []
+    finally:
+        p.disconnect(cid)
 
 
 def test_drake_fails_loudly_when_its_plant_does_not_hold_the_body():

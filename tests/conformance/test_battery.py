@@ -410,6 +410,26 @@ def test_a_threshold_of_none_reports_without_checking(toy):
     assert f.threshold is None
 
 
+def test_drift_thresholds_are_read_per_scenario_then_per_figure_then_by_default(toy):
+    """E_drift of the semi-implicit Euler toy on the parabola is about 6.7e-3: within the
+    figure-wide 2^-6, beyond a scenario-keyed 2^-8, which wins; p_horizontal_drift has no
+    key given and takes the default 2^-10."""
+    th = {**TOY_THRESHOLDS, "parabola.E_drift": 2.0**-8}
+    r = run_battery(toy, scenarios=["parabola"], thresholds=th)["parabola"]
+    e = r.figure("E_drift")
+    assert (e.kind, e.threshold, e.passed) == ("drift", 2.0**-8, False)
+    assert 2.0**-8 < e.value < TOY_THRESHOLDS["E_drift"]
+    assert r.figure("p_horizontal_drift").threshold == DEFAULT_THRESHOLDS["p_horizontal_drift"]
+
+
+def test_a_figure_with_a_threshold_but_no_value_is_reported_unchecked():
+    from mechanics.conformance.battery import _judge
+
+    assert _judge("apex_time", "error", None, 2.0**-10, "no apex") == Figure(
+        "apex_time", "error", None, 2.0**-10, None, "no apex"
+    )
+
+
 def test_an_order_threshold_is_a_lower_bound(toy):
     r = run_battery(toy, scenarios=["parabola"], thresholds={**TOY_THRESHOLDS, "order": 2.0})
     res = r["parabola"]
@@ -540,6 +560,18 @@ def test_state_errors_scale_by_the_largest_speed_and_distance_over_samples_and_b
     errs = state_errors(_still(), ref, tr)
     # nothing turns: the angular scale is V / L = 1 rad/s
     assert errs == {"position": 0.2, "velocity": 0.1, "attitude": 2.0**-10, "omega": 0.25}
+
+
+def test_state_errors_of_a_slow_spin_scale_omega_by_that_spin():
+    # max|ω| = 0.5 rad/s, below 1, while max|v| = 2 gives V/L = 2: the angular scale is
+    # the spin itself, 0.5, so an error of 0.125 in ω is 0.25
+    w = np.zeros((3, 2, 3))
+    w[1, 0, 2] = 0.5
+    v = np.zeros((3, 2, 3))
+    v[2, 1, 0] = 2.0
+    ref = _traj(velocity=v, omega=w)
+    errs = state_errors(_still(), ref, _traj(velocity=v, omega=_with(w, (2, 1, 0), 0.125)))
+    assert errs["omega"] == 0.25
 
 
 def test_state_errors_of_small_fast_turning_bodies_scale_by_size_and_spin():

@@ -174,6 +174,12 @@ def test_sample_time_tolerance_is_relative_to_the_larger_of_the_time_and_one() -
         assert re.search(rf"t\[{k}\] = .*, expected {T[k]!r}$", msg), msg
 
 
+def test_a_time_off_by_exactly_the_tolerance_is_accepted() -> None:
+    # 1 + 2^6 eps is exact in binary: |t − T| equals the bound itself, which is allowed
+    at_bound = np.array([0.0, 0.5, 1.0 + SAMPLE_TIME_RTOL, 2.0])
+    assert check_trajectory(scenario(), answer(t=at_bound)).t[2] == 1.0 + SAMPLE_TIME_RTOL
+
+
 def test_attitudes_within_the_orthogonality_bound_are_accepted() -> None:
     R = np.array(answer().R_A_O, dtype=float)
     R[1, 0, 0, 0] += 0.25 * ORTHOGONALITY_ATOL  # R Rᵀ - I and det R - 1 about half the bound
