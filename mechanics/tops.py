@@ -527,7 +527,9 @@ class FreeAsymmetricTop:
     angular_momentum_body = finite_result(angular_momentum_body)
 
     def precession_angle(self, t, _reduced=None) -> np.ndarray:
-        """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind)."""
+        """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind);
+        0 at rest and for a steady rotation, where ω ∥ L and the whole turn is spin about
+        the pole, which then lies along L (the attitude is exp(t ω))."""
         t = as_float_array(t, "t")
         if self.regime in ("rest", "steady"):
             return np.zeros_like(t)

@@ -415,6 +415,14 @@ def test_the_scene_engine_says_what_it_cannot_run():
     assert scene_from_scenario(dataclasses.replace(p, sample_times=(0.0, 0.75, 1.4))) == (
         "the scene engine samples uniformly from 0 to the duration"
     )
+    # uniform within SAMPLE_TIME_RTOL × max(duration, 1) = 1.5 of it for T = 1.5
+    from mechanics.conformance.protocol import SAMPLE_TIME_RTOL
+
+    assert p.duration == 1.5
+    for off, uniform in ((1.25, True), (1.75, False)):
+        times = (0.0, 0.75 + off * SAMPLE_TIME_RTOL, 1.5)
+        got = scene_from_scenario(dataclasses.replace(p, sample_times=times))
+        assert isinstance(got, dict) is uniform, (off, got)
     # two samples, the start and the end, are uniform
     ends = scene_from_scenario(dataclasses.replace(p, sample_times=(0.0, 1.5)))
     assert ends["scene"]["samples"] == 2
@@ -1569,6 +1577,38 @@ def test_pybullet_names_its_own_client_in_every_call():
         assert [c for c in named if c[1] != cid] == []
     finally:
         p.disconnect(cid)
+
+
+def test_pybullet_lays_a_tilted_ground_along_its_normal_at_its_height():
+    """Ground n·x = 0.5 with n = (0.6, 0, 0.8): PyBullet's plane shape carries that normal
+    and its base sits at height·n = (0.3, 0, 0.4), a point of the plane."""
+    p = _pybullet()
+    from mechanics.conformance.adapters.pybullet import PyBulletAdapter
+
+    s = _scenario(
+        [_box(position=(0.0, 0.0, 3.0))], ground=Ground(0.5, normal=(0.6, 0.0, 0.8), height=0.5)
+    )
+    cid, ids = PyBulletAdapter().build(s, 0.125)
+    try:
+        ((uid, _),) = ids
+        (ground,) = [b for b in range(p.getNumBodies(physicsClientId=cid)) if b != uid]
+        ((_, _, kind, normal, *_),) = p.getCollisionShapeData(ground, -1, physicsClientId=cid)
+        assert kind == p.GEOM_PLANE
+        np.testing.assert_allclose(normal, [0.6, 0.0, 0.8], rtol=0, atol=ROUNDTRIP_ATOL)
+        x, _ = p.getBasePositionAndOrientation(ground, physicsClientId=cid)
+        np.testing.assert_allclose(x, [0.3, 0.0, 0.4], rtol=0, atol=ROUNDTRIP_ATOL)
+    finally:
+        p.disconnect(cid)
+
+
+def test_the_mjcf_closes_its_world_body_on_a_line_of_its_own():
+    _mujoco()
+    from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
+
+    text = MuJoCoAdapter().mjcf(_scenario([_box(position=(0.0, 0.0, 1.0))]), 0.125)
+    lines = text.splitlines()
+    assert lines.count("  <worldbody>") == lines.count("  </worldbody>") == 1
+    assert lines[-1] == "</mujoco>"
 
 
 def test_drake_fails_loudly_when_its_plant_does_not_hold_the_body():

@@ -368,6 +368,10 @@ def test_sleeping_top_condition_and_motion():
     top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=0.0, psi_dot=0.5, phi_dot=3.0)
     assert top.sleeping
     np.testing.assert_array_equal(top.u(np.array([0.0, 5.0])), 1.0)
+    # its rates stay put, one value per time asked for
+    thd, psd, phd = top.rates(np.array([[0.0, 1.0, 2.0]]))
+    assert thd.shape == psd.shape == phd.shape == (1, 3)
+    np.testing.assert_array_equal([thd, psd, phd], [[[0.0] * 3], [[0.5] * 3], [[3.0] * 3]])
     with pytest.raises(GimbalLockError):
         tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=0.0, theta_dot=1.0)
 
@@ -689,3 +693,21 @@ def test_steady_precession_takes_ratios_down_to_float64s_normal_range():
     b = tops.steady_precession_rates(1.0, 2.0**1000, 1.0, 0.5)
     assert a == pytest.approx(b, rel=4 * EPS)
     assert 0 < a[0] < a[1]  # slow and fast, both finite
+
+
+@pytest.mark.parametrize("w0", [[0.0, 0.0, 2.0], [0.0, 0.0, 0.0], [1.0, 1.0, 0.0]])
+def test_a_steady_or_resting_top_has_no_precession_and_turns_as_exp_t_omega(w0):
+    """ω along a principal axis, zero, or in the plane of two equal moments: ω ∥ L stays
+    put in the body, ψ(t) − ψ(0) = 0 (the turn is all spin) and R(t) = R3-about-ω(|ω| t)."""
+    J = [1.0, 1.0, 1.5]
+    top = tops.FreeAsymmetricTop(J, w0)
+    t = np.array([0.0, 0.5, 2.0])
+    np.testing.assert_array_equal(top.precession_angle(t), [0.0, 0.0, 0.0])
+    # Ṙ = −[ω]× R from R(0) = I: R(t) = I − sin(|ω| t) K + (1 − cos(|ω| t)) K², K = [ω̂]×
+    w = np.asarray(w0, dtype=float)
+    n = w / np.linalg.norm(w) if w.any() else w
+    K = np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
+    a = np.linalg.norm(w) * t
+    want = np.eye(3) - np.sin(a)[:, None, None] * K + (1 - np.cos(a))[:, None, None] * (K @ K)
+    # sines and cosines of O(1) angles and products of unit entries: a few roundings each
+    np.testing.assert_allclose(top.attitude(t), want, rtol=0, atol=8 * EPS)

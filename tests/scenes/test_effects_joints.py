@@ -331,6 +331,8 @@ def test_the_moment_about_a_fixed_axis_is_j_about_the_body_axis_plus_m_h_squared
         # a part across the axis below 1e-8 of gravity counts as along it; above, not
         ([0.0, 0.0, 1.0], [0.0, 1e-9, -1.0], [1.0, 0.0, 0.0]),
         ([0.0, 0.0, 1.0], [0.0, 1e-7, -1.0], [0.0, 1.0, 0.0]),
+        # relative to gravity's own size: a weak one (0.01) tilted by 5e-7 rad still counts
+        ([0.0, 0.0, 1.0], [0.0, 5e-9, -0.01], [0.0, 1.0, 0.0]),
     ],
 )
 def test_a_fixed_axis_measures_phi_from_gravity_across_it_else_from_e_x_then_e_y(axis, g, u0):

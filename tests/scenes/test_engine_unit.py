@@ -861,6 +861,36 @@ def test_the_angular_momentum_scale_adds_each_bodys_spin_magnitude() -> None:
     assert tr.extra["scales"]["L_x"] == pytest.approx(0.1 * math.sqrt(2.0), rel=8 * EPS)
 
 
+def test_a_switch_is_searched_and_refined_at_the_steps_own_times(monkeypatch) -> None:
+    """A tank (A = 1, hole ½, g = 3, h0 = 2) empties at T = 2 (√h = √2 − (√2/2) t): on a
+    step [0, 3] the switch function √h is fitted and its zero refined to T, every
+    evaluation at a time of the step (a switch function is one of (t, state))."""
+    tank = {"name": "tank", "shape": "tank", "area": 1.0, "initial": {"level": 2.0}}
+    drain = [
+        {"type": "gravity", "g": 3.0},
+        {"type": "tank_outflow", "body": "tank", "hole_area": 0.5},
+    ]
+    eng = Engine(_scene([tank], drain, duration=3.0))
+    eng._switched, eng._phase = {}, None
+    (e,) = eng.switching
+    o = eng.layout.offsets[0]
+
+    def dense(tt):  # √h falling through zero at t = 2 (the exact flow, continued below 0)
+        y = eng.y0.copy()
+        y[o] = math.sqrt(2.0) * (1.0 - 0.5 * tt)
+        return y
+
+    seen, switch = [], e.switch_function
+    monkeypatch.setattr(
+        e, "switch_function", lambda t, s, out: (seen.append(t), switch(t, s, out))[1]
+    )
+    tc, who, _ = eng._first_switch_on_step(dense, 0.0, 3.0)
+    assert who is e
+    assert tc == pytest.approx(2.0, rel=0, abs=2**4 * EPS)  # brentq to 4 eps of the step
+    assert seen
+    assert all(type(t) is float and 0.0 <= t <= 3.0 for t in seen)
+
+
 # --------------------------------------------------------------- a top's exact flow
 
 
@@ -929,6 +959,28 @@ def test_a_tops_exact_flow_starts_from_the_scenes_initial_state_and_follows_its_
     # DOP853 over about one turn of the spin (6 rad): measured 5.4e-14 of the O(1)
     # state; 2^10 eps = 2.3e-13 leaves a margin of 4
     np.testing.assert_allclose(y[1], sol.y[:, -1], rtol=0, atol=2**10 * EPS)
+
+
+def test_a_pinned_bodys_frame_along_a_step_is_its_pivot_and_attitude_columns() -> None:
+    """The heavy top's exact flow as a step's dense output, fitted at the Chebyshev nodes:
+    at a node, the frame's fit gives the snapshot's centre G and attitude R_A_O there
+    (R from the state's own columns, G from the pivot and the arm)."""
+    from numpy.polynomial import chebyshev as C
+
+    from mechanics.scenes import contacts
+
+    eng = Engine(_scene([_top()], [PIN, GRAVITY]))
+    eng.exact_flow()
+    ((_, _, at),), _ = eng._pinned_exact()
+    coef_y = contacts.chebyshev_fit(at, 0.0, 0.05)
+    coef_r, coef_R = eng._frame_coef(coef_y, 0)
+    n = coef_y.shape[0]
+    x = math.cos(math.pi * 3.5 / n)  # a node of the first kind: the fit equals the data
+    tt = 0.025 + 0.025 * x
+    s = eng.snapshot(tt, at(tt))
+    # an interpolant at its node: the data to a few roundings of the O(1) entries
+    np.testing.assert_allclose(C.chebval(x, coef_R), s.R[0], rtol=0, atol=2**6 * EPS)
+    np.testing.assert_allclose(C.chebval(x, coef_r), s.r[0], rtol=0, atol=2**6 * EPS)
 
 
 def test_two_pinned_tops_have_no_exact_flow() -> None:
