@@ -387,7 +387,7 @@ class Engine:
             self._tank = vectorized(f)
             return how
         if self.layout.guides:
-            return self._guided_exact_flow(kinds)
+            return self._guided_exact_flow()
         if self.layout.pins:
             return self._pinned_exact_flow(kinds)
         if self.layout.fixed_bodies:
@@ -417,7 +417,7 @@ class Engine:
             return f"exact: {what}{spin}"
         return f"exact: rocket flight (7.30) with uniform gravity{spin}"
 
-    def _guided_exact_flow(self, kinds) -> str | None:
+    def _guided_exact_flow(self) -> str | None:
         """A lone guided body: its guide's exact flow for the listed effects, if any
         (:meth:`~mechanics.scenes.state.Guide.exact`)."""
         if self.n != 1:

@@ -136,6 +136,13 @@ def test_the_body_omega_from_euler_rates_matches_the_attitude_derivative() -> No
     np.testing.assert_allclose(en._omega(ini), w, rtol=0, atol=0)
     np.testing.assert_array_equal(en._omega({"omega": [1, 2, 3], "theta": 0.5}), [1.0, 2.0, 3.0])
     np.testing.assert_array_equal(en._omega({}), [0.0, 0.0, 0.0])
+    # angles left out are 0: with φ = 0, ω = (θ̇, ψ̇ sin θ, ψ̇ cos θ + φ̇)
+    np.testing.assert_allclose(
+        en._omega({"theta": theta, "theta_dot": thd, "psi_dot": psd}),
+        [thd, psd * math.sin(theta), psd * math.cos(theta)],
+        rtol=0,
+        atol=TRIG_ATOL,
+    )
 
 
 def test_the_angles_of_a_top_and_the_rate_of_cos_theta() -> None:
