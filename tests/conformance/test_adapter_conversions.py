@@ -1562,7 +1562,8 @@ def test_pybullet_names_its_own_client_in_every_call():
                 return f
 
             def call(*args, **kw):
-                self.calls.append((name, kw.get("physicsClientId")))
+                rest = {k: v for k, v in kw.items() if k != "physicsClientId"}
+                self.calls.append((name, kw.get("physicsClientId"), args, rest))
                 return f(*args, **kw)
 
             return call
@@ -1572,9 +1573,11 @@ def test_pybullet_names_its_own_client_in_every_call():
     a._p = spy = Spy()
     cid, _ = a.build(s, 0.125)
     try:
-        named = [c for c in spy.calls if c[0] != "connect"]
+        named = [c[:2] for c in spy.calls if c[0] != "connect"]
         assert ("setPhysicsEngineParameter", cid) in named
         assert [c for c in named if c[1] != cid] == []
+        # the tuned contact: no contact processing margin on the ground's base (link −1)
+        assert ("changeDynamics", cid, (0, -1), {"contactProcessingThreshold": 0.0}) in spy.calls
     finally:
         p.disconnect(cid)
 

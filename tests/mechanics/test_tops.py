@@ -367,7 +367,9 @@ def test_sleeping_top_condition_and_motion():
     assert not tops.sleeping_top_is_stable(1.0, 2.0 - 1e-9, 1.0)
     top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=0.0, psi_dot=0.5, phi_dot=3.0)
     assert top.sleeping
-    np.testing.assert_array_equal(top.u(np.array([0.0, 5.0])), 1.0)
+    u = top.u(np.array([0.0, 5.0]))
+    assert u.shape == (2,)
+    np.testing.assert_array_equal(u, 1.0)
     # its rates stay put, one value per time asked for
     thd, psd, phd = top.rates(np.array([[0.0, 1.0, 2.0]]))
     assert thd.shape == psd.shape == phd.shape == (1, 3)
@@ -702,7 +704,9 @@ def test_a_steady_or_resting_top_has_no_precession_and_turns_as_exp_t_omega(w0):
     J = [1.0, 1.0, 1.5]
     top = tops.FreeAsymmetricTop(J, w0)
     t = np.array([0.0, 0.5, 2.0])
-    np.testing.assert_array_equal(top.precession_angle(t), [0.0, 0.0, 0.0])
+    psi = top.precession_angle(t)
+    assert psi.shape == (3,)
+    np.testing.assert_array_equal(psi, [0.0, 0.0, 0.0])
     # Ṙ = −[ω]× R from R(0) = I: R(t) = I − sin(|ω| t) K + (1 − cos(|ω| t)) K², K = [ω̂]×
     w = np.asarray(w0, dtype=float)
     n = w / np.linalg.norm(w) if w.any() else w
@@ -711,3 +715,32 @@ def test_a_steady_or_resting_top_has_no_precession_and_turns_as_exp_t_omega(w0):
     want = np.eye(3) - np.sin(a)[:, None, None] * K + (1 - np.cos(a))[:, None, None] * (K @ K)
     # sines and cosines of O(1) angles and products of unit entries: a few roundings each
     np.testing.assert_allclose(top.attitude(t), want, rtol=0, atol=8 * EPS)
+
+
+def test_a_top_without_spin_precesses_steadily_only_hanging_at_plus_minus_root_2_mgl_over_j1():
+    """L3 = 0: J'1 cos θ Ω² + m g ℓ = 0 (5.60) has roots only for cos θ < 0; at θ = 2π/3
+    (cos θ = −½), J'1 = 1, m g ℓ = 2: Ω = ±√(2 m g ℓ / J'1) = ±2 (a conical pendulum)."""
+    slow, fast = tops.steady_precession_rates(1.0, 0.0, 2.0, 2 * math.pi / 3)
+    # cos(2π/3) is −½ to one rounding; a square root and a division
+    assert abs(slow + 2.0) <= 8 * EPS * 2
+    assert abs(fast - 2.0) <= 8 * EPS * 2
+
+
+def test_a_fast_precession_beyond_float64_is_refused_naming_its_parts():
+    """L3 = 1e300 at θ = π/2 (cos θ = 6.1e-17 in float64): L3/(J'1 cos θ) ≈ 1.6e316."""
+    with pytest.raises(
+        ResultOverflowError,
+        match=r"^the fast precession rate L3/\(J'1 cos θ\) exceeds float64's range \(J_1 = "
+        r".* scaled, cos θ = 6\.12323399573676\d*e-17\); rescale \(choose units\)$",
+    ):
+        tops.steady_precession_rates(1.0, 1e300, 1.0, math.pi / 2)
+
+
+def test_a_motion_within_float64s_reach_of_the_separatrix_is_refused_with_the_remedy():
+    with pytest.raises(OutOfDomainError) as info:
+        tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [1e-200, 1.0, 1e-200])
+    assert str(info.value) == (
+        "the motion is within m1 ≈ 2^-1328 of the separatrix: the complementary parameter m1 "
+        "underflows float64 (the transverse components are below ~1e-150 of |ω|); set them "
+        "to zero for the steady rotation or scale them up"
+    )
