@@ -94,6 +94,17 @@ def _box(**kw):
     return Body(**base)
 
 
+#: the body ω the attitude round trips below give each engine
+SPIN = np.array([0.3, -0.2, 1.1])
+
+
+def _spun_box():
+    """The box turned by R_Z, spinning at SPIN (body), at (1, 2, 3) moving at (½, 0, −1)."""
+    return _box(
+        R_A_O=_rows(R_Z), omega=tuple(SPIN), position=(1.0, 2.0, 3.0), velocity=(0.5, 0.0, -1.0)
+    )
+
+
 def _ball(**kw):
     # a solid sphere: J = 2/5 m r² = 0.4 · 0.5 · 0.01
     base = dict(name="ball", mass=0.5, inertia=(0.002, 0.002, 0.002), shape=Shape("sphere", (0.1,)))
@@ -732,17 +743,8 @@ def test_mujoco_holds_the_attitude_and_body_omega_it_is_given():
     mj = _mujoco()
     from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
 
-    w = np.array([0.3, -0.2, 1.1])
-    s = _scenario(
-        [
-            _box(
-                R_A_O=_rows(R_Z),
-                omega=tuple(w),
-                position=(1.0, 2.0, 3.0),
-                velocity=(0.5, 0.0, -1.0),
-            )
-        ]
-    )
+    w = SPIN
+    s = _scenario([_spun_box()])
     a = MuJoCoAdapter()
     model, data = a.build(s, 0.01)
     # MuJoCo's own view: its quaternion is the active (cos 0.4, 0, 0, sin 0.4), its
@@ -936,16 +938,9 @@ def test_pybullet_holds_the_attitude_the_space_omega_and_no_damping():
     p = _pybullet()
     from mechanics.conformance.adapters.pybullet import PyBulletAdapter
 
-    w = np.array([0.3, -0.2, 1.1])
+    w = SPIN
     s = _scenario(
-        [
-            _box(
-                R_A_O=_rows(R_Z),
-                omega=tuple(w),
-                position=(1.0, 2.0, 3.0),
-                velocity=(0.5, 0.0, -1.0),
-            )
-        ],
+        [_spun_box()],
         ground=Ground(0.5),
     )
     a = PyBulletAdapter("default", "tuned")
@@ -1212,17 +1207,8 @@ def test_drake_holds_the_attitude_and_world_omega_it_is_given():
     _drake()
     from mechanics.conformance.adapters.drake import DrakeAdapter
 
-    w = np.array([0.3, -0.2, 1.1])
-    s = _scenario(
-        [
-            _box(
-                R_A_O=_rows(R_Z),
-                omega=tuple(w),
-                position=(1.0, 2.0, 3.0),
-                velocity=(0.5, 0.0, -1.0),
-            )
-        ]
-    )
+    w = SPIN
+    s = _scenario([_spun_box()])
     a = DrakeAdapter()
     sim, plant, bodies = a.build(s, 0.125)
     ctx = plant.GetMyContextFromRoot(sim.get_context())

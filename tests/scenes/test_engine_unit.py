@@ -80,6 +80,15 @@ def _box(name="b", **initial):
 
 
 GRAVITY = {"type": "gravity", "g": 9.81}
+#: 0.5 kg of fuel burnt at 0.1 kg/s (burn-out at 5 s), exhaust speed 100 m/s, straight up
+ROCKET = {
+    "type": "thrust",
+    "body": "p",
+    "mass_flow": 0.1,
+    "exhaust_speed": 100.0,
+    "fuel_mass": 0.5,
+    "direction": [0.0, 0.0, 1.0],
+}
 
 
 # ----------------------------------------------------------- attitudes and rates
@@ -263,14 +272,7 @@ def test_rows_turn_a_dense_output_into_time_major_rows() -> None:
             [_point()],
             [
                 GRAVITY,
-                {
-                    "type": "thrust",
-                    "body": "p",
-                    "mass_flow": 0.1,
-                    "exhaust_speed": 100.0,
-                    "fuel_mass": 0.5,
-                    "direction": [0.0, 0.0, 1.0],
-                },
+                ROCKET,
             ],
             "exact: rocket flight (7.30) with uniform gravity",
         ),
@@ -309,15 +311,7 @@ def test_the_exact_flow_is_chosen_by_the_effect_set(bodies, effects, how) -> Non
 
 
 def test_a_rocket_steered_in_body_frame_has_no_exact_flow() -> None:
-    thrust = {
-        "type": "thrust",
-        "body": "b",
-        "mass_flow": 0.1,
-        "exhaust_speed": 100.0,
-        "fuel_mass": 0.5,
-        "direction": [0.0, 0.0, 1.0],
-        "frame": "body",
-    }
+    thrust = {**ROCKET, "body": "b", "frame": "body"}
     assert Engine(_scene([_box()], [thrust])).exact_flow() is None
 
 
@@ -557,15 +551,7 @@ def test_simulate_runs_the_engine_and_adds_the_derived_quantities() -> None:
     is u ln(m0/m_f) − g t_b = 100 ln 1.5 − 49.05 (7.30), in the exact flow too."""
     from mechanics.scenes import simulate
 
-    thrust = {
-        "type": "thrust",
-        "body": "p",
-        "mass_flow": 0.1,
-        "exhaust_speed": 100.0,
-        "fuel_mass": 0.5,
-        "direction": [0.0, 0.0, 1.0],
-    }
-    scene = _scene([_point(mass=1.5)], [GRAVITY, thrust], duration=6.0)
+    scene = _scene([_point(mass=1.5)], [GRAVITY, ROCKET], duration=6.0)
     tr = simulate.simulate(scene)
     assert tr.method == "exact: rocket flight (7.30) with uniform gravity"
     ((name, exact, measured),) = tr.extra["derived"]
