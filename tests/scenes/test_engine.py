@@ -9,7 +9,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import example, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from mechanics.impact import RigidBody, rigid_impact
@@ -1194,7 +1194,10 @@ def test_a_tilted_spinning_cylinder_lands_on_its_lowest_rim_point(monkeypatch) -
 def test_random_tumbling_rims_land_without_sinking_in(shape, w, angles, e, mu) -> None:
     """Any round body that is not a sphere, tumbling onto a floor: the run passes its own
     checks (no interpenetration at any sample, each impulse at a zero gap, the Chapter 6
-    energy loss, none gained), or refuses an impulse that would gain energy."""
+    energy loss, none gained), or refuses an impulse that would gain energy.  A face
+    started within NEARLY_FLAT of flat is the known loss pinned by
+    test_a_disc_dropped_within_1e_8_of_flat_is_struck_above_the_floor."""
+    assume(abs(math.sin(angles[1])) > NEARLY_FLAT)
     body = {"name": "c", "shape": shape, "mass": 1.0, "radius": 0.1}
     if shape.startswith("cylind"):
         body["height"] = 0.2
@@ -1216,6 +1219,28 @@ def test_random_tumbling_rims_land_without_sinking_in(shape, w, angles, e, mu) -
         return
     assert r.passed, r.summary()
     assert any("rim" in ev.detail["feature"] for ev in r.trajectory.events)
+
+
+#: a face this close to flat (sin θ) at its first landing: the known loss below
+NEARLY_FLAT = 1e-7
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="known loss (found by hypothesis, open): a disc dropped flat to within 2e-8 rad "
+    "(e = 1) bounces on one side of its rim, then the other, and its third impulse is "
+    "applied 9e-10 m above the floor.  Likely cause (not confirmed): near flat the rim "
+    "polynomial q = (w − aρ)(w + aρ) "
+    "has a root of slope ~2aρ ẇ ~ 1e-8: its rounding (eps Σ|q_k|) moves the contact by "
+    "~1e-10 s; a sin θ of 1e-7 passes",
+)
+def test_a_disc_dropped_within_1e_8_of_flat_is_struck_above_the_floor() -> None:
+    body = {"name": "c", "shape": "disc", "mass": 1.0, "radius": 0.1,
+            "initial": {"position": [0.0, 0.0, 0.5], "theta": 2e-8}}  # fmt: skip
+    imp = {"type": "impact", "body": "c", "restitution": 1.0, "friction": 0.0}
+    sc = _scene([body], [{"type": "gravity", "g": 9.81}, imp], duration=0.4, samples=201)
+    r = run_scene(sc)
+    assert r.passed, r.summary()
 
 
 def test_a_rim_meets_only_a_plane() -> None:
