@@ -155,12 +155,18 @@ def problem_3_2(d: Derivation) -> None:
     statement="the chock's sliding friction μF does work -μF s (the rim slides past it by the "
     "distance rolled); the ground's static friction and normal forces do none (3.2.2). Empty: "
     "½ M v² = μ F s_0 fixes the effective mass M (frame + shells, rotation included). Liquid "
-    "water (mass n m_w, not rotating) and ice (n m_i, turning with the wheels, J = ½ m_i R²) "
-    "add ½ n m_w v² and ¾ n m_i v²",
-    reading="two wheels (front and rear roller) of diameter 1 m and width 2 m (figure 3.3 is "
-    "lost); the liquid does not turn with the shell during the short braking (no friction "
-    "against the wall), the ice does; ρ_water = 1000 kg/m³, ρ_ice = 917 kg/m³; g = 9.81 m/s²; "
-    "v = 5 km/h",
+    "water (mass n m_w, not rotating) adds ½ n m_w v²; the same water frozen (mass n m_w, "
+    "turning with the wheels, J = ½ m_w R²) adds ¾ n m_w v², so the ice's rotational energy "
+    "½ J ω² = ¼ m_w v² must also be taken by the brake",
+    reading="b) is the water of a), frozen: the problem fills the wheels 'with water when the "
+    "steam roller is to be used' and then asks for a) liquid water and b) ice, so the mass in "
+    "the wheels is the same and the density change on freezing (about 9 %) is neglected; what "
+    "changes is that the ice turns with the wheel.  The other reading, the wheels' volume "
+    "filled with ice of density 917 kg/m³, is kept below as a labelled variant; the text "
+    "gives no density for ice, which supports the first.  Two wheels (front and rear roller) "
+    "of diameter 1 m and width 2 m (figure 3.3 is lost); the liquid does not turn with the "
+    "shell during the short braking (no friction against the wall), the ice does; "
+    "ρ_water = 1000 kg/m³; g = 9.81 m/s²; v = 5 km/h",
 )
 def problem_3_3(d: Derivation) -> None:
     s0, v, F, mu, D, b, rho_w, rho_i, g = sp.symbols("s_0 v F mu D b rho_w rho_i g", positive=True)
@@ -168,14 +174,15 @@ def problem_3_3(d: Derivation) -> None:
     R = D / 2
     M = 2 * mu * F * s0 / v**2  # empty roller: ½ M v² = μ F s_0
     m_w, m_i = rho_w * sp.pi * R**2 * b, rho_i * sp.pi * R**2 * b
-    s_a = d.quantity("s_a", sp.expand((HALF * M * v**2 + HALF * n * m_w * v**2) / (mu * F)))
-    s_b = d.quantity(
-        "s_b",
-        sp.expand(
-            (HALF * M * v**2 + n * (HALF * m_i * v**2 + HALF * HALF * m_i * R**2 * (v / R) ** 2))
-            / (mu * F)
-        ),
-    )
+
+    def distance(m_add, turns: bool):
+        """Braking distance with n wheels each holding mass m_add, turning with the wheel
+        (a solid cylinder, J = ½ m R², ω = v/R) or not (a liquid)."""
+        T_add = HALF * m_add * v**2 + (HALF * HALF * m_add * R**2 * (v / R) ** 2 if turns else 0)
+        return sp.expand((HALF * M * v**2 + n * T_add) / (mu * F))
+
+    s_a = d.quantity("s_a", distance(m_w, turns=False))
+    s_b = d.quantity("s_b", distance(m_w, turns=True))
     d.prove_equal(
         s_a,
         s0 + n * rho_w * sp.pi * D**2 * b * v**2 / (8 * mu * F),
@@ -184,15 +191,46 @@ def problem_3_3(d: Derivation) -> None:
     )
     d.prove_equal(
         s_b,
-        s0 + 3 * n * rho_i * sp.pi * D**2 * b * v**2 / (16 * mu * F),
+        s0 + 3 * n * rho_w * sp.pi * D**2 * b * v**2 / (16 * mu * F),
         strategy="expand",
-        claim="(b) s_b = s_0 + 3 n ρ_i π D² b v² / (16 μ F)",
+        claim="(b) the same water frozen: s_b = s_0 + 3 n ρ_w π D² b v² / (16 μ F)",
+    )
+    d.prove_equal(
+        (s_b - s0) / (s_a - s0),
+        sp.Rational(3, 2),
+        strategy="cancel",
+        claim="freezing adds half again to the extra distance: the ice's ½ J ω² = ¼ m_w v² "
+        "on top of its ½ m_w v²",
     )
     d.reject(
         s_a,
         s0 + 3 * n * rho_w * sp.pi * D**2 * b * v**2 / (16 * mu * F),
         strategy="expand",
         claim="the liquid turning with the wheel like the ice",
+    )
+    d.reject(
+        s_b,
+        s_a,
+        strategy="expand",
+        claim="the ice sliding inside the wheel like the liquid (its rotation forgotten)",
+    )
+    d.note(
+        "variant, not the book's reading: if the wheels' volume is filled with ice of density "
+        "ρ_i = 917 kg/m³ (mass n m_i, m_i = ρ_i π R² b), the frozen wheel carries less mass"
+    )
+    s_b_variant = d.quantity("s_b_variant_ice_917", distance(m_i, turns=True))
+    d.prove_equal(
+        s_b_variant,
+        s0 + 3 * n * rho_i * sp.pi * D**2 * b * v**2 / (16 * mu * F),
+        strategy="expand",
+        claim="variant: s_b' = s_0 + 3 n ρ_i π D² b v² / (16 μ F)",
+    )
+    d.prove_equal(
+        (s_b_variant - s0) / (s_b - s0),
+        rho_i / rho_w,
+        strategy="cancel",
+        claim="the two readings of b) differ only in the ice's mass: their extra distances "
+        "are in the ratio ρ_i/ρ_w",
     )
     data = {
         s0: 2,
@@ -207,11 +245,16 @@ def problem_3_3(d: Derivation) -> None:
     data[F] = 125 * data[g]
     d.quantity("s_a_metres", sp.N(s_a.subs(data), 6))
     d.quantity("s_b_metres", sp.N(s_b.subs(data), 6))
+    d.quantity("s_b_variant_ice_917_metres", sp.N(s_b_variant.subs(data), 6))
     # second derivation: momentum principle for the whole roller, angular momentum for each
     # wheel about its axle, rolling constraint ẍ = R φ̈; the split of M into frame and shells
     # (J_shell = m_s R²) is arbitrary and must not matter
     xdd, f1, f2, Mf, ms = sp.symbols("xddot f_1 f_2 M_f m_s", real=True)
-    for name, m_add, J_add in (("liquid", m_w, 0), ("ice", m_i, HALF * m_i * R**2)):
+    for name, m_add, J_add, derived in (
+        ("liquid", m_w, 0, s_a),
+        ("the same water frozen", m_w, HALF * m_w * R**2, s_b),
+        ("variant: ice of 917 kg/m³", m_i, HALF * m_i * R**2, s_b_variant),
+    ):
         J = ms * R**2 + J_add
         M_tot = Mf + n * ms + n * m_add
         eqs = [M_tot * xdd - f1 - f2, J * xdd / R + f1 * R + mu * F * R, J * xdd / R + f2 * R]
@@ -219,7 +262,7 @@ def problem_3_3(d: Derivation) -> None:
         dist = -(v**2) / (2 * a)  # uniform deceleration from v to rest
         d.confirm_exact(
             dist,
-            s_a if name == "liquid" else s_b,
+            derived,
             strategy="cancel",
             route=f"Newton–Euler ({name}): the frame/shell split m_s drops out, same distance",
         )
@@ -244,7 +287,7 @@ def problem_3_3(d: Derivation) -> None:
             events=stopped,
         )
         d.confirm(
-            sim.y_events[0][0][0] / float((s_a if name == "liquid" else s_b).subs(data)),
+            sim.y_events[0][0][0] / float(derived.subs(data)),
             1.0,
             atol=SIM_RTOL,
             route=f"scipy simulation ({name}, m_s = 150 kg): distance to rest",

@@ -90,7 +90,8 @@ def spring_dashpot_collision(m1, m2, v1, v2, e_target, tau_contact, *, g=0.0):
     damped period π/ω_d with its velocity scaled by exp(-ζ π/√(1 - ζ²)); ζ and k are
     set from that alone (ω_d = π/τ).  ``m2 = inf`` is a fixed wall; ``g`` an external
     acceleration -g on body 1 (a weight).  Returns the velocities after, the impulses
-    on body 1 during compression (δ̇ > 0) and restitution, and the contact time.
+    on body 1 during compression (δ̇ > 0) and restitution, the contact time and the
+    compression time (to the maximum of δ).
     """
     log_e = np.log(e_target)
     zeta = -log_e / np.sqrt(np.pi**2 + log_e**2)
@@ -132,7 +133,9 @@ def spring_dashpot_collision(m1, m2, v1, v2, e_target, tau_contact, *, g=0.0):
     t_end = sol.t_events[0][-1] if sol.t_events[0].size else sol.t[-1]
     S_total = y[4]
     S_1 = y[5]
+    t_max = sol.t_events[1]
     return {
+        "tau_1": t_max[0] if t_max.size else np.nan,
         "v1f": y[2],
         "v2f": y[3],
         "S_1": S_1,
