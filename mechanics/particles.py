@@ -343,11 +343,17 @@ def total_mass(m) -> np.ndarray:
 
     Examples
     --------
-    Ten particles of 0.1 (not exact in binary) weigh 1.0, where a plain
-    running sum gives 0.9999999999999999:
+    Ten particles of 0.1 (not exact in binary) weigh the correctly rounded sum of
+    their stored values, 1.0 (the exact sum, by fractions), where a plain running sum,
+    one IEEE rounding per addition, loses the last digit:
 
-    >>> float(total_mass([0.1] * 10)), sum([0.1] * 10)
-    (1.0, 0.9999999999999999)
+    >>> from fractions import Fraction
+    >>> exact = float(sum(Fraction(0.1) for _ in range(10)))
+    >>> running = 0.0
+    >>> for _ in range(10):
+    ...     running += 0.1
+    >>> float(total_mass([0.1] * 10)), exact, running
+    (1.0, 1.0, 0.9999999999999999)
     """
     return _finite_result(_sum(check_masses(m)), "the total mass")
 
