@@ -7,7 +7,7 @@ LOCK   := requirements/lock.txt
 # the suite's one command line; test-latest and test-oldest run it in their own venvs
 PYTEST_ARGS := -n auto
 
-.PHONY: run test checks bench lock test-latest test-oldest clean mutate
+.PHONY: run test checks bench lock test-latest test-oldest test-matrix clean mutate
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -54,11 +54,17 @@ test-latest: $(STAMP)
 	.venv-latest/bin/python -m pip list --format=freeze 2>/dev/null | grep -iE '^(numpy|scipy|sympy|mpmath|hypothesis|matplotlib|pytest)=='
 	.venv-latest/bin/python -m pytest $(PYTEST_ARGS) -p no:cacheprovider
 
-## make test-oldest: the suite on the lowest versions pyproject allows, in .venv-oldest
+## make test-matrix: the suite on every Python of requires-python found on this machine, each
+## with the newest versions pyproject allows, in .venv-matrix/3.X (tools/matrix.py); an absent
+## Python is skipped with a line
+test-matrix: $(STAMP)
+	$(PYTHON) tools/matrix.py --uv $(BIN)/uv --pytest-args "$(PYTEST_ARGS)" $(MATRIX)
+
+## make test-oldest: the suite on the lowest versions pyproject allows (the engines' extras too), in .venv-oldest
 test-oldest: $(STAMP)
 	rm -rf .venv-oldest
 	$(PYTHON) -m venv .venv-oldest
-	$(BIN)/uv pip install --quiet --python .venv-oldest/bin/python --resolution lowest-direct -e '.[test]'
+	$(BIN)/uv pip install --quiet --python .venv-oldest/bin/python --resolution lowest-direct -e '.[test,engines]'
 	.venv-oldest/bin/python -m pip list --format=freeze 2>/dev/null | grep -iE '^(numpy|scipy|sympy|mpmath|hypothesis|matplotlib|pytest)=='
 	.venv-oldest/bin/python -m pytest $(PYTEST_ARGS) -p no:cacheprovider
 
@@ -81,5 +87,5 @@ mutate: $(STAMP)
 	$(BIN)/python tools/mutation/run.py $(MODULE) --mutmut $(BIN)/mutmut --max-children 1 $(MUTATE_ARGS)
 
 clean:
-	rm -rf $(VENV) .venv-latest .venv-oldest .pytest_cache .hypothesis .benchmarks \
+	rm -rf $(VENV) .venv-latest .venv-oldest .venv-matrix .pytest_cache .hypothesis .benchmarks \
 		.ruff_cache bench-results

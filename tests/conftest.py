@@ -8,11 +8,20 @@
 ``bodycheck explain`` keeps its output in a cache (:mod:`identities.cli.cache`); the
 suite gives each worker a fresh cache folder, so no test reads a user's cache or another
 worker's entries, and none writes into ``~/.cache``.
+
+The report's header names every locked package whose installed version differs from
+``requirements/lock.txt`` (locked → here), and a failing run repeats that line at its
+end, so a failure on the newest versions (``make test-matrix``, ``make test-latest``)
+shows which library moved without a bisect.
 """
 
 from __future__ import annotations
 
 import os
+import re
+import sys
+from importlib import metadata
+from pathlib import Path
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -33,3 +42,51 @@ def _fresh_explain_cache(tmp_path_factory):
         os.environ.pop("BODYCHECK_CACHE_DIR", None)
     else:
         os.environ["BODYCHECK_CACHE_DIR"] = old
+
+
+_LOCK = Path(__file__).resolve().parent.parent / "requirements" / "lock.txt"
+_PIN = re.compile(r"^([A-Za-z0-9][A-Za-z0-9._-]*)(?:\[[^\]]+\])?==([^ \\]+)", re.MULTILINE)
+
+
+def _normal(name: str) -> str:
+    return re.sub(r"[-_.]+", "-", name).lower()
+
+
+def lock_drift(lock: Path = _LOCK) -> list[str]:
+    """'name locked → installed' for every package of the lock installed at another
+    version (a package of the lock that is not installed is not drift)."""
+    if not lock.is_file():
+        return []
+    out = []
+    for name, locked in _PIN.findall(lock.read_text(encoding="utf-8")):
+        try:
+            here = metadata.version(name)
+        except metadata.PackageNotFoundError:
+            continue
+        if _normal(here) != _normal(locked):
+            out.append(f"{name} {locked} → {here}")
+    return out
+
+
+def _drift_line() -> str:
+    drift = lock_drift()
+    python = ".".join(map(str, sys.version_info[:3]))
+    if not drift:
+        return (
+            f"bodycheck: Python {python}; every installed package of the lock at its locked version"
+        )
+    return (
+        f"bodycheck: Python {python}; {len(drift)} packages differ from requirements/lock.txt "
+        f"(locked → here): {', '.join(drift)}"
+    )
+
+
+def pytest_report_header(config) -> str:
+    return _drift_line()
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config) -> None:
+    if exitstatus not in (0, 5) and lock_drift():
+        terminalreporter.write_line(
+            f"the failures above ran on other versions than the lock: {_drift_line()}"
+        )

@@ -28,6 +28,11 @@ from mechanics.strategies import _common, batching, impact, inertia, particles
 #: Draws for a search that must find (or must not find) a value: regimes are branches
 #: among at most eight, so every branch is drawn dozens of times in 1000 draws.
 FIND_SETTINGS = settings(max_examples=1000, database=None, phases=[Phase.generate])
+#: the far ends of a log-uniform exponent band (J3 within a factor 2 of 1e±100 when the
+#: exponent is drawn in [20, 100]) are under 1 % of the regime's draws: 1000 draws found
+#: none once on Python 3.13 (make test-matrix); 10^4 leave a miss probability below e^-50,
+#: as test_inertia_strategy_quality's joint budget does for the same bands
+FIND_SETTINGS_FAR = settings(FIND_SETTINGS, max_examples=10**4)
 
 #: Draws for collecting the event labels: each label is met within a few dozen draws.
 EVENT_SETTINGS = settings(max_examples=300, database=None, phases=[Phase.generate])
@@ -54,8 +59,8 @@ def _never(strategy, predicate) -> None:
         find(strategy, predicate, settings=FIND_SETTINGS)
 
 
-def _found(strategy, predicate):
-    value = find(strategy, predicate, settings=FIND_SETTINGS)
+def _found(strategy, predicate, budget=FIND_SETTINGS):
+    value = find(strategy, predicate, settings=budget)
     assert predicate(value)
     return value
 
@@ -451,8 +456,8 @@ def test_rigid_bodies_default_to_masses_1e_minus_3_through_1e3():
 def test_principal_moments_default_to_scales_1e_minus_100_through_1e100():
     # J3 is within a factor 2 of the drawn scale (the docstring's "up to a factor 2").
     strategy = ms.principal_moments(regimes=["wide-scales"])
-    _found(strategy, lambda J: J[2] >= 1e99)
-    _found(strategy, lambda J: J[2] <= 1e-99)
+    _found(strategy, lambda J: J[2] >= 1e99, FIND_SETTINGS_FAR)
+    _found(strategy, lambda J: J[2] <= 1e-99, FIND_SETTINGS_FAR)
     _never(strategy, lambda J: not 0.5e-100 <= J[2] <= 2e100)
 
 
