@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import sys
 import time
@@ -38,12 +39,32 @@ class UsageError(Exception):
     """Bad command-line input: reported in one line, exit code 2."""
 
 
+def _at_least(least, kind):
+    """An argparse type: a finite number of ``kind`` ≥ ``least`` (> 0 for a float)."""
+
+    def parse(text: str):
+        try:
+            value = kind(text)
+        except ValueError:
+            value = None
+        ok = value is not None and math.isfinite(value)
+        ok = ok and (value > least if kind is float else value >= least)
+        if not ok:
+            want = f"a number > {least}" if kind is float else f"an integer ≥ {least}"
+            raise argparse.ArgumentTypeError(f"must be {want}; got {text!r}")
+        return value
+
+    parse.__name__ = kind.__name__
+    return parse
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str):  # one line, exit 2 (argparse prints usage too)
         raise UsageError(message)
 
 
 def _parser() -> argparse.ArgumentParser:
+    from mechanics.scenes.budget import DEFAULT_MAX_SECONDS, DEFAULT_MAX_STEPS
     from mechanics.scenes.spec import METHODS
 
     p = _Parser(prog="bodycheck", description="Essén, Dynamics of Bodies: executable and checked.")
@@ -107,6 +128,24 @@ def _parser() -> argparse.ArgumentParser:
     dm.add_argument("--list", action="store_true", help="list the built-in scenes")
     for q in (sc, dm):
         q.add_argument("--plot", metavar="OUT.png", help="write a plot of the run")
+        q.add_argument(
+            "--max-samples",
+            type=_at_least(2, int),
+            metavar="N",
+            help="allow up to N samples (default: what the memory budget holds)",
+        )
+        q.add_argument(
+            "--max-steps",
+            type=_at_least(1, int),
+            metavar="N",
+            help=f"allow up to N integration steps (default {DEFAULT_MAX_STEPS})",
+        )
+        q.add_argument(
+            "--max-seconds",
+            type=_at_least(0, float),
+            metavar="S",
+            help=f"stop a run after S seconds of wall time (default {DEFAULT_MAX_SECONDS:g})",
+        )
         q.add_argument("--json", action="store_true", help="print the result as JSON")
         q.add_argument(
             "--method",
@@ -498,13 +537,22 @@ def _run_scene_file(path, args) -> int:
         scene = load_book_scene(path)
         if args.method:
             scene = dataclasses.replace(scene, method=args.method)
+        limits = {
+            "max_samples": args.max_samples,
+            "max_steps": args.max_steps,
+            "max_seconds": args.max_seconds,
+        }
+        scene = dataclasses.replace(scene, **{k: v for k, v in limits.items() if v is not None})
         result = run_book_scene(scene)
     except SceneError as exc:
         raise UsageError(str(exc)) from None
     if args.plot:
         from identities.cli.scene_plots import plot_result
 
-        plot_result(result, args.plot)
+        try:
+            plot_result(result, args.plot)
+        except (OSError, ValueError) as exc:  # a folder that is missing, a format unknown
+            raise UsageError(f"--plot {args.plot}: cannot write the plot: {exc}") from None
     if args.json:
         print(result.to_json())
     else:

@@ -7,6 +7,7 @@ matplotlib is imported lazily, with the non-interactive Agg backend.
 
 from __future__ import annotations
 
+import os
 from pathlib import Path
 
 import numpy as np
@@ -160,6 +161,12 @@ def plot_result(result, path) -> Path:
             bbox={"facecolor": "white", "alpha": 0.8, "lw": 0},
         )
     out = Path(path)
-    fig.savefig(out, dpi=100)
-    plt.close(fig)
+    # written whole or not at all: into a temporary file beside it, then renamed
+    tmp = out.with_name(f".{out.name}.{os.getpid()}.part")
+    try:
+        fig.savefig(tmp, dpi=100, format=out.suffix.lstrip(".").lower() or "png")
+        os.replace(tmp, out)
+    finally:
+        plt.close(fig)
+        tmp.unlink(missing_ok=True)
     return out

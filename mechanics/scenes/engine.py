@@ -67,7 +67,7 @@ from numpy.polynomial import chebyshev as C
 
 from mechanics.errors import OutOfDomainError
 
-from . import contacts
+from . import budget, contacts
 from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
 from .effects.base import CONSERVED, Effect, gravity_vector
 from .effects.impact import EnergyGainError, Impact
@@ -670,6 +670,12 @@ class Engine:
 
         s = self.scene
         splitting.check(self)
+        gap = s.duration / (s.samples - 1)  # splitting.run's steps: k per sample interval
+        k = max(1, math.ceil(gap / s.step)) if s.step is not None else 1
+        # the run at the step and at half of it: three times its steps
+        budget.check_steps(
+            s, 3 * k * (s.samples - 1), f"a splitting at step {gap / k:.3g} s, and at half of it"
+        )
         segs, h = splitting.run(self, s.order, s.step)
         how = (
             f"integrated: splitting of order {s.order} (kicks of the loads, exact free "
@@ -691,6 +697,14 @@ class Engine:
         switches = sorted({x for e in self.forces for x in e.switch_times() if 0 < x < t_end})
         segs, events = [], []
         t, y = 0.0, self.y0.copy()
+        rate = budget.fastest_rate(s, self.w0)
+        budget.check_steps(
+            s,
+            budget.step_estimate(s, self.w0),
+            f"{budget.STEPS_PER_RADIAN:g} per radian of the fastest rate {rate:.3g} 1/s at "
+            f"rtol 1e-12, over {t_end:g} s",
+        )
+        clock = budget.Clock(s)
         for start, stop in itertools.pairwise([0.0, *switches, t_end]):
             self._phase = 0.5 * (start + stop)
             if start > 0:  # a load switched on or off: a mode may have to switch with it
@@ -699,6 +713,7 @@ class Engine:
                 solver = DOP853Stepper(self.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
                 hit = None
                 while solver.status == "running" and hit is None:
+                    clock.step(solver.t)
                     try:
                         solver.step()
                     except StepSizeError as exc:

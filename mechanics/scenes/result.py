@@ -19,6 +19,13 @@ Conventions
   a rigid body's attitude stays orthogonal (R Rᵀ = I within ``ORTHOGONALITY_RTOL`` for
   an exact flow, the conserved tolerance for an integrated one).  A violation fails the
   run: a wrong motion never reports PASSED.
+- **Non-finite is failure.**  Every reported number (the times, the state's series, the
+  conserved quantities, the derived quantities, the events' fields) is checked: the first
+  NaN or infinity fails the run (the self-check "every reported number finite" names the
+  quantity and the first time it went non-finite), and a conserved quantity whose value
+  or drift is not finite is never ok.
+- ``to_json`` writes a non-finite number as the string ``"nan"``, ``"inf"`` or
+  ``"-inf"`` (JSON has no such numbers), so a failed run's record is still written whole.
 """
 
 from __future__ import annotations
@@ -83,17 +90,18 @@ class Comparison:
     reason: str
 
     def difference(self) -> float:
-        return self.simulated - self.closed_form
+        return float(self.simulated) - float(self.closed_form)
 
     difference = property(difference)
 
     def relative_difference(self) -> float:
-        d = abs(self.difference)
-        return d / abs(self.closed_form) if self.closed_form != 0 else d
+        d, cf = abs(self.difference), abs(float(self.closed_form))  # Python floats: no warning
+        return d / cf if cf != 0 else d
 
     relative_difference = property(relative_difference)
 
     def ok(self) -> bool:
+        # NaN compares false, so a comparison with a non-finite side is never ok
         return bool(self.relative_difference <= self.tolerance)
 
     ok = property(ok)
@@ -123,7 +131,8 @@ class ConservedReport:
     since: float = 0.0
 
     def ok(self) -> bool:
-        return bool(self.drift <= self.tolerance)
+        finite = math.isfinite(self.value) and math.isfinite(self.drift)
+        return bool(finite and self.drift <= self.tolerance)
 
     ok = property(ok)
 
@@ -208,7 +217,7 @@ class SceneResult:
         }
 
     def to_json(self) -> str:
-        return json.dumps(self.as_dict(), indent=1, allow_nan=False)
+        return json.dumps(_json_safe(self.as_dict()), indent=1, allow_nan=False)
 
     def summary(self) -> str:
         s, tr = self.scene, self.trajectory
@@ -262,6 +271,60 @@ class SceneResult:
         return "\n".join(lines)
 
 
+def _json_safe(x):
+    """``x`` with every non-finite float replaced by "nan", "inf" or "-inf"."""
+    if isinstance(x, dict):
+        return {k: _json_safe(v) for k, v in x.items()}
+    if isinstance(x, list | tuple):
+        return [_json_safe(v) for v in x]
+    if isinstance(x, float | np.floating) and not math.isfinite(x):
+        return "nan" if math.isnan(x) else ("inf" if x > 0 else "-inf")
+    return x
+
+
+def _first_non_finite(tr: Trajectory) -> tuple[str, float] | None:
+    """(quantity, time) of the first non-finite number the run reports, or None."""
+    t = np.asarray(tr.t, dtype=float)
+    if not np.all(np.isfinite(t)):
+        return "the sample times", float("nan")
+    named = [*tr.series.items(), *((f"conserved {k}", v) for k, v in tr.conserved.items())]
+    worst = None
+    for name, vals in named:
+        v = np.asarray(vals, dtype=float).reshape(t.size, -1)
+        bad = ~np.all(np.isfinite(v), axis=1)
+        if bad.any():
+            i = int(np.argmax(bad))
+            if worst is None or t[i] < worst[1]:
+                worst = (name, float(t[i]))
+    if worst is not None:
+        return worst
+    for e in tr.events:
+        for k, v in e.detail.items():
+            arr = np.asarray(v) if isinstance(v, float | int | list | tuple | np.ndarray) else None
+            if arr is not None and arr.dtype.kind in "fi" and not np.all(np.isfinite(arr)):
+                return f"the {e.kind} event's {k}", float(e.t)
+    for n, x, m in tr.extra.get("derived", []):
+        for v in (x, m):
+            if isinstance(v, float) and not math.isfinite(v):
+                return f"the derived {n}", float("nan")
+    return None
+
+
+def _finite_check(tr: Trajectory) -> SelfCheck:
+    """The self-check "every reported number finite" (see the Conventions)."""
+    found = _first_non_finite(tr)
+    if found is None:
+        return SelfCheck(
+            "every reported number finite",
+            0.0,
+            0.0,
+            "times, series, conserved and derived quantities, events",
+        )
+    name, at = found
+    when = f" from t = {at:.6g} s" if math.isfinite(at) else ""
+    return SelfCheck("every reported number finite", 1.0, 0.0, f"{name} is not finite{when}")
+
+
 def _plain(d: dict) -> dict:
     out = {}
     for k, v in d.items():
@@ -274,6 +337,8 @@ def _plain(d: dict) -> dict:
 def _drift(values: np.ndarray, t: np.ndarray, segments, since: float, scale=0.0) -> float:
     worst = 0.0
     v = np.asarray(values, dtype=float)
+    if not np.all(np.isfinite(v)):
+        return math.nan  # a drift of numbers that are not finite is not a drift: never ok
     scale = max(float(np.max(np.abs(v))), scale, 1e-300)
     for a, b in segments:
         m = (t >= max(a, since)) & (t < b) if math.isfinite(b) else (t >= max(a, since))
@@ -288,6 +353,11 @@ def run_scene(scene: Scene, compare=None) -> SceneResult:
     ``compare`` (a function ``(scene, trajectory) -> list[Comparison]``), also the
     comparisons it makes (the book's: :func:`identities.book.scenes.compare.run_book_scene`)."""
     tr = simulate(scene)
+    with np.errstate(all="ignore"):  # a non-finite number fails the run by name
+        return _report(scene, tr, compare)
+
+
+def _report(scene: Scene, tr: Trajectory, compare) -> SceneResult:
     tol = conserved_tolerance(scene, tr)
     conserved = []
     scales = tr.extra.get("scales", {})
@@ -312,7 +382,8 @@ def run_scene(scene: Scene, compare=None) -> SceneResult:
             )
         )
     comparisons = list(compare(scene, tr)) if compare is not None else []
-    return SceneResult(scene, tr, conserved, comparisons, self_checks(tr, tol))
+    checks = [_finite_check(tr), *self_checks(tr, tol)]
+    return SceneResult(scene, tr, conserved, comparisons, checks)
 
 
 def conserved_tolerance(scene: Scene, tr: Trajectory) -> float:

@@ -44,6 +44,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+from .budget import DEFAULT_MAX_SECONDS, DEFAULT_MAX_STEPS
+from .domain import RTOL_MIN, check_magnitude, check_value
 from .effects import EFFECT_CLASSES
 from .errors import SceneError
 from .state import ROUND_SHAPES, SPHERICAL_SHAPES
@@ -109,6 +111,22 @@ SCENE_FIELDS: dict[str, tuple[str, str, str]] = {
     "atol": ("positive", "(state units)", "its absolute tolerance (default 1e-12)"),
     "step": ("positive", "s", "the splitting's step (default: the sample interval)"),
     "order": ("2, 4 or 6", "1", "the splitting's order (default 4)"),
+    "max_samples": (
+        "integer ≥ 2",
+        "1",
+        "the samples a run may hold (default: what the memory budget of "
+        "mechanics.scenes.budget holds); --max-samples overrides it",
+    ),
+    "max_steps": (
+        "integer ≥ 1",
+        "1",
+        f"the steps an integrated run may take (default {DEFAULT_MAX_STEPS}); --max-steps",
+    ),
+    "max_seconds": (
+        "positive",
+        "s",
+        f"the wall time a run may take (default {DEFAULT_MAX_SECONDS:g}); --max-seconds",
+    ),
 }
 
 #: initial-state keys: name -> (unit, meaning)
@@ -208,6 +226,11 @@ class Scene:
     #: the splitting's step (None: the sample interval) and order
     step: float | None = None
     order: int = 4
+    #: the run's limits (:mod:`.budget`): samples (None: what the memory budget holds),
+    #: steps and wall time
+    max_samples: int | None = None
+    max_steps: int = DEFAULT_MAX_STEPS
+    max_seconds: float = DEFAULT_MAX_SECONDS
 
     def body(self, name: str) -> Body:
         return next(b for b in self.bodies if b.name == name)
@@ -297,6 +320,12 @@ def _check(src: str, where: str, kind: str, v: Any, bodies: set[str] | None = No
     raise AssertionError(kind)  # pragma: no cover - schema typo
 
 
+def _integer(src: str, where: str, v: Any, least: int) -> int:
+    if isinstance(v, bool) or not isinstance(v, int) or v < least:
+        raise SceneError(src, where, f"expected an integer ≥ {least}; got {v!r}")
+    return v
+
+
 def _table(src: str, where: str, v: Any) -> dict:
     if not isinstance(v, dict):
         raise SceneError(src, where, f"expected a table, got {_type_name(v)}")
@@ -336,13 +365,17 @@ def _parse_body(src: str, i: int, b: Any) -> Body:
     if shape != "tank":
         if "mass" not in b:
             raise SceneError(src, f"{where}.mass", "missing required field")
-        mass = _check(src, f"{where}.mass", "positive", b["mass"])
+        mass = check_magnitude(
+            src, f"{where}.mass", _check(src, f"{where}.mass", "positive", b["mass"])
+        )
     dims: dict[str, Any] = {}
     for d in dims_needed:
         if d not in b:
             raise SceneError(src, f"{where}.{d}", f"missing required field (a {shape} needs it)")
         if d == "inertia":
-            J = _check(src, f"{where}.inertia", "vector", b[d])
+            J = check_value(
+                src, f"{where}.inertia", _check(src, f"{where}.inertia", "vector", b[d]), ""
+            )
             if min(J) <= 0:
                 raise SceneError(src, f"{where}.inertia", f"principal moments must be > 0; got {J}")
             s = sorted(J)
@@ -354,23 +387,20 @@ def _parse_body(src: str, i: int, b: Any) -> Body:
                 )
             dims[d] = J
         else:
-            dims[d] = _check(src, f"{where}.{d}", "positive", b[d])
-            # the moments of inertia are ~ m d² (a length; an area is already m²-like)
-            moment = mass * dims[d] * (dims[d] if DIMENSION_UNITS[d] == "m" else 1.0)
-            if shape != "tank" and not (math.isfinite(moment) and moment > 0):
-                raise SceneError(
-                    src,
-                    f"{where}.{d}",
-                    f"the moment of inertia ~ mass·{d}² = {mass!r}·{dims[d]!r}² is not a "
-                    "positive float64 (overflow or underflow); choose units that keep it "
-                    "within 1e-308 … 1e308",
-                )
+            dims[d] = check_magnitude(
+                src, f"{where}.{d}", _check(src, f"{where}.{d}", "positive", b[d])
+            )
     initial = {}
     if "initial" in b:
         ini = _table(src, f"{where}.initial", b["initial"])
         _unknown(src, f"{where}.initial", ini, INITIAL_KEYS)
         for k, v in ini.items():
-            initial[k] = _check(src, f"{where}.initial.{k}", INITIAL_KEYS[k], v)
+            initial[k] = check_value(
+                src,
+                f"{where}.initial.{k}",
+                _check(src, f"{where}.initial.{k}", INITIAL_KEYS[k], v),
+                INITIAL_DOC[k][0],
+            )
         if "level" in initial and initial["level"] <= 0:
             raise SceneError(
                 src, f"{where}.initial.level", f"must be > 0; got {initial['level']!r}"
@@ -392,11 +422,13 @@ def _parse_effect(src: str, i: int, e: Any, bodies: set[str]) -> EffectSpec:
             src, f"{where}.type", f"unknown effect {kind!r} (known: {', '.join(EFFECT_FIELDS)})"
         )
     schema = EFFECT_FIELDS[kind]
+    units = EFFECT_CLASSES[kind].units
     _unknown(src, where, e, {"type", *schema})
     out: dict[str, Any] = {}
     for k, (fk, required) in schema.items():
         if k in e:
-            out[k] = _check(src, f"{where}.{k}", fk, e[k], bodies)
+            value = _check(src, f"{where}.{k}", fk, e[k], bodies)
+            out[k] = check_value(src, f"{where}.{k}", value, units.get(k, ""))
         elif required:
             raise SceneError(
                 src, f"{where}.{k}", f"missing required field (a {kind} effect needs it)"
@@ -452,16 +484,26 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
             "compare",
             "step",
             "order",
+            "max_samples",
+            "max_steps",
+            "max_seconds",
         },
     )
     for req in ("name", "duration"):
         if req not in s:
             raise SceneError(src, f"scene.{req}", "missing required field")
     name = _check(src, "scene.name", "str", s["name"])
-    duration = _check(src, "scene.duration", "positive", s["duration"])
-    samples = s.get("samples", 201)
-    if isinstance(samples, bool) or not isinstance(samples, int) or samples < 2:
-        raise SceneError(src, "scene.samples", f"expected an integer ≥ 2; got {samples!r}")
+    duration = check_magnitude(
+        src, "scene.duration", _check(src, "scene.duration", "positive", s["duration"])
+    )
+    samples = _integer(src, "scene.samples", s.get("samples", 201), 2)
+    limits: dict[str, Any] = {}
+    if "max_samples" in s:
+        limits["max_samples"] = _integer(src, "scene.max_samples", s["max_samples"], 2)
+    if "max_steps" in s:
+        limits["max_steps"] = _integer(src, "scene.max_steps", s["max_steps"], 1)
+    if "max_seconds" in s:
+        limits["max_seconds"] = _check(src, "scene.max_seconds", "positive", s["max_seconds"])
     method = _check(src, "scene.method", "str", s.get("method", "auto"))
     if method not in METHODS:
         raise SceneError(src, "scene.method", f"expected one of {METHODS}; got {method!r}")
@@ -470,7 +512,9 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         if k in s and method != "splitting":
             raise SceneError(src, f"scene.{k}", f"only with method 'splitting'; got {method!r}")
     if "step" in s:
-        split["step"] = _check(src, "scene.step", "positive", s["step"])
+        split["step"] = check_magnitude(
+            src, "scene.step", _check(src, "scene.step", "positive", s["step"])
+        )
     if "order" in s:
         order = s["order"]
         if isinstance(order, bool) or order not in SPLITTING_ORDERS:
@@ -483,6 +527,14 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         tols[k] = _check(src, f"scene.{k}", "positive", s.get(k, DEFAULT_TOL))
         if tols[k] > 1e-3:
             raise SceneError(src, f"scene.{k}", f"must be ≤ 1e-3; got {tols[k]!r}")
+    if tols["rtol"] < RTOL_MIN:
+        raise SceneError(
+            src,
+            "scene.rtol",
+            f"must be ≥ 100 eps = {RTOL_MIN:.3g} (DOP853 cannot hold a tighter relative "
+            f"tolerance); got {tols['rtol']!r}",
+        )
+    check_magnitude(src, "scene.atol", tols["atol"])
     title = _check(src, "scene.title", "str", s.get("title", ""))
     book = _check(src, "scene.book", "str", s.get("book", ""))
     compare = _check(src, "scene.compare", "str", s.get("compare", ""))
@@ -512,6 +564,7 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
         raw=data,
         **tols,
         **split,
+        **limits,
     )
     from .simulate import validate  # the combination of bodies and effects must make sense
 

@@ -1097,6 +1097,18 @@ EXEMPT: dict[str, str] = {
     "mechanics.scenes.simulate.simulate": "runs a parsed Scene: fuzzed in test_scene_fuzz.py",
     "mechanics.scenes.simulate.validate": "validates a parsed Scene: test_scene_fuzz.py",
     "mechanics.scenes.engine.validate": "validates a parsed Scene: test_scene_fuzz.py",
+    "mechanics.scenes.budget.Clock": "a parsed Scene's run clock: test_whole_scene_fuzz.py",
+    "mechanics.scenes.budget.check_memory": "takes a parsed Scene: test_whole_scene_fuzz.py",
+    "mechanics.scenes.budget.check_steps": "takes a parsed Scene: test_whole_scene_fuzz.py",
+    "mechanics.scenes.budget.memory_estimate": "takes a parsed Scene: test_whole_scene_fuzz.py",
+    "mechanics.scenes.budget.sample_limit": "takes a parsed Scene: test_whole_scene_fuzz.py",
+    "mechanics.scenes.budget.fastest_rate": "takes a parsed Scene: test_whole_scene_fuzz.py",
+    "mechanics.scenes.budget.step_estimate": "takes a parsed Scene: test_whole_scene_fuzz.py",
+    "mechanics.scenes.domain.check_angle": "the parser's domain check: every scene number of "
+    "test_whole_scene_fuzz.py and test_scene_fuzz.py passes through it",
+    "mechanics.scenes.domain.check_magnitude": "the parser's domain check: every scene number "
+    "of test_whole_scene_fuzz.py and test_scene_fuzz.py passes through it",
+    "mechanics.scenes.domain.domain_of": "takes a unit's name (the reference's text)",
     "mechanics.scenes.contacts.chebyshev_fit": "takes a trajectory segment's callable; "
     + _PLUMBING,
     "mechanics.scenes.contacts.first_downward_crossing": "takes Chebyshev coefficients of a "

@@ -57,6 +57,7 @@ BAD_BY_KIND: dict[str, list] = {
     "axis_name": ["w", 3, ""],
     "frame": ["elsewhere", 3],
     "integer ≥ 2": [1, 0, -5, 2.5, "201", NAN, True],
+    "integer ≥ 1": [0, -5, 2.5, "201", NAN, True],
     "2, 4 or 6": [3, 8, 0, "4", 4.5],
 }
 

@@ -18,6 +18,8 @@ LAYERS = {
     "trajectory": 0,
     "contacts": 0,
     "state": 1,
+    "budget": 1,
+    "domain": 1,
     "effects": 2,
     "splitting": 3,
     "engine": 4,

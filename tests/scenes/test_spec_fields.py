@@ -309,8 +309,8 @@ SCENE_CASES = [
         "unknown scene field",
         _with(["scene", "durations"], 1.0),
         "scene.durations",
-        "unknown field (allowed: atol, book, compare, duration, method, name, order, rtol, "
-        "samples, step, title)",
+        "unknown field (allowed: atol, book, compare, duration, max_samples, max_seconds, "
+        "max_steps, method, name, order, rtol, samples, step, title)",
     ),
     ("no name", _without(["scene", "name"]), "scene.name", "missing required field"),
     ("no duration", _without(["scene", "duration"]), "scene.duration", "missing required field"),
@@ -541,18 +541,20 @@ BODY_CASES = [
         "must be > 0 (non-physical otherwise); got 0.0",
     ),
     (
-        "overflowing moment",
-        _body(**_ball(mass=1e200, radius=1e100)),
-        "bodies[0].radius",
-        "the moment of inertia ~ mass·radius² = 1e+200·1e+100² is not a positive float64 "
-        "(overflow or underflow); choose units that keep it within 1e-308 … 1e308",
+        "a mass beyond the domain",
+        _body(**_ball(mass=1e200, radius=1.0)),
+        "bodies[0].mass",
+        "1e+200 is too large: a scene's numbers have magnitude at most 2⁸⁰ ≈ 1.2e+24 (SI), "
+        "where the engine's float64 arithmetic stays finite; choose units that bring it into "
+        "range",
     ),
     (
-        "underflowing moment",
-        _body(name="a", shape="rod", mass=1e-200, length=1e-100),
-        "bodies[0].length",
-        "the moment of inertia ~ mass·length² = 1e-200·1e-100² is not a positive float64 "
-        "(overflow or underflow); choose units that keep it within 1e-308 … 1e308",
+        "principal moments beyond the domain",
+        _body(name="a", shape="custom", mass=1.0, inertia=[1e30, 1e30, 1e30]),
+        "bodies[0].inertia[0]",
+        "1e+30 is too large: a scene's numbers have magnitude at most 2⁸⁰ ≈ 1.2e+24 (SI), "
+        "where the engine's float64 arithmetic stays finite; choose units that bring it into "
+        "range",
     ),
     (
         "a zero principal moment",
@@ -677,17 +679,20 @@ def test_principal_moments_on_the_triangle_inequality_are_accepted() -> None:
     }
 
 
-def test_a_tank_has_no_mass_and_a_huge_area_is_no_moment() -> None:
+def test_a_tank_has_no_mass_and_its_area_is_in_the_domain_up_to_its_edge() -> None:
     d = {
         "scene": {"name": "t", "duration": 1.0},
-        "bodies": [{"name": "t", "shape": "tank", "area": 1e300, "initial": {"level": 1.0}}],
+        "bodies": [{"name": "t", "shape": "tank", "area": 2.0**80, "initial": {"level": 1.0}}],
         "effects": [
             {"type": "gravity", "g": 9.81},
             {"type": "tank_outflow", "body": "t", "hole_area": 1e-3},
         ],
     }
     (b,) = parse_scene(d).bodies
-    assert (b.mass, b.dims, b.initial) == (0.0, {"area": 1e300}, {"level": 1.0})
+    assert (b.mass, b.dims, b.initial) == (0.0, {"area": 2.0**80}, {"level": 1.0})
+    d["bodies"][0]["area"] = 1e300
+    with pytest.raises(SceneError, match=r"bodies\[0\]\.area: 1e\+300 is too large"):
+        parse_scene(d)
 
 
 # --------------------------------------------------------------------- [[effects]]

@@ -914,8 +914,40 @@ def book_comparison(scene: Scene):
 
 
 def run_book_scene(scene: Scene):
-    """Run a scene and compare it with the book where it names a comparison."""
-    return run_scene(scene, compare=book_comparison(scene))
+    """Run a scene and compare it with the book where it names a comparison.  A
+    comparison that cannot be read off the run (too few samples or too short a duration
+    for the crossings it measures) is a SceneError naming ``scene.compare``."""
+    compare = book_comparison(scene)
+    if compare is None:
+        return run_scene(scene)
+
+    def guarded(sc, tr):
+        try:
+            rows = list(compare(sc, tr))
+        except SceneError:
+            raise
+        except (RuntimeError, ValueError, ArithmeticError) as exc:
+            raise sc.error(
+                "scene.compare",
+                f"the comparison {sc.compare!r} cannot be read off this run ({exc}); give "
+                "it more samples or the duration of the built-in scene",
+            ) from None
+        for c in rows:
+            for side, x in (
+                ("simulated", c.simulated),
+                ("book's closed form", c.closed_form),
+                ("tolerance of", c.tolerance),
+            ):
+                if not math.isfinite(x):
+                    raise sc.error(
+                        "scene.compare",
+                        f"the comparison {sc.compare!r}: the {side} {c.name} is {float(x)!r} for this "
+                        "scene (its numbers are beyond the closed form's reach in float64); "
+                        "bring them nearer the built-in scene's",
+                    )
+        return rows
+
+    return run_scene(scene, compare=guarded)
 
 
 def load_book_scene(path) -> Scene:

@@ -64,7 +64,14 @@ def register(cls):
 
 
 def unit(v) -> np.ndarray:
+    """v / |v| for a nonzero vector of any finite size: scaled by its largest component
+    first, so that a subnormal or a huge direction (the parser takes any nonzero one)
+    neither underflows nor overflows in the norm."""
     a = np.asarray(v, dtype=float)
+    n = np.linalg.norm(a)
+    if 1e-150 < n < 1e150:  # the squares are normal floats: the plain quotient
+        return a / n
+    a = a / np.max(np.abs(a))
     return a / np.linalg.norm(a)
 
 

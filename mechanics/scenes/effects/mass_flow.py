@@ -51,6 +51,13 @@ class MassFlow(Effect):
     @classmethod
     def check(cls, spec, scene, index) -> None:
         check_on_fixed_axis(spec, scene, what="mass flows onto a body turning on a fixed axis")
+        r, R = spec.fields["offset"], spec.fields["radius"]
+        if not abs(r) <= R:
+            raise scene.error(
+                f"{spec.where}.offset",
+                f"the flow must reach the rim: |offset| ≤ radius; got offset {r!r} with "
+                f"radius {R!r}",
+            )
 
     def __init__(self, spec, ctx) -> None:
         super().__init__(spec, ctx)

@@ -1,0 +1,101 @@
+"""The domain of a scene file's numbers: the magnitudes at which the engine's float64
+arithmetic stays finite and within its stated eps.
+
+Conventions
+-----------
+- **Magnitudes.**  Every number of a scene (a length, a mass, a speed, a time, a
+  stiffness, ...) has magnitude at most 2⁸⁰ ≈ 1.2e24 in SI units.  Derivation: the
+  quantities a run reports are products of at most six of the scene's numbers (the
+  angular momentum about a point, r × m v, with r ~ g t² and v ~ g t, is of degree 6 in
+  g, t and m), and the engine forms their squares (norms, energies of momenta):
+  products of at most 12.  With every factor at most 2⁸⁰, such a product is at most
+  2⁹⁶⁰, below float64's largest 2¹⁰²⁴ with 2⁶⁴ to spare for the numeric constants, so no
+  intermediate overflows.  Small magnitudes, subnormals included, are accepted: they
+  cannot overflow, and a quantity made of them alone that underflows below 2⁻¹⁰²² loses
+  only digits below the self-checks' absolute floor of 1e-300.
+- **Angles** (radians) have |θ| ≤ 2¹⁰: an angle carries the rounding eps·|θ| as an
+  absolute error, which stays within the conserved quantities' 2¹⁰ eps
+  (:data:`mechanics.scenes.result.CONSERVED_RTOL`).
+- **Tolerances.** ``rtol`` lies in [100 eps, 1e-3] (DOP853 cannot hold a tighter relative
+  tolerance: scipy's floor); ``atol`` in (0, 1e-3].
+- A value outside its domain is refused with the field, the value and the domain.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .errors import SceneError
+
+__all__ = [
+    "ANGLE_MAX",
+    "MAGNITUDE_MAX",
+    "RTOL_MIN",
+    "check_angle",
+    "check_magnitude",
+    "domain_of",
+]
+
+EPS = float(np.finfo(float).eps)
+#: the largest magnitude of a scene's number (see the Conventions)
+MAGNITUDE_MAX = 2.0**80
+#: the largest |angle| in radians
+ANGLE_MAX = 2.0**10
+#: the smallest rtol: DOP853's floor (scipy's ``100 * EPS``)
+RTOL_MIN = 100 * EPS
+
+
+def domain_of(unit: str, kind: str = "number") -> str:
+    """The domain of a number with this SI unit and field kind, in words (for the
+    reference; ``abs(x)``, not bars, so that it sits in a Markdown table)."""
+    if unit == "rad":
+        return "abs(x) ≤ 2¹⁰"
+    if kind == "positive":
+        return "0 < x ≤ 2⁸⁰"
+    if kind == "nonnegative":
+        return "0 ≤ x ≤ 2⁸⁰"
+    return "abs(x) ≤ 2⁸⁰"
+
+
+def check_magnitude(src: str, where: str, x: float) -> float:
+    """``x`` if its magnitude is at most 2⁸⁰; else a SceneError."""
+    if not abs(x) <= MAGNITUDE_MAX:
+        raise SceneError(
+            src,
+            where,
+            f"{x!r} is too large: a scene's numbers have magnitude at most 2⁸⁰ ≈ "
+            f"{MAGNITUDE_MAX:.2g} (SI), where the engine's float64 arithmetic stays finite; "
+            "choose units that bring it into range",
+        )
+    return x
+
+
+def check_angle(src: str, where: str, x: float) -> float:
+    """``x`` if |x| ≤ 2¹⁰ rad; else a SceneError."""
+    if not abs(x) <= ANGLE_MAX:
+        raise SceneError(
+            src,
+            where,
+            f"{x!r} rad is beyond the angles' domain |θ| ≤ 2¹⁰ = {ANGLE_MAX:g} rad (an "
+            "angle's rounding eps·|θ| must stay within the conserved quantities' 2¹⁰ eps); "
+            "reduce it modulo 2π",
+        )
+    return x
+
+
+def check_number(src: str, where: str, x: float, unit: str) -> float:
+    """A scene's number against the domain of its unit."""
+    if unit == "rad":
+        return check_angle(src, where, x)
+    return check_magnitude(src, where, x)
+
+
+def check_value(src: str, where: str, v, unit: str):
+    """A number or a vector of numbers (already parsed as finite floats) in its domain."""
+    if isinstance(v, list):
+        return [check_value(src, f"{where}[{i}]", x, unit) for i, x in enumerate(v)]
+    if isinstance(v, float) and math.isfinite(v):
+        return check_number(src, where, v, unit)
+    return v
