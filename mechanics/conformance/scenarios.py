@@ -68,6 +68,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import MechanicsValueError
+from ..kinematics import angular_velocity_from_euler_rates
 from ..rotation import euler_from_matrix, matrix_from_euler
 from .protocol import Body, Ground, Pivot, Scenario, Shape, Thrust, Trajectory
 
@@ -255,19 +256,6 @@ def crossings(t, y, *, deg: int = 5, direction: int = 0) -> np.ndarray:
     return np.array(out)
 
 
-def _omega_from_rates(theta, phi, theta_dot, psi_dot, phi_dot) -> np.ndarray:
-    """Body ω of ^A R^O = R3(φ) R1(θ) R3(ψ) from the z-x-z Euler rates (2.59)."""
-    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
-    return np.stack(
-        [
-            psi_dot * st * sp + theta_dot * cp,
-            psi_dot * st * cp - theta_dot * sp,
-            psi_dot * ct + phi_dot,
-        ],
-        axis=-1,
-    )
-
-
 def _gravity(s: Scenario) -> np.ndarray:
     return np.asarray(s.gravity, dtype=float)
 
@@ -411,7 +399,7 @@ def _ref_heavy(s: Scenario) -> Reference:
     psi, theta, phi = top.psi(t), top.theta(t), top.phi(t)
     thd, psid, phid = top.rates(t)
     R = matrix_from_euler(psi, theta, phi)
-    w = _omega_from_rates(theta, phi, thd, psid, phid)
+    w = angular_velocity_from_euler_rates(psi, theta, phi, psid, thd, phid)  # (2.69)
     pv = s.pivot
     rho = -np.einsum("tji,j->ti", R, np.asarray(pv.point, dtype=float))  # G − C, space
     pos = np.asarray(pv.anchor, dtype=float) + rho

@@ -27,6 +27,8 @@ import math
 
 import numpy as np
 
+from mechanics import kinematics as kin
+
 __all__ = ["derived_quantities"]
 
 
@@ -51,8 +53,6 @@ def _spacing(times) -> float | None:
 def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | None]]:
     """(name, exact, measured) rows for the scene the engine ran."""
     from mechanics.tops import FreeAsymmetricTop, HeavySymmetricTop
-
-    from .engine import _rates_from_omega
 
     rows: list[tuple[str, float | None, float | None]] = []
     lay, t, series = engine.layout, traj.t, traj.series
@@ -96,7 +96,7 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
         th, ph = float(ini.get("theta", 0.0)), float(ini.get("phi", 0.0))
         if not 0.0 < th < math.pi:
             continue
-        thd, psd, phd = _rates_from_omega(th, ph, engine.w0[i])
+        psd, thd, phd = kin.euler_rates_from_angular_velocity(th, ph, engine.w0[i])
         top = HeavySymmetricTop(
             Jc[0],
             Jc[2],

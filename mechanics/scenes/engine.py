@@ -65,7 +65,8 @@ import math
 import numpy as np
 from numpy.polynomial import chebyshev as C
 
-from mechanics.errors import OutOfDomainError
+from mechanics import kinematics as kin
+from mechanics.errors import GimbalLockError, OutOfDomainError
 
 from . import budget, contacts
 from .effects import REGISTRY, Context, Loads, Snapshot, build_effects
@@ -119,32 +120,13 @@ def _attitude(initial) -> np.ndarray:
 
 
 def _omega(initial) -> np.ndarray:
-    """Initial body ω: ``omega``, or from the z-x-z Euler rates (2.59): ω_A =
-    (ψ̇ sθ sφ + θ̇ cφ, ψ̇ sθ cφ − θ̇ sφ, ψ̇ cθ + φ̇)."""
+    """Initial body ω: ``omega``, or from the z-x-z Euler rates by Euler's kinematic
+    equations (2.69) (:func:`mechanics.kinematics.angular_velocity_from_euler_rates`)."""
     if "omega" in initial:
         return np.asarray(initial["omega"], dtype=float)
     th, ph = float(initial.get("theta", 0.0)), float(initial.get("phi", 0.0))
-    return _omega_from_rates(th, ph, *(float(initial.get(k, 0.0)) for k in RATES))
-
-
-def _omega_from_rates(theta, phi, theta_dot, psi_dot, phi_dot):
-    """Body ω of ^A R^O = R3(φ) R1(θ) R3(ψ) from the Euler rates (2.59), any shape."""
-    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
-    return np.stack(
-        [
-            psi_dot * st * sp + theta_dot * cp,
-            psi_dot * st * cp - theta_dot * sp,
-            psi_dot * ct + phi_dot,
-        ],
-        axis=-1,
-    )
-
-
-def _rates_from_omega(theta, phi, w) -> tuple[float, float, float]:
-    """(θ̇, ψ̇, φ̇) from body ω (the inverse of (2.59); sin θ ≠ 0)."""
-    st, ct, sp, cp = math.sin(theta), math.cos(theta), math.sin(phi), math.cos(phi)
-    psi_dot = (w[0] * sp + w[1] * cp) / st
-    return w[0] * cp - w[1] * sp, psi_dot, w[2] - psi_dot * ct
+    thd, psd, phd = (float(initial.get(k, 0.0)) for k in RATES)
+    return kin.angular_velocity_from_euler_rates(0.0, th, ph, psd, thd, phd)
 
 
 def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
@@ -473,7 +455,10 @@ class Engine:
             and 0.0 < th < math.pi
         ):
             return None
-        thd, psd, phd = _rates_from_omega(th, ph, self.w0[i])
+        try:
+            psd, thd, phd = kin.euler_rates_from_angular_velocity(th, ph, self.w0[i])
+        except GimbalLockError:  # sin θ0 within rounding of 0: the rates are undefined
+            return None
         top = HeavySymmetricTop(
             Jc[0],
             Jc[2],
@@ -504,7 +489,8 @@ class Engine:
             else:
                 th, ps, ph = top.theta(tt), top.psi(tt), top.phi(tt)
                 thd, psd, phd = top.rates(tt)
-                R, w = matrix_from_euler(ps, th, ph), _omega_from_rates(th, ph, thd, psd, phd)
+                R = matrix_from_euler(ps, th, ph)
+                w = kin.angular_velocity_from_euler_rates(ps, th, ph, psd, thd, phd)
             y = np.zeros((*tt.shape, self.layout.size))
             y[..., o : o + 3] = np.einsum("ij,...j->...i", JC, w)
             y[..., o + 3 : o + 12] = np.asarray(R).reshape(*tt.shape, 9)

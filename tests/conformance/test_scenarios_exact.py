@@ -1197,7 +1197,7 @@ def test_interpolate_uses_the_samples_next_to_the_time():
 
 def test_a_heavy_top_released_with_a_general_spin_agrees_with_the_integration():
     # every Euler angle and every body component of ω non-zero: the reference turns them
-    # into Euler rates (2.59) and back; the integration starts from them directly
+    # into Euler rates (2.69) and back; the integration starts from them directly
     s = _fresh("heavy_top")
     R0 = _passive(0.3, 0.6, 0.5)
     w0 = np.array([0.7, -0.4, 6.0])

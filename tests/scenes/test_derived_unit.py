@@ -295,7 +295,7 @@ def sampled(t, cos_theta):
 
 
 def test_a_heavy_top_reports_its_nutation_and_precession_exact_and_measured() -> None:
-    # φ = 0 (not given): ω_A = (θ̇, ψ̇ sin θ, ψ̇ cos θ + φ̇) (2.59), so ω_A = (0.3, 0.5, 6)
+    # φ = 0 (not given): ω_A = (θ̇, ψ̇ sin θ, ψ̇ cos θ + φ̇) (2.69), so ω_A = (0.3, 0.5, 6)
     # is θ̇ = 0.3, ψ̇ = 0.5 / sin 1, ω3 = 6
     theta = 1.0
     th_min, th_max, period, rate = heavy_top_reference(

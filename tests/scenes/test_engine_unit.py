@@ -1,6 +1,6 @@
 """Unit tests of the engine's small pieces (:mod:`mechanics.scenes.engine`), each against
 a hand derivation: the initial attitude R3(φ) R1(θ) R3(ψ) and the body ω from the Euler
-rates (2.59) and back, a top's angles and d(cos θ)/dt = −sin θ θ̇, free flight
+rates (2.69) and back, a top's angles and d(cos θ)/dt = −sin θ θ̇, free flight
 r0 + v0 τ + ½ g τ², the sum of gravities, the exact flow chosen for each effect set, the
 whole-scene checks word for word, and the series of a short exact run."""
 
@@ -12,6 +12,7 @@ from types import SimpleNamespace
 import numpy as np
 import pytest
 
+from mechanics import kinematics as kin
 from mechanics.scenes import SceneError, parse_scene
 from mechanics.scenes import engine as en
 from mechanics.scenes.engine import Engine
@@ -108,17 +109,27 @@ def test_the_initial_attitude_is_r3_phi_r1_theta_r3_psi() -> None:
 def test_the_body_omega_of_single_euler_rates() -> None:
     # θ̇ alone turns about the line of nodes, body components (cos φ, −sin φ, 0) θ̇
     np.testing.assert_allclose(
-        en._omega_from_rates(0.7, 0.0, 2.0, 0.0, 0.0), [2.0, 0.0, 0.0], rtol=0, atol=0
+        kin.angular_velocity_from_euler_rates(0.0, 0.7, 0.0, 0.0, 2.0, 0.0),
+        [2.0, 0.0, 0.0],
+        rtol=0,
+        atol=0,
     )
     np.testing.assert_allclose(
-        en._omega_from_rates(0.7, math.pi / 2, 2.0, 0.0, 0.0), [0.0, -2.0, 0.0], atol=TRIG_ATOL
+        kin.angular_velocity_from_euler_rates(0.0, 0.7, math.pi / 2, 0.0, 2.0, 0.0),
+        [0.0, -2.0, 0.0],
+        atol=TRIG_ATOL,
     )
     # φ̇ alone spins about the body axis e3
-    np.testing.assert_array_equal(en._omega_from_rates(0.7, 0.4, 0.0, 0.0, 3.0), [0.0, 0.0, 3.0])
+    np.testing.assert_array_equal(
+        kin.angular_velocity_from_euler_rates(0.0, 0.7, 0.4, 0.0, 0.0, 3.0), [0.0, 0.0, 3.0]
+    )
     # ψ̇ alone turns about the space z axis: its body components are row 3 of R
     R = en._attitude({"theta": 0.7, "phi": 0.4})
     np.testing.assert_allclose(
-        en._omega_from_rates(0.7, 0.4, 0.0, 1.5, 0.0), 1.5 * R[:, 2], rtol=0, atol=TRIG_ATOL
+        kin.angular_velocity_from_euler_rates(0.0, 0.7, 0.4, 1.5, 0.0, 0.0),
+        1.5 * R[:, 2],
+        rtol=0,
+        atol=TRIG_ATOL,
     )
 
 
@@ -135,11 +146,11 @@ def test_the_body_omega_from_euler_rates_matches_the_attitude_derivative() -> No
     Rdot = (R(h) - R(-h)) / (2 * h)
     W = -Rdot @ R(0.0).T  # = [ω]×
     w_fd = np.array([W[2, 1], W[0, 2], W[1, 0]])
-    w = en._omega_from_rates(theta, phi, thd, psd, phd)
+    w = kin.angular_velocity_from_euler_rates(0.0, theta, phi, psd, thd, phd)
     np.testing.assert_allclose(w, w_fd, rtol=0, atol=FD_ATOL)
     # and back: (θ̇, ψ̇, φ̇) from ω
-    back = en._rates_from_omega(theta, phi, w)
-    np.testing.assert_allclose(back, (thd, psd, phd), rtol=0, atol=TRIG_ATOL)
+    back = kin.euler_rates_from_angular_velocity(theta, phi, w)
+    np.testing.assert_allclose(back, (psd, thd, phd), rtol=0, atol=TRIG_ATOL)
     # an initial table with rates gives that ω; with omega, omega itself
     ini = {"theta": theta, "phi": phi, "theta_dot": thd, "psi_dot": psd, "phi_dot": phd}
     np.testing.assert_allclose(en._omega(ini), w, rtol=0, atol=0)
@@ -161,7 +172,10 @@ def test_the_angles_of_a_top_and_the_rate_of_cos_theta() -> None:
     psi, theta, phi = 3.0 + 1.0 * t, 1.0 + 0.5 * t, -3.0 - 1.2 * t
     R = np.array([R3(c) @ R1(b) @ R3(a) for a, b, c in zip(psi, theta, phi, strict=True)])
     w = np.array(
-        [en._omega_from_rates(b, c, 0.5, 1.0, -1.2) for b, c in zip(theta, phi, strict=True)]
+        [
+            kin.angular_velocity_from_euler_rates(0.0, b, c, 1.0, 0.5, -1.2)
+            for b, c in zip(theta, phi, strict=True)
+        ]
     )
     out = en._top_angles(R, w)
     np.testing.assert_allclose(out["theta"], theta, rtol=0, atol=TRIG_ATOL)
