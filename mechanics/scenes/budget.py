@@ -63,7 +63,7 @@ COPIES = 8
 #: the steps an integrated run may take by default.  A run keeps each step's dense rows
 #: and contact data: measured 2.9 kB (a box pushed over) to 20 kB (the heavy top) held per
 #: step, at 0.3 to 3.5 ms a step, so 2·10⁴ steps hold at most ~400 MB and take at most
-#: ~70 s; the built-in scenes take 26 to 1443
+#: ~70 s; the built-in scenes, integrated, take 5 to 1443
 DEFAULT_MAX_STEPS = 20_000
 #: steps per radian of the fastest rate at rtol 1e-12: a lower bound of the measured 2.9
 #: (a top striking the floor) to 13 (a box dropped on a corner) on the built-in scenes
