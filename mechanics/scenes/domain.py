@@ -25,9 +25,8 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from .errors import SceneError
+from .trajectory import EPS
 
 __all__ = [
     "ANGLE_MAX",
@@ -38,7 +37,6 @@ __all__ = [
     "domain_of",
 ]
 
-EPS = float(np.finfo(float).eps)
 #: the largest magnitude of a scene's number (see the Conventions)
 MAGNITUDE_MAX = 2.0**80
 #: the largest |angle| in radians
