@@ -16,7 +16,7 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from numpy.polynomial import chebyshev as C
 
-from mechanics.scenes import SceneError, engine, parse_scene, run_scene
+from mechanics.scenes import SceneError, collision, parse_scene, run_scene
 from mechanics.scenes import contacts as ct
 
 EPS = 2.0**-52
@@ -403,7 +403,7 @@ def _head_on(duration=1.0, method="integrate"):
 def test_a_missed_contact_fails_the_self_check(monkeypatch) -> None:
     """Negative control: with contact detection switched off, the spheres pass through
     each other, and the run must say FAILED (the old engine said PASSED here)."""
-    monkeypatch.setattr(engine.Engine, "_first_contact_on_step", lambda self, *a: None)
+    monkeypatch.setattr(collision.Collision, "first_contact", lambda self, fit: None)
     r = run_scene(_head_on(duration=5.0))
     assert r.trajectory.events == []
     assert not r.passed

@@ -13,8 +13,8 @@ import numpy as np
 import pytest
 
 from mechanics import kinematics as kin
-from mechanics.scenes import SceneError, parse_scene
-from mechanics.scenes import engine as en
+from mechanics.scenes import SceneError, flows, impacts, integrate, model, parse_scene, report
+from mechanics.scenes.collision import StepFit
 from mechanics.scenes.engine import Engine
 
 EPS = float(np.finfo(float).eps)
@@ -97,13 +97,17 @@ ROCKET = {
 
 def test_the_initial_attitude_is_r3_phi_r1_theta_r3_psi() -> None:
     want = R3(0.2) @ R1(0.5) @ R3(0.3)
-    got = en._attitude({"psi": 0.3, "theta": 0.5, "phi": 0.2})
+    got = model.initial_attitude({"psi": 0.3, "theta": 0.5, "phi": 0.2})
     np.testing.assert_allclose(got, want, rtol=0, atol=TRIG_ATOL)
     # one angle alone is enough to leave the identity
-    np.testing.assert_allclose(en._attitude({"theta": 0.5}), R1(0.5), rtol=0, atol=TRIG_ATOL)
-    np.testing.assert_allclose(en._attitude({"phi": -1.0}), R3(-1.0), rtol=0, atol=TRIG_ATOL)
-    np.testing.assert_array_equal(en._attitude({}), np.eye(3))
-    np.testing.assert_array_equal(en._attitude({"position": [1.0, 2.0, 3.0]}), np.eye(3))
+    np.testing.assert_allclose(
+        model.initial_attitude({"theta": 0.5}), R1(0.5), rtol=0, atol=TRIG_ATOL
+    )
+    np.testing.assert_allclose(
+        model.initial_attitude({"phi": -1.0}), R3(-1.0), rtol=0, atol=TRIG_ATOL
+    )
+    np.testing.assert_array_equal(model.initial_attitude({}), np.eye(3))
+    np.testing.assert_array_equal(model.initial_attitude({"position": [1.0, 2.0, 3.0]}), np.eye(3))
 
 
 def test_the_body_omega_of_single_euler_rates() -> None:
@@ -124,7 +128,7 @@ def test_the_body_omega_of_single_euler_rates() -> None:
         kin.angular_velocity_from_euler_rates(0.0, 0.7, 0.4, 0.0, 0.0, 3.0), [0.0, 0.0, 3.0]
     )
     # ψ̇ alone turns about the space z axis: its body components are row 3 of R
-    R = en._attitude({"theta": 0.7, "phi": 0.4})
+    R = model.initial_attitude({"theta": 0.7, "phi": 0.4})
     np.testing.assert_allclose(
         kin.angular_velocity_from_euler_rates(0.0, 0.7, 0.4, 1.5, 0.0, 0.0),
         1.5 * R[:, 2],
@@ -153,12 +157,14 @@ def test_the_body_omega_from_euler_rates_matches_the_attitude_derivative() -> No
     np.testing.assert_allclose(back, (psd, thd, phd), rtol=0, atol=TRIG_ATOL)
     # an initial table with rates gives that ω; with omega, omega itself
     ini = {"theta": theta, "phi": phi, "theta_dot": thd, "psi_dot": psd, "phi_dot": phd}
-    np.testing.assert_allclose(en._omega(ini), w, rtol=0, atol=0)
-    np.testing.assert_array_equal(en._omega({"omega": [1, 2, 3], "theta": 0.5}), [1.0, 2.0, 3.0])
-    np.testing.assert_array_equal(en._omega({}), [0.0, 0.0, 0.0])
+    np.testing.assert_allclose(model.initial_omega(ini), w, rtol=0, atol=0)
+    np.testing.assert_array_equal(
+        model.initial_omega({"omega": [1, 2, 3], "theta": 0.5}), [1.0, 2.0, 3.0]
+    )
+    np.testing.assert_array_equal(model.initial_omega({}), [0.0, 0.0, 0.0])
     # angles left out are 0: with φ = 0, ω = (θ̇, ψ̇ sin θ, ψ̇ cos θ + φ̇)
     np.testing.assert_allclose(
-        en._omega({"theta": theta, "theta_dot": thd, "psi_dot": psd}),
+        model.initial_omega({"theta": theta, "theta_dot": thd, "psi_dot": psd}),
         [thd, psd * math.sin(theta), psd * math.cos(theta)],
         rtol=0,
         atol=TRIG_ATOL,
@@ -177,7 +183,7 @@ def test_the_angles_of_a_top_and_the_rate_of_cos_theta() -> None:
             for b, c in zip(theta, phi, strict=True)
         ]
     )
-    out = en._top_angles(R, w)
+    out = report.top_angles(R, w)
     np.testing.assert_allclose(out["theta"], theta, rtol=0, atol=TRIG_ATOL)
     np.testing.assert_allclose(out["psi"], psi, rtol=0, atol=TRIG_ATOL)
     np.testing.assert_allclose(out["phi"], phi, rtol=0, atol=TRIG_ATOL)
@@ -194,8 +200,8 @@ def test_the_angles_of_a_top_and_the_rate_of_cos_theta() -> None:
 def test_free_flight_is_r0_plus_v0_tau_plus_half_g_tau_squared() -> None:
     eng = Engine(_scene([_point(position=(1.0, 2.0, 3.0), velocity=(4.0, -1.0, 2.0))], [GRAVITY]))
     g = np.array([0.0, 0.0, -9.81])
-    np.testing.assert_array_equal(eng._gvec(), g)
-    at = eng._flight(0.5, eng.y0, g, {})
+    np.testing.assert_array_equal(eng.model.uniform_gravity(), g)
+    at = flows.free_flight(eng.model, 0.5, eng.y0, g, {})
     r, v, _, _ = eng.layout.gather(at(1.5))  # τ = 1
     np.testing.assert_allclose(r[0], [5.0, 1.0, 5.0 - 4.905], rtol=0, atol=FLIGHT_ATOL)
     np.testing.assert_allclose(v[0], [4.0, -1.0, 2.0 - 9.81], rtol=0, atol=FLIGHT_ATOL)
@@ -208,8 +214,8 @@ def test_the_gravities_of_a_scene_add_up() -> None:
     down = {"type": "gravity", "g": 2.0}
     side = {"type": "gravity", "g": 3.0, "direction": [1.0, 0.0, 0.0]}
     eng = Engine(_scene([_point()], [down, side]))
-    np.testing.assert_allclose(eng._gvec(), [3.0, 0.0, -2.0], rtol=0, atol=0)
-    np.testing.assert_array_equal(Engine(_scene([_point()]))._gvec(), np.zeros(3))
+    np.testing.assert_allclose(eng.model.uniform_gravity(), [3.0, 0.0, -2.0], rtol=0, atol=0)
+    np.testing.assert_array_equal(Engine(_scene([_point()])).model.uniform_gravity(), np.zeros(3))
 
 
 def test_masses_stay_m0_without_mass_loss() -> None:
@@ -224,7 +230,7 @@ def test_the_closed_form_contact_time_of_a_falling_ball() -> None:
     eng = Engine(scene)
     imp = eng.impacts[0]
     s = eng.snapshot(0.0, eng.y0)
-    tau = eng._contact_time(imp, imp.features[0], s, eng._gvec())
+    tau = eng.resolver.contact_time(imp, imp.features[0], s, eng.model.uniform_gravity())
     assert tau == pytest.approx(math.sqrt(2 * 0.9 / 9.81), rel=4 * EPS, abs=0)
     # two spheres closing head on: τ = (gap between surfaces)/(relative speed)
     two = _scene(
@@ -233,13 +239,13 @@ def test_the_closed_form_contact_time_of_a_falling_ball() -> None:
     )
     eng = Engine(two)
     imp = eng.impacts[0]
-    tau = eng._contact_time(imp, imp.features[0], eng.snapshot(0.0, eng.y0), np.zeros(3))
+    tau = eng.resolver.contact_time(imp, imp.features[0], eng.snapshot(0.0, eng.y0), np.zeros(3))
     assert tau == pytest.approx(0.5, rel=4 * EPS, abs=0)
 
 
 def test_the_messages_of_a_resting_contact_and_of_a_fall_in() -> None:
     scene = _scene([_point()], duration=2.5)
-    err = en._zeno(scene, 1.25, "impact effects[1]")
+    err = impacts.zeno(scene, 1.25, "impact effects[1]")
     assert (err.source, err.field) == ("unit.toml", "scene.duration")
     assert err.reason == (
         "impact effects[1] come to rest in contact (the impacts accumulate, or e = 0) near "
@@ -247,9 +253,9 @@ def test_the_messages_of_a_resting_contact_and_of_a_fall_in() -> None:
         "resting contact; a round body resting or rolling on a plane is the "
         "coulomb_friction joint's)"
     )
-    assert en._zeno(scene, 1.0).reason.startswith("the bodies come to rest in contact")
+    assert impacts.zeno(scene, 1.0).reason.startswith("the bodies come to rest in contact")
     imp, ft = SimpleNamespace(where="effects[0]"), SimpleNamespace(label="'a' and 'b'")
-    err = en._falls_in(scene, imp, ft, 0.5)
+    err = impacts.falls_in(scene, imp, ft, 0.5)
     assert (err.field, err.reason) == (
         "effects[0]",
         "'a' and 'b' touch at t = 0.5 s and then fall in, with no separation that float64 "
@@ -258,7 +264,7 @@ def test_the_messages_of_a_resting_contact_and_of_a_fall_in() -> None:
 
 
 def test_rows_turn_a_dense_output_into_time_major_rows() -> None:
-    at = en._rows(lambda t: np.array([np.asarray(t) * 1.0, np.asarray(t) * 2.0]))
+    at = integrate.rows(lambda t: np.array([np.asarray(t) * 1.0, np.asarray(t) * 2.0]))
     assert at.vectorized
     np.testing.assert_array_equal(at(np.array([1.0, 3.0])), [[1.0, 2.0], [3.0, 6.0]])
     np.testing.assert_array_equal(at(2.0), [2.0, 4.0])
@@ -602,10 +608,10 @@ def test_point_accelerations_are_a_g_plus_alpha_cross_rho_plus_centripetal() -> 
     turn = {"type": "torque", "body": "b", "torque": [0.0, 0.0, 0.13], "frame": "body"}
     eng = Engine(_scene([_box(omega=[0.0, 0.0, 2.0])], [push, turn]))
     s = eng.snapshot(0.0, eng.y0)
-    acc = eng._point_accelerations(0.0, eng.y0, s, {0: np.array([0.15, 0.0, 0.0]), None: 0})
+    acc = eng.forward.point_accelerations(0.0, eng.y0, s, {0: np.array([0.15, 0.0, 0.0]), None: 0})
     assert set(acc) == {0}
     np.testing.assert_allclose(acc[0], [1 / 12 - 0.6, 0.15, 0.0], rtol=0, atol=TRIG_ATOL)
-    origin, base, w, alpha = eng._kinematics(s, eng.rhs(0.0, eng.y0), 0)
+    origin, base, w, alpha = eng.forward.kinematics(s, eng.rhs(0.0, eng.y0), 0)
     np.testing.assert_array_equal(origin, [0.0, 0.0, 0.0])
     np.testing.assert_allclose(base, [1 / 12, 0.0, 0.0], rtol=0, atol=TRIG_ATOL)
     np.testing.assert_allclose(w, [0.0, 0.0, 2.0], rtol=0, atol=TRIG_ATOL)
@@ -617,11 +623,11 @@ def test_a_point_has_no_rotation_and_a_fixed_body_no_acceleration() -> None:
     wall = _point("w", position=(5.0, 0.0, 0.0), fixed=True)
     eng = Engine(_scene([p, wall], [GRAVITY]))
     s = eng.snapshot(0.0, eng.y0)
-    origin, base, w, alpha = eng._kinematics(s, eng.rhs(0.0, eng.y0), 0)
+    origin, base, w, alpha = eng.forward.kinematics(s, eng.rhs(0.0, eng.y0), 0)
     np.testing.assert_array_equal(origin, [1.0, 2.0, 3.0])  # a point's origin: itself
     np.testing.assert_array_equal(base, [0.0, 0.0, -9.81])
     np.testing.assert_array_equal([w, alpha], np.zeros((2, 3)))
-    acc = eng._point_accelerations(0.0, eng.y0, s, {0: s.r[0], 1: s.r[1]})
+    acc = eng.forward.point_accelerations(0.0, eng.y0, s, {0: s.r[0], 1: s.r[1]})
     assert set(acc) == {0}  # the fixed body is left out
     np.testing.assert_array_equal(acc[0], [0.0, 0.0, -9.81])
 
@@ -635,9 +641,9 @@ def _resting_ball(effects):
 
 def test_a_ball_on_the_floor_is_pressed_by_gravity_alone() -> None:
     eng, imp, ft = _resting_ball([GRAVITY])
-    assert eng._pressed(imp, ft, 0.0, eng.y0) == pytest.approx(9.81, rel=4 * EPS)
+    assert eng.resolver.pressed(imp, ft, 0.0, eng.y0) == pytest.approx(9.81, rel=4 * EPS)
     eng, imp, ft = _resting_ball([])
-    assert eng._pressed(imp, ft, 0.0, eng.y0) == 0.0
+    assert eng.resolver.pressed(imp, ft, 0.0, eng.y0) == 0.0
 
 
 @pytest.mark.parametrize(
@@ -653,10 +659,10 @@ def test_a_ball_on_the_floor_is_pressed_by_gravity_alone() -> None:
 def test_impacts_stall_when_the_rebound_is_too_slow_to_follow(after, before, gap_scale, stalls):
     eng, imp, ft = _resting_ball([GRAVITY])
     detail = {"normal_speed_after": after, "normal_speed_before": before, "gap_scale": gap_scale}
-    assert eng._stalls(imp, ft, 0.0, eng.y0, detail) is stalls
+    assert eng.resolver.stalls(imp, ft, 0.0, eng.y0, detail) is stalls
     # not pressed (no gravity): never a stall, however slow
     eng, imp, ft = _resting_ball([])
-    assert eng._stalls(imp, ft, 0.0, eng.y0, detail) is False
+    assert eng.resolver.stalls(imp, ft, 0.0, eng.y0, detail) is False
 
 
 def test_a_contact_found_on_its_exit_side_is_refused_with_its_time_and_the_cause() -> None:
@@ -669,7 +675,7 @@ def test_a_contact_found_on_its_exit_side_is_refused_with_its_time_and_the_cause
     ft = imp.features[0]
     events: list = []
     with pytest.raises(SceneError) as info:
-        eng._resolve(1 / 3, eng.y0, imp, ft, events)
+        eng.resolver.resolve(1 / 3, eng.y0, imp, ft, events)
     assert info.value.field == imp.where == "effects[0]"
     assert info.value.reason == (
         f"{ft.label}: the contact at t = 0.33333333333333331 s was found on the exit side "
@@ -689,7 +695,7 @@ def test_the_reactions_evaluate_the_loads_at_each_samples_own_time(monkeypatch) 
     (grav,) = [e for e in eng.forces if e.type == "gravity"]
     seen, loads = [], grav.loads
     monkeypatch.setattr(grav, "loads", lambda t, s, out: (seen.append(t), loads(t, s, out)))
-    out, size = eng._reactions(np.array([0.0, 0.5]), np.stack([eng.y0, eng.y0]))
+    out, size = eng.forward.reactions(np.array([0.0, 0.5]), np.stack([eng.y0, eng.y0]))
     # (the rates behind a_G evaluate the loads too, at the same time)
     assert all(type(t) is float for t in seen)
     assert sorted(set(seen)) == [0.0, 0.5]
@@ -732,8 +738,7 @@ def test_a_guided_bodys_frame_is_fitted_through_the_steps_ends() -> None:
         ss = eng.snapshot(np.array([t]), dense(t).T)
         return ss.r[0, 0], ss.R[0, 0]
 
-    eng._step = (dense, 0.0, 1.5)
-    coef_r, coef_R = eng._frame_coef(None, 0)
+    coef_r, coef_R = eng.collision.frame_coef(StepFit(dense, 0.0, 1.5), 0)
     for x, t in ((-1.0, 0.0), (1.0, 1.5)):
         r, R = frame(t)
         # a sum of 9 coefficients of O(1): a few roundings each
@@ -753,12 +758,12 @@ def test_a_face_below_the_floor_at_a_steps_start_is_rounding_only_up_to_gap_roun
     1.5 GAP_ROUNDING: within it the face touches (the rounding of a contact just
     resolved, no new contact); beyond it the bodies interpenetrate, a contact missed
     before this step, refused by name."""
-    from mechanics.scenes.engine import GAP_ROUNDING
+    from mechanics.scenes.impacts import GAP_ROUNDING
 
     cyl = {"name": "c", "shape": "cylinder", "mass": 1.0, "radius": 0.5, "height": 1.0,
            "initial": {"position": [0.0, 0.0, 0.6]}}  # fmt: skip
     eng = Engine(_scene([cyl], [{"type": "impact", "body": "c", "restitution": 0.5}]))
-    eng._reach = {}  # as at the start of a run
+    assert eng.collision.reach == {}  # as at the start of a run
     y = eng.y0.copy()
     y[2] = 0.5 - depth * 1.5 * GAP_ROUNDING  # G's height: the face at −depth × allowance
 
@@ -766,10 +771,10 @@ def test_a_face_below_the_floor_at_a_steps_start_is_rounding_only_up_to_gap_roun
         return np.repeat(y[:, None], np.size(tt), axis=1) if np.ndim(tt) else y
 
     if not refused:
-        assert eng._first_contact_on_step(dense, 0.0, 0.1) is None
+        assert eng.collision.first_contact(StepFit(dense, 0.0, 0.1)) is None
         return
     with pytest.raises(SceneError) as info:
-        eng._first_contact_on_step(dense, 0.0, 0.1)
+        eng.collision.first_contact(StepFit(dense, 0.0, 0.1))
     assert info.value.field == "effects[0]"
     assert "interpenetrate at t = 0 s" in info.value.reason
     assert "a contact was missed before this step" in info.value.reason
@@ -827,7 +832,7 @@ def test_pressing_evaluates_the_loads_at_the_time_asked(monkeypatch) -> None:
     (grav,) = [e for e in eng.forces if e.type == "gravity"]
     seen, loads = [], grav.loads
     monkeypatch.setattr(grav, "loads", lambda t, s, out: (seen.append(t), loads(t, s, out)))
-    assert eng._pressed(imp, ft, 0.7, eng.y0) == pytest.approx(9.81, rel=8 * EPS)
+    assert eng.resolver.pressed(imp, ft, 0.7, eng.y0) == pytest.approx(9.81, rel=8 * EPS)
     assert seen
     assert set(seen) == {0.7}
 
@@ -878,7 +883,7 @@ def test_a_switch_is_searched_and_refined_at_the_steps_own_times(monkeypatch) ->
         {"type": "tank_outflow", "body": "tank", "hole_area": 0.5},
     ]
     eng = Engine(_scene([tank], drain, duration=3.0))
-    eng._switched, eng._phase = {}, None
+    assert (eng.modes.switched, eng.forward.phase) == ({}, None)  # as at a run's start
     (e,) = eng.switching
     o = eng.layout.offsets[0]
 
@@ -891,8 +896,10 @@ def test_a_switch_is_searched_and_refined_at_the_steps_own_times(monkeypatch) ->
     monkeypatch.setattr(
         e, "switch_function", lambda t, s, out: (seen.append(t), switch(t, s, out))[1]
     )
-    tc, who, _ = eng._first_switch_on_step(dense, 0.0, 3.0)
-    assert who is e
+    hit = eng.modes.first_switch(StepFit(dense, 0.0, 3.0))
+    tc = hit.t
+    assert hit.effect is e
+    assert hit.feature is None  # a switch, not a contact
     assert tc == pytest.approx(2.0, rel=0, abs=2**4 * EPS)  # brentq to 4 eps of the step
     assert seen
     assert all(type(t) is float and 0.0 <= t <= 3.0 for t in seen)
@@ -954,7 +961,7 @@ def test_a_tops_exact_flow_starts_from_the_scenes_initial_state_and_follows_its_
     }
     eng = Engine(_scene([top], [PIN] if kind == "free" else [PIN, GRAVITY]))
     assert eng.exact_flow().startswith("exact: ")
-    ((t_a, t_b, at),), _ = eng._pinned_exact()
+    ((t_a, t_b, at),), _ = eng.flow.run()
     assert (t_a, t_b) == (0.0, 1.0)
     y = at(np.array([0.0, 0.3]))
     # L_C of O(0.1) and R of O(1): the exact flow at t = 0 to a few roundings of each
@@ -978,9 +985,11 @@ def test_a_pinned_bodys_frame_along_a_step_is_its_pivot_and_attitude_columns() -
 
     eng = Engine(_scene([_top()], [PIN, GRAVITY]))
     eng.exact_flow()
-    ((_, _, at),), _ = eng._pinned_exact()
+    ((_, _, at),), _ = eng.flow.run()
     coef_y = contacts.chebyshev_fit(at, 0.0, 0.05)
-    coef_r, coef_R = eng._frame_coef(coef_y, 0)
+    fit = StepFit(lambda tt: at(tt).T, 0.0, 0.05)  # scipy's convention: (size, k)
+    np.testing.assert_array_equal(fit.coef, coef_y)
+    coef_r, coef_R = eng.collision.frame_coef(fit, 0)
     n = coef_y.shape[0]
     x = math.cos(math.pi * 3.5 / n)  # a node of the first kind: the fit equals the data
     tt = 0.025 + 0.025 * x
@@ -1027,7 +1036,7 @@ def test_a_run_whose_modes_switch_too_often_stops_naming_the_effect(monkeypatch)
     tank = {"name": "t", "shape": "tank", "area": 1.0, "initial": {"level": 1.0}}
     out = {"type": "tank_outflow", "body": "t", "hole_area": 0.1}
     scene = _scene([tank], [GRAVITY, out], duration=10.0, method="integrate")
-    monkeypatch.setattr(en, "MAX_EVENTS", 0)
+    monkeypatch.setattr(impacts, "MAX_EVENTS", 0)
     with pytest.raises(SceneError) as info:
         Engine(scene).run()
     assert info.value.field == "scene.duration"
@@ -1042,7 +1051,7 @@ def test_a_run_with_too_many_impacts_stops_naming_the_impact(monkeypatch, method
         [GRAVITY, {"type": "impact", "body": "ball", "restitution": 0.5}],
         method=method,
     )
-    monkeypatch.setattr(en, "MAX_EVENTS", 0)
+    monkeypatch.setattr(impacts, "MAX_EVENTS", 0)
     with pytest.raises(SceneError) as info:
         Engine(scene).run()
     assert info.value.field == "scene.duration"
@@ -1058,19 +1067,19 @@ def test_too_many_rounds_of_simultaneous_impacts_stop_with_one_line(monkeypatch)
         _ball("b", (0.7, 0.0, 0.0)),
         _ball("c", (0.9, 0.0, 0.0)),
     ]
-    impacts = [
+    pairs = [
         {"type": "impact", "body": "a", "other": "b", "restitution": 1.0},
         {"type": "impact", "body": "b", "other": "c", "restitution": 1.0},
     ]
-    monkeypatch.setattr(en, "MAX_SWEEPS", 1)
+    monkeypatch.setattr(impacts, "MAX_SWEEPS", 1)
     with pytest.raises(SceneError) as info:
-        Engine(_scene(balls, impacts)).run()
+        Engine(_scene(balls, pairs)).run()
     assert (info.value.field, info.value.reason) == (
         "effects",
         "more than 1 rounds of simultaneous impacts at t = 0.5 s",
     )
-    monkeypatch.setattr(en, "MAX_SWEEPS", 2)  # two rounds: a stops, c leaves at 1 m/s
-    tr = Engine(_scene(balls, impacts)).run()
+    monkeypatch.setattr(impacts, "MAX_SWEEPS", 2)  # two rounds: a stops, c leaves at 1 m/s
+    tr = Engine(_scene(balls, pairs)).run()
     assert [e.detail["bodies"] for e in tr.events] == [["a", "b"], ["b", "c"]]
     np.testing.assert_allclose(
         [tr.series[f"{n}.vx"][-1] for n in "abc"], [0.0, 0.0, 1.0], rtol=0, atol=4 * EPS
@@ -1137,7 +1146,7 @@ def test_the_touching_pair_that_closes_fastest_is_resolved_first() -> None:
             _ball("c", (xc, 0.0, 0.0), (vc, 0.0, 0.0)),
         ]
         eng = Engine(_scene(balls, impacts))
-        found = eng._closing_now(eng.snapshot(0.0, eng.y0))
+        found = eng.resolver.closing_now(eng.snapshot(0.0, eng.y0))
         return None if found is None else found[0].where
 
     assert closing(1.0, -2.0) == "effects[1]"

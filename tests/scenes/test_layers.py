@@ -1,5 +1,6 @@
-"""The scenes' imports point one way: spec → simulate → engine → effects →
-state → errors, with no cycle; mechanics never imports the book layer (identities)."""
+"""The scenes' imports point one way: spec → simulate → engine → its rooms (integrate →
+modes, collision → impacts → forward → model) → effects → state → errors, with no
+cycle; mechanics never imports the book layer (identities)."""
 
 from __future__ import annotations
 
@@ -22,13 +23,21 @@ LAYERS = {
     "domain": 1,
     "effects": 2,
     "splitting": 3,
-    "engine": 4,
-    "derived": 5,
-    "simulate": 6,
-    "spec": 7,
-    "result": 8,
-    "reference": 8,
-    "__init__": 9,
+    "model": 3,
+    "forward": 4,
+    "impacts": 5,
+    "report": 5,
+    "collision": 6,
+    "modes": 7,
+    "flows": 7,
+    "integrate": 8,
+    "engine": 9,
+    "derived": 10,
+    "simulate": 11,
+    "spec": 12,
+    "result": 13,
+    "reference": 13,
+    "__init__": 14,
 }
 
 

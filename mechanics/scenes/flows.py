@@ -1,0 +1,319 @@
+"""Exact flows: the scenes whose motion has a closed form, each provider saying when it
+applies (``method = "auto"`` or ``"exact"``).
+
+Each provider takes the model (and the forward dynamics and the impact law where it
+needs them) and returns a :class:`Flow`, or None where it does not apply.  At most one
+applies to a scene; :func:`find` returns it.
+
+- :func:`tank_flow`: a lone tank under gravity: Torricelli
+  (:meth:`~mechanics.scenes.effects.tank_outflow.TankOutflow.exact`).
+- :func:`guided_flow`: a lone guided body: its guide's
+  (:meth:`~mechanics.scenes.state.Guide.exact`: the pendulum from rest, the torsion
+  pendulum, the carousel, rolling, the sliding phases).
+- :func:`pinned_flow`: a lone top on its fixed point with nothing else, the torque-free
+  top about C; with gravity along −z, J1 = J2 and 0 < θ0 < π, the heavy symmetric top
+  (:class:`mechanics.tops.HeavySymmetricTop`, 5.2).
+- :func:`free_flight_flow`: free bodies with only uniform gravity and impacts of spheres
+  and points (smooth, through the centres): free flight between impacts at closed-form
+  instants (:meth:`~.impacts.Resolver.contact_time`).
+- :func:`rocket_flow`: free bodies with only gravity and space-fixed thrust: the rocket
+  (7.30).
+
+In the last two each spinning rigid body turns by the torque-free Jacobi-elliptic flow
+of :class:`mechanics.tops.FreeAsymmetricTop`.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+
+from mechanics import kinematics as kin
+from mechanics.errors import GimbalLockError, OutOfDomainError
+
+from .trajectory import Event, vectorized
+
+__all__ = [
+    "PROVIDERS",
+    "Flow",
+    "find",
+    "free_flight",
+    "free_flight_flow",
+    "guided_flow",
+    "pinned_flow",
+    "rocket_flow",
+    "tank_flow",
+]
+
+
+@dataclass(frozen=True)
+class Flow:
+    """An exact flow: how it is computed, and a function returning its segments
+    ``[(t0, t1, state_at)]`` and events."""
+
+    how: str
+    run: Callable[[], tuple[list, list]]
+
+
+def tank_flow(model, forward, resolver) -> Flow | None:
+    """A lone tank with gravity and its outflow only."""
+    if not model.layout.tanks:
+        return None
+    if model.n != 1 or not model.kinds <= {"gravity", "tank_outflow"}:
+        return None
+    T = model.scene.duration
+    how, f, events = model.outflows[0].exact(T)
+    segs = [(0.0, T, vectorized(f))]
+    return Flow(how, lambda: (segs, list(events)))
+
+
+def guided_flow(model, forward, resolver) -> Flow | None:
+    """A lone guided body whose guide has an exact flow for the listed effects."""
+    lay = model.layout
+    if not lay.guides or model.n != 1:
+        return None
+    ((i, gd),) = lay.guides.items()
+    o, nq = lay.offsets[i], gd.nq
+    q0, qd0 = model.y0[o : o + nq].copy(), model.y0[o + nq : o + 2 * nq].copy()
+    others = [e for e in model.effects if e.make_guide is None]
+    found = gd.exact(others, float(model.m0[i]), q0, qd0, model.scene.duration)
+    if found is None:
+        return None
+    how, f, events = found
+
+    @vectorized
+    def at(t):
+        tt = np.asarray(t, dtype=float)
+        y = np.zeros((*tt.shape, lay.size))
+        q, qd = f(tt)
+        y[..., o : o + nq] = np.broadcast_to(q, (*tt.shape, nq))
+        y[..., o + nq : o + 2 * nq] = np.broadcast_to(qd, (*tt.shape, nq))
+        return y
+
+    return Flow(how, lambda: ([(0.0, model.scene.duration, at)], list(events)))
+
+
+def pinned_flow(model, forward, resolver) -> Flow | None:
+    """A lone top on its fixed point: torque-free (the elliptic flow about C), or the
+    heavy symmetric top (J1 = J2 about C, gravity along −z, θ0 in (0, π))."""
+    from mechanics.rotation import matrix_from_euler
+    from mechanics.tops import FreeAsymmetricTop, HeavySymmetricTop
+
+    lay, kinds = model.layout, model.kinds
+    if not lay.pins or lay.guides or model.n != 1 or not kinds <= {"fixed_point", "gravity"}:
+        return None
+    ((i, (_, g, JC, _)),) = lay.pins.items()
+    Jc = np.diag(JC).copy()  # diagonal: the pivot lies on the principal axis e3
+    if kinds == {"fixed_point"}:
+        try:
+            kind, top = "free", FreeAsymmetricTop(Jc, model.w0[i], model.R0[i])
+        except OutOfDomainError:
+            return None
+        how = "exact: torque-free top about C, Jacobi elliptic functions (5.3)"
+    else:
+        grav = [e for e in model.effects if e.type == "gravity"]
+        ini = model.scene.bodies[i].initial
+        th, ph = float(ini.get("theta", 0.0)), float(ini.get("phi", 0.0))
+        if not (
+            len(grav) == 1
+            and Jc[0] == Jc[1]
+            and g[2] > 0
+            and np.array_equal(grav[0].direction, [0.0, 0.0, -1.0])
+            and 0.0 < th < math.pi
+        ):
+            return None
+        try:
+            psd, thd, phd = kin.euler_rates_from_angular_velocity(th, ph, model.w0[i])
+        except GimbalLockError:  # sin θ0 within rounding of 0: the rates are undefined
+            return None
+        kind = "heavy"
+        top = HeavySymmetricTop(
+            Jc[0],
+            Jc[2],
+            model.m0[i] * grav[0].g * g[2],
+            theta=th,
+            psi=float(ini.get("psi", 0.0)),
+            phi=ph,
+            theta_dot=thd,
+            psi_dot=psd,
+            phi_dot=phd,
+        )
+        how = "exact: heavy symmetric top, elliptic integrals (5.2.2–5.2.5)"
+    o = lay.offsets[i]
+
+    @vectorized
+    def at(t):  # flat states (L_C, R_A_O)
+        tt = np.asarray(t, dtype=float)
+        if kind == "free":
+            R, w = top.attitude(tt), top.omega(tt)
+        else:
+            th, ps, ph = top.theta(tt), top.psi(tt), top.phi(tt)
+            thd, psd, phd = top.rates(tt)
+            R = matrix_from_euler(ps, th, ph)
+            w = kin.angular_velocity_from_euler_rates(ps, th, ph, psd, thd, phd)
+        y = np.zeros((*tt.shape, lay.size))
+        y[..., o : o + 3] = np.einsum("ij,...j->...i", JC, w)
+        y[..., o + 3 : o + 12] = np.asarray(R).reshape(*tt.shape, 9)
+        return y
+
+    return Flow(how, lambda: ([(0.0, model.scene.duration, at)], []))
+
+
+def _free_bodies(model) -> bool:
+    lay = model.layout
+    return not (lay.tanks or lay.guides or lay.pins or lay.fixed_bodies)
+
+
+def _rotation(model):
+    """Per spinning rigid body, (J, its torque-free top); None where one cannot be
+    followed exactly (a zero moment, or within float64's reach of the separatrix)."""
+    from mechanics.tops import FreeAsymmetricTop
+
+    for i in model.rigid:  # torque-free rotation by elliptic functions needs J > 0
+        if model.w0[i].any() and not np.all(model.layout.J[i] > 0):
+            return None
+    out = {}
+    try:
+        for i in model.spinning():
+            J = model.layout.J[i]
+            out[i] = (J, FreeAsymmetricTop(J, model.w0[i], model.R0[i]))
+    except OutOfDomainError:  # within float64's reach of the separatrix: integrate
+        return None
+    return out
+
+
+def _spin_note(model) -> str:
+    return "; torque-free rotation (Jacobi elliptic functions)" if model.spinning() else ""
+
+
+def _with_rotation(model, y_trans, t, tops) -> np.ndarray:
+    """Flat states (..., size) whose translation comes from y_trans and rotation from
+    the tops, at the time(s) t."""
+    y = np.array(y_trans, dtype=float)
+    tt = np.asarray(t, dtype=float)
+    for i, (J, top) in tops.items():
+        o = model.layout.offsets[i]
+        y[..., o + 6 : o + 9] = J * top.omega(tt)
+        y[..., o + 9 : o + 18] = top.attitude(tt).reshape(*tt.shape, 9)
+    return y
+
+
+def free_flight(model, t0, y0, g, tops):
+    """The flat states at any times of free flight under the uniform gravity g from
+    (t0, y0), each spinning body turned by its top."""
+    lay = model.layout
+    r0, v0, L0, R0 = lay.gather(y0)
+
+    @vectorized
+    def at(t):
+        tau = (np.asarray(t, dtype=float) - t0)[..., None, None]
+        r = r0 + v0 * tau + 0.5 * g * tau * tau
+        v = v0 + g * tau
+        L, R = np.broadcast_to(L0, v.shape), np.broadcast_to(R0, (*v.shape, 3))
+        return _with_rotation(model, lay.pack(r, v, L, R), t, tops)
+
+    return at
+
+
+def free_flight_flow(model, forward, resolver) -> Flow | None:
+    """Free bodies with only uniform gravity and smooth impacts of spheres and points
+    (through the centres): free flight between impacts at closed-form instants."""
+    kinds = model.kinds
+    if not _free_bodies(model) or not kinds <= {"gravity", "impact"}:
+        return None
+    if not all(
+        ft.at is None and ft.support is None and imp.mu_f == 0
+        for imp in model.impacts
+        for ft in imp.features
+    ):
+        return None
+    tops = _rotation(model)
+    if tops is None:
+        return None
+    what = "free flight under uniform gravity" if "gravity" in kinds else "uniform motion"
+    if "impact" in kinds:
+        what += ", impacts solved in closed form"
+    T_end = model.scene.duration
+
+    def run():
+        g = model.uniform_gravity()
+        segs, events = [], []
+        t0, y = 0.0, model.y0.copy()
+        while True:
+            s = forward.snapshot(t0, y)
+            best = (math.inf, None, None)
+            for imp in model.impacts:
+                ft = imp.features[0]
+                tau = resolver.contact_time(imp, ft, s, g)
+                if tau < best[0]:
+                    best = (tau, imp, ft)
+            t1 = t0 + best[0]
+            segs.append((t0, min(t1, T_end), free_flight(model, t0, y, g, tops)))
+            if t1 >= T_end:
+                break
+            y = segs[-1][2](t1)
+            y = resolver.resolve(t1, y, best[1], best[2], events)
+            t0 = t1
+        return segs, events
+
+    return Flow(f"exact: {what}{_spin_note(model)}", run)
+
+
+def rocket_flow(model, forward, resolver) -> Flow | None:
+    """Free bodies with only gravity and space-fixed thrust: the rocket (7.30)."""
+    from mechanics.open_systems import rocket_height, rocket_velocity
+
+    kinds = model.kinds
+    if not _free_bodies(model) or not kinds <= {"gravity", "thrust"}:
+        return None
+    thrusts = {e.i: e for e in model.effects if e.type == "thrust"}
+    if any(th.body_frame for th in thrusts.values()):
+        return None
+    tops = _rotation(model)
+    if tops is None:
+        return None
+    lay = model.layout
+
+    def run():
+        g = model.uniform_gravity()
+        r0, v0, L0, R0 = lay.gather(model.y0)
+
+        @vectorized
+        def at(t):
+            tt = np.asarray(t, dtype=float)
+            tau = tt[..., None, None]
+            r = r0 + v0 * tau + 0.5 * g * tau * tau
+            v = v0 + g * tau
+            for i, th in thrusts.items():
+                kw = dict(
+                    m_0=model.m0[i], q=th.q, u=th.u, m_f=th.m_f, g=0.0, after_burn_out="coast"
+                )
+                r[..., i, :] += np.asarray(rocket_height(tt, **kw))[..., None] * th.direction
+                v[..., i, :] += np.asarray(rocket_velocity(tt, **kw))[..., None] * th.direction
+            L, R = np.broadcast_to(L0, v.shape), np.broadcast_to(R0, (*v.shape, 3))
+            return _with_rotation(model, lay.pack(r, v, L, R), t, tops)
+
+        events = [
+            Event(th.burn_out, "burn_out", {"body": model.names[th.i]})
+            for th in thrusts.values()
+            if th.burn_out <= model.scene.duration
+        ]
+        return [(0.0, model.scene.duration, at)], events
+
+    return Flow(f"exact: rocket flight (7.30) with uniform gravity{_spin_note(model)}", run)
+
+
+#: the providers, each applying to scenes none of the others does
+PROVIDERS = (tank_flow, guided_flow, pinned_flow, free_flight_flow, rocket_flow)
+
+
+def find(model, forward, resolver) -> Flow | None:
+    """The exact flow of the scene, or None where it has none here."""
+    for provider in PROVIDERS:
+        flow = provider(model, forward, resolver)
+        if flow is not None:
+            return flow
+    return None

@@ -1,0 +1,241 @@
+"""The forward dynamics of a model: the bodies seen in a state, the loads on them, the
+state's rate, and the accelerations and reactions that follow.
+
+- :meth:`Forward.snapshot` reads a flat state (or many) as a
+  :class:`~mechanics.scenes.effects.base.Snapshot`: a pinned body's G and velocity from
+  its attitude about the pivot, a guided body's from its joint's coordinates, a tank's
+  fluid; :meth:`Forward.pack` writes one back.
+- :meth:`Forward.rhs` sums the listed effects' loads (nothing else: no default gravity,
+  no damping) and returns the state's rate (:meth:`~mechanics.scenes.state.Layout.derivative`).
+- :meth:`Forward.point_accelerations` gives a body point's acceleration,
+  a_G + α × ρ + ω × (ω × ρ); :meth:`Forward.reactions` the joints' reactions
+  F = m a_G − Σ F (4.4, 4.71) and a fixed axis's bearing moment.
+
+The one thing that changes during a run is :attr:`Forward.phase`: the middle of the
+segment between two switch times being integrated, which a load that switches on or off
+there reads (see :class:`~mechanics.scenes.effects.base.Snapshot`).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .effects import Loads, Snapshot
+from .state import Hinge
+
+__all__ = ["Forward"]
+
+
+class Forward:
+    """The forward dynamics of a :class:`~mechanics.scenes.model.Model`."""
+
+    def __init__(self, model) -> None:
+        self.model = model
+        self.layout = model.layout
+        #: the loads' phase (see the module's docstring); None outside an integration
+        self.phase: float | None = None
+
+    # ---------------------------------------------------------------- the state
+    def masses(self, t) -> np.ndarray:
+        m = np.broadcast_to(self.model.m0, (*np.shape(t), self.model.n)).copy()
+        for e in self.model.losing:
+            m -= e.mass_loss(t)
+        return m
+
+    def snapshot(self, t, y, *, copy: bool = True) -> Snapshot:
+        """The bodies at time(s) t from state(s) y (writable copies unless ``copy`` is
+        False: the right-hand side only reads them)."""
+        md, lay = self.model, self.layout
+        r, v, L, R = lay.gather(y)
+        if copy:
+            r, v, L, R = (np.array(a) for a in (r, v, L, R))
+        if md.losing:
+            m = self.masses(t)
+            J = lay.J * (m / md.m0)[..., None]
+        elif np.ndim(t) == 0 and not copy:  # the right-hand side: the shared constants
+            m, J = md.m0, lay.J
+        else:
+            m = np.broadcast_to(md.m0, (*np.shape(t), md.n)).copy()
+            J = np.broadcast_to(lay.J, (*np.shape(t), md.n, 3)).copy()
+        tanks = lay.tanks
+        if not lay.pins and not lay.guides and not tanks:
+            return Snapshot(t, r, v, L, R, lay.omega(L, J), m, J)
+        if not copy:
+            r, v, L, R = r.copy(), v.copy(), L.copy(), R.copy()
+        w = lay.omega(L, J)
+        angle = np.zeros(np.shape(m))
+        y = np.asarray(y, dtype=float)
+        coords, inertia = {}, {}
+        for i, gd in lay.guides.items():
+            o, nq = lay.offsets[i], gd.nq
+            q, qd = y[..., o : o + nq].copy(), y[..., o + nq : o + 2 * nq].copy()
+            G, E, Ri = gd.place(q)
+            angle[..., i] = q[..., 0]
+            R[..., i, :, :] = Ri
+            r[..., i, :] = G
+            v[..., i, :] = np.einsum("...k,...kc->...c", qd, E)
+            w[..., i, :] = np.einsum("...ij,...j->...i", Ri, qd @ gd.W)
+            L[..., i, :] = J[..., i, :] * w[..., i, :]
+            coords[i] = (q, qd)
+            grown = [e.inertia_added(t, i) for e in md.growing]
+            if grown:
+                inertia[i] = gd.M + sum(grown)
+        for i, (pivot, g, _, JCinv) in lay.pins.items():
+            # the stored L_C gives ω; G and its velocity follow from the attitude
+            w[..., i, :] = np.einsum("ij,...j->...i", JCinv, L[..., i, :])
+            L[..., i, :] = J[..., i, :] * w[..., i, :]  # about G, as for every body
+            rho = np.einsum("...ji,j->...i", R[..., i, :, :], g)  # r_G − C, space
+            w_O = np.einsum("...ji,...j->...i", R[..., i, :, :], w[..., i, :])
+            r[..., i, :] = pivot + rho
+            v[..., i, :] = np.cross(w_O, rho)
+        out = Snapshot(t, r, v, L, R, w, m, J, angle=angle)
+        out.coords, out.inertia = coords, inertia
+        for i in tanks:
+            o = lay.offsets[i]
+            out.fluid[i] = y[..., o : o + 2].copy()
+        return out
+
+    def pack(self, s: Snapshot) -> np.ndarray:
+        """The flat state of a snapshot (the inverse of :meth:`snapshot`)."""
+        lay = self.layout
+        L = s.L_A
+        if lay.pins:
+            L = np.array(L)
+            for i, (_, _, JC, _) in lay.pins.items():
+                L[..., i, :] = np.einsum("ij,...j->...i", JC, s.omega[..., i, :])
+        y = lay.pack(s.r, s.v, L, s.R)
+        for i, gd in lay.guides.items():
+            o, (q, qd) = lay.offsets[i], s.coords[i]
+            y[..., o : o + gd.nq], y[..., o + gd.nq : o + 2 * gd.nq] = q, qd
+        for i, w in s.fluid.items():
+            o = lay.offsets[i]
+            y[..., o : o + 2] = w
+        return y
+
+    # ---------------------------------------------------------------- the loads
+    def loads(self, t, s) -> tuple[np.ndarray, np.ndarray]:
+        """The listed effects' forces F (n, 3) at G and moments M_A (n, 3) about G (body
+        components) on the snapshot s."""
+        out = Loads(self.model.n, s)
+        for e in self.model.forces:
+            e.loads(t, s, out)
+        return out.F, out.M_A
+
+    def loads_before(self, t, s, effect) -> Loads:
+        """The loads of the effects summed before ``effect`` (all the others, for one
+        that comes after the loads)."""
+        out = Loads(self.model.n, s)
+        for e in self.model.forces:
+            if e is effect:
+                break
+            e.loads(t, s, out)
+        return out
+
+    def rhs(self, t, y) -> np.ndarray:
+        """The state's rate at (t, y)."""
+        s = self.snapshot(t, y, copy=False)
+        if self.phase is not None:
+            s.phase = self.phase
+        out = Loads(self.model.n, s)
+        for e in self.model.forces:
+            e.loads(t, s, out)
+        return self.layout.derivative(s, out.F, out.M_A, out.rates)
+
+    # ------------------------------------------------------------ accelerations
+    def kinematics(self, s, dy, k):
+        """(origin, its acceleration, ω, α), space components, of body k at the snapshot
+        s whose state rates are dy: the origin is G (a pinned body's pivot, which does
+        not move); a point has no ω, α."""
+        lay = self.layout
+        _, dv, dL, _ = lay.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
+        kind, zero = lay.kinds[k], np.zeros(3)
+        if kind == "point":
+            return s.r[k], dv[k], zero, zero
+        if kind == "guided":  # a_G = Σ E_k q̈_k + the bend; ω = Σ W_k q̇_k, α = Σ W_k q̈_k
+            gd, o = lay.guides[k], lay.offsets[k]
+            q, qd = s.coords[k]
+            qdd = dy[o + gd.nq : o + 2 * gd.nq]
+            _, E, _ = gd.place(q)
+            return s.r[k], qdd @ E + gd.bend(q, qd), qd @ gd.W, qdd @ gd.W
+        if kind == "pinned":
+            pivot, _, _, JCinv = lay.pins[k]
+            origin, base, wdot = pivot, zero, JCinv @ dL[k]
+        else:
+            safe = np.where(s.J[k] > 0, s.J[k], 1.0)
+            origin, base, wdot = s.r[k], dv[k], np.where(s.J[k] > 0, dL[k] / safe, 0.0)
+        return origin, base, s.to_space(k, s.omega[k]), s.to_space(k, wdot)
+
+    def point_accelerations(self, t, y, s, points) -> dict[int, np.ndarray]:
+        """Accelerations (space) of the body points ``{body: position}`` at (t, y):
+        a_G + α × ρ + ω × (ω × ρ), ρ from G (from the pivot of a pinned body, whose
+        pivot does not move)."""
+        dy = self.rhs(t, y)
+        out = {}
+        for k, S in points.items():
+            if k is None or self.layout.kinds[k] == "fixed":
+                continue
+            origin, base, w, alpha = self.kinematics(s, dy, k)
+            rho = S - origin
+            out[k] = base + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
+        return out
+
+    def rim_gap_acceleration(self, t, y, s, imp, ft) -> float | None:
+        """d²/dt² of a rim circle's gap w − a ρ (see :mod:`.effects.impact`) at (t, y),
+        or None where the face is flat (ρ = 0).  With c = n·e3 (e3 the circle's axis in
+        space, ė3 = ω × e3, ë3 = α × e3 + ω × (ω × e3)): w = (r_G − p)·n + z_c c and
+        ρ = √(1 − c²), so w'' = a_G·n + z_c c̈ and ρ'' = −(ċ² + c c̈)/ρ − c² ċ²/ρ³.  The
+        support point slides round the rim as the body turns, so this is not the
+        acceleration of the material point there."""
+        k, (a, zc), n = ft.body, ft.support, imp.normal
+        origin, base, w, alpha = self.kinematics(s, self.rhs(t, y), k)
+        rho_G = s.r[k] - origin
+        a_G = base + np.cross(alpha, rho_G) + np.cross(w, np.cross(w, rho_G))
+        e3 = s.R[k, 2]
+        c = float(n @ e3)
+        rho = math.sqrt(max(1.0 - c * c, 0.0))
+        if rho == 0.0:
+            return None
+        c1 = float(n @ np.cross(w, e3))
+        c2 = float(n @ (np.cross(alpha, e3) + np.cross(w, np.cross(w, e3))))
+        rho2 = -(c1 * c1 + c * c2) / rho - c * c * c1 * c1 / rho**3
+        return float(a_G @ n) + zc * c2 - a * rho2
+
+    def reactions(self, t, Y):
+        """The joints' reactions at the samples (t, Y): the force of a pivot, of the
+        bearings or of the surface a body rolls or slides on, F = m a_G − Σ F (4.4,
+        4.71), and for a fixed axis the bearings' moment about C, M = J_a φ̈ a − M_C,
+        perpendicular to the axis; with the size of their terms (what their rounding is
+        relative to).  None where mass flows onto a body (the inflow's momentum is not
+        among the loads)."""
+        md, lay = self.model, self.layout
+        joints = [] if md.growing else [*lay.pins, *lay.guides]
+        hinges = {i: g for i, g in lay.guides.items() if isinstance(g, Hinge)}
+        out = {i: {"reaction": np.empty((len(t), 3))} for i in joints}
+        size = {i: {"reaction": 0.0} for i in joints}
+        for i in hinges if joints else ():
+            out[i]["bearing_moment"] = np.empty((len(t), 3))
+            size[i]["bearing_moment"] = 0.0
+        if not out:
+            return out, size
+        for k, (tt, y) in enumerate(zip(t, Y, strict=True)):
+            s = self.snapshot(float(tt), y)
+            loads = Loads(md.n, s)
+            for e in md.forces:
+                e.loads(float(tt), s, loads)
+            acc = self.point_accelerations(float(tt), y, s, {i: s.r[i] for i in out})
+            for i in out:
+                out[i]["reaction"][k] = s.m[i] * acc[i] - loads.F[i]
+                size[i]["reaction"] = max(
+                    size[i]["reaction"],
+                    float(np.linalg.norm(s.m[i] * acc[i]) + np.linalg.norm(loads.F[i])),
+                )
+            for i, hg in hinges.items():
+                M_C = hg.moment(s.R[i], s.r[i], loads.F[i], loads.M_A[i])
+                phidd = float(hg.a @ M_C) / hg.J_a
+                out[i]["bearing_moment"][k] = hg.J_a * phidd * hg.a - M_C
+                size[i]["bearing_moment"] = max(
+                    size[i]["bearing_moment"], 2.0 * float(np.linalg.norm(M_C))
+                )
+        return out, size

@@ -1,0 +1,97 @@
+"""The integration loop: the project's adaptive Dormand–Prince 8(5,3) stepper
+(:class:`mechanics.integrators.DOP853Stepper`) at the scene's ``rtol``/``atol``, over
+the event detectors.
+
+After every step each contact feature's gap (:meth:`.collision.Collision.first_contact`)
+and each mode's switch function (:meth:`.modes.Modes.first_switch`) are searched along
+the step's dense polynomial, so an event is found whatever the step size; the step is
+cut at the earliest, the event is applied (:meth:`.impacts.Resolver.resolve`,
+:meth:`.modes.Modes.switch`) and the integration restarts.  Switch times of the loads
+(burn-out, the window of an applied load) are step boundaries, where a mode beyond its
+limit switches at once.  The steps and the wall time are bounded (:mod:`.budget`).
+"""
+
+from __future__ import annotations
+
+import itertools
+
+import numpy as np
+
+from . import budget
+from .collision import StepFit
+from .trajectory import Event, vectorized
+
+__all__ = ["HOW", "integrate", "rows"]
+
+#: how an integrated run is described in its result
+HOW = "integrated: DOP853 (mechanics.integrators), contacts located on each step's dense polynomial"
+
+
+def integrate(model, forward, collision, modes, resolver, t_end):
+    """Integrate the model from its initial state to ``t_end``: the segments
+    ``[(t0, t1, state_at)]`` and the events."""
+    from mechanics.errors import StepSizeError
+    from mechanics.integrators import DOP853Stepper
+
+    s = model.scene
+    collision.reach.clear()  # a run starts with no sizes and no switches seen
+    modes.switched.clear()
+    switches = sorted({x for e in model.forces for x in e.switch_times() if 0 < x < t_end})
+    segs, events = [], []
+    t, y = 0.0, model.y0.copy()
+    rate = budget.fastest_rate(s, model.w0)
+    budget.check_steps(
+        s,
+        budget.step_estimate(s, model.w0),
+        f"{budget.STEPS_PER_RADIAN:g} per radian of the fastest rate {rate:.3g} 1/s at "
+        f"rtol 1e-12, over {t_end:g} s",
+    )
+    clock = budget.Clock(s)
+    for start, stop in itertools.pairwise([0.0, *switches, t_end]):
+        forward.phase = 0.5 * (start + stop)
+        if start > 0:  # a load switched on or off: a mode may have to switch with it
+            y = modes.switch_now(t, y, events)
+        while t < stop:
+            solver = DOP853Stepper(forward.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
+            hit = None
+            while solver.status == "running" and hit is None:
+                clock.step(solver.t)
+                try:
+                    solver.step()
+                except StepSizeError as exc:
+                    raise s.error(
+                        "scene.rtol",
+                        f"the integration stalled at t = {solver.t:.17g} s (a singular "
+                        f"force, e.g. bodies meeting under newton_gravity?): {exc}",
+                    ) from None
+                fit = StepFit(solver.dense_output(), solver.t_old, solver.t)
+                hit = collision.first_contact(fit)
+                sw = modes.first_switch(fit)
+                if sw is not None and (hit is None or sw.t < hit.t):
+                    hit = sw
+                segs.append((solver.t_old, solver.t if hit is None else hit.t, rows(fit.dense)))
+            if hit is None:
+                t, y = float(solver.t), np.array(solver.y, dtype=float)
+                break
+            t = hit.t
+            y = np.asarray(fit.dense(t), dtype=float)
+            if hit.feature is None:  # an effect switches its mode (stick and slip)
+                y = modes.switch(t, y, hit.effect, events)
+                continue
+            y = resolver.resolve(t, y, hit.effect, hit.feature, events)
+        for e in model.forces:
+            if e.type == "thrust" and e.burn_out == stop and stop < t_end:
+                events.append(Event(stop, "burn_out", {"body": model.names[e.i]}))
+    forward.phase = None
+    return segs, events
+
+
+def rows(dense):
+    """A step's dense output (scipy's convention: (size, k) for k times) as a vectorised
+    function returning (k, size), (size,) for one time."""
+
+    @vectorized
+    def at(t):
+        return np.asarray(dense(t)).T
+
+    return at

@@ -1,0 +1,200 @@
+"""The model: a scene compiled once into what every later stage reads and none changes.
+
+The model holds the bodies' layout in the state vector
+(:class:`~mechanics.scenes.state.Layout`), the listed effects built once and grouped by
+what they contribute (loads, impacts, modes, mass lost, inertia added, potentials, a
+tank's outflow), and the initial state ``y0``.  The grouping is read off each effect's
+class (see :mod:`.effects.base`), never by an effect's type name outside this module.
+:func:`check` validates the scene as a whole before a model is built (each field is
+checked by the parser).  What changes during a run lives in the stages that read the
+model: :mod:`.forward` (the loads' phase), :mod:`.collision`, :mod:`.modes`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from mechanics import kinematics as kin
+
+from .effects import REGISTRY, Context, build_effects
+from .effects.base import Effect, gravity_vector
+from .effects.impact import Impact
+from .state import Guide, Layout, body_inertia
+
+__all__ = ["FREE_INITIAL", "JOINTS", "RATES", "Model", "check", "initial_attitude", "initial_omega"]
+
+FREE_INITIAL = ("position", "velocity", "omega", "psi", "theta", "phi")
+#: the effects that hold a body (one per body)
+JOINTS = ("fixed_point", "fixed_axis", "rolling", "coulomb_friction")
+#: a pinned body may give its initial ω as the Euler angles' rates instead
+RATES = ("theta_dot", "psi_dot", "phi_dot")
+
+
+def initial_attitude(initial) -> np.ndarray:
+    """^A R^O = R3(φ) R1(θ) R3(ψ) of a body's initial Euler angles (default 0: the
+    identity)."""
+    from mechanics.rotation import matrix_from_euler
+
+    e = [float(initial.get(k, 0.0)) for k in ("psi", "theta", "phi")]
+    return matrix_from_euler(*e) if any(e) else np.eye(3)
+
+
+def initial_omega(initial) -> np.ndarray:
+    """Initial body ω: ``omega``, or from the z-x-z Euler rates by Euler's kinematic
+    equations (2.69) (:func:`mechanics.kinematics.angular_velocity_from_euler_rates`)."""
+    if "omega" in initial:
+        return np.asarray(initial["omega"], dtype=float)
+    th, ph = float(initial.get("theta", 0.0)), float(initial.get("phi", 0.0))
+    thd, psd, phd = (float(initial.get(k, 0.0)) for k in RATES)
+    return kin.angular_velocity_from_euler_rates(0.0, th, ph, psd, thd, phd)
+
+
+def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+    """The pinned bodies (a fixed_point joint) -> (C, g_A)."""
+    from .effects.fixed_point import FixedPoint
+
+    return {
+        index[spec.fields["body"]]: FixedPoint(spec).pin()
+        for spec in scene.effects_of("fixed_point")
+    }
+
+
+def _guides(scene, index) -> dict[int, Guide]:
+    """The guided bodies (a fixed axis, rolling, sliding on a plane) -> their Guide."""
+    g = gravity_vector(scene)
+    out = {}
+    for spec in scene.effects:
+        make = REGISTRY[spec.type].make_guide
+        if make is not None:
+            out[index[spec.fields["body"]]] = make(spec, scene, g)
+    return out
+
+
+def check(scene) -> None:
+    """Check a scene as a whole (each field is checked by the parser): one joint per
+    body, a tank acted on by its outflow only, each body's initial keys, no spin about a
+    zero principal moment, and each effect's own check of its combination."""
+    index = {b.name: i for i, b in enumerate(scene.bodies)}
+    held: dict[str, object] = {}  # body -> the joint that holds it
+    for spec in scene.effects:
+        if spec.type not in JOINTS:
+            continue
+        other = held.setdefault(spec.fields["body"], spec)
+        if other is not spec:
+            why = (
+                f"{spec.type!r} is listed twice for body {spec.fields['body']!r}"
+                if other.type == spec.type
+                else f"{spec.type!r} cannot be combined with {other.type!r} ({other.where}) "
+                f"on body {spec.fields['body']!r}: one joint per body"
+            )
+            raise scene.error(f"{spec.where}.type", why)
+    tanks = {b.name for b in scene.bodies if b.shape == "tank"}
+    for spec in scene.effects:
+        named = [spec.fields.get(k) for k in ("body", "other")]
+        if spec.type != "tank_outflow" and tanks.intersection(named):
+            raise scene.error(
+                f"{spec.where}.type",
+                f"a tank's only effect is its tank_outflow; a {spec.type!r} cannot act on it",
+            )
+    pinned = _pins(scene, index)
+    guided = {index[e.fields["body"]] for e in scene.effects if REGISTRY[e.type].make_guide}
+    drained = {e.fields["body"] for e in scene.effects_of("tank_outflow")}
+    for i, b in enumerate(scene.bodies):
+        where = f"bodies[{i}]"
+        if b.shape == "tank":
+            if b.name not in drained:
+                raise scene.error(f"{where}.shape", "a tank needs a tank_outflow effect")
+            continue  # its initial keys: the outflow's check
+        if i in guided:
+            continue  # its initial keys: its joint's check
+        keys = FREE_INITIAL + (RATES if i in pinned else ())
+        for k in b.initial:
+            if k not in keys:
+                raise scene.error(f"{where}.initial.{k}", f"a free body takes {', '.join(keys)}")
+        if "omega" in b.initial and any(k in b.initial for k in RATES):
+            raise scene.error(f"{where}.initial.omega", "give either omega or the Euler rates")
+        w = initial_omega(b.initial)
+        if b.fixed:
+            for k in ("velocity", "omega"):
+                if any(b.initial.get(k, [0.0])):
+                    raise scene.error(f"{where}.initial.{k}", "a fixed body stays at rest")
+        elif b.shape == "point":
+            if w.any() or any(b.initial.get(k, 0.0) for k in ("psi", "theta", "phi")):
+                key = "omega" if w.any() else "psi"
+                raise scene.error(
+                    f"{where}.initial.{key}", "a point has no attitude and no rotation"
+                )
+        else:
+            J = body_inertia(b)
+            if np.any((J <= 0) & (w != 0)):
+                raise scene.error(
+                    f"{where}.initial.omega",
+                    f"a {b.shape} has a zero principal moment {J.tolist()}: it cannot spin "
+                    f"about that axis; got omega = {w.tolist()}",
+                )
+    for spec in scene.effects:
+        REGISTRY[spec.type].check(spec, scene, index)
+
+
+class Model:
+    """A scene compiled: the layout, the effects by what they contribute, the initial
+    state.  Built once per run; nothing here changes during it."""
+
+    def __init__(self, scene) -> None:
+        self.scene = scene
+        index = {b.name: i for i, b in enumerate(scene.bodies)}
+        self.layout = Layout.of(scene.bodies, _pins(scene, index), _guides(scene, index))
+        self.n = self.layout.n
+        self.names = [b.name for b in scene.bodies]
+        ctx = Context(scene, index, self.layout.kinds, self.layout.pins, self.layout.guides)
+        #: every listed effect, in the file's order
+        self.effects = build_effects(scene, ctx)
+        #: the contacts (events, not loads)
+        self.impacts: list[Impact] = [e for e in self.effects if isinstance(e, Impact)]
+        #: the effects that add loads; one that reads the others' loads comes after
+        #: them (a stable sort)
+        self.forces = sorted(
+            (e for e in self.effects if not isinstance(e, Impact)), key=lambda e: e.after_loads
+        )
+        #: the effects with modes (stick and slip, a tank that empties)
+        self.switching = [e for e in self.forces if e.switch_function is not None]
+        #: the effects with a potential energy
+        self.potentials = [e for e in self.forces if e.potential is not None]
+        #: the effects that take mass from a body (thrust)
+        self.losing = [e for e in self.forces if type(e).mass_loss is not Effect.mass_loss]
+        #: the effects that add inertia to a guided body (mass flowing onto it)
+        self.growing = [e for e in self.forces if hasattr(e, "inertia_added")]
+        #: a tank's outflow: its state is the tank's
+        self.outflows = [e for e in self.effects if e.type == "tank_outflow"]
+        #: the effect types listed (what an exact flow is chosen by)
+        self.kinds = frozenset(e.type for e in self.effects)
+        self.m0 = np.array([b.mass for b in scene.bodies], dtype=float)
+        b0 = scene.bodies
+        r0 = np.array([b.initial.get("position", [0.0] * 3) for b in b0], float)
+        v0 = np.array([b.initial.get("velocity", [0.0] * 3) for b in b0], float)
+        w0 = np.array([initial_omega(b.initial) for b in b0], float)
+        R0 = np.array([initial_attitude(b.initial) for b in b0])
+        self.w0, self.R0 = w0, R0
+        L0 = self.layout.J * w0
+        for i, (_, _, JC, _) in self.layout.pins.items():
+            L0[i] = JC @ w0[i]  # a pinned body stores its angular momentum about C
+        self.y0 = self.layout.pack(r0, v0, L0, R0)
+        for i, gd in self.layout.guides.items():
+            o = self.layout.offsets[i]
+            self.y0[o : o + 2 * gd.nq] = np.concatenate(gd.start(b0[i].initial))
+        for e in self.outflows:
+            o = self.layout.offsets[e.i]
+            self.y0[o : o + 2] = e.start()
+        self.rigid = self.layout.rigid_bodies
+
+    def spinning(self) -> list[int]:
+        """The rigid bodies with an initial spin."""
+        return [i for i in self.rigid if self.w0[i].any()]
+
+    def uniform_gravity(self) -> np.ndarray:
+        """The sum of the listed uniform gravity fields (zero without one)."""
+        g = np.zeros(3)
+        for e in self.effects:
+            if e.type == "gravity":
+                g = g + e.vector
+        return g

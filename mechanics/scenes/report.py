@@ -1,0 +1,205 @@
+"""The report: a run's segments and events assembled into its
+:class:`~mechanics.scenes.trajectory.Trajectory`.
+
+- **Series**: per body (prefixed ``name.`` when there are several) x, y, z, vx, vy, vz
+  (space components), mass (with thrust), and for a rigid body omega1..3 (body
+  components) and wx, wy, wz (space components); a top's Euler angles, a guided body's
+  coordinates, the joints' reactions (:meth:`.forward.Forward.reactions`), each effect's
+  own series; the totals E, and p_*, L_* (about the origin) for several bodies or a
+  rigid one.
+- **Invariants**: the quantities every listed effect keeps
+  (:meth:`~mechanics.scenes.effects.base.Effect.keeps`): the total momentum p_x, p_y,
+  p_z, the total angular momentum about the origin L_x, L_y, L_z (orbital r × m v plus
+  the spins Rᵀ L_A) and the energy E (kinetic ½ m v² + ½ L_A·ω_A plus the effects'
+  potentials), and the spin angular momentum about G of each rigid body no effect
+  turns; each with its samples and the size of its terms, checked within the segments
+  between impacts, or over the whole run where the impulses keep it too.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .effects.base import CONSERVED
+from .state import body_vertices
+from .trajectory import Trajectory, dense_from_segments, energy_scale, sample_segments
+
+__all__ = ["finish", "top_angles"]
+
+
+def finish(model, forward, t, segs, events, how) -> Trajectory:
+    """The run's result from its segments and events: the series at the sample times t,
+    the conserved quantities with their scales, the derived state at any time."""
+    dense = dense_from_segments(segs)
+    Y = sample_segments(segs, t)
+    s = forward.snapshot(t, Y)
+    n, lay = model.n, model.layout
+    moving = list(lay.moving_bodies)
+    series: dict[str, np.ndarray] = {}
+    pre = (lambda i: f"{model.names[i]}.") if n > 1 else (lambda i: "")
+    thrust = bool(model.losing)
+    for i in moving:
+        p = pre(i)
+        for k, c in enumerate("xyz"):
+            series[p + c] = s.r[:, i, k]
+        for k, c in enumerate("xyz"):
+            series[p + "v" + c] = s.v[:, i, k]
+        if thrust:
+            series[p + "mass"] = s.m[:, i]
+        if i in model.rigid:
+            for k in range(3):
+                series[f"{p}omega{k + 1}"] = s.omega[:, i, k]
+            w_O = s.to_space(i, s.omega[:, i])
+            for k, c in enumerate("xyz"):
+                series[f"{p}w{c}"] = w_O[:, k]
+    reactions, reaction_sizes = forward.reactions(t, Y)
+    for i, parts in reactions.items():
+        for what, F in parts.items():
+            for k, c in enumerate("xyz"):
+                series[f"{pre(i)}{what}_{c}"] = F[:, k]
+    for i in lay.pins:
+        series.update({pre(i) + k: v for k, v in top_angles(s.R[:, i], s.omega[:, i]).items()})
+    for i, gd in lay.guides.items():
+        series.update({pre(i) + k: v for k, v in gd.series(*s.coords[i]).items()})
+    m = s.m[:, moving]
+    v, r = s.v[:, moving], s.r[:, moving]
+    KE = 0.5 * (m * (v * v).sum(-1)).sum(-1) + 0.5 * (s.L_A * s.omega).sum((-1, -2))
+    for i, M in s.inertia.items():  # the inertia mass flowing in has added
+        qd = s.coords[i][1]
+        KE = KE + 0.5 * ((M - lay.guides[i].M) * qd * qd).sum(-1)
+    E = KE.copy()
+    for e in model.potentials:
+        E = E + e.potential(s)
+    if moving:
+        series["E"] = E
+    P = (m[..., None] * v).sum(-2)
+    orb = np.cross(r, m[..., None] * v)
+    spins = np.einsum("...ji,...j->...i", s.R, s.L_A)
+    L_O = orb.sum(-2) + spins.sum(-2)
+    conserved, scales, across = {}, {"E": energy_scale(KE, E)}, set()
+    p_scale = float(np.max((m * np.linalg.norm(v, axis=-1)).sum(-1), initial=0.0))
+    # the size of the terms: |r| m |v| bounds each orbital term |r × m v| (a small
+    # cross product of large vectors is known only to their size)
+    L_scale = float(
+        np.max(
+            (np.linalg.norm(r, axis=-1) * m * np.linalg.norm(v, axis=-1)).sum(-1)
+            + np.linalg.norm(spins, axis=-1).sum(-1),
+            initial=0.0,
+        )
+    )
+    values = {"E": E}
+    for k, c in enumerate("xyz"):
+        values[f"p_{c}"], scales[f"p_{c}"] = P[:, k], p_scale
+        values[f"L_{c}"], scales[f"L_{c}"] = L_O[:, k], L_scale
+    if len(moving) > 1 or model.rigid:
+        for k, c in enumerate("xyz"):
+            series[f"p_{c}"], series[f"L_{c}"] = P[:, k], L_O[:, k]
+    since: dict[str, float] = {}
+    T = model.scene.duration
+    for q in CONSERVED if moving else ():
+        # what the effects acting throughout keep; an effect that stops acting (a
+        # push, a burn) breaks it only until then
+        until = max((e.acts_until(events, q) for e in model.forces if not e.keeps(q)), default=0.0)
+        if until < T:
+            conserved[q] = values[q]
+            if until > 0:
+                since[q] = until
+            if all(imp.keeps(q) for imp in model.impacts):
+                across.add(q)
+    for e in model.forces:  # what an effect's own physics keeps, and its series
+        series.update(e.series(s))
+        for name, (vals, size) in e.conserved(s).items():
+            series[name] = conserved[name] = vals
+            scales[name] = size
+            across.add(name)
+    kinds = {e.type for e in model.effects}
+    for i in lay.pins:
+        if lay.J[i, 0] == lay.J[i, 1] and kinds <= {"fixed_point", "gravity"}:
+            # the moments of gravity and of the pivot about C are ⟂ to e3 (C on e3)
+            name = pre(i) + "L_3"
+            series[name] = conserved[name] = lay.J[i, 2] * s.omega[:, i, 2]
+            scales[name] = float(np.max(np.linalg.norm(s.L_A[:, i], axis=-1)))
+            across.add(name)
+    for i in model.rigid:
+        until = max((e.acts_until(events) for e in model.forces if e.exerts_moment(i)), default=0.0)
+        struck = any(imp.exerts_moment(i) for imp in model.impacts)
+        if until >= T or not (model.w0[i].any() or until > 0 or struck):
+            continue  # turned to the end, or never spinning (trivially kept)
+        p = pre(i)
+        for k, c in enumerate("xyz"):
+            name = f"{p}L_{c} (spin about G)"
+            conserved[name] = spins[:, i, k]
+            scales[name] = float(np.max(np.linalg.norm(spins[:, i], axis=-1)))
+            if until > 0:
+                since[name] = until
+            if not struck:
+                across.add(name)
+
+    def state_at(tt):
+        ss = forward.snapshot(tt, np.asarray(dense(tt), dtype=float))
+        out = {}
+        for i in moving:
+            p = pre(i)
+            for k, c in enumerate("xyz"):
+                out[p + c] = float(ss.r[i, k])
+                out[p + "v" + c] = float(ss.v[i, k])
+            if i in model.rigid:
+                w_O = ss.to_space(i, ss.omega[i])
+                for k in range(3):
+                    out[f"{p}omega{k + 1}"] = float(ss.omega[i, k])
+                    out[f"{p}w{'xyz'[k]}"] = float(w_O[k])
+            if i in lay.pins:
+                R, w = ss.R[i], ss.omega[i]
+                out[p + "cos_theta"] = float(R[2, 2])
+                out[p + "cos_theta_dot"] = float(w[1] * R[0, 2] - w[0] * R[1, 2])
+            if i in lay.guides:
+                for k, x in lay.guides[i].series(*ss.coords[i]).items():
+                    out[p + k] = float(x)
+        for e in model.forces:
+            out.update({k: float(x) for k, x in e.series(ss).items()})
+        y = np.asarray(dense(tt), dtype=float)
+        for i, parts in forward.reactions(np.array([tt]), y[None])[0].items():
+            for what, F in parts.items():
+                for k, c in enumerate("xyz"):
+                    out[f"{pre(i)}{what}_{c}"] = float(F[0, k])
+        return out
+
+    for i, sizes in reaction_sizes.items():
+        for what, size in sizes.items():
+            for c in "xyz":
+                scales[f"{pre(i)}{what}_{c}"] = size
+    traj = Trajectory(t, series, events, how, state_at, conserved, since, {}, frozenset(across))
+    traj.extra["scales"] = scales
+    #: every body's r, v, R_A_O, ω_A and m at the sample times (mechanics.conformance)
+    traj.extra["snapshot"] = s
+    traj.extra["gaps"] = {
+        imp.label: np.min([imp.gap(s, ft) for ft in imp.features], axis=0) for imp in model.impacts
+    }
+    radii = [ft.a + ft.a_s for imp in model.impacts for ft in imp.features]
+    verts = [
+        np.abs(body_vertices(b)).max() for b in model.scene.bodies if body_vertices(b) is not None
+    ]
+    traj.extra["length_scale"] = float(
+        np.max(np.abs(r), initial=0.0) + max(radii, default=0.0) + max(verts, default=0.0)
+    )
+    if model.rigid:
+        Rr = s.R[:, list(model.rigid)]
+        dev = np.einsum("...ij,...kj->...ik", Rr, Rr) - np.eye(3)
+        traj.extra["orthogonality"] = float(np.max(np.abs(dev)))
+    return traj
+
+
+def top_angles(R, w) -> dict[str, np.ndarray]:
+    """The series of a top (samples of R_A_O and body ω): the Euler angles z-x-z (row 3
+    of ^A R^O is (sθ sψ, −sθ cψ, cθ), column 3 is (sφ sθ, cφ sθ, cθ)), the symmetry axis
+    e3 in space components, cos θ and its rate d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R."""
+    return {
+        "theta": np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2]),
+        "psi": np.unwrap(np.arctan2(R[:, 2, 0], -R[:, 2, 1])),
+        "phi": np.unwrap(np.arctan2(R[:, 0, 2], R[:, 1, 2])),
+        "axis_x": R[:, 2, 0],
+        "axis_y": R[:, 2, 1],
+        "axis_z": R[:, 2, 2],
+        "cos_theta": R[:, 2, 2],
+        "cos_theta_dot": w[:, 1] * R[:, 0, 2] - w[:, 0] * R[:, 1, 2],
+    }
