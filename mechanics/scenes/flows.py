@@ -34,6 +34,7 @@ import numpy as np
 from mechanics import kinematics as kin
 from mechanics.errors import GimbalLockError, OutOfDomainError
 
+from .effects.capabilities import GuidesBody
 from .trajectory import Event, vectorized
 
 __all__ = [
@@ -78,7 +79,7 @@ def guided_flow(model, forward, resolver) -> Flow | None:
     ((i, gd),) = lay.guides.items()
     o, nq = lay.offsets[i], gd.nq
     q0, qd0 = model.y0[o : o + nq].copy(), model.y0[o + nq : o + 2 * nq].copy()
-    others = [e for e in model.effects if e.make_guide is None]
+    others = [e for e in model.effects if not isinstance(e, GuidesBody)]
     found = gd.exact(others, float(model.m0[i]), q0, qd0, model.scene.duration)
     if found is None:
         return None

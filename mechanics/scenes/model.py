@@ -3,8 +3,9 @@
 The model holds the bodies' layout in the state vector
 (:class:`~mechanics.scenes.state.Layout`), the listed effects built once and grouped by
 what they contribute (loads, impacts, modes, mass lost, inertia added, potentials, a
-tank's outflow), and the initial state ``y0``.  The grouping is read off each effect's
-class (see :mod:`.effects.base`), never by an effect's type name outside this module.
+tank's outflow), and the initial state ``y0``.  The grouping is read off the protocols each effect's
+class declares (:mod:`.effects.capabilities`), never by an effect's type name or by
+probing for attributes.
 :func:`check` validates the scene as a whole before a model is built (each field is
 checked by the parser).  What changes during a run lives in the stages that read the
 model: :mod:`.forward` (the loads' phase), :mod:`.collision`, :mod:`.modes`.
@@ -17,8 +18,10 @@ import numpy as np
 from mechanics import kinematics as kin
 
 from .effects import REGISTRY, Context, build_effects
-from .effects.base import Effect, gravity_vector
+from .effects.base import gravity_vector
+from .effects.capabilities import AddsInertia, ChangesMass, GuidesBody, HasModes, HasPotential
 from .effects.impact import Impact
+from .effects.tank_outflow import TankOutflow
 from .state import Guide, Layout, body_inertia
 
 __all__ = ["FREE_INITIAL", "JOINTS", "RATES", "Model", "check", "initial_attitude", "initial_omega"]
@@ -64,9 +67,9 @@ def _guides(scene, index) -> dict[int, Guide]:
     g = gravity_vector(scene)
     out = {}
     for spec in scene.effects:
-        make = REGISTRY[spec.type].make_guide
-        if make is not None:
-            out[index[spec.fields["body"]]] = make(spec, scene, g)
+        cls = REGISTRY[spec.type]
+        if issubclass(cls, GuidesBody):
+            out[index[spec.fields["body"]]] = cls.make_guide(spec, scene, g)
     return out
 
 
@@ -97,7 +100,9 @@ def check(scene) -> None:
                 f"a tank's only effect is its tank_outflow; a {spec.type!r} cannot act on it",
             )
     pinned = _pins(scene, index)
-    guided = {index[e.fields["body"]] for e in scene.effects if REGISTRY[e.type].make_guide}
+    guided = {
+        index[e.fields["body"]] for e in scene.effects if issubclass(REGISTRY[e.type], GuidesBody)
+    }
     drained = {e.fields["body"] for e in scene.effects_of("tank_outflow")}
     for i, b in enumerate(scene.bodies):
         where = f"bodies[{i}]"
@@ -157,15 +162,15 @@ class Model:
             (e for e in self.effects if not isinstance(e, Impact)), key=lambda e: e.after_loads
         )
         #: the effects with modes (stick and slip, a tank that empties)
-        self.switching = [e for e in self.forces if e.switch_function is not None]
+        self.switching = [e for e in self.forces if isinstance(e, HasModes)]
         #: the effects with a potential energy
-        self.potentials = [e for e in self.forces if e.potential is not None]
+        self.potentials = [e for e in self.forces if isinstance(e, HasPotential)]
         #: the effects that take mass from a body (thrust)
-        self.losing = [e for e in self.forces if type(e).mass_loss is not Effect.mass_loss]
+        self.losing = [e for e in self.forces if isinstance(e, ChangesMass)]
         #: the effects that add inertia to a guided body (mass flowing onto it)
-        self.growing = [e for e in self.forces if hasattr(e, "inertia_added")]
+        self.growing = [e for e in self.forces if isinstance(e, AddsInertia)]
         #: a tank's outflow: its state is the tank's
-        self.outflows = [e for e in self.effects if e.type == "tank_outflow"]
+        self.outflows = [e for e in self.effects if isinstance(e, TankOutflow)]
         #: the effect types listed (what an exact flow is chosen by)
         self.kinds = frozenset(e.type for e in self.effects)
         self.m0 = np.array([b.mass for b in scene.bodies], dtype=float)

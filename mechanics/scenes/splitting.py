@@ -36,6 +36,7 @@ import numpy as np
 
 from mechanics.errors import OutOfDomainError
 
+from .effects.capabilities import HasPotential
 from .trajectory import vectorized
 
 __all__ = ["ORDERS", "check", "run"]
@@ -68,7 +69,7 @@ def check(engine) -> None:
         why = "a fixed step cannot locate impacts or switches: use 'auto' or 'integrate'"
     else:
         for e in engine.forces:
-            if not e.keeps("E") or e.potential is None:
+            if not e.keeps("E") or not isinstance(e, HasPotential):
                 why = f"the {e.type!r} effect is not conservative (no potential energy)"
                 break
         for i in lay.rigid_bodies:

@@ -1128,6 +1128,11 @@ for _name in (
     "scenes.effects.base.gravity_vector",
     "scenes.effects.base.keeps_for_force_along",
     "scenes.effects.base.register",
+    "scenes.effects.capabilities.AddsInertia",
+    "scenes.effects.capabilities.ChangesMass",
+    "scenes.effects.capabilities.GuidesBody",
+    "scenes.effects.capabilities.HasModes",
+    "scenes.effects.capabilities.HasPotential",
     "scenes.effects.rolling.check_round_on_slope",
     "scenes.engine.Engine",
     # the engine's rooms: each takes the model compiled from a parsed, validated scene

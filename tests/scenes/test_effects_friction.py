@@ -13,6 +13,7 @@ import pytest
 
 from mechanics.scenes import SceneError
 from mechanics.scenes.effects import Loads
+from mechanics.scenes.effects.capabilities import GuidesBody
 from mechanics.scenes.engine import Engine
 from mechanics.scenes.trajectory import Event
 
@@ -159,7 +160,9 @@ def test_the_stick_force_is_what_keeps_the_slip_zero(Q_s, Q_th) -> None:
 
 def exact_of(eng, duration=2.0, effects=None):
     gd = eng.layout.guides[0]
-    others = [e for e in eng.effects if e.make_guide is None] if effects is None else effects
+    others = (
+        [e for e in eng.effects if not isinstance(e, GuidesBody)] if effects is None else effects
+    )
     o = eng.layout.offsets[0]
     q0, qd0 = eng.y0[o : o + 2].copy(), eng.y0[o + 2 : o + 4].copy()
     return gd.exact(others, M, q0, qd0, duration)

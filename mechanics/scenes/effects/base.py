@@ -9,17 +9,19 @@ Conventions
   lists; no code of an unlisted effect runs.
 - **What an effect may contribute** (each optional, the base class contributes
   nothing): :meth:`Effect.loads` adds forces (in the space basis O, at a point given in
-  body components about G, or at G) and moments to a :class:`Loads`; :meth:`potential`
-  gives its potential energy (``None`` if it has none); :meth:`mass_loss` the mass a
-  body has lost by time t; :meth:`keeps` says which of the total momentum p_x, p_y,
+  body components about G, or at G) and moments to a :class:`Loads`; a potential
+  energy, mass lost, inertia added, modes or a guide, each declared by a protocol of
+  :mod:`.capabilities` among the class's bases; :meth:`keeps` says which of the total
+  momentum p_x, p_y,
   p_z, the total angular momentum about the origin L_x, L_y, L_z and the total energy
   E it leaves unchanged (the engine reports as conserved exactly the quantities every
   listed effect keeps).  Contacts (the ``impact`` effect) add events instead.
 - **Joints** (a fixed point, a fixed axis, rolling, sliding on a plane) hold a body;
   a joint that guides its body gives the :class:`~mechanics.scenes.state.Guide` whose
-  coordinates are the body's state (``make_guide``).  Effects with **modes** (stick
-  and slip, a tank that empties) switch them at events the engine locates
-  (``switch_function``); an effect may report **series** and **conserved** quantities
+  coordinates are the body's state (:class:`~.capabilities.GuidesBody`).  Effects with
+  **modes** (stick and slip, a tank that empties) switch them at events the engine
+  locates (:class:`~.capabilities.HasModes`); an effect may report **series** and
+  **conserved** quantities
   of its own physics.
 """
 
@@ -212,18 +214,9 @@ class Effect:
         """Validate the combination of this effect with the scene (fields are checked
         one by one by the parser); raise ``scene.error(field, reason)``."""
 
-    #: a joint that guides its body (a fixed axis, rolling, sliding on a plane) defines a
-    #: classmethod ``make_guide(spec, scene, g_vector)`` returning its
-    #: :class:`~mechanics.scenes.state.Guide`; the body's state is then the guide's (q, q̇)
-    make_guide = None
     #: an effect that reads the other effects' loads (a friction that needs the normal
     #: force) sets this: the engine sums it after all the others
     after_loads: ClassVar[bool] = False
-    #: an effect with modes (stick and slip) defines ``begin(t, s, loads)``,
-    #: ``switch_function(t, s, loads) -> (g, size)`` (its next switch is where g falls
-    #: through zero; ``loads`` holds the loads of the effects summed before it) and
-    #: ``switch(t, s, loads) -> Event``; the engine locates the switches on each step
-    switch_function = None
 
     def series(self, s) -> dict:
         """Named series of this effect's own state (a tank's level), from snapshots."""
@@ -237,12 +230,6 @@ class Effect:
     # contributions (the engine calls them only on listed effects)
     def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         """Add this effect's forces and moments at time t."""
-
-    potential = None  # a method (Snapshot -> array (...)) where the effect has one
-
-    def mass_loss(self, t) -> np.ndarray | None:
-        """Mass lost by each body by time t, shape (n,), or None."""
-        return None
 
     def keeps(self, quantity: str) -> bool:
         """Does this effect leave ``quantity`` (one of :data:`CONSERVED`) unchanged?"""

@@ -25,12 +25,13 @@ import numpy as np
 
 from ..state import SPHERICAL_SHAPES
 from .base import Effect, Schema, gravity_vector, keeps_for_force_along, register
+from .capabilities import HasPotential
 
 __all__ = ["Buoyancy"]
 
 
 @register
-class Buoyancy(Effect):
+class Buoyancy(Effect, HasPotential):
     """The lift ρ g V_displaced on a sphere in a liquid below the level z = level."""
 
     type = "buoyancy"

@@ -40,6 +40,7 @@ import numpy as np
 from ..state import Guide, body_inertia, turned
 from ..trajectory import Event
 from .base import Effect, Schema, check_joint_body, register
+from .capabilities import GuidesBody, HasModes
 from .rolling import check_round_on_slope, slope_frame
 
 __all__ = ["CoulombFriction", "Slide"]
@@ -138,7 +139,7 @@ def _event(t, mode, speed) -> Event:
 
 
 @register
-class CoulombFriction(Effect):
+class CoulombFriction(Effect, HasModes, GuidesBody):
     """Coulomb friction μN at the contact of a round body with a plane of slope α: while
     the contact point slips, the friction opposes the slip; when the slip velocity
     reaches zero (an event) the body rolls if static friction suffices."""

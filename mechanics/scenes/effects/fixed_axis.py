@@ -19,10 +19,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, check_joint_body, register, unit
+from .capabilities import GuidesBody
 
 
 @register
-class FixedAxis(Effect):
+class FixedAxis(Effect, GuidesBody):
     """A fixed axis (a hinge) through the body: one degree of freedom φ (4.3)."""
 
     type = "fixed_axis"

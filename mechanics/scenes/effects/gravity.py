@@ -12,10 +12,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, keeps_for_force_along, register, unit
+from .capabilities import HasPotential
 
 
 @register
-class Gravity(Effect):
+class Gravity(Effect, HasPotential):
     """Uniform gravity g·d acting on every body."""
 
     type = "gravity"

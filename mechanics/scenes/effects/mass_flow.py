@@ -17,10 +17,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, check_on_fixed_axis, register
+from .capabilities import AddsInertia
 
 
 @register
-class MassFlow(Effect):
+class MassFlow(Effect, AddsInertia):
     """Mass flow q ≥ 0 *into* a body on a fixed axis (bullets of speed v along a line at
     signed distance r from the axis, stuck at radius R): Example 7.3, (7.36)–(7.39)."""
 

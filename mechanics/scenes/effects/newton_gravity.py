@@ -13,13 +13,14 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, register
+from .capabilities import HasPotential
 
 #: CODATA 2018, m³ kg⁻¹ s⁻²
 G_NEWTON = 6.67430e-11
 
 
 @register
-class NewtonGravity(Effect):
+class NewtonGravity(Effect, HasPotential):
     """Mutual attraction of the listed bodies (default: every body)."""
 
     type = "newton_gravity"

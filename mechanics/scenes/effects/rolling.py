@@ -35,6 +35,7 @@ import numpy as np
 
 from ..state import ROUND_SHAPES, Guide, body_inertia, pendulum_from_rest, turned
 from .base import Effect, Schema, check_joint_body, register
+from .capabilities import GuidesBody
 
 __all__ = ["Incline", "Rolling", "Track", "check_round_on_slope", "slope_frame"]
 
@@ -184,7 +185,7 @@ class Track(Guide):
 
 
 @register
-class Rolling(Effect):
+class Rolling(Effect, GuidesBody):
     """Rolling without slipping of a round body on an incline or inside a cylindrical
     track (3.77, 4.60): one degree of freedom; the contact force does no work."""
 

@@ -18,6 +18,7 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, register
+from .capabilities import HasPotential
 
 
 class _TwoPoint(Effect):
@@ -82,7 +83,7 @@ class _TwoPoint(Effect):
 
 
 @register
-class Spring(_TwoPoint):
+class Spring(_TwoPoint, HasPotential):
     """A linear spring (optionally with a dashpot of coefficient ``damping``)."""
 
     type = "spring"

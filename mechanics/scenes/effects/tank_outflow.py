@@ -25,12 +25,13 @@ import numpy as np
 
 from ..trajectory import Event
 from .base import Effect, Schema, gravity_vector, register
+from .capabilities import HasModes
 
 __all__ = ["TankOutflow"]
 
 
 @register
-class TankOutflow(Effect):
+class TankOutflow(Effect, HasModes):
     """Outflow through a small hole of area a in the bottom of a prismatic tank of area A:
     Torricelli's u = √(2gh/(1 − (a/A)²)) (8.37, quasi-steady) and A ḣ = −a u."""
 

@@ -13,10 +13,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, register, unit
+from .capabilities import ChangesMass
 
 
 @register
-class Thrust(Effect):
+class Thrust(Effect, ChangesMass):
     """Thrust q u along ``direction`` while the fuel lasts."""
 
     type = "thrust"

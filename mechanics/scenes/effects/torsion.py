@@ -8,10 +8,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, check_on_fixed_axis, register
+from .capabilities import HasPotential
 
 
 @register
-class Torsion(Effect):
+class Torsion(Effect, HasPotential):
     """A torsion spring on a fixed axis: moment −τ0 φ (3.1, the torsion pendulum)."""
 
     type = "torsion"
