@@ -167,10 +167,11 @@ class Forward:
             origin, base, wdot = s.r[k], dv[k], np.where(s.J[k] > 0, dL[k] / safe, 0.0)
         return origin, base, s.to_space(k, s.omega[k]), s.to_space(k, wdot)
 
-    def point_accelerations(self, t, y, s, points) -> dict[int, np.ndarray]:
+    def point_accelerations(self, t, y, s, points, sizes=None) -> dict[int, np.ndarray]:
         """Accelerations (space) of the body points ``{body: position}`` at (t, y):
         a_G + α × ρ + ω × (ω × ρ), ρ from G (from the pivot of a pinned body, whose
-        pivot does not move)."""
+        pivot does not move); with a dict ``sizes``, each one's terms' size
+        |a_G| + |α| |ρ| + |ω|² |ρ| (what its rounding is relative to) goes there."""
         dy = self.rhs(t, y)
         out = {}
         for k, S in points.items():
@@ -179,6 +180,9 @@ class Forward:
             origin, base, w, alpha = self.kinematics(s, dy, k)
             rho = S - origin
             out[k] = base + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
+            if sizes is not None:
+                arm = float(np.linalg.norm(rho))
+                sizes[k] = float(np.linalg.norm(base) + (np.linalg.norm(alpha) + w @ w) * arm)
         return out
 
     def rim_gap_acceleration(self, t, y, s, imp, ft) -> float | None:

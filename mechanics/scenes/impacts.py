@@ -1,12 +1,37 @@
 """Contact resolution: the impact law applied at a contact found by :mod:`.collision`
 (or in closed form), and what follows at that instant.
 
-- :meth:`Resolver.resolve` applies the Chapter 6 impulse
-  (:meth:`~mechanics.scenes.effects.impact.Impact.apply`) at the contact, then resolves
-  every *simultaneous* contact by sequential impulses: after each impulse every feature
-  touching within rounding and still closing is resolved in turn, the fastest approach
-  first, until none closes (at most :data:`MAX_SWEEPS` rounds; for a row of equal elastic
-  spheres this passes the momentum down the row).
+- :meth:`Resolver.resolve` resolves the contact found and every one that closes at the
+  same instant.  The model depends on the configuration, and each impact event says
+  which it used (``impact_model``):
+
+  * **one body's several contacts with one plane or body** (a box landing flat on its
+    face: four corners of one pair touching and closing together) are *simultaneous*:
+    one impact problem, Newton's law at every contact at once, solved as a linear
+    complementarity problem in the normal impulses P ≥ 0 (:meth:`Resolver.together`):
+    with the Delassus matrix W (W_kl = n_k·K(S_k, S_l) n_l, the change of contact k's
+    normal velocity per unit impulse at l) and the normal velocities u⁻ before,
+    u⁺ = u⁻ + W P, u⁺ + e u⁻ ≥ 0, P ≥ 0 and P·(u⁺ + e u⁻) = 0.  W is positive
+    semi-definite (several contacts of one rigid body are dependent: W is singular, the
+    impulses are not unique, the velocity after is), and u⁻ lies in its range, so with
+    W = AᵀA (its eigen-factor) the problem is the non-negative least-squares problem
+    min |A P + b|, Aᵀb = (1 + e) u⁻ (:func:`scipy.optimize.nnls`, an exact active-set
+    method).  One restitution e per pair, so this is Newton's law per contact.  With
+    friction, the smooth solution is accepted only where no contact slides before or
+    after (the zero tangential impulse then sticks, inside every cone); contacts that
+    slide together are refused with one line (not modelled yet);
+  * **contacts of different pairs** at one instant (a Newton's cradle: a chain of
+    distinct bodies) are *sequential*: after each impulse every feature touching within
+    rounding and still closing is resolved in turn, the fastest approach first, until
+    none closes (at most :data:`MAX_SWEEPS` rounds; for a row of equal elastic spheres
+    this passes the momentum down the row, the textbook answer);
+  * a lone contact is ``single``: the Chapter 6 impulse
+    (:meth:`~mechanics.scenes.effects.impact.Impact.apply`), with friction.
+
+  After each impulse the impact law is checked at every contact that took one: the
+  separation speed e times the approach speed (equal where an impulse acts, not less
+  where none does), its residual relative to the contact speeds' size in the event
+  (``law_residual``), which the run's self-checks hold to :data:`LAW_RTOL`.
 - A touch at zero approach speed (up to :data:`CLOSING_ROUNDING`) is no impact
   (:meth:`Resolver.touch`).
 - A pair pressed together whose rebound can no longer be followed (the impacts
@@ -22,13 +47,14 @@ import math
 import numpy as np
 
 from . import contacts
-from .effects.impact import EnergyGainError
+from .effects.impact import EnergyGainError, totals
 from .errors import SceneError
 from .trajectory import EPS, Event
 
 __all__ = [
     "CLOSING_ROUNDING",
     "GAP_ROUNDING",
+    "LAW_RTOL",
     "MAX_EVENTS",
     "MAX_SWEEPS",
     "ZENO_SPEED",
@@ -52,6 +78,14 @@ ZENO_SPEED = 1e-9
 MAX_EVENTS = 2000
 #: rounds of sequential impulses at one instant (a row of k touching bodies needs k)
 MAX_SWEEPS = 1000
+#: Newton's law at a contact after the instant (separation speed − e × approach speed),
+#: relative to the contact speeds' size: the velocities after are sums of a few impulses,
+#: each a product of a dozen rounded terms (the eigen-factor of W adds a few eps × its
+#: condition on the range, O(10) for the bodies here)
+LAW_RTOL = 2**8 * EPS
+#: an eigenvalue of the Delassus matrix W below this × its largest (× the number of
+#: contacts) is a dependency of the contacts (zero in exact arithmetic), not a stiffness
+RANK_RTOL = 2**6 * EPS
 
 
 class Resolver:
@@ -73,9 +107,23 @@ class Resolver:
 
         scene, fwd = self.model.scene, self.forward
         s = fwd.snapshot(t, y)
+        first = True
+        # zero is judged against the speeds the instant starts with (a plastic impact
+        # stops its contacts: the speeds after are rounding of that zero)
+        floor = imp.speed_scale(s, ft)
         for _ in range(MAX_SWEEPS):
+            group = self.closing_with(s, imp, ft, floor)
             try:
-                detail = imp.apply(s, ft)
+                if len(group) > 1:
+                    detail = self.together(s, imp, group)
+                else:
+                    detail = imp.apply(s, ft)
+                    detail["impact_model"] = "single" if first else "sequential"
+                    speed = detail["normal_speed_before"]
+                    law = abs(detail["normal_speed_after"] - imp.e * speed)
+                    detail["law_residual"] = law / max(imp.speed_scale(s, ft), speed, 1e-300)
+                    detail["law_worst_contact"] = ft.label
+                self._still_closing(s, imp, group, detail)
             except SeparatingContactError as exc:
                 raise scene.error(
                     imp.where,
@@ -92,30 +140,152 @@ class Resolver:
             y = fwd.pack(s)
             if self.stalls(imp, ft, t, y, detail):
                 raise zeno(scene, t, imp.label)
-            nxt = self.closing_now(s)
+            nxt = self.closing_now(s, floor)
             if nxt is None:
                 return y
             imp, ft = nxt
+            first = False
         raise scene.error(
             "effects", f"more than {MAX_SWEEPS} rounds of simultaneous impacts at t = {t:.6g} s"
         )
 
-    def closing_now(self, s):
-        """The touching feature that closes fastest (sequential impulses), or None."""
+    def touching(self, s, imp, ft) -> bool:
+        """Is the feature's gap zero within the rounding of a contact just resolved?"""
+        scale = np.abs(imp.feature_point(s, ft)).sum() + imp.point @ imp.point + ft.a
+        return abs(float(imp.gap(s, ft))) <= GAP_ROUNDING * 4 * max(scale, ft.a + ft.a_s)
+
+    def closing_now(self, s, floor=0.0):
+        """The touching feature that closes fastest (sequential impulses), or None; an
+        approach within rounding of the contact speeds (or of ``floor``, the speeds the
+        instant started with) is no closing."""
         best, speed = None, 0.0
         for imp in self.model.impacts:
             for ft in imp.features:
-                scale = np.abs(imp.feature_point(s, ft)).sum() + imp.point @ imp.point + ft.a
-                if abs(float(imp.gap(s, ft))) > GAP_ROUNDING * 4 * max(scale, ft.a + ft.a_s):
+                if not self.touching(s, imp, ft):
                     continue
                 v = imp.approach(s, ft)
-                if v > CLOSING_ROUNDING * imp.speed_scale(s, ft) and v > speed:
+                if v > CLOSING_ROUNDING * max(imp.speed_scale(s, ft), floor) and v > speed:
                     best, speed = (imp, ft), v
         return best
 
-    def pressed(self, imp, ft, t, y) -> float:
+    def closing_with(self, s, imp, ft, floor=0.0) -> list:
+        """The contact ``ft`` of ``imp`` and every other feature of the same pair touching
+        and closing with it at this instant (as :meth:`closing_now` judges closing): one
+        impact problem."""
+        return [ft] + [
+            f
+            for f in imp.features
+            if f is not ft
+            and self.touching(s, imp, f)
+            and imp.approach(s, f) > CLOSING_ROUNDING * max(imp.speed_scale(s, f), floor)
+        ]
+
+    def together(self, s, imp, feats) -> dict:
+        """Newton's law at the contacts ``feats`` of one pair at once (see the module's
+        docstring): the impulses applied to the snapshot in place; the event's details,
+        as :meth:`~mechanics.scenes.effects.impact.Impact.apply` gives for one."""
+        from scipy.optimize import nnls
+
+        e = imp.e
+        labels = [f.label for f in feats]
+        idx = imp.bodies()
+        sign = {imp.i: 1.0, imp.j: -1.0}
+        points = [imp.contact(s, f) for f in feats]
+        slide = max(imp.tangential_speed(s, f) for f in feats)
+        scale = max(imp.speed_scale(s, f) for f in feats)
+        if imp.mu_f > 0 and slide > CLOSING_ROUNDING * scale:
+            raise self._slides(imp, labels, s.t, slide)
+        before = totals(s, idx, points[0][0])
+        u0 = np.array([-imp.approach(s, f) for f in feats])  # < 0: approaching
+        m = len(feats)
+        W = np.empty((m, m))
+        for a, (Sa, na) in enumerate(points):
+            for b, (Sb, nb) in enumerate(points):
+                W[a, b] = na @ sum(imp.inverse_mass(s, k, Sa, Sb) for k in idx) @ nb
+        W = 0.5 * (W + W.T)  # symmetric in exact arithmetic
+        lam, V = np.linalg.eigh(W)
+        keep = lam > RANK_RTOL * m * lam.max()
+        root = np.sqrt(lam[keep])
+        A = root[:, None] * V[:, keep].T
+        b = (V[:, keep].T @ ((1.0 + e) * u0)) / root
+        P, _ = nnls(A, -b)
+        for (S, n), p in zip(points, P, strict=True):
+            for k in idx:
+                imp.kick(s, k, sign[k] * p * n, S)
+        after = totals(s, idx, points[0][0])
+        u1 = np.array([-imp.approach(s, f) for f in feats])  # > 0: separating
+        if imp.mu_f > 0:
+            slide = max(imp.tangential_speed(s, f) for f in feats)
+            if slide > CLOSING_ROUNDING * scale:
+                raise self._slides(imp, labels, s.t, slide)
+        # Newton's law at each contact, from the velocities after (not from W P)
+        law = np.where(P > 0, np.abs(u1 + e * u0), np.maximum(-(u1 + e * u0), 0.0))
+        worst = int(np.argmax(law))
+        u1_alg = u0 + W @ P  # the LCP's own normal velocities after: the loss's route
+        detail = {
+            "normal_speed_before": float(np.max(-u0)),
+            "normal_speed_after": float(np.min(u1)),
+        }
+        if imp.j is None:
+            detail["body"] = imp.fields["body"]
+        else:
+            detail["bodies"] = [imp.fields["body"], imp.fields["other"]]
+        detail["feature"] = f"{len(feats)} contacts at once: " + "; ".join(labels)
+        detail["features"] = labels
+        detail["impact_model"] = "simultaneous"
+        detail["contact_point"], detail["normal"] = points[0][0].tolist(), points[0][1].tolist()
+        detail["contact_points"] = [S.tolist() for S, _ in points]
+        detail["normals"] = [n.tolist() for _, n in points]
+        detail["impulses"] = P.tolist()
+        detail["normal_speeds_before"], detail["normal_speeds_after"] = (-u0).tolist(), u1.tolist()
+        gaps = [float(imp.gap(s, f)) for f in feats]
+        g = int(np.argmax(np.abs(gaps)))
+        detail["gap"], detail["gap_scale"] = gaps[g], imp.gap_scale(s, feats[g])
+        detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
+        detail["friction"] = "smooth" if imp.mu_f == 0 else "stick (no contact slides)"
+        detail["attitude_defect"] = max(
+            (float(np.abs(s.R[k] @ s.R[k].T - np.eye(3)).max()) for k in idx), default=0.0
+        )
+        if any(k in imp.pins or k in imp.guides for k in idx):
+            detail["external_impulse"] = "the pivot, bearings or track of a joint"
+        detail["energy_loss"] = -0.5 * float(P @ (u0 + u1_alg))
+        detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
+        detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
+        detail["momentum_scale"] = before[2]
+        detail["angular_momentum_before"], detail["angular_momentum_after"] = before[3], after[3]
+        detail["angular_momentum_scale"] = before[4]
+        detail["law_residual"] = float(law[worst]) / max(scale, float(np.max(-u0)), 1e-300)
+        detail["law_worst_contact"] = labels[worst]
+        return detail
+
+    def _still_closing(self, s, imp, group, detail) -> None:
+        """No other contact of the pair may still close after its impulses: a touching
+        feature approaching beyond rounding counts against the law (``law_residual``;
+        the contacts of one body were not resolved together)."""
+        for f in imp.features:
+            if any(f is g for g in group) or not self.touching(s, imp, f):
+                continue
+            scale = max(imp.speed_scale(s, f), detail["normal_speed_before"], 1e-300)
+            closing = imp.approach(s, f) / scale
+            if closing > detail["law_residual"]:
+                detail["law_residual"], detail["law_worst_contact"] = closing, f.label
+
+    def _slides(self, imp, labels, t, slide) -> SceneError:
+        return self.model.scene.error(
+            f"{imp.where}.friction",
+            f"{len(labels)} contacts of {imp.label} meet at once at t = {t:.6g} s while "
+            f"sliding ({slide:.3g} m/s across the normal): simultaneous impacts with "
+            "friction that slides are not modelled; set friction = 0, or tilt the body so "
+            "that its contacts come one at a time",
+        )
+
+    def pressed(self, imp, ft, t, y, speed=0.0) -> float:
         """How hard the loads push the pair together: the inward normal relative
-        acceleration of the contact points (> 0 pressed, ≤ 0 not)."""
+        acceleration of the contact points (> 0 pressed, ≤ 0 not; within
+        ``CLOSING_ROUNDING`` × the size of its terms, 0: the rounding of no push, as for
+        a spinning body whose contact points accelerate along the plane).  ``speed``: the
+        contact speeds just before (an impulse leaves ω rounded relative to them over
+        the arm, which a spin ω turns into an acceleration of that rounding × ω)."""
         fwd = self.forward
         s = fwd.snapshot(t, y)
         if ft.support is not None:  # the gap of a rim circle against the plane
@@ -123,15 +293,19 @@ class Resolver:
             if g2 is not None:
                 return -g2
         S, n = imp.contact(s, ft)
-        a = fwd.point_accelerations(t, y, s, {imp.i: S, imp.j: S})
-        return -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))
+        sizes: dict[int, float] = {}
+        a = fwd.point_accelerations(t, y, s, {imp.i: S, imp.j: S}, sizes)
+        push = -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))
+        spin = sum(float(np.linalg.norm(s.omega[k])) for k in imp.bodies())
+        size = sum(sizes.values()) + spin * speed
+        return push if abs(push) > CLOSING_ROUNDING * size else 0.0
 
     def stalls(self, imp, ft, t, y, detail) -> bool:
         """Do the impacts accumulate here?  Pressed together, the pair rebounds too slowly
         to be followed: slower than ``ZENO_SPEED`` (relative), or so slowly that its hop,
         v²/(2a), stays below the rounding of the gap (``GAP_ROUNDING`` × the positions'
         size), where no next contact can be told from this one."""
-        a = self.pressed(imp, ft, t, y)
+        a = self.pressed(imp, ft, t, y, abs(detail["normal_speed_before"]))
         if not a > 0:
             return False
         v = detail["normal_speed_after"]

@@ -36,6 +36,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .impacts import LAW_RTOL
 from .simulate import simulate
 from .spec import DEFAULT_TOL, Scene
 from .trajectory import EPS, Trajectory
@@ -471,6 +472,19 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
                 max(worst, 0.0),
                 IMPACT_RTOL,
                 "energy lost ≥ 0 at every impact (Newton's e with friction can gain: Kane)",
+            )
+        )
+    lawful = [d for d in impacts if "law_residual" in d]
+    if lawful:
+        worst = max(lawful, key=lambda d: d["law_residual"])
+        where = worst.get("law_worst_contact", worst.get("feature", ""))
+        out.append(
+            SelfCheck(
+                f"impact law at every contact ({_count(len(lawful), 'impact')}; worst: {where})",
+                worst["law_residual"],
+                LAW_RTOL,
+                "separation speed = e × approach speed where an impulse acts, not less "
+                "where none does (Newton's law per contact, 6.36)",
             )
         )
     pairs = [d for d in impacts if "bodies" in d and "external_impulse" not in d]

@@ -415,13 +415,22 @@ def test_a_missed_contact_fails_the_self_check(monkeypatch) -> None:
 @pytest.mark.parametrize(
     ("which", "broken"),
     [
-        ("both", {"impact energy loss"}),  # a 1 % stronger impulse: momentum still holds
-        ("one", {"impact energy loss", "momentum across two-body impacts"}),
+        # a 1 % stronger impulse: momentum still holds; the separation speed is not e v
+        ("both", {"impact energy loss", "impact law at every contact"}),
+        (
+            "one",
+            {
+                "impact energy loss",
+                "impact law at every contact",
+                "momentum across two-body impacts",
+            },
+        ),
     ],
 )
 def test_a_wrong_impact_law_fails_the_self_check(monkeypatch, which, broken) -> None:
     """Negative controls: the impulse 1 % too strong on both bodies breaks the energy
-    loss; 1 % too strong on one body breaks the momentum too."""
+    loss and Newton's law at the contact; 1 % too strong on one body breaks the momentum
+    too."""
     from mechanics.scenes import effects as fx
 
     real = fx.Impact._apply

@@ -275,6 +275,30 @@ class Impact(Effect):
             tot += float(np.linalg.norm(s.v[k]) + np.linalg.norm(np.cross(w_O, S - s.r[k])))
         return tot
 
+    def gap_scale(self, s, ft: Feature) -> float:
+        """The size the feature's gap is rounded relative to at one time: its point, its
+        body's centre and arm (a corner's or a rim's position is G plus an arm: it rounds
+        relative to both), the plane's point and the radii."""
+        arm = (
+            sum(abs(x) for x in ft.support)
+            if ft.support is not None
+            else (float(np.abs(ft.at).sum()) if ft.at is not None else 0.0)
+        )
+        return float(
+            np.abs(self.feature_point(s, ft)).sum()
+            + np.abs(s.r[ft.body]).sum()
+            + arm
+            + np.abs(self.point).sum()
+            + ft.a
+            + ft.a_s
+        )
+
+    def tangential_speed(self, s, ft: Feature) -> float:
+        """|the relative velocity of the contact points across the normal| (sliding)."""
+        S, n = self.contact(s, ft)
+        u = self._relative_velocity(s, S)
+        return float(np.linalg.norm(u - (u @ n) * n))
+
     # ------------------------------------------------------------------ impulse
     def apply(self, s, ft: Feature) -> dict:
         """Resolve the impact at this feature: new v and L_A written into the snapshot's
@@ -285,7 +309,7 @@ class Impact(Effect):
 
         S, n = self.contact(s, ft)
         idx = self.bodies()
-        before = _totals(s, idx, S)
+        before = totals(s, idx, S)
         v_n = -self.approach(s, ft)
         if not v_n < 0:
             raise SeparatingContactError(f"the contact separates (v_n = {v_n!r} ≥ 0)")
@@ -299,7 +323,7 @@ class Impact(Effect):
                 f"would add {-self._loss:.3g} J of kinetic energy (Newton's restitution with "
                 "friction, Kane's paradox); lower the friction or e"
             )
-        after = _totals(s, idx, S)
+        after = totals(s, idx, S)
         detail = {"normal_speed_before": -v_n, "normal_speed_after": self.approach(s, ft) * -1}
         if self.j is None:
             detail["body"] = self.fields["body"]
@@ -309,20 +333,7 @@ class Impact(Effect):
         detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
         # the gap at the instant of the impact, and the size it is rounded relative to
         detail["gap"] = float(self.gap(s, ft))
-        # (a corner's or a rim's position is G plus an arm: it rounds relative to both)
-        arm = (
-            sum(abs(x) for x in ft.support)
-            if ft.support is not None
-            else (float(np.abs(ft.at).sum()) if ft.at is not None else 0.0)
-        )
-        detail["gap_scale"] = float(
-            np.abs(self.feature_point(s, ft)).sum()
-            + np.abs(s.r[ft.body]).sum()
-            + arm
-            + np.abs(self.point).sum()
-            + ft.a
-            + ft.a_s
-        )
+        detail["gap_scale"] = self.gap_scale(s, ft)
         detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
         detail["friction"] = self._mode
         # the impulse and the energies use the attitudes: an integrated R_A_O is
@@ -361,32 +372,35 @@ class Impact(Effect):
             s.v[i] += (float(v2f) - v2) * n
             mu = m_i * m_j / (m_i + m_j)
         else:
-            K = sum(self._inverse_mass(s, k, S) for k in moving)
+            K = sum(self.inverse_mass(s, k, S) for k in moving)
             mu = 1.0 / float(n @ K @ n)
             P = -(1.0 + e) * mu * v_n * n
             for k in moving:
-                self._kick(s, k, sign[k] * P, S)
+                self.kick(s, k, sign[k] * P, S)
         self._loss = 0.5 * mu * (1.0 - e) * (1.0 + e) * v_n * v_n
 
-    def _inverse_mass(self, s, k, S) -> np.ndarray:
-        """Body k's part of the contact's inverse mass matrix (space components):
-        1/m − [ρ]× J⁻¹ [ρ]× with ρ from G; for a pinned body ρ from the pivot, with its
-        inertia about the pivot and no 1/m (the pivot takes the translation)."""
+    def inverse_mass(self, s, k, S, S2=None) -> np.ndarray:
+        """Body k's part of the contact's inverse mass matrix (space components): the
+        change of the velocity of the point S per unit impulse at the point S2 (default
+        S), 1/m − [ρ]× J⁻¹ [ρ₂]× with ρ, ρ₂ from G; for a pinned body from the pivot,
+        with its inertia about the pivot and no 1/m (the pivot takes the translation)."""
+        S2 = S if S2 is None else S2
         gd = self.guides.get(k)
-        if gd is not None:  # only along the guide: Δv_S = Σ u_k (u_k·P)/M_k
-            u = gd.point_rate(s.coords[k][0], S)
-            return (u.T / s.inertia.get(k, gd.M)) @ u
+        if gd is not None:  # only along the guide: Δv_S = Σ u_k(S) (u_k(S2)·P)/M_k
+            q = s.coords[k][0]
+            u, u2 = gd.point_rate(q, S), gd.point_rate(q, S2)
+            return (u.T / s.inertia.get(k, gd.M)) @ u2
         pin = self.pins.get(k)
         if pin is None:
             origin, inv_m = s.r[k], 1.0 / s.m[k]
             Jinv = np.diag(np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0))
         else:
             origin, inv_m, Jinv = pin[0], 0.0, pin[3]
-        rho = S - origin
-        X = np.array([[0.0, -rho[2], rho[1]], [rho[2], 0.0, -rho[0]], [-rho[1], rho[0], 0.0]])
-        return inv_m * np.eye(3) - X @ (s.R[k].T @ Jinv @ s.R[k]) @ X
+        return inv_m * np.eye(3) - _cross(S - origin) @ (s.R[k].T @ Jinv @ s.R[k]) @ _cross(
+            S2 - origin
+        )
 
-    def _kick(self, s, k, P, S) -> None:
+    def kick(self, s, k, P, S) -> None:
         """Apply the impulse P (space components) at the point S to body k, in place."""
         gd = self.guides.get(k)
         if gd is not None:  # M_k Δq̇_k = u_k·P (a hinge: J_a Δφ̇ = a·((S − C) × P))
@@ -414,7 +428,7 @@ class Impact(Effect):
         """Stick or slip (see the Conventions); sets ``self._loss`` and ``self._mode``."""
         e, mu, moving = self.e, self.mu_f, self.bodies()
         sign = {self.i: 1.0, self.j: -1.0}
-        K = sum(self._inverse_mass(s, k, S) for k in moving)
+        K = sum(self.inverse_mass(s, k, S) for k in moving)
         u = self._relative_velocity(s, S)
         P = np.linalg.solve(K, -e * v_n * n - u)  # stick
         P_n = float(P @ n)
@@ -428,7 +442,7 @@ class Impact(Effect):
             P = (-(1.0 + e) * v_n / float(n @ K @ d)) * d
             self._mode = "slip"
         for k in moving:
-            self._kick(s, k, sign[k] * P, S)
+            self.kick(s, k, sign[k] * P, S)
         self._loss = -float(P @ u + 0.5 * P @ K @ P)
 
     # ---------------------------------------------------------------- invariants
@@ -451,6 +465,11 @@ class Impact(Effect):
         )
 
 
+def _cross(rho) -> np.ndarray:
+    """[ρ]×: the matrix of x ↦ ρ × x."""
+    return np.array([[0.0, -rho[2], rho[1]], [rho[2], 0.0, -rho[0]], [-rho[1], rho[0], 0.0]])
+
+
 def _direction(x) -> np.ndarray | None:
     """x/|x|, formed on x scaled by its largest component (|x| of a subnormal vector
     underflows to 0); None for the zero vector."""
@@ -461,7 +480,7 @@ def _direction(x) -> np.ndarray | None:
     return y / np.linalg.norm(y)
 
 
-def _totals(s, idx, S):
+def totals(s, idx, S):
     """Kinetic energy ½ m v² + ½ L_A·ω_A, momentum Σ m v, Σ m|v|, the angular momentum
     about the point S, Σ (ρ × m v) + Rᵀ L_A, the size of its terms, and each body's
     mass, centre, inertia tensor about G in space components (Rᵀ J R), v and ω (space)."""
