@@ -87,7 +87,7 @@ def plot_result(result, path) -> Path:
     ax.legend(fontsize=8)
 
     ax = axes[1]
-    scales = tr.extra.get("scales", {})
+    scales = tr.scales
     for c in result.conserved:
         v = np.asarray(tr.conserved[c.name], dtype=float)
         scale = max(float(np.max(np.abs(v))), scales.get(c.name, 0.0), 1e-300)

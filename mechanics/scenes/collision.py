@@ -91,22 +91,21 @@ class Collision:
         self.reach: dict[tuple[int, int], float] = {}
 
     # ------------------------------------------------------- the features' paths
+    def fit_snapshots(self, fit: StepFit, f):
+        """Chebyshev coefficients along the step of ``f`` of the snapshots at the
+        step's nodes (its ends included)."""
+        return contacts.chebyshev_fit(
+            lambda tt: f(self.forward.snapshot(tt, np.asarray(fit.dense(tt)).T)),
+            fit.t_a,
+            fit.t_b,
+            ends=True,
+        )
+
     def frame_coef(self, fit: StepFit, k):
         """Chebyshev coefficients of body k's centre (K, 3) and R_A_O (K, 3, 3) along
-        the step (a guided body's fitted at the step's nodes)."""
-        lay = self.model.layout
-        kind, o = lay.kinds[k], lay.offsets[k]
-        if kind == "rigid":
-            return fit.coef[:, o : o + 3], fit.coef[:, o + 9 : o + 18].reshape(-1, 3, 3)
-        if kind == "pinned":
-            return self.point_coef(fit, k, None), fit.coef[:, o + 3 : o + 12].reshape(-1, 3, 3)
-
-        def frame(tt):
-            ss = self.forward.snapshot(tt, np.asarray(fit.dense(tt)).T)
-            return np.concatenate([ss.r[:, k], ss.R[:, k].reshape(-1, 9)], axis=-1)
-
-        c = contacts.chebyshev_fit(frame, fit.t_a, fit.t_b, ends=True)
-        return c[:, :3], c[:, 3:].reshape(-1, 3, 3)
+        the step (:meth:`.bodies.Body.frame_coef`: a guided body's fitted at the step's
+        nodes)."""
+        return self.model.layout.bodies[k].frame_coef(self, fit)
 
     def rim_poly(self, fit: StepFit, imp, ft):
         """w² − a² (d₁² + d₂²) along the step, with the sign of the rim circle's gap
@@ -122,36 +121,11 @@ class Collision:
         return C.chebsub(C.chebmul(w, w), a * a * rho2), w, r
 
     def point_coef(self, fit: StepFit, k, at):
-        """Chebyshev coefficients (k, 3) of the body point ``at`` (body components about
-        G; None: G) along the step: r + R_A_Oᵀ at, linear in the state; for a pinned body
-        C + R_A_Oᵀ (g_A + at); a guided body's points (a hinge's are trigonometric in φ)
-        are fitted at the step's Chebyshev nodes (for a turn of 0.3 rad per step the fit's error is
-        ~(0.15)⁹/9! ≈ 1e-13 of the arm; the crossing is refined on the exact gap)."""
-        lay = self.model.layout
-        kind, o = lay.kinds[k], lay.offsets[k]
-        if kind == "guided":
-
-            def pos(tt):
-                ss = self.forward.snapshot(tt, np.asarray(fit.dense(tt)).T)
-                return ss.point(k, at)
-
-            return contacts.chebyshev_fit(pos, fit.t_a, fit.t_b, ends=True)
-        coef_y = fit.coef
-        if kind == "fixed":
-            c = np.zeros((coef_y.shape[0], 3))
-            c[0] = lay.r_fixed[k] + (at if at is not None else 0.0)
-            return c
-        if kind == "pinned":
-            pivot, g, _, _ = lay.pins[k]
-            R = coef_y[:, o + 3 : o + 12].reshape(-1, 3, 3)
-            c = np.einsum("kic,i->kc", R, g + (at if at is not None else 0.0))
-            c[0] += pivot
-            return c
-        c = coef_y[:, o : o + 3].copy()
-        if at is not None:
-            R = coef_y[:, o + 9 : o + 18].reshape(-1, 3, 3)
-            c += np.einsum("kic,i->kc", R, at)
-        return c
+        """Chebyshev coefficients (K, 3) of the body point ``at`` (body components about
+        G; None: G) along the step (:meth:`.bodies.Body.point_coef`): r + R_A_Oᵀ at,
+        linear in the state; for a pinned body C + R_A_Oᵀ (g_A + at); a guided body's
+        points fitted at the step's Chebyshev nodes."""
+        return self.model.layout.bodies[k].point_coef(self, fit, at)
 
     def _polys(self, fit: StepFit, imp, ft):
         """The feature's gap polynomials along the step, each (p, units, terms), with its

@@ -153,5 +153,5 @@ class Engine:
         traj = self._finish(t, segs, [], how)
         half, _ = splitting.run(self, s.order, 0.5 * h)
         E = self._finish(t, half, [], how).series["E"]
-        traj.extra["splitting"] = {"order": s.order, "step": h, "E_drift_half": float(np.ptp(E))}
+        traj.splitting = {"order": s.order, "step": h, "E_drift_half": float(np.ptp(E))}
         return traj

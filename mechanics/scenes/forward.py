@@ -147,25 +147,9 @@ class Forward:
     def kinematics(self, s, dy, k):
         """(origin, its acceleration, ω, α), space components, of body k at the snapshot
         s whose state rates are dy: the origin is G (a pinned body's pivot, which does
-        not move); a point has no ω, α."""
-        lay = self.layout
-        _, dv, dL, _ = lay.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
-        kind, zero = lay.kinds[k], np.zeros(3)
-        if kind == "point":
-            return s.r[k], dv[k], zero, zero
-        if kind == "guided":  # a_G = Σ E_k q̈_k + the bend; ω = Σ W_k q̇_k, α = Σ W_k q̈_k
-            gd, o = lay.guides[k], lay.offsets[k]
-            q, qd = s.coords[k]
-            qdd = dy[o + gd.nq : o + 2 * gd.nq]
-            _, E, _ = gd.place(q)
-            return s.r[k], qdd @ E + gd.bend(q, qd), qd @ gd.W, qdd @ gd.W
-        if kind == "pinned":
-            pivot, _, _, JCinv = lay.pins[k]
-            origin, base, wdot = pivot, zero, JCinv @ dL[k]
-        else:
-            safe = np.where(s.J[k] > 0, s.J[k], 1.0)
-            origin, base, wdot = s.r[k], dv[k], np.where(s.J[k] > 0, dL[k] / safe, 0.0)
-        return origin, base, s.to_space(k, s.omega[k]), s.to_space(k, wdot)
+        not move); a point has no ω, α (:meth:`.bodies.Body.kinematics`)."""
+        _, dv, dL, _ = self.layout.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
+        return self.layout.bodies[k].kinematics(s, dy, dv[k], dL[k])
 
     def point_accelerations(self, t, y, s, points, sizes=None) -> dict[int, np.ndarray]:
         """Accelerations (space) of the body points ``{body: position}`` at (t, y):
@@ -175,7 +159,7 @@ class Forward:
         dy = self.rhs(t, y)
         out = {}
         for k, S in points.items():
-            if k is None or self.layout.kinds[k] == "fixed":
+            if k is None or not self.layout.bodies[k].moves:  # a fixed body
                 continue
             origin, base, w, alpha = self.kinematics(s, dy, k)
             rho = S - origin

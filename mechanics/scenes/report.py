@@ -168,24 +168,24 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         for what, size in sizes.items():
             for c in "xyz":
                 scales[f"{pre(i)}{what}_{c}"] = size
-    traj = Trajectory(t, series, events, how, state_at, conserved, since, {}, frozenset(across))
-    traj.extra["scales"] = scales
+    traj = Trajectory(t, series, events, how, state_at, conserved, since, frozenset(across))
+    traj.scales = scales
     #: every body's r, v, R_A_O, ω_A and m at the sample times (mechanics.conformance)
-    traj.extra["snapshot"] = s
-    traj.extra["gaps"] = {
+    traj.snapshot = s
+    traj.gaps = {
         imp.label: np.min([imp.gap(s, ft) for ft in imp.features], axis=0) for imp in model.impacts
     }
     radii = [ft.a + ft.a_s for imp in model.impacts for ft in imp.features]
     verts = [
         np.abs(body_vertices(b)).max() for b in model.scene.bodies if body_vertices(b) is not None
     ]
-    traj.extra["length_scale"] = float(
+    traj.length_scale = float(
         np.max(np.abs(r), initial=0.0) + max(radii, default=0.0) + max(verts, default=0.0)
     )
     if model.rigid:
         Rr = s.R[:, list(model.rigid)]
         dev = np.einsum("...ij,...kj->...ik", Rr, Rr) - np.eye(3)
-        traj.extra["orthogonality"] = float(np.max(np.abs(dev)))
+        traj.orthogonality = float(np.max(np.abs(dev)))
     return traj
 
 

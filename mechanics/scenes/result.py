@@ -208,8 +208,7 @@ class SceneResult:
             "comparisons": [c.as_dict() for c in self.comparisons],
             "self_checks": [c.as_dict() for c in self.self_checks],
             "derived": [
-                {"name": n, "exact": x, "measured": m}
-                for n, x, m in self.trajectory.extra.get("derived", [])
+                {"name": n, "exact": x, "measured": m} for n, x, m in self.trajectory.derived
             ],
             "samples": {
                 "t": tr.t.tolist(),
@@ -253,7 +252,7 @@ class SceneResult:
                     f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<48} {c.violation:.2e} ≤ "
                     f"{c.tolerance:.1e}  [{c.reason}]"
                 )
-        derived = self.trajectory.extra.get("derived", [])
+        derived = self.trajectory.derived
         if derived:
             lines.append("derived (exact | measured from the motion):")
             for n, x, m in derived:
@@ -304,7 +303,7 @@ def _first_non_finite(tr: Trajectory) -> tuple[str, float] | None:
             arr = np.asarray(v) if isinstance(v, float | int | list | tuple | np.ndarray) else None
             if arr is not None and arr.dtype.kind in "fi" and not np.all(np.isfinite(arr)):
                 return f"the {e.kind} event's {k}", float(e.t)
-    for n, x, m in tr.extra.get("derived", []):
+    for n, x, m in tr.derived:
         for v in (x, m):
             if isinstance(v, float) and not math.isfinite(v):
                 return f"the derived {n}", float("nan")
@@ -361,8 +360,8 @@ def run_scene(scene: Scene, compare=None) -> SceneResult:
 def _report(scene: Scene, tr: Trajectory, compare) -> SceneResult:
     tol = conserved_tolerance(scene, tr)
     conserved = []
-    scales = tr.extra.get("scales", {})
-    split = tr.extra.get("splitting")
+    scales = tr.scales
+    split = tr.splitting
     for name, vals in tr.conserved.items():
         since = tr.conserved_from.get(name, 0.0)
         allowed = tol
@@ -400,11 +399,11 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
     """What the run can verify on its own output (see the module Conventions); ``tol``
     is the conserved quantities' tolerance (an integrated attitude drifts like them)."""
     out = []
-    split = tr.extra.get("splitting")
+    split = tr.splitting
     if split is not None and "E" in tr.series:
         p, E = split["order"], np.asarray(tr.series["E"])
         drift = float(np.ptp(E))
-        size = max(tr.extra.get("scales", {}).get("E", 0.0), float(np.max(np.abs(E))), 1e-300)
+        size = max(tr.scales.get("E", 0.0), float(np.max(np.abs(E))), 1e-300)
         # beyond rounding, the drift at h/2 must be 2⁻ᵖ of that at h (3/2 to spare)
         ratio = 2.0**p * split["E_drift_half"] / drift if drift > tol * size else 0.0
         out.append(
@@ -415,18 +414,18 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
                 "2ᵖ × drift of E at h/2 over its drift at h (a wrong kick does not shrink)",
             )
         )
-    if "orthogonality" in tr.extra:
+    if tr.orthogonality is not None:
         exact = not tr.method.startswith("integrated")
         out.append(
             SelfCheck(
                 "attitudes orthogonal",
-                tr.extra["orthogonality"],
+                tr.orthogonality,
                 ORTHOGONALITY_RTOL if exact else tol,
                 "max |R Rᵀ − I|",
             )
         )
-    scale = tr.extra.get("length_scale", 0.0)
-    for pair, gaps in tr.extra.get("gaps", {}).items():
+    scale = tr.length_scale
+    for pair, gaps in tr.gaps.items():
         depth = max(0.0, -float(np.min(gaps, initial=0.0)))
         out.append(
             SelfCheck(

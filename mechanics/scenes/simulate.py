@@ -31,13 +31,13 @@ def validate(scene) -> None:
 
 def simulate(scene) -> Trajectory:
     """Run the scene with exactly the listed effects; the derived quantities its bodies
-    and effects define go into ``extra["derived"]`` (:mod:`.derived`)."""
+    and effects define go into ``derived`` (:mod:`.derived`)."""
     budget.check_memory(scene)
     with np.errstate(all="ignore"):
         try:
             eng = engine.Engine(scene)
             tr = eng.run()
-            tr.extra["derived"] = derived_quantities(eng, tr)
+            tr.derived = derived_quantities(eng, tr)
         except (ArithmeticError, NonFiniteError, ResultOverflowError) as exc:
             raise scene.error(
                 "(run)",

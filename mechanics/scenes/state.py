@@ -18,7 +18,8 @@ Conventions
   gathers the per-body arrays from a state of any leading shape ``(..., size)`` in one
   indexing (no Python loop over bodies), so the same code serves one right-hand-side
   evaluation and thousands of samples.
-- **Equations of motion** (:meth:`Layout.derivative`): ṙ = v, v̇ = F/m (forces in O),
+- **Equations of motion** (:meth:`Layout.derivative`, each body's by its kind's class
+  in :mod:`.bodies`): ṙ = v, v̇ = F/m (forces in O),
   L̇_A = L_A × ω_A + M_A (Euler's equations (4.47) with the moment M_A about G in body
   components), Ṙ_A_O = −[ω_A]× R_A_O (the book's (2.52), Ω = −[ω]×).  ω_A = L_A / J
   componentwise in the principal frame; a zero principal moment (a thin rod about its
@@ -49,12 +50,6 @@ __all__ = [
 
 ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere", "hollow_sphere")
 SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
-
-POINT_SIZE = 6
-RIGID_SIZE = 18
-PINNED_SIZE = 12
-#: a tank's state: √h (its water level's square root) and the volume run out
-TANK_SIZE = 2
 
 
 def turned(a, u0, k, theta):
@@ -301,10 +296,12 @@ def body_vertices(body) -> np.ndarray | None:
 class Layout:
     """Where each body's quantities sit in the flat state; gathers and scatters them.
 
-    ``kinds[i]`` is ``"point"``, ``"rigid"``, ``"pinned"``, ``"guided"`` or ``"fixed"``;
-    ``J`` the principal moments about G (n, 3) at the initial masses; ``r_fixed`` the
-    positions of the fixed bodies; ``pins[i]`` = (C, g_A, J_C, J_C⁻¹) of a pinned body;
-    ``guides[i]`` the :class:`Guide` of a guided one.
+    ``bodies[i]`` is body i's object (:mod:`.bodies`: its kind's slice, rate and
+    kinematics) and ``kinds[i]`` its kind's name, ``"point"``, ``"rigid"``, ``"pinned"``,
+    ``"guided"``, ``"tank"`` or ``"fixed"``; ``J`` the principal moments about G (n, 3)
+    at the initial masses; ``r_fixed`` the positions of the fixed bodies; ``pins[i]`` =
+    (C, g_A, J_C, J_C⁻¹) of a pinned body; ``guides[i]`` the :class:`Guide` of a guided
+    one.
     """
 
     kinds: tuple[str, ...]
@@ -314,43 +311,49 @@ class Layout:
     offsets: tuple[int, ...]
     pins: dict = field(default_factory=dict)
     guides: dict = field(default_factory=dict)
+    bodies: tuple = ()
 
     @classmethod
     def of(cls, bodies, pins=None, guides=None) -> Layout:
         """The layout of ``bodies``; ``pins`` maps a body's index to (C, g_A): the space
         point it is pinned at and the vector from that point to G in body components;
         ``guides`` to the :class:`Guide` its joint makes of it (a fixed axis, rolling)."""
+        from .bodies import Fixed, Guided, Pinned, Point, Rigid, Tank
+
         pins, guides = pins or {}, guides or {}
-        kinds, offsets, size = [], [], 0
+        objs, size = [], 0
         J = np.zeros((len(bodies), 3))
         r_fixed = np.zeros((len(bodies), 3))
-        pin_data = {}
         for i, b in enumerate(bodies):
             if b.fixed:
-                kind = "fixed"
                 r_fixed[i] = b.initial.get("position", [0.0, 0.0, 0.0])
+                obj = Fixed(i, size, r_fixed[i])
             elif b.shape == "tank":
-                kind = "tank"
+                obj = Tank(i, size)
             elif b.shape == "point":
-                kind = "point"
+                obj = Point(i, size)
             else:
-                kind = "pinned" if i in pins else "guided" if i in guides else "rigid"
                 J[i] = body_inertia(b)
-            if kind == "pinned":
-                C, g = (np.asarray(x, dtype=float) for x in pins[i])
-                JC = np.diag(J[i]) + b.mass * ((g @ g) * np.eye(3) - np.outer(g, g))
-                pin_data[i] = (C, g, JC, np.linalg.inv(JC))
-            kinds.append(kind)
-            offsets.append(size)
-            size += {
-                "fixed": 0,
-                "point": POINT_SIZE,
-                "rigid": RIGID_SIZE,
-                "pinned": PINNED_SIZE,
-                "guided": 2 * guides[i].nq if kind == "guided" else 0,
-                "tank": TANK_SIZE,
-            }[kind]
-        return cls(tuple(kinds), J, r_fixed, size, tuple(offsets), pin_data, dict(guides))
+                if i in pins:
+                    C, g = (np.asarray(x, dtype=float) for x in pins[i])
+                    JC = np.diag(J[i]) + b.mass * ((g @ g) * np.eye(3) - np.outer(g, g))
+                    obj = Pinned(i, size, C, g, JC)
+                elif i in guides:
+                    obj = Guided(i, size, guides[i])
+                else:
+                    obj = Rigid(i, size)
+            objs.append(obj)
+            size += obj.size()
+        return cls(
+            tuple(o.kind for o in objs),
+            J,
+            r_fixed,
+            size,
+            tuple(o.o for o in objs),
+            {o.i: o.pin() for o in objs if isinstance(o, Pinned)},
+            dict(guides),
+            tuple(objs),
+        )
 
     def n(self) -> int:
         return len(self.kinds)
@@ -370,21 +373,8 @@ class Layout:
         iv = np.full((n, 3), zero)
         iL = np.full((n, 3), zero)
         iR = np.tile(np.where(np.eye(3, dtype=bool), one, zero), (n, 1, 1))
-        for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
-            if kind == "fixed":
-                ir[i] = fixed_at[i] + np.arange(3)
-                continue
-            if kind == "pinned":  # r, v derived (zeros here); L_C and R stored
-                iL[i] = o + np.arange(3)
-                iR[i] = (o + 3 + np.arange(9)).reshape(3, 3)
-                continue
-            if kind in ("guided", "tank"):  # derived from (q, q̇) by the engine; a tank rests
-                continue
-            ir[i] = o + np.arange(3)
-            iv[i] = o + 3 + np.arange(3)
-            if kind == "rigid":
-                iL[i] = o + 6 + np.arange(3)
-                iR[i] = (o + 9 + np.arange(9)).reshape(3, 3)
+        for b in self.bodies:  # a guided body's r, v, ... are derived by the engine
+            b.slots(ir, iv, iL, iR, fixed_at)
         consts = np.concatenate([[0.0, 1.0], self.r_fixed[list(self.fixed_bodies)].ravel()])
         idx = (ir, iv, iL, iR, consts)
         object.__setattr__(self, "_idx", idx)
@@ -397,13 +387,13 @@ class Layout:
 
     def rigid_bodies(self) -> tuple[int, ...]:
         """The bodies that turn: free rigid bodies, pinned and guided ones."""
-        return tuple(i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned", "guided"))
+        return tuple(b.i for b in self.bodies if b.turns)
 
     rigid_bodies = property(rigid_bodies)
 
     def moving_bodies(self) -> tuple[int, ...]:
         """The bodies that move (not fixed ones, nor tanks, whose water level is all)."""
-        return tuple(i for i, k in enumerate(self.kinds) if k not in ("fixed", "tank"))
+        return tuple(b.i for b in self.bodies if b.moves)
 
     moving_bodies = property(moving_bodies)
 
@@ -431,7 +421,7 @@ class Layout:
         y = np.empty((*lead, self.size))
         mov = [i for i, k in enumerate(self.kinds) if k in ("point", "rigid")]
         rig = [i for i, k in enumerate(self.kinds) if k in ("rigid", "pinned")]
-        # (for a pinned body the caller gives L_C as L_A; a guided one: Engine.pack)
+        # (for a pinned body the caller gives L_C as L_A; a guided one: Forward.pack)
         y[..., ir[mov].ravel()] = r[..., mov, :].reshape(*lead, -1)
         y[..., iv[mov].ravel()] = np.asarray(v, dtype=float)[..., mov, :].reshape(*lead, -1)
         if rig:
@@ -448,49 +438,9 @@ class Layout:
     def derivative(self, s, F, M_A, rates=None) -> np.ndarray:
         """dy/dt for one snapshot ``s`` (its v, L_A, R_A_O, ω_A, masses), forces F (n, 3)
         in O at G and moments M_A (n, 3) about G in body components (see the
-        Conventions); a tank's state changes at ``rates[i]``."""
+        Conventions), each body's slice by its kind (:mod:`.bodies`); a tank's state
+        changes at ``rates[i]``."""
         out = np.empty(self.size)
-        v, L, R, w, m = s.v, s.L_A, s.R, s.omega, s.m
-        for i, (kind, o) in enumerate(zip(self.kinds, self.offsets, strict=True)):
-            if kind == "fixed":
-                continue
-            if kind == "tank":
-                out[o : o + TANK_SIZE] = rates[i]
-                continue
-            if kind == "pinned":
-                out[o : o + 12] = self.pinned_rate(i, s, F[i], M_A[i])
-                continue
-            if kind == "guided":
-                gd = self.guides[i]
-                q, qd = s.coords[i]
-                out[o : o + gd.nq] = qd
-                out[o + gd.nq : o + 2 * gd.nq] = gd.rate(q, F[i], R[i].T @ M_A[i], s.inertia.get(i))
-                continue
-            out[o : o + 3] = v[i]
-            out[o + 3 : o + 6] = F[i] / m[i]
-            if kind == "rigid":
-                wi, Li = w[i], L[i]
-                # L̇_A = L_A × ω_A + M_A, written out (np.cross costs more than the sums)
-                out[o + 6] = Li[1] * wi[2] - Li[2] * wi[1] + M_A[i, 0]
-                out[o + 7] = Li[2] * wi[0] - Li[0] * wi[2] + M_A[i, 1]
-                out[o + 8] = Li[0] * wi[1] - Li[1] * wi[0] + M_A[i, 2]
-                # Ṙ = −[ω]× R: row k of Ṙ is −(ω × column)ᵀ, i.e. Ṙ[a] = R[a+1] w[a+2] − ...
-                Ri = R[i]
-                out[o + 9 : o + 12] = wi[2] * Ri[1] - wi[1] * Ri[2]
-                out[o + 12 : o + 15] = wi[0] * Ri[2] - wi[2] * Ri[0]
-                out[o + 15 : o + 18] = wi[1] * Ri[0] - wi[0] * Ri[1]
-        return out
-
-    def pinned_rate(self, i, s, F_i, M_A_i) -> np.ndarray:
-        """(L̇_C, Ṙ) of a pinned body: L̇_C = L_C × ω + M_C, the moment about the pivot
-        M_C = M_G + g_A × (R F) (body components)."""
-        _, g, JC, _ = self.pins[i]
-        w, Ri = s.omega[i], s.R[i]
-        L = JC @ w
-        M = M_A_i + np.cross(g, Ri @ F_i)
-        out = np.empty(12)
-        out[0:3] = np.cross(L, w) + M
-        out[3:6] = w[2] * Ri[1] - w[1] * Ri[2]
-        out[6:9] = w[0] * Ri[2] - w[2] * Ri[0]
-        out[9:12] = w[1] * Ri[0] - w[0] * Ri[1]
+        for b in self.bodies:
+            b.rate(s, F, M_A, rates, out)
         return out

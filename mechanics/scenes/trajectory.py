@@ -9,6 +9,7 @@ import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -52,8 +53,23 @@ class Trajectory:
     conserved: dict[str, np.ndarray] = field(default_factory=dict)
     #: time from which a conserved quantity holds (e.g. energy once rolling); default 0
     conserved_from: dict[str, float] = field(default_factory=dict)
-    extra: dict = field(default_factory=dict)
     conserved_across_events: frozenset[str] = frozenset()
+    #: the size of the terms of each conserved quantity and reaction (what its drift
+    #: and rounding are relative to)
+    scales: dict[str, float] = field(default_factory=dict)
+    #: every body's r, v, R_A_O, ω_A and m at the sample times (for mechanics.conformance)
+    snapshot: Any = None
+    #: each impact pair's smallest gap at every sample (its interpenetration check)
+    gaps: dict[str, np.ndarray] = field(default_factory=dict)
+    #: the largest |coordinate| plus the largest radius and body extent (what the gaps
+    #: round relative to)
+    length_scale: float = 0.0
+    #: max |R Rᵀ − 1| of the rigid bodies' attitudes (None: no rigid body)
+    orthogonality: float | None = None
+    #: (name, exact, measured) rows of the derived quantities (:mod:`.derived`)
+    derived: list = field(default_factory=list)
+    #: a splitting's order, step and the energy drift at half the step (None otherwise)
+    splitting: dict | None = None
 
     def segments(self, name: str = "") -> list[tuple[float, float]]:
         """The intervals over which ``name`` must be constant: between events, or the

@@ -1136,6 +1136,13 @@ for _name in (
     "scenes.effects.rolling.check_round_on_slope",
     "scenes.engine.Engine",
     # the engine's rooms: each takes the model compiled from a parsed, validated scene
+    "scenes.bodies.Body",
+    "scenes.bodies.Fixed",
+    "scenes.bodies.Guided",
+    "scenes.bodies.Pinned",
+    "scenes.bodies.Point",
+    "scenes.bodies.Rigid",
+    "scenes.bodies.Tank",
     "scenes.model.Model",
     "scenes.model.initial_attitude",
     "scenes.model.initial_omega",

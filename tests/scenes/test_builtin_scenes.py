@@ -100,7 +100,7 @@ def test_auto_uses_the_exact_flow_and_agrees_with_integration(results, name) -> 
         assert abs(a.t - b.t) <= 1e-9 * max(1.0, a.t)
     for key, v in exact.trajectory.series.items():
         w = integ.trajectory.series[key]
-        scales = exact.trajectory.extra.get("scales", {})
+        scales = exact.trajectory.scales
         scale = max(float(np.max(np.abs(v))), scales.get(key, 0.0), 1e-300)
         assert np.max(np.abs(v - w)) <= 64 * INTEGRATED_RTOL * scale, key
 

@@ -14,7 +14,7 @@ EPS = float(np.finfo(float).eps)
 
 
 def _rows(result) -> dict:
-    return {n: (x, m) for n, x, m in result.trajectory.extra["derived"]}
+    return {n: (x, m) for n, x, m in result.trajectory.derived}
 
 
 def test_a_users_torque_free_box_reports_its_regime_and_flip_period() -> None:
@@ -86,4 +86,4 @@ def test_a_scene_with_nothing_to_derive_reports_nothing() -> None:
     r = run_scene(
         parse_scene({"scene": {"name": "n", "duration": 1.0}, "bodies": [pt]}, source="n.toml")
     )
-    assert r.trajectory.extra["derived"] == []
+    assert r.trajectory.derived == []

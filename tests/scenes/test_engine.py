@@ -254,7 +254,7 @@ def test_a_box_dropped_on_a_corner_restitutes_at_that_corner() -> None:
     assert ev.detail["normal_speed_after"] == pytest.approx(
         0.6 * ev.detail["normal_speed_before"], rel=IMPULSE_RTOL
     )
-    assert min(r.trajectory.extra["gaps"].values(), key=np.min).min() >= -64 * EPS
+    assert min(r.trajectory.gaps.values(), key=np.min).min() >= -64 * EPS
 
 
 def _spy_on_impulses(monkeypatch) -> list:
@@ -1060,7 +1060,7 @@ def test_random_sliding_balls_integrate_to_their_exact_phases(speed, spin, mu, a
     for key in ("s", "v", "omega"):
         x, y = a.trajectory.series[key][-1], b.trajectory.series[key][-1]
         assert y == pytest.approx(x, rel=INTEGRATED_RTOL, abs=INTEGRATED_RTOL * 60)
-    E, size = a.trajectory.series["E"], a.trajectory.extra["scales"]["E"]  # max |T| + max |V|
+    E, size = a.trajectory.series["E"], a.trajectory.scales["E"]  # max |T| + max |V|
     assert np.all(np.diff(E) <= 64 * EPS * size)
 
 
@@ -1180,7 +1180,7 @@ def test_a_tilted_spinning_cylinder_lands_on_its_lowest_rim_point(monkeypatch) -
     tol = IMPULSE_RTOL * (1.0 + np.abs(ref.omega).max())
     np.testing.assert_allclose(v, ref.v_G, rtol=0, atol=tol)
     np.testing.assert_allclose(w, ref.omega, rtol=0, atol=tol)
-    assert min(r.trajectory.extra["gaps"].values(), key=np.min).min() >= -64 * EPS
+    assert min(r.trajectory.gaps.values(), key=np.min).min() >= -64 * EPS
 
 
 @settings(max_examples=SCENE_EXAMPLES)

@@ -485,14 +485,14 @@ def test_the_series_and_invariants_of_two_points_in_uniform_motion() -> None:
     assert set(tr.conserved) == set(totals)  # no effect: everything is kept
     assert tr.conserved_across_events == frozenset(totals)
     assert tr.conserved_from == {}
-    scales = tr.extra["scales"]
+    scales = tr.scales
     assert scales["E"] == 0.75  # max |T| + max |E − T|
     assert scales["p_x"] == scales["p_z"] == 2.0  # Σ m |v| = 1 + 1
     # Σ |r| m |v| at its largest (t = 1): √2·1·1 + √(1/4 + 4)·2·½
     assert scales["L_y"] == pytest.approx(math.sqrt(2.0) + math.sqrt(4.25), rel=4 * EPS)
-    assert tr.extra["length_scale"] == 2.0  # the largest |coordinate|, no radii
-    assert tr.extra["gaps"] == {}
-    assert "orthogonality" not in tr.extra
+    assert tr.length_scale == 2.0  # the largest |coordinate|, no radii
+    assert tr.gaps == {}
+    assert tr.orthogonality is None
     state = tr.state_at(0.5)
     assert set(state) == set(per_body)
     assert state["a.y"] == pytest.approx(0.5, abs=TRIG_ATOL)
@@ -515,8 +515,8 @@ def test_the_series_of_a_spinning_box_name_its_spin() -> None:
     assert set(spin) <= set(tr.conserved)
     assert set(spin) <= tr.conserved_across_events
     np.testing.assert_allclose(tr.conserved["L_z (spin about G)"], 0.26, rtol=32 * EPS)
-    assert tr.extra["scales"]["L_z (spin about G)"] == pytest.approx(0.26, rel=32 * EPS)
-    assert 0.0 <= tr.extra["orthogonality"] <= 16 * EPS
+    assert tr.scales["L_z (spin about G)"] == pytest.approx(0.26, rel=32 * EPS)
+    assert 0.0 <= tr.orthogonality <= 16 * EPS
     state = tr.state_at(0.25)
     assert state["omega3"] == pytest.approx(2.0, abs=32 * EPS)
     assert state["wz"] == pytest.approx(2.0, abs=32 * EPS)
@@ -555,7 +555,7 @@ def test_the_splitting_reports_its_step_order_and_the_half_step_drift() -> None:
         "integrated: splitting of order 2 (kicks of the loads, exact free flight and "
         "torque-free rotation), step 0.25 s"
     )
-    info = tr.extra["splitting"]
+    info = tr.splitting
     assert (info["order"], info["step"]) == (2, 0.25)
     # Strang's energy error is O(h²): at half the step about a quarter of the swing
     ratio = float(np.ptp(tr.series["E"])) / info["E_drift_half"]
@@ -574,7 +574,7 @@ def test_simulate_runs_the_engine_and_adds_the_derived_quantities() -> None:
     scene = _scene([_point(mass=1.5)], [GRAVITY, ROCKET], duration=6.0)
     tr = simulate.simulate(scene)
     assert tr.method == "exact: rocket flight (7.30) with uniform gravity"
-    ((name, exact, measured),) = tr.extra["derived"]
+    ((name, exact, measured),) = tr.derived
     assert name == "speed gained by burn-out (7.30)"
     want = 100.0 * math.log(1.5) - 9.81 * 5.0
     assert exact == pytest.approx(want, rel=8 * EPS)
@@ -784,7 +784,7 @@ def test_the_momentum_scale_is_the_largest_sum_of_m_v_of_the_run() -> None:
     """A point of 0.5 kg moving at 0.2 m/s: p is kept relative to Σ m|v| = 0.1 (not to a
     floor of 1 N s, under which a small momentum's drift would pass unseen)."""
     tr = Engine(_scene([_point(mass=0.5, velocity=(0.2, 0.0, 0.0))])).run()
-    assert [tr.extra["scales"][f"p_{c}"] for c in "xyz"] == [0.1, 0.1, 0.1]
+    assert [tr.scales[f"p_{c}"] for c in "xyz"] == [0.1, 0.1, 0.1]
 
 
 def test_the_run_reports_each_pairs_smallest_gap_at_every_sample() -> None:
@@ -794,7 +794,7 @@ def test_the_run_reports_each_pairs_smallest_gap_at_every_sample() -> None:
     box = _box(position=[0.0, 0.0, 1.0])
     hit = {"type": "impact", "body": "b", "restitution": 0.5}
     tr = Engine(_scene([box], [GRAVITY, hit], duration=0.2)).run()
-    (gaps,) = tr.extra["gaps"].values()
+    (gaps,) = tr.gaps.values()
     want = 0.95 - 0.5 * 9.81 * np.array([0.0, 0.1, 0.2]) ** 2
     assert np.shape(gaps) == (3,)
     # DOP853 on a quadratic: exact but for the rounding of O(1) positions
@@ -850,7 +850,7 @@ def test_the_length_scale_of_the_no_interpenetration_check(body, scale) -> None:
     to the largest |r| plus the largest radius and the farthest vertex from G."""
     hit = {"type": "impact", "body": body["name"], "restitution": 0.5}
     tr = Engine(_scene([body], [hit])).run()
-    assert tr.extra["length_scale"] == scale
+    assert tr.length_scale == scale
 
 
 def test_a_pinned_symmetric_top_among_other_bodies_keeps_its_own_named_l3() -> None:
@@ -870,7 +870,7 @@ def test_the_angular_momentum_scale_adds_each_bodys_spin_magnitude() -> None:
     no orbital term; its spin J ω = (0.1, 0.1, 0) has |J ω| = 0.1 √2 at every sample
     (the free top keeps |L|), the size L's components are rounded relative to."""
     tr = Engine(_scene([_box(omega=[2.0, 1.0, 0.0])])).run()
-    assert tr.extra["scales"]["L_x"] == pytest.approx(0.1 * math.sqrt(2.0), rel=8 * EPS)
+    assert tr.scales["L_x"] == pytest.approx(0.1 * math.sqrt(2.0), rel=8 * EPS)
 
 
 def test_a_switch_is_searched_and_refined_at_the_steps_own_times(monkeypatch) -> None:
@@ -1015,13 +1015,13 @@ def test_the_series_of_a_heavy_symmetric_top() -> None:
     assert "L_3" in tr.conserved
     assert "L_3" in tr.conserved_across_events
     # the scale: the largest |L_A| over the samples, 0.1 at the start, more as it nutates
-    assert tr.extra["scales"]["L_3"] >= 0.1 * (1 - 8 * EPS)
+    assert tr.scales["L_3"] >= 0.1 * (1 - 8 * EPS)
     # θ(0) by the top's elliptic solution, through R and atan2 again (measured 9 eps)
     top_atol = 64 * EPS
     assert (s["theta"][0], s["psi"][0], s["phi"][0]) == pytest.approx((0.5, 0.0, 0.0), abs=top_atol)
     np.testing.assert_allclose(s["cos_theta"], np.cos(s["theta"]), rtol=0, atol=8 * EPS)
     assert {"reaction_x", "reaction_y", "reaction_z"} <= set(s)
-    assert tr.extra["scales"]["reaction_z"] > 0
+    assert tr.scales["reaction_z"] > 0
     state = tr.state_at(0.0)
     assert state["cos_theta"] == pytest.approx(math.cos(0.5), abs=top_atol)
     assert state["cos_theta_dot"] == pytest.approx(0.0, abs=top_atol)  # θ̇ = 0 at the start

@@ -18,6 +18,7 @@ LAYERS = {
     "errors": 0,
     "trajectory": 0,
     "contacts": 0,
+    "bodies": 0,
     "state": 1,
     "budget": 1,
     "domain": 1,

@@ -38,7 +38,7 @@ def _both(scene):
     assert a.passed
     assert b.passed
     for k, v in a.trajectory.series.items():
-        scale = max(float(np.max(np.abs(v))), a.trajectory.extra.get("scales", {}).get(k, 0), 1e-12)
+        scale = max(float(np.max(np.abs(v))), a.trajectory.scales.get(k, 0), 1e-12)
         assert np.max(np.abs(v - b.trajectory.series[k])) <= 1e-8 * scale + 1e-12, k
     return a, b
 

@@ -86,8 +86,8 @@ def trajectory(
     series=None,
     conserved=None,
     conserved_from=None,
-    extra=None,
     across=frozenset(),
+    **fields,
 ) -> Trajectory:
     return Trajectory(
         t=np.asarray(t, dtype=float),
@@ -97,8 +97,8 @@ def trajectory(
         state_at=lambda tt: {},
         conserved={} if conserved is None else conserved,
         conserved_from={} if conserved_from is None else conserved_from,
-        extra={} if extra is None else extra,
         conserved_across_events=across,
+        **fields,
     )
 
 
@@ -257,9 +257,9 @@ def test_the_results_dict_holds_the_scene_the_events_and_the_samples() -> None:
         Event(0.5, "impact", {"pair": "a-b", "speed": np.float64(2.5), "n": np.int64(3)}),
         Event(1.0, "burn_out"),
     ]
-    extra = {"derived": [("regime: axis 3", None, None), ("period", 6.5, 6.25)]}
+    derived = [("regime: axis 3", None, None), ("period", 6.5, 6.25)]
     series = {"x": np.array([0.0, 0.5, 1.0, 1.5]), "E": [1.0, 1.0, 1.0, 1.0]}
-    tr = trajectory(method="exact: m", events=events, series=series, extra=extra)
+    tr = trajectory(method="exact: m", events=events, series=series, derived=derived)
     s = scene(title="T", book="E6.1", effects=("gravity", "impact"))
     r = SceneResult(s, tr, [GOOD_C], [GOOD_X], [GOOD_S])
     d = r.as_dict()
@@ -364,7 +364,7 @@ def test_the_summary_shows_each_figure_against_its_bound_and_the_verdict() -> No
     tr = trajectory(
         method="integrated: DOP853",
         events=[Event(0.5, "impact"), Event(1.5, "burn_out")],
-        extra={"derived": derived},
+        derived=derived,
     )
     s = scene(title="A demo", book="E6.1", effects=("gravity", "impact"))
     r = SceneResult(s, tr, conserved, comparisons, checks)
@@ -490,7 +490,7 @@ def run(monkeypatch):
 
 
 def test_run_scene_reports_each_conserved_quantity_against_its_scale(run) -> None:
-    # E has a scale of 4 (extra["scales"]): drift (1.5 − 1)/4 = 1/8, not 0.5/1.5;
+    # E has a scale of 4 (its scales): drift (1.5 − 1)/4 = 1/8, not 0.5/1.5;
     # p has none: it holds from t = 1 on (2, 3, 3: a change of 1), over its largest
     # magnitude over the whole run, |−9| (the sample before `since` still sets it): 1/9;
     # L has none and is below 1: (0.5 − 0.25)/0.5 = 1/2
@@ -501,7 +501,7 @@ def test_run_scene_reports_each_conserved_quantity_against_its_scale(run) -> Non
             "L": [0.5, 0.25, 0.25, 0.25],
         },
         conserved_from={"p": 1.0},
-        extra={"scales": {"E": 4.0}},
+        scales={"E": 4.0},
     )
     s = scene()
     r = run(tr, s)
@@ -554,7 +554,8 @@ def test_a_splittings_energy_is_allowed_its_order_times_its_half_step_drift(
         method="integrated: splitting of order 4",
         series={"E": np.array(E)},
         conserved={"E": E, "p": [1.0, 1.0, 1.0, 1.0]},
-        extra={"scales": scales, "splitting": {"order": 4, "E_drift_half": half}},
+        scales=scales,
+        splitting={"order": 4, "E_drift_half": half},
     )
     r = run(tr, scene())
     by_name = {c.name: c for c in r.conserved}
@@ -573,7 +574,7 @@ def test_a_splittings_energy_of_zero_size_is_measured_against_the_floor(run) -> 
     tr = trajectory(
         method="integrated: splitting of order 4",
         conserved={"E": [0.0, 0.0, 0.0, 0.0]},
-        extra={"splitting": {"order": 4, "E_drift_half": TINY}},
+        splitting={"order": 4, "E_drift_half": TINY},
     )
     (c,) = run(tr, scene()).conserved
     assert c.tolerance == float(Fraction(24 * TINY) / Fraction(FLOOR))
@@ -583,7 +584,7 @@ def test_a_splittings_energy_keeps_the_conserved_tolerance_when_it_is_larger(run
     tr = trajectory(
         method="integrated: splitting of order 2",
         conserved={"E": [1.0, 1.0, 1.0, 1.0]},
-        extra={"splitting": {"order": 2, "E_drift_half": 0.0}},
+        splitting={"order": 2, "E_drift_half": 0.0},
     )
     (c,) = run(tr, scene()).conserved
     assert c.tolerance == 2.0**-32
@@ -605,7 +606,7 @@ def test_run_scene_adds_the_comparisons_asked_for(run) -> None:
 
 def test_run_scene_adds_the_self_checks_at_the_runs_tolerance(run) -> None:
     # an integrated attitude is held to the conserved tolerance (2**-32 · 10 here)
-    tr = trajectory(method="integrated: DOP853", extra={"orthogonality": 2.0**-40})
+    tr = trajectory(method="integrated: DOP853", orthogonality=2.0**-40)
     finite, c = run(tr, scene(rtol=1e-11)).self_checks
     assert finite.ok
     assert c.name == "attitudes orthogonal"
@@ -621,7 +622,7 @@ def test_a_run_without_anything_to_check_has_no_self_checks() -> None:
 
 @pytest.mark.parametrize("method", ["exact: torque-free top", "integrated: DOP853"])
 def test_attitudes_are_held_to_the_exact_or_the_integrated_tolerance(method) -> None:
-    tr = trajectory(method=method, extra={"orthogonality": 2.0**-50})
+    tr = trajectory(method=method, orthogonality=2.0**-50)
     exact = method.startswith("exact")
     assert self_checks(tr, 2.0**-30) == [
         SelfCheck(
@@ -635,9 +636,7 @@ def test_the_splitting_order_check_compares_the_half_step_drift_with_the_steps()
     # rounding only, ratio 0; one ulp below that tol, ratio 2ᵖ · half / drift
     E = np.array([2.0, 3.0, 2.0])
     split = {"order": 3, "E_drift_half": 2.0**-6}
-    tr = trajectory(
-        t=(0.0, 1.0, 2.0), series={"E": E}, extra={"splitting": split, "scales": {"E": 4.0}}
-    )
+    tr = trajectory(t=(0.0, 1.0, 2.0), series={"E": E}, splitting=split, scales={"E": 4.0})
     reason = "2ᵖ × drift of E at h/2 over its drift at h (a wrong kick does not shrink)"
     assert self_checks(tr, 0.25) == [SelfCheck("energy error at order 3", 0.0, 1.5, reason)]
     # 2**3 · 2**-6 / 1 = 1/8
@@ -645,7 +644,7 @@ def test_the_splitting_order_check_compares_the_half_step_drift_with_the_steps()
     assert self_checks(tr, below) == [SelfCheck("energy error at order 3", 0.125, 1.5, reason)]
     # without the scale, the size is max |E| = 3: 1 > ¼ · 3, so the ratio counts at ¼,
     # not at ½ (1 < ½ · 3)
-    tr3 = trajectory(t=(0.0, 1.0, 2.0), series={"E": E}, extra={"splitting": split})
+    tr3 = trajectory(t=(0.0, 1.0, 2.0), series={"E": E}, splitting=split)
     assert self_checks(tr3, 0.25)[0].violation == 0.125
     assert self_checks(tr3, 0.5)[0].violation == 0.0
 
@@ -654,14 +653,14 @@ def test_the_splitting_order_check_of_an_energy_below_the_floor() -> None:
     # E = (0, TINY), no scale: size max(TINY, 1e-300) = 1e-300; the drift TINY counts
     # beyond 0.05 · 1e-300 (ratio 2³ · (TINY/8) / TINY = 1), not beyond ¼ · 1e-300
     split = {"order": 3, "E_drift_half": TINY / 8}
-    tr = trajectory(t=(0.0, 1.0), series={"E": np.array([0.0, TINY])}, extra={"splitting": split})
+    tr = trajectory(t=(0.0, 1.0), series={"E": np.array([0.0, TINY])}, splitting=split)
     assert self_checks(tr, 0.05)[0].violation == 1.0
     assert self_checks(tr, 0.25)[0].violation == 0.0
 
 
 def test_the_splitting_order_check_needs_the_energy_series() -> None:
     split = {"order": 2, "E_drift_half": 1.0}
-    assert self_checks(trajectory(extra={"splitting": split})) == []
+    assert self_checks(trajectory(splitting=split)) == []
 
 
 def test_interpenetration_is_the_deepest_negative_gap_over_the_length_scale() -> None:
@@ -670,7 +669,7 @@ def test_interpenetration_is_the_deepest_negative_gap_over_the_length_scale() ->
         "a-c": np.array([0.5, 0.25]),  # apart: 0
         "b-c": np.array([]),  # never sampled: 0
     }
-    tr = trajectory(extra={"gaps": gaps, "length_scale": 2.0})
+    tr = trajectory(gaps=gaps, length_scale=2.0)
     reason = "gap ≥ 0 at every sample"
     assert self_checks(tr) == [
         SelfCheck("no interpenetration of a-b", 0.125, 2.0**-44, reason),
@@ -680,7 +679,7 @@ def test_interpenetration_is_the_deepest_negative_gap_over_the_length_scale() ->
 
 
 def test_interpenetration_without_a_length_scale_is_measured_against_the_floor() -> None:
-    tr = trajectory(extra={"gaps": {"a-b": np.array([1.0, -TINY])}})
+    tr = trajectory(gaps={"a-b": np.array([1.0, -TINY])})
     (c,) = self_checks(tr)
     assert c.violation == TINY_OVER_FLOOR
 

@@ -160,7 +160,7 @@ class SceneEngineAdapter:
         if isinstance(data, str):
             raise ValueError(data)
         tr = simulate(parse_scene(data, source=f"scenario {scenario.name}"))
-        snap = tr.extra["snapshot"]
+        snap = tr.snapshot
         m = np.asarray(snap.m, dtype=float)
         # the engine integrates R's nine entries at its tolerance (off SO(3) by ~1e-11
         # after a few turns): the protocol asks for rotations, so project (polar factor)
