@@ -6,20 +6,20 @@
   which it used (``impact_model``):
 
   * **one body's several contacts with one plane or body** (a box landing flat on its
-    face: four corners of one pair touching and closing together) are *simultaneous*:
-    one impact problem, Newton's law at every contact at once, solved as a linear
-    complementarity problem in the normal impulses P ≥ 0 (:meth:`Resolver.together`):
-    with the Delassus matrix W (W_kl = n_k·K(S_k, S_l) n_l, the change of contact k's
-    normal velocity per unit impulse at l) and the normal velocities u⁻ before,
-    u⁺ = u⁻ + W P, u⁺ + e u⁻ ≥ 0, P ≥ 0 and P·(u⁺ + e u⁻) = 0.  W is positive
-    semi-definite (several contacts of one rigid body are dependent: W is singular, the
-    impulses are not unique, the velocity after is), and u⁻ lies in its range, so with
-    W = AᵀA (its eigen-factor) the problem is the non-negative least-squares problem
-    min |A P + b|, Aᵀb = (1 + e) u⁻ (:func:`scipy.optimize.nnls`, an exact active-set
-    method).  One restitution e per pair, so this is Newton's law per contact.  With
-    friction, the smooth solution is accepted only where no contact slides before or
-    after (the zero tangential impulse then sticks, inside every cone); contacts that
-    slide together are refused with one line (not modelled yet);
+    face: four corners of one pair touching together) are *simultaneous*: one impact
+    problem over every touching contact of the pair, Newton's law at all of them at
+    once, a linear complementarity problem in the normal impulses P ≥ 0
+    (:meth:`Resolver.together`): with the Delassus matrix W (W_kl = n_k·K(S_k, S_l) n_l,
+    the change of contact k's normal velocity per unit impulse at l) and the normal
+    velocities u⁻ before, u⁺ = u⁻ + W P ≥ t, P ≥ 0 and P·(u⁺ − t) = 0, with the
+    target t = −e u⁻ where a contact approaches and 0 where it does not (an impulse at
+    one corner may make a merely touching one close).  W is positive semi-definite and
+    singular (several contacts of one rigid body are dependent: the impulses are not
+    unique, the velocity after is); :func:`solve_lcp` solves it exactly by its
+    complementary bases.  One restitution e per pair, so this is Newton's law per
+    contact.  With friction, the smooth solution is accepted only where no contact
+    slides before or after (the zero tangential impulse then sticks, inside every
+    cone); contacts that slide together are refused with one line (not modelled yet);
   * **contacts of different pairs** at one instant (a Newton's cradle: a chain of
     distinct bodies) are *sequential*: after each impulse every feature touching within
     rounding and still closing is resolved in turn, the fastest approach first, until
@@ -60,6 +60,7 @@ __all__ = [
     "ZENO_SPEED",
     "Resolver",
     "falls_in",
+    "solve_lcp",
     "zeno",
 ]
 
@@ -170,22 +171,14 @@ class Resolver:
 
     def closing_with(self, s, imp, ft, floor=0.0) -> list:
         """The contact ``ft`` of ``imp`` and every other feature of the same pair touching
-        and closing with it at this instant (as :meth:`closing_now` judges closing): one
-        impact problem."""
-        return [ft] + [
-            f
-            for f in imp.features
-            if f is not ft
-            and self.touching(s, imp, f)
-            and imp.approach(s, f) > CLOSING_ROUNDING * max(imp.speed_scale(s, f), floor)
-        ]
+        it at this instant, closing or not (an impulse at one may make another close):
+        one impact problem."""
+        return [ft] + [f for f in imp.features if f is not ft and self.touching(s, imp, f)]
 
     def together(self, s, imp, feats) -> dict:
         """Newton's law at the contacts ``feats`` of one pair at once (see the module's
         docstring): the impulses applied to the snapshot in place; the event's details,
         as :meth:`~mechanics.scenes.effects.impact.Impact.apply` gives for one."""
-        from scipy.optimize import nnls
-
         e = imp.e
         labels = [f.label for f in feats]
         idx = imp.bodies()
@@ -203,12 +196,16 @@ class Resolver:
             for b, (Sb, nb) in enumerate(points):
                 W[a, b] = na @ sum(imp.inverse_mass(s, k, Sa, Sb) for k in idx) @ nb
         W = 0.5 * (W + W.T)  # symmetric in exact arithmetic
-        lam, V = np.linalg.eigh(W)
-        keep = lam > RANK_RTOL * m * lam.max()
-        root = np.sqrt(lam[keep])
-        A = root[:, None] * V[:, keep].T
-        b = (V[:, keep].T @ ((1.0 + e) * u0)) / root
-        P, _ = nnls(A, -b)
+        # Newton's law per contact: u⁺ ≥ −e u⁻ where it approaches, u⁺ ≥ 0 where not
+        target = -e * np.minimum(u0, 0.0)
+        P = solve_lcp(W, u0 - target)
+        if P is None:  # pragma: no cover - a PSD W always has a complementary basis
+            raise self.model.scene.error(
+                imp.where,
+                f"{len(feats)} contacts of {imp.label} at t = {s.t:.6g} s: no impulses "
+                "satisfy Newton's law at all of them together (a configuration the impact "
+                "model cannot treat)",
+            )
         for (S, n), p in zip(points, P, strict=True):
             for k in idx:
                 imp.kick(s, k, sign[k] * p * n, S)
@@ -219,12 +216,12 @@ class Resolver:
             if slide > CLOSING_ROUNDING * scale:
                 raise self._slides(imp, labels, s.t, slide)
         # Newton's law at each contact, from the velocities after (not from W P)
-        law = np.where(P > 0, np.abs(u1 + e * u0), np.maximum(-(u1 + e * u0), 0.0))
+        law = np.where(P > 0, np.abs(u1 - target), np.maximum(target - u1, 0.0))
         worst = int(np.argmax(law))
         u1_alg = u0 + W @ P  # the LCP's own normal velocities after: the loss's route
-        detail = {
-            "normal_speed_before": float(np.max(-u0)),
-            "normal_speed_after": float(np.min(u1)),
+        detail = {  # the contact found first: the one whose rebound is followed
+            "normal_speed_before": float(-u0[0]),
+            "normal_speed_after": float(u1[0]),
         }
         if imp.j is None:
             detail["body"] = imp.fields["body"]
@@ -254,7 +251,7 @@ class Resolver:
         detail["momentum_scale"] = before[2]
         detail["angular_momentum_before"], detail["angular_momentum_after"] = before[3], after[3]
         detail["angular_momentum_scale"] = before[4]
-        detail["law_residual"] = float(law[worst]) / max(scale, float(np.max(-u0)), 1e-300)
+        detail["law_residual"] = float(law[worst]) / max(scale, float(np.max(np.abs(u0))), 1e-300)
         detail["law_worst_contact"] = labels[worst]
         return detail
 
@@ -333,6 +330,39 @@ class Resolver:
             if self.touch(imp, ft, s2):
                 return math.inf
         return tau
+
+
+def solve_lcp(W, q) -> np.ndarray | None:
+    """P ≥ 0 with w = W P + q ≥ 0 and P·w = 0, for a small symmetric positive
+    semi-definite W (m ≤ 8 contacts), exactly: by its complementary bases, the supports S
+    in order of size whose W_SS is invertible (condition below 1/(m RANK_RTOL)), P_S
+    solving W_SS P_S = −q_S; the first with P_S ≥ 0 and w ≥ 0 off S, within the
+    rounding of their terms (2^6 eps m × the size of W P and q).  A PSD LCP that is
+    feasible (here: a body against a plane or a body, whose normal impulses cannot
+    cancel) has such a basic solution; the w of every solution is the same, so the
+    velocity after is unique where the impulses are not.  None if there is none."""
+    from itertools import combinations
+
+    m = len(q)
+    rnd = 2**6 * EPS * m
+    limit = 1.0 / (RANK_RTOL * m)
+    for size in range(m + 1):
+        for S in combinations(range(m), size):
+            P = np.zeros(m)
+            if S:
+                WS = W[np.ix_(S, S)]
+                if np.linalg.cond(WS) > limit:
+                    continue
+                P[list(S)] = np.linalg.solve(WS, -q[list(S)])
+            big = float(np.abs(P).max(initial=0.0))
+            if np.any(-rnd * big > P):
+                continue
+            w = W @ P + q
+            size_w = float(np.abs(W).max()) * big + float(np.abs(q).max())
+            if np.any(w < -rnd * size_w):
+                continue
+            return np.maximum(P, 0.0)
+    return None
 
 
 def falls_in(scene, imp, ft, t) -> SceneError:

@@ -1195,6 +1195,7 @@ for _name in (
     "scenes.contacts.plane_contact_time",
     "scenes.contacts.quadratic_roots",
     "scenes.contacts.sphere_contact_time",
+    "scenes.impacts.solve_lcp",
     "scenes.effects.base.unit",
     "scenes.effects.rolling.slope_frame",
     "scenes.trajectory.energy_scale",

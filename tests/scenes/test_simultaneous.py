@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 from mechanics.scenes import SceneError, impacts, parse_scene, run_scene
 from mechanics.scenes.engine import Engine
-from mechanics.scenes.impacts import LAW_RTOL
+from mechanics.scenes.impacts import LAW_RTOL, solve_lcp
 
 EPS = float(np.finfo(float).eps)
 G = 9.81
@@ -255,3 +255,35 @@ def test_newtons_cradle_stays_sequential_and_textbook() -> None:
     assert s["a.vx"][-1] == pytest.approx(0.0, abs=4 * EPS)
     assert s["b.vx"][-1] == pytest.approx(0.0, abs=4 * EPS)
     assert s["c.vx"][-1] == pytest.approx(1.0, abs=4 * EPS)
+
+
+@given(
+    G=st.lists(st.lists(st.floats(-2.0, 2.0), min_size=6, max_size=6), min_size=1, max_size=5),
+    u=st.lists(st.floats(-3.0, 3.0), min_size=5, max_size=5),
+)
+def test_solve_lcp_gives_a_complementary_solution_of_a_psd_problem(G, u) -> None:
+    """W = G Gᵀ (contact rows G of a 6-dof body: PSD, singular beyond 6 contacts or
+    dependent rows) with q = G v (a velocity's normal components, so a solution exists
+    for normals that cannot cancel; otherwise None is allowed): P ≥ 0, w = W P + q ≥ 0,
+    P·w = 0, each within the rounding the solver allows (2^6 eps m × its terms)."""
+    Gm = np.array(G)
+    m = len(Gm)
+    W = Gm @ Gm.T
+    v = np.concatenate([u, [0.0]])
+    q = Gm @ v
+    P = solve_lcp(W, q)
+    if P is None:  # no complementary basis within the rounding: allowed, never a wrong P
+        return
+    w = W @ P + q
+    size = float(np.abs(W).max()) * float(np.abs(P).max(initial=0.0)) + float(np.abs(q).max())
+    rnd = 2**6 * EPS * m * max(size, 1e-300)
+    assert np.all(P >= 0.0)
+    assert np.all(w >= -rnd)
+    assert abs(float(P @ w)) <= rnd * (1.0 + float(np.abs(P).sum()))
+
+
+def test_solve_lcp_negative_control_an_infeasible_problem_gives_none() -> None:
+    """w = −1 + 0·P can never be ≥ 0: no basis passes, the solver says None."""
+    assert solve_lcp(np.zeros((1, 1)), np.array([-1.0])) is None
+    # and a feasible one with one contact: P = −q/W
+    np.testing.assert_allclose(solve_lcp(np.array([[2.0]]), np.array([-3.0])), [1.5])
