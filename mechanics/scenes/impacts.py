@@ -199,7 +199,7 @@ class Resolver:
         # Newton's law per contact: u⁺ ≥ −e u⁻ where it approaches, u⁺ ≥ 0 where not
         target = -e * np.minimum(u0, 0.0)
         P = solve_lcp(W, u0 - target)
-        if P is None:  # pragma: no cover - a PSD W always has a complementary basis
+        if P is None:  # pragma: no cover - an infeasible problem: normals that cancel
             raise self.model.scene.error(
                 imp.where,
                 f"{len(feats)} contacts of {imp.label} at t = {s.t:.6g} s: no impulses "
