@@ -25,6 +25,8 @@
     rounding and still closing is resolved in turn, the fastest approach first, until
     none closes (at most :data:`MAX_SWEEPS` rounds; for a row of equal elastic spheres
     this passes the momentum down the row, the textbook answer);
+  * an ``impact`` effect with ``model = "sequential"`` resolves its own contacts one at a
+    time too (the model chosen explicitly; each impulse obeys the law at its contact);
   * a lone contact is ``single``: the Chapter 6 impulse
     (:meth:`~mechanics.scenes.effects.impact.Impact.apply`), with friction.
 
@@ -172,7 +174,9 @@ class Resolver:
     def closing_with(self, s, imp, ft, floor=0.0) -> list:
         """The contact ``ft`` of ``imp`` and every other feature of the same pair touching
         it at this instant, closing or not (an impulse at one may make another close):
-        one impact problem."""
+        one impact problem; only ``ft`` where the pair's ``model`` is "sequential"."""
+        if imp.model == "sequential":
+            return [ft]
         return [ft] + [f for f in imp.features if f is not ft and self.touching(s, imp, f)]
 
     def together(self, s, imp, feats) -> dict:
@@ -258,7 +262,10 @@ class Resolver:
     def _still_closing(self, s, imp, group, detail) -> None:
         """No other contact of the pair may still close after its impulses: a touching
         feature approaching beyond rounding counts against the law (``law_residual``;
-        the contacts of one body were not resolved together)."""
+        the contacts of one body were not resolved together).  Not where the scene
+        asked for the sequential model: its law is each impulse's own."""
+        if imp.model == "sequential":
+            return
         for f in imp.features:
             if any(f is g for g in group) or not self.touching(s, imp, f):
                 continue

@@ -47,6 +47,7 @@ KINDS = {
     "str": "a string",
     "axis_name": '"x", "y" or "z"',
     "frame": '"space" or "body"',
+    "impact_model": '"auto" or "sequential"',
 }
 
 

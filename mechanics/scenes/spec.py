@@ -169,7 +169,7 @@ INITIAL_KEYS: dict[str, str] = {
 
 #: effect type -> {field: (kind, required)}, from each effect's ``schema``; kinds: body,
 #: bodies (an array of body names), number, positive, nonnegative, restitution, vector,
-#: str, axis_name, frame ("space" or "body")
+#: str, axis_name, frame ("space" or "body"), impact_model ("auto" or "sequential")
 EFFECT_FIELDS: dict[str, dict[str, tuple[str, bool]]] = {
     t: cls.schema for t, cls in EFFECT_CLASSES.items()
 }
@@ -301,6 +301,10 @@ def _check(src: str, where: str, kind: str, v: Any, bodies: set[str] | None = No
     if kind == "axis_name":
         if v not in ("x", "y", "z"):
             raise SceneError(src, where, f"expected one of 'x', 'y', 'z'; got {v!r}")
+        return v
+    if kind == "impact_model":
+        if v not in ("auto", "sequential"):
+            raise SceneError(src, where, f"expected 'auto' or 'sequential'; got {v!r}")
         return v
     if kind == "frame":
         if v not in ("space", "body"):

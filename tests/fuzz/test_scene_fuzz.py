@@ -56,6 +56,7 @@ BAD_BY_KIND: dict[str, list] = {
     "str": [3, [], True, 1.5],
     "axis_name": ["w", 3, ""],
     "frame": ["elsewhere", 3],
+    "impact_model": ["simultaneous", 3, ""],
     "integer ≥ 2": [1, 0, -5, 2.5, "201", NAN, True],
     "integer ≥ 1": [0, -5, 2.5, "201", NAN, True],
     "2, 4 or 6": [3, 8, 0, "4", 4.5],

@@ -287,3 +287,31 @@ def test_solve_lcp_negative_control_an_infeasible_problem_gives_none() -> None:
     assert solve_lcp(np.zeros((1, 1)), np.array([-1.0])) is None
     # and a feasible one with one contact: P = −q/W
     np.testing.assert_allclose(solve_lcp(np.array([[2.0]]), np.array([-3.0])), [1.5])
+
+
+def test_a_scene_may_choose_the_sequential_model_and_the_result_says_so() -> None:
+    """``model = "sequential"`` on the impact: the flat box's corners one at a time (the
+    model chosen explicitly, each impulse obeying the law at its own contact); the
+    events say "single" then "sequential", and the box leaves turning, unlike the
+    default's one simultaneous event."""
+    drop = 0.7
+    t1 = math.sqrt(2.0 * drop / G)
+    floor = {**_floor(0.5), "model": "sequential"}
+    r = run_scene(_scene([_box()], [{"type": "gravity", "g": G}, floor], duration=t1 + 0.1))
+    assert r.passed, r.summary()
+    models = [ev.detail["impact_model"] for ev in r.trajectory.events]
+    assert models[0] == "single"
+    assert set(models[1:]) == {"sequential"}
+    (after,) = r.trajectory.events[-1].detail["bodies_after"]
+    assert abs(after["omega"][0]) + abs(after["omega"][1]) > 0.1
+    auto = run_scene(
+        _scene([_box()], [{"type": "gravity", "g": G}, _floor(0.5)], duration=t1 + 0.1)
+    )
+    assert [ev.detail["impact_model"] for ev in auto.trajectory.events] == ["simultaneous"]
+
+
+def test_an_unknown_impact_model_is_refused_by_name() -> None:
+    with pytest.raises(SceneError) as info:
+        _scene([_box()], [{**_floor(0.5), "model": "simultaneous"}], duration=1.0)
+    assert info.value.field == "effects[0].model"
+    assert "expected 'auto' or 'sequential'; got 'simultaneous'" in info.value.reason

@@ -100,6 +100,7 @@ class Impact(Effect):
         "plane_normal": ("vector", False),
         "restitution": ("restitution", True),
         "friction": ("nonnegative", False),
+        "model": ("impact_model", False),
     }
     units: ClassVar[dict[str, str]] = {
         "body": "",
@@ -108,6 +109,7 @@ class Impact(Effect):
         "plane_normal": "1",
         "restitution": "1",
         "friction": "1",
+        "model": "",
     }
     example: ClassVar[dict] = {"type": "impact", "body": "ball", "restitution": 0.8}
 
@@ -156,6 +158,9 @@ class Impact(Effect):
         self.j = ctx.index[f["other"]] if "other" in f else None
         self.e = float(f["restitution"])
         self.mu_f = float(f.get("friction", 0.0))
+        #: "auto": the contacts of this pair at one instant are one problem (several
+        #: touching together: simultaneous); "sequential": one at a time, fastest first
+        self.model = f.get("model", "auto")
         self.point = np.asarray(f.get("plane_point", [0.0, 0.0, 0.0]), dtype=float)
         self.normal = unit(f.get("plane_normal", [0.0, 0.0, 1.0]))
         bodies = ctx.scene.bodies
