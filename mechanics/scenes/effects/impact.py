@@ -90,7 +90,9 @@ class Feature:
 
 @register
 class Impact(Effect):
-    """Impacts of ``body`` with a plane or with ``other``, restitution e."""
+    """Impacts of ``body`` with a plane or with ``other``, restitution e; the pair's
+    contacts touching at one instant are one problem, Newton's law at each at once
+    (``model = "auto"``), or are resolved one at a time (``"sequential"``)."""
 
     type = "impact"
     schema: ClassVar[Schema] = {
