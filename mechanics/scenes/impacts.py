@@ -227,10 +227,7 @@ class Resolver:
             "normal_speed_before": float(-u0[0]),
             "normal_speed_after": float(u1[0]),
         }
-        if imp.j is None:
-            detail["body"] = imp.fields["body"]
-        else:
-            detail["bodies"] = [imp.fields["body"], imp.fields["other"]]
+        detail.update(imp.who())
         detail["feature"] = f"{len(feats)} contacts at once: " + "; ".join(labels)
         detail["features"] = labels
         detail["impact_model"] = "simultaneous"
@@ -242,19 +239,8 @@ class Resolver:
         gaps = [float(imp.gap(s, f)) for f in feats]
         g = int(np.argmax(np.abs(gaps)))
         detail["gap"], detail["gap_scale"] = gaps[g], imp.gap_scale(s, feats[g])
-        detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
         detail["friction"] = "smooth" if imp.mu_f == 0 else "stick (no contact slides)"
-        detail["attitude_defect"] = max(
-            (float(np.abs(s.R[k] @ s.R[k].T - np.eye(3)).max()) for k in idx), default=0.0
-        )
-        if any(k in imp.pins or k in imp.guides for k in idx):
-            detail["external_impulse"] = "the pivot, bearings or track of a joint"
-        detail["energy_loss"] = -0.5 * float(P @ (u0 + u1_alg))
-        detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
-        detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
-        detail["momentum_scale"] = before[2]
-        detail["angular_momentum_before"], detail["angular_momentum_after"] = before[3], after[3]
-        detail["angular_momentum_scale"] = before[4]
+        detail.update(imp.outcome(s, before, after, -0.5 * float(P @ (u0 + u1_alg))))
         detail["law_residual"] = float(law[worst]) / max(scale, float(np.max(np.abs(u0))), 1e-300)
         detail["law_worst_contact"] = labels[worst]
         return detail

@@ -332,31 +332,42 @@ class Impact(Effect):
             )
         after = totals(s, idx, S)
         detail = {"normal_speed_before": -v_n, "normal_speed_after": self.approach(s, ft) * -1}
-        if self.j is None:
-            detail["body"] = self.fields["body"]
-        else:
-            detail["bodies"] = [self.fields["body"], self.fields["other"]]
+        detail.update(self.who())
         detail["feature"] = ft.label
         detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
         # the gap at the instant of the impact, and the size it is rounded relative to
         detail["gap"] = float(self.gap(s, ft))
         detail["gap_scale"] = self.gap_scale(s, ft)
-        detail["bodies_before"], detail["bodies_after"] = before[5], after[5]
         detail["friction"] = self._mode
+        detail.update(self.outcome(s, before, after, self._loss))
+        return detail
+
+    def who(self) -> dict:
+        """The event's ``body`` (against the plane) or ``bodies`` (a pair)."""
+        if self.j is None:
+            return {"body": self.fields["body"]}
+        return {"bodies": [self.fields["body"], self.fields["other"]]}
+
+    def outcome(self, s, before, after, loss) -> dict:
+        """The event's record of an impact's effect on the bodies (:func:`totals` before
+        and after, read off the velocities) beside the law's energy ``loss``: what the
+        run's self-checks compare."""
+        idx = self.bodies()
+        out = {"bodies_before": before[5], "bodies_after": after[5]}
         # the impulse and the energies use the attitudes: an integrated R_A_O is
         # orthonormal only to the integration's tolerance
-        detail["attitude_defect"] = max(
+        out["attitude_defect"] = max(
             (float(np.abs(s.R[k] @ s.R[k].T - np.eye(3)).max()) for k in idx), default=0.0
         )
         if any(k in self.pins or k in self.guides for k in idx):
-            detail["external_impulse"] = "the pivot, bearings or track of a joint"
-        detail["energy_loss"] = self._loss
-        detail["kinetic_energy_before"], detail["momentum_before"] = before[0], before[1]
-        detail["kinetic_energy_after"], detail["momentum_after"] = after[0], after[1]
-        detail["momentum_scale"] = before[2]
-        detail["angular_momentum_before"], detail["angular_momentum_after"] = before[3], after[3]
-        detail["angular_momentum_scale"] = before[4]
-        return detail
+            out["external_impulse"] = "the pivot, bearings or track of a joint"
+        out["energy_loss"] = loss
+        out["kinetic_energy_before"], out["momentum_before"] = before[0], before[1]
+        out["kinetic_energy_after"], out["momentum_after"] = after[0], after[1]
+        out["momentum_scale"] = before[2]
+        out["angular_momentum_before"], out["angular_momentum_after"] = before[3], after[3]
+        out["angular_momentum_scale"] = before[4]
+        return out
 
     def _apply(self, s, S, n, v_n) -> None:
         """The impulse (see the Conventions); sets ``self._loss``."""
