@@ -66,6 +66,8 @@ class Hit:
     t: float
     effect: Any
     feature: Any = None
+    #: the feature touches with no approach speed and then falls in: it comes to rest
+    rest: bool = False
 
 
 def check_initial_overlap(model, forward) -> None:
@@ -170,8 +172,11 @@ class Collision:
         if not model.impacts or t_b <= t_a:
             return None
         best = None
+        support = self.resolver.support
         for a, imp in enumerate(model.impacts):
             for b, ft in enumerate(imp.features):
+                if support is not None and support.active(imp, ft):
+                    continue  # resting: its gap is held at zero (.support)
                 polys, x, other, size = self._polys(fit, imp, ft)
                 # positions round relative to their own size, not to their difference
                 reach = np.abs(x).sum() + other + size
@@ -208,8 +213,19 @@ class Collision:
                         # zero approach speed: the pair touches here (a plastic pair moving on
                         # together, the top of a tiny hop); it may still fall in later
                         if after is not None and xc <= after:
-                            raise falls_in(model.scene, imp, ft, tc)
+                            best = self._falls_in(best, imp, ft, tc)
+                            break
                         after = xc
                     else:  # touch after touch within one step: never passed over silently
-                        raise falls_in(model.scene, imp, ft, tc)
+                        best = self._falls_in(best, imp, ft, tc)
+        return best
+
+    def _falls_in(self, best, imp, ft, tc) -> Hit:
+        """A feature that touches and then falls in comes to rest there (a :class:`Hit`
+        with ``rest``), where the pair can rest (:mod:`.support`); else the run stops."""
+        support = self.resolver.support
+        if support is None or support.can_rest(imp, ft) is not None:
+            raise falls_in(self.model.scene, imp, ft, tc)
+        if best is None or tc < best.t:
+            return Hit(tc, imp, ft, rest=True)
         return best

@@ -10,6 +10,7 @@ The engine orchestrates its rooms, each one job:
 - :mod:`.flows`: the exact flows, each provider saying when it applies;
 - :mod:`.collision`: each contact feature's gap along a step, the first contact;
 - :mod:`.impacts`: the impact law at a contact, the simultaneous ones after it;
+- :mod:`.support`: resting contact, the support forces of bodies resting on planes;
 - :mod:`.modes`: the effects that switch (stick and slip, a tank that empties);
 - :mod:`.integrate`: the adaptive DOP853 loop over those event detectors;
 - :mod:`.report`: the result (series, invariants, their scales);
@@ -30,10 +31,12 @@ Conventions
 - **Exact flows** (``method = "auto"`` or ``"exact"``): see :mod:`.flows`.
 - **Integration** otherwise (or ``method = "integrate"``): see :mod:`.integrate`.
 - **Contacts**: a contact is a gap reaching zero while closing, resolved by the
-  Chapter 6 impulse (:mod:`mechanics.scenes.effects.impact`); simultaneous contacts by
-  sequential impulses (:mod:`.impacts`).  A contact found on the exit side, a pair
-  interpenetrating at a step's start, or a pair that comes to rest under a pressing
-  force (accumulating impacts, or e = 0) stops the run with a
+  Chapter 6 impulse (:mod:`mechanics.scenes.effects.impact`); simultaneous contacts as
+  :mod:`.impacts` says.  A body on a plane at rest at t = 0, or whose impacts
+  accumulate (or e = 0), rests on it with its support force (:mod:`.support`) until
+  that force would pull.  A contact found on the exit side, a pair interpenetrating at
+  a step's start, or a rest the model cannot treat (two bodies on each other,
+  Painlevé's paradox) stops the run with a
   :class:`~mechanics.scenes.errors.SceneError` naming the pair and the time.
 - **Series and invariants**: see :mod:`.report`.
 """
@@ -52,6 +55,7 @@ from .impacts import Resolver
 from .integrate import HOW, integrate
 from .modes import Modes
 from .report import finish
+from .support import Support
 from .trajectory import Trajectory
 
 __all__ = ["Engine", "validate"]
@@ -72,7 +76,9 @@ class Engine:
     def __init__(self, scene) -> None:
         md = self.model = model.Model(scene)
         self.forward = Forward(md)
-        self.resolver = Resolver(md, self.forward)
+        self.support = Support(md, self.forward)
+        self.forward.support = self.support
+        self.resolver = Resolver(md, self.forward, self.support)
         self.collision = Collision(md, self.forward, self.resolver)
         self.modes = Modes(md, self.forward)
         #: the exact flow found by :meth:`exact_flow` (None: none, or not asked yet)
@@ -122,10 +128,19 @@ class Engine:
                 "exact flow here; use 'auto' or 'integrate'",
             )
         if self.flow is not None and s.method != "integrate":
-            segs, events = self.flow.run()
-            return self._finish(t, segs, events, self.flow.how)
+            start = self.support.begin()
+            try:
+                segs, events = self.flow.run()
+            except flows.NotExact as exc:  # found on the way (a body comes to rest)
+                if s.method == "exact":
+                    raise s.error("scene.method", f"'exact' requested but {exc}") from None
+            else:
+                return self._finish(
+                    t, segs, sorted(start + events, key=lambda e: e.t), self.flow.how
+                )
+        start = self.support.begin()
         segs, events = integrate(
-            self.model, self.forward, self.collision, self.modes, self.resolver, s.duration
+            self.model, self.forward, self.collision, self.modes, self.resolver, s.duration, start
         )
         return self._finish(t, segs, events, HOW)
 

@@ -15,7 +15,10 @@ applies to a scene; :func:`find` returns it.
   (:class:`mechanics.tops.HeavySymmetricTop`, 5.2).
 - :func:`free_flight_flow`: free bodies with only uniform gravity and impacts of spheres
   and points (smooth, through the centres): free flight between impacts at closed-form
-  instants (:meth:`~.impacts.Resolver.contact_time`).
+  instants (:meth:`~.impacts.Resolver.contact_time`); a body resting on a plane
+  (:mod:`.support`) slides on it under the part of gravity along it.  A resting body
+  whose pair with a flying one would need the relative motion's quartic, or a body
+  resting on two planes, is not followed (:class:`NotExact`: the engine integrates).
 - :func:`rocket_flow`: free bodies with only gravity and space-fixed thrust: the rocket
   (7.30).
 
@@ -40,6 +43,7 @@ from .trajectory import Event, vectorized
 __all__ = [
     "PROVIDERS",
     "Flow",
+    "NotExact",
     "find",
     "free_flight",
     "free_flight_flow",
@@ -238,15 +242,24 @@ def free_flight_flow(model, forward, resolver) -> Flow | None:
     if "impact" in kinds:
         what += ", impacts solved in closed form"
     T_end = model.scene.duration
+    support = resolver.support
 
     def run():
-        g = model.uniform_gravity()
+        g0 = model.uniform_gravity()
         segs, events = [], []
         t0, y = 0.0, model.y0.copy()
         while True:
+            g = _resting_gravity(model, support, g0)
             s = forward.snapshot(t0, y)
             best = (math.inf, None, None)
             for imp in model.impacts:
+                if support is not None and imp in support.rests:
+                    continue  # resting: held on its plane
+                if imp.j is not None and np.any(g[imp.i] != g[imp.j]):
+                    raise NotExact(
+                        f"{imp.label}: one of them rests on a plane while the other flies "
+                        "(their relative motion is no longer uniform)"
+                    )
                 ft = imp.features[0]
                 tau = resolver.contact_time(imp, ft, s, g)
                 if tau < best[0]:
@@ -261,6 +274,24 @@ def free_flight_flow(model, forward, resolver) -> Flow | None:
         return segs, events
 
     return Flow(f"exact: {what}{_spin_note(model)}", run)
+
+
+class NotExact(Exception):
+    """An exact flow meets, on its way, what it cannot follow in closed form (the
+    engine integrates instead, where the scene's method allows)."""
+
+
+def _resting_gravity(model, support, g0) -> np.ndarray:
+    """Each body's acceleration (n, 3): g, or for a body resting on a smooth plane of
+    normal n its part along the plane, g − (g·n) n (the support takes the rest)."""
+    g = np.broadcast_to(g0, (model.n, 3)).copy()
+    held: dict[int, int] = {}
+    for imp in support.rests if support is not None else ():
+        held[imp.i] = held.get(imp.i, 0) + 1
+        if held[imp.i] > 1:
+            raise NotExact(f"body {model.names[imp.i]!r} rests on two planes")
+        g[imp.i] -= (g0 @ imp.normal) * imp.normal
+    return g
 
 
 def rocket_flow(model, forward, resolver) -> Flow | None:

@@ -36,6 +36,9 @@ class Forward:
         self.layout = model.layout
         #: the loads' phase (see the module's docstring); None outside an integration
         self.phase: float | None = None
+        #: the resting contacts (:class:`~mechanics.scenes.support.Support`), whose
+        #: forces follow the other loads; None: no impacts, nothing can rest
+        self.support = None
 
     # ---------------------------------------------------------------- the state
     def masses(self, t) -> np.ndarray:
@@ -117,11 +120,18 @@ class Forward:
     # ---------------------------------------------------------------- the loads
     def loads(self, t, s) -> tuple[np.ndarray, np.ndarray]:
         """The listed effects' forces F (n, 3) at G and moments M_A (n, 3) about G (body
-        components) on the snapshot s."""
+        components) on the snapshot s, the resting contacts' support included."""
+        out = self.loads_without_support(t, s)
+        if self.support is not None and self.support.rests:
+            self.support.add(t, s, out)
+        return out.F, out.M_A
+
+    def loads_without_support(self, t, s) -> Loads:
+        """The listed effects' loads on the snapshot s (what the supports hold against)."""
         out = Loads(self.model.n, s)
         for e in self.model.forces:
             e.loads(t, s, out)
-        return out.F, out.M_A
+        return out
 
     def loads_before(self, t, s, effect) -> Loads:
         """The loads of the effects summed before ``effect`` (all the others, for one
@@ -141,6 +151,8 @@ class Forward:
         out = Loads(self.model.n, s)
         for e in self.model.forces:
             e.loads(t, s, out)
+        if self.support is not None and self.support.rests:
+            self.support.add(t, s, out)
         return self.layout.derivative(s, out.F, out.M_A, out.rates)
 
     # ------------------------------------------------------------ accelerations

@@ -37,7 +37,9 @@
 - A touch at zero approach speed (up to :data:`CLOSING_ROUNDING`) is no impact
   (:meth:`Resolver.touch`).
 - A pair pressed together whose rebound can no longer be followed (the impacts
-  accumulate, or e = 0) stops the run (:meth:`Resolver.stalls`, :func:`zeno`).
+  accumulate, or e = 0; :meth:`Resolver.stalls`) comes to rest: a body on a plane is
+  supported from then on (:meth:`.support.Support.rest`); a pair the resting contact
+  does not treat stops the run with one line.
 - :meth:`Resolver.contact_time` is the closed-form time to a sphere's or point's next
   contact under uniform gravity (the exact flows' free flight).
 """
@@ -95,9 +97,12 @@ class Resolver:
     """The impact law at the contacts of a :class:`~mechanics.scenes.model.Model`,
     through its :class:`~mechanics.scenes.forward.Forward` dynamics."""
 
-    def __init__(self, model, forward) -> None:
+    def __init__(self, model, forward, support=None) -> None:
         self.model = model
         self.forward = forward
+        #: the resting contacts (:class:`~mechanics.scenes.support.Support`) a pair whose
+        #: impacts accumulate passes to; None: such a pair stops the run (:func:`zeno`)
+        self.support = support
 
     def touch(self, imp, ft, s) -> bool:
         """Touching with an approach speed that is zero up to rounding: no impact."""
@@ -142,7 +147,11 @@ class Resolver:
                 raise zeno(scene, t, imp.label)
             y = fwd.pack(s)
             if self.stalls(imp, ft, t, y, detail):
-                raise zeno(scene, t, imp.label)
+                if self.support is None:
+                    raise zeno(scene, t, imp.label)
+                press = self.pressed(imp, ft, t, y, abs(detail["normal_speed_before"]))
+                y = self.support.rest(t, y, imp, ft, detail, press, events)
+                s = fwd.snapshot(t, y)
             nxt = self.closing_now(s, floor)
             if nxt is None:
                 return y
@@ -270,8 +279,8 @@ class Resolver:
         )
 
     def pressed(self, imp, ft, t, y, speed=0.0) -> float:
-        """How hard the loads push the pair together: the inward normal relative
-        acceleration of the contact points (> 0 pressed, ≤ 0 not; within
+        """How hard the loads push the pair together: minus the gap's second derivative
+        (> 0 pressed, ≤ 0 not; within
         ``CLOSING_ROUNDING`` × the size of its terms, 0: the rounding of no push, as for
         a spinning body whose contact points accelerate along the plane).  ``speed``: the
         contact speeds just before (an impulse leaves ω rounded relative to them over
@@ -282,12 +291,24 @@ class Resolver:
             g2 = fwd.rim_gap_acceleration(t, y, s, imp, ft)
             if g2 is not None:
                 return -g2
-        S, n = imp.contact(s, ft)
+        _, n = imp.contact(s, ft)
+        # the gap's second derivative is that of the feature's point X (a sphere's
+        # centre, a corner) against the plane or the other sphere's centre: a spinning
+        # sphere's material contact point has a centripetal part that is not the gap's
+        X = imp.feature_point(s, ft)
+        pts = {ft.body: X} if ft.sphere is None else {ft.body: X, ft.sphere: s.r[ft.sphere]}
         sizes: dict[int, float] = {}
-        a = fwd.point_accelerations(t, y, s, {imp.i: S, imp.j: S}, sizes)
+        a = fwd.point_accelerations(t, y, s, pts, sizes)
         push = -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))
+        curve = 0.0
+        if ft.sphere is not None:  # |d| curves: + |ḋ across d|² / |d| (it opens the gap)
+            d = X - s.r[ft.sphere]
+            w = s.point_velocity(ft.body, ft.at) - s.v[ft.sphere]
+            dd = float(d @ d)
+            push -= float(w @ w - (w @ d) ** 2 / dd) / math.sqrt(dd)
+            curve = float(w @ w) / math.sqrt(dd)  # the size of that difference's terms
         spin = sum(float(np.linalg.norm(s.omega[k])) for k in imp.bodies())
-        size = sum(sizes.values()) + spin * speed
+        size = sum(sizes.values()) + spin * speed + curve
         return push if abs(push) > CLOSING_ROUNDING * size else 0.0
 
     def stalls(self, imp, ft, t, y, detail) -> bool:
@@ -309,9 +330,10 @@ class Resolver:
         bodies is uniform (gravity cancels), so |d + w τ| = a_i + a_j is a quadratic."""
         fwd = self.forward
         i = imp.i
+        g = np.broadcast_to(g, s.r.shape)  # each body's (a resting one's: along its plane)
         if imp.j is None:
             tau = contacts.plane_contact_time(
-                float(imp.gap(s, ft)), float(s.v[i] @ imp.normal), float(g @ imp.normal)
+                float(imp.gap(s, ft)), float(s.v[i] @ imp.normal), float(g[i] @ imp.normal)
             )
         else:
             j = imp.j
@@ -359,12 +381,13 @@ def solve_lcp(W, q) -> np.ndarray | None:
 
 
 def falls_in(scene, imp, ft, t) -> SceneError:
-    """The error of a pair that touches and then falls in (a resting contact)."""
+    """The error of a pair that touches and then falls in (a resting contact) where
+    the pair cannot rest (:meth:`.support.Support.can_rest`)."""
     return scene.error(
         imp.where,
         f"{ft.label} touch at t = {t:.17g} s and then fall in, with no separation that "
-        "float64 can resolve: a resting contact, which no effect provides (shorten the "
-        "duration)",
+        "float64 can resolve: a resting contact, which this pair cannot have (two bodies "
+        "on each other, a rim, or a body held by a joint; shorten the duration)",
     )
 
 
@@ -373,7 +396,6 @@ def zeno(scene, t, who="the bodies") -> SceneError:
     return scene.error(
         "scene.duration",
         f"{who} come to rest in contact (the impacts accumulate, or e = 0) near "
-        f"t = {t:.6g} s before the end {scene.duration:g} s: shorten the duration "
-        "(impacts do not become a resting contact; a round body resting or rolling on a "
-        "plane is the coulomb_friction joint's)",
+        f"t = {t:.6g} s before the end {scene.duration:g} s, in more events than "
+        f"{MAX_EVENTS} that it can follow: shorten the duration",
     )

@@ -3,7 +3,8 @@
 the event detectors.
 
 After every step each contact feature's gap (:meth:`.collision.Collision.first_contact`)
-and each mode's switch function (:meth:`.modes.Modes.first_switch`) are searched along
+each mode's switch function (:meth:`.modes.Modes.first_switch`) and each resting
+contact's (:meth:`.support.Support.first_switch`) are searched along
 the step's dense polynomial, so an event is found whatever the step size; the step is
 cut at the earliest, the event is applied (:meth:`.impacts.Resolver.resolve`,
 :meth:`.modes.Modes.switch`) and the integration restarts.  Switch times of the loads
@@ -27,9 +28,10 @@ __all__ = ["HOW", "integrate", "rows"]
 HOW = "integrated: DOP853 (mechanics.integrators), contacts located on each step's dense polynomial"
 
 
-def integrate(model, forward, collision, modes, resolver, t_end):
+def integrate(model, forward, collision, modes, resolver, t_end, events=()):
     """Integrate the model from its initial state to ``t_end``: the segments
-    ``[(t0, t1, state_at)]`` and the events."""
+    ``[(t0, t1, state_at)]`` and the events (after ``events``, those at the start:
+    the bodies resting there), in time order."""
     from mechanics.errors import StepSizeError
     from mechanics.integrators import DOP853Stepper
 
@@ -37,7 +39,8 @@ def integrate(model, forward, collision, modes, resolver, t_end):
     collision.reach.clear()  # a run starts with no sizes and no switches seen
     modes.switched.clear()
     switches = sorted({x for e in model.forces for x in e.switch_times() if 0 < x < t_end})
-    segs, events = [], []
+    support = forward.support
+    segs, events = [], list(events)
     t, y = 0.0, model.y0.copy()
     rate = budget.fastest_rate(s, model.w0)
     budget.check_steps(
@@ -51,6 +54,8 @@ def integrate(model, forward, collision, modes, resolver, t_end):
         forward.phase = 0.5 * (start + stop)
         if start > 0:  # a load switched on or off: a mode may have to switch with it
             y = modes.switch_now(t, y, events)
+            if support is not None and support.rests:
+                y = support.switch(t, y, events)
         while t < stop:
             solver = DOP853Stepper(forward.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
             hit = None
@@ -69,21 +74,43 @@ def integrate(model, forward, collision, modes, resolver, t_end):
                 sw = modes.first_switch(fit)
                 if sw is not None and (hit is None or sw.t < hit.t):
                     hit = sw
+                sp = support.first_switch(fit) if support is not None else None
+                if sp is not None and (hit is None or sp.t < hit.t):
+                    hit = sp
                 segs.append((solver.t_old, solver.t if hit is None else hit.t, rows(fit.dense)))
             if hit is None:
                 t, y = float(solver.t), np.array(solver.y, dtype=float)
                 break
             t = hit.t
             y = np.asarray(fit.dense(t), dtype=float)
+            if hit.effect is support:  # a resting contact lets go, sticks or slips
+                y = support.switch(t, y, events)
+                continue
             if hit.feature is None:  # an effect switches its mode (stick and slip)
                 y = modes.switch(t, y, hit.effect, events)
+                continue
+            if hit.rest:  # touching with no approach speed and falling in: it rests
+                press = resolver.pressed(hit.effect, hit.feature, t, y)
+                last = _last_impact(events, hit.effect)
+                y = support.rest(t, y, hit.effect, hit.feature, last, press, events)
                 continue
             y = resolver.resolve(t, y, hit.effect, hit.feature, events)
         for e in model.forces:
             if e.type == "thrust" and e.burn_out == stop and stop < t_end:
                 events.append(Event(stop, "burn_out", {"body": model.names[e.i]}))
     forward.phase = None
+    # a rest is dated at its accumulation time, a little after the impact that began it
+    events.sort(key=lambda ev: ev.t)
     return segs, events
+
+
+def _last_impact(events, imp) -> dict:
+    """The last impact of the pair ``imp`` (its time and rebound: where the bounces
+    that accumulate began their last hop), or {} if none."""
+    for ev in reversed(events):
+        if ev.kind == "impact" and imp.label in ev.detail.get("feature", ""):
+            return {"t": ev.t, "normal_speed_after": ev.detail["normal_speed_after"]}
+    return {}
 
 
 def rows(dense):

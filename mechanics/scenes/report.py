@@ -57,6 +57,11 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         for what, F in parts.items():
             for k, c in enumerate("xyz"):
                 series[f"{pre(i)}{what}_{c}"] = F[:, k]
+    support = forward.support if forward.support is not None and forward.support.timeline else None
+    held, held_sizes = support.series(t, Y) if support is not None else ({}, {})
+    for i, F in held.items():
+        for k, c in enumerate("xyz"):
+            series[f"{pre(i)}support_{c}"] = F[:, k]
     for i in lay.pins:
         series.update({pre(i) + k: v for k, v in top_angles(s.R[:, i], s.omega[:, i]).items()})
     for i, gd in lay.guides.items():
@@ -100,6 +105,8 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         # what the effects acting throughout keep; an effect that stops acting (a
         # push, a burn) breaks it only until then
         until = max((e.acts_until(events, q) for e in model.forces if not e.keeps(q)), default=0.0)
+        if support is not None:  # a support breaks what its forces do not keep
+            until = max(until, support.acts_until(events, q))
         if until < T:
             conserved[q] = values[q]
             if until > 0:
@@ -122,6 +129,10 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
             across.add(name)
     for i in model.rigid:
         until = max((e.acts_until(events) for e in model.forces if e.exerts_moment(i)), default=0.0)
+        if support is not None and any(
+            r.imp.i == i for _, rs in support.timeline for r in rs.values()
+        ):
+            until = max(until, support.acts_until(events))
         struck = any(imp.exerts_moment(i) for imp in model.impacts)
         if until >= T or not (model.w0[i].any() or until > 0 or struck):
             continue  # turned to the end, or never spinning (trivially kept)
@@ -158,12 +169,19 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         for e in model.forces:
             out.update({k: float(x) for k, x in e.series(ss).items()})
         y = np.asarray(dense(tt), dtype=float)
+        if support is not None:
+            for i, F in support.series(np.array([tt]), y[None])[0].items():
+                for k, c in enumerate("xyz"):
+                    out[f"{pre(i)}support_{c}"] = float(F[0, k])
         for i, parts in forward.reactions(np.array([tt]), y[None])[0].items():
             for what, F in parts.items():
                 for k, c in enumerate("xyz"):
                     out[f"{pre(i)}{what}_{c}"] = float(F[0, k])
         return out
 
+    for i, size in held_sizes.items():
+        for c in "xyz":
+            scales[f"{pre(i)}support_{c}"] = size
     for i, sizes in reaction_sizes.items():
         for what, size in sizes.items():
             for c in "xyz":
@@ -172,9 +190,8 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
     traj.scales = scales
     #: every body's r, v, R_A_O, ω_A and m at the sample times (mechanics.conformance)
     traj.snapshot = s
-    traj.gaps = {
-        imp.label: np.min([imp.gap(s, ft) for ft in imp.features], axis=0) for imp in model.impacts
-    }
+    traj.gaps, traj.resting_gaps = _gaps(model, support, t, s)
+    traj.support_law = _support_law(model, support, t, held, held_sizes)
     radii = [ft.a + ft.a_s for imp in model.impacts for ft in imp.features]
     verts = [
         np.abs(body_vertices(b)).max() for b in model.scene.bodies if body_vertices(b) is not None
@@ -187,6 +204,45 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         dev = np.einsum("...ij,...kj->...ik", Rr, Rr) - np.eye(3)
         traj.orthogonality = float(np.max(np.abs(dev)))
     return traj
+
+
+def _gaps(model, support, t, s):
+    """Each impact pair's smallest gap at the samples over its features that do not
+    rest there (a resting contact's gap is held at zero, up to the integration's
+    error), and the largest |gap| of its resting ones (None: it never rests)."""
+    gaps, resting = {}, {}
+    for imp in model.impacts:
+        G = np.array([imp.gap(s, ft) for ft in imp.features])  # (features, samples)
+        held = np.zeros(G.shape, dtype=bool)
+        if support is not None:
+            for t0, t1, rests in support.spans(None):
+                rest = rests.get(imp)
+                if rest is not None:
+                    on = (t >= t0) & (t < t1)
+                    for b in rest.active:
+                        held[b] |= on
+        gaps[imp.label] = np.min(np.where(held, np.inf, G), axis=0, initial=np.inf)
+        gaps[imp.label] = np.where(np.isfinite(gaps[imp.label]), gaps[imp.label], 0.0)
+        if held.any():
+            resting[imp.label] = float(np.max(np.abs(G[held])))
+    return gaps, resting
+
+
+def _support_law(model, support, t, held, sizes) -> dict[str, float]:
+    """Each resting pair's worst breach of the support's law at the samples where it
+    rests, relative to the size of the forces' terms: the total support force presses
+    (F·n ≥ 0) and lies in the friction cone (|F_t| ≤ μ F·n)."""
+    out: dict[str, float] = {}
+    for t0, t1, rests in support.spans() if support is not None else ():
+        on = (t >= t0) & (t < t1)
+        for imp in rests:
+            F = held[imp.i][on]
+            Fn = F @ imp.normal
+            Ft = np.linalg.norm(F - Fn[:, None] * imp.normal, axis=-1)
+            bad = np.maximum(-Fn, Ft - imp.mu_f * Fn)
+            worst = float(np.max(bad, initial=0.0)) / max(sizes[imp.i], 1e-300)
+            out[imp.label] = max(out.get(imp.label, 0.0), worst, 0.0)
+    return out
 
 
 def top_angles(R, w) -> dict[str, np.ndarray]:

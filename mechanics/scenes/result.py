@@ -15,7 +15,9 @@ Conventions
   the positions' size); at every impact the kinetic energy read off the velocities drops
   by the loss formula ½ μ (1 − e²) v_n² (6.41), and a two-body impact keeps the momentum
   (6.37) and every two-body impact the angular momentum about the contact point (6.21);
-  every impulse acts where the gap is zero (within ``PENETRATION_RTOL``);
+  every impulse acts where the gap is zero (within ``PENETRATION_RTOL``); a resting
+  contact stays at zero gap (within the conserved tolerance: its gap is held by its
+  acceleration) and its support presses, inside the friction cone (``SUPPORT_RTOL``);
   a rigid body's attitude stays orthogonal (R Rᵀ = I within ``ORTHOGONALITY_RTOL`` for
   an exact flow, the conserved tolerance for an integrated one).  A violation fails the
   run: a wrong motion never reports PASSED.
@@ -47,6 +49,7 @@ __all__ = [
     "IMPACT_RTOL",
     "ORTHOGONALITY_RTOL",
     "PENETRATION_RTOL",
+    "SUPPORT_RTOL",
     "Comparison",
     "ConservedReport",
     "SceneResult",
@@ -68,6 +71,9 @@ PENETRATION_RTOL = 256 * EPS
 #: momentum scale before): direct_impact is within a few ulps, the update adds one
 #: rounding per component, the sums over ≤ 2 bodies a few more
 IMPACT_RTOL = 64 * EPS
+#: the support's law at the samples (relative to its forces' terms): the forces are a
+#: least-norm solve of a few dozen rounded products (mechanics.scenes.support)
+SUPPORT_RTOL = 2**10 * EPS
 #: the impact checks' allowance per unit of an attitude's departure from orthonormality
 #: (measured: 3.9 at a pinned top's corner impacts, |R Rᵀ − I| = 1e-12; 16 leaves 4×)
 ATTITUDE_SLACK = 16.0
@@ -433,6 +439,25 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
                 depth / max(scale, 1e-300),
                 PENETRATION_RTOL,
                 "gap ≥ 0 at every sample",
+            )
+        )
+    for pair, held in tr.resting_gaps.items():
+        # held at zero by its support's acceleration: the integration's error, no more
+        out.append(
+            SelfCheck(
+                f"resting contacts of {pair} stay in contact",
+                held / max(scale, 1e-300),
+                max(PENETRATION_RTOL, tol),
+                "|gap| of every resting contact at every sample",
+            )
+        )
+    for pair, breach in tr.support_law.items():
+        out.append(
+            SelfCheck(
+                f"support of {pair} presses, inside its friction cone",
+                breach,
+                SUPPORT_RTOL,
+                "F·n ≥ 0 and |F_t| ≤ μ F·n at every sample where it rests",
             )
         )
     impacts = [e.detail for e in tr.events if "kinetic_energy_before" in e.detail]

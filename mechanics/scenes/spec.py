@@ -49,6 +49,7 @@ from .domain import RTOL_MIN, check_magnitude, check_value
 from .effects import EFFECT_CLASSES
 from .errors import SceneError
 from .state import ROUND_SHAPES, SPHERICAL_SHAPES
+from .trajectory import DEFAULT_TOL as _DEFAULT_TOL
 
 __all__ = [
     "EFFECT_FIELDS",
@@ -66,9 +67,8 @@ __all__ = [
 ]
 
 
-#: the integrator's default rtol and atol (the tolerances of conserved quantities in
-#: :mod:`mechanics.scenes.result` are measured at this setting and scale with it)
-DEFAULT_TOL = 1e-12
+#: the integrator's default rtol and atol (defined with the run's result types)
+DEFAULT_TOL = _DEFAULT_TOL
 
 #: shape -> the dimensions it needs (in SI metres); "custom" takes principal moments.
 SHAPES: dict[str, tuple[str, ...]] = {

@@ -25,6 +25,9 @@ __all__ = [
 ]
 
 EPS = float(np.finfo(float).eps)
+#: the integrator's default rtol and atol (the tolerances of conserved quantities in
+#: :mod:`mechanics.scenes.result` are measured at this setting and scale with it)
+DEFAULT_TOL = 1e-12
 
 
 @dataclass
@@ -61,6 +64,11 @@ class Trajectory:
     snapshot: Any = None
     #: each impact pair's smallest gap at every sample (its interpenetration check)
     gaps: dict[str, np.ndarray] = field(default_factory=dict)
+    #: each impact pair that rests at some sample: the largest |gap| of its resting
+    #: contacts there (held at zero by the support: their self-check)
+    resting_gaps: dict[str, float] = field(default_factory=dict)
+    #: each resting pair's worst breach of the support's law (presses, inside the cone)
+    support_law: dict[str, float] = field(default_factory=dict)
     #: the largest |coordinate| plus the largest radius and body extent (what the gaps
     #: round relative to)
     length_scale: float = 0.0

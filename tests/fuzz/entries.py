@@ -1163,6 +1163,8 @@ for _name in (
     "scenes.impacts.falls_in",
     "scenes.impacts.zeno",
     "scenes.modes.Modes",
+    "scenes.support.Rest",
+    "scenes.support.Support",
     "scenes.integrate.integrate",
     "scenes.integrate.rows",
     "scenes.report.finish",

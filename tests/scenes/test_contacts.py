@@ -359,9 +359,9 @@ def test_a_plastic_impact_leaves_the_pair_moving_together(method) -> None:
     _assert_close([s["a.vx"][-1], s["b.vx"][-1]], [0.25, 0.25], tol, 1.0, "common velocity")
 
 
-def test_a_ball_that_comes_to_rest_on_the_floor_stops_with_one_line() -> None:
-    """e = 0 under gravity: the ball would rest on the floor, which needs a resting
-    contact; the run stops with one line naming the file, the pair and the time."""
+def test_a_plastic_ball_comes_to_rest_on_the_floor_where_it_lands() -> None:
+    """e = 0 under gravity: the ball lands after the fall of 1 m, t = √(2/g), and rests
+    there (a resting contact, mechanics.scenes.support), its centre at the radius."""
     scene = parse_scene(
         {
             "scene": {"name": "plastic", "duration": 2.0},
@@ -381,12 +381,14 @@ def test_a_ball_that_comes_to_rest_on_the_floor_stops_with_one_line() -> None:
         },
         source="plastic.toml",
     )
+    t_c = math.sqrt(2.0 / 9.81)  # the fall of 1 m
     for method in ("auto", "integrate"):
-        with pytest.raises(SceneError, match="'ball' and the plane come to rest") as info:
-            run_scene(dataclasses.replace(scene, method=method))
-        t_c = math.sqrt(2.0 / 9.81)  # the fall of 1 m
-        assert f"t = {t_c:.6g} s" in str(info.value)
-        assert str(info.value).startswith("plastic.toml: scene.duration: ")
+        r = run_scene(dataclasses.replace(scene, method=method))
+        assert r.passed, r.summary()
+        impact, rest = r.trajectory.events
+        assert impact.t == pytest.approx(t_c, rel=2**20 * EPS)
+        assert (rest.kind, rest.t) == ("rest", impact.t)  # e = 0: no bounce to sum
+        assert r.trajectory.state_at(2.0)["z"] == pytest.approx(0.1, abs=2**8 * EPS)
 
 
 # ----------------------------------------------------------------- a wrong motion fails loudly
@@ -522,6 +524,10 @@ def _oblique_pairs(draw):
 
 @given(case=_oblique_pairs(), method=st.sampled_from(["auto", "integrate"]))
 @example(case=(0.1, 0.1, 0.2, 0.0, 2.0, 1.0, 0.3, 1.0 / 0.3, 0.8), method="integrate")
+# a plastic head-on pair moving on together: the gap's curvature term (zero up to its
+# rounding) once read as a press, and the pair as coming to rest (found by make test)
+@example(case=(0.6052775052668892, 0.6931850674168357, 1.298462572683725, 0.0, 1000.0,
+               5.025414343690856, 1.0, 2.0, 0.0), method="auto")  # fmt: skip
 def test_random_oblique_impacts_obey_the_restitution_law(case, method) -> None:
     """The issue's first report pinned: a at 1 m/s toward b (2 kg) 0.3 m away, 1 s."""
     r_a, r_b, s_ab, y, ratio, speed, gap, span, e = case

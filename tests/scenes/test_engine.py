@@ -387,6 +387,7 @@ def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -
         # several corners meeting the floor at once while sliding (not modelled)
         refusals = (
             "come to rest in contact",
+            "come to rest at t",  # a rest the resting contact cannot treat
             "would add",
             "a resting contact",
             "friction that slides are not modelled",
@@ -395,6 +396,8 @@ def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -
         return
     assert r.passed, r.summary()
     for ev in r.trajectory.events:
+        if ev.kind != "impact":  # it comes to rest: the support's own self-checks
+            continue
         d = ev.detail
         if d["impact_model"] == "simultaneous":  # Newton's law at each, or none needed
             speeds = zip(d["normal_speeds_before"], d["normal_speeds_after"], strict=True)

@@ -1,5 +1,5 @@
 """The scenes' imports point one way: spec → simulate → engine → its rooms (integrate →
-modes, collision → impacts → forward → model) → effects → state → errors, with no
+modes, support, collision → impacts → forward → model) → effects → state → errors, with no
 cycle; mechanics never imports the book layer (identities)."""
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ LAYERS = {
     "report": 5,
     "collision": 6,
     "modes": 7,
+    "support": 7,
     "flows": 7,
     "integrate": 8,
     "engine": 9,
