@@ -152,6 +152,9 @@ class Resolver:
                 press = self.pressed(imp, ft, t, y, abs(detail["normal_speed_before"]))
                 y = self.support.rest(t, y, imp, ft, detail, press, events)
                 s = fwd.snapshot(t, y)
+            elif self.support is not None and imp in self.support.rests:
+                y = self.support.after_impact(t, y, imp, events, floor)  # who still rests
+                s = fwd.snapshot(t, y)
             nxt = self.closing_now(s, floor)
             if nxt is None:
                 return y
@@ -173,8 +176,8 @@ class Resolver:
         best, speed = None, 0.0
         for imp in self.model.impacts:
             for ft in imp.features:
-                if not self.touching(s, imp, ft):
-                    continue
+                if self._held(imp, ft) or not self.touching(s, imp, ft):
+                    continue  # (a resting contact is the support's)
                 v = imp.approach(s, ft)
                 if v > CLOSING_ROUNDING * max(imp.speed_scale(s, ft), floor) and v > speed:
                     best, speed = (imp, ft), v
@@ -186,7 +189,16 @@ class Resolver:
         one impact problem; only ``ft`` where the pair's ``model`` is "sequential"."""
         if imp.model == "sequential":
             return [ft]
-        return [ft] + [f for f in imp.features if f is not ft and self.touching(s, imp, f)]
+        return [ft] + [
+            f
+            for f in imp.features
+            if f is not ft and (self.touching(s, imp, f) or self._held(imp, f))
+        ]
+
+    def _held(self, imp, ft) -> bool:
+        """Does ``ft`` rest (its gap held at zero by a support: in contact whatever the
+        integration's drift of its gap)?"""
+        return self.support is not None and self.support.active(imp, ft)
 
     def together(self, s, imp, feats) -> dict:
         """Newton's law at the contacts ``feats`` of one pair at once (see the module's
@@ -245,9 +257,12 @@ class Resolver:
         detail["normals"] = [n.tolist() for _, n in points]
         detail["impulses"] = P.tolist()
         detail["normal_speeds_before"], detail["normal_speeds_after"] = (-u0).tolist(), u1.tolist()
-        gaps = [float(imp.gap(s, f)) for f in feats]
+        # the gap where the impulses act: of the contacts that do not rest (a resting
+        # one's is held at zero to the integration's error: the run's resting check)
+        free = [f for f in feats if not self._held(imp, f)] or feats
+        gaps = [float(imp.gap(s, f)) for f in free]
         g = int(np.argmax(np.abs(gaps)))
-        detail["gap"], detail["gap_scale"] = gaps[g], imp.gap_scale(s, feats[g])
+        detail["gap"], detail["gap_scale"] = gaps[g], imp.gap_scale(s, free[g])
         detail["friction"] = "smooth" if imp.mu_f == 0 else "stick (no contact slides)"
         detail.update(imp.outcome(s, before, after, -0.5 * float(P @ (u0 + u1_alg))))
         detail["law_residual"] = float(law[worst]) / max(scale, float(np.max(np.abs(u0))), 1e-300)
@@ -262,7 +277,7 @@ class Resolver:
         if imp.model == "sequential":
             return
         for f in imp.features:
-            if any(f is g for g in group) or not self.touching(s, imp, f):
+            if any(f is g for g in group) or not (self.touching(s, imp, f) or self._held(imp, f)):
                 continue
             scale = max(imp.speed_scale(s, f), detail["normal_speed_before"], 1e-300)
             closing = imp.approach(s, f) / scale

@@ -33,6 +33,10 @@ hold them there, and when they let go.
   suffices, else slips on).  The contacts and the mode are chosen as the largest set of
   the touching contacts whose forces are pressing (λ ≥ 0) while the others' gaps do not
   fall (their normal acceleration ≥ 0); none: the body leaves the plane (``lift_off``).
+- **Struck while resting** (another contact of the pair hits, :meth:`Support.after_impact`):
+  the resting contacts take part in the impact problem (they are in contact whatever the
+  integration's drift of their gaps), and after it the ones that separate leave the
+  support; the others are chosen again.
 - **Refused with one line** (a :class:`~mechanics.scenes.errors.SceneError`): a rest
   that cannot be resolved: Painlevé's paradox (a slipping contact whose normal
   acceleration falls as its support force grows, n·K (n − μ ŝ) ≤ 0), no set of
@@ -308,8 +312,11 @@ class Support:
         docstring); the ``rest`` event; the new state."""
         fwd = self.forward
         s = fwd.snapshot(t, y)
+        held = self.rests[imp].active if imp in self.rests else ()
         feats = tuple(
-            b for b, f in enumerate(imp.features) if f.support is None and self._touching(s, imp, f)
+            b
+            for b, f in enumerate(imp.features)
+            if f.support is None and (self._touching(s, imp, f) or b in held)
         )
         why = self.can_rest(imp, ft) or (None if feats else "no contact touches")
         if why is not None:
@@ -349,6 +356,31 @@ class Support:
         events.append(ev)
         return y
 
+    def after_impact(self, t, y, imp, events, floor=0.0) -> np.ndarray:
+        """After an impulse on a resting pair (another of its contacts struck, the
+        resting ones in its problem): the contacts that now separate (beyond the
+        rounding of the contact speeds, or of ``floor``, those the instant began with)
+        leave the support, the others are chosen again (``lift_off`` where the body
+        leaves); the state."""
+        from .impacts import CLOSING_ROUNDING
+
+        s = self.forward.snapshot(t, y)
+        old = self.rests[imp]
+        keep = tuple(
+            b
+            for b in old.active
+            if -imp.approach(s, imp.features[b])
+            <= CLOSING_ROUNDING * max(imp.speed_scale(s, imp.features[b]), floor)
+        )
+        others = {k: r for k, r in self.rests.items() if k is not imp}
+        rest = self._choose(t, s, imp, keep, others, old.speed) if keep else None
+        if rest is None:
+            events.append(self._event(t, old, "lift_off"))
+        else:
+            others[imp] = rest
+        self._set(t, others)
+        return y
+
     # ----------------------------------------------------------------- choice
     def _choose(self, t, s, imp, feats, others, floor=0.0) -> Rest | None:
         """The largest set of ``feats`` that presses (λ ≥ 0) while the others' gaps do
@@ -360,26 +392,8 @@ class Support:
                 if rest is None:
                     continue
                 if self._holds(t, s, imp, rest, feats, others):
-                    self._check_face(t, s, imp, rest)
                     return rest
         return None
-
-    def _check_face(self, t, s, imp, rest) -> None:
-        """A polyhedron rests on a face (three contacts or more, not on one line): one
-        resting on an edge or a corner pivots, which this model does not follow yet
-        (refused: its gaps drifted off zero in the random rough-corner test)."""
-        if all(imp.features[b].at is None for b in rest.active):
-            return  # a sphere or a point: one round contact
-        P = np.array([imp.feature_point(s, imp.features[b]) for b in rest.active])
-        size = float(np.abs(P).max()) + 1e-300
-        if len(P) < 3 or np.linalg.matrix_rank(P[1:] - P[0], tol=FORCE_ROUNDING * size) < 2:
-            raise self._unresolved(
-                t,
-                imp,
-                "it rests on an edge or a corner and would pivot there (a resting contact "
-                "on an edge or a corner is not modelled yet; only a face, a sphere or a "
-                "point rests)",
-            )
 
     def _mode(self, t, s, imp, sub, others, floor=0.0) -> Rest | None:
         """The friction mode of the contacts ``sub`` (see the module's docstring); a slip
