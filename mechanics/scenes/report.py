@@ -215,7 +215,7 @@ def _gaps(model, support, t, s):
         G = np.array([imp.gap(s, ft) for ft in imp.features])  # (features, samples)
         held = np.zeros(G.shape, dtype=bool)
         if support is not None:
-            for t0, t1, rests in support.spans(None):
+            for t0, t1, rests in support.spans():
                 rest = rests.get(imp)
                 if rest is not None:
                     on = (t >= t0) & (t < t1)

@@ -152,23 +152,21 @@ class Support:
         if not rows:
             return [], scale
         A, b, blocks = rows
-        x = _least_norm(A, b)
-        resid = float(np.abs(A @ x - b).max())
-        size = float(np.abs(A).max() * np.abs(x).max() + np.abs(b).max())
-        if resid > FORCE_ROUNDING * max(size, 1e-300) * len(b):
+        x = _solve(A, b)
+        if x is None:
             raise self._unresolved(
                 t,
                 next(iter(self.rests.values())).imp,
                 "no support forces hold the body on the plane (the equations have no solution)",
             )
         forces = [(rest, k, B @ x[c0:c1]) for rest, k, B, c0, c1 in blocks]
-        return forces, size
+        return forces, float(np.abs(A).max() * np.abs(x).max() + np.abs(b).max())
 
     def _equations(self, t, s, out, rests):
         """The linear equations A x = b of the support forces (see the module's docstring),
         with the blocks ``(rest, feature, B, c0, c1)``: the force f = B x[c0:c1]."""
         fwd = self.forward
-        cons = []  # (rest, feature index, body, X, S, n, stick, d)
+        cons = []  # (rest, feature, body, X, S, n, stick?, force direction d, round?)
         for rest in rests.values():
             imp = rest.imp
             for b in rest.active:
@@ -433,21 +431,17 @@ class Support:
         return Rest(imp, sub, "slip", tuple(driven), max(floor, max(s_ for _, s_ in slips)))
 
     def _trial(self, t, s, rests):
-        saved = self.rests
-        try:
-            out = self.forward.loads_without_support(t, s)
-            self.rests = rests
-            rows, _ = self._equations(t, s, out, rests)
-            if rows is None:
-                return []
-            A, b, blocks = rows
-            x = _least_norm(A, b)
-            size = float(np.abs(A).max() * np.abs(x).max() + np.abs(b).max())
-            if float(np.abs(A @ x - b).max()) > FORCE_ROUNDING * max(size, 1e-300) * len(b):
-                return None
-            return [(rest, k, B @ x[c0:c1]) for rest, k, B, c0, c1 in blocks]
-        finally:
-            self.rests = saved
+        """The support forces that ``rests`` would have at (t, s) (as :meth:`forces`), or
+        None where their equations have no solution."""
+        out = self.forward.loads_without_support(t, s)
+        rows, _ = self._equations(t, s, out, rests)
+        if rows is None:
+            return []
+        A, b, blocks = rows
+        x = _solve(A, b)
+        if x is None:
+            return None
+        return [(rest, k, B @ x[c0:c1]) for rest, k, B, c0, c1 in blocks]
 
     def _holds(self, t, s, imp, rest, feats, others) -> bool:
         """Do ``rest``'s forces press (λ ≥ 0 within rounding), and do the touching
@@ -477,14 +471,9 @@ class Support:
                 return False
         # the touching contacts outside the set: their gaps must not fall
         out = self.forward.loads_without_support(t, s)
-        saved = self.rests
-        self.rests = {**others, imp: rest}
-        try:
-            for r, b, f in forces:
-                S, _ = r.imp.contact(s, r.imp.features[b])
-                out.force(r.imp.i, f, s.to_body(r.imp.i, S - s.r[r.imp.i]))
-        finally:
-            self.rests = saved
+        for r, b, f in forces:
+            S, _ = r.imp.contact(s, r.imp.features[b])
+            out.force(r.imp.i, f, s.to_body(r.imp.i, S - s.r[r.imp.i]))
         dy = self.forward.layout.derivative(s, out.F, out.M_A, out.rates)
         origin, base, w, alpha = self.forward.kinematics(s, dy, imp.i)
         for b in feats:
@@ -660,7 +649,7 @@ class Support:
                     until = max(until, t1)
         return until
 
-    def spans(self, _=None):
+    def spans(self):
         """[(t0, t1, rests)] over the run where some body rests (t1 = inf for the last)."""
         out = []
         for k, (t0, rests) in enumerate(self.timeline):
@@ -705,6 +694,17 @@ def _least_norm(A, b) -> np.ndarray:
     RANK_RTOL × the largest × the size are a dependency)."""
     rcond = RANK_RTOL * max(A.shape)
     return np.linalg.lstsq(A, b, rcond=rcond)[0]
+
+
+def _solve(A, b) -> np.ndarray | None:
+    """The least-norm solution of the support's equations, or None where it leaves a
+    residual beyond the rounding of its terms (FORCE_ROUNDING × their size × the number
+    of equations): no forces satisfy them."""
+    x = _least_norm(A, b)
+    size = float(np.abs(A).max() * np.abs(x).max() + np.abs(b).max())
+    if float(np.abs(A @ x - b).max()) > FORCE_ROUNDING * max(size, 1e-300) * len(b):
+        return None
+    return x
 
 
 def _unit(x):
