@@ -118,3 +118,44 @@ def test_a_scene_that_misses_the_book_exits_1(tmp_path, capsys) -> None:
     )
     assert main(["scene", str(p)]) == 1
     assert "FAILED" in capsys.readouterr().out
+
+
+_ROD = """[scene]
+name = "leaning_rod"
+duration = 0.05
+
+[[bodies]]
+name = "rod"
+shape = "rod"
+mass = 1.0
+length = 1.0
+initial = {{ position = [0.0, 0.0, 0.3535533905932738], theta = 0.7853981633974483, velocity = [0.0, {slide}, 0.0] }}
+
+[[effects]]
+type = "gravity"
+g = 9.81
+
+[[effects]]
+type = "impact"
+body = "rod"
+restitution = 0.0
+friction = 2.0
+"""
+
+
+def test_a_rest_that_cannot_be_resolved_is_one_line_with_exit_code_2(tmp_path, capsys) -> None:
+    """Painlevé's paradox (the rod of tests/scenes/test_resting.py, its end slipping
+    with μ = 2 ≥ 5/3): one line naming the file, the impact, the pair, the time and
+    the reason; nothing printed on stdout (nothing half-run)."""
+    p = tmp_path / "rod.toml"
+    p.write_text(_ROD.format(slide=1.0))
+    assert main(["scene", str(p)]) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert err.count("\n") == 1
+    assert f"{p}: effects[1]: body 'rod' and the plane come to rest at t = 0 s" in err
+    assert "Painlevé's paradox" in err
+    # the other way, no paradox: the rod rests on its end and the run passes
+    p.write_text(_ROD.format(slide=-1.0))
+    assert main(["scene", str(p)]) == 0
+    assert "PASSED" in capsys.readouterr().out
