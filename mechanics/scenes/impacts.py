@@ -108,9 +108,11 @@ class Resolver:
         """Touching with an approach speed that is zero up to rounding: no impact."""
         return imp.approach(s, ft) <= CLOSING_ROUNDING * imp.speed_scale(s, ft)
 
-    def resolve(self, t, y, imp, ft, events) -> np.ndarray:
+    def resolve(self, t, y, imp, ft, events, gap_scale=0.0) -> np.ndarray:
         """Resolve the impact found at t, then every simultaneous one (sequential
-        impulses, see the module's docstring); record the events; return the new state."""
+        impulses, see the module's docstring); record the events; return the new state.
+        ``gap_scale``: the size the contact search's rounding was relative to (the gap
+        is zero within it; a hop below it cannot be followed)."""
         from mechanics.errors import SeparatingContactError
 
         scene, fwd = self.model.scene, self.forward
@@ -142,6 +144,7 @@ class Resolver:
                 raise scene.error(
                     f"{imp.where}.friction", f"{ft.label} at t = {t:.6g} s: {exc}"
                 ) from None
+            detail["gap_scale"] = max(detail["gap_scale"], gap_scale)
             events.append(Event(t, "impact", detail))
             if len(events) > MAX_EVENTS:
                 raise zeno(scene, t, imp.label)

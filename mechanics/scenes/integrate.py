@@ -94,7 +94,11 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
                 last = _last_impact(events, hit.effect)
                 y = support.rest(t, y, hit.effect, hit.feature, last, press, events)
                 continue
-            y = resolver.resolve(t, y, hit.effect, hit.feature, events)
+            # the search found it within its rounding, relative to the largest size the
+            # features' positions have had (Collision.reach): the gap's scale is that
+            a = model.impacts.index(hit.effect)
+            reach = max(v for (i, _), v in collision.reach.items() if i == a)
+            y = resolver.resolve(t, y, hit.effect, hit.feature, events, reach)
         for e in model.forces:
             if e.type == "thrust" and e.burn_out == stop and stop < t_end:
                 events.append(Event(stop, "burn_out", {"body": model.names[e.i]}))

@@ -310,11 +310,13 @@ class Support:
         docstring); the ``rest`` event; the new state."""
         fwd = self.forward
         s = fwd.snapshot(t, y)
+        # the contact just found (its event located there: at contact, whatever the
+        # rounding of its gap), those touching with it, and those already resting
         held = self.rests[imp].active if imp in self.rests else ()
         feats = tuple(
             b
             for b, f in enumerate(imp.features)
-            if f.support is None and (self._touching(s, imp, f) or b in held)
+            if f.support is None and (f is ft or self._touching(s, imp, f) or b in held)
         )
         why = self.can_rest(imp, ft) or (None if feats else "no contact touches")
         if why is not None:
