@@ -59,6 +59,7 @@ import numpy as np
 from . import contacts
 from .bodies import Point
 from .collision import Hit, StepFit
+from .impacts import CLOSING_ROUNDING, GAP_ROUNDING
 from .trajectory import DEFAULT_TOL, EPS, Event
 
 __all__ = ["FORCE_ROUNDING", "Rest", "Support"]
@@ -240,8 +241,6 @@ class Support:
     def begin(self) -> list[Event]:
         """At t = 0: every free body touching a plane with no approach speed, pressed on
         it, rests (see the module's docstring)."""
-        from .impacts import CLOSING_ROUNDING
-
         self.clear()
         md, fwd = self.model, self.forward
         s = fwd.snapshot(0.0, md.y0)
@@ -289,8 +288,6 @@ class Support:
         return isinstance(self.model.layout.bodies[k], Point)
 
     def _touching(self, s, imp, ft) -> bool:
-        from .impacts import GAP_ROUNDING
-
         scale = imp.gap_scale(s, ft)
         return abs(float(imp.gap(s, ft))) <= GAP_ROUNDING * 4 * scale
 
@@ -362,8 +359,6 @@ class Support:
         rounding of the contact speeds, or of ``floor``, those the instant began with)
         leave the support, the others are chosen again (``lift_off`` where the body
         leaves); the state."""
-        from .impacts import CLOSING_ROUNDING
-
         s = self.forward.snapshot(t, y)
         old = self.rests[imp]
         keep = tuple(
