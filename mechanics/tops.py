@@ -986,30 +986,50 @@ class HeavySymmetricTop:
             -2 * u0 * T0 - beta * S * S + 2 * b * c0,
             (self.theta_dot0 * S) ** 2,
         )
-        f = self._f
-        lo = 1.0 - u0
-        hi = max(2.0 * lo, 1.0)
-        while f(hi) <= 0:
-            hi *= 2.0
-        start = lo
-        if f(lo) >= 0:  # u = 1 is a root (L_z = L3): the top passes the vertical
-            fp = (3 * self._coef[0] * lo + 2 * self._coef[1]) * lo + self._coef[2]
-            start = lo if fp > 0 else math.nextafter(lo, math.inf)
-            while f(start) >= 0 and fp <= 0 and start < hi:
-                start = start + max(lo, 1.0) * 1e-12
-        if start == lo and f(lo) >= 0:
-            x3 = lo
+        # u3 ≥ 1 (f(1) = −(a − b)² ≤ 0), searched as y = u3 − 1 ≥ 0 on f in factored form:
+        # f = (1 − u)[(e − βu)(1 + u) − 2(a − b)b − b²(1 − u)] − (a − b)², with 1 − u = −y,
+        # 1 + u = 2 + y and e − βu = T0 − β(1 − u0) − βy.  Its rounding shrinks with y, so a
+        # root at or near the vertical is not lost in the cubic's rounding noise there (the
+        # cubic about u0 rounds to 0 at points a few ulps off a root u2 = 1, and a root
+        # search on it returned u3 = 1 for a top that swings over the vertical)
+        c2h, s2h = 2.0 * math.cos(0.5 * th) ** 2, 2.0 * math.sin(0.5 * th) ** 2
+        amb, lo = self._amb, 1.0 - u0
+        vertical = amb * amb == 0.0  # a = b (to the square's range): u = 1 is a root
+        ebeta = T0 - beta * s2h  # e − β: how far the energy is above the vertical's
+
+        def h(y):
+            return (2.0 + y) * (ebeta - beta * y) - 2.0 * amb * b + b * b * y
+
+        def F(y):
+            return -y * h(y) - amb * amb
+
+        if vertical and h(0.0) <= 0:
+            y3 = 0.0  # u = 1 is the largest root: the top reaches the vertical and turns
         else:
+            # a = b: u = 1 is a root of f, and u3 one of h = f/(1 − u); else u3 is F's root.
+            # Below u3, h > 0 and F < 0; above, the reverse
+            g, sign = (h, -1.0) if vertical else (F, 1.0)
+            hi = max(lo, 1.0)
+            while sign * g(hi) <= 0:
+                hi *= 2.0
             from scipy.optimize import brentq  # here: keeps `import mechanics.tops` cheap
 
             try:
-                x3 = brentq(f, start, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
+                y3 = brentq(g, 0.0, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
             except RuntimeError:  # no convergence: gravity negligible against the spin
                 raise OutOfDomainError(
                     f"the turning points of θ are not found (m_g_ell = {self.m_g_ell!r} against "
                     f"J_1 = {self.J_1!r} and the rates): gravity is negligible here; use "
                     "FreeSymmetricTop"
                 ) from None
+            # brentq stops within a few ulps: a Newton step on g takes y3 to its rounding
+            dh = ebeta - beta * y3 - beta * (2.0 + y3) + b * b
+            dg = dh if vertical else -h(y3) - y3 * dh
+            if dg != 0:
+                y = y3 - g(y3) / dg
+                if y >= 0 and abs(g(y)) < abs(g(y3)):
+                    y3 = y
+        x3 = s2h + y3
         p = self._coef[1] / beta + x3
         q = -self._coef[3] / (beta * x3)
         disc = math.sqrt(p * p - 4 * q)
@@ -1021,14 +1041,14 @@ class HeavySymmetricTop:
         # f(∓1) = −(a ± b)² = β(∓1 − u1)(∓1 − u2)(∓1 − u3):
         # 1 + u1 = (a + b)²/(β(1 + u2)(1 + u3)), 1 − u2 = (a − b)²/(β(1 − u1)(u3 − 1)),
         # whose other factors carry no cancellation (exactly 0 when the top passes ∓1)
-        c2h, s2h = 2.0 * math.cos(0.5 * th) ** 2, 2.0 * math.sin(0.5 * th) ** 2
         opu1 = c2h + x1
         if opu1 < 1e-3:
             opu1 = self._apb**2 / (beta * (c2h + x2) * (c2h + x3))
             x1 = opu1 - c2h
         omu2 = s2h - x2
-        u3m1 = x3 - s2h
-        if omu2 < 1e-3 and u3m1 > 1e-3:
+        u3m1 = y3
+        # (a = b: exactly 0 where u3 > 1, however near; 1 − u2 > 0 is then u3 = 1's other side)
+        if omu2 < 1e-3 and u3m1 > 0 and (u3m1 > 1e-3 or vertical):
             omu2 = self._amb**2 / (beta * (s2h - x1) * u3m1)
             x2 = s2h - omu2
         self._opu1, self._omu2 = max(opu1, 0.0), max(omu2, 0.0)
