@@ -192,6 +192,13 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
     traj.snapshot = s
     traj.gaps, traj.resting_gaps = _gaps(model, support, t, s)
     traj.support_law = _support_law(model, support, t, held, held_sizes)
+    forces = model.forces  # (where all conserve, E is a conserved quantity already)
+    if (
+        "E" in series
+        and any(e.dissipative for e in forces)
+        and all(e.dissipative or e in model.potentials for e in forces)
+    ):
+        traj.energy_rise = float(np.max(E - np.minimum.accumulate(E), initial=0.0))
     radii = [ft.a + ft.a_s for imp in model.impacts for ft in imp.features]
     verts = [
         np.abs(body_vertices(b)).max() for b in model.scene.bodies if body_vertices(b) is not None

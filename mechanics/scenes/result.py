@@ -441,6 +441,20 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
                 "gap ≥ 0 at every sample",
             )
         )
+    if tr.energy_rise is not None:
+        size = max(tr.scales.get("E", 0.0), float(np.max(np.abs(tr.series["E"]))), 1e-300)
+        allowed = tol  # E's own error, as where it is conserved (a splitting's: its order's)
+        if split is not None and "E_drift_half" in split:
+            allowed = max(tol, 1.5 * 2.0 ** split["order"] * split["E_drift_half"] / size)
+        out.append(
+            SelfCheck(
+                "energy never rises",
+                tr.energy_rise / size,
+                allowed,
+                "E(t) ≤ E at every earlier sample: friction, drag and impacts only take "
+                "energy, ideal joints and the support do no work",
+            )
+        )
     for pair, held in tr.resting_gaps.items():
         # held at zero by its support's acceleration: the integration's error, no more
         out.append(

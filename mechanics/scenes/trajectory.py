@@ -69,6 +69,9 @@ class Trajectory:
     resting_gaps: dict[str, float] = field(default_factory=dict)
     #: each resting pair's worst breach of the support's law (presses, inside the cone)
     support_law: dict[str, float] = field(default_factory=dict)
+    #: the largest rise of E(t) over any earlier sample, where only potentials and
+    #: effects that never add energy act (None: the scene makes no such claim)
+    energy_rise: float | None = None
     #: the largest |coordinate| plus the largest radius and body extent (what the gaps
     #: round relative to)
     length_scale: float = 0.0

@@ -214,6 +214,11 @@ class Effect:
         """Validate the combination of this effect with the scene (fields are checked
         one by one by the parser); raise ``scene.error(field, reason)``."""
 
+    #: it never adds mechanical energy: it takes some (friction, drag) or does no work (an
+    #: ideal joint); with only such effects and potentials, E(t) may not rise
+    #: (the self-check "energy never rises")
+    dissipative: ClassVar[bool] = False
+
     #: an effect that reads the other effects' loads (a friction that needs the normal
     #: force) sets this: the engine sums it after all the others
     after_loads: ClassVar[bool] = False

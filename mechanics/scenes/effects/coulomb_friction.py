@@ -112,7 +112,11 @@ class Slide(Guide):
         if mode != 0:
             a = acc(mode)
             rate = a[0] - self.r * a[1]
-            ts = -slip0 / rate if rate * slip0 < 0 else math.inf
+            # the slip falls toward zero where its rate opposes it (signs compared, not
+            # their product: that underflows to −0 for a subnormal slip, found by
+            # hypothesis, and the slip then ran on through zero with the friction unturned)
+            falls = rate != 0 and (rate < 0) != (slip0 < 0)
+            ts = -slip0 / rate if falls else math.inf
             if ts <= duration:
                 q1 = q0 + qd0 * ts + 0.5 * a * ts * ts
                 qd1 = qd0 + a * ts
@@ -145,6 +149,7 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
     reaches zero (an event) the body rolls if static friction suffices."""
 
     type = "coulomb_friction"
+    dissipative = True
     #: it reads the other loads (the normal force, the force that keeps it rolling)
     after_loads = True
     schema: ClassVar[Schema] = {

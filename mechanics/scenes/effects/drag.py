@@ -19,6 +19,7 @@ class Drag(Effect):
     """Linear (N·s/m) and quadratic (N·s²/m²) drag, and their rotational counterparts."""
 
     type = "drag"
+    dissipative = True
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "linear": ("nonnegative", False),

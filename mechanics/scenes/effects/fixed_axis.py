@@ -27,6 +27,7 @@ class FixedAxis(Effect, GuidesBody):
     """A fixed axis (a hinge) through the body: one degree of freedom φ (4.3)."""
 
     type = "fixed_axis"
+    dissipative = True
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "axis": ("vector", False),

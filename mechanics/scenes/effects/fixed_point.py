@@ -23,6 +23,7 @@ class FixedPoint(Effect):
     """A fixed point C on the body's symmetry (z) axis at distance ℓ from G (5.2)."""
 
     type = "fixed_point"
+    dissipative = True
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "distance": ("nonnegative", True),

@@ -190,6 +190,7 @@ class Rolling(Effect, GuidesBody):
     track (3.77, 4.60): one degree of freedom; the contact force does no work."""
 
     type = "rolling"
+    dissipative = True
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "surface": ("str", True),
