@@ -29,7 +29,9 @@ import numpy as np
 from numpy.polynomial import chebyshev as C
 
 from . import contacts
+from .effects.impact import centre_gaps
 from .impacts import GAP_ROUNDING, falls_in
+from .trajectory import EPS
 
 __all__ = ["Collision", "Hit", "StepFit", "check_initial_overlap"]
 
@@ -71,15 +73,40 @@ class Hit:
 
 
 def check_initial_overlap(model, forward) -> None:
-    """No two features overlap at t = 0 beyond the rounding of their positions."""
+    """No two features overlap at t = 0 beyond the rounding of their positions (the
+    centres of spheres and points all at once: :func:`.effects.impact.centre_gaps`)."""
     scene = model.scene
     s = forward.snapshot(0.0, model.y0)
-    for imp in model.impacts:
+    imps = model.impacts
+    rows, G = centre_gaps(imps, s)
+    if rows:
+        fts = [imps[a].features[0] for a in rows]
+        x = np.abs(s.r[[ft.body for ft in fts]]).sum(-1)
+        other = np.array([np.abs(imps[a].point).sum() for a in rows])
+        size = np.array([ft.a + ft.a_s for ft in fts])
+        bad = np.nonzero(-GAP_ROUNDING * (x + other + size) > G)[0]
+        if bad.size:
+            c = int(bad[0])
+            _overlap(scene, imps[rows[c]], fts[c], float(G[c]))
+    done = set(rows)
+    for a, imp in enumerate(imps):
+        if a in done:
+            continue
         for ft in imp.features:
             gap = float(imp.gap(s, ft))
             reach = np.abs(imp.feature_point(s, ft)).sum() + np.abs(imp.point).sum()
             if gap < -GAP_ROUNDING * (reach + ft.a + ft.a_s):  # beyond the rounding
-                raise scene.error(imp.where, f"{ft.label} overlap at t = 0 s (gap {gap:.3g} m < 0)")
+                _overlap(scene, imp, ft, gap)
+
+
+def _overlap(scene, imp, ft, gap):
+    raise scene.error(imp.where, f"{ft.label} overlap at t = 0 s (gap {gap:.3g} m < 0)")
+
+
+#: the broad phase's margin, relative to the size of the positions: its boxes enclose the
+#: step's polynomials exactly (|T_k| ≤ 1 on the step), so the margin covers rounding
+#: only, with room (the narrow phase's own rounding is GAP_ROUNDING = 64 eps)
+BROAD_RTOL = 2**10 * EPS
 
 
 class Collision:
@@ -91,6 +118,99 @@ class Collision:
         self.resolver = resolver
         #: (impact, feature) index -> the largest size of its positions so far
         self.reach: dict[tuple[int, int], float] = {}
+        imps = model.impacts
+        #: the bodies of the impacts, and each one's reach about G: the radius of a
+        #: ball about its centre that holds every contact feature of it
+        self.ext = np.zeros(model.n)
+        for imp in imps:
+            for ft in imp.features:
+                if ft.support is not None:
+                    arm = math.hypot(*ft.support)
+                else:
+                    arm = (0.0 if ft.at is None else float(np.linalg.norm(ft.at))) + ft.a
+                self.ext[ft.body] = max(self.ext[ft.body], arm)
+                if ft.sphere is not None:
+                    self.ext[ft.sphere] = max(self.ext[ft.sphere], ft.a_s)
+        self.bodies = sorted({k for imp in imps for k in (imp.i, imp.j) if k is not None})
+        plane = [a for a, imp in enumerate(imps) if imp.j is None]
+        self.plane = np.array(plane, dtype=int)
+        self.plane_body = np.array([imps[a].i for a in plane], dtype=int)
+        self.plane_normal = np.array([imps[a].normal for a in plane]).reshape(-1, 3)
+        self.plane_point = np.array([imps[a].point for a in plane]).reshape(-1, 3)
+        #: a pair of bodies (lower index first) -> the positions of its impacts
+        self.pairs: dict[tuple[int, int], list[int]] = {}
+        for a, imp in enumerate(imps):
+            if imp.j is not None:
+                self.pairs.setdefault((min(imp.i, imp.j), max(imp.i, imp.j)), []).append(a)
+        self.other = [float(np.abs(imp.point).sum()) for imp in imps]
+
+    # ----------------------------------------------------------- broad phase
+    def near(self, fit: StepFit) -> tuple[np.ndarray, dict[int, float]]:
+        """Which impacts may touch on the step (a bool per impact), and each body's
+        Σ|centre's coefficients| (the size its positions round relative to).
+
+        Broad phase: each body's centre along the step lies in the box c₀ ± Σ_{k≥1}|c_k|
+        of its Chebyshev coefficients (|T_k| ≤ 1 there), so each of its features in that
+        box grown by its reach about G (:attr:`ext`).  A body and a plane may touch only
+        where the box reaches the plane; two bodies only where their boxes overlap,
+        found by sorting the boxes along x and sweeping (O(n log n) for n bodies, plus
+        the pairs that overlap).  Conservative: an impact left out cannot touch on the
+        step, so the narrow phase (:meth:`first_contact`) sees every contact."""
+        n = self.model.n
+        mid, half, size = np.zeros((n, 3)), np.zeros((n, 3)), np.zeros(n)
+        sums: dict[int, float] = {}
+        for k in self.bodies:
+            c = self.point_coef(fit, k, None)
+            mid[k], half[k] = c[0], np.abs(c[1:]).sum(axis=0)
+            sums[k] = float(np.abs(c).sum())
+            size[k] = sums[k]
+        grow = half + (self.ext + BROAD_RTOL * (size + self.ext))[:, None]
+        lo, hi = mid - grow, mid + grow
+        near = np.zeros(len(self.model.impacts), dtype=bool)
+        if self.plane.size:
+            b, nrm = self.plane_body, self.plane_normal
+            # the box's lowest point over the plane, against the rounding of both
+            low = np.einsum("ij,ij->i", mid[b] - self.plane_point, nrm) - np.einsum(
+                "ij,ij->i", grow[b], np.abs(nrm)
+            )
+            room = BROAD_RTOL * np.abs(self.plane_point).sum(axis=-1)
+            near[self.plane] = low <= room
+        if self.pairs:
+            ks = np.array(self.bodies, dtype=int)
+            order = ks[np.argsort(lo[ks, 0], kind="stable")]
+            starts = lo[order, 0]
+            ends = np.searchsorted(starts, hi[order, 0], side="right")
+            for p, k in enumerate(order):  # each box against those starting inside it on x
+                others = order[p + 1 : ends[p]]
+                if not others.size:
+                    continue
+                over = np.all((lo[others] <= hi[k]) & (lo[k] <= hi[others]), axis=-1)
+                for m in others[over]:
+                    for a in self.pairs.get((min(k, m), max(k, m)), ()):
+                        near[a] = True
+        return near, sums
+
+    def _keep_reach(self, fit: StepFit, a: int, imp, sums) -> None:
+        """The reach of the features of an impact the broad phase left out (the same
+        sums :meth:`first_contact` takes of the positions it searches)."""
+        support = self.resolver.support
+        for b, ft in enumerate(imp.features):
+            if support is not None and support.active(imp, ft):
+                continue  # resting (as in first_contact)
+            if ft.support is not None:
+                _, x, other, size = self._polys(fit, imp, ft)
+                xs = float(np.abs(x).sum())
+            else:
+                if ft.at is None:
+                    xs = sums[ft.body]
+                else:
+                    xs = float(np.abs(self.point_coef(fit, ft.body, ft.at)).sum())
+                if ft.sphere is None:
+                    other, size = self.other[a], ft.a
+                else:
+                    other, size = sums[ft.sphere], ft.a + ft.a_s
+            reach = xs + other + size
+            self.reach[a, b] = max(self.reach.get((a, b), 0.0), reach)
 
     # ------------------------------------------------------- the features' paths
     def fit_snapshots(self, fit: StepFit, f):
@@ -173,7 +293,11 @@ class Collision:
             return None
         best = None
         support = self.resolver.support
+        near, sums = self.near(fit)
         for a, imp in enumerate(model.impacts):
+            if not near[a]:  # cannot touch on this step (broad phase)
+                self._keep_reach(fit, a, imp, sums)
+                continue
             for b, ft in enumerate(imp.features):
                 if support is not None and support.active(imp, ft):
                     continue  # resting: its gap is held at zero (.support)

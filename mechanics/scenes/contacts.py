@@ -36,8 +36,10 @@ __all__ = [
     "chebyshev_fit",
     "first_downward_crossing",
     "plane_contact_time",
+    "plane_contact_times",
     "quadratic_roots",
     "sphere_contact_time",
+    "sphere_contact_times",
 ]
 
 EPS = float(np.finfo(float).eps)
@@ -82,17 +84,39 @@ def plane_contact_time(gap: float, v_n: float, a_n: float) -> float:
     """First τ ≥ 0 at which ``gap + v_n τ + ½ a_n τ²`` reaches zero while closing.
 
     ``v_n`` and ``a_n`` are the normal velocity and acceleration (positive away from the
-    plane).  Returns ``inf`` when the gap never closes.
+    plane).  Returns ``inf`` when the gap never closes (:func:`plane_contact_times`, for
+    one).
 
     >>> plane_contact_time(1.0, -2.0, 0.0)
     0.5
     >>> plane_contact_time(1.0, 2.0, 0.0)
     inf
     """
-    best = math.inf
-    for tau in quadratic_roots(0.5 * a_n, v_n, gap):
-        if tau >= 0 and v_n + a_n * tau < 0 and tau < best:
-            best = tau
+    return float(plane_contact_times(np.array([gap]), np.array([v_n]), np.array([a_n]))[0])
+
+
+def plane_contact_times(gap, v_n, a_n) -> np.ndarray:
+    """:func:`plane_contact_time` for arrays of pairs at once (the same arithmetic, per
+    element): the roots of ½ a_n τ² + v_n τ + gap formed as in :func:`quadratic_roots`,
+    the first τ ≥ 0 where the normal velocity v_n + a_n τ closes.
+
+    >>> plane_contact_times(np.array([1.0, 1.0]), np.array([-2.0, 2.0]), np.zeros(2))
+    array([0.5, inf])
+    """
+    gap, v_n, a_n = (np.asarray(x, dtype=float) for x in (gap, v_n, a_n))
+    a = 0.5 * a_n
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):  # ±inf: no root
+        disc = v_n * v_n - 4 * a * gap
+        q = -0.5 * (v_n + np.copysign(np.sqrt(np.maximum(disc, 0.0)), v_n))
+        quad = (a != 0) & (disc >= 0)
+        # a quadratic's roots q/a and gap/q (one root 0 where q = 0); a line's −gap/v_n
+        r1 = np.where(quad, np.where(q != 0, q / a, 0.0), np.where(v_n != 0, -gap / v_n, np.nan))
+        r2 = np.where(quad & (q != 0), gap / q, np.nan)
+        r1 = np.where((a != 0) & ~quad, np.nan, r1)
+    best = np.full(np.shape(gap), math.inf)
+    for tau in (r1, r2):
+        ok = (tau >= 0) & (v_n + a_n * tau < 0)
+        best = np.where(ok & (tau < best), tau, best)
     return best
 
 
@@ -120,17 +144,34 @@ def sphere_contact_time(d: np.ndarray, w: np.ndarray, size: float) -> float:
     >>> sphere_contact_time(np.array([-0.5, 0.3, 0]), np.array([1.0, 0, 0]), 0.2)  # miss
     inf
     """
-    dw = float(d @ w)
-    if not dw < 0:
-        return math.inf  # separating, or moving tangentially
-    dist = float(np.linalg.norm(d))
-    ws = math.sqrt(float(w @ w)) * size
-    cross = float(np.linalg.norm(np.cross(d, w)))
-    if cross >= ws:
-        return math.inf  # the impact parameter is at least the sum of radii
+    d, w = np.asarray(d, dtype=float), np.asarray(w, dtype=float)
+    return float(sphere_contact_times(d[None], w[None], np.array([size]))[0])
+
+
+def sphere_contact_times(d, w, size) -> np.ndarray:
+    """:func:`sphere_contact_time` for arrays of pairs at once: ``d`` and ``w`` of shape
+    (k, 3), ``size`` (k,); the same arithmetic per pair.
+
+    >>> sphere_contact_times(np.array([[-0.5, 0, 0], [-0.5, 0.3, 0]]),
+    ...                      np.array([[1.0, 0, 0], [1.0, 0, 0]]), np.array([0.2, 0.2]))
+    array([0.3, inf])
+    """
+    d, w, size = np.asarray(d, float), np.asarray(w, float), np.asarray(size, float)
+    dw = d[:, 0] * w[:, 0] + d[:, 1] * w[:, 1] + d[:, 2] * w[:, 2]
+    dist = np.sqrt(d[:, 0] ** 2 + d[:, 1] ** 2 + d[:, 2] ** 2)
+    ws = np.sqrt(w[:, 0] ** 2 + w[:, 1] ** 2 + w[:, 2] ** 2) * size
+    x = d[:, 1] * w[:, 2] - d[:, 2] * w[:, 1]
+    y = d[:, 2] * w[:, 0] - d[:, 0] * w[:, 2]
+    z = d[:, 0] * w[:, 1] - d[:, 1] * w[:, 0]
+    cross = np.sqrt(x * x + y * y + z * z)
+    # separating or moving tangentially (d·w ≥ 0), or an impact parameter of at least the
+    # sum of radii: never; else the entry root (a pair touching within rounding: now)
+    hit = (dw < 0) & (cross < ws)
     disc = (ws - cross) * (ws + cross)
     c = (dist - size) * (dist + size)
-    return max(c / (-dw + math.sqrt(disc)), 0.0)  # a pair touching within rounding: now
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tau = np.maximum(c / (-dw + np.sqrt(np.where(hit, disc, 1.0))), 0.0)
+    return np.where(hit, tau, math.inf)
 
 
 def chebyshev_fit(

@@ -58,7 +58,9 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
     lay, t, series = engine.layout, traj.t, traj.series
     pre = (lambda i: f"{engine.names[i]}.") if engine.n > 1 else (lambda i: "")
     for i in lay.rigid_bodies:
-        if lay.kinds[i] != "rigid" or any(e.exerts_moment(i) for e in engine.effects):
+        md = engine.model  # (an impact exerts a moment only on a body of its pair)
+        struck = (md.impacts[a] for a in md.impacts_of.get(i, ()))
+        if lay.kinds[i] != "rigid" or any(e.exerts_moment(i) for e in (*md.forces, *struck)):
             continue
         J, w0 = lay.J[i], engine.w0[i]
         if not (np.all(J > 0) and w0.any()):

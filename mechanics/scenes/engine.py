@@ -65,9 +65,9 @@ def validate(scene) -> None:
     """Check a scene as a whole (:func:`.model.check`) and, with impacts, that no two
     features overlap at t = 0."""
     model.check(scene)
-    if scene.effects_of("impact"):
-        eng = Engine(scene)
-        check_initial_overlap(eng.model, eng.forward)
+    if scene.effects_of("impact"):  # (the model and its forward dynamics suffice)
+        md = model.Model(scene)
+        check_initial_overlap(md, Forward(md))
 
 
 class Engine:

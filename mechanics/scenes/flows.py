@@ -37,11 +37,13 @@ import numpy as np
 from mechanics import kinematics as kin
 from mechanics.errors import GimbalLockError, OutOfDomainError
 
+from . import contacts
 from .effects.capabilities import GuidesBody
 from .trajectory import Event, vectorized
 
 __all__ = [
     "PROVIDERS",
+    "Calendar",
     "Flow",
     "NotExact",
     "find",
@@ -248,32 +250,117 @@ def free_flight_flow(model, forward, resolver) -> Flow | None:
         g0 = model.uniform_gravity()
         segs, events = [], []
         t0, y = 0.0, model.y0.copy()
+        cal = Calendar(model, resolver)
+        among = None  # the pairs whose next contact is to be computed (None: all)
+        rests = None
         while True:
+            held = set(support.rests) if support is not None else set()
             g = _resting_gravity(model, support, g0)
             s = forward.snapshot(t0, y)
-            best = (math.inf, None, None)
-            for imp in model.impacts:
-                if support is not None and imp in support.rests:
-                    continue  # resting: held on its plane
-                if imp.j is not None and np.any(g[imp.i] != g[imp.j]):
-                    raise NotExact(
-                        f"{imp.label}: one of them rests on a plane while the other flies "
-                        "(their relative motion is no longer uniform)"
-                    )
+            if held != rests:  # a body began or ceased to rest: its motion changed
+                among, rests = None, held
+                cal.uniform(g)
+            cal.refresh(t0, s, g, among, held)
+            while True:  # the earliest contact that is no mere touch
+                a, t1 = cal.earliest()
+                if t1 == math.inf:
+                    break
+                imp = model.impacts[a]
                 ft = imp.features[0]
-                tau = resolver.contact_time(imp, ft, s, g)
-                if tau < best[0]:
-                    best = (tau, imp, ft)
-            t1 = t0 + best[0]
+                tau = resolver.contact_time(imp, ft, s, g)  # its touch test, from now
+                if tau < math.inf:
+                    t1 = t0 + tau
+                    break
+                cal.times[a] = math.inf  # touches only (no approach there): no impact
             segs.append((t0, min(t1, T_end), free_flight(model, t0, y, g, tops)))
             if t1 >= T_end:
                 break
             y = segs[-1][2](t1)
-            y = resolver.resolve(t1, y, best[1], best[2], events)
+            before = np.concatenate(model.layout.gather(y)[:2], axis=-1)
+            y = resolver.resolve(t1, y, imp, ft, events)
+            # the bodies whose motion the instant changed: their pairs' next contacts
+            after = np.concatenate(model.layout.gather(y)[:2], axis=-1)
+            moved = np.nonzero(np.any(after != before, axis=-1))[0]
+            among = cal.pairs_of(moved)
             t0 = t1
         return segs, events
 
     return Flow(f"exact: {what}{_spin_note(model)}", run)
+
+
+class Calendar:
+    """The next contact time of every impact pair in free flight (spheres and points,
+    smooth), kept between events: an impact changes only its bodies' motion, so after
+    one only the pairs of the bodies it moved are computed again (vectorised:
+    :func:`.contacts.plane_contact_times`, :func:`.contacts.sphere_contact_times`), the
+    others' times stand.  Per event that is O(n) pairs for n bodies, not O(n²); the
+    earliest is found by one argmin over all of them."""
+
+    def __init__(self, model, resolver) -> None:
+        self.model = model
+        imps = model.impacts
+        self.times = np.full(len(imps), math.inf)
+        plane = [a for a, imp in enumerate(imps) if imp.j is None]
+        pair = [a for a, imp in enumerate(imps) if imp.j is not None]
+        self.plane, self.pair = np.array(plane, dtype=int), np.array(pair, dtype=int)
+        self.p_body = np.array([imps[a].i for a in plane], dtype=int)
+        self.p_normal = np.array([imps[a].normal for a in plane]).reshape(-1, 3)
+        self.p_point = np.array([imps[a].point for a in plane]).reshape(-1, 3)
+        self.p_radius = np.array([imps[a].features[0].a for a in plane])
+        self.q_i = np.array([imps[a].i for a in pair], dtype=int)
+        self.q_j = np.array([imps[a].j for a in pair], dtype=int)
+        self.q_size = np.array([imps[a].features[0].a + imps[a].features[0].a_s for a in pair])
+        #: impact position -> its row in the plane or the pair arrays
+        self.row = np.zeros(len(imps), dtype=int)
+        self.row[self.plane] = np.arange(len(plane))
+        self.row[self.pair] = np.arange(len(pair))
+        self.is_pair = np.zeros(len(imps), dtype=bool)
+        self.is_pair[self.pair] = True
+        self.position = {id(imp): a for a, imp in enumerate(imps)}
+
+    def uniform(self, g) -> None:
+        """A pair's relative motion must be uniform (the same g on both): else, one of
+        them resting on a plane while the other flies, it is not followed."""
+        bad = np.any(g[self.q_i] != g[self.q_j], axis=-1)
+        if bad.any():
+            imp = self.model.impacts[self.pair[np.argmax(bad)]]
+            raise NotExact(
+                f"{imp.label}: one of them rests on a plane while the other flies "
+                "(their relative motion is no longer uniform)"
+            )
+
+    def pairs_of(self, bodies) -> np.ndarray:
+        """The positions of the impacts of these bodies."""
+        of = self.model.impacts_of
+        return np.array(sorted({a for k in bodies for a in of.get(int(k), ())}), dtype=int)
+
+    def refresh(self, t0, s, g, among, held) -> None:
+        """The next contact times, from the snapshot ``s`` at t0, of the impacts
+        ``among`` (None: all); a resting pair (``held``) has none."""
+        among = np.arange(len(self.times)) if among is None else among
+        planes = among[~self.is_pair[among]]
+        pairs = among[self.is_pair[among]]
+        r, v = s.r, s.v
+        if planes.size:
+            k = self.row[planes]
+            b, n = self.p_body[k], self.p_normal[k]
+            gap = np.einsum("ij,ij->i", r[b] - self.p_point[k], n) - self.p_radius[k]
+            tau = contacts.plane_contact_times(
+                gap, np.einsum("ij,ij->i", v[b], n), np.einsum("ij,ij->i", g[b], n)
+            )
+            self.times[planes] = t0 + tau
+        if pairs.size:
+            k = self.row[pairs]
+            i, j = self.q_i[k], self.q_j[k]
+            tau = contacts.sphere_contact_times(r[i] - r[j], v[i] - v[j], self.q_size[k])
+            self.times[pairs] = t0 + tau
+        for imp in held:  # resting: held on its plane
+            self.times[self.position[id(imp)]] = math.inf
+
+    def earliest(self) -> tuple[int, float]:
+        """The impact with the earliest next contact and its time."""
+        a = int(np.argmin(self.times)) if self.times.size else 0
+        return a, float(self.times[a]) if self.times.size else math.inf
 
 
 class NotExact(Exception):

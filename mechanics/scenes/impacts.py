@@ -121,6 +121,7 @@ class Resolver:
         # zero is judged against the speeds the instant starts with (a plastic impact
         # stops its contacts: the speeds after are rounding of that zero)
         floor = imp.speed_scale(s, ft)
+        moved: set[int] = set()  # the bodies the instant's impulses have struck so far
         for _ in range(MAX_SWEEPS):
             group = self.closing_with(s, imp, ft, floor)
             try:
@@ -158,7 +159,8 @@ class Resolver:
             elif self.support is not None and imp in self.support.rests:
                 y = self.support.after_impact(t, y, imp, events, floor)  # who still rests
                 s = fwd.snapshot(t, y)
-            nxt = self.closing_now(s, floor)
+            moved.update(imp.bodies())
+            nxt = self.closing_now(s, floor, moved)
             if nxt is None:
                 return y
             imp, ft = nxt
@@ -172,12 +174,21 @@ class Resolver:
         scale = np.abs(imp.feature_point(s, ft)).sum() + imp.point @ imp.point + ft.a
         return abs(float(imp.gap(s, ft))) <= GAP_ROUNDING * 4 * max(scale, ft.a + ft.a_s)
 
-    def closing_now(self, s, floor=0.0):
+    def closing_now(self, s, floor=0.0, moved=None):
         """The touching feature that closes fastest (sequential impulses), or None; an
         approach within rounding of the contact speeds (or of ``floor``, the speeds the
-        instant started with) is no closing."""
+        instant started with) is no closing.  With ``moved`` (body indices), only the
+        pairs of those bodies are looked at: an impulse changes no other pair's approach,
+        and a pair of other bodies closing at this instant is a contact of its own, found
+        as the next event at the same time (the contact search takes a gap within
+        rounding that falls as a contact now)."""
         best, speed = None, 0.0
-        for imp in self.model.impacts:
+        impacts = self.model.impacts
+        if moved is None:
+            among = range(len(impacts))
+        else:
+            among = sorted({a for k in moved for a in self.model.impacts_of.get(k, ())})
+        for imp in (impacts[a] for a in among):
             for ft in imp.features:
                 if self._held(imp, ft) or not self.touching(s, imp, ft):
                     continue  # (a resting contact is the support's)

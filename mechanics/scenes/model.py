@@ -93,7 +93,7 @@ def check(scene) -> None:
             raise scene.error(f"{spec.where}.type", why)
     tanks = {b.name for b in scene.bodies if b.shape == "tank"}
     for spec in scene.effects:
-        named = [spec.fields.get(k) for k in ("body", "other")]
+        named = [spec.fields.get(k) for k in ("body", "other")] + spec.fields.get("group", [])
         if spec.type != "tank_outflow" and tanks.intersection(named):
             raise scene.error(
                 f"{spec.where}.type",
@@ -156,6 +156,11 @@ class Model:
         self.effects = build_effects(scene, ctx)
         #: the contacts (events, not loads)
         self.impacts: list[Impact] = [e for e in self.effects if isinstance(e, Impact)]
+        #: body index -> the positions in ``impacts`` of the pairs it belongs to
+        self.impacts_of: dict[int, list[int]] = {}
+        for a, imp in enumerate(self.impacts):
+            for k in {imp.i, imp.j} - {None}:
+                self.impacts_of.setdefault(k, []).append(a)
         #: the effects that add loads; one that reads the others' loads comes after
         #: them (a stable sort)
         self.forces = sorted(

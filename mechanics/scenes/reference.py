@@ -39,6 +39,7 @@ __all__ = ["scene_file_reference"]
 KINDS = {
     "body": "a body's name",
     "bodies": "an array of bodies' names",
+    "planes": "an array of planes, each a table {point (m), normal}",
     "number": "a number",
     "positive": "a number > 0",
     "nonnegative": "a number ≥ 0",

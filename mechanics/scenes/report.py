@@ -21,6 +21,7 @@ from __future__ import annotations
 import numpy as np
 
 from .effects.base import CONSERVED
+from .effects.impact import centre_gaps
 from .state import body_vertices
 from .trajectory import Trajectory, dense_from_segments, energy_scale, sample_segments
 
@@ -101,6 +102,14 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
             series[f"p_{c}"], series[f"L_{c}"] = P[:, k], L_O[:, k]
     since: dict[str, float] = {}
     T = model.scene.duration
+    # one impact per law (what an impact keeps depends on its kind, law and plane
+    # only): a group's many pairs are asked once
+    laws = list(
+        {
+            (imp.j is None, imp.e, imp.mu_f, imp.normal.tobytes() if imp.j is None else b""): imp
+            for imp in model.impacts
+        }.values()
+    )
     for q in CONSERVED if moving else ():
         # what the effects acting throughout keep; an effect that stops acting (a
         # push, a burn) breaks it only until then
@@ -111,7 +120,7 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
             conserved[q] = values[q]
             if until > 0:
                 since[q] = until
-            if all(imp.keeps(q) for imp in model.impacts):
+            if all(imp.keeps(q) for imp in laws):
                 across.add(q)
     for e in model.forces:  # what an effect's own physics keeps, and its series
         series.update(e.series(s))
@@ -133,7 +142,7 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
             r.imp.i == i for _, rs in support.timeline for r in rs.values()
         ):
             until = max(until, support.acts_until(events))
-        struck = any(imp.exerts_moment(i) for imp in model.impacts)
+        struck = any(model.impacts[a].exerts_moment(i) for a in model.impacts_of.get(i, ()))
         if until >= T or not (model.w0[i].any() or until > 0 or struck):
             continue  # turned to the end, or never spinning (trivially kept)
         p = pre(i)
@@ -218,7 +227,17 @@ def _gaps(model, support, t, s):
     rest there (a resting contact's gap is held at zero, up to the integration's
     error), and the largest |gap| of its resting ones (None: it never rests)."""
     gaps, resting = {}, {}
-    for imp in model.impacts:
+    resting_pairs = {imp for _, _, rests in support.spans() for imp in rests} if support else set()
+    imps = model.impacts
+    rows, G_all = centre_gaps(imps, s)  # spheres' and points' centres: all at once
+    done = set()
+    for c, a in enumerate(rows):
+        if imps[a] not in resting_pairs:
+            gaps[imps[a].label] = G_all[:, c]
+            done.add(a)
+    for a, imp in enumerate(imps):
+        if a in done:
+            continue
         G = np.array([imp.gap(s, ft) for ft in imp.features])  # (features, samples)
         held = np.zeros(G.shape, dtype=bool)
         if support is not None:

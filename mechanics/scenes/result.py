@@ -64,6 +64,9 @@ CONSERVED_RTOL = 1024 * EPS
 #: proportion (measured 14 × rtol for a spring oscillator at rtol 1e-8)
 CONSERVED_RTOL_INTEGRATED = 2**20 * EPS  # ≈ 2.3e-10
 #: a gap below zero by more than this × (max |position| + the radii) is an
+#: more impact pairs than this (a group's) share one interpenetration check, naming
+#: the deepest
+MANY_PAIRS = 16
 #: interpenetration: contacts are located to 4 eps of the time and the positions are
 #: sums of a few dozen rounded terms, so a resolved contact leaves a few eps at most
 PENETRATION_RTOL = 256 * EPS
@@ -431,12 +434,18 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
             )
         )
     scale = tr.length_scale
-    for pair, gaps in tr.gaps.items():
-        depth = max(0.0, -float(np.min(gaps, initial=0.0)))
+    depths = {
+        pair: max(0.0, -float(np.min(gaps, initial=0.0))) / max(scale, 1e-300)
+        for pair, gaps in tr.gaps.items()
+    }
+    if len(depths) > MANY_PAIRS:  # one line for them all, naming the deepest
+        pair = max(depths, key=depths.get)
+        depths = {f"{len(depths)} pairs (deepest: {pair})": depths[pair]}
+    for pair, depth in depths.items():
         out.append(
             SelfCheck(
                 f"no interpenetration of {pair}",
-                depth / max(scale, 1e-300),
+                depth,
                 PENETRATION_RTOL,
                 "gap ≥ 0 at every sample",
             )

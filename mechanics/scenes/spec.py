@@ -168,7 +168,8 @@ INITIAL_KEYS: dict[str, str] = {
 }
 
 #: effect type -> {field: (kind, required)}, from each effect's ``schema``; kinds: body,
-#: bodies (an array of body names), number, positive, nonnegative, restitution, vector,
+#: bodies (an array of body names), planes (an array of {point, normal} tables),
+#: number, positive, nonnegative, restitution, vector,
 #: str, axis_name, frame ("space" or "body"), impact_model ("auto" or "sequential")
 EFFECT_FIELDS: dict[str, dict[str, tuple[str, bool]]] = {
     t: cls.schema for t, cls in EFFECT_CLASSES.items()
@@ -310,6 +311,27 @@ def _check(src: str, where: str, kind: str, v: Any, bodies: set[str] | None = No
         if v not in ("space", "body"):
             raise SceneError(src, where, f"expected 'space' or 'body'; got {v!r}")
         return v
+    if kind == "planes":
+        if not isinstance(v, list) or not v:
+            raise SceneError(
+                src, where, f"expected a non-empty array of planes {{point, normal}}, got {v!r}"
+            )
+        out = []
+        for i, pl in enumerate(v):
+            pw = f"{where}[{i}]"
+            pl = _table(src, pw, pl)
+            _unknown(src, pw, pl, {"point", "normal"})
+            for k in ("point", "normal"):
+                if k not in pl:
+                    raise SceneError(src, f"{pw}.{k}", "missing required field (a plane has both)")
+            plane = {
+                k: check_value(src, f"{pw}.{k}", _check(src, f"{pw}.{k}", "vector", pl[k]), u)
+                for k, u in (("point", "m"), ("normal", "1"))
+            }
+            if math.hypot(*plane["normal"]) == 0:
+                raise SceneError(src, f"{pw}.normal", "must be a nonzero vector")
+            out.append(plane)
+        return out
     if kind == "bodies":
         if not isinstance(v, list) or not v:
             raise SceneError(src, where, f"expected a non-empty array of body names, got {v!r}")

@@ -1147,6 +1147,7 @@ for _name in (
     "scenes.model.initial_attitude",
     "scenes.model.initial_omega",
     "scenes.forward.Forward",
+    "scenes.flows.Calendar",
     "scenes.flows.Flow",
     "scenes.flows.find",
     "scenes.flows.free_flight",
@@ -1195,8 +1196,10 @@ _KERNEL = (
 )
 for _name in (
     "scenes.contacts.plane_contact_time",
+    "scenes.contacts.plane_contact_times",
     "scenes.contacts.quadratic_roots",
     "scenes.contacts.sphere_contact_time",
+    "scenes.contacts.sphere_contact_times",
     "scenes.impacts.solve_lcp",
     "scenes.effects.base.unit",
     "scenes.effects.rolling.slope_frame",

@@ -10,6 +10,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from numpy.polynomial import chebyshev as C
 
 from mechanics.scenes import contacts as ct
@@ -416,3 +418,97 @@ def test_strict_root_skips_a_probe_where_the_gap_only_touches_zero() -> None:
 
     x = ct._strict_root(_cheb(0.0, 1.0, -1.0), gap, 0.0, 1.0)
     assert x == pytest.approx(0.75, rel=0, abs=BRENT_ATOL)
+
+
+# ------------------------------------------------- many pairs at once, against mpmath
+#: the contact time of a well-conditioned case (a closing speed of at least 1e-3 of the
+#: terms, roots formed without cancellation) against the exact root: a few roundings
+TIMES_RTOL = 64 * EPS
+
+
+def _first_closing_root(gap, v, a):
+    """The first τ ≥ 0 with gap + v τ + a τ²/2 = 0 and v + a τ < 0, in 50 digits."""
+    import mpmath
+
+    with mpmath.workdps(50):
+        g, vv, aa = (mpmath.mpf(x) for x in (gap, v, a))
+        # (a/2) τ² + v τ + g = 0 by the cancellation-free pair q/(a/2), g/q: a tiny gap
+        # against O(1) speeds would cancel even in 50 digits in the textbook form
+        if aa == 0:
+            roots = [-g / vv] if vv != 0 else []
+        else:
+            disc = vv * vv - 2 * aa * g
+            if disc < 0:
+                roots = []
+            else:
+                q = -(vv + mpmath.sign(vv) * mpmath.sqrt(disc)) / 2 if vv != 0 else None
+                if q is None or q == 0:
+                    roots = [r * mpmath.sqrt(-2 * g / aa) for r in (1, -1)] if -g / aa >= 0 else []
+                else:
+                    roots = [q / (aa / 2), g / q]
+        ok = [r for r in roots if r >= 0 and vv + aa * r < 0]
+        return float(min(ok)) if ok else math.inf
+
+
+#: magnitudes whose squares stay normal floats (a discriminant of speeds below 1e-154
+#: underflows: the scene domain's stated loss below 2⁻¹⁰²², mechanics.scenes.domain)
+_mag = st.floats(1e-150, 10.0)
+_num = st.one_of(st.just(0.0), _mag, _mag.map(lambda x: -x))
+
+
+@settings(max_examples=300)
+@given(st.lists(st.tuples(st.one_of(st.just(0.0), _mag), _num, _num), min_size=1, max_size=8))
+def test_plane_contact_times_are_the_first_closing_roots(cases) -> None:
+    gap, v, a = (np.array(x) for x in zip(*cases, strict=True))
+    tau = ct.plane_contact_times(gap, v, a)
+    for k, (g, vk, ak) in enumerate(cases):
+        exact = _first_closing_root(g, vk, ak)
+        closing = abs(vk + ak * exact) if exact < math.inf else 0.0
+        if exact < math.inf and closing < 1e-3 * (abs(vk) + abs(ak) * exact):
+            continue  # a graze: the closing speed is itself rounding there
+        assert tau[k] == pytest.approx(exact, rel=TIMES_RTOL, abs=TIMES_RTOL * g), (g, vk, ak)
+        assert ct.plane_contact_time(g, vk, ak) == tau[k]  # one arithmetic for one and many
+
+
+def _sphere_time(d, w, s):
+    """|d + w τ| = s entered while closing, in 50 digits (inf: never)."""
+    import mpmath
+
+    with mpmath.workdps(50):
+        d, w = [mpmath.mpf(x) for x in d], [mpmath.mpf(x) for x in w]
+        A = sum(x * x for x in w)
+        B = 2 * sum(x * y for x, y in zip(d, w, strict=True))
+        Cc = sum(x * x for x in d) - mpmath.mpf(s) ** 2
+        if A == 0 or B >= 0:
+            return math.inf
+        disc = B * B - 4 * A * Cc
+        if disc <= 0:
+            return math.inf
+        return float(max((-B - mpmath.sqrt(disc)) / (2 * A), 0))
+
+
+_vec = st.lists(
+    st.one_of(st.just(0.0), st.floats(1e-100, 2.0), st.floats(-2.0, -1e-100)),
+    min_size=3,
+    max_size=3,
+)
+
+
+@settings(max_examples=300)
+@given(st.lists(st.tuples(_vec, _vec, st.floats(0.01, 1.0)), min_size=1, max_size=8))
+def test_sphere_contact_times_are_the_entry_roots(cases) -> None:
+    d = np.array([c[0] for c in cases])
+    w = np.array([c[1] for c in cases])
+    s = np.array([c[2] for c in cases])
+    tau = ct.sphere_contact_times(d, w, s)
+    for k, (dk, wk, sk) in enumerate(cases):
+        if np.linalg.norm(dk) < sk:
+            continue  # overlapping: not a case the engine asks
+        exact = _sphere_time(dk, wk, sk)
+        dk, wk = np.array(dk), np.array(wk)
+        b = float(np.linalg.norm(np.cross(dk, wk)))
+        ws = float(np.linalg.norm(wk)) * sk
+        if abs(ws - b) < 1e-3 * ws:
+            continue  # a graze: the impact parameter within 1e-3 of the sum of radii
+        assert tau[k] == pytest.approx(exact, rel=TIMES_RTOL, abs=TIMES_RTOL), (dk, wk, sk)
+        assert ct.sphere_contact_time(dk, wk, sk) == tau[k]

@@ -53,6 +53,8 @@ def engine(bodies, effects, *, w0, pins=None, names=None, duration=10.0):
         R0=np.tile(np.eye(3), (n, 1, 1)),
         m0=np.array([b.mass for b in bodies], float),
         scene=SimpleNamespace(bodies=bodies, duration=duration),
+        # the model's effects by role: here all are loads (none is an impact pair)
+        model=SimpleNamespace(forces=effects, impacts=[], impacts_of={}),
     )
 
 

@@ -80,5 +80,10 @@ __all__ = [
 
 
 def build_effects(scene, ctx: Context) -> list[Effect]:
-    """One effect object per listed effect, in file order; nothing else."""
-    return [EFFECT_CLASSES[spec.type](spec, ctx) for spec in scene.effects]
+    """One effect object per listed effect, in file order (a group of impacts: one per
+    pair it names, :meth:`.impact.Impact.expand`); nothing else."""
+    return [
+        EFFECT_CLASSES[spec.type](one, ctx)
+        for spec in scene.effects
+        for one in EFFECT_CLASSES[spec.type].expand(spec, scene)
+    ]

@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, ClassVar
 
 import numpy as np
@@ -92,6 +93,12 @@ class Context:
 
     def body(self, name: str):
         return self.scene.bodies[self.index[name]]
+
+    def fixed(self) -> frozenset[int]:
+        """The indices of the fixed bodies (worked out once: a group's pairs each ask)."""
+        return frozenset(k for k, kind in enumerate(self.kinds) if kind == "fixed")
+
+    fixed = cached_property(fixed)
 
 
 class Snapshot:
@@ -208,6 +215,12 @@ class Effect:
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.fields})"
+
+    @classmethod
+    def expand(cls, spec, scene) -> list:
+        """The specs this listed one stands for (one effect object each): itself, unless
+        it names a group (:meth:`.impact.Impact.expand`)."""
+        return [spec]
 
     @classmethod
     def check(cls, spec, scene, index: dict[str, int]) -> None:

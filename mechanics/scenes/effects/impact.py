@@ -51,6 +51,7 @@ Conventions
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import ClassVar
 
 import numpy as np
@@ -64,6 +65,12 @@ RIMS = ("disc", "ring", "cylinder", "cylindrical_shell")
 #: an impulse may lose this fraction of the kinetic energy's rounding below zero (the
 #: loss is the work of the impulse, a sum of a dozen products)
 GAIN_RTOL = 64 * float(np.finfo(float).eps)
+
+
+_ORIGIN = np.zeros(3)
+_ORIGIN.flags.writeable = False
+_EZ = np.array([0.0, 0.0, 1.0])
+_EZ.flags.writeable = False
 
 
 class EnergyGainError(ValueError):
@@ -92,14 +99,19 @@ class Feature:
 class Impact(Effect):
     """Impacts of ``body`` with a plane or with ``other``, restitution e; the pair's
     contacts touching at one instant are one problem, Newton's law at each at once
-    (``model = "auto"``), or are resolved one at a time (``"sequential"``)."""
+    (``model = "auto"``), or are resolved one at a time (``"sequential"``).  Or of a
+    ``group`` of bodies: every pair of them, and each with every plane of ``planes``,
+    by the same law (a pair of two fixed bodies, or a fixed body and a plane, never
+    meets and is left out)."""
 
     type = "impact"
     schema: ClassVar[Schema] = {
-        "body": ("body", True),
+        "body": ("body", False),
         "other": ("body", False),
         "plane_point": ("vector", False),
         "plane_normal": ("vector", False),
+        "group": ("bodies", False),
+        "planes": ("planes", False),
         "restitution": ("restitution", True),
         "friction": ("nonnegative", False),
         "model": ("impact_model", False),
@@ -112,12 +124,112 @@ class Impact(Effect):
         "restitution": "1",
         "friction": "1",
         "model": "",
+        "group": "",
+        "planes": "",
     }
     example: ClassVar[dict] = {"type": "impact", "body": "ball", "restitution": 0.8}
 
     @classmethod
+    def expand(cls, spec, scene) -> list:
+        """The pairs a ``group`` names, each as a one-pair spec (same index and law):
+        every two bodies of the group, then each body with each plane, in the group's
+        order; a pair that never meets (two fixed bodies, a fixed body and a plane) left
+        out.  A spec without a group is its own only pair."""
+        f = spec.fields
+        if "group" not in f:
+            return [spec]
+        law = {k: f[k] for k in ("restitution", "friction", "model") if k in f}
+        fixed = {b.name for b in scene.bodies if b.fixed}
+        names = f["group"]
+        one = type(spec)  # (dataclasses.replace costs 5 µs a pair: too much for 500 000)
+        out = [
+            one(spec.type, spec.index, {"body": a, "other": b, **law})
+            for k, a in enumerate(names)
+            for b in names[k + 1 :]
+            if not (a in fixed and b in fixed)
+        ]
+        out += [
+            one(
+                spec.type,
+                spec.index,
+                {
+                    "body": a,
+                    "plane_point": pl["point"],
+                    "plane_normal": pl["normal"],
+                    **law,
+                    "group_plane": k,
+                },
+            )
+            for a in names
+            if a not in fixed
+            for k, pl in enumerate(f.get("planes", ()))
+        ]
+        return out
+
+    @classmethod
+    def _check_group(cls, spec, scene) -> None:
+        f, where = spec.fields, spec.where
+        for k in ("body", "other", "plane_point", "plane_normal"):
+            if k in f:
+                also = "planes" if k.startswith("plane") else "group"
+                raise scene.error(
+                    f"{where}.{k}",
+                    f"give a group (with its {also}) or a single pair ({k}), not both",
+                )
+        names = f["group"]
+        for k, a in enumerate(names):
+            if a in names[:k]:
+                raise scene.error(
+                    f"{where}.group[{k}]",
+                    f"body {a!r} is listed twice (first at group[{names.index(a)}])",
+                )
+        if len(names) < 2 and "planes" not in f:
+            raise scene.error(
+                f"{where}.group",
+                f"a group of one body ({names[0]!r}) and no planes meets nothing: list two "
+                "bodies or more, or planes",
+            )
+        bodies = [scene.body(a) for a in names]
+        for k, b in enumerate(bodies):
+            if b.shape not in SPHERICAL_SHAPES + POLYHEDRA + RIMS:
+                raise scene.error(
+                    f"{where}.group[{k}]",
+                    f"contacts of a {b.shape} are not modelled (only "
+                    f"{', '.join(SPHERICAL_SHAPES + POLYHEDRA + RIMS)}); body {b.name!r}",
+                )
+            for m, c in enumerate(bodies[:k]):
+                why = None
+                if b.shape in RIMS or c.shape in RIMS:
+                    rim = b if b.shape in RIMS else c
+                    why = f"the rim of a {rim.shape} ({rim.name!r}) meets only a plane, not a body"
+                elif b.shape in POLYHEDRA and c.shape in POLYHEDRA:
+                    why = (
+                        f"contacts between two polyhedral bodies ({c.name!r}, a {c.shape}, and "
+                        f"{b.name!r}, a {b.shape}) are not modelled: every pair of a group "
+                        "needs a sphere or a point"
+                    )
+                if why is not None and not (b.fixed and c.fixed):
+                    raise scene.error(f"{where}.group[{k}]", f"{why} (with group[{m}])")
+        if "planes" in f and all(b.fixed for b in bodies):
+            raise scene.error(
+                f"{where}.planes", "the group's bodies are all fixed: none meets a plane"
+            )
+
+    @classmethod
     def check(cls, spec, scene, index) -> None:
         f = spec.fields
+        if "group" in f:
+            cls._check_group(spec, scene)
+            return
+        if "planes" in f:
+            raise scene.error(
+                f"{spec.where}.planes",
+                "planes go with a group; a single body's plane is plane_point and plane_normal",
+            )
+        if "body" not in f:
+            raise scene.error(
+                f"{spec.where}.body", "missing required field (an impact needs a body or a group)"
+            )
         if f.get("other") == f["body"]:
             raise scene.error(f"{spec.where}.other", "a body cannot hit itself")
         if "other" in f and ("plane_point" in f or "plane_normal" in f):
@@ -163,10 +275,13 @@ class Impact(Effect):
         #: "auto": the contacts of this pair at one instant are one problem (several
         #: touching together: simultaneous); "sequential": one at a time, fastest first
         self.model = f.get("model", "auto")
-        self.point = np.asarray(f.get("plane_point", [0.0, 0.0, 0.0]), dtype=float)
-        self.normal = unit(f.get("plane_normal", [0.0, 0.0, 1.0]))
+        if "plane_point" in f or "plane_normal" in f:
+            self.point = np.asarray(f.get("plane_point", [0.0, 0.0, 0.0]), dtype=float)
+            self.normal = unit(f.get("plane_normal", [0.0, 0.0, 1.0]))
+        else:  # the default plane z = 0 (shared, read-only: a group's pairs are many)
+            self.point, self.normal = _ORIGIN, _EZ
         bodies = ctx.scene.bodies
-        self.fixed = {k for k, kind in enumerate(ctx.kinds) if kind == "fixed"}
+        self.fixed = ctx.fixed
         self.pins = ctx.pins  # pinned bodies: the pivot takes an impulse too
         self.guides = ctx.guides  # guided ones: the bearings or the track do
         self.features = self._features(bodies)
@@ -213,11 +328,14 @@ class Impact(Effect):
 
     def label(self) -> str:
         """The pair in words: "bodies 'a' and 'b'" or "body 'a' and the plane"."""
+        if self.j is None and "group_plane" in self.fields:  # one of a group's planes
+            k = self.fields["group_plane"]
+            return f"body {self.fields['body']!r} and {self.where}.planes[{k}]"
         if self.j is None:
             return f"body {self.fields['body']!r} and the plane"
         return f"bodies {self.fields['body']!r} and {self.fields['other']!r}"
 
-    label = property(label)
+    label = cached_property(label)  # (the fields do not change)
 
     def bodies(self) -> list[int]:
         """Indices of the moving bodies the impulse acts on."""
@@ -361,6 +479,8 @@ class Impact(Effect):
         )
         if any(k in self.pins or k in self.guides for k in idx):
             out["external_impulse"] = "the pivot, bearings or track of a joint"
+        elif self.j is not None and len(idx) < 2:  # a fixed body takes the other's impulse
+            out["external_impulse"] = "a fixed body"
         out["energy_loss"] = loss
         out["kinetic_energy_before"], out["momentum_before"] = before[0], before[1]
         out["kinetic_energy_after"], out["momentum_after"] = after[0], after[1]
@@ -481,6 +601,37 @@ class Impact(Effect):
         return any(
             (ft.at is not None or ft.support is not None) and ft.body == k for ft in self.features
         )
+
+
+def centre_gaps(impacts, s) -> tuple[list[int], np.ndarray]:
+    """The gaps of the impacts whose one contact feature is a sphere's or a point's
+    centre, all at once (a group's pairs are many): their positions in ``impacts`` and
+    the gaps (..., k) at the snapshot(s) ``s``, as :meth:`Impact.gap` gives them one by
+    one (plane: (r − p)·n − a; pair: |r_f − r_s| − a − a_s)."""
+    rows = [
+        a
+        for a, imp in enumerate(impacts)
+        if len(imp.features) == 1 and imp.features[0].at is None and imp.features[0].support is None
+    ]
+    fts = [impacts[a].features[0] for a in rows]
+    body = np.array([ft.body for ft in fts], dtype=int)
+    x = s.r[..., body, :]
+    out = np.zeros(x.shape[:-1])
+    plane = np.array([ft.sphere is None for ft in fts], dtype=bool)
+    if plane.any():
+        k = np.nonzero(plane)[0]
+        P = np.array([impacts[rows[c]].point for c in k])
+        N = np.array([impacts[rows[c]].normal for c in k])
+        a = np.array([fts[c].a for c in k])
+        out[..., k] = ((x[..., k, :] - P) * N).sum(-1) - a
+    if (~plane).any():
+        k = np.nonzero(~plane)[0]
+        other = np.array([fts[c].sphere for c in k], dtype=int)
+        d = x[..., k, :] - s.r[..., other, :]
+        a = np.array([fts[c].a for c in k])
+        a_s = np.array([fts[c].a_s for c in k])
+        out[..., k] = np.sqrt((d * d).sum(-1)) - a - a_s
+    return rows, out
 
 
 def _cross(rho) -> np.ndarray:
