@@ -382,9 +382,13 @@ def test_rotvecs_reject_an_unknown_regime_quoting_it():
 
 
 def test_rotvecs_with_an_angle_strategy_draw_only_axis_angle():
+    # the axis c/|c| is a unit vector to 1.5 eps (hypot to 1 ulp, a division per
+    # component), times π rounds once more, and hypot measures to 1 ulp: |v| = π to
+    # 4 eps relative (found by hypothesis: 2 ulps of π, 8.9e-16, past the 2 eps absolute
+    # — one ulp of π — this asked before; the strategy promises "an ulp or two")
     @given(ms.rotvecs(angles=ms.rotation_angles(regimes=["pi"])))
     def check(v):
-        assert abs(math.hypot(*v) - math.pi) <= 2 * EPS
+        assert abs(math.hypot(*v) - math.pi) <= 4 * EPS * math.pi
 
     check()
 
