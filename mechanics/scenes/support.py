@@ -28,11 +28,17 @@ hold them there, and when they let go.
 - **Modes and switches** (located on each step like a contact, :meth:`Support.first_switch`):
   an active contact's normal force falls through zero (it lets go: the contacts are
   chosen again, :meth:`Support.switch`); sticking, the friction needed reaches μ λ
-  (it slips, in the direction the loads drive it); slipping, the slip's component along
+  (it slips the way its friction force pointed: the force is continuous, and the slip
+  begins with zero rate); slipping, the slip's component along
   its direction when the slip began falls through zero (it sticks if static friction
   suffices, else slips on).  The contacts and the mode are chosen as the largest set of
   the touching contacts whose forces are pressing (λ ≥ 0) while the others' gaps do not
   fall (their normal acceleration ≥ 0); none: the body leaves the plane (``lift_off``).
+  A contact that cannot stick by a finite margin (where it comes to rest, after an
+  impact, at a load's switch) begins to slip in the direction ŝ its slip's rate points
+  along, ȧ_slip = k ŝ with k > 0 (:meth:`Support._onset`: the force sticking would
+  need points elsewhere where the inverse mass is not isotropic); several such
+  contacts slip the ways their stick forces pushed where each one's slip rate agrees.
 - **Struck while resting** (another contact of the pair hits, :meth:`Support.after_impact`):
   the resting contacts take part in the impact problem (they are in contact whatever the
   integration's drift of their gaps), and after it the ones that separate leave the
@@ -40,7 +46,9 @@ hold them there, and when they let go.
 - **Refused with one line** (a :class:`~mechanics.scenes.errors.SceneError`): a rest
   that cannot be resolved: Painlevé's paradox (a slipping contact whose normal
   acceleration falls as its support force grows, n·K (n − μ ŝ) ≤ 0), no set of
-  pressing contacts, contacts of one pair that partly stick and partly slip; and a
+  pressing contacts, contacts of one pair that partly stick and partly slip, a slip
+  from rest whose direction is not exactly one (one contact) or not found (several);
+  and a
   rest this model does not treat: two bodies resting on each other, a rim (disc,
   cylinder) resting on its edge or face, a body held by a joint.
 - **Series**: each resting body's total support force, ``support_x``, ``_y``, ``_z``
@@ -60,6 +68,7 @@ from . import contacts
 from .bodies import Point
 from .collision import Hit, StepFit
 from .impacts import CLOSING_ROUNDING, GAP_ROUNDING
+from .state import cross3, point_acceleration
 from .trajectory import DEFAULT_TOL, EPS, Event
 
 __all__ = ["FORCE_ROUNDING", "Rest", "Support"]
@@ -78,6 +87,15 @@ MAX_SWITCHES = 16
 #: a rank of the support's equations: a singular value below this × the largest (× the
 #: number of unknowns) is a dependency of the contacts (four corners of one face)
 RANK_RTOL = 2**6 * EPS
+#: a stick found at its switch needs friction within this × its force of the cone's
+#: limit (the switch's location on the step, of a margin whose terms are the forces:
+#: FORCE_ROUNDING × the steps of a Brent search's rounding); a stick that needs more
+#: at a switch is broken, not left
+CONE_ROUNDING = 2**20 * EPS
+#: the angles searched for the direction a contact begins to slip in from rest (a sign
+#: change of the slip rate's turn between two of them is refined with Brent's method):
+#: 5.6 degrees apart, finer than the turn of an inverse mass's anisotropy can bend twice
+ONSET_ANGLES = 64
 
 
 @dataclass(frozen=True)
@@ -181,7 +199,9 @@ class Support:
                     ref = rest.ref[rest.active.index(b)]
                     u = imp._relative_velocity(s, S)
                     u = u - (u @ n) * n
-                    shat = _unit(u) if u @ ref > 0 else ref
+                    # (a slip within its end's rounding has no direction of its own)
+                    moving = u @ ref > 0 and np.linalg.norm(u) > self._slip_end(rest.speed)
+                    shat = _unit(u) if moving else ref
                     d = n - imp.mu_f * shat
                 else:
                     d = n
@@ -197,11 +217,11 @@ class Support:
                 kin[k] = fwd.kinematics(s, dy, k)
             origin, base, w, alpha = kin[k]
             rx, rs = X - origin, S - origin
-            a_X = base + np.cross(alpha, rx) + np.cross(w, np.cross(w, rx))
+            a_X = point_acceleration(base, alpha, w, rx)
             if stick:  # the slip's rate: a sphere's contact point is not a material one
-                a_S = base + np.cross(alpha, rs)
+                a_S = base + cross3(alpha, rs)
                 if not round_:
-                    a_S = a_S + np.cross(w, np.cross(w, rs))
+                    a_S = a_S + cross3(w, cross3(w, rs))
                 rows_b.append(-(a_S - (a_S @ n) * n) - (a_X @ n) * n)
                 row_of.append((nrow, nrow + 3))
                 nrow += 3
@@ -377,27 +397,34 @@ class Support:
         return y
 
     # ----------------------------------------------------------------- choice
-    def _choose(self, t, s, imp, feats, others, floor=0.0) -> Rest | None:
+    def _choose(self, t, s, imp, feats, others, floor=0.0, leaving=False) -> Rest | None:
         """The largest set of ``feats`` that presses (λ ≥ 0) while the others' gaps do
-        not fall, with its friction mode (``floor``: see :meth:`_mode`); None if no
-        contact presses."""
+        not fall, with its friction mode (``floor``, ``leaving``: see :meth:`_mode`);
+        None if no contact presses."""
         for size in range(len(feats), 0, -1):
             for sub in combinations(feats, size):
-                rest = self._mode(t, s, imp, sub, others, floor)
+                rest = self._mode(t, s, imp, sub, others, floor, leaving)
                 if rest is None:
                     continue
                 if self._holds(t, s, imp, rest, feats, others):
                     return rest
         return None
 
-    def _mode(self, t, s, imp, sub, others, floor=0.0) -> Rest | None:
+    def _mode(self, t, s, imp, sub, others, floor=0.0, leaving=False) -> Rest | None:
         """The friction mode of the contacts ``sub`` (see the module's docstring); a slip
         within rounding of the contact speeds (or of ``floor``, those of a slip just
-        ended) is none."""
+        ended) is none.  ``leaving``: the contacts stuck until this switch, so a stick at
+        the limit of its cone (within :data:`CONE_ROUNDING`) is leaving it, and slips the
+        way its friction force pointed (the force is continuous); a cone broken by more
+        (after an impact, a load switched on) slips in the direction of
+        :meth:`_onset`."""
         if imp.mu_f == 0:
             return Rest(imp, sub, "smooth")
         slips = [self._slip(s, imp, imp.features[b]) for b in sub]
-        zero = max(FORCE_ROUNDING * max(size for _, size in slips), self._slip_end(floor))
+        # a stick's slip drifts by the integration's error of the velocities too: zero
+        # up to a slip's end relative to the contact speeds now (or to ``floor``)
+        size = max(size for _, size in slips)
+        zero = max(FORCE_ROUNDING * size, self._slip_end(max(floor, size)))
         moving = [float(np.linalg.norm(u)) > zero for u, _ in slips]
         if all(moving):
             speed = max(size for _, size in slips)
@@ -411,21 +438,113 @@ class Support:
         if forces is None:
             return None
         driven = []
-        ok = True
+        excess = -math.inf  # the friction needed beyond the cone, relative to the force
         for rest, b, f in forces:
             if rest is not stick:
                 continue
             n = imp.contact(s, imp.features[b])[1]
             lam = float(f @ n)
             ft_ = f - lam * n
-            if np.linalg.norm(ft_) > imp.mu_f * lam + FORCE_ROUNDING * np.linalg.norm(f):
-                ok = False
+            over = float(np.linalg.norm(ft_)) - imp.mu_f * lam
+            excess = max(excess, over / max(float(np.linalg.norm(f)), 1e-300))
             driven.append(_unit(-ft_))
-        if ok:
+        if excess <= (-FORCE_ROUNDING if leaving else FORCE_ROUNDING):
             return stick
         if any(d is None for d in driven):  # pragma: no cover - a cone broken with no push
             return None
-        return Rest(imp, sub, "slip", tuple(driven), max(floor, max(s_ for _, s_ in slips)))
+        speed = max(floor, max(s_ for _, s_ in slips))
+        if leaving and excess <= CONE_ROUNDING:
+            return Rest(imp, sub, "slip", tuple(driven), speed)
+        if len(sub) == 1:  # one contact: the direction Coulomb's law makes it slip in
+            return self._onset(t, s, imp, sub, others, driven[0], speed)
+        slip = Rest(imp, sub, "slip", tuple(driven), speed)
+        rates = self._slip_rates(t, s, imp, slip, others)
+        if rates is not None and all(
+            float(a @ d) > FORCE_ROUNDING * size for (a, size), d in zip(rates, driven, strict=True)
+        ):
+            return slip
+        raise self._unresolved(
+            t,
+            imp,
+            "its contacts begin to slip with friction, and the loads do not drive each "
+            "along the way its friction opposes (the directions of a slip from rest at "
+            "several contacts are not modelled)",
+        )
+
+    def _slip_rates(self, t, s, imp, rest, others):
+        """The rate of each of ``rest``'s contacts' slip (its tangential acceleration,
+        space components) with the support forces ``rest`` would have, with the size of
+        its terms; None where those forces have no solution or one lets go."""
+        fwd = self.forward
+        forces = self._trial(t, s, {**others, imp: rest})
+        if forces is None:
+            return None
+        out = fwd.loads_without_support(t, s)
+        for r, b, f in forces:
+            if r is rest and float(f @ imp.contact(s, imp.features[b])[1]) < 0.0:
+                return None  # a slip pulling its contact down: not this mode
+            S, _ = r.imp.contact(s, r.imp.features[b])
+            out.force(r.imp.i, f, s.to_body(r.imp.i, S - s.r[r.imp.i]))
+        dy = fwd.layout.derivative(s, out.F, out.M_A, out.rates)
+        origin, base, w, alpha = fwd.kinematics(s, dy, imp.i)
+        n = imp.normal
+        rates = []
+        for b in rest.active:
+            ft = imp.features[b]
+            rs = imp.contact(s, ft)[0] - origin
+            a = base + cross3(alpha, rs)
+            if ft.at is not None:  # a material point (a corner): a sphere's is not
+                a = a + cross3(w, cross3(w, rs))
+            size = float(np.abs(base).sum() + (np.abs(alpha).sum() + w @ w) * np.abs(rs).sum())
+            rates.append((a - (a @ n) * n, size + 1e-300))
+        return rates
+
+    def _onset(self, t, s, imp, sub, others, driven, speed) -> Rest:
+        """A contact that cannot stick begins to slip in a direction ŝ its own slip's
+        rate points along (ȧ_slip = k ŝ, k > 0, with the friction −μ λ ŝ): with an
+        inverse mass that is not isotropic, not the direction of the force sticking
+        would need (``driven``).  The angle of ŝ in the plane is searched on
+        :data:`ONSET_ANGLES` points and refined with Brent's method; more than one such
+        direction is refused with one line (Coulomb's law does not choose)."""
+        from scipy.optimize import brentq
+
+        n = imp.normal
+        e1 = driven - (driven @ n) * n
+        e1 = e1 / np.linalg.norm(e1)
+        e2 = cross3(n, e1)
+
+        def at(th):
+            shat = math.cos(th) * e1 + math.sin(th) * e2
+            rates = self._slip_rates(t, s, imp, Rest(imp, sub, "slip", (shat,), speed), others)
+            if rates is None:
+                return None
+            a, size = rates[0]
+            return float(n @ cross3(shat, a)) / size, float(shat @ a) / size
+
+        grid = np.linspace(-math.pi, math.pi, ONSET_ANGLES + 1)
+        vals = [at(th) for th in grid]
+        found = []
+        for k in range(ONSET_ANGLES):
+            va, vb = vals[k], vals[k + 1]
+            if va is None or vb is None or (va[0] > 0) == (vb[0] > 0):
+                continue
+            if va[0] == 0.0:
+                th = grid[k]
+            else:
+                th = brentq(lambda x: at(x)[0], grid[k], grid[k + 1], xtol=EPS, rtol=4 * EPS)
+            v = at(th)
+            if v is not None and v[1] > FORCE_ROUNDING:
+                found.append(th)
+        if len(found) != 1:
+            raise self._unresolved(
+                t,
+                imp,
+                f"its contact cannot stick, and Coulomb's law lets it begin to slip in "
+                f"{len(found)} directions (a slip's rate along its friction's direction: "
+                "not modelled where not exactly one)",
+            )
+        shat = math.cos(found[0]) * e1 + math.sin(found[0]) * e2
+        return Rest(imp, sub, "slip", (shat,), speed)
 
     def _trial(self, t, s, rests):
         """The support forces that ``rests`` would have at (t, s) (as :meth:`forces`), or
@@ -478,7 +597,7 @@ class Support:
                 continue
             ft = imp.features[b]
             rx = imp.feature_point(s, ft) - origin
-            a_n = float(imp.normal @ (base + np.cross(alpha, rx) + np.cross(w, np.cross(w, rx))))
+            a_n = float(imp.normal @ (point_acceleration(base, alpha, w, rx)))
             if a_n < -FORCE_ROUNDING * (float(np.abs(base).sum()) + 1e-300):
                 return False
         return True
@@ -576,7 +695,7 @@ class Support:
             feats = tuple(old.active)
             if old.friction == "slip":  # the slip ends: its contacts stop sliding
                 self._stop_slip(s, imp, feats, old.speed)
-            rest = self._choose(t, s, imp, feats, rests, old.speed)
+            rest = self._choose(t, s, imp, feats, rests, old.speed, old.friction == "stick")
             if rest is None:
                 events.append(self._event(t, old, "lift_off"))
                 continue

@@ -192,6 +192,108 @@ def test_a_box_sliding_on_its_face_stops_at_v2_over_2_mu_g(v0, mu) -> None:
     assert end["vx"] == 0.0 or abs(end["vx"]) <= INTEGRATED_RTOL * v0
 
 
+#: the onset direction's angle against the closed form's: both are roots of the slip
+#: rate's turn located by Brent's method to 4 eps, of terms ~10 with a slope ~1 per rad
+ONSET_ANGLE_ATOL = 2**10 * EPS
+
+
+def _corner_box(psi, theta, phi, a=0.2, b=0.4, c=0.6):
+    """A box at rest on its lowest corner (the attitude by Euler angles), and that
+    corner's position from G (space components)."""
+    from mechanics.rotation import matrix_from_euler
+
+    R = matrix_from_euler(psi, theta, phi)  # ^A R^O: body components = R @ space
+    corners = np.array(
+        [[x * a, y * b, z * c] for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)]
+    )
+    space = corners @ R  # each row Rᵀ corner
+    rho = space[np.argmin(space[:, 2])]
+    box = _box(-rho[2], a=a, b=b, c=c)
+    box["initial"].update(psi=psi, theta=theta, phi=phi)
+    J = R.T @ np.diag([b * b + c * c, a * a + c * c, a * a + b * b]) @ R / 12.0  # m = 1
+    return box, rho, J
+
+
+def _onset_closed_form(rho, J, mu):
+    """The directions ŝ a corner at rest (ω = 0) begins to slip in under gravity with
+    Coulomb friction: its acceleration g + λ K (n − μ ŝ), K v = v + (J⁻¹ (ρ × v)) × ρ
+    (m = 1), with λ from n·a = 0, must have its tangential part along +ŝ.  Roots of the
+    turn n·(ŝ × a_t) in the angle of ŝ, on a 720-point grid refined by Brent's method;
+    and the direction sticking would push it (the stick force −K⁻¹ g, reversed)."""
+    from scipy.optimize import brentq
+
+    n, g = np.array([0.0, 0.0, 1.0]), np.array([0.0, 0.0, -G])
+    Jinv = np.linalg.inv(J)
+
+    def K(v):
+        return v + np.cross(Jinv @ np.cross(rho, v), rho)
+
+    def slip(th):
+        shat = np.array([math.cos(th), math.sin(th), 0.0])
+        d = n - mu * shat
+        lam = -(n @ g) / (n @ K(d))
+        acc = g + lam * K(d)
+        return shat, float(n @ np.cross(shat, acc)), float(shat @ acc), lam
+
+    grid = np.linspace(-math.pi, math.pi, 721)
+    turn = [slip(th)[1] for th in grid]
+    roots = []
+    for k in range(720):
+        if (turn[k] > 0) != (turn[k + 1] > 0):
+            th = brentq(lambda x: slip(x)[1], grid[k], grid[k + 1], xtol=EPS, rtol=4 * EPS)
+            shat, _, along, lam = slip(th)
+            if along > 0 and lam > 0:
+                roots.append(shat)
+    Kmat = np.column_stack([K(e) for e in np.eye(3)])
+    stick = np.linalg.solve(Kmat, -g)
+    return roots, -stick[:2] / np.linalg.norm(stick[:2])
+
+
+@pytest.mark.parametrize("angles", [(0.3, 0.9, 0.7), (1.2, 2.1, -0.4), (0.5, 1.9, 1.0)])
+def test_a_box_released_on_a_corner_slips_the_way_coulomb_s_law_makes_it(angles) -> None:
+    """A box at rest on one corner of a rough floor (μ = 0.2: the cone cannot hold it)
+    begins to slip in the direction ŝ whose slip rate points along +ŝ, found here in
+    closed form from its inverse mass; not the direction the stick force would push
+    (that is the answer only for an isotropic inverse mass: the negative control shows
+    they differ by far more than the bound).  Until this was found the engine took
+    the stick force's direction, and a corner slipping from its cone's limit chattered
+    between slips in directions the rounding chose (the random rough-corner test)."""
+    mu = 0.2
+    box, rho, J = _corner_box(*angles)
+    (shat,), driven = _onset_closed_form(rho, J, mu)
+    assert math.acos(min(1.0, float(shat[:2] @ driven))) > 2**20 * ONSET_ANGLE_ATOL
+    r = run_scene(_scene([box], [GRAVITY, _floor("box", 0.0, mu)], duration=0.01, samples=3))
+    assert r.passed, r.summary()
+    (rest,) = _kinds(r, "rest")
+    assert rest.t == 0.0
+    assert rest.detail["friction"] == "slip"
+    s = r.trajectory.series
+    F = np.array([s["support_x"][0], s["support_y"][0], s["support_z"][0]])
+    assert np.hypot(F[0], F[1]) == pytest.approx(mu * F[2], rel=2**10 * EPS)
+    along = -F[:2] / np.hypot(F[0], F[1])  # the friction opposes the slip
+    assert math.acos(min(1.0, float(along @ shat[:2]))) <= ONSET_ANGLE_ATOL
+
+
+def test_a_box_twisted_from_rest_on_its_face_is_refused_with_one_line() -> None:
+    """A horizontal push off the centre line of a box at rest on its face, more than
+    static friction holds: its four corners begin to slip in directions that turn with
+    the box.  The model's guess (each corner the way its stick force pushed) makes one
+    corner's slip rate point against its own friction (a·ŝ < 0), which Coulomb's law
+    forbids; refused, where before it ran with that corner's friction fixed along a
+    direction it did not slip in.  Pushed at the centre line it slides, and passes."""
+    push = {"type": "force", "body": "box", "force": [3.0, 0.0, 0.0], "at": [0.0, 0.19, -0.3]}
+    sc = _scene([_box(0.3)], [GRAVITY, _floor("box", 0.0, 0.2), push], duration=0.2)
+    with pytest.raises(SceneError, match="begin to slip with friction") as info:
+        run_scene(sc)
+    assert str(info.value).startswith("rest.toml: effects[1]: body 'box' and the plane")
+    assert "\n" not in str(info.value)
+    central = {**push, "at": [0.0, 0.0, -0.3]}
+    r = run_scene(_scene([_box(0.3)], [GRAVITY, _floor("box", 0.0, 0.2), central], duration=0.2))
+    assert r.passed, r.summary()
+    (rest,) = _kinds(r, "rest")
+    assert rest.detail["friction"] == "slip"
+
+
 def test_a_ball_sliding_on_the_floor_rolls_at_five_sevenths() -> None:
     v0, mu, a = 2.0, 0.3, 0.1
     sc = _scene([_ball(velocity=(v0, 0.0, 0.0))], [GRAVITY, _floor(friction=mu)], duration=1.0)

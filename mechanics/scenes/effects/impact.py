@@ -56,7 +56,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..state import SPHERICAL_SHAPES, body_radius, body_vertices
+from ..state import SPHERICAL_SHAPES, body_radius, body_vertices, cross3
 from .base import Effect, Schema, keeps_for_force_along, register, unit
 
 POLYHEDRA = ("box", "rectangular_plate", "rod")
@@ -387,7 +387,7 @@ class Impact(Effect):
             if k is None or k in self.fixed:
                 return np.zeros(3)
             w_O = s.to_space(k, s.omega[k])
-            return s.v[k] + np.cross(w_O, S - s.r[k])
+            return s.v[k] + cross3(w_O, S - s.r[k])
 
         return vel(self.i) - vel(self.j)
 
@@ -397,7 +397,7 @@ class Impact(Effect):
         tot = 0.0
         for k in self.bodies():
             w_O = s.to_space(k, s.omega[k])
-            tot += float(np.linalg.norm(s.v[k]) + np.linalg.norm(np.cross(w_O, S - s.r[k])))
+            tot += float(np.linalg.norm(s.v[k]) + np.linalg.norm(cross3(w_O, S - s.r[k])))
         return tot
 
     def gap_scale(self, s, ft: Feature) -> float:
