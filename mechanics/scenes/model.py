@@ -141,6 +141,25 @@ def check(scene) -> None:
         REGISTRY[spec.type].check(spec, scene, index)
 
 
+def _check_pairs_once(scene, impacts) -> None:
+    """Each pair meets by one law: two impacts of the same two bodies, or of one body and
+    the same plane (the same unit normal and offset n·p, as written), are refused with one
+    line naming both (a group's pairs included); which law would act was undefined."""
+    seen: dict = {}
+    for imp in impacts:
+        if imp.j is not None:
+            key = (min(imp.i, imp.j), max(imp.i, imp.j))
+        else:
+            key = (imp.i, *imp.normal.tolist(), float(imp.normal @ imp.point))
+        first = seen.setdefault(key, imp)
+        if first is not imp:
+            raise scene.error(
+                imp.where,
+                f"{imp.label} already collide by {first.where} (a pair is listed once: "
+                "one law for its contacts)",
+            )
+
+
 class Model:
     """A scene compiled: the layout, the effects by what they contribute, the initial
     state.  Built once per run; nothing here changes during it."""
@@ -156,6 +175,7 @@ class Model:
         self.effects = build_effects(scene, ctx)
         #: the contacts (events, not loads)
         self.impacts: list[Impact] = [e for e in self.effects if isinstance(e, Impact)]
+        _check_pairs_once(scene, self.impacts)
         #: body index -> the positions in ``impacts`` of the pairs it belongs to
         self.impacts_of: dict[int, list[int]] = {}
         for a, imp in enumerate(self.impacts):

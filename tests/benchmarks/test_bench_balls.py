@@ -24,15 +24,8 @@ import pytest
 
 from mechanics.scenes import flows as flows_module
 from mechanics.scenes import parse_scene, run_scene
+from tests.scenes._effects import WALLS
 
-WALLS = [
-    {"point": [0.0, 0.0, 0.0], "normal": [1.0, 0.0, 0.0]},
-    {"point": [1.0, 0.0, 0.0], "normal": [-1.0, 0.0, 0.0]},
-    {"point": [0.0, 0.0, 0.0], "normal": [0.0, 1.0, 0.0]},
-    {"point": [0.0, 1.0, 0.0], "normal": [0.0, -1.0, 0.0]},
-    {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]},
-    {"point": [0.0, 0.0, 1.0], "normal": [0.0, 0.0, -1.0]},
-]
 #: (balls, radius, duration): about a few hundred impacts each
 SIZES = {10: (0.05, 2.0), 100: (0.03, 0.4), 1000: (0.02, 0.02)}
 

@@ -1,5 +1,6 @@
 """Shared set-up of the effects' unit tests: a tiny scene parsed from tables, the
-engine's effect objects built from it, a refusal and its words."""
+engine's effect objects built from it, a refusal and its words; the walls of the unit
+box (the groups' tests and the balls-in-a-box benchmark)."""
 
 from __future__ import annotations
 
@@ -9,6 +10,16 @@ import pytest
 
 from mechanics.scenes import SceneError, parse_scene
 from mechanics.scenes.engine import Engine
+
+#: the six walls of the unit box [0, 1]³, normals inward (an impact group's ``planes``)
+WALLS = [
+    {"point": [0.0, 0.0, 0.0], "normal": [1.0, 0.0, 0.0]},
+    {"point": [1.0, 0.0, 0.0], "normal": [-1.0, 0.0, 0.0]},
+    {"point": [0.0, 0.0, 0.0], "normal": [0.0, 1.0, 0.0]},
+    {"point": [0.0, 1.0, 0.0], "normal": [0.0, -1.0, 0.0]},
+    {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]},
+    {"point": [0.0, 0.0, 1.0], "normal": [0.0, 0.0, -1.0]},
+]
 
 
 def scene_of(bodies, effects, *, duration=1.0):

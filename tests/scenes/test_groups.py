@@ -26,21 +26,14 @@ from mechanics.scenes import SceneError, parse_scene, run_scene
 from mechanics.scenes import collision as collision_module
 from mechanics.scenes import flows as flows_module
 
+from ._effects import WALLS
+
 EPS = float(np.finfo(float).eps)
 #: a contact time or velocity in closed form: a quotient of sums of a few O(1) terms
 CLOSED_RTOL = 16 * EPS
 #: event times of the exact flow against the integrated run: DOP853 at rtol 1e-12, the
 #: contact refined to 4 eps of its step (as the engine tests' EVENT_RTOL)
 EVENT_RTOL = 2**20 * EPS
-
-WALLS = [
-    {"point": [0.0, 0.0, 0.0], "normal": [1.0, 0.0, 0.0]},
-    {"point": [1.0, 0.0, 0.0], "normal": [-1.0, 0.0, 0.0]},
-    {"point": [0.0, 0.0, 0.0], "normal": [0.0, 1.0, 0.0]},
-    {"point": [0.0, 1.0, 0.0], "normal": [0.0, -1.0, 0.0]},
-    {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]},
-    {"point": [0.0, 0.0, 1.0], "normal": [0.0, 0.0, -1.0]},
-]
 
 
 def _ball(name, position, velocity, radius=0.05, mass=1.0, shape="solid_sphere"):
@@ -328,3 +321,54 @@ def test_balls_of_a_group_overlapping_at_the_start_are_refused() -> None:
     bodies = [_ball("p", (0.5, 0.5, 0.5), (0, 0, 0)), _ball("q", (0.55, 0.5, 0.5), (0, 0, 0))]
     with pytest.raises(SceneError, match=r"bodies 'p' and 'q' overlap at t = 0"):
         _scene(bodies, [_group(["p", "q"])])
+
+
+@pytest.mark.parametrize(
+    ("effects", "who"),
+    [
+        (  # the same two bodies, in either order
+            [
+                {"type": "impact", "body": "p", "other": "q", "restitution": 1.0},
+                {"type": "impact", "body": "q", "other": "p", "restitution": 0.5},
+            ],
+            "bodies 'q' and 'p'",
+        ),
+        (  # the floor twice, its normal written at another length
+            [
+                {"type": "impact", "body": "p", "restitution": 1.0},
+                {"type": "impact", "body": "p", "restitution": 0.5, "plane_normal": [0, 0, 2]},
+            ],
+            "body 'p' and the plane",
+        ),
+        (  # a pair of a group listed again by itself
+            [
+                _group(["p", "q"], planes=None),
+                {"type": "impact", "body": "p", "other": "q", "restitution": 0.5},
+            ],
+            "bodies 'p' and 'q'",
+        ),
+        (  # a plane of a group listed again for one of its bodies
+            [
+                _group(["p", "q"]),
+                {"type": "impact", "body": "q", "restitution": 0.5, "plane_normal": [0, 0, 1]},
+            ],
+            "body 'q' and the plane",
+        ),
+    ],
+)
+def test_a_pair_listed_twice_is_refused_naming_both(effects, who) -> None:
+    """Which of two laws would act at a contact was undefined (before: the first listed
+    took every impact, silently)."""
+    with pytest.raises(SceneError, match="already collide by effects\\[0\\]") as info:
+        _scene(BALLS, effects)
+    assert info.value.field == "effects[1]"
+    assert str(info.value).startswith(f"group.toml: effects[1]: {who} already collide")
+
+
+def test_the_same_body_with_two_parallel_planes_is_not_a_pair_listed_twice() -> None:
+    floor = {"type": "impact", "body": "p", "restitution": 1.0}
+    ceiling = {**floor, "plane_point": [0, 0, 1], "plane_normal": [0, 0, -1]}
+    raised = {**floor, "plane_point": [0, 0, 0.25]}
+    for other in (ceiling, raised):  # another plane: another pair, accepted
+        sc = _scene(BALLS, [floor, other])
+        assert [e.type for e in sc.effects] == ["impact", "impact"]

@@ -102,7 +102,8 @@ class Impact(Effect):
     (``model = "auto"``), or are resolved one at a time (``"sequential"``).  Or of a
     ``group`` of bodies: every pair of them, and each with every plane of ``planes``,
     by the same law (a pair of two fixed bodies, or a fixed body and a plane, never
-    meets and is left out)."""
+    meets and is left out).  A pair is listed once: two effects (or a group and an
+    effect) naming the same two bodies, or one body and the same plane, are refused."""
 
     type = "impact"
     schema: ClassVar[Schema] = {
@@ -484,9 +485,12 @@ class Impact(Effect):
         out["energy_loss"] = loss
         out["kinetic_energy_before"], out["momentum_before"] = before[0], before[1]
         out["kinetic_energy_after"], out["momentum_after"] = after[0], after[1]
-        out["momentum_scale"] = before[2]
+        # the sizes of the terms on either side: a body struck from rest at the contact
+        # point has no moment about it before, and the others' after (found by the
+        # mirror property: 6e-66 of rounding after, against a size of 0 before)
+        out["momentum_scale"] = max(before[2], after[2])
         out["angular_momentum_before"], out["angular_momentum_after"] = before[3], after[3]
-        out["angular_momentum_scale"] = before[4]
+        out["angular_momentum_scale"] = max(before[4], after[4])
         return out
 
     def _apply(self, s, S, n, v_n) -> None:
