@@ -37,6 +37,7 @@ PUBLIC = (
     "mechanics.conformance.adapters.mujoco",
     "mechanics.conformance.adapters.pybullet",
     "mechanics.conformance.adapters.drake",
+    "mechanics.conformance.adapters.siconos",
 )
 
 #: packages whose submodules are internal: the package re-exports their public names

@@ -23,7 +23,9 @@ Conventions (the same as every module of :mod:`mechanics`)
 - A :class:`Ground` is the plane ``normal · x = height`` (bodies above it), ``normal`` a
   unit vector (refused otherwise, so that ``height`` is along it); a contact
   with it, or between two bodies, obeys Newton's law of restitution (6.6) with the
-  coefficient given, smooth (no friction).
+  coefficient given; a contact with the ground has Coulomb friction of coefficient
+  ``Ground.friction`` (0 by default: smooth), and contacts between bodies are smooth.
+  An adapter whose engine cannot express the friction says so in ``supports``.
 - A :class:`Pivot` fixes one point of a body in space (a ball joint to the world):
   ``point`` in body components relative to G, held at ``anchor`` in space.
 - A :class:`Thrust` is a rocket's: the body loses mass at ``mass_rate`` and is pushed
@@ -110,13 +112,20 @@ class Body:
 
 @dataclass(frozen=True)
 class Ground:
-    """The plane normal · x = height; contacts with it restitute with ``restitution``."""
+    """The plane normal · x = height; contacts with it restitute with ``restitution``
+    and have Coulomb friction ``friction`` (μ ≥ 0; 0: smooth)."""
 
     restitution: float
     normal: tuple[float, float, float] = (0.0, 0.0, 1.0)
     height: float = 0.0
+    friction: float = 0.0
 
     def __post_init__(self) -> None:
+        mu = self.friction
+        if not (isinstance(mu, (int, float)) and math.isfinite(mu) and mu >= 0):
+            raise MechanicsValueError(
+                f"Ground.friction (Coulomb's mu) must be a finite number >= 0; got {mu!r}"
+            )
         # one plane, one reading: with a unit normal, n · x = height and "height along
         # the normal" agree (issue 16 found the engines' adapters reading the second, the
         # scene engine's the first, for a normal of length 2)

@@ -6,6 +6,7 @@ scenario: no engine runs."""
 from __future__ import annotations
 
 import dataclasses
+import math
 import re
 
 import numpy as np
@@ -19,6 +20,7 @@ from mechanics.conformance.protocol import (
     Event,
     Ground,
     Scenario,
+    Shape,
     Trajectory,
     check_trajectory,
 )
@@ -252,3 +254,19 @@ def test_a_unit_ground_normal_within_a_few_roundings_is_taken():
     assert Ground(0.5, (0.6, 0.8, 0.0)).normal == (0.6, 0.8, 0.0)
     with pytest.raises(MechanicsValueError, match=r"3 components"):
         Ground(0.5, (0.0, 1.0), 1.0)
+
+
+@pytest.mark.parametrize("mu", [-0.1, math.nan, math.inf, "0.5", None])
+def test_a_ground_friction_that_is_not_a_finite_number_at_least_0_is_refused(mu):
+    with pytest.raises(MechanicsValueError, match=r"Ground\.friction .* >= 0; got"):
+        Ground(0.5, friction=mu)
+
+
+def test_ground_friction_is_said_unsupported_by_an_adapter_that_does_not_map_it():
+    from mechanics.conformance.adapters._engines import common_unsupported
+
+    body = Body("b", 1.0, (0.4, 0.4, 0.4), Shape("sphere", (1.0,)), position=(0.0, 0.0, 2.0))
+    rough = Scenario("rough", "d", "b", (body,), 1.0, (0.0, 1.0), ground=Ground(0.5, friction=0.3))
+    assert "friction with the ground (mu = 0.3)" in common_unsupported(rough)
+    assert common_unsupported(rough, friction=True) is None
+    assert common_unsupported(dataclasses.replace(rough, ground=Ground(0.5))) is None

@@ -1293,6 +1293,8 @@ for _name in (
     "mujoco.variants",
     "pybullet.PyBulletAdapter",
     "pybullet.variants",
+    "siconos.SiconosAdapter",
+    "siconos.variants",
     "reference.ExactAdapter",
     "reference.SceneEngineAdapter",
 ):

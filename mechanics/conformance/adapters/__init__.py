@@ -18,7 +18,12 @@ import importlib
 __all__ = ["ENGINE_NAMES", "ExactAdapter", "MissingExtraError", "SceneEngineAdapter", "require"]
 
 #: how the message names an engine's adapter, by its top-level module
-ENGINE_NAMES = {"mujoco": "MuJoCo", "pybullet": "PyBullet", "pydrake": "Drake"}
+ENGINE_NAMES = {
+    "mujoco": "MuJoCo",
+    "pybullet": "PyBullet",
+    "pydrake": "Drake",
+    "siconos": "Siconos",
+}
 
 
 class MissingExtraError(ImportError):

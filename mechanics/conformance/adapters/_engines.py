@@ -122,13 +122,19 @@ def step_counts(scenario: Scenario, step) -> tuple[float, np.ndarray]:
     return float(step), n.astype(np.int64)
 
 
-def common_unsupported(scenario: Scenario) -> str | None:
+def common_unsupported(scenario: Scenario, *, friction: bool = False) -> str | None:
     """The reason no engine here can run ``scenario``, or ``None``.
 
     - A :class:`~mechanics.conformance.protocol.Thrust`: MuJoCo, PyBullet and Drake hold
       each body's mass constant during a run, so the rocket's loss of mass (7.30) has no
       expression; a constant thrust would be another problem, not Tsiolkovsky's.
-    - A contact pair naming a body without a shape: nothing could touch."""
+    - A contact pair naming a body without a shape: nothing could touch.
+    - Friction with the ground, unless the adapter maps it (``friction=True``)."""
+    if not friction and scenario.ground is not None and scenario.ground.friction > 0:
+        return (
+            f"friction with the ground (mu = {scenario.ground.friction!r}): not mapped by "
+            "this adapter"
+        )
     if scenario.thrust is not None:
         return (
             "a body's mass changes during the run (Thrust, the rocket of 7.30); the "

@@ -30,7 +30,9 @@ Conventions (MuJoCo against the book)
 - **Contacts**: every geom has ``contype = conaffinity = 0``; only the scenario's
   contacts are declared, as explicit ``<pair>``s (the ground with each body that has a
   shape, and ``pair_restitution``), each with ``condim = 1``: frictionless, the
-  scenario's smooth contact.
+  scenario's smooth contact; the ground's with ``Ground.friction`` μ > 0 has
+  ``condim = 3`` and ``friction = "μ μ 0 0 0"`` under the elliptic cone (Coulomb's
+  circular cone; MuJoCo's default is a pyramid), a soft contact like the normal one.
 
 Restitution: MuJoCo's contact is a spring-damper, not Newton's law (6.6)
 -------------------------------------------------------------------------
@@ -246,7 +248,7 @@ class MuJoCoAdapter:
     def supports(self, scenario: Scenario) -> str | None:
         """``None``, or why MuJoCo cannot run ``scenario`` (a Thrust; with the tuned
         contact, a restitution below e⁻²)."""
-        why = common_unsupported(scenario)
+        why = common_unsupported(scenario, friction=True)
         if why is None and self.contact == "tuned":
             es = [e for *_, e in scenario.pair_restitution]
             if scenario.ground is not None:
@@ -272,10 +274,12 @@ class MuJoCoAdapter:
 
     def mjcf(self, scenario: Scenario, step: float) -> str:
         """The MJCF model of ``scenario`` at fixed step ``step``."""
+        mu = 0.0 if scenario.ground is None else float(scenario.ground.friction)
+        cone = ' cone="elliptic"' if mu > 0 else ""  # Coulomb's circular cone
         parts = [
             "<mujoco>",
             f'  <option integrator="{self.integrator}" timestep="{float(step)!r}" '
-            f'gravity="{_v(scenario.gravity)}"/>',
+            f'gravity="{_v(scenario.gravity)}"{cone}/>',
             "  <worldbody>",
         ]
         if scenario.ground is not None:
@@ -314,14 +318,15 @@ class MuJoCoAdapter:
         if scenario.ground is not None:
             for k, b in enumerate(scenario.bodies):
                 if b.shape is not None:
-                    pairs.append(("ground", f"g{k}", scenario.ground.restitution))
-        pairs += [(f"g{i}", f"g{j}", e) for i, j, e in scenario.pair_restitution]
+                    pairs.append(("ground", f"g{k}", scenario.ground.restitution, mu))
+        pairs += [(f"g{i}", f"g{j}", e, 0.0) for i, j, e in scenario.pair_restitution]
         if pairs:
             parts.append("  <contact>")
-            for g1, g2, e in pairs:
+            for g1, g2, e, f in pairs:
                 solref, solimp = self._solref(e, float(step))
+                rough = f' condim="3" friction="{f!r} {f!r} 0 0 0"' if f > 0 else ' condim="1"'
                 parts.append(
-                    f'    <pair geom1="{g1}" geom2="{g2}" condim="1" solref="{solref}" '
+                    f'    <pair geom1="{g1}" geom2="{g2}"{rough} solref="{solref}" '
                     f'solimp="{solimp}"/>'
                 )
             parts.append("  </contact>")

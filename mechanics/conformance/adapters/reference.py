@@ -108,6 +108,7 @@ def scene_from_scenario(s: Scenario, *, method: str = "integrate", rtol=None, at
                     "plane_point": list(s.ground.height * n / float(n @ n)),
                     "plane_normal": list(n),
                     "restitution": s.ground.restitution,
+                    **({"friction": s.ground.friction} if s.ground.friction > 0 else {}),
                 }
             )
     for i, j, e in s.pair_restitution:
