@@ -448,7 +448,7 @@ def test_the_scene_engine_says_what_it_cannot_run():
     boxy = dataclasses.replace(b, bodies=(_box(position=(0.0, 0.0, 2.0)),))
     assert (
         scene_from_scenario(boxy)
-        == "body 'box' collides: the scene engine collides solid spheres only"
+        == "body 'box' collides: the scene engine collides solid spheres, boxes and cylinders of uniform density (their moments from the shape)"
     )
     # a sphere whose moments are not 2/5 m r² (a hollow one, 2/3 m r²) is not solid
     hollow = dataclasses.replace(
@@ -456,7 +456,7 @@ def test_the_scene_engine_says_what_it_cannot_run():
     )
     assert (
         scene_from_scenario(hollow)
-        == "body 'ball' collides: the scene engine collides solid spheres only"
+        == "body 'ball' collides: the scene engine collides solid spheres, boxes and cylinders of uniform density (their moments from the shape)"
     )
     nearly = dataclasses.replace(
         b, bodies=(_ball(inertia=(0.002 * (1 + 4 * EPS),) * 3, position=(0.0, 0.0, 2.0)),)
@@ -1768,3 +1768,23 @@ def test_the_scene_engine_adapter_takes_a_scenario_with_integer_fields():
     tr = SceneEngineAdapter().run(s, None)
     assert tr.t.dtype == np.float64
     np.testing.assert_array_equal(tr.t, [0.0, 1.0])
+
+
+def test_uniform_boxes_and_cylinders_collide_in_the_scene_engine_with_their_edges():
+    """A colliding box or cylinder maps to the scene engine's shape (edges 2a, 2b, 2c;
+    height 2h) where its moments are its shape's at uniform density; else refused."""
+    b = SCENARIOS["bouncing_ball"]
+    a, bb, c, m = 0.1, 0.2, 0.3, 2.0
+    J = (m * (bb * bb + c * c) / 3, m * (a * a + c * c) / 3, m * (a * a + bb * bb) / 3)
+    box = _box(mass=m, inertia=J, shape=Shape("box", (a, bb, c)), position=(0.0, 0.0, 2.0))
+    scene = scene_from_scenario(dataclasses.replace(b, bodies=(box,)))
+    (entry,) = scene["bodies"]
+    assert (entry["shape"], entry["a"], entry["b"], entry["c"]) == ("box", 2 * a, 2 * bb, 2 * c)
+    r, h = 0.2, 0.05
+    side = m * (3 * r * r + 4 * h * h) / 12
+    cyl = _box(mass=m, inertia=(side, side, m * r * r / 2), shape=Shape("cylinder", (r, h)))
+    cyl = dataclasses.replace(cyl, position=(0.0, 0.0, 2.0))
+    (entry,) = scene_from_scenario(dataclasses.replace(b, bodies=(cyl,)))["bodies"]
+    assert (entry["shape"], entry["radius"], entry["height"]) == ("cylinder", r, 2 * h)
+    off = dataclasses.replace(cyl, inertia=(side, side, m * r * r / 3))
+    assert "of uniform density" in scene_from_scenario(dataclasses.replace(b, bodies=(off,)))

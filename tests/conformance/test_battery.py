@@ -878,11 +878,11 @@ def test_scene_engine_names_each_scenario_it_cannot_express():
         ),
         (
             _sphere_scaled(impact, 0, 1.5),  # the first of the pair
-            "body 'a' collides: the scene engine collides solid spheres only",
+            "body 'a' collides: the scene engine collides solid spheres, boxes and cylinders of uniform density (their moments from the shape)",
         ),
         (
             _sphere_scaled(impact, 1, 1.5),  # the second of the pair
-            "body 'b' collides: the scene engine collides solid spheres only",
+            "body 'b' collides: the scene engine collides solid spheres, boxes and cylinders of uniform density (their moments from the shape)",
         ),
     ]
     axis3 = "the scene engine's fixed point lies on body axis 3 below G"
@@ -906,12 +906,12 @@ def test_a_sphere_within_the_inertia_tolerance_collides_and_one_beyond_does_not(
         why = scene_from_scenario(_sphere_scaled(ball, 0, factor))
         assert (
             why
-            == f"body {ball.bodies[0].name!r} collides: the scene engine collides solid spheres only"
+            == f"body {ball.bodies[0].name!r} collides: the scene engine collides solid spheres, boxes and cylinders of uniform density (their moments from the shape)"
         )
     a_box = _body(ball, shape=Shape("box", (0.1, 0.1, 0.1)))
-    assert "solid spheres only" in scene_from_scenario(a_box)
+    assert "of uniform density" in scene_from_scenario(a_box)
     no_shape = _body(ball, shape=None)
-    assert "solid spheres only" in scene_from_scenario(no_shape)
+    assert "of uniform density" in scene_from_scenario(no_shape)
 
 
 def test_the_scene_carries_the_method_and_only_the_tolerances_given():

@@ -20,8 +20,8 @@ from ..scenarios import reference
 __all__ = ["ExactAdapter", "SceneEngineAdapter", "scene_from_scenario"]
 
 EPS = float(np.finfo(float).eps)
-#: a sphere's given moments must be 2/5 m r² (the engine derives them from the shape) to
-#: rounding: a few operations, 2^4 eps
+#: a colliding body's given moments must be its shape's at uniform density (2/5 m r² for
+#: a sphere; the engine derives them from the shape) to rounding: a few operations, 2^4 eps
 SPHERE_INERTIA_RTOL = 2**4 * EPS
 
 
@@ -48,6 +48,33 @@ def _is_solid_sphere(body) -> bool:
     return all(abs(x - J) <= SPHERE_INERTIA_RTOL * J for x in body.inertia)
 
 
+def _uniform(body) -> dict | None:
+    """The scene engine's body entry for a colliding body whose moments are those of
+    its shape at uniform density (the engine derives them from the shape): a solid
+    sphere, a box (half extents → edges) or a solid cylinder (half length → height);
+    None otherwise."""
+    if _is_solid_sphere(body):
+        return {"shape": "solid_sphere", "radius": body.shape.dims[0]}
+    if body.shape is None:
+        return None
+    m, d = body.mass, body.shape.dims
+    if body.shape.kind == "box":
+        a, b, c = d
+        J = (m * (b * b + c * c) / 3, m * (a * a + c * c) / 3, m * (a * a + b * b) / 3)
+        entry = {"shape": "box", "a": 2 * a, "b": 2 * b, "c": 2 * c}
+    elif body.shape.kind == "cylinder":
+        r, h = d
+        side = m * (3 * r * r + 4 * h * h) / 12
+        J = (side, side, m * r * r / 2)
+        entry = {"shape": "cylinder", "radius": r, "height": 2 * h}
+    else:
+        return None
+    ok = all(
+        abs(x - y) <= SPHERE_INERTIA_RTOL * max(J) for x, y in zip(body.inertia, J, strict=True)
+    )
+    return entry if ok else None
+
+
 def scene_from_scenario(s: Scenario, *, method: str = "integrate", rtol=None, atol=None):
     """The scene (a dict for :func:`mechanics.scenes.parse_scene`) that runs ``s`` on the
     project's engine, or a string saying why it cannot."""
@@ -70,9 +97,12 @@ def scene_from_scenario(s: Scenario, *, method: str = "integrate", rtol=None, at
                 return "the scene engine's thrust is space-fixed: the rocket must not spin"
             entry = {"shape": "point"}
         elif i in colliding:
-            if not _is_solid_sphere(b):
-                return f"body {b.name!r} collides: the scene engine collides solid spheres only"
-            entry = {"shape": "solid_sphere", "radius": b.shape.dims[0]}
+            entry = _uniform(b)
+            if entry is None:
+                return (
+                    f"body {b.name!r} collides: the scene engine collides solid spheres, "
+                    "boxes and cylinders of uniform density (their moments from the shape)"
+                )
         else:
             entry = {"shape": "custom", "inertia": list(b.inertia)}
         init: dict = {}
