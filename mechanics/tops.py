@@ -173,10 +173,25 @@ def _mul3(A, B):
     ]
 
 
+#: below this, (nx, ny) are scaled by 2^600 before their direction is taken
+_TINY_POLE = 2.0**-900
+#: the smallest normal float64: a circulating amplitude below it is refused
+_NORMAL_MIN = float(np.finfo(np.float64).tiny)
+
+
 def _pole_frame(nx, ny, nz):
-    """W = R3(φ) R1(θ) whose third column is the unit vector (nx, ny, nz) (arrays)."""
+    """W = R3(φ) R1(θ) whose third column is the unit vector (nx, ny, nz) (arrays).
+
+    (nx, ny) of subnormal size carry fewer significant bits than 53, and so would their
+    hypot and the quotients by it (a pole 1.4e-313 off the axis gave a frame 3e-11 off
+    orthogonal: found by the scene engine's reversal property): below _TINY_POLE they
+    are scaled by 2^600 first, exactly (a power of two); larger ones are taken as they
+    are, so those frames are unchanged bit for bit."""
     s = np.hypot(nx, ny)
-    sphi, cphi = nx / s, ny / s
+    up = np.where(np.maximum(np.abs(nx), np.abs(ny)) < _TINY_POLE, 2.0**600, 1.0)
+    xs, ys = nx * up, ny * up
+    hs = np.hypot(xs, ys)
+    sphi, cphi = xs / hs, ys / hs
     z = np.zeros_like(nx)
     return np.stack(
         [
@@ -198,7 +213,9 @@ class FreeAsymmetricTop:
     to 1e300 (the motion is computed from J scaled by a power of two, so s·J moves exactly as J; L
     and E are scaled back); any finite ω_0 (0: at rest) while |L| and E fit float64 (else
     ResultOverflowError); within ~1e-150 |ω| of the separatrix the complementary parameter
-    underflows (OutOfDomainError).
+    underflows (OutOfDomainError), and a circulating amplitude below float64's normal
+    range (2.2e-308) beside one within it would carry the attitude to fewer than 53 bits
+    (OutOfDomainError; all of them subnormal, the body barely turns and is followed).
 
     Parameters
     ----------
@@ -343,6 +360,15 @@ class FreeAsymmetricTop:
                     "for the steady rotation or scale them up"
                 )
             self._amp = np.array([_fsqrt(a) for a in amp])
+            circ = self._amp[self._amp > 0]
+            if circ.min() < _NORMAL_MIN <= circ.max():  # (all subnormal: it barely turns)
+                raise OutOfDomainError(
+                    "a component of ω circulates with an amplitude below float64's normal "
+                    f"range ({float(self._amp.min()):.3g} rad/s after scaling; subnormal "
+                    "floats carry fewer than 53 bits, and the pole's azimuth with them: an "
+                    "attitude 3e-11 off for 2e-313, 0.24 rad off for 5e-324); set it to zero "
+                    "for the steady rotation, or choose units that scale ω up"
+                )
             self._lam = _fsqrt(lam2)
             self._n = 0.0 if self._uniform else float(n)
             self._C = float(C) * self._Lm
@@ -462,7 +488,9 @@ class FreeAsymmetricTop:
         nrm = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
         nx, ny, nz = (x / nrm for x in L)
         sxy = math.hypot(nx, ny)
-        sphi, cphi = nx / sxy, ny / sxy
+        up = 2.0**600 if max(abs(nx), abs(ny)) < _TINY_POLE else 1.0  # see _pole_frame
+        hs = math.hypot(nx * up, ny * up)
+        sphi, cphi = nx * up / hs, ny * up / hs
         W = [[cphi, sphi * nz, sphi * sxy], [-sphi, cphi * nz, cphi * sxy], [0.0, -sxy, nz]]
         Lm = self._Lm  # the scaled moments' |L|: ψ is invariant under J → s J
         if self._uniform:

@@ -29,7 +29,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import assume, event, given, settings
+from hypothesis import assume, event, example, given, settings
 from hypothesis import strategies as st
 
 from mechanics.rotation import euler_from_matrix, matrix_from_euler, nearest_rotation
@@ -255,7 +255,59 @@ def _mirrored_scene(data, m):
     return out, P, D
 
 
+# a point reaching the floor in exact free flight: its gap rounded relative to its size
+# there (2.2e-16), not to its height before (found by the explore profile)
+_FALLING_POINT = {
+    "scene": {"name": "prop", "duration": 0.5, "samples": 11},
+    "bodies": [
+        {
+            "name": "b0",
+            "shape": "point",
+            "mass": 1.0,
+            "initial": {"position": [0.0, 0.0, 0.78125], "velocity": [0.0, 0.0, 0.0]},
+        },
+        {
+            "name": "b1",
+            "shape": "point",
+            "mass": 1.0,
+            "initial": {"position": [1.0, 0.0, 1.0], "velocity": [0.0, 0.0, 0.0]},
+        },
+    ],
+    "effects": [
+        {"type": "gravity", "g": 6.9375},
+        {"type": "impact", "body": "b0", "other": "b1", "restitution": 1.0},
+        {"type": "impact", "body": "b0", "restitution": 1.0},
+    ],
+}
+# a box spinning about its symmetry axis with a subnormal transverse ω: the exact flow's
+# frame was 3e-11 off orthogonal (found by the explore profile; now refused by the top,
+# and integrated)
+_SUBNORMAL_SPIN = {
+    "scene": {"name": "prop", "duration": 0.5, "samples": 11},
+    "bodies": [
+        {
+            "name": "b0",
+            "shape": "box",
+            "mass": 1.0,
+            "a": 0.125,
+            "b": 0.25,
+            "c": 0.25,
+            "initial": {
+                "position": [0.0, 0.0, 1.0],
+                "velocity": [0.0, 0.0, 0.0],
+                "psi": 1.0,
+                "theta": 1.0,
+                "phi": 1.0,
+                "omega": [1.0, 2.2250738585e-313, 0.0],
+            },
+        },
+    ],
+    "effects": [],
+}
+
+
 @settings(max_examples=EXAMPLES, deadline=None)
+@example(data=_FALLING_POINT, q=[0.0, 0.0, 0.0, 1.0], b=[0.0, 0.0, 0.0])
 @given(
     data=scenes(),
     q=st.lists(_u(-1.0, 1.0), min_size=4, max_size=4).filter(lambda q: np.linalg.norm(q) > 0.1),
@@ -304,6 +356,7 @@ def test_listing_bodies_and_effects_in_another_order_changes_nothing(data, seed)
 
 
 @settings(max_examples=EXAMPLES, deadline=None)
+@example(data=_SUBNORMAL_SPIN)
 @given(data=scenes(conservative=True, well_posed=True))
 def test_a_conservative_scene_run_back_returns_to_its_start(data) -> None:
     fwd = _run(data)

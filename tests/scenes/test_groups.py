@@ -372,3 +372,28 @@ def test_the_same_body_with_two_parallel_planes_is_not_a_pair_listed_twice() -> 
     for other in (ceiling, raised):  # another plane: another pair, accepted
         sc = _scene(BALLS, [floor, other])
         assert [e.type for e in sc.effects] == ["impact", "impact"]
+
+
+def test_two_points_are_refused_as_a_pair_and_left_out_of_a_group() -> None:
+    """Two points meet only where their paths cross exactly: their gap |r1 − r2| is zero
+    there and never negative, so no sign change locates the contact (found by the
+    engine's rigid-motion property: an impulse applied 1e-9 of the scene's size early).
+    A pair of them is refused; in a group they are left out, like two fixed bodies."""
+    pts = [
+        _ball("p", (0.2, 0.5, 0.5), (1, 0, 0), shape="point"),
+        _ball("q", (0.7, 0.5, 0.5), (0, 0, 0), shape="point"),
+    ]
+    for b in pts:
+        del b["radius"]
+    pair = {"type": "impact", "body": "p", "other": "q", "restitution": 1.0}
+    with pytest.raises(SceneError, match="two points meet only where their paths cross") as info:
+        _scene(pts, [pair])
+    assert info.value.field == "effects[0].other"
+    ball = _ball("s", (0.5, 0.2, 0.5), (0, 0, 0))
+    from mechanics.scenes.model import Model
+
+    model = Model(_scene([*pts, ball], [_group(["p", "q", "s"], planes=None)]))
+    assert sorted(imp.label for imp in model.impacts) == [
+        "bodies 'p' and 's'",
+        "bodies 'q' and 's'",
+    ]

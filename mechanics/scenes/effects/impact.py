@@ -101,9 +101,10 @@ class Impact(Effect):
     contacts touching at one instant are one problem, Newton's law at each at once
     (``model = "auto"``), or are resolved one at a time (``"sequential"``).  Or of a
     ``group`` of bodies: every pair of them, and each with every plane of ``planes``,
-    by the same law (a pair of two fixed bodies, or a fixed body and a plane, never
-    meets and is left out).  A pair is listed once: two effects (or a group and an
-    effect) naming the same two bodies, or one body and the same plane, are refused."""
+    by the same law (a pair of two fixed bodies, a fixed body and a plane, or two points,
+    never meets and is left out; two points listed as a pair are refused).  A pair is
+    listed once: two effects (or a group and an effect) naming the same two bodies, or
+    one body and the same plane, are refused."""
 
     type = "impact"
     schema: ClassVar[Schema] = {
@@ -134,20 +135,21 @@ class Impact(Effect):
     def expand(cls, spec, scene) -> list:
         """The pairs a ``group`` names, each as a one-pair spec (same index and law):
         every two bodies of the group, then each body with each plane, in the group's
-        order; a pair that never meets (two fixed bodies, a fixed body and a plane) left
-        out.  A spec without a group is its own only pair."""
+        order; a pair that never meets (two fixed bodies, a fixed body and a plane, two
+        points) left out.  A spec without a group is its own only pair."""
         f = spec.fields
         if "group" not in f:
             return [spec]
         law = {k: f[k] for k in ("restitution", "friction", "model") if k in f}
         fixed = {b.name for b in scene.bodies if b.fixed}
+        points = {b.name for b in scene.bodies if b.shape == "point"}
         names = f["group"]
         one = type(spec)  # (dataclasses.replace costs 5 µs a pair: too much for 500 000)
         out = [
             one(spec.type, spec.index, {"body": a, "other": b, **law})
             for k, a in enumerate(names)
             for b in names[k + 1 :]
-            if not (a in fixed and b in fixed)
+            if not (a in fixed and b in fixed) and not (a in points and b in points)
         ]
         out += [
             one(
@@ -253,6 +255,13 @@ class Impact(Effect):
                         f"the rim of a {b.shape} ({b.name!r}) meets only a plane, not a body",
                     )
                 shapes.append(b.shape)
+        if shapes == ["point", "point"]:
+            raise scene.error(
+                f"{spec.where}.other",
+                "two points meet only where their paths cross exactly, a contact their gap "
+                "|r1 - r2| (zero there, never negative) cannot locate to rounding: give one "
+                "of them a radius (a solid_sphere)",
+            )
         if len(shapes) == 2 and all(s in POLYHEDRA for s in shapes):
             raise scene.error(
                 f"{spec.where}.other",
