@@ -62,6 +62,7 @@ import math
 import numpy as np
 import scipy.special as sc
 
+from ._floats import EPS, SPLITTER
 from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import OutOfDomainError, ResultOverflowError
 
@@ -76,7 +77,6 @@ __all__ = [
     "ellippi_jacobi",
 ]
 
-EPS = float(np.finfo(np.float64).eps)
 ELLIPJ_EPS = 64.0
 """Stated accuracy of :func:`ellipj` in eps (conditioned scale, see module docstring)."""
 
@@ -84,7 +84,7 @@ _N_AGM = 6
 """AGM steps: from c₀/a₀ ≤ √(1/2) (the worst case, m = 1/2) the ratio falls as
 0.17, 7e-3, 1.4e-5, 5e-11, 6e-22, 9e-44: six steps leave nothing at float64."""
 
-_SPLIT = 134217729.0  # 2**27 + 1, Dekker's splitter for float64
+_SPLIT = SPLITTER  # Veltkamp's splitter (mechanics._floats)
 
 
 def _two_prod(a, b):

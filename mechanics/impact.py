@@ -72,6 +72,10 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ._floats import EPS
+from ._floats import fast_two_sum as _fast_two_sum
+from ._floats import two_prod as _two_prod
+from ._floats import two_sum as _two_sum
 from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import (
     NegativeMassError,
@@ -105,7 +109,6 @@ __all__ = [
     "rigid_impact",
 ]
 
-EPS = float(np.finfo(np.float64).eps)
 
 #: Promised accuracy of the direct-impact functions, in ulps of the exact
 #: result: the double-double products carry ~2^-104 relative error, so only the
@@ -338,32 +341,6 @@ def _overflow(x: np.ndarray, what: str) -> np.ndarray:
 # Error-free transformations (Dekker 1971, Knuth TAOCP 4.2.2): a value is an
 # unevaluated sum hi + lo with |lo| <= ulp(hi)/2.  The operands are scaled to
 # magnitude <= 1 by powers of two first, so that Dekker's split cannot overflow.
-
-_SPLITTER = 134217729.0  # 2**27 + 1
-
-
-def _two_sum(a, b):
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
-
-
-def _fast_two_sum(a, b):  # requires |a| >= |b| or a == 0
-    s = a + b
-    return s, b - (s - a)
-
-
-def _split(a):
-    c = _SPLITTER * a
-    hi = c - (c - a)
-    return hi, a - hi
-
-
-def _two_prod(a, b):
-    p = a * b
-    ah, al = _split(a)
-    bh, bl = _split(b)
-    return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
 def _dd_mul(a, b):

@@ -61,6 +61,8 @@ import math
 
 import numpy as np
 
+from ._floats import two_prod as _two_prod
+from ._floats import two_sum as _two_sum
 from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import (
     NegativeMassError,
@@ -117,29 +119,6 @@ _JACOBI_MAX_SWEEPS = 16  # quadratic convergence: 3x3 tensors need 3 to 6 sweeps
 
 # ------------------------------------------------------------- error-free helpers
 # Dekker's product and Knuth's sum, so that the parallel-axis shift rounds once.
-
-_VELTKAMP = 2.0**27 + 1.0
-
-
-def _split(a):
-    c = _VELTKAMP * a
-    hi = c - (c - a)
-    return hi, a - hi
-
-
-def _two_prod(a, b):
-    """p + e = a b exactly, p = fl(a b) (Dekker; |a|, |b| < 2**996)."""
-    p = a * b
-    ah, al = _split(a)
-    bh, bl = _split(b)
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, e
-
-
-def _two_sum(a, b):
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
 
 
 def _dd_add(ah, al, bh, bl):

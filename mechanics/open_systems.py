@@ -52,6 +52,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ._floats import EPS
 from ._validate import as_float_array, finite_result
 from .errors import (
     NegativeMassError,
@@ -85,7 +86,6 @@ __all__ = [
     "thrust",
 ]
 
-EPS = float(np.finfo(np.float64).eps)
 
 #: Standard gravity (m/s²), CGPM 1901; offered for convenience, never a default.
 G_STANDARD = 9.80665

@@ -52,6 +52,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ._floats import EPS
+from ._floats import split as _split
 from ._validate import as_float_array, finite_result
 from .errors import (
     NegativeMassError,
@@ -90,10 +92,6 @@ __all__ = [
     "total_mass",
 ]
 
-EPS = float(np.finfo(np.float64).eps)
-
-_SPLITTER = 134217729.0  # 2**27 + 1: Dekker's splitting constant for 53-bit mantissas
-
 
 # ------------------------------------------------------------ compensated sums
 
@@ -131,12 +129,6 @@ def _two_sum_tree(x: np.ndarray, c: np.ndarray) -> np.ndarray:
 #: (a dozen arrays) stay in cache and are reused, where arrays of 10^6 floats
 #: would each be freshly allocated and page-faulted (measured 4× slower).
 _BLOCK_ELEMENTS = 2**16
-
-
-def _split(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    t = _SPLITTER * a
-    hi = t - (t - a)
-    return hi, a - hi
 
 
 def _exponent(a: np.ndarray) -> np.ndarray:

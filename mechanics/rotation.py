@@ -57,6 +57,9 @@ import math
 
 import numpy as np
 
+from ._floats import EPS
+from ._floats import split as _split
+from ._floats import two_sum as _two_sum
 from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
 from .errors import NonPositiveParameterError, NotARotationError, OutOfDomainError, ZeroAxisError
 
@@ -89,7 +92,6 @@ __all__ = [
     "rotvec_from_quat",
 ]
 
-EPS = float(np.finfo(np.float64).eps)
 
 #: Accepted deviation of a rotation matrix from orthogonality, max |R Rᵀ − 1| and
 #: |det R − 1|.  A product of n different float64 rotations drifts like a random
@@ -427,13 +429,6 @@ def nearest_rotation(M) -> np.ndarray:
 # are used only where a plain rounding would break those bounds.
 
 
-def _two_sum(a, b):
-    """s + e = a + b exactly, with s = fl(a + b) (Knuth)."""
-    s = a + b
-    bb = s - a
-    return s, (a - (s - bb)) + (b - bb)
-
-
 def _sum4(a, b, c, d):
     """a + b + c + d with compensation: about one rounding in all."""
     s, e1 = _two_sum(a, b)
@@ -444,14 +439,6 @@ def _sum4(a, b, c, d):
 
 _EXPONENT_BITS = np.int64(0x7FF0000000000000)
 _HALF_BIT = np.int64(0x0008000000000000)  # the first mantissa bit: 1.5 * 2**e
-_VELTKAMP = 2.0**27 + 1.0
-
-
-def _split(a):
-    """a = hi + lo exactly, hi with 26 significant bits (Veltkamp; |a| < 2**996)."""
-    c = _VELTKAMP * a
-    hi = c - (c - a)
-    return hi, a - hi
 
 
 def _grid_splitter(r: np.ndarray) -> np.ndarray:

@@ -70,6 +70,7 @@ import numpy as np
 import scipy.special as sc
 
 from . import elliptic
+from ._floats import EPS
 from ._validate import as_float_array, as_float_scalar, as_positive_scalar, finite_result
 from .errors import (
     GimbalLockError,
@@ -93,8 +94,6 @@ __all__ = [
     "spherical_top_on_incline",
     "steady_precession_rates",
 ]
-
-EPS = float(np.finfo(np.float64).eps)
 
 
 # --------------------------------------------------------------------------- helpers

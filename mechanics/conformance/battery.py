@@ -51,6 +51,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from .._floats import EPS
 from ..errors import MechanicsValueError
 from .protocol import ConformanceError, Scenario, Trajectory, check_trajectory
 from .scenarios import (
@@ -82,7 +83,6 @@ __all__ = [
     "state_errors",
 ]
 
-EPS = float(np.finfo(float).eps)
 #: 2^-10 ≈ 0.1 %: engineering accuracy.  A convergent engine at the battery's finest
 #: step stays far below it (RK4 ~1e-9, the project's DOP853 ~1e-10), a wrong law (a sign,
 #: a lost e, a transposed attitude) is off by O(1); users tighten it for their engine

@@ -44,6 +44,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
+from .._floats import EPS
 from ..errors import MechanicsValueError
 
 __all__ = [
@@ -62,7 +63,6 @@ __all__ = [
     "check_trajectory",
 ]
 
-EPS = float(np.finfo(float).eps)
 #: an engine's attitude is a normalised quaternion turned into a matrix, or a matrix
 #: re-orthogonalised each step: a few roundings, ~10 eps; 2^10 eps (2.3e-13) also admits
 #: single-precision-free engines that normalise every few steps, and still catches any

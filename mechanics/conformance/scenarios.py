@@ -67,6 +67,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._floats import EPS
 from ..errors import MechanicsValueError
 from ..kinematics import angular_velocity_from_euler_rates
 from ..rotation import euler_from_matrix, matrix_from_euler
@@ -88,8 +89,6 @@ __all__ = [
     "measure",
     "reference",
 ]
-
-EPS = float(np.finfo(float).eps)
 
 
 class UnknownScenarioError(MechanicsValueError):

@@ -31,6 +31,8 @@ from collections.abc import Callable
 import numpy as np
 from numpy.polynomial import chebyshev as C
 
+from .._floats import EPS
+
 __all__ = [
     "ContactError",
     "chebyshev_fit",
@@ -42,7 +44,6 @@ __all__ = [
     "sphere_contact_times",
 ]
 
-EPS = float(np.finfo(float).eps)
 
 #: Chebyshev nodes per step for the positions: the dense output of DOP853 is a degree-7
 #: polynomial per step (RK45's degree 4); 9 nodes interpolate up to degree 8 exactly.

@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from .._floats import EPS
+
 __all__ = [
     "EPS",
     "Event",
@@ -24,7 +26,6 @@ __all__ = [
     "vectorized",
 ]
 
-EPS = float(np.finfo(float).eps)
 #: the integrator's default rtol and atol (the tolerances of conserved quantities in
 #: :mod:`mechanics.scenes.result` are measured at this setting and scale with it)
 DEFAULT_TOL = 1e-12

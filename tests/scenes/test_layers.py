@@ -66,7 +66,7 @@ def _scene_imports(path: Path) -> set[str]:
                 out.update([mod.split(".")[0]] if mod else [a.name for a in node.names])
             elif node.level == 1 and inside_effects:
                 out.add("effects")
-            elif node.level == 2:
+            elif node.level == 2 and inside_effects:  # (from scenes/: mechanics itself)
                 out.add(mod.split(".")[0])
         elif isinstance(node, ast.Import):
             for a in node.names:

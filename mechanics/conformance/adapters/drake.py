@@ -82,6 +82,7 @@ import math
 
 import numpy as np
 
+from ..._floats import EPS
 from ..._validate import as_positive_scalar
 from ...errors import MechanicsValueError, RestitutionRangeError, ResultOverflowError
 from ..protocol import ConformanceError, Scenario, Trajectory
@@ -107,7 +108,6 @@ __all__ = [
     "variants",
 ]
 
-EPS = float(np.finfo(float).eps)
 MODES = ("discrete", "continuous")
 CONTACTS = ("point", "hydroelastic")
 #: the continuous mode's target accuracy (Drake's default is 1e-3 for RK3; 1e-8 makes

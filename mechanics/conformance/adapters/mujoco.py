@@ -84,6 +84,7 @@ import math
 
 import numpy as np
 
+from ..._floats import EPS
 from ...errors import MechanicsValueError, OutOfDomainError, RestitutionRangeError
 from ...rotation import matrix_from_quat, quat_from_matrix
 from ..protocol import ConformanceError, Scenario, Trajectory
@@ -114,7 +115,6 @@ __all__ = [
     "zeta_without_tension",
 ]
 
-EPS = float(np.finfo(float).eps)
 INTEGRATORS = ("RK4", "Euler", "implicitfast")
 CONTACTS = ("default", "tuned")
 #: MuJoCo's defaults (its XML reference, ``geom/solref`` and ``geom/solimp``)

@@ -91,6 +91,7 @@ import math
 
 import numpy as np
 
+from ..._floats import EPS
 from ...errors import MechanicsValueError
 from ...rotation import matrix_from_quat, quat_from_matrix
 from ..protocol import ConformanceError, Scenario, Trajectory
@@ -113,7 +114,6 @@ __all__ = [
     "variants",
 ]
 
-EPS = float(np.finfo(float).eps)
 VARIANTS = ("default", "fine")
 CONTACTS = ("default", "tuned")
 #: the fine variant: eight internal steps per battery step and four times Bullet's

@@ -14,12 +14,12 @@ import math
 
 import numpy as np
 
+from ..._floats import EPS
 from ..protocol import SAMPLE_TIME_RTOL, Scenario, Trajectory
 from ..scenarios import reference
 
 __all__ = ["ExactAdapter", "SceneEngineAdapter", "scene_from_scenario"]
 
-EPS = float(np.finfo(float).eps)
 #: a colliding body's given moments must be its shape's at uniform density (2/5 m r² for
 #: a sphere; the engine derives them from the shape) to rounding: a few operations, 2^4 eps
 SPHERE_INERTIA_RTOL = 2**4 * EPS

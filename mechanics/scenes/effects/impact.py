@@ -56,6 +56,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..._floats import EPS
 from ..state import SPHERICAL_SHAPES, body_radius, body_vertices, cross3
 from .base import Effect, Schema, keeps_for_force_along, register, unit
 
@@ -64,7 +65,7 @@ POLYHEDRA = ("box", "rectangular_plate", "rod")
 RIMS = ("disc", "ring", "cylinder", "cylindrical_shell")
 #: an impulse may lose this fraction of the kinetic energy's rounding below zero (the
 #: loss is the work of the impulse, a sum of a dozen products)
-GAIN_RTOL = 64 * float(np.finfo(float).eps)
+GAIN_RTOL = 64 * EPS
 
 
 _ORIGIN = np.zeros(3)
