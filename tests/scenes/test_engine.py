@@ -1406,3 +1406,23 @@ def test_a_slow_scenes_energy_is_held_to_what_the_integrations_atol_allows(monke
     (e,) = [c for c in bad.conserved if c.name == "E"]
     assert not e.ok
     assert not bad.passed
+
+
+def test_a_point_reaching_the_floor_in_exact_free_flight_is_struck_at_the_floor() -> None:
+    """The exact flow's gap at an impact is rounded relative to the flight's terms (the
+    height 0.78 m it fell from), not to its size at the floor (2.2e-16): found by the
+    engine's rigid-motion property, where 'impacts at contact' failed at 0.5 of that
+    size.  The fall time √(2h/g) and the rebound at e = 1 are closed forms."""
+    h, g = 0.78125, 6.9375
+    sc = _scene(
+        [_point("p", position=[0.0, 0.0, h])],
+        [{"type": "gravity", "g": g}, {"type": "impact", "body": "p", "restitution": 1.0}],
+        duration=0.5,
+        samples=11,
+    )
+    r = run_scene(sc)
+    assert r.passed, r.summary()
+    assert r.method.startswith("exact")
+    (ev,) = [e for e in r.trajectory.events if e.kind == "impact"]
+    assert ev.t == pytest.approx(math.sqrt(2 * h / g), rel=2**4 * EPS)
+    assert ev.detail["gap_scale"] >= h  # the height fallen from, not the 2.2e-16 there

@@ -268,7 +268,8 @@ _FALLING_POINT = {
         },
         {
             "name": "b1",
-            "shape": "point",
+            "shape": "solid_sphere",
+            "radius": 0.1,
             "mass": 1.0,
             "initial": {"position": [1.0, 0.0, 1.0], "velocity": [0.0, 0.0, 0.0]},
         },
