@@ -521,6 +521,12 @@ class Support:
             a, size = rates[0]
             return float(n @ cross3(shat, a)) / size, float(shat @ a) / size
 
+        def turn(th):
+            v = at(th)
+            if v is None:
+                raise _NoSlip
+            return v[0]
+
         grid = np.linspace(-math.pi, math.pi, ONSET_ANGLES + 1)
         vals = [at(th) for th in grid]
         found = []
@@ -531,7 +537,10 @@ class Support:
             if va[0] == 0.0:
                 th = grid[k]
             else:
-                th = brentq(lambda x: at(x)[0], grid[k], grid[k + 1], xtol=EPS, rtol=4 * EPS)
+                try:
+                    th = brentq(turn, grid[k], grid[k + 1], xtol=EPS, rtol=4 * EPS)
+                except _NoSlip:  # a direction within where the slip lets go: not a root
+                    continue
             v = at(th)
             if v is not None and v[1] > FORCE_ROUNDING:
                 found.append(th)
@@ -803,6 +812,10 @@ class Support:
         return self.model.scene.error(
             imp.where, f"{imp.label} come to rest at t = {float(t):.6g} s: {why}"
         )
+
+
+class _NoSlip(Exception):
+    """A trial slip direction whose support forces have no solution or let go."""
 
 
 def _least_norm(A, b) -> np.ndarray:
