@@ -12,6 +12,15 @@ of :data:`EPS`, take it from here too.
   splitting with :data:`SPLITTER` = 2²⁷ + 1; |a| < 2⁹⁹⁶, else the product overflows).
 - :func:`two_prod`: p + e = a b exactly, p = fl(a b) (Dekker's product from two splits;
   |a|, |b| < 2⁹⁹⁶ and no underflow of e, which the callers ensure by scaling).
+- :func:`two_prod_or_zero` (arrays) and :func:`two_prod_or_zero_scalar` (floats): the same
+  with e = 0 where a split overflows (|a| or |b| ≥ 2⁹⁹⁶), for callers that only refine a
+  product that is already correctly rounded.
+- Double-double helpers (a value is an unevaluated pair hi + lo, |lo| ≤ ulp(hi)/2, as a
+  tuple): :func:`dd_add` (two pairs), :func:`dd_times` (float × pair), :func:`dd_mul`
+  (pair × pair), :func:`dd_div` (float / pair), :func:`dd_add_float` (float + pair,
+  rounded to float).  Operands scaled to magnitude ≤ 1 by the callers (Dekker's split).
+- :func:`ulps`: |actual − exact| in units in the last place of float64 at the exact
+  value, for tests and checks that measure a result against exact arithmetic.
 
 Each is written operation for operation as the textbook forms (Ogita, Rump and Oishi,
 "Accurate sum and dot product", SIAM J. Sci. Comput. 26, 2005, Algorithms 3.1–3.3), so
@@ -20,9 +29,27 @@ a caller's result is the same bit for bit as before these moved here.
 
 from __future__ import annotations
 
+import math
+from numbers import Real
+
 import numpy as np
 
-__all__ = ["EPS", "SPLITTER", "fast_two_sum", "split", "two_prod", "two_sum"]
+__all__ = [
+    "EPS",
+    "SPLITTER",
+    "dd_add",
+    "dd_add_float",
+    "dd_div",
+    "dd_mul",
+    "dd_times",
+    "fast_two_sum",
+    "split",
+    "two_prod",
+    "two_prod_or_zero",
+    "two_prod_or_zero_scalar",
+    "two_sum",
+    "ulps",
+]
 
 #: float64's machine epsilon, 2⁻⁵²
 EPS = float(np.finfo(np.float64).eps)
@@ -58,3 +85,77 @@ def two_prod(a, b):
     ah, al = split(a)
     bh, bl = split(b)
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
+
+
+def two_prod_or_zero(a, b):
+    """:func:`two_prod` elementwise with e = 0 where a split overflows (|a| or |b| ≥ 2⁹⁹⁶)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        p, e = two_prod(a, b)
+    return p, np.where(np.isfinite(e), e, 0.0)
+
+
+def two_prod_or_zero_scalar(a: float, b: float) -> tuple[float, float]:
+    """:func:`two_prod_or_zero` of two Python floats (no array is built)."""
+    p, e = two_prod(a, b)
+    return p, (e if math.isfinite(e) else 0.0)
+
+
+# ------------------------------------------------------------ double-double
+# A value is an unevaluated sum hi + lo with |lo| <= ulp(hi)/2 (Dekker 1971, Knuth
+# TAOCP 4.2.2).  The callers scale their operands to magnitude <= 1 by powers of two,
+# so that Dekker's split cannot overflow.
+
+
+def dd_add(ah, al, bh, bl):
+    """(ah + al) + (bh + bl) as a double-double."""
+    s, e = two_sum(ah, bh)
+    e = e + (al + bl)
+    return two_sum(s, e)
+
+
+def dd_times(m, xh, xl):
+    """m (xh + xl) as a double-double (m a float)."""
+    p, e = two_prod(m, xh)
+    return two_sum(p, e + m * xl)
+
+
+def dd_mul(a, b):
+    """a b of two double-doubles (pairs) as a double-double."""
+    p, err = two_prod(a[0], b[0])
+    err = err + (a[0] * b[1] + a[1] * b[0])
+    return fast_two_sum(p, err)
+
+
+def dd_div(a, b):
+    """float a / double-double b, as a double-double."""
+    q1 = a / b[0]
+    p, pe = two_prod(q1, b[0])
+    r = ((a - p) - pe) - q1 * b[1]
+    return fast_two_sum(q1, r / b[0])
+
+
+def dd_add_float(a, x):
+    """float a + double-double x, rounded to float."""
+    s, err = two_sum(a, x[0])
+    return s + (err + x[1])
+
+
+# ------------------------------------------------------------ measuring errors
+
+
+def ulps(actual: float, exact: Real) -> float:
+    """|actual − exact| in units in the last place of float64 at ``exact``.
+
+    ``exact`` is an exact or high-precision number (:class:`fractions.Fraction`,
+    ``mpmath.mpf``, a float) into whose type ``actual`` converts exactly; the unit is
+    ``math.ulp(float(exact))`` (the smallest subnormal where ``exact`` is 0).
+
+    >>> from fractions import Fraction
+    >>> ulps(0.1, Fraction(1, 10))  # 0.1 is the float nearest 1/10: within half an ulp
+    0.4
+    >>> ulps(1.0 + EPS, Fraction(1))
+    1.0
+    """
+    kind = type(exact)
+    unit = kind(math.ulp(float(exact)))
+    return float(abs(kind(float(actual)) - exact) / unit)

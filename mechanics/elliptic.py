@@ -62,7 +62,9 @@ import math
 import numpy as np
 import scipy.special as sc
 
-from ._floats import EPS, SPLITTER
+from ._floats import EPS
+from ._floats import two_prod_or_zero as _two_prod_or_zero
+from ._floats import two_prod_or_zero_scalar as _two_prod_or_zero_scalar
 from ._validate import as_float_array, broadcast_checked, finite_result
 from .errors import OutOfDomainError, ResultOverflowError
 
@@ -83,22 +85,6 @@ ELLIPJ_EPS = 64.0
 _N_AGM = 6
 """AGM steps: from c₀/a₀ ≤ √(1/2) (the worst case, m = 1/2) the ratio falls as
 0.17, 7e-3, 1.4e-5, 5e-11, 6e-22, 9e-44: six steps leave nothing at float64."""
-
-_SPLIT = SPLITTER  # Veltkamp's splitter (mechanics._floats)
-
-
-def _two_prod(a, b):
-    """a·b = p + e exactly (Dekker), elementwise; e = 0 where the split would overflow."""
-    p = a * b
-    with np.errstate(over="ignore", invalid="ignore"):
-        ta = _SPLIT * a
-        ah = ta - (ta - a)
-        al = a - ah
-        tb = _SPLIT * b
-        bh = tb - (tb - b)
-        bl = b - bh
-        e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, np.where(np.isfinite(e), e, 0.0)
 
 
 def _params(m, m1, name: str = "m"):
@@ -217,7 +203,7 @@ def _reduced(u, p, p1):
     finite = np.isfinite(K)
     K2 = np.where(finite, 2.0 * K, 1.0)
     j = np.where(finite, np.rint(u / K2), 0.0)
-    prod, err = _two_prod(j, K2)
+    prod, err = _two_prod_or_zero(j, K2)
     r = np.where(finite, (u - prod) - err, u)
     s = np.where(r < 0, -1.0, 1.0)
     x = np.abs(r)
@@ -403,7 +389,7 @@ ellipe = broadcast_checked(ellipe)
 def _amplitude(phi, m, m1, name):
     """Reduce φ = jπ + φr, |φr| ≤ π/2; return (j, sin φr, cos φr, Δ²)."""
     j = np.rint(phi / np.pi)
-    pr, err = _two_prod(j, np.pi)
+    pr, err = _two_prod_or_zero(j, np.pi)
     # π = fl(π) + 1.2246e-16: carry the tail so that large φ keep their value
     r = ((phi - pr) - err) - j * 1.2246467991473532e-16
     s, c = np.sin(r), np.cos(r)
@@ -624,18 +610,6 @@ def _third_kind_excess(u, n, m, m1):
 # trigonometric AGM ratios are the caller's, computed once per parameter.
 
 
-def _two_prod_scalar(a: float, b: float) -> tuple[float, float]:
-    p = a * b
-    ta = _SPLIT * a
-    ah = ta - (ta - a)
-    al = a - ah
-    tb = _SPLIT * b
-    bh = tb - (tb - b)
-    bl = b - bh
-    e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-    return p, (e if math.isfinite(e) else 0.0)
-
-
 def _agm_ratios_scalar(p: float, p1: float, hyper: bool, ymax: float):
     """:func:`_agm_ratios` of one parameter."""
     a = 1.0
@@ -685,7 +659,7 @@ def _reduced_scalar(u: float, p: float, p1: float, K: float, trig_agm):
     if finite:
         K2 = 2.0 * K
         j = float(round(u / K2))
-        prod, err = _two_prod_scalar(j, K2)
+        prod, err = _two_prod_or_zero_scalar(j, K2)
         r = (u - prod) - err
     else:
         j, r = 0.0, u

@@ -73,6 +73,9 @@ from typing import NamedTuple
 import numpy as np
 
 from ._floats import EPS
+from ._floats import dd_add_float as _dd_add_float
+from ._floats import dd_div as _dd_div
+from ._floats import dd_mul as _dd_mul
 from ._floats import fast_two_sum as _fast_two_sum
 from ._floats import two_prod as _two_prod
 from ._floats import two_sum as _two_sum
@@ -335,32 +338,6 @@ def _overflow(x: np.ndarray, what: str) -> np.ndarray:
         idx = _first(~np.isfinite(x)) if x.ndim else ()
         raise ResultOverflowError(f"{what} overflows float64 at index {idx} (finite input)")
     return x
-
-
-# ------------------------------------------------ double-double arithmetic
-# Error-free transformations (Dekker 1971, Knuth TAOCP 4.2.2): a value is an
-# unevaluated sum hi + lo with |lo| <= ulp(hi)/2.  The operands are scaled to
-# magnitude <= 1 by powers of two first, so that Dekker's split cannot overflow.
-
-
-def _dd_mul(a, b):
-    p, err = _two_prod(a[0], b[0])
-    err = err + (a[0] * b[1] + a[1] * b[0])
-    return _fast_two_sum(p, err)
-
-
-def _dd_div(a: np.ndarray, b):
-    """float a / double-double b."""
-    q1 = a / b[0]
-    p, pe = _two_prod(q1, b[0])
-    r = ((a - p) - pe) - q1 * b[1]
-    return _fast_two_sum(q1, r / b[0])
-
-
-def _dd_add_float(a, x):
-    """float a + double-double x, rounded to float."""
-    s, err = _two_sum(a, x[0])
-    return s + (err + x[1])
 
 
 def _scale_exponent(*xs) -> np.ndarray:

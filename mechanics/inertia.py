@@ -61,6 +61,8 @@ import math
 
 import numpy as np
 
+from ._floats import dd_add as _dd_add
+from ._floats import dd_times as _dd_times
 from ._floats import two_prod as _two_prod
 from ._floats import two_sum as _two_sum
 from ._validate import as_float_array, broadcast_checked, finite_result
@@ -115,22 +117,6 @@ INERTIA_ATOL = 64 * EPS
 SUBSPACE_RTOL = 2.0**-26
 
 _JACOBI_MAX_SWEEPS = 16  # quadratic convergence: 3x3 tensors need 3 to 6 sweeps
-
-
-# ------------------------------------------------------------- error-free helpers
-# Dekker's product and Knuth's sum, so that the parallel-axis shift rounds once.
-
-
-def _dd_add(ah, al, bh, bl):
-    s, e = _two_sum(ah, bh)
-    e = e + (al + bl)
-    return _two_sum(s, e)
-
-
-def _dd_times(m, xh, xl):
-    """m (xh + xl) as a double-double (m a double)."""
-    p, e = _two_prod(m, xh)
-    return _two_sum(p, e + m * xl)
 
 
 # ------------------------------------------------------------------- validation

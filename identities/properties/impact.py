@@ -25,8 +25,7 @@ from hypothesis import strategies as st
 from identities.verify.catalogue import check
 from mechanics import impact as im
 from mechanics import strategies as ms
-
-EPS = float(np.finfo(float).eps)
+from mechanics._floats import EPS
 
 #: Sums of a few products of correctly rounded numbers (momentum, angular momentum,
 #: contact velocities): each term carries at most a few roundings, the sum a few more;

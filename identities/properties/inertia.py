@@ -13,8 +13,7 @@ from hypothesis import strategies as st
 from identities.verify.catalogue import check
 from mechanics import inertia as I
 from mechanics import strategies as ms
-
-EPS = float(np.finfo(float).eps)
+from mechanics._floats import EPS
 
 #: A tensor summed over N ≤ 6 particles (each term a few rounded products) or rotated
 #: (each entry nine rounded products): 64 eps of the trace bounds the difference of two

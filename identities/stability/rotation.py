@@ -37,6 +37,7 @@ import numpy as np
 from identities.verify.catalogue import check
 from identities.verify.proof import CheckFailure, Derivation
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
 __all__ = [
     "ANGLE_RTOL_ULPS",
@@ -56,7 +57,6 @@ __all__ = [
     "tiny_angle_grid",
 ]
 
-EPS = rot.EPS
 
 #: Working precision of the oracle, in decimal digits: 50 digits carry float64's
 #: 16 and leave 34 for the cancellations of the hard cases (1 − cos φ at

@@ -24,8 +24,8 @@ import numpy as np
 import pytest
 
 from mechanics import impact as im
+from mechanics._floats import EPS
 
-EPS = float(np.finfo(float).eps)
 N = 10**5
 N_ORACLE = 1000
 SEED = 20261122

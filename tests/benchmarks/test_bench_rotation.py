@@ -21,8 +21,8 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = np.finfo(float).eps
 LD = np.longdouble
 N = 10**6
 SEED = 20240919

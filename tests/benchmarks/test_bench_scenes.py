@@ -14,10 +14,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import parse_scene
 from mechanics.scenes.engine import Engine
-
-EPS = float(np.finfo(float).eps)  # accelerations: sums of a few O(1) products
 
 M, G, K1, K2, Q, U = 2.0, 9.81, 8.0, 3.0, 0.01, 100.0
 EFFECTS = [
@@ -59,6 +58,7 @@ def test_bench_step_cost_grows_with_the_listed_effects(benchmark, n_effects) -> 
     assert len(model.effects) == n_effects
     y = model.y0
     out = benchmark(model.rhs, 0.0, y)
+    # accelerations: sums of a few O(1) products
     np.testing.assert_allclose(
         out[3:], _expected_acceleration(n_effects, y[:3]), rtol=8 * EPS, atol=64 * EPS
     )

@@ -25,9 +25,9 @@ import scipy.special as sc
 
 from mechanics import elliptic as el
 from mechanics import tops
+from mechanics._floats import EPS
 from mechanics.rotation import matrix_from_euler
 
-EPS = np.finfo(float).eps
 N = 10**4
 SEED = 20261123
 DATA = Path(__file__).resolve().parent.parent / "data" / "elliptic_reference.json"

@@ -19,6 +19,7 @@ import os
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.conformance.adapters import _engines
 from mechanics.conformance.adapters._engines import (
     MissingExtraError,
@@ -45,7 +46,6 @@ from mechanics.errors import (
     UnknownOptionError,
 )
 
-EPS = float(np.finfo(float).eps)
 #: a rotation through an engine's quaternion and back: a few roundings each way
 ROUNDTRIP_ATOL = 2**4 * EPS
 #: an engine's one step of a closed-form motion (free fall, spin): a few roundings of

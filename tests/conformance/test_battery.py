@@ -14,6 +14,7 @@ import sys
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.conformance import (
     DEFAULT_RTOL,
     DEFAULT_THRESHOLDS,
@@ -58,7 +59,6 @@ from .toys import (
     ignores_restitution,
 )
 
-EPS = float(np.finfo(float).eps)
 #: reading a period or a turning point off samples by local polynomials (degree 5 at 16
 #: to 128 samples per turn): measured at most 5.4e-10 (the near-separatrix period);
 #: 2^23 eps = 1.9e-9 keeps a factor of 3

@@ -18,9 +18,9 @@ import numpy as np
 import pytest
 
 from bench.contacts import cases
+from mechanics._floats import EPS
 from mechanics.conformance.adapters import MissingExtraError, SceneEngineAdapter
 
-EPS = float(np.finfo(float).eps)
 #: the scene engine's figures against the closed forms (module docstring)
 FIGURE_RTOL = 2**20 * EPS
 CASES = cases()

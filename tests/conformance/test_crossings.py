@@ -13,9 +13,9 @@ import numpy as np
 from hypothesis import example, given
 from hypothesis import strategies as st
 
+from mechanics._floats import EPS
 from mechanics.conformance.scenarios import crossings
 
-EPS = float(np.finfo(float).eps)
 #: the crossing's time against the root, in eps of the larger of |t| and the spacing h:
 #: measured ≤ 1.7 over 2·10^4 random polynomials of this family (numpy 2.4, Python 3.11;
 #: the old fixed eight Newton steps missed double roots at a sample by up to 2e-3 h on

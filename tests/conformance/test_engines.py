@@ -32,6 +32,7 @@ from bench.engines import (
     rebound,
     theta_of,
 )
+from mechanics._floats import EPS
 from mechanics.conformance.adapters._engines import MissingExtraError
 from mechanics.conformance.protocol import (
     Body,
@@ -43,7 +44,6 @@ from mechanics.conformance.protocol import (
 )
 from mechanics.errors import MechanicsValueError, UnknownOptionError
 
-EPS = float(np.finfo(float).eps)
 #: the exact solutions' own error: a few hundred roundings of O(1) terms
 EXACT_ATOL = 2**10 * EPS
 #: the initial state written into an engine and read back at t = 0: a quaternion or

@@ -17,6 +17,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.linalg import expm
 
+from mechanics._floats import EPS
 from mechanics.conformance.protocol import Ground, Pivot, Shape, Thrust, Trajectory
 from mechanics.conformance.scenarios import (
     FIGURES,
@@ -36,7 +37,6 @@ from mechanics.conformance.scenarios import (
 )
 from mechanics.errors import MechanicsValueError
 
-EPS = float(np.finfo(float).eps)
 #: closed forms evaluated two ways (the library's vectorised, ours term by term): a
 #: handful of roundings of O(10) numbers
 CLOSED_ATOL = 2**6 * EPS

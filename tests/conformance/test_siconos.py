@@ -31,13 +31,13 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.conformance.adapters import MissingExtraError
 from mechanics.conformance.adapters import siconos as siconos_module
 from mechanics.conformance.protocol import Body, Ground, Pivot, Scenario, Shape, check_trajectory
 from mechanics.conformance.scenarios import SCENARIOS, measure, reference
 from mechanics.errors import OutOfDomainError
 
-EPS = float(np.finfo(float).eps)
 G = 9.81
 #: the initial state written as a quaternion and read back (a conversion each way, and
 #: JSON's exact round trip of a float's repr): a few eps of the size

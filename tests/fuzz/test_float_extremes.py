@@ -19,9 +19,9 @@ import numpy as np
 import pytest
 
 from mechanics import inertia, tops
+from mechanics._floats import EPS
 from mechanics.errors import NonPhysicalInertiaError
 
-EPS = np.finfo(float).eps
 #: s·J rounds each moment once (≤ eps/2 relative); the motion's sensitivity to the
 #: moments' ratios near these test points is O(1), and the closed forms add their own
 #: ~10 eps: 64 eps bounds both

@@ -31,6 +31,7 @@ import tomllib
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, builtin_scenes, run_scene
 from mechanics.scenes.effects import EFFECT_CLASSES
 from mechanics.scenes.spec import (
@@ -400,7 +401,6 @@ def test_a_ball_starting_below_its_floor_is_refused_naming_it():
 #: a thousand bodies must run within this wall time (measured ~1 s on one core of the
 #: 2-core CI machine; the bound leaves room for a loaded machine)
 THOUSAND_BODIES_SECONDS = 30.0
-EPS = np.finfo(float).eps
 #: x0 + v t of size 100 after one second of integration at rtol 1e-12 (the default)
 POSITION_ATOL = 2**20 * 100 * EPS
 

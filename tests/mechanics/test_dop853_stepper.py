@@ -19,6 +19,7 @@ from hypothesis import strategies as st
 from scipy.integrate import DOP853
 
 import mechanics.integrators as integrators
+from mechanics._floats import EPS
 from mechanics.errors import (
     NonFiniteError,
     NonPositiveParameterError,
@@ -34,8 +35,6 @@ from mechanics.integrators import (
     free_rigid_body_rhs,
     rigid_body_state,
 )
-
-EPS = float(np.finfo(float).eps)
 
 #: Times after each step against scipy's: the stepper computes t + h from the same h
 #: by scipy's arithmetic (the same dot products, norms and factors; measured: equal

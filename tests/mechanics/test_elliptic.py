@@ -19,12 +19,12 @@ import numpy as np
 import pytest
 import scipy.special as sc
 
+from mechanics import _floats
 from mechanics import elliptic as el
+from mechanics._floats import EPS
 from mechanics.errors import NonFiniteError, OutOfDomainError, ResultOverflowError, ShapeError
 
 from ._naming import cases, check_refusal, valid_kwargs
-
-EPS = np.finfo(float).eps
 
 # An identity such as sn² + cn² − 1 formed from values each within a few ulps:
 # two squares and a sum, each rounded, of numbers of size ≤ 1.
@@ -304,12 +304,13 @@ def test_ellippi_at_n_one_and_m_zero_is_tan_phi(phi):
 
 
 def test_two_prod_is_exact_for_the_period_multiples_of_the_argument_reduction():
+    # the product elliptic's argument reduction takes from mechanics._floats:
     # a·b = p + e exactly (Dekker), checked in rational arithmetic: a an integer count of
     # periods j (up to 2^40) and b a period 2K or π, as _reduced and _amplitude form them
     rng = np.random.default_rng(SEED)
     a = rng.integers(1, 2**40, size=200).astype(float)
     b = rng.uniform(np.pi, 20.0, size=200)
-    p, e = el._two_prod(a, b)
+    p, e = _floats.two_prod_or_zero(a, b)
     wrong = [
         (x, y)
         for x, y, pp, ee in zip(a, b, p, e, strict=True)
@@ -317,7 +318,7 @@ def test_two_prod_is_exact_for_the_period_multiples_of_the_argument_reduction():
     ]
     assert not wrong, wrong[:3]
     for x, y in zip(a[:50], b[:50], strict=True):
-        ps, es = el._two_prod_scalar(float(x), float(y))
+        ps, es = _floats.two_prod_or_zero_scalar(float(x), float(y))
         assert Fraction(ps) + Fraction(es) == Fraction(float(x)) * Fraction(float(y)), (x, y)
 
 

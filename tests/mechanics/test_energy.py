@@ -10,6 +10,7 @@ import pytest
 
 from mechanics import energy as me
 from mechanics import particles as mp
+from mechanics._floats import EPS
 from mechanics.errors import (
     NegativeMassError,
     NonFiniteError,
@@ -21,9 +22,6 @@ from mechanics.errors import (
 )
 
 from ._naming import cases, check_refusal, valid_kwargs, word
-
-EPS = np.finfo(float).eps
-
 
 # ------------------------------------------------------------ book examples
 

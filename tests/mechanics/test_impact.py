@@ -15,6 +15,7 @@ import numpy as np
 import pytest
 
 from mechanics import impact as im
+from mechanics._floats import EPS
 from mechanics.errors import (
     NegativeMassError,
     NonFiniteError,
@@ -30,7 +31,6 @@ from mechanics.errors import (
     ZeroTotalMassError,
 )
 
-EPS = float(np.finfo(float).eps)
 #: the fixed axis of the hinged bodies here
 Z3 = [0.0, 0.0, 1.0]
 

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from mechanics import integrators
+from mechanics._floats import EPS
 from mechanics.dynamics import euler_equations_rhs
 from mechanics.errors import (
     NonFiniteError,
@@ -45,8 +46,6 @@ from mechanics.rotation import R1, R3, ROTATION_ATOL, matrix_from_rotvec
 from mechanics.tops import FreeAsymmetricTop
 
 from ._naming import cases, check_refusal, valid_kwargs
-
-EPS = float(np.finfo(float).eps)
 
 J_TOP = np.array([1.0, 2.0, 2.5])
 W_TOP = np.array([0.3, -1.0, 0.7])

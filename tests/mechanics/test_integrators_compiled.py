@@ -18,6 +18,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 import mechanics.integrators as integrators
+from mechanics._floats import EPS
 from mechanics.errors import (
     NonFiniteError,
     NonPhysicalInertiaError,
@@ -36,7 +37,6 @@ from mechanics.integrators import (
 from mechanics.strategies.inertia import principal_moments
 from mechanics.strategies.rotation import rotation_matrices
 
-EPS = float(np.finfo(float).eps)
 J_TOP = np.array([1.0, 2.0, 3.0])
 W_TOP = np.array([0.4, 0.2, 1.0])
 

@@ -16,6 +16,7 @@ from numpy.testing import assert_allclose, assert_array_equal
 
 from mechanics import kinematics as kin
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 from mechanics.errors import (
     CollinearPointsError,
     GimbalLockError,
@@ -28,8 +29,6 @@ from mechanics.errors import (
 )
 
 from ._naming import cases, check_refusal, valid_kwargs
-
-EPS = np.finfo(float).eps
 
 # ω from an exact matrix rate: entries of Ṙ Rᵀ are sums of nine products of
 # numbers of size ≤ |rates|₁, each rounded once: 32 eps × the rate scale.

@@ -14,6 +14,7 @@ import pytest
 from numpy.testing import assert_allclose, assert_array_equal
 
 from mechanics import open_systems as osys
+from mechanics._floats import EPS
 from mechanics.errors import (
     MechanicsValueError,
     NegativeMassError,
@@ -27,7 +28,6 @@ from mechanics.errors import (
 
 from ._naming import cases, check_refusal, valid_kwargs
 
-EPS = np.finfo(float).eps
 #: scipy's quad asked for epsrel = 1e-13 (its own error estimate): 2^12 eps = 9e-13
 QUAD_RTOL = 2**12 * EPS
 #: a central difference with h = 1e-3 at t = 100 of a smooth rate: truncation

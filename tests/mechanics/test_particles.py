@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from mechanics import particles as mp
+from mechanics._floats import EPS
 from mechanics.errors import (
     NegativeMassError,
     NonFiniteError,
@@ -21,8 +22,6 @@ from mechanics.errors import (
 )
 
 from ._naming import cases, check_refusal, entries_of, valid_kwargs
-
-EPS = np.finfo(float).eps
 
 M3 = np.array([1.0, 2.0, 0.5])
 R3 = np.array([[1.0, 0.0, 0.0], [0.0, 2.0, 1.0], [-1.0, 1.0, 3.0]])

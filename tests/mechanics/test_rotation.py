@@ -19,6 +19,7 @@ from scipy.linalg import polar
 from scipy.spatial.transform import Rotation
 
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 from mechanics.errors import (
     MechanicsValueError,
     NonFiniteError,
@@ -29,8 +30,6 @@ from mechanics.errors import (
     ShapeError,
     ZeroAxisError,
 )
-
-EPS = np.finfo(float).eps
 
 # One rounding of cos or sin: cos(π/2) = 6.1e-17 instead of 0, etc.
 TRIG_ATOL = EPS

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 import mechanics.testing as mt
+from mechanics._floats import EPS
 from mechanics.testing import (
     ALLCLOSE_EPS_MULTIPLE,
     QUATERNIONS_CLOSE_ATOL,
@@ -24,8 +25,6 @@ from mechanics.testing import (
     assert_quaternions_close,
     assert_rotations_close,
 )
-
-EPS = float(np.finfo(np.float64).eps)
 
 #: The documented default of all three assertions (module docstring, README): 4 eps.
 DOCUMENTED_DEFAULT_EPS = 4

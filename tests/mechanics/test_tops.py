@@ -16,6 +16,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from mechanics import tops
+from mechanics._floats import EPS
 from mechanics.errors import (
     GimbalLockError,
     NonFiniteError,
@@ -31,7 +32,6 @@ from mechanics.rotation import matrix_from_euler
 
 from ._naming import cases, check_refusal, valid_kwargs
 
-EPS = np.finfo(float).eps
 #: L_O = R^T J ω at the separatrix: ω and R each to a few eps (the module's worst measured
 #: 0.51 eps of |ω| on the attitude), a product and a sum of three: 16 eps of |L|
 SEPARATRIX_L_ATOL = 16 * EPS
@@ -579,7 +579,7 @@ def test_separatrix_distance_is_in_the_units_given_and_refuses_overflow():
     d = tops.FreeAsymmetricTop(J, w).separatrix_distance
     L2 = float(((J * w) ** 2).sum())
     E2J2 = float((J * w * w).sum()) * J[1]
-    assert d == pytest.approx(L2 - E2J2, rel=16 * np.finfo(float).eps)
+    assert d == pytest.approx(L2 - E2J2, rel=16 * EPS)
     assert tops.FreeAsymmetricTop(2.0**100 * J, w).separatrix_distance == d * 2.0**200
     with pytest.raises(
         ResultOverflowError,

@@ -23,10 +23,9 @@ import pytest
 from hypothesis import HealthCheck, Phase, Verbosity, settings
 
 from mechanics import pytest_plugin as plugin
+from mechanics._floats import EPS
 
 pytest_plugins = ["pytester"]
-
-EPS = float(np.finfo(np.float64).eps)
 
 # What the plugin's docstring and the README promise (not read from the code):
 # "bodycheck-ci (derandomised, 100 examples), bodycheck-dev (random, 100) or

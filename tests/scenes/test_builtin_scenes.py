@@ -11,10 +11,10 @@ import numpy as np
 import pytest
 
 from identities.book.scenes.compare import INTEGRATED_RTOL, run_book_scene
+from mechanics._floats import EPS
 from mechanics.scenes import builtin_scenes, load_scene
 from mechanics.scenes import effects as fx
 
-EPS = float(np.finfo(float).eps)
 #: the speed at the next impact after a free flight, by the exact flow or by DOP853 at
 #: rtol 1e-12 with event location: the integration error, ~1e-12 relative
 FLIGHT_RTOL = 2**14 * EPS

@@ -16,10 +16,10 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 from numpy.polynomial import chebyshev as C
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, collision, parse_scene, run_scene
 from mechanics.scenes import contacts as ct
 
-EPS = 2.0**-52
 #: straight free flight: the contact time is one quadratic root, and positions and the
 #: restitution update are a few rounded operations each on O(1) numbers
 EXACT_RTOL = 2**6 * EPS

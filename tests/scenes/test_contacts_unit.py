@@ -14,9 +14,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.polynomial import chebyshev as C
 
+from mechanics._floats import EPS
 from mechanics.scenes import contacts as ct
 
-EPS = float(np.finfo(float).eps)
 #: a root of a quadratic formed without cancellation: the square root and one division,
 #: each rounded once, on O(1) numbers
 ROOT_RTOL = 4 * EPS

@@ -8,9 +8,8 @@ import json
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import builtin_path, load_scene, parse_scene, run_scene
-
-EPS = float(np.finfo(float).eps)
 
 
 def _rows(result) -> dict:

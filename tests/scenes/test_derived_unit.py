@@ -14,12 +14,12 @@ import mpmath
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes.derived import _crossings, _spacing, _vertex, derived_quantities
 from mechanics.scenes.spec import Body
 from mechanics.scenes.state import Layout
 from mechanics.scenes.trajectory import Event, Trajectory
 
-EPS = float(np.finfo(float).eps)
 #: a sum or difference of a few O(1) numbers, each rounded once
 FEW_ROUNDINGS = 8 * EPS
 #: the tops' closed forms (elliptic K by the AGM, roots polished by Newton) against

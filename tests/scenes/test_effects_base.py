@@ -11,13 +11,13 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError
 from mechanics.scenes.effects import base
 from mechanics.scenes.effects.capabilities import CAPABILITIES
 
 from ._effects import assert_says, refusal, scene_of
 
-EPS = float(np.finfo(float).eps)
 #: a product of a rotation matrix and a vector, summed over 3 terms, of O(1) values: a few
 #: roundings each
 ROTATE_ATOL = 8 * EPS

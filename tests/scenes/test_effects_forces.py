@@ -10,13 +10,13 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads, Snapshot
 from mechanics.scenes.effects.capabilities import HasPotential
 from mechanics.scenes.effects.newton_gravity import G_NEWTON
 
 from ._effects import assert_says, build, refusal, scene_of
 
-EPS = float(np.finfo(float).eps)
 #: a force of a few O(1) factors, each rounded once, and a unit vector (a norm, a
 #: division): a handful of roundings of O(1) values
 FORCE_RTOL = 16 * EPS

@@ -11,6 +11,7 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError
 from mechanics.scenes.effects import Loads
 from mechanics.scenes.effects.capabilities import GuidesBody
@@ -19,7 +20,6 @@ from mechanics.scenes.trajectory import Event
 
 from . import _effects
 
-EPS = float(np.finfo(float).eps)
 #: a few products and quotients of O(1) values (accelerations, a switch time): a
 #: handful of roundings each
 EXACT_RTOL = 32 * EPS

@@ -11,12 +11,12 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.errors import SeparatingContactError
 from mechanics.scenes.effects import CONSERVED
 
 from ._effects import build, refusal, scene_of
 
-EPS = float(np.finfo(float).eps)
 #: an impulse of a few O(1) products and one 3×3 solve: a few dozen roundings
 IMPULSE_RTOL = 32 * EPS
 

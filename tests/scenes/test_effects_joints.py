@@ -13,13 +13,13 @@ import numpy as np
 import pytest
 
 import mechanics.scenes
+from mechanics._floats import EPS
 from mechanics.scenes import builtin_path
 from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads, Snapshot
 from mechanics.scenes.engine import Engine
 
 from ._effects import build, refusal, scene_of
 
-EPS = float(np.finfo(float).eps)
 #: a product or quotient of two or three O(1) factors: a few roundings
 FORMULA_RTOL = 8 * EPS
 

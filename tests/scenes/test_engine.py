@@ -12,11 +12,11 @@ import pytest
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
+from mechanics._floats import EPS
 from mechanics.impact import RigidBody, rigid_impact
 from mechanics.scenes import SceneError, parse_scene, run_scene
 from mechanics.scenes import effects as fx
 
-EPS = float(np.finfo(float).eps)
 #: DOP853 at rtol = atol = 1e-12 over a few periods of an O(1) motion: the global error
 #: is ~1e-11 relative; 2^20 eps = 2.3e-10 leaves a factor of 20
 INTEGRATED_RTOL = 2**20 * EPS

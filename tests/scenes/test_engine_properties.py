@@ -32,10 +32,10 @@ import pytest
 from hypothesis import assume, event, example, given, settings
 from hypothesis import strategies as st
 
+from mechanics._floats import EPS
 from mechanics.rotation import euler_from_matrix, matrix_from_euler, nearest_rotation
 from mechanics.scenes import SceneError, parse_scene, run_scene
 
-EPS = float(np.finfo(float).eps)
 #: see the module docstring
 PROPERTY_RTOL = 2**28 * EPS
 #: 1000 examples under the explore profile, a smoke run of 20 otherwise (each example

@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 from mechanics import kinematics as kin
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, flows, impacts, integrate, model, parse_scene, report
 from mechanics.scenes.collision import StepFit
 from mechanics.scenes.engine import Engine
 
-EPS = float(np.finfo(float).eps)
 #: products and sums of a few sines and cosines of O(1) angles: a few roundings each
 TRIG_ATOL = 8 * EPS
 #: a central difference of step 1e-5: truncation h² |f'''|/6 ≈ 2e-11, rounding

@@ -22,13 +22,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, parse_scene, run_scene
 from mechanics.scenes import collision as collision_module
 from mechanics.scenes import flows as flows_module
 
 from ._effects import WALLS
 
-EPS = float(np.finfo(float).eps)
 #: a contact time or velocity in closed form: a quotient of sums of a few O(1) terms
 CLOSED_RTOL = 16 * EPS
 #: event times of the exact flow against the integrated run: DOP853 at rtol 1e-12, the

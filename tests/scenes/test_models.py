@@ -9,9 +9,9 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, parse_scene, run_scene
 
-EPS = float(np.finfo(float).eps)
 #: an exact flow evaluated at one time: a few dozen float operations on O(1) values
 EXACT_ATOL = 64 * EPS
 #: an event located on a DOP853 run at rtol 1e-12 (the scenes' default) against the

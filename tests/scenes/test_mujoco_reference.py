@@ -67,6 +67,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from mechanics._floats import EPS
 from mechanics.rotation import matrix_from_euler
 from mechanics.scenes import builtin_path, parse_scene, run_scene
 
@@ -74,7 +75,6 @@ mujoco = pytest.importorskip(
     "mujoco", reason="install the test extra: pip install -e '.[test]' (mujoco)"
 )
 
-EPS = float(np.finfo(float).eps)
 #: the engine's DOP853 at rtol = atol = 1e-12 over a few turns of an O(1) motion: ~1e-11
 #: relative (tests/scenes/test_engine.py); 2^20 eps = 2.3e-10 leaves a factor of 20
 ENGINE_RTOL = 2**20 * EPS

@@ -13,10 +13,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import builtin_scenes, load_scene, parse_scene, run_scene
 from mechanics.scenes import effects as fx
 
-EPS = 2.0**-52
 #: DOP853 at rtol = atol = 1e-12 over ~6 periods of an O(1) oscillator: global error
 #: ~1e-11 relative; 2^20 eps = 2.3e-10 leaves a factor of 20
 INTEGRATED_RTOL = 2**20 * EPS

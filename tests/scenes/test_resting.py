@@ -22,11 +22,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, parse_scene, run_scene
 from mechanics.scenes import support as support_module
 from mechanics.scenes.result import PENETRATION_RTOL
 
-EPS = float(np.finfo(float).eps)
 G = 9.81
 #: the issue's bound on the accumulation time
 T_INF_ATOL = 1e-9

@@ -16,6 +16,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import result as result_module
 from mechanics.scenes import trajectory as trajectory_module
 from mechanics.scenes.result import (
@@ -43,7 +44,6 @@ from mechanics.scenes.trajectory import (
     vectorized,
 )
 
-EPS = float(np.finfo(float).eps)
 #: one division (rtol / 1e-12 is rounded once, times a power of two exactly)
 ONE_ROUNDING = EPS
 #: the floor every relative measure divides by when the scale is zero

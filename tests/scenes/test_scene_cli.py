@@ -7,9 +7,9 @@ import json
 import pytest
 
 from identities.cli.main import main
+from mechanics._floats import EPS
 from mechanics.scenes import builtin_scenes
 
-EPS = 2.0**-52
 #: the drop height is chosen in the scene file for 12 m/s: the exact flow's √(2 g h)
 EXACT_RTOL = 64 * EPS
 

@@ -16,11 +16,11 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, impacts, parse_scene, run_scene
 from mechanics.scenes.engine import Engine
 from mechanics.scenes.impacts import LAW_RTOL, solve_lcp
 
-EPS = float(np.finfo(float).eps)
 G = 9.81
 #: the issue's bound for a body landing flat: v_z = e v and no spin to 1e-12 relative
 FLAT_RTOL = 1e-12

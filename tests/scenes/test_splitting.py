@@ -9,10 +9,9 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes import SceneError, parse_scene, run_scene
 from mechanics.scenes.engine import Engine
-
-EPS = float(np.finfo(float).eps)
 
 
 def _scene(bodies, effects, *, duration, samples=41, **scene):

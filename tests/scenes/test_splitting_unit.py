@@ -12,11 +12,11 @@ import math
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.errors import OutOfDomainError
 from mechanics.scenes import SceneError, parse_scene, splitting
 from mechanics.scenes.engine import Engine
 
-EPS = float(np.finfo(float).eps)
 #: a few kick–drift steps of O(1) numbers: each update one or two roundings, and the
 #: spring's force −k L (d/L) rounds differently from −k d (a few eps of the force)
 STEP_RTOL = 32 * EPS

@@ -17,6 +17,7 @@ import mpmath
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.scenes.effects.base import Snapshot
 from mechanics.scenes.spec import Body
 from mechanics.scenes.state import (
@@ -34,7 +35,6 @@ from mechanics.scenes.state import (
     turned,
 )
 
-EPS = float(np.finfo(float).eps)
 #: a product of a few O(1) factors and a sum of three: each entry within a few roundings
 FEW_ROUNDINGS = 8 * EPS
 #: the catalogue's moments: a product and a division, each rounded once or twice

@@ -33,6 +33,7 @@ from hypothesis import strategies as st
 from mechanics import dynamics as D
 from mechanics import inertia as I
 from mechanics import strategies as ms
+from mechanics._floats import ulps
 from mechanics.rotation import EPS
 
 MP_DPS = 50
@@ -68,12 +69,6 @@ def _mp(x) -> mpmath.mpf:
     return mpmath.mpf(float(x))
 
 
-def _ulps(actual: float, exact: mpmath.mpf) -> float:
-    if exact == 0:
-        return 0.0 if actual == 0 else math.inf
-    return float(abs(_mp(actual) - exact) / _mp(math.ulp(float(exact))))
-
-
 # -------------------------------------------------------------- parallel axis
 
 #: |d|/size: 1e6 … 1e10 (the shift dominates), 1e-3 … 10 (comparable), or 0.
@@ -104,7 +99,7 @@ def test_parallel_axis_shift_is_within_an_ulp_of_mpmath(J_G, m, offset):
                 exact = _mp(0.5 * (J_G[i, j] + J_G[j, i])) + _mp(m) * (
                     (d2 if i == j else 0) - dd[i] * dd[j]
                 )
-                worst = max(worst, _ulps(J_C[i, j], exact))
+                worst = max(worst, ulps(J_C[i, j], exact))
     target(worst, label="parallel-axis ulps")
     assert worst <= SHIFT_ULPS
 

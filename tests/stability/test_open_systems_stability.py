@@ -36,8 +36,8 @@ from hypothesis import example, given, target
 from hypothesis import strategies as st
 
 from mechanics import open_systems as osys
+from mechanics._floats import EPS
 
-EPS = osys.EPS
 MP_DPS = 50
 BOUND = osys.ROCKET_RTOL / EPS  # in eps
 

@@ -44,8 +44,8 @@ from hypothesis import example, given, target
 
 from mechanics import particles as mp
 from mechanics import strategies as ms
+from mechanics._floats import EPS, ulps
 
-EPS = np.finfo(float).eps
 N = 10**6
 SEED = 20261122
 
@@ -64,11 +64,6 @@ KOENIG_EPS = 16.0
 
 #: T' = ½ Σ m |v − v_G|²: positive terms, a few roundings each: 8 eps relative.
 T_PRIME_EPS = 8.0
-
-
-def _ulps(x: float, exact: Fraction) -> float:
-    ref = float(exact)
-    return float(abs(Fraction(x) - exact) / Fraction(math.ulp(ref))) if ref else abs(x)
 
 
 @pytest.fixture(scope="module")
@@ -97,25 +92,25 @@ def _exact_weighted_sums(m, x, x_exponent):
     return sums, Fraction(sum(Kl), 2**40)
 
 
-def test_centre_of_mass_of_a_million_particles_1e8_away_is_within_2_ulps(far_system):
+def test_centre_of_mass_of_a_million_particles_1e8_away_is_within_2ulps(far_system):
     m, r, _ = far_system
     sums, M = _exact_weighted_sums(m, r, 26)
     rG = mp.centre_of_mass(m, r)
-    errs = [_ulps(float(rG[c]), sums[c] / M) for c in range(3)]
+    errs = [ulps(float(rG[c]), sums[c] / M) for c in range(3)]
     naive = (m @ r) / m.sum()
-    naive_errs = [_ulps(float(naive[c]), sums[c] / M) for c in range(3)]
+    naive_errs = [ulps(float(naive[c]), sums[c] / M) for c in range(3)]
     print(f"\ncentre of mass: {max(errs):.2f} ulps (naive numpy: {max(naive_errs):.0f} ulps)")
     assert max(errs) <= COM_ULPS
     assert float(mp.total_mass(m)) == float(M)  # compensated: correctly rounded here
 
 
-def test_momentum_of_a_million_nearly_cancelling_particles_is_within_2_ulps(far_system):
+def test_momentum_of_a_million_nearly_cancelling_particles_is_within_2ulps(far_system):
     m, _, v = far_system
     sums, _ = _exact_weighted_sums(m, v, 30)
     p = mp.momentum(m, v)
-    errs = [_ulps(float(p[c]), sums[c]) for c in range(3)]
+    errs = [ulps(float(p[c]), sums[c]) for c in range(3)]
     naive = m @ v
-    naive_errs = [_ulps(float(naive[c]), sums[c]) for c in range(3)]
+    naive_errs = [ulps(float(naive[c]), sums[c]) for c in range(3)]
     print(f"\nmomentum: {max(errs):.2f} ulps (naive numpy: {max(naive_errs):.0f} ulps)")
     assert max(errs) <= MOMENTUM_ULPS
 

@@ -31,10 +31,10 @@ from hypothesis import example, given, target
 from hypothesis import strategies as st
 
 from mechanics import tops
+from mechanics._floats import EPS
 from mechanics.errors import OutOfDomainError
 from mechanics.rotation import matrix_from_euler
 
-EPS = np.finfo(float).eps
 DATA = Path(__file__).resolve().parent.parent / "data" / "elliptic_reference.json"
 
 # ω(t) = amplitude × (sn, cn, dn)(λt + u0): the amplitudes and λ are rounded once from

@@ -21,8 +21,7 @@ from mechanics import impact as im
 from mechanics import inertia as I
 from mechanics import rotation as rot
 from mechanics import strategies as ms
-
-EPS = float(np.finfo(float).eps)
+from mechanics._floats import EPS
 
 #: A row computed in a batch against the same row alone: the same formulas, but
 #: numpy's vectorised and scalar loops of sin, cos and sqrt may round differently

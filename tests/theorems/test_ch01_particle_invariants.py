@@ -30,8 +30,7 @@ from scipy.integrate import solve_ivp
 
 from mechanics import particles as mp
 from mechanics import strategies as ms
-
-EPS = np.finfo(float).eps
+from mechanics._floats import EPS
 
 # ------------------------------------------------------------------ tolerances
 

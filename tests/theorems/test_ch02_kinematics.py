@@ -19,8 +19,7 @@ from hypothesis import strategies as st
 from identities.properties.rotation import is_orthogonal_with_det_one
 from mechanics import kinematics as kin
 from mechanics import rotation as rot
-
-EPS = np.finfo(float).eps
+from mechanics._floats import EPS
 
 # A rotation matrix entry from sin/cos products carries ≲ 8 eps (measured 6.3 eps
 # against an 80-bit reference); a product of two such matrices doubles it.

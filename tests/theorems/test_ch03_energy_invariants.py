@@ -22,8 +22,7 @@ from scipy.integrate import solve_ivp
 from mechanics import energy as me
 from mechanics import particles as mp
 from mechanics import strategies as ms
-
-EPS = np.finfo(float).eps
+from mechanics._floats import EPS
 
 #: Sums of positive terms (kinetic energies, ½ m v²): each term rounds a few
 #: times (v², m v², ½) and the compensated sum adds one rounding: 8 eps relative

@@ -31,9 +31,8 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from mechanics import tops
+from mechanics._floats import EPS
 from mechanics.rotation import matrix_from_euler
-
-EPS = np.finfo(float).eps
 
 # E and |L| from ω(t): each ω component is within ~8 eps relative of the exact
 # solution at the rounded time (measured ≤ 3); a sum of three squares weighted by J.

@@ -48,8 +48,7 @@ from identities.properties.impact import (
 )
 from mechanics import impact as im
 from mechanics import strategies as ms
-
-EPS = float(np.finfo(float).eps)
+from mechanics._floats import EPS
 
 #: The direct-impact functions are within 2 ulps (DIRECT_ULPS) of the exact
 #: values; an invariant formed from them by a few more products and sums

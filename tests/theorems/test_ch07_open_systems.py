@@ -17,8 +17,8 @@ from numpy.testing import assert_allclose
 from scipy.integrate import solve_ivp
 
 from mechanics import open_systems as osys
+from mechanics._floats import EPS
 
-EPS = osys.EPS
 #: solve_ivp DOP853 at rtol = atol·scale = 1e-12: smooth non-stiff ODEs over at most
 #: a few e-folding times; global error within 1e3 times the local tolerance.
 IVP_RTOL = 1e-12

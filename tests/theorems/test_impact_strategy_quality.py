@@ -21,8 +21,7 @@ from hypothesis.errors import InvalidArgument, NoSuchExample
 
 from mechanics import impact as im
 from mechanics import strategies as ms
-
-EPS = float(np.finfo(float).eps)
+from mechanics._floats import EPS
 
 #: Draws allowed to reach a regime: regimes are branches among at most six, so
 #: a regime is met within a few dozen draws; 1000 leaves room for nesting.

@@ -15,6 +15,7 @@ from hypothesis import Phase, example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
+from mechanics._floats import EPS
 from mechanics.integrators import (
     free_rigid_body_rhs,
     free_rigid_body_splitting,
@@ -26,8 +27,6 @@ from mechanics.integrators import (
 from mechanics.rotation import matrix_from_rotvec
 from mechanics.strategies.inertia import principal_moments
 from mechanics.tops import FreeAsymmetricTop
-
-EPS = float(np.finfo(float).eps)
 
 # Each exact sub-flow rotates L and R by a rounded (cos, sin) pair: about one
 # rounding per flow, at random for a general motion, but always the same one for a

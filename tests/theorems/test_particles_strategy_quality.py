@@ -18,6 +18,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument, NoSuchExample
 
 from mechanics import strategies as ms
+from mechanics._floats import EPS
 from mechanics.particles import internal_moment
 
 #: Regimes are branches among at most five; 2000 draws find each many times over.
@@ -149,7 +150,7 @@ def test_central_pair_forces_are_parallel_to_the_particle_separation():
         rkj = s.r[:, None, :] - s.r[None, :, :]
         cross = np.linalg.norm(np.cross(rkj, f), axis=-1)
         size = np.linalg.norm(rkj, axis=-1) * np.linalg.norm(f, axis=-1)
-        assert np.all(cross <= 8 * np.finfo(float).eps * size + 1e-300)
+        assert np.all(cross <= 8 * EPS * size + 1e-300)
 
     check()
 
@@ -326,7 +327,7 @@ def test_far_and_fast_systems_are_offset_by_the_documented_magnitude_either_way(
 
 #: Perpendicular part of a pair force, measured by subtracting its projection on e_kj:
 #: a few roundings of the whole force, |f| ≤ max_magnitude (so relative to that bound).
-PERP_ATOL = 2**4 * np.finfo(float).eps
+PERP_ATOL = 2**4 * EPS
 
 
 @pytest.mark.parametrize("fmax", [1e3, 2.0])

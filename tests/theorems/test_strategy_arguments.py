@@ -23,6 +23,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument, NoSuchExample
 
 from mechanics import strategies as ms
+from mechanics._floats import EPS
 from mechanics.strategies import _common, batching, impact, inertia, particles
 
 #: Draws for a search that must find (or must not find) a value: regimes are branches
@@ -40,7 +41,6 @@ EVENT_SETTINGS = settings(max_examples=300, database=None, phases=[Phase.generat
 #: What a drawn value shrinks to.
 SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
-EPS = float(np.finfo(float).eps)
 
 R2 = np.array([[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
 

@@ -32,9 +32,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, floats, functions_of_time, t, vec
 from mechanics import particles
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: a float evaluation of a closed form vs mechanics: sums of a few products of O(10)
 #: numbers (lengths ≤ 3, masses ≤ 3, speeds ≤ 3): a few roundings of numbers ≤ 100.
 CODE_ATOL = 256 * EPS

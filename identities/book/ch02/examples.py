@@ -13,8 +13,8 @@ from identities.verify.proof import Derivation
 from identities.verify.symbolic import R3, cross, floats, functions_of_time, omega_vector, t, vec
 from mechanics import kinematics as kin
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products of O(1) numbers (exact data): 16 eps.
 CODE_ATOL = 16 * EPS
 

@@ -13,8 +13,8 @@ from identities.verify.proof import Derivation
 from identities.verify.symbolic import R3, cross, euler_matrix, floats, functions_of_time, t, vec
 from mechanics import kinematics as kin
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: numeric routes evaluate a few products and sums of O(1) numbers: 64 eps.
 NUM_ATOL = 64 * EPS
 ez = vec(0, 0, 1)

@@ -28,8 +28,8 @@ from identities.verify.symbolic import (
     vec,
 )
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same closed form: both sides are
 #: sums of ≤ 3 products of correctly rounded trig values, so ≤ 8 eps apart.
 CODE_ATOL = 8 * EPS

@@ -31,8 +31,8 @@ from identities.verify.symbolic import (
 )
 from mechanics import kinematics as kin
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same closed form (a few products
 #: and sums of O(1) numbers): well within 16 eps.
 CODE_ATOL = 16 * EPS

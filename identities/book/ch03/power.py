@@ -24,11 +24,10 @@ from identities.verify.proof import Derivation
 from identities.verify.symbolic import functions_of_time, t, vec
 from mechanics import energy as en
 from mechanics import particles as pt
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
 __all__ = ["EPS", "particle_system"]
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: a float evaluation of sums of a few products of O(1) numbers: 64 eps.
 NUM_ATOL = 64 * EPS
 #: relative tolerance requested of solve_ivp (DOP853) in the simulations: 2^16 eps ≈ 1.5e-11.

@@ -27,9 +27,8 @@ from identities.verify.symbolic import (
 )
 from mechanics import dynamics as dyn
 from mechanics import inertia as inr
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same exact value (a few products, sums and one
 #: square root or elliptic integral of O(1) numbers): 64 eps.
 CODE_ATOL = 64 * EPS

@@ -19,8 +19,8 @@ from identities.verify.symbolic import R3, floats, functions_of_time, t, vec
 from mechanics import dynamics as dyn
 from mechanics import inertia as inr
 from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same exact value (a few products, sums and one
 #: square root or one Jacobi pass on an O(1) tensor): 64 eps.
 CODE_ATOL = 64 * EPS

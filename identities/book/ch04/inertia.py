@@ -23,9 +23,8 @@ from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, floats, general_rotation, vec
 from mechanics import dynamics as dyn
 from mechanics import inertia as inr
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics against a float evaluation of the same exact rational value (a few products
 #: and sums of O(1) numbers, or one Jacobi/rotation pass on an O(1) tensor): 64 eps.
 CODE_ATOL = 64 * EPS

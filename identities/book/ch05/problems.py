@@ -15,10 +15,9 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, vec
 from mechanics import inertia as inr
-from mechanics import rotation as rot
 from mechanics import tops
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products and quotients of O(1) numbers: 64 eps.
 CODE_ATOL = 64 * EPS
 #: scipy DOP853 at rtol = atol = 1e-12, with event location, over O(1) times: ≤ 1e-10

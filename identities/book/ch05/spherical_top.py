@@ -12,10 +12,9 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, functions_of_time, t, vec
 from mechanics import dynamics as dyn
-from mechanics import rotation as rot
 from mechanics import tops
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products and quotients of O(1) numbers: 64 eps.
 CODE_ATOL = 64 * EPS
 

@@ -32,10 +32,9 @@ from identities.verify.symbolic import (
     vec,
 )
 from mechanics import inertia as inr
-from mechanics import rotation as rot
 from mechanics import tops
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products and quotients of O(1) numbers: 64 eps.
 CODE_ATOL = 64 * EPS
 #: scipy DOP853 at rtol = atol = 1e-12 over a few periods of O(1) motion: global error

@@ -22,9 +22,8 @@ from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, vec
 from mechanics import impact as imp
 from mechanics import kinematics as kin
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products and quotients of O(1) numbers: 64 eps.
 CODE_ATOL = 64 * EPS
 #: mechanics.impact's direct-impact functions promise 2 ulps; relative to O(1) results

@@ -22,9 +22,8 @@ from scipy.integrate import solve_ivp
 from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, floats, vec
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products and one 3x3 solve of O(1) numbers: 64 eps.
 CODE_ATOL = 64 * EPS
 

@@ -26,9 +26,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, vec
 from mechanics import impact as imp
-from mechanics import rotation as rot
+from mechanics._floats import EPS
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: float evaluation of a few products and quotients of O(1) numbers: 64 eps.
 NUM_ATOL = 64 * EPS
 #: scipy event location with rtol 1e-12 on O(1) times: the threshold found by bisection on

@@ -23,9 +23,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, floats, vec
 from mechanics import impact as imp
-from mechanics import rotation as rot
+from mechanics._floats import EPS, ulps
 
-EPS = rot.EPS  # float64 machine epsilon, one definition for the project
 #: mechanics.impact promises DIRECT_ULPS = 2 ulps of the exact result; comparing with
 #: the exact value rounded to float64 adds ½ ulp.
 DIRECT_ATOL_ULPS = imp.DIRECT_ULPS + 0.5
@@ -63,11 +62,6 @@ def kinetic(x1, x2):
 
 def _exact(x) -> Fraction:
     return Fraction(float(x))
-
-
-def _ulps(actual, exact: Fraction) -> float:
-    """|actual - exact| in units of the spacing of float64 at the exact value."""
-    return float(abs(_exact(actual) - exact)) / float(np.spacing(abs(float(exact)) or 1e-300))
 
 
 #: mass ratios and restitution coefficients for the comparison with mechanics
@@ -221,7 +215,7 @@ def direct_velocities(d: Derivation) -> None:
         a1, a2 = imp.direct_impact(*case)
         sub = dict(zip((m_1, m_2, xdot_1i, xdot_2i, e), map(sp.Rational, case), strict=True))
         for actual, exact in ((a1, v1f), (a2, v2f)):
-            worst = max(worst, _ulps(actual, Fraction(str(exact.subs(sub)))))
+            worst = max(worst, ulps(actual, Fraction(str(exact.subs(sub)))))
     d.confirm(
         worst,
         0.0,
@@ -282,7 +276,7 @@ def energy_loss(d: Derivation) -> None:
     worst = 0.0
     for case in DIRECT_CASES:
         sub = dict(zip((m_1, m_2, xdot_1i, xdot_2i, e), map(sp.Rational, case), strict=True))
-        worst = max(worst, _ulps(imp.energy_loss_direct(*case), Fraction(str(book.subs(sub)))))
+        worst = max(worst, ulps(imp.energy_loss_direct(*case), Fraction(str(book.subs(sub)))))
     d.confirm(
         worst,
         0.0,

@@ -15,8 +15,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, t, vec
 from mechanics import open_systems as osys
+from mechanics._floats import EPS
 
-EPS = osys.EPS
 #: mechanics against a float evaluation of the same closed form (a few products,
 #: a log1p): 16 eps relative to the O(1)–O(10³) values compared (scaled below).
 CODE_RTOL = 16 * EPS

@@ -22,8 +22,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import CheckFailure, Derivation
 from identities.verify.symbolic import cross, t
 from mechanics import open_systems as osys
+from mechanics._floats import EPS
 
-EPS = osys.EPS
 #: mechanics against a float evaluation of the same closed form: sums of a few
 #: products of O(1) numbers (at most ~10 terms), each rounded once: 32 eps.
 CODE_ATOL = 32 * EPS

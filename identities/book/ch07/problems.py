@@ -15,8 +15,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import CheckFailure, Derivation
 from identities.verify.symbolic import cross, t, vec
 from mechanics import open_systems as osys
+from mechanics._floats import EPS
 
-EPS = osys.EPS
 #: mechanics against a float evaluation of the same closed form: a few products,
 #: an exp/log1p/expm1, 16 eps relative to the size of the values (scaled below).
 CODE_RTOL = 16 * EPS

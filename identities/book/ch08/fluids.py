@@ -19,8 +19,8 @@ from identities.verify.catalogue import check
 from identities.verify.proof import Derivation
 from identities.verify.symbolic import cross, floats, vec
 from mechanics import fluids
+from mechanics._floats import EPS
 
-EPS = float(np.finfo(float).eps)
 #: mechanics.fluids differentiates with 4th-order central differences: about
 #: eps^(4/5) ≈ 3e-13 of the field's scale (its Conventions); 2^14 eps = 3.6e-12 leaves
 #: a factor ten for fields of size ~1 and the products in Euler's equation.
