@@ -8,7 +8,7 @@ Conventions
 -----------
 - **One source of truth.**  No coefficient is written here: the Dormand–Prince tableau
   (scipy's, as the reference uses it), the splitting schedules (Strang and the triple
-  jumps of :func:`mechanics.integrators._schedule`) and the step-control constants are
+  jumps of :func:`mechanics.integrators._splitting._schedule`) and the step-control constants are
   passed in as arguments by :mod:`mechanics.integrators`.
 - **The known problem.**  The right-hand side compiled here is the torque-free rigid
   body of :func:`mechanics.integrators.free_rigid_body_rhs` (state (L_A, rows of

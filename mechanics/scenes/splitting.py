@@ -48,7 +48,7 @@ ORDERS = (2, 4, 6)
 def _schedule(order: int):
     """(part, fraction of the step) of one step: Strang's kick–drift–kick composed by
     the triple jump up to ``order``, adjacent kicks merged."""
-    from mechanics.integrators import _merge, _triple_jump
+    from mechanics.integrators._splitting import _merge, _triple_jump
 
     def strang(tau):
         return [("kick", tau / 2), ("drift", tau), ("kick", tau / 2)]

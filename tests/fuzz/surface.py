@@ -21,8 +21,10 @@ def public_callables() -> dict[str, object]:
     (not of a private one, whose name has a part with a leading underscore).
 
     A name re-exported by a package (``mechanics.scenes.load_scene``) is keyed by the
-    module that defines it, so each object appears once. Exception classes are left
-    out: they are raised, not called; so are type aliases (``Schema = dict[...]``).
+    module that defines it, so each object appears once; where that module is private
+    (``mechanics.integrators._integrate``), by the public module that lists it.
+    Exception classes are left out: they are raised, not called; so are type aliases
+    (``Schema = dict[...]``).
     """
     out: dict[str, object] = {}
     for info in pkgutil.walk_packages(mechanics.__path__, "mechanics."):
@@ -38,6 +40,8 @@ def public_callables() -> dict[str, object]:
             home = getattr(obj, "__module__", None) or info.name
             if not home.startswith("mechanics"):
                 home = info.name  # typing aliases and the like: keyed where listed
+            elif any(part.startswith("_") for part in home.split(".")):
+                home = info.name  # defined in a private module of a package: keyed where public
             key = f"{home}.{getattr(obj, '__name__', name)}"
             out.setdefault(key, obj)
     return dict(sorted(out.items()))

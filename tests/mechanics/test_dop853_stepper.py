@@ -18,7 +18,6 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import DOP853
 
-import mechanics.integrators as integrators
 from mechanics._floats import EPS
 from mechanics.errors import (
     NonFiniteError,
@@ -35,6 +34,7 @@ from mechanics.integrators import (
     free_rigid_body_rhs,
     rigid_body_state,
 )
+from mechanics.integrators import _dop853 as dop853
 
 #: Times after each step against scipy's: the stepper computes t + h from the same h
 #: by scipy's arithmetic (the same dot products, norms and factors; measured: equal
@@ -199,21 +199,21 @@ def test_free_rigid_body_agrees_with_scipy_for_any_spin(w, rtol):
 # extra stages' A rows, or of their nodes C) must be caught by the helper, while
 # the step-end values, which these coefficients do not touch, still agree.
 def _perturbed_d(i, j):
-    D = np.array(integrators._D)
+    D = np.array(dop853._D)
     assert D[i, j] != 0.0
     D[i, j] *= 1.0 + PERTURBATION
     return D
 
 
 def _perturbed_a_extra(row, col):
-    rows = [np.array(r) for r in integrators._A_EXTRA_ROWS]
+    rows = [np.array(r) for r in dop853._A_EXTRA_ROWS]
     assert rows[row][col] != 0.0
     rows[row][col] *= 1.0 + PERTURBATION
     return rows
 
 
 def _perturbed_c_extra(k):
-    c = list(integrators._C_EXTRA)
+    c = list(dop853._C_EXTRA)
     c[k] *= 1.0 + PERTURBATION
     return c
 
@@ -231,7 +231,7 @@ WRONG_COEFFICIENTS = {
 def test_agreement_helper_catches_a_wrong_dense_output_coefficient(problem, wrong, monkeypatch):
     rhs, y0, t_bound = problem
     name, make = wrong
-    monkeypatch.setattr(integrators, name, make())
+    monkeypatch.setattr(dop853, name, make())
     with pytest.raises(AssertionError, match=r"dense output at step \d+:"):
         assert_steps_agree_with_scipy(rhs, y0, t_bound, rtol=1e-10, atol=1e-10)
 
@@ -240,7 +240,7 @@ def test_agreement_helper_catches_a_wrong_dense_output_coefficient(problem, wron
 def test_agreement_helper_catches_a_wrong_extra_stage_node(k, monkeypatch):
     # the nodes c only enter through t, so only a driven (non-autonomous) problem sees them
     rhs, y0, t_bound = PROBLEMS["driven oscillator"]
-    monkeypatch.setattr(integrators, "_C_EXTRA", _perturbed_c_extra(k))
+    monkeypatch.setattr(dop853, "_C_EXTRA", _perturbed_c_extra(k))
     with pytest.raises(AssertionError, match=r"dense output at step \d+:"):
         assert_steps_agree_with_scipy(rhs, y0, t_bound, rtol=1e-10, atol=1e-10)
 
@@ -531,12 +531,10 @@ def test_an_error_norm_whose_parts_underflow_is_zero_not_nan() -> None:
     """Stages whose 5th-order error estimate is 0 and whose 3rd-order one squares to a
     subnormal: 0.01 e3² underflows, and 0/0 made the step look like an overflow (a
     pinned top with a spin of 1e-167, found by the scene engine's random test)."""
-    from mechanics import integrators as I
-
-    E5, E3 = np.asarray(I._E5, float), np.asarray(I._E3, float)
+    E5, E3 = np.asarray(dop853._E5, float), np.asarray(dop853._E3, float)
     k = E3 - (E3 @ E5) / (E5 @ E5) * E5  # along E3, across E5
     K = (1e-174 * k)[:, None]  # one component, 13 stages
-    err = I._dop853_error(K, 0.01, np.zeros(1), np.zeros(1), 1e-12, 1e-12, 1)
+    err = dop853._dop853_error(K, 0.01, np.zeros(1), np.zeros(1), 1e-12, 1e-12, 1)
     e3 = float(np.dot(K.T, E3)[0]) / 1e-12
     assert 0.0 < e3 * e3 < 2.4e-322, "the case: e3² subnormal, 0.01 e3² rounds to 0"
     assert err == 0.0

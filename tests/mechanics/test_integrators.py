@@ -41,6 +41,7 @@ from mechanics.integrators import (
     so3_exp_step,
     time_grid,
 )
+from mechanics.integrators import _splitting as splitting
 from mechanics.kinematics import angular_velocity_from_matrix_rate, omega_matrix_from_vector
 from mechanics.rotation import R1, R3, ROTATION_ATOL, matrix_from_rotvec
 from mechanics.tops import FreeAsymmetricTop
@@ -656,8 +657,8 @@ SCHEDULE_ATOL = 2**7 * EPS
 def test_each_splitting_order_is_yoshidas_triple_jump_of_strang(order):
     # Strang (5 sub-flows, head τ/2) composed p/2 − 1 times by Yoshida's triple jump
     # γ1 = 1/(2 − 2^(1/(q+1))), q = 2, 4, ..., order − 2: 3 copies, 2 merges at each joint
-    sched = integrators._schedule(order)
-    assert sched == integrators._SCHEDULES[order]  # the one the solver runs
+    sched = splitting._schedule(order)
+    assert sched == splitting._SCHEDULES[order]  # the one the solver runs
     jumps = range(2, order, 2)
     assert len(sched) == 4 * 3 ** len(jumps) + 1
     head = 0.5 * math.prod(1.0 / (2.0 - 2.0 ** (1.0 / (q + 1))) for q in jumps)
@@ -666,3 +667,24 @@ def test_each_splitting_order_is_yoshidas_triple_jump_of_strang(order):
     for axis in (0, 1, 2):  # consistent: each axis turns for the whole step
         total = math.fsum(c for a, c in sched if a == axis)
         assert abs(total - 1.0) <= SCHEDULE_ATOL
+
+
+def test_the_package_modules_import_only_those_before_them_in_the_layout():
+    # the order the package docstring's "Layout" states; a module may import only
+    # modules listed before it (a back-arrow would be a cycle in waiting)
+    import ast
+    from pathlib import Path
+
+    layout = ["_solution", "_grid", "_rhs", "_compiled", "_rk4", "_dop853", "_stepper"]
+    layout += ["_integrate", "_rigid_body", "_splitting"]
+    folder = Path(integrators.__file__).parent
+    assert sorted(p.stem for p in folder.glob("_*.py") if p.stem != "__init__") == sorted(layout)
+    back = []
+    for pos, name in enumerate(layout):
+        tree = ast.parse((folder / f"{name}.py").read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            is_sibling = isinstance(node, ast.ImportFrom) and node.level == 1
+            if is_sibling and layout.index(node.module) >= pos:
+                back.append(f"{name} imports {node.module}")
+    assert not back, back
+    assert "Imports point down that list" in integrators.__doc__

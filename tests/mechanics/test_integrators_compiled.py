@@ -23,8 +23,10 @@ from mechanics.errors import (
     NonFiniteError,
     NonPhysicalInertiaError,
     NonPositiveParameterError,
+    OutOfDomainError,
     ResultOverflowError,
     ShapeError,
+    StepSizeError,
     UnknownOptionError,
 )
 from mechanics.integrators import (
@@ -34,6 +36,7 @@ from mechanics.integrators import (
     integrate,
     rigid_body_state,
 )
+from mechanics.integrators import _compiled as compiled_path
 from mechanics.strategies.inertia import principal_moments
 from mechanics.strategies.rotation import rotation_matrices
 
@@ -220,7 +223,7 @@ def test_both_paths_refuse_bad_input_with_the_same_error(case):
         NonPositiveParameterError,
         ShapeError,
         UnknownOptionError,
-        integrators.OutOfDomainError,
+        OutOfDomainError,
     )
     raised = []
     for compiled in (True, False):
@@ -238,7 +241,7 @@ def test_an_overflow_in_a_kernel_is_reported_as_the_reference_reports_it(method)
     kw = {"h": 0.1} if method == "rk4" else {"rtol": 1e-6}
     raised = []
     for compiled in (True, False):
-        with pytest.raises((NonFiniteError, ResultOverflowError, integrators.StepSizeError)) as e:
+        with pytest.raises((NonFiniteError, ResultOverflowError, StepSizeError)) as e:
             integrate(rhs, y0, (0.0, 1.0), method=method, compiled=compiled, **kw)
         raised.append((type(e.value), str(e.value)))
     assert raised[0] == raised[1]
@@ -249,7 +252,7 @@ def test_a_python_rhs_runs_the_reference_path(monkeypatch):
     def no_kernels():
         raise AssertionError("a Python rhs must not reach the compiled kernels")
 
-    monkeypatch.setattr(integrators, "_kernels", no_kernels)
+    monkeypatch.setattr(compiled_path, "_kernels", no_kernels)
     sol = integrate(lambda t, y: -y, 1.0, (0.0, 1.0), method="dop853", rtol=1e-10)
     assert abs(sol.y[-1] - np.exp(-1.0)) < 1e-9
 
@@ -271,7 +274,7 @@ class _BrokenKernels:
 
 def test_a_failed_jit_falls_back_to_the_reference_with_one_warning(monkeypatch):
     broken = _BrokenKernels()
-    monkeypatch.setattr(integrators, "_KERNELS", broken)
+    monkeypatch.setattr(compiled_path, "_KERNELS", broken)
     y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
     rhs = free_rigid_body_rhs(J_TOP)
     with pytest.warns(CompiledPathWarning, match="simulated JIT failure") as record:
@@ -289,7 +292,7 @@ def test_a_failed_jit_falls_back_to_the_reference_with_one_warning(monkeypatch):
 def test_a_missing_numba_falls_back_to_the_reference_with_one_warning(monkeypatch):
     import sys
 
-    monkeypatch.setattr(integrators, "_KERNELS", None)
+    monkeypatch.setattr(compiled_path, "_KERNELS", None)
     monkeypatch.setitem(sys.modules, "mechanics._kernels", None)  # import fails
     with pytest.warns(CompiledPathWarning, match="ModuleNotFoundError") as record:
         sol = free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), (0.0, 5.0), 0.1)
