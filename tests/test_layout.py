@@ -124,3 +124,82 @@ def test_import_mechanics_loads_neither_sympy_nor_matplotlib() -> None:
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]", out.stdout
+
+
+def import_graph(sources: dict[str, tuple[str, bool]]) -> dict[str, set[str]]:
+    """module -> the modules of ``sources`` it imports (``from P import m`` names the module
+    P.m where that is one, else P), from {module: (source, is_package)}."""
+    graph = {}
+    for module, (source, is_package) in sources.items():
+        package = module if is_package else module.rpartition(".")[0]
+        out = set()
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.Import):
+                out |= {a.name for a in node.names if a.name in sources}
+            elif isinstance(node, ast.ImportFrom):
+                base = node.module or ""
+                if node.level:
+                    anchor = package.split(".")
+                    anchor = anchor[: len(anchor) - (node.level - 1)]
+                    base = ".".join([*anchor, base] if base else anchor)
+                for a in node.names:
+                    if f"{base}.{a.name}" in sources:
+                        out.add(f"{base}.{a.name}")
+                    elif base in sources:
+                        out.add(base)
+        graph[module] = out - {module}
+    return graph
+
+
+def circles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The groups of modules that import each other around a circle (Tarjan's strongly
+    connected components of more than one module), each sorted."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    found = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        for w in sorted(graph[v]):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            group = []
+            while not group or group[-1] != v:
+                group.append(stack.pop())
+            if len(group) > 1:
+                found.append(sorted(group))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_no_modules_import_each_other_in_a_circle() -> None:
+    sources = {
+        module_name(p): (p.read_text(encoding="utf-8"), p.name == "__init__.py") for p in _sources()
+    }
+    assert circles(import_graph(sources)) == []
+
+
+def test_a_circle_of_imports_is_caught() -> None:
+    """Negative control: the CLI's old circle (main imports conform, conform imports
+    UsageError from main inside a function) and a three-module one are found."""
+    sources = {
+        "identities.cli.main": ("from identities.cli import conform\n", False),
+        "identities.cli.conform": ("def f():\n    from .main import UsageError\n", False),
+        "identities.cli": ("from .main import main\n", True),
+        "a": ("import b\n", False),
+        "b": ("from c import x\n", False),
+        "c": ("def g():\n    from a import x\n", False),
+    }
+    assert circles(import_graph(sources)) == [
+        ["a", "b", "c"],
+        ["identities.cli.conform", "identities.cli.main"],
+    ]

@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 from bench import workprecision as wp
+from bench.workprecision import problems, sweeps
 from mechanics.integrators import free_rigid_body_rhs, integrate
 from mechanics.rotation import EPS
 from mechanics.tops import HeavySymmetricTop
@@ -180,8 +181,8 @@ def test_markdown_has_a_table_per_problem_and_the_headline(quick_run):
 
 
 def test_a_broken_method_shows_a_large_error(tmp_path):
-    free = wp._free_top_problem(True)
-    pend = wp._pendulum_problem(True)
+    free = problems._free_top_problem(True)
+    pend = problems._pendulum_problem(True)
     for p in (free, pend):
         y0 = p.y0
 
@@ -236,7 +237,7 @@ def test_impact_exact_follows_energy_and_restitution():
     (rebound speed e times the speed at the bottom, 2ω0 sin(θ0/2))."""
     from mechanics.dynamics import pendulum_period
 
-    times, amps, t_end, _ = wp._impact_exact(3)
+    times, amps, t_end, _ = problems._impact_exact(3)
     T0 = float(pendulum_period(*wp.PEND, wp.IMPACT_THETA0))
     assert abs(times[0] - T0 / 4) <= 4 * EPS * T0
     assert abs(math.sin(amps[0] / 2) - wp.IMPACT_E * math.sin(wp.IMPACT_THETA0 / 2)) < 8 * EPS
@@ -331,7 +332,7 @@ def test_mujoco_row_names_the_extra_when_mujoco_is_absent(monkeypatch):
         return real_import(name, *a, **k)
 
     monkeypatch.setattr(builtins, "__import__", no_mujoco)
-    out = wp.mujoco_peer(True, 1, wp._Progress(1, False))
+    out = wp.mujoco_peer(True, 1, sweeps._Progress(1, False))
     assert out == {"available": False, "install": wp.MUJOCO_EXTRA}
     monkeypatch.undo()
     recs = [_record("dop853", "ours", 1e-9, 0.1), _record("scipy-DOP853", "scipy", 1e-9, 5.0)]

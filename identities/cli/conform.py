@@ -28,6 +28,8 @@ import os
 import sys
 from pathlib import Path
 
+from identities.cli.usage import UsageError
+
 __all__ = ["PLOT_SUFFIXES", "add_parser", "cmd_conform", "load_adapter", "parse_thresholds"]
 
 #: formats the plot is written in, by the file's suffix
@@ -74,9 +76,7 @@ def add_parser(sub) -> None:
     )
 
 
-def _usage(message: str):
-    from .main import UsageError
-
+def _usage(message: str) -> UsageError:
     return UsageError(message)
 
 
@@ -131,7 +131,7 @@ def _import(module: str):
             ) from None
         raise _usage(f"importing adapter module {module!r} failed: {exc}") from None
     except Exception as exc:
-        if type(exc).__name__ == "UsageError":
+        if isinstance(exc, UsageError):
             raise
         raise _usage(
             f"importing adapter module {module!r} raised {type(exc).__name__}: {exc}"

@@ -29,14 +29,11 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from pathlib import Path
 
 from identities.cli import conform
+from identities.cli.usage import UsageError
 from identities.verify import catalogue
 from identities.verify.catalogue import KINDS, Outcome
 
 __all__ = ["main"]
-
-
-class UsageError(Exception):
-    """Bad command-line input: reported in one line, exit code 2."""
 
 
 def _at_least(least, kind):
