@@ -14,7 +14,7 @@ Conventions
 - **Hard regimes are explicit branches**, drawn first with ``st.sampled_from``
   (the first regime is the simple one, so failures shrink toward unit masses,
   e = 0, spheres, axes), recorded with :func:`hypothesis.event`, listed in the
-  ``*_REGIMES`` constants; ``tests/theorems/test_impact_strategy_quality.py``
+  ``*_REGIMES`` constants; ``tests/strategies/test_impact_strategy_quality.py``
   proves every one is reached.
 - Bounds are keyword-only; bad arguments raise
   :class:`hypothesis.errors.InvalidArgument` quoting the value.

@@ -14,7 +14,7 @@ Conventions
 - **Hard regimes are explicit branches** (``st.sampled_from``, the simple one
   first so that examples shrink toward a spherical top of scale 1), recorded
   with :func:`hypothesis.event`; the constants ``*_REGIMES`` list them and
-  ``tests/theorems/test_inertia_strategy_quality.py`` proves each is reached.
+  ``tests/strategies/test_inertia_strategy_quality.py`` proves each is reached.
 - Bounds are keyword-only; bad arguments raise
   :class:`hypothesis.errors.InvalidArgument` quoting the value.
 

@@ -11,7 +11,7 @@ Conventions
 - **Hard regimes are explicit branches**, drawn first with ``st.sampled_from``
   (the first is the simple one, so that failures shrink toward unit masses at
   rest near the origin) and recorded with :func:`hypothesis.event` as
-  ``"<strategy>: <regime>"``.  ``tests/theorems/test_particles_strategy_quality.py``
+  ``"<strategy>: <regime>"``.  ``tests/strategies/test_particles_strategy_quality.py``
   proves every regime is reached.
 - Bounds are keyword-only; bad arguments raise
   :class:`hypothesis.errors.InvalidArgument` quoting the value.

@@ -16,7 +16,7 @@ Conventions
   a regime with ``st.sampled_from`` (the first regime is the simple one, so
   failing examples shrink toward the identity and zero), then draws inside it.
   The regimes are listed per strategy below and in the module constants
-  ``*_REGIMES``; ``tests/theorems/test_strategy_quality.py`` proves every one is
+  ``*_REGIMES``; ``tests/strategies/test_strategy_quality.py`` proves every one is
   reached.
 - **Which regime was drawn** is recorded with :func:`hypothesis.event` as
   ``"<strategy>: <regime>"``; ``pytest --hypothesis-show-statistics`` prints
