@@ -17,11 +17,12 @@ import numpy as np
 import pytest
 from hypothesis import Phase, example, find, given, settings
 from hypothesis import strategies as st
-from hypothesis.errors import InvalidArgument, NoSuchExample
+from hypothesis.errors import InvalidArgument
 
 from mechanics import impact as im
 from mechanics import strategies as ms
 from mechanics._floats import EPS
+from tests.strategies.sampling import found, never
 
 #: Draws allowed to reach a regime: regimes are branches among at most six, so
 #: a regime is met within a few dozen draws; 1000 leaves room for nesting.
@@ -39,9 +40,7 @@ MOMENT_RTOL = 64 * EPS
 
 
 def _found(strategy, predicate):
-    value = find(strategy, predicate, settings=FIND_SETTINGS)
-    assert predicate(value)
-    return value
+    return found(strategy, predicate, FIND_SETTINGS.max_examples)
 
 
 def _moments(J) -> np.ndarray:
@@ -380,8 +379,7 @@ RATIO_RTOL = 4 * EPS
 
 
 def _never(strategy, predicate) -> None:
-    with pytest.raises(NoSuchExample):
-        find(strategy, predicate, settings=NEVER_SETTINGS)
+    never(strategy, predicate, NEVER_SETTINGS.max_examples)
 
 
 def _spans(lo, hi):

@@ -15,11 +15,12 @@ import numpy as np
 import pytest
 from hypothesis import Phase, find, given, settings
 from hypothesis import strategies as st
-from hypothesis.errors import InvalidArgument, NoSuchExample
+from hypothesis.errors import InvalidArgument
 
 from mechanics import inertia as I
 from mechanics import strategies as ms
 from mechanics.rotation import EPS
+from tests.strategies.sampling import found, never
 
 #: Regimes are branches of ``st.sampled_from`` among at most eight, some with a
 #: nested boolean branch: reached within a few dozen draws; 2000 leaves room.
@@ -34,9 +35,7 @@ SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
 
 def _found(strategy, predicate, find_settings=FIND_SETTINGS):
-    value = find(strategy, predicate, settings=find_settings)
-    assert predicate(value)
-    return value
+    return found(strategy, predicate, find_settings.max_examples)
 
 
 def _rel_gaps(J):
@@ -235,8 +234,7 @@ GAP_ATOL = 2 * EPS
 
 
 def _never(strategy, predicate) -> None:
-    with pytest.raises(NoSuchExample):
-        find(strategy, predicate, settings=NEVER_SETTINGS)
+    never(strategy, predicate, NEVER_SETTINGS.max_examples)
 
 
 def _moments(regime, **bounds):

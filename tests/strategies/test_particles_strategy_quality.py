@@ -15,11 +15,12 @@ import numpy as np
 import pytest
 from hypothesis import Phase, find, given, settings
 from hypothesis import strategies as st
-from hypothesis.errors import InvalidArgument, NoSuchExample
+from hypothesis.errors import InvalidArgument
 
 from mechanics import strategies as ms
 from mechanics._floats import EPS
 from mechanics.particles import internal_moment
+from tests.strategies.sampling import found, never
 
 #: Regimes are branches among at most five; 2000 draws find each many times over.
 FIND_SETTINGS = settings(max_examples=2000, database=None, phases=[Phase.generate])
@@ -27,9 +28,7 @@ SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
 
 def _found(strategy, predicate):
-    value = find(strategy, predicate, settings=FIND_SETTINGS)
-    assert predicate(value)
-    return value
+    return found(strategy, predicate, FIND_SETTINGS.max_examples)
 
 
 MASS_REGIMES = {
@@ -229,8 +228,7 @@ NEVER_SETTINGS = settings(max_examples=500, database=None, phases=[Phase.generat
 
 
 def _never(strategy, predicate) -> None:
-    with pytest.raises(NoSuchExample):
-        find(strategy, predicate, settings=NEVER_SETTINGS)
+    never(strategy, predicate, NEVER_SETTINGS.max_examples)
 
 
 @pytest.mark.parametrize(("lo", "hi"), [(1e-6, 1e6), (0.3, 5.0), (2.0, 3.0)])

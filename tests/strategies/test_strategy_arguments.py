@@ -25,6 +25,7 @@ from hypothesis.errors import InvalidArgument, NoSuchExample
 from mechanics import strategies as ms
 from mechanics._floats import EPS
 from mechanics.strategies import _common, batching, impact, inertia, particles
+from tests.strategies.sampling import found, never
 
 #: Draws for a search that must find (or must not find) a value: regimes are branches
 #: among at most eight, so every branch is drawn dozens of times in 1000 draws.
@@ -55,14 +56,11 @@ def _factory(name):
 
 def _never(strategy, predicate) -> None:
     """No draw among FIND_SETTINGS' satisfies ``predicate``."""
-    with pytest.raises(NoSuchExample):
-        find(strategy, predicate, settings=FIND_SETTINGS)
+    never(strategy, predicate, FIND_SETTINGS.max_examples)
 
 
 def _found(strategy, predicate, budget=FIND_SETTINGS):
-    value = find(strategy, predicate, settings=budget)
-    assert predicate(value)
-    return value
+    return found(strategy, predicate, budget.max_examples)
 
 
 # --------------------------------------------------------- numeric arguments

@@ -21,6 +21,7 @@ from hypothesis.errors import InvalidArgument
 
 from mechanics import strategies as ms
 from mechanics.rotation import EPS, is_rotation
+from tests.strategies.sampling import found
 
 #: Draws allowed to reach a regime (a search stops at its first hit, so the budget costs
 #: only in an unlucky run).  Regimes are branches chosen by ``st.sampled_from`` among at
@@ -52,9 +53,7 @@ MATRIX_ORTHO_ATOL = 8 * EPS
 
 
 def _found(strategy, predicate):
-    value = find(strategy, predicate, settings=FIND_SETTINGS)
-    assert predicate(value)
-    return value
+    return found(strategy, predicate, FIND_SETTINGS.max_examples)
 
 
 def _general_axis(v, floor=0.05) -> bool:

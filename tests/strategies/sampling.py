@@ -1,0 +1,105 @@
+"""One sample per strategy, shared by every question a test asks of it (issue 35).
+
+A strategy-quality test asks many questions of one strategy: "never outside its bounds",
+"reaches its upper end", "reaches its lower end", ...  Each used to be its own
+``hypothesis.find`` run of 500–2000 draws; drawing is what costs (a contact is two
+rigid bodies, an inertia tensor, a geometry), so one test paid for 10⁴ draws or more.
+Here the draws of a strategy object are made once and every question reads them.  They
+come from ``find`` itself, with a predicate that keeps each example and never matches,
+so they are hypothesis' own generation (its boundary values and simple examples
+included), as before.
+
+- :func:`never` holds when none of n draws satisfies the predicate; it names the first
+  that does.
+- :func:`found` holds when one of the first n draws does (it reads the draws made so
+  far first, and draws more only while none matches).  For an event of frequency p, n
+  draws miss it with probability (1 − p)ⁿ: at n = 1000 that is below 10⁻⁶ for
+  p ≥ 1.4 % and below 10⁻⁴ for p ≥ 0.92 %; a rarer event needs a larger n, stated
+  where it is used.
+
+Draws are added in runs of ``find`` that double the sample (100, 100, 200, 400, ...),
+so a question answered by the first draws costs only those.  A sample lives as long as
+its strategy object, which each test builds for itself: nothing but draws is shared,
+and tests stay independent of each other and of their order.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import weakref
+
+from hypothesis import Phase, find, settings
+from hypothesis.errors import NoSuchExample
+
+__all__ = ["found", "never", "sample"]
+
+#: the first run of draws; each later run doubles the sample
+FIRST_RUN = 100
+
+
+class _Draws:
+    __slots__ = ("examples", "exhausted")
+
+    def __init__(self) -> None:
+        self.examples: list = []
+        self.exhausted = False  # hypothesis ran out of distinct examples (a finite strategy)
+
+
+_DRAWS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _run(strategy, k: int) -> list:
+    """k examples of one ``find`` run (fewer if the strategy has fewer)."""
+    got: list = []
+
+    def keep(x) -> bool:
+        got.append(x)
+        return False
+
+    budget = settings(max_examples=k, database=None, phases=[Phase.generate])
+    with contextlib.suppress(NoSuchExample):
+        find(strategy, keep, settings=budget)
+    return got
+
+
+def _draws(strategy) -> _Draws:
+    d = _DRAWS.get(strategy)
+    if d is None:
+        d = _DRAWS[strategy] = _Draws()
+    return d
+
+
+def _grow(strategy, d: _Draws, n: int) -> None:
+    k = min(max(FIRST_RUN, len(d.examples)), n - len(d.examples))
+    got = _run(strategy, k)
+    d.exhausted = len(got) < k
+    d.examples.extend(got)
+
+
+def sample(strategy, n: int) -> list:
+    """The first n draws of ``strategy`` (fewer for a strategy of fewer values)."""
+    d = _draws(strategy)
+    while len(d.examples) < n and not d.exhausted:
+        _grow(strategy, d, n)
+    return d.examples[:n]
+
+
+def never(strategy, predicate, n: int) -> None:
+    """None of n draws satisfies ``predicate`` (else: the first that does)."""
+    for x in sample(strategy, n):
+        assert not predicate(x), f"a draw satisfies the predicate it never should: {x!r}"
+
+
+def found(strategy, predicate, n: int):
+    """The first of n draws that satisfies ``predicate`` (else the test fails, saying how
+    many draws missed it)."""
+    d = _draws(strategy)
+    i = 0
+    while True:
+        for x in d.examples[i:n]:
+            if predicate(x):
+                return x
+        i = min(len(d.examples), n)
+        if i >= n or d.exhausted:
+            raise AssertionError(f"none of {i} draws satisfies the predicate")
+        _grow(strategy, d, n)
