@@ -29,10 +29,11 @@ $(STAMP): pyproject.toml $(LOCK) requirements/tools.in
 run: $(STAMP)
 	$(BIN)/bodycheck check
 
-## make test: lint, format check and the whole test suite (in parallel, random order)
+## make test: lint, format check, type check and the whole test suite (in parallel, random order)
 test: $(STAMP)
 	$(BIN)/ruff check .
 	$(BIN)/ruff format --check .
+	$(BIN)/mypy
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
 
 ## make checks: regenerate CHECKS.md from the registry and docs/scene-files.md from the schema

@@ -30,9 +30,10 @@ a caller's result is the same bit for bit as before these moved here.
 from __future__ import annotations
 
 import math
-from numbers import Real
+from typing import Any, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 
 __all__ = [
     "EPS",
@@ -51,27 +52,32 @@ __all__ = [
     "ulps",
 ]
 
+#: a float or an array of floats: every transformation here works elementwise on either
+Floats: TypeAlias = float | npt.NDArray[np.float64]
+#: a double-double (hi, lo)
+Pair: TypeAlias = tuple[Floats, Floats]
+
 #: float64's machine epsilon, 2⁻⁵²
 EPS = float(np.finfo(np.float64).eps)
 #: Veltkamp's splitter for float64: 2²⁷ + 1
 SPLITTER = 2.0**27 + 1.0
 
 
-def two_sum(a, b):
+def two_sum(a: Floats, b: Floats) -> Pair:
     """(s, e) with s = fl(a + b) and s + e = a + b exactly (Knuth)."""
     s = a + b
     bb = s - a
     return s, (a - (s - bb)) + (b - bb)
 
 
-def fast_two_sum(a, b):
+def fast_two_sum(a: Floats, b: Floats) -> Pair:
     """(s, e) with s = fl(a + b) and s + e = a + b exactly, for |a| ≥ |b| or a = 0
     (Dekker)."""
     s = a + b
     return s, b - (s - a)
 
 
-def split(a):
+def split(a: Floats) -> Pair:
     """(hi, lo) with a = hi + lo exactly and hi of 26 significant bits (Veltkamp;
     |a| < 2⁹⁹⁶)."""
     c = SPLITTER * a
@@ -79,7 +85,7 @@ def split(a):
     return hi, a - hi
 
 
-def two_prod(a, b):
+def two_prod(a: Floats, b: Floats) -> Pair:
     """(p, e) with p = fl(a b) and p + e = a b exactly (Dekker; |a|, |b| < 2⁹⁹⁶)."""
     p = a * b
     ah, al = split(a)
@@ -87,7 +93,7 @@ def two_prod(a, b):
     return p, ((ah * bh - p) + ah * bl + al * bh) + al * bl
 
 
-def two_prod_or_zero(a, b):
+def two_prod_or_zero(a: Floats, b: Floats) -> Pair:
     """:func:`two_prod` elementwise with e = 0 where a split overflows (|a| or |b| ≥ 2⁹⁹⁶)."""
     with np.errstate(over="ignore", invalid="ignore"):
         p, e = two_prod(a, b)
@@ -96,8 +102,8 @@ def two_prod_or_zero(a, b):
 
 def two_prod_or_zero_scalar(a: float, b: float) -> tuple[float, float]:
     """:func:`two_prod_or_zero` of two Python floats (no array is built)."""
-    p, e = two_prod(a, b)
-    return p, (e if math.isfinite(e) else 0.0)
+    p, e = two_prod(a, b)  # floats in, floats out (float() only narrows the type)
+    return float(p), (float(e) if math.isfinite(e) else 0.0)
 
 
 # ------------------------------------------------------------ double-double
@@ -106,27 +112,27 @@ def two_prod_or_zero_scalar(a: float, b: float) -> tuple[float, float]:
 # so that Dekker's split cannot overflow.
 
 
-def dd_add(ah, al, bh, bl):
+def dd_add(ah: Floats, al: Floats, bh: Floats, bl: Floats) -> Pair:
     """(ah + al) + (bh + bl) as a double-double."""
     s, e = two_sum(ah, bh)
     e = e + (al + bl)
     return two_sum(s, e)
 
 
-def dd_times(m, xh, xl):
+def dd_times(m: Floats, xh: Floats, xl: Floats) -> Pair:
     """m (xh + xl) as a double-double (m a float)."""
     p, e = two_prod(m, xh)
     return two_sum(p, e + m * xl)
 
 
-def dd_mul(a, b):
+def dd_mul(a: Pair, b: Pair) -> Pair:
     """a b of two double-doubles (pairs) as a double-double."""
     p, err = two_prod(a[0], b[0])
     err = err + (a[0] * b[1] + a[1] * b[0])
     return fast_two_sum(p, err)
 
 
-def dd_div(a, b):
+def dd_div(a: Floats, b: Pair) -> Pair:
     """float a / double-double b, as a double-double."""
     q1 = a / b[0]
     p, pe = two_prod(q1, b[0])
@@ -134,7 +140,7 @@ def dd_div(a, b):
     return fast_two_sum(q1, r / b[0])
 
 
-def dd_add_float(a, x):
+def dd_add_float(a: Floats, x: Pair) -> Floats:
     """float a + double-double x, rounded to float."""
     s, err = two_sum(a, x[0])
     return s + (err + x[1])
@@ -143,7 +149,7 @@ def dd_add_float(a, x):
 # ------------------------------------------------------------ measuring errors
 
 
-def ulps(actual: float, exact: Real) -> float:
+def ulps(actual: float, exact: Any) -> float:
     """|actual − exact| in units in the last place of float64 at ``exact``.
 
     ``exact`` is an exact or high-precision number (:class:`fractions.Fraction`,

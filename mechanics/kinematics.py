@@ -214,8 +214,8 @@ def _exponent(a: np.ndarray, axis) -> np.ndarray:
     return np.frexp(np.max(np.abs(a), axis=axis, keepdims=True))[1]
 
 
-def _first_index(mask: np.ndarray) -> tuple[int, ...]:
-    return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
+def _first_index(mask: np.ndarray | np.bool_) -> tuple[int, ...]:
+    return tuple(int(i) for i in np.argwhere(mask)[0]) if np.ndim(mask) else ()
 
 
 def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
@@ -251,7 +251,7 @@ def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
     zero = ~w.any(axis=-1)
     if zero.any():
         raise ZeroAngularVelocityError(
-            f"omega = {w[_first_index(zero)].tolist()} is zero: "
+            f"omega = {w[*_first_index(zero)].tolist()} is zero: "
             "a translating body has no instantaneous axis or centre"
         )
     k, j = _exponent(w, -1), _exponent(v, -1)

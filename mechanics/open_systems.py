@@ -245,7 +245,7 @@ def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
     >>> float(mass_rate(q_out=[1.0, 0.5], q_in=2.0))
     0.5
     """
-    total = np.float64(0.0)
+    total: np.float64 | np.ndarray = np.float64(0.0)
     for q, name, sign in ((q_in, "q_in", 1.0), (q_out, "q_out", -1.0)):
         if q is not None:
             qa = _nonnegative(q, name)

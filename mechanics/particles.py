@@ -218,8 +218,8 @@ def _cross_sum(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.stack(out, axis=-1)
 
 
-def _first_index(mask: np.ndarray) -> tuple[int, ...]:
-    return tuple(int(i) for i in np.argwhere(mask)[0]) if mask.ndim else ()
+def _first_index(mask: np.ndarray | np.bool_) -> tuple[int, ...]:
+    return tuple(int(i) for i in np.argwhere(mask)[0]) if np.ndim(mask) else ()
 
 
 def _finite_result(x: np.ndarray, what: str) -> np.ndarray:
@@ -857,7 +857,7 @@ def _unit(axis, lead) -> np.ndarray:
     norm = np.sqrt(np.sum(np.ldexp(e, -_exponent(e)) ** 2, axis=-1, keepdims=True))
     zero = ~e.any(axis=-1)
     if zero.any():
-        raise ZeroAxisError(f"axis = {e[_first_index(zero)].tolist()} has zero length")
+        raise ZeroAxisError(f"axis = {e[*_first_index(zero)].tolist()} has zero length")
     return np.ldexp(e, -_exponent(e)) / norm
 
 

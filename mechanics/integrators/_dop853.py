@@ -293,12 +293,12 @@ class DenseStep:
             raise ShapeError(f"t must be a scalar or a 1-D array of times; got shape {ta.shape}")
         if ta.ndim == 0:
             return self(float(ta))
-        x = (ta - self.t_old) / self.h
-        y = np.zeros((self.y_old.shape[0], ta.shape[0]))
+        xs = (ta - self.t_old) / self.h
+        ys = np.zeros((self.y_old.shape[0], ta.shape[0]))
         for i, f in enumerate(self._rev):
-            y += f[:, None]
-            y *= x if i % 2 == 0 else 1.0 - x
-        return y + self.y_old[:, None]
+            ys += f[:, None]
+            ys *= xs if i % 2 == 0 else 1.0 - xs
+        return ys + self.y_old[:, None]
 
     def __repr__(self) -> str:
         return f"DenseStep(t_old={self.t_old!r}, t={self.t!r}, n={self.y_old.shape[0]})"

@@ -7,6 +7,7 @@ Part of :mod:`mechanics.integrators` (its docstring states the conventions).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -295,6 +296,10 @@ def free_rigid_body_splitting(
         if out is not None:
             ys[1:] = out[0][1:].reshape(tt.shape[0] - 1, *batch, 12)
             return _solution(tt, ys, f"splitting-{order}", out[1], out[2], 0)
+    # one body runs on lists of Python floats, a batch on lists of arrays
+    Js: list[Any]
+    Ls: list[Any]
+    Rs: list[Any]
     if scalar:
         Js = [float(x) for x in Jm]
         Ls = [float(x) for x in L]

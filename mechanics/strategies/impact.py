@@ -432,6 +432,7 @@ def contacts(*, regimes=None, restitution=None):
         regime = draw(st.sampled_from(names))
         event(f"contacts: {regime}")
         e = draw(es)
+        b2: RigidBody | None
         if regime == "planar":
             phi = draw(_ANGLES)
             n = np.array([math.cos(phi), math.sin(phi), 0.0])
@@ -440,7 +441,10 @@ def contacts(*, regimes=None, restitution=None):
             return Contact(_approaching(b1, b2, r_S, n, draw(speeds)), b2, r_S, n, e)
         n = draw(unit_normals)
         b1 = draw(bodies)
-        b2 = None if regime == "fixed-body-2" else draw(bodies)
+        if regime == "fixed-body-2":  # body 2 fixed (infinite mass): S off G1
+            r_S = b1.r_G + draw(offsets)
+            return Contact(_approaching(b1, None, r_S, n, draw(speeds)), None, r_S, n, e)
+        b2 = draw(bodies)
         if regime == "mass-ratio":
             # Rescale body 1 (mass and tensor together) to m_2 times a ratio 1e±6 … 1e±12.
             k = draw(ratios)
