@@ -12,6 +12,8 @@ import dataclasses
 import functools
 import inspect
 import re
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
 
 import numpy as np
 
@@ -102,7 +104,10 @@ def _shapes(sig: inspect.Signature, args, kwargs) -> str:
     return ", ".join(out)
 
 
-def finite_result(fn):
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def finite_result(fn: _F) -> _F:
     """Decorator: a function of finite inputs returns a finite result, or raises.
 
     Every public function validates its inputs as finite (:func:`as_float_array`), so
@@ -146,10 +151,10 @@ def finite_result(fn):
             )
         return out
 
-    return wrapper
+    return cast(_F, wrapper)
 
 
-def broadcast_checked(fn):
+def broadcast_checked(fn: _F) -> _F:
     """Decorator: arguments whose batch axes do not broadcast raise a ShapeError.
 
     For functions whose non-finite results are documented (``ellipk(1) = inf``) and so
@@ -171,4 +176,4 @@ def broadcast_checked(fn):
                 + _shapes(sig, args, kwargs)
             ) from None
 
-    return wrapper
+    return cast(_F, wrapper)

@@ -103,12 +103,12 @@ its matrix ``D``; scalar t gives shape (n,), k times shape (n, k), as scipy.
 Layout
 ------
 One private module per job (issue 35); this package re-exports the public names.
-``_solution`` (:class:`Solution`), ``_grid`` (output times, fixed steps, the step
-budget, :func:`time_grid`), ``_rhs`` (a user's right-hand side checked), ``_compiled``
-(the compiled path's loader and :class:`CompiledPathWarning`), ``_rk4``, ``_dop853``
-(tableau, step, error control, batched run, :class:`DenseStep`), ``_stepper``
-(:class:`DOP853Stepper`), ``_integrate`` (:func:`integrate`), ``_rigid_body`` (the free
-body's state, right-hand side and SO(3) step) and ``_splitting``
+``_solution`` (:class:`Solution`, the shared type aliases), ``_grid`` (output times,
+fixed steps, the step budget, :func:`time_grid`), ``_rhs`` (a user's right-hand side
+checked), ``_compiled`` (the compiled path's loader and :class:`CompiledPathWarning`),
+``_rk4``, ``_dop853`` (tableau, step, error control, batched run, :class:`DenseStep`),
+``_stepper`` (:class:`DOP853Stepper`), ``_integrate`` (:func:`integrate`), ``_rigid_body``
+(the free body's state, right-hand side and SO(3) step) and ``_splitting``
 (:func:`free_rigid_body_splitting`).  Imports point down that list, never back.
 
 Accuracy and cost (``tests/mechanics/test_integrators.py``,

@@ -8,8 +8,12 @@ from __future__ import annotations
 
 import importlib
 import warnings
+from types import ModuleType
+from typing import Any, Literal
 
 import numpy as np
+
+from ._solution import FloatArray, Rhs
 
 
 class CompiledPathWarning(RuntimeWarning):
@@ -17,10 +21,11 @@ class CompiledPathWarning(RuntimeWarning):
     pure-numpy reference path runs instead, with the same results, only slower."""
 
 
-_KERNELS = None  # the module mechanics._kernels once imported; False after a failure
+# the module mechanics._kernels once imported; False after a failure
+_KERNELS: ModuleType | Literal[False] | None = None
 
 
-def _kernels():
+def _kernels() -> ModuleType | None:
     """mechanics._kernels, imported on first use (numba's import is not paid by
     ``import mechanics``), or None with one CompiledPathWarning if that fails."""
     global _KERNELS
@@ -47,20 +52,21 @@ def _compiled_failed(exc: BaseException) -> None:
     )
 
 
-def _run_compiled(name: str, *args):
+def _run_compiled(name: str, *args: Any) -> tuple[int, ...] | None:
     """kernels.<name>(*args), or None (after one warning) if the kernel cannot be
     compiled or loaded: the caller then runs the reference path."""
     k = _kernels()
     if k is None:
         return None
     try:
-        return getattr(k, name)(*args)
+        done: tuple[int, ...] = getattr(k, name)(*args)  # the kernel's status and counts
+        return done
     except Exception as exc:  # a failed JIT (numba's errors are not one class)
         _compiled_failed(exc)
         return None
 
 
-def _free_body_args(rhs, y0):
+def _free_body_args(rhs: Rhs, y0: FloatArray) -> tuple[FloatArray, FloatArray] | None:
     """(J per body (bodies, 3), flat y0) if ``rhs`` is :func:`free_rigid_body_rhs`'s and
     its moments broadcast onto y0's bodies; else None (the reference path runs)."""
     Jm = getattr(rhs, "free_body_moments", None)

@@ -10,12 +10,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 from scipy.integrate._ivp import dop853_coefficients as _d853
 
 from .._validate import as_float_array
 from ..errors import ResultOverflowError, ShapeError, StepSizeError
 from ._compiled import _free_body_args, _run_compiled
 from ._rhs import _checked
+from ._solution import FloatArray, Rhs, Run
 
 #: Step control of ``"dop853"``: the values of Hairer's DOP853 and of scipy.
 DOP853_SAFETY = 0.9
@@ -23,50 +25,64 @@ DOP853_MIN_FACTOR = 0.2
 DOP853_MAX_FACTOR = 10.0
 _DOP853_EXPONENT = -1.0 / 8.0  # −1/(q + 1), q = 7 the order of the error estimator
 
-_N_STAGES = _d853.N_STAGES  # 12
-_A = _d853.A[:_N_STAGES, :_N_STAGES]
-_A_ROWS = [np.ascontiguousarray(_A[s, :s]) for s in range(_N_STAGES)]
-_B = np.ascontiguousarray(_d853.B)
-_C = [float(c) for c in _d853.C[:_N_STAGES]]
+# (scipy ships no types: the tableau's names are annotated here)
+_N_STAGES: int = _d853.N_STAGES  # 12
+_A: FloatArray = _d853.A[:_N_STAGES, :_N_STAGES]
+_A_ROWS: list[FloatArray] = [np.ascontiguousarray(_A[s, :s]) for s in range(_N_STAGES)]
+_B: FloatArray = np.ascontiguousarray(_d853.B)
+_C: list[float] = [float(c) for c in _d853.C[:_N_STAGES]]
 # The compiled path's copies of the same tableau (extended: 16 stages, and D)
-_A_FULL = np.ascontiguousarray(_d853.A[:16, :16])
-_C_ARRAY = np.ascontiguousarray(_d853.C[:16])
-_E3 = np.ascontiguousarray(_d853.E3)
-_E5 = np.ascontiguousarray(_d853.E5)
+_A_FULL: FloatArray = np.ascontiguousarray(_d853.A[:16, :16])
+_C_ARRAY: FloatArray = np.ascontiguousarray(_d853.C[:16])
+_E3: FloatArray = np.ascontiguousarray(_d853.E3)
+_E5: FloatArray = np.ascontiguousarray(_d853.E5)
 # Dense output (Hairer's contd8, as scipy's ``DOP853._dense_output_impl``): three
 # extra stages K[13:16] (rows 13–15 of A, which also use K[12] = f(t_new, y_new)),
 # then the 4 × 16 matrix D that gives the rows F_3 … F_6 of the interpolant.
-_N_STAGES_EXTENDED = _d853.N_STAGES_EXTENDED  # 16
-_A_EXTRA_ROWS = [
+_N_STAGES_EXTENDED: int = _d853.N_STAGES_EXTENDED  # 16
+_A_EXTRA_ROWS: list[FloatArray] = [
     np.ascontiguousarray(_d853.A[s, :s]) for s in range(_N_STAGES + 1, _N_STAGES_EXTENDED)
 ]
-_C_EXTRA = [float(c) for c in _d853.C[_N_STAGES + 1 :]]
-_D = _d853.D
-_D_ARRAY = np.ascontiguousarray(_D)
-_INTERPOLATOR_POWER = _d853.INTERPOLATOR_POWER  # 7
+_C_EXTRA: list[float] = [float(c) for c in _d853.C[_N_STAGES + 1 :]]
+_D: FloatArray = _d853.D
+_D_ARRAY: FloatArray = np.ascontiguousarray(_D)
+_INTERPOLATOR_POWER: int = _d853.INTERPOLATOR_POWER  # 7
 _TINY = np.finfo(np.float64).tiny
 
 
-def _member_norms(v, nb: int) -> np.ndarray:
+def _member_norms(v: FloatArray, nb: int) -> FloatArray:
     """RMS norm of each batch member (rows of v reshaped to (nb, -1)); one member
     in scipy's arithmetic (``common.norm``), so that the steps agree to the bit."""
     if nb == 1:
         return np.array([np.linalg.norm(v) / v.size**0.5])
     r = v.reshape(nb, -1)
-    return np.sqrt((r * r).sum(axis=1) / r.shape[1])
+    norms: FloatArray = np.sqrt((r * r).sum(axis=1) / r.shape[1])  # (sum(axis) is typed Any)
+    return norms
 
 
-def _dop853_step(f, t, y, f0, h, K, Kv, shape):
+def _dop853_step(
+    f: Rhs,
+    t: float,
+    y: FloatArray,
+    f0: FloatArray,
+    h: float,
+    K: FloatArray,
+    Kv: FloatArray,
+    shape: tuple[int, ...],
+) -> FloatArray:
     """The 12 stages of one Dormand–Prince 8(5,3) step of h from (t, y): K[:12]
     filled (11 evaluations; K[0] = f0), the increment h Σ b_i k_i returned."""
     K[0] = f0.reshape(-1)
     for s in range(1, _N_STAGES):  # np.dot(K.T, a): scipy's ``rk_step``, the same sums
         dy = np.dot(K[:s].T, _A_ROWS[s])
         Kv[s] = f(t + _C[s] * h, (y + h * dy).reshape(shape))
-    return h * np.dot(K[:_N_STAGES].T, _B)
+    incr: FloatArray = h * np.dot(K[:_N_STAGES].T, _B)  # (np.dot is typed Any)
+    return incr
 
 
-def _dop853_error(K, h, y, y_new, rtol, atol, nb):
+def _dop853_error(
+    K: FloatArray, h: float, y: FloatArray, y_new: FloatArray, rtol: float, atol: float, nb: int
+) -> float:
     """The error norm of a step (K its 12 stages and f_new): scipy's
     ``DOP853._estimate_error_norm``, and for a batch the largest member's."""
     scale = atol + np.maximum(np.abs(y), np.abs(y_new)) * rtol
@@ -86,7 +102,17 @@ def _dop853_error(K, h, y, y_new, rtol, atol, nb):
     return float((abs(h) * e5n / np.sqrt(denom * e5.shape[1])).max())
 
 
-def _dop853_initial_step(f, t0, y, f0, t_end, rtol, atol, nb, max_step=math.inf):
+def _dop853_initial_step(
+    f: Rhs,
+    t0: float,
+    y: FloatArray,
+    f0: FloatArray,
+    t_end: float,
+    rtol: float,
+    atol: float,
+    nb: int,
+    max_step: float = math.inf,
+) -> float:
     """Hairer's starting step (as scipy's ``select_initial_step``), batch-aware:
     the state's size by its smallest member, the rates by their largest; at most
     the span t_end − t0 and ``max_step``."""
@@ -104,7 +130,22 @@ def _dop853_initial_step(f, t0, y, f0, t_end, rtol, atol, nb, max_step=math.inf)
     return min(100 * h0, h1, t_end - t0, max_step)
 
 
-def _dop853_advance(f, tc, y, f0, h_abs, t_end, max_step, K, Kv, shape, rtol, atol, nb, comp):
+def _dop853_advance(
+    f: Rhs,
+    tc: float,
+    y: FloatArray,
+    f0: FloatArray,
+    h_abs: float,
+    t_end: float,
+    max_step: float,
+    K: FloatArray,
+    Kv: FloatArray,
+    shape: tuple[int, ...],
+    rtol: float,
+    atol: float,
+    nb: int,
+    comp: FloatArray | None,
+) -> tuple[float, FloatArray, FloatArray, float, float, int, int, FloatArray | None]:
     """One accepted DOP853 step from ``tc`` towards ``t_end``, rejected attempts inside.
 
     The step control of scipy's ``RungeKutta._step_impl``: the proposed ``h_abs`` is
@@ -133,7 +174,7 @@ def _dop853_advance(f, tc, y, f0, h_abs, t_end, max_step, K, Kv, shape, rtol, at
         h_abs = min_step
     was_rejected = False
     evals = rejected = 0
-    z = None
+    z: FloatArray | None = None
     while True:
         t_new = tc + h_abs
         if t_new >= t_end:
@@ -180,7 +221,17 @@ def _dop853_advance(f, tc, y, f0, h_abs, t_end, max_step, K, Kv, shape, rtol, at
             )
 
 
-def _integrate_dop853(f, y0, t, h, rtol, atol, kahan, batch_ndim, max_steps):
+def _integrate_dop853(
+    f: Rhs,
+    y0: FloatArray,
+    t: FloatArray,
+    h: float | None,
+    rtol: float,
+    atol: float,
+    kahan: bool,
+    batch_ndim: int,
+    max_steps: int,
+) -> Run:
     """Steps chosen by the error control alone, towards t[-1]; the outputs inside a
     step come from its 7th-order continuous extension (3 more evaluations for a
     step that holds any), an output on a step's end is that step's state."""
@@ -205,7 +256,7 @@ def _integrate_dop853(f, y0, t, h, rtol, atol, kahan, batch_ndim, max_steps):
         h_abs = h
     tl = t.tolist()
 
-    def f_flat(tt, yy):
+    def f_flat(tt: float, yy: FloatArray) -> FloatArray:
         return f(tt, yy.reshape(shape)).reshape(-1)
 
     steps = rejected = 0
@@ -233,7 +284,7 @@ def _integrate_dop853(f, y0, t, h, rtol, atol, kahan, batch_ndim, max_steps):
             ys[j] = y_new.reshape(shape)
             j += 1
         k = j
-        if comp is not None:
+        if z is not None:  # None exactly when comp is (no compensation)
             comp = (y_new - y) - z
         y, tc = y_new, t_new
         if steps >= max_steps and k < nt:
@@ -269,16 +320,16 @@ class DenseStep:
 
     __slots__ = ("F", "_rev", "h", "t", "t_old", "y_old")
 
-    def __init__(self, t_old: float, t: float, y_old: np.ndarray, F: np.ndarray):
+    def __init__(self, t_old: float, t: float, y_old: npt.ArrayLike, F: npt.ArrayLike) -> None:
         self.t_old, self.t = float(t_old), float(t)
         self.h = self.t - self.t_old
         self.y_old = np.array(y_old, dtype=np.float64)
         self.F = np.array(F, dtype=np.float64)
         self.y_old.flags.writeable = False
         self.F.flags.writeable = False
-        self._rev = list(reversed(self.F))
+        self._rev: list[FloatArray] = list(reversed(self.F))
 
-    def __call__(self, t) -> np.ndarray:
+    def __call__(self, t: npt.ArrayLike) -> FloatArray:
         """The interpolated state: shape (n,) for a scalar ``t``, (n, k) for a 1-D
         array of k times (scipy's convention)."""
         if type(t) is float and math.isfinite(t):  # the event search's hot path
@@ -304,7 +355,9 @@ class DenseStep:
         return f"DenseStep(t_old={self.t_old!r}, t={self.t!r}, n={self.y_old.shape[0]})"
 
 
-def _dop853_dense(f, t_old, y_old, y, h, K) -> np.ndarray:
+def _dop853_dense(
+    f: Rhs, t_old: float, y_old: FloatArray, y: FloatArray, h: float, K: FloatArray
+) -> FloatArray:
     """The coefficients F (7, n) of the interpolant over the step of h from (t_old,
     y_old) to y, K (16, n) holding its 12 stages and K[12] = f(t_old + h, y): the
     3 extra stages (3 evaluations) go into K[13:16] (scipy's ``_dense_output_impl``)."""
@@ -321,7 +374,16 @@ def _dop853_dense(f, t_old, y_old, y, h, K) -> np.ndarray:
     return F
 
 
-def _dop853_compiled(rhs, y0, t, h, rtol, atol, batch_ndim, max_steps):
+def _dop853_compiled(
+    rhs: Rhs,
+    y0: FloatArray,
+    t: FloatArray,
+    h: float | None,
+    rtol: float,
+    atol: float,
+    batch_ndim: int,
+    max_steps: int,
+) -> Run | None:
     args = _free_body_args(rhs, y0)
     if args is None:
         return None

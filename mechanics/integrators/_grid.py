@@ -11,10 +11,12 @@ import math
 from numbers import Integral
 
 import numpy as np
+import numpy.typing as npt
 
 from .._floats import EPS
 from .._validate import as_float_array, as_float_scalar, as_positive_scalar, finite_result
 from ..errors import NonPositiveParameterError, OutOfDomainError, ShapeError, StepSizeError
+from ._solution import FloatArray
 
 #: An interval of n·h that rounds to slightly above n steps still takes n steps:
 #: the quotient (t_{k+1} − t_k)/h carries a few roundings (8 eps relative covers
@@ -25,7 +27,7 @@ _GRID_RTOL = 8 * EPS
 _positive_scalar = as_positive_scalar
 
 
-def _check_times(t) -> np.ndarray:
+def _check_times(t: npt.ArrayLike) -> FloatArray:
     tt = as_float_array(t, "t")
     if tt.ndim != 1 or tt.shape[0] < 2:
         raise ShapeError(
@@ -56,7 +58,7 @@ def _substeps(ta: float, tb: float, h: float) -> int:
 MAX_STEPS = 10**7
 
 
-def _check_step_budget(t: np.ndarray, h: float, max_steps: int) -> None:
+def _check_step_budget(t: FloatArray, h: float, max_steps: int) -> None:
     """StepSizeError before a fixed-step run that would take more than max_steps steps
     (a span of 1e300 at h = 0.1 would otherwise run for ever, or overflow the count)."""
     n = (float(t[-1]) - float(t[0])) / h
@@ -67,12 +69,12 @@ def _check_step_budget(t: np.ndarray, h: float, max_steps: int) -> None:
         )
 
 
-def _substep_counts(t: np.ndarray, h: float) -> np.ndarray:
+def _substep_counts(t: FloatArray, h: float) -> npt.NDArray[np.int64]:
     """:func:`_substeps` of every interval of the grid t, as int64."""
     return np.array([_substeps(a, b, h) for a, b in itertools.pairwise(t.tolist())], np.int64)
 
 
-def time_grid(t0, h, n) -> np.ndarray:
+def time_grid(t0: float, h: float, n: int) -> FloatArray:
     """The grid t0 + k h, k = 0 … n (each entry rounded once, never accumulated).
 
     Domain: finite scalars t0 and h > 0, an integer n ≥ 1 (else NonPositiveParameterError); the grid

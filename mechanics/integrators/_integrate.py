@@ -8,6 +8,7 @@ from __future__ import annotations
 from numbers import Integral
 
 import numpy as np
+import numpy.typing as npt
 
 from .._validate import as_float_array
 from ..errors import NonPositiveParameterError, ShapeError, UnknownOptionError
@@ -15,21 +16,21 @@ from ._dop853 import _dop853_compiled, _integrate_dop853
 from ._grid import _check_step_budget, _check_times, _positive_scalar
 from ._rhs import _wrap_rhs
 from ._rk4 import _integrate_rk4, _rk4_compiled
-from ._solution import Solution, _solution
+from ._solution import Rhs, Solution, _solution
 
 #: The methods of :func:`integrate`.
 METHODS = ("rk4", "dop853")
 
 
 def integrate(
-    rhs,
-    y0,
-    t,
+    rhs: Rhs,
+    y0: npt.ArrayLike,
+    t: npt.ArrayLike,
     *,
     method: str,
-    h=None,
-    rtol=None,
-    atol=None,
+    h: float | None = None,
+    rtol: float | None = None,
+    atol: float | None = None,
     kahan: bool = False,
     batch_ndim: int = 0,
     max_steps: int = 10**7,

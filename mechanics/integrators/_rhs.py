@@ -9,12 +9,13 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import NonFiniteError, ShapeError
+from ._solution import FloatArray, Rhs
 
 
-def _wrap_rhs(rhs, shape: tuple[int, ...]):
+def _wrap_rhs(rhs: Rhs, shape: tuple[int, ...]) -> Rhs:
     """rhs with its output's shape checked on every call (a cheap attribute test)."""
 
-    def f(t, y):
+    def f(t: float, y: FloatArray) -> FloatArray:
         k = rhs(t, y)
         if getattr(k, "shape", None) != shape:
             try:
@@ -30,10 +31,10 @@ def _wrap_rhs(rhs, shape: tuple[int, ...]):
     return f
 
 
-def _checked(f):
+def _checked(f: Rhs) -> Rhs:
     """f that raises NonFiniteError naming the time where it returns NaN or inf."""
 
-    def g(t, y):
+    def g(t: float, y: FloatArray) -> FloatArray:
         k = f(t, y)
         if not np.isfinite(k).all():
             idx = tuple(int(i) for i in np.argwhere(~np.isfinite(k))[0])

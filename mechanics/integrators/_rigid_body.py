@@ -6,12 +6,16 @@ Part of :mod:`mechanics.integrators` (its docstring states the conventions).
 
 from __future__ import annotations
 
+from typing import Protocol, cast
+
 import numpy as np
+import numpy.typing as npt
 
 from .._validate import as_float_array, broadcast_checked
 from ..errors import NonPhysicalInertiaError, ShapeError
 from ..rotation import check_rotation, matrix_from_rotvec
 from ._grid import _positive_scalar
+from ._solution import FloatArray
 
 # The free rigid body's right-hand side as one gather per factor, dy = y[IA] w[WA] − y[IB] w[WB]:
 # (L × ω)_i = L_{i+1} ω_{i+2} − L_{i+2} ω_{i+1}, and row r of Ω R (2.52) is
@@ -23,7 +27,7 @@ _WA = np.array([*_P2, *(_P2[r] for r in range(3) for _ in range(3))])
 _WB = np.array([*_P1, *(_P1[r] for r in range(3) for _ in range(3))])
 
 
-def _check_moments(J) -> np.ndarray:
+def _check_moments(J: npt.ArrayLike) -> FloatArray:
     Jm = as_float_array(J, "J", (3,))
     if not (Jm > 0).all():
         idx = tuple(int(i) for i in np.argwhere(~(Jm > 0))[0])
@@ -44,7 +48,7 @@ def _check_moments(J) -> np.ndarray:
     return Jm
 
 
-def rigid_body_state(L_A, R_A_O) -> np.ndarray:
+def rigid_body_state(L_A: npt.ArrayLike, R_A_O: npt.ArrayLike) -> FloatArray:
     """The 12-vector (L_A, rows of ^A R^O) of a free rigid body, shape (..., 12).
 
     Domain: finite L_A (..., 3) and R_A_O (..., 3, 3) that broadcast (R_A_O is not checked for
@@ -67,7 +71,7 @@ def rigid_body_state(L_A, R_A_O) -> np.ndarray:
 rigid_body_state = broadcast_checked(rigid_body_state)
 
 
-def rigid_body_parts(y) -> tuple[np.ndarray, np.ndarray]:
+def rigid_body_parts(y: npt.ArrayLike) -> tuple[FloatArray, FloatArray]:
     """(L_A, R_A_O) of rigid-body states ``y`` of shape (..., 12) (views, not checked
     for orthogonality: an integrator's R may have drifted, which is the point).
 
@@ -77,7 +81,15 @@ def rigid_body_parts(y) -> tuple[np.ndarray, np.ndarray]:
     return a[..., :3], a[..., 3:].reshape(*a.shape[:-1], 3, 3)
 
 
-def free_rigid_body_rhs(J):
+class _FreeBodyRhs(Protocol):
+    """:func:`free_rigid_body_rhs`'s rhs(t, y), carrying its moments for the compiled path."""
+
+    free_body_moments: FloatArray
+
+    def __call__(self, t: float, y: FloatArray, /) -> FloatArray: ...
+
+
+def free_rigid_body_rhs(J: npt.ArrayLike) -> _FreeBodyRhs:
     """The right-hand side rhs(t, y) of the torque-free rigid body for :func:`integrate`.
 
     Domain: principal moments J > 0 obeying the triangle inequality (else NonPhysicalInertiaError),
@@ -100,7 +112,7 @@ def free_rigid_body_rhs(J):
     """
     Jm = _check_moments(J)
 
-    def rhs(t, y):
+    def rhs(t: float, y: FloatArray) -> FloatArray:
         if y.shape[-1:] != (12,):
             raise ShapeError(f"rigid-body state must have shape (..., 12); got {y.shape}")
         w = y[..., :3] / Jm
@@ -108,11 +120,12 @@ def free_rigid_body_rhs(J):
             _WB, axis=-1
         )
 
-    rhs.free_body_moments = Jm  # what integrate's compiled path recognises
-    return rhs
+    out = cast(_FreeBodyRhs, rhs)  # a function given an attribute (mypy cannot type that)
+    out.free_body_moments = Jm  # what integrate's compiled path recognises
+    return out
 
 
-def so3_exp_step(R_A_O, w_A, h) -> np.ndarray:
+def so3_exp_step(R_A_O: npt.ArrayLike, w_A: npt.ArrayLike, h: float) -> FloatArray:
     """^A R^O after a time h of constant body angular velocity ω_A: exp(h Ω) ^A R^O.
 
     Domain: finite R_A_O (..., 3, 3), w_A (..., 3) and h that broadcast; any rotation angle h|ω|
@@ -143,7 +156,8 @@ def so3_exp_step(R_A_O, w_A, h) -> np.ndarray:
     R = check_rotation(R_A_O)
     w = as_float_array(w_A, "w_A", (3,))
     hf = _positive_scalar(h, "h")
-    return matrix_from_rotvec(hf * w) @ R
+    R_new: FloatArray = matrix_from_rotvec(hf * w) @ R  # (the product is typed Any)
+    return R_new
 
 
 so3_exp_step = broadcast_checked(so3_exp_step)

@@ -11,9 +11,19 @@ from ..errors import ResultOverflowError
 from ._compiled import _free_body_args, _run_compiled
 from ._grid import _substep_counts, _substeps
 from ._rhs import _checked
+from ._solution import FloatArray, Rhs, Run
 
 
-def _rk4_run(f, tk: float, hk: float, n: int, y, comp, kahan: bool, check: bool):
+def _rk4_run(
+    f: Rhs,
+    tk: float,
+    hk: float,
+    n: int,
+    y: FloatArray,
+    comp: FloatArray,
+    kahan: bool,
+    check: bool,
+) -> tuple[FloatArray, FloatArray]:
     """n RK4 steps of hk from tk; stage times tk + (j + c) hk."""
     half = 0.5 * hk
     sixth = hk / 6.0
@@ -40,7 +50,7 @@ def _rk4_run(f, tk: float, hk: float, n: int, y, comp, kahan: bool, check: bool)
     return y, comp
 
 
-def _integrate_rk4(f, y0, t, h, kahan):
+def _integrate_rk4(f: Rhs, y0: FloatArray, t: FloatArray, h: float, kahan: bool) -> Run:
     ys = np.empty((t.shape[0], *y0.shape))
     ys[0] = y0
     y = y0.copy()
@@ -62,7 +72,7 @@ def _integrate_rk4(f, y0, t, h, kahan):
     return ys, steps, 4 * steps, 0
 
 
-def _rk4_compiled(rhs, y0, t, h):
+def _rk4_compiled(rhs: Rhs, y0: FloatArray, t: FloatArray, h: float) -> Run | None:
     args = _free_body_args(rhs, y0)
     if args is None:
         return None

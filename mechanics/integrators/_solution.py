@@ -1,13 +1,24 @@
-"""The :class:`Solution` every integrator returns: output times, states and the work done.
+"""The :class:`Solution` every integrator returns: output times, states and the work done,
+and the type aliases the package shares (:data:`FloatArray`, :data:`Rhs`, :data:`Run`).
 
 Part of :mod:`mechanics.integrators` (its docstring states the conventions).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeAlias
 
 import numpy as np
+import numpy.typing as npt
+
+#: A float64 array (a state, a grid of times, a tableau).
+FloatArray: TypeAlias = npt.NDArray[np.float64]
+#: A right-hand side rhs(t, y) → dy/dt, of y's shape.
+Rhs: TypeAlias = Callable[[float, FloatArray], FloatArray]
+#: What a method's run returns: (ys, steps, rhs_evals, rejected_steps).
+Run: TypeAlias = tuple[FloatArray, int, int, int]
 
 
 @dataclass(frozen=True)
@@ -31,15 +42,17 @@ class Solution:
         Steps the adaptive method rejected (0 for fixed-step methods).
     """
 
-    t: np.ndarray
-    y: np.ndarray
+    t: FloatArray
+    y: FloatArray
     method: str
     steps: int
     rhs_evals: int
     rejected_steps: int
 
 
-def _solution(t, ys, method, steps, evals, rejected) -> Solution:
+def _solution(
+    t: FloatArray, ys: FloatArray, method: str, steps: int, evals: int, rejected: int
+) -> Solution:
     t = t.copy()
     t.flags.writeable = False
     ys.flags.writeable = False

@@ -7,10 +7,13 @@ Part of :mod:`mechanics.integrators` (its docstring states the conventions).
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Callable, Iterable
+from typing import Any, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 
+from .._floats import Floats
 from .._validate import as_float_array, broadcast_checked
 from ..errors import ResultOverflowError, UnknownOptionError
 from ..rotation import check_rotation
@@ -24,14 +27,17 @@ from ._grid import (
     _substeps,
 )
 from ._rigid_body import _check_moments, rigid_body_state
-from ._solution import Solution, _solution
+from ._solution import FloatArray, Solution, _solution
 
 #: Orders of :func:`free_rigid_body_splitting` (Strang, Yoshida 4, 6, 8).
 SPLITTING_ORDERS = (2, 4, 6, 8)
 
+#: Sub-flows (axis, duration or fraction of h) in order.
+Flows: TypeAlias = list[tuple[int, float]]
 
-def _merge(seq):
-    out: list[list] = []
+
+def _merge(seq: Iterable[tuple[int, float]]) -> Flows:
+    out: list[list[Any]] = []
     for axis, c in seq:
         if out and out[-1][0] == axis:
             out[-1][1] += c
@@ -40,24 +46,24 @@ def _merge(seq):
     return [(a, c) for a, c in out]
 
 
-def _strang(tau: float):
+def _strang(tau: float) -> Flows:
     return [(0, tau / 2), (1, tau / 2), (2, tau), (1, tau / 2), (0, tau / 2)]
 
 
-def _triple_jump(step, p: int):
+def _triple_jump(step: Callable[[float], Flows], p: int) -> Callable[[float], Flows]:
     """Yoshida's symmetric composition Φ(γ1 τ) Φ(γ2 τ) Φ(γ1 τ), order p → p + 2."""
     g1 = 1.0 / (2.0 - 2.0 ** (1.0 / (p + 1)))
     g2 = 1.0 - 2.0 * g1
 
-    def composed(tau):
+    def composed(tau: float) -> Flows:
         return step(g1 * tau) + step(g2 * tau) + step(g1 * tau)
 
     return composed
 
 
-def _schedule(order: int):
+def _schedule(order: int) -> Flows:
     """(axis, fraction of h) of one step, adjacent same-axis flows merged."""
-    step = _strang
+    step: Callable[[float], Flows] = _strang
     for p in range(2, order, 2):
         step = _triple_jump(step, p)
     return _merge(step(1.0))
@@ -76,7 +82,7 @@ _SCHEDULES = {p: _schedule(p) for p in SPLITTING_ORDERS}
 PROJECT_EVERY = 64
 
 
-def _project_scalar(L, R, norm0):
+def _project_scalar(L: list[float], R: list[list[float]], norm0: float) -> None:
     n = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
     if n > 0.0:
         f = norm0 / n
@@ -86,7 +92,7 @@ def _project_scalar(L, R, norm0):
     R[:] = M.tolist()
 
 
-def _project_batch(L, R, norm0):
+def _project_batch(L: list[FloatArray], R: list[FloatArray], norm0: FloatArray) -> None:
     n = np.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
     f = np.where(n > 0.0, norm0 / np.where(n > 0.0, n, 1.0), 1.0)
     L[:] = [L[0] * f, L[1] * f, L[2] * f]
@@ -98,7 +104,7 @@ def _project_batch(L, R, norm0):
 _NEXT = ((1, 2), (2, 0), (0, 1))  # (j, k) of the turn about axis i
 
 
-def _interval_flows(seq_h, head, join, n):
+def _interval_flows(seq_h: Flows, head: float, join: float, n: int) -> tuple[Flows, Flows, Flows]:
     """The sub-flows of n steps, as (first step, inner step, last step) lists: the
     closing H1 half-flow of a step and the opening one of the next are one flow."""
     if n == 1:
@@ -106,7 +112,15 @@ def _interval_flows(seq_h, head, join, n):
     return [(0, head), *seq_h, (0, join)], [*seq_h, (0, join)], [*seq_h, (0, head)]
 
 
-def _split_run_scalar(J, L, R, seq_h, head, join, n):
+def _split_run_scalar(
+    J: list[float],
+    L: list[float],
+    R: list[list[float]],
+    seq_h: Flows,
+    head: float,
+    join: float,
+    n: int,
+) -> int:
     """One body in Python floats (math.cos/sin): n steps of the schedule."""
     cos, sin = math.cos, math.sin
     first, inner, last = _interval_flows(seq_h, head, join, n)
@@ -125,14 +139,25 @@ def _split_run_scalar(J, L, R, seq_h, head, join, n):
     return len(first) + max(n - 2, 0) * len(inner) + (len(last) if n > 1 else 0)
 
 
-def _kahan_add(x, d, c):
+def _kahan_add(x: Floats, d: Floats, c: Floats) -> tuple[Floats, Floats]:
     """x + d by Kahan summation with the running compensation c: (sum, new c)."""
     y = d - c
     s = x + y
     return s, (s - x) - y
 
 
-def _split_run_compensated(J, L, R, cL, cR, seq_h, head, join, n, sin):
+def _split_run_compensated(
+    J: list[Floats],
+    L: list[Floats],
+    R: list[list[Floats]],
+    cL: list[Floats],
+    cR: list[list[Floats]],
+    seq_h: Flows,
+    head: float,
+    join: float,
+    n: int,
+    sin: Callable[[Any], Any],
+) -> int:
     """n steps of the schedule, each turn added as an increment by Kahan summation
     (the compiled ``_flow_compensated``): L, cL lists of 3, R, cR lists of 3 rows;
     floats (``sin = math.sin``) or arrays of a batch (``np.sin``)."""
@@ -155,7 +180,15 @@ def _split_run_compensated(J, L, R, cL, cR, seq_h, head, join, n, sin):
     return len(first) + max(n - 2, 0) * len(inner) + (len(last) if n > 1 else 0)
 
 
-def _split_run_batch(J, L, R, seq_h, head, join, n):
+def _split_run_batch(
+    J: list[FloatArray],
+    L: list[FloatArray],
+    R: list[FloatArray],
+    seq_h: Flows,
+    head: float,
+    join: float,
+    n: int,
+) -> int:
     """A batch: L a list of 3 arrays (batch), R a list of 3 row arrays (batch, 3)."""
     first, inner, last = _interval_flows(seq_h, head, join, n)
     for j in range(n):
@@ -174,7 +207,18 @@ def _split_run_batch(J, L, R, seq_h, head, join, n):
     return len(first) + max(n - 2, 0) * len(inner) + (len(last) if n > 1 else 0)
 
 
-def _splitting_compiled(Jm, L, R, tt, hf, batch, scalar, middle, head, compensated=False):
+def _splitting_compiled(
+    Jm: FloatArray,
+    L: FloatArray,
+    R: FloatArray,
+    tt: FloatArray,
+    hf: float,
+    batch: tuple[int, ...],
+    scalar: bool,
+    middle: Flows,
+    head: float,
+    compensated: bool = False,
+) -> tuple[FloatArray, int, int] | None:
     """The splitting's compiled run: (ys (n, bodies, 12), steps, flows), or None (the
     reference path then runs, and raises if the state overflowed)."""
     Jb = np.ascontiguousarray(np.broadcast_to(Jm, (*batch, 3)).reshape(-1, 3))
@@ -209,7 +253,15 @@ def _splitting_compiled(Jm, L, R, tt, hf, batch, scalar, middle, head, compensat
 
 
 def free_rigid_body_splitting(
-    J, L0, R0, t, h, *, order: int = 2, compiled: bool = True, compensated: bool = False
+    J: npt.ArrayLike,
+    L0: npt.ArrayLike,
+    R0: npt.ArrayLike,
+    t: npt.ArrayLike,
+    h: float,
+    *,
+    order: int = 2,
+    compiled: bool = True,
+    compensated: bool = False,
 ) -> Solution:
     """Torque-free rigid body by the Lie–Poisson splitting into exact axis rotations.
 
@@ -300,6 +352,9 @@ def free_rigid_body_splitting(
     Js: list[Any]
     Ls: list[Any]
     Rs: list[Any]
+    norm0: Any  # a float for one body, an array for a batch
+    run: Callable[[list[Any], list[Any], list[Any], Flows, float, float, int], int]
+    project: Callable[[list[Any], list[Any], Any], None]
     if scalar:
         Js = [float(x) for x in Jm]
         Ls = [float(x) for x in L]
@@ -316,16 +371,24 @@ def free_rigid_body_splitting(
         norm0 = np.hypot(np.hypot(Ls[0], Ls[1]), Ls[2])
         run, project = _split_run_batch, _project_batch
     if compensated:
-        zero = 0.0 if scalar else np.zeros(batch)
+        zero: Floats = 0.0 if scalar else np.zeros(batch)
         cL = [zero] * 3
         cR = [[zero] * 3 for _ in range(3)]
         Rs = [list(row) if scalar else [row[..., m] for m in range(3)] for row in Rs]
         sin = math.sin if scalar else np.sin
 
-        def run(Js, Ls, Rs, seq_h, head, join, m):
+        def run(
+            Js: list[Any],
+            Ls: list[Any],
+            Rs: list[Any],
+            seq_h: Flows,
+            head: float,
+            join: float,
+            m: int,
+        ) -> int:
             return _split_run_compensated(Js, Ls, Rs, cL, cR, seq_h, head, join, m, sin)
 
-        def project(Ls, Rs, norm0):
+        def project(Ls: list[Any], Rs: list[Any], norm0: Any) -> None:
             return None
 
     steps = flows = 0

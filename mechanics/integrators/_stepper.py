@@ -9,6 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 
 from .._validate import as_float_array
 from ..errors import (
@@ -28,16 +29,17 @@ from ._dop853 import (
 )
 from ._grid import _positive_scalar
 from ._rhs import _checked, _wrap_rhs
+from ._solution import Rhs
 
 
-def _scalar(x, name: str) -> float:
+def _scalar(x: npt.ArrayLike, name: str) -> float:
     a = as_float_array(x, name)
     if a.shape != ():
         raise ShapeError(f"{name} must be a scalar; got shape {a.shape}")
     return float(a)
 
 
-def _check_max_step(max_step) -> float:
+def _check_max_step(max_step: float) -> float:
     """max_step > 0, +inf allowed (no cap); NaN, −inf, arrays and non-numbers refused."""
     try:
         a = np.asarray(max_step, dtype=np.float64)
@@ -131,16 +133,16 @@ class DOP853Stepper:
 
     def __init__(
         self,
-        rhs,
-        t0,
-        y0,
-        t_bound,
+        rhs: Rhs,
+        t0: float,
+        y0: npt.ArrayLike,
+        t_bound: float,
         *,
-        rtol=1e-12,
-        atol=1e-12,
-        first_step=None,
-        max_step=math.inf,
-    ):
+        rtol: float = 1e-12,
+        atol: float = 1e-12,
+        first_step: float | None = None,
+        max_step: float = math.inf,
+    ) -> None:
         if not callable(rhs):
             raise UnknownOptionError(f"rhs must be callable rhs(t, y); got {type(rhs).__name__}")
         y = np.array(as_float_array(y0, "y0"), dtype=np.float64, copy=True)
