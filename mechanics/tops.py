@@ -509,7 +509,7 @@ class FreeAsymmetricTop:
         return np.array(out)
 
     # -- public API
-    def separatrix_distance(self) -> float:
+    def _get_separatrix_distance(self) -> float:
         """L² − 2 E J_mid in the units given: its sign gives the regime, zero on the
         separatrix; exact to rounding (computed for the moments scaled by a power of two,
         then scaled back exactly).  A :class:`~mechanics.errors.ResultOverflowError` when
@@ -522,9 +522,8 @@ class FreeAsymmetricTop:
                 f"(scaled value {self._separatrix_scaled!r} × 4^{self._scale_exp})"
             ) from None
 
-    # applied after the definition, so that mutmut mutates the function (it skips decorated
-    # ones); mypy cannot type a property made this way
-    separatrix_distance = property(separatrix_distance)  # type: ignore[assignment]
+    # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
+    separatrix_distance = property(_get_separatrix_distance)
 
     def omega(self, t) -> np.ndarray:
         """Angular velocity ω_A(t), body components, shape ``t.shape + (3,)``."""
@@ -1142,13 +1141,12 @@ class HeavySymmetricTop:
 
     effective_potential = finite_result(effective_potential)
 
-    def reduced_energy(self) -> float:
+    def _get_reduced_energy(self) -> float:
         """E' = E − L3²/(2J3) − mgℓ (5.69)."""
         return math.ldexp(self._En - self._L3n**2 / (2 * self._J3n) - self._mgln, self._k)
 
-    # applied after the definition, so that mutmut mutates the function (it skips decorated
-    # ones); mypy cannot type a property made this way
-    reduced_energy = property(reduced_energy)  # type: ignore[assignment]
+    # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
+    reduced_energy = property(_get_reduced_energy)
 
     def _arg(self, t):
         return self._kappa * t + self._w0

@@ -51,13 +51,13 @@ def engine_adapters() -> list[tuple[str, object]]:
 
 
 def _worst(r: ScenarioResult, kind: str) -> Figure | None:
-    figs = [f for f in r.figures if f.kind == kind and f.value is not None]
+    figs = [(f, f.value) for f in r.figures if f.kind == kind and f.value is not None]
     if not figs:
         return None
-    checked = [f for f in figs if f.threshold]
+    checked = [(f, value / f.threshold) for f, value in figs if f.threshold]
     if checked:
-        return max(checked, key=lambda f: f.value / f.threshold)
-    return max(figs, key=lambda f: f.value)
+        return max(checked, key=lambda pair: pair[1])[0]
+    return max(figs, key=lambda pair: pair[1])[0]
 
 
 @dataclass
@@ -69,7 +69,7 @@ class Comparison:
 
     def rows(self) -> list[dict]:
         """One dict per (scenario, adapter): the table's cells as values."""
-        out = []
+        out: list[dict] = []
         if not self.reports:
             return out
         for k, scenario in enumerate(r.scenario for r in self.reports[0][1].results):

@@ -64,6 +64,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
@@ -107,8 +108,14 @@ class Reference:
 # --------------------------------------------------------------------------- helpers
 
 
+def _vec3(v) -> tuple[float, float, float]:
+    """A 3-vector as a tuple of three floats."""
+    x, y, z = (float(c) for c in v)
+    return x, y, z
+
+
 def _rows(R) -> tuple[tuple[float, float, float], ...]:
-    return tuple(tuple(float(x) for x in row) for row in np.asarray(R))
+    return tuple(_vec3(row) for row in np.asarray(R))
 
 
 def _times(duration: float, dt: float) -> tuple[float, ...]:
@@ -122,6 +129,20 @@ def _free_rotation(body: Body, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
     top = FreeAsymmetricTop(body.inertia, body.omega, np.array(body.R_A_O))
     return top.attitude(t), top.omega(t)
+
+
+_Part = TypeVar("_Part")
+
+
+def _required(s: Scenario, what: str, part: _Part | None) -> _Part:
+    """The scenario's ``part`` (its pivot, ground, thrust, a body's shape), which its kind
+    needs: a MechanicsValueError naming the scenario when it is None."""
+    if part is None:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: a scenario of kind {s.extra.get('kind')!r} needs {what}; "
+            "it has none"
+        )
+    return part
 
 
 def _stack(t, bodies, pos, vel, R, w, masses=None) -> Trajectory:
@@ -360,7 +381,8 @@ def _inv_free(s: Scenario, tr: Trajectory) -> dict:
 def _heavy_top(s: Scenario):
     from ..tops import HeavySymmetricTop
 
-    b, pv = s.bodies[s.pivot.body], s.pivot
+    pv = _required(s, "a pivot", s.pivot)
+    b = s.bodies[pv.body]
     J1, J2, J3 = b.inertia
     g = _gravity(s)
     ell = -pv.point[2]
@@ -399,7 +421,7 @@ def _ref_heavy(s: Scenario) -> Reference:
     thd, psid, phid = top.rates(t)
     R = matrix_from_euler(psi, theta, phi)
     w = angular_velocity_from_euler_rates(psi, theta, phi, psid, thd, phid)  # (2.69)
-    pv = s.pivot
+    pv = _required(s, "a pivot", s.pivot)
     rho = -np.einsum("tji,j->ti", R, np.asarray(pv.point, dtype=float))  # G − C, space
     pos = np.asarray(pv.anchor, dtype=float) + rho
     w_O = np.einsum("tji,tj->ti", R, w)
@@ -417,7 +439,7 @@ def _u_dot(tr: Trajectory, i: int) -> np.ndarray:
 
 
 def _measure_heavy(s: Scenario, tr: Trajectory) -> dict:
-    i = s.pivot.body
+    i = _required(s, "a pivot", s.pivot).body
     R = tr.R_A_O[:, i]
     out: dict = {"theta": np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2])}
     turns = crossings(tr.t, _u_dot(tr, i))
@@ -435,9 +457,10 @@ def _measure_heavy(s: Scenario, tr: Trajectory) -> dict:
 
 
 def _inv_heavy(s: Scenario, tr: Trajectory) -> dict:
-    i = s.pivot.body
+    pv = _required(s, "a pivot", s.pivot)
+    i = pv.body
     b = s.bodies[i]
-    L, scale = _angular_momentum(s, tr, s.pivot.anchor)
+    L, scale = _angular_momentum(s, tr, pv.anchor)
     E, Escale = _energy(s, tr)
     L3 = b.inertia[2] * tr.omega[:, i, 2]
     return {
@@ -505,7 +528,9 @@ def _ref_impact(s: Scenario) -> Reference:
         v2 - v1
     ):
         raise MechanicsValueError(f"scenario {s.name!r}: the impact must be head-on")
-    gap = float(np.linalg.norm(d)) - a.shape.dims[0] - b.shape.dims[0]
+    ra = _required(s, f"a shape for body {a.name!r}", a.shape).dims[0]
+    rb = _required(s, f"a shape for body {b.name!r}", b.shape).dims[0]
+    gap = float(np.linalg.norm(d)) - ra - rb
     closing = float(np.dot(v1 - v2, n))
     tc = gap / closing
     u1, u2 = (float(np.dot(v, n)) for v in (v1, v2))
@@ -517,11 +542,12 @@ def _ref_impact(s: Scenario) -> Reference:
     pos2 = np.where(after[:, None], x2 + tc * v2 + dt * v2f, x2 + t[:, None] * v2)
     vel1 = np.where(after[:, None], v1f, v1)
     vel2 = np.where(after[:, None], v2f, v2)
-    pos, vel = [None] * 2, [None] * 2
-    pos[i], pos[j], vel[i], vel[j] = pos1, pos2, vel1, vel2
+    pos, vel = {i: pos1, j: pos2}, {i: vel1, j: vel2}  # by body index
     R, w = zip(*(_free_rotation(bb, t) for bb in s.bodies), strict=True)
     figs = {"v1_after": v1f, "v2_after": v2f, "restitution": e, "impact_time": tc}
-    return Reference(_stack(t, s.bodies, pos, vel, list(R), list(w)), figs)
+    return Reference(
+        _stack(t, s.bodies, [pos[0], pos[1]], [vel[0], vel[1]], list(R), list(w)), figs
+    )
 
 
 def _measure_impact(s: Scenario, tr: Trajectory) -> dict:
@@ -534,7 +560,8 @@ def _measure_impact(s: Scenario, tr: Trajectory) -> dict:
     sep = float(np.dot(v2f - v1f, n))
     out = {"v1_after": v1f, "v2_after": v2f, "restitution": sep / float(np.dot(v1 - v2, n))}
     gap = float(np.linalg.norm(tr.position[-1, j] - tr.position[-1, i])) - (
-        a.shape.dims[0] + b.shape.dims[0]
+        _required(s, f"a shape for body {a.name!r}", a.shape).dims[0]
+        + _required(s, f"a shape for body {b.name!r}", b.shape).dims[0]
     )
     out["impact_time"] = (
         tr.t[-1] - gap / sep if sep > 0 else "the bodies do not separate at the end"
@@ -550,9 +577,9 @@ def _inv_impact(s: Scenario, tr: Trajectory) -> dict:
 
 
 def _bounce_numbers(s: Scenario):
-    b, gr = s.bodies[0], s.ground
+    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
     g = -float(np.dot(_gravity(s), gr.normal))
-    r = b.shape.dims[0]
+    r = _required(s, f"a shape for body {b.name!r}", b.shape).dims[0]
     h0 = float(np.dot(b.position, gr.normal)) - gr.height - r
     if np.dot(b.velocity, gr.normal) != 0 or h0 <= 0 or g <= 0:
         raise MechanicsValueError(
@@ -566,7 +593,7 @@ def _bounce_numbers(s: Scenario):
 
 def _ref_bounce(s: Scenario) -> Reference:
     t = np.asarray(s.sample_times)
-    b, gr = s.bodies[0], s.ground
+    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
     g, r, h0, tf, e = _bounce_numbers(s)
     nrm = np.asarray(gr.normal, dtype=float)
     # impacts at tf (1 + 2e + … + 2e^{k−1}); between them free flight.  For e < 1 they
@@ -576,8 +603,7 @@ def _ref_bounce(s: Scenario) -> Reference:
     t_rest = math.inf if e >= 1 else tf * (1.0 + e) / (1.0 - e)
     impacts = [tf]
     while impacts[-1] <= t[-1]:
-        k = len(impacts)
-        following = impacts[-1] + 2.0 * tf * e**k
+        following = impacts[-1] + 2.0 * tf * e ** len(impacts)
         if following == impacts[-1]:
             break
         impacts.append(following)
@@ -604,9 +630,10 @@ def _ref_bounce(s: Scenario) -> Reference:
 
 
 def _measure_bounce(s: Scenario, tr: Trajectory) -> dict:
-    gr = s.ground
+    gr = _required(s, "a ground", s.ground)
     nrm = np.asarray(gr.normal, dtype=float)
-    r = s.bodies[0].shape.dims[0]
+    b = s.bodies[0]
+    r = _required(s, f"a shape for body {b.name!r}", b.shape).dims[0]
     vn = tr.velocity[:, 0] @ nrm
     zn = tr.position[:, 0] @ nrm - gr.height - r
     apex = crossings(tr.t, vn, deg=2, direction=-1)
@@ -621,7 +648,7 @@ def _measure_bounce(s: Scenario, tr: Trajectory) -> dict:
 
 
 def _inv_bounce(s: Scenario, tr: Trajectory) -> dict:
-    nrm = np.asarray(s.ground.normal, dtype=float)
+    nrm = np.asarray(_required(s, "a ground", s.ground).normal, dtype=float)
     P, scale = _momentum(s, tr)
     return {"p_tangential": (P - np.outer(P @ nrm, nrm), scale)}
 
@@ -630,7 +657,7 @@ def _inv_bounce(s: Scenario, tr: Trajectory) -> dict:
 
 
 def _rocket_numbers(s: Scenario):
-    th = s.thrust
+    th = _required(s, "a thrust", s.thrust)
     b = s.bodies[th.body]
     m0, q, u, T = b.mass, th.mass_rate, th.exhaust_speed, th.burn_time
     d = np.array(b.R_A_O).T @ np.asarray(th.axis, dtype=float)  # the axis in space
@@ -659,8 +686,10 @@ def _ref_rocket(s: Scenario) -> Reference:
 
 def _measure_rocket(s: Scenario, tr: Trajectory) -> dict:
     d = _rocket_numbers(s)[-1]
-    i = s.thrust.body
-    out = {"delta_v": float(np.dot(tr.velocity[-1, i] - tr.velocity[0, i], d))}
+    i = _required(s, "a thrust", s.thrust).body
+    out: dict[str, float | str] = {
+        "delta_v": float(np.dot(tr.velocity[-1, i] - tr.velocity[0, i], d))
+    }
     out["burnout_mass"] = (
         float(tr.masses[-1, i])
         if tr.masses is not None
@@ -798,7 +827,7 @@ def _build() -> dict[str, Scenario]:
         m,
         top.inertia,
         top.shape,
-        position=tuple(float(x) for x in R0.T @ (0.0, 0.0, ell)),
+        position=_vec3(R0.T @ (0.0, 0.0, ell)),
         R_A_O=top.R_A_O,
         omega=top.omega,
     )

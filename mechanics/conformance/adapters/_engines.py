@@ -51,7 +51,7 @@ def require(module: str, extra: str, *, quiet: bool = False):
     return _require(module, extra, package=extra)
 
 
-def quiet_stdout() -> Iterator[None]:
+def _quiet_stdout() -> Iterator[None]:
     """Send file descriptors 1 and 2 to the null device for the duration (C code's
     printf included: pybullet's build banner goes to stderr); a stream without a
     descriptor (a notebook's) is left alone.  Only for an import, whose failure is an
@@ -78,7 +78,8 @@ def quiet_stdout() -> Iterator[None]:
             os.close(copy)
 
 
-quiet_stdout = contextlib.contextmanager(quiet_stdout)
+# applied after the definition, so that mutmut mutates the function (it skips decorated ones)
+quiet_stdout = contextlib.contextmanager(_quiet_stdout)
 
 
 def _flush_c_stdio() -> None:

@@ -79,12 +79,18 @@ from __future__ import annotations
 
 import logging
 import math
+from typing import Any
 
 import numpy as np
 
 from ..._floats import EPS
 from ..._validate import as_positive_scalar
-from ...errors import MechanicsValueError, RestitutionRangeError, ResultOverflowError
+from ...errors import (
+    MechanicsValueError,
+    NonPositiveParameterError,
+    RestitutionRangeError,
+    ResultOverflowError,
+)
 from ..protocol import ConformanceError, Scenario, Trajectory
 from ._engines import (
     MissingExtraError,
@@ -313,8 +319,16 @@ class DrakeAdapter:
         """(simulator, plant, bodies) of ``scenario`` in its initial state."""
         pd = self._pd
         builder = pd.DiagramBuilder()
+        if self.mode != "discrete":
+            time_step = 0.0
+        elif step is None:
+            raise NonPositiveParameterError(
+                f"scenario {scenario.name!r}: the discrete plant needs a step > 0; got None"
+            )
+        else:
+            time_step = float(step)
         config = pd.MultibodyPlantConfig(
-            time_step=float(step) if self.mode == "discrete" else 0.0,
+            time_step=time_step,
             contact_model="point" if self.contact == "point" else "hydroelastic_with_fallback",
         )
         plant, scene_graph = pd.AddMultibodyPlant(config, builder)
@@ -349,10 +363,11 @@ class DrakeAdapter:
                 "ground",
                 self._properties(d, half_space=True),
             )
-        joint = None
+        # the pivot's body, its BallRpyJoint and the joint's frames R_WF, R_BM
+        ball: tuple[int, Any, np.ndarray, np.ndarray] | None = None
         r, v, R, w = body_rows(scenario)
         if scenario.pivot is not None:
-            joint, R_WF, R_BM = self._ball_joint(pd, plant, scenario, bodies)
+            ball = (scenario.pivot.body, *self._ball_joint(pd, plant, scenario, bodies))
         # only the scenario's contacts: filter the pairs it does not list
         listed = {(i, j) for i, j, _ in scenario.pair_restitution}
         shaped = [k for k, b in enumerate(scenario.bodies) if b.shape is not None]
@@ -378,7 +393,8 @@ class DrakeAdapter:
                     f"scenario {scenario.name!r}: Drake holds body {b.name!r} with mass "
                     f"{mass!r} and inertia {Jd}, not the scenario's {b.mass!r}, {J}"
                 )
-            if scenario.pivot is not None and scenario.pivot.body == k:
+            if ball is not None and ball[0] == k:
+                _, joint, R_WF, R_BM = ball
                 R_FM = R_WF.T @ R[k].T @ R_BM
                 joint.set_angles(ctx, pd.RollPitchYaw(pd.RotationMatrix(R_FM)).vector())
                 joint.set_angular_velocity(ctx, R_WF.T @ (R[k].T @ w[k]))
@@ -483,6 +499,5 @@ def _frame_with_axis(a: np.ndarray, k: int) -> np.ndarray:
     b = np.cross(a, helper)
     b /= np.linalg.norm(b)
     c = np.cross(a, b)
-    cols = [None, None, None]
-    cols[k], cols[(k + 1) % 3], cols[(k + 2) % 3] = a, b, c
-    return np.column_stack(cols)
+    cols = {k: a, (k + 1) % 3: b, (k + 2) % 3: c}  # by column index
+    return np.column_stack([cols[0], cols[1], cols[2]])

@@ -391,6 +391,11 @@ class MuJoCoAdapter:
                 )
             else:
                 p = scenario.pivot
+                if p is None:  # build() gives a body a ball joint only for the pivot
+                    raise MechanicsValueError(
+                        f"scenario {scenario.name!r}: the model's body {k} has a ball joint "
+                        "but the scenario has no pivot"
+                    )
                 R = matrix_from_quat(data.qpos[a : a + 4])
                 arm = R.T @ -np.asarray(p.point, dtype=float)  # pivot to G, space components
                 ws[k] = data.qvel[d : d + 3]

@@ -161,13 +161,15 @@ def _restitutions(scenario: Scenario) -> tuple[list[float] | None, str | None]:
             if b.shape is not None:
                 r[k] = e
     for i, j, e in scenario.pair_restitution:
-        if r[i] is None and r[j] is None:
-            r[i] = r[j] = math.sqrt(e)
-        elif r[j] is None:
-            r[j] = e / r[i] if r[i] > 0 else 0.0
-        elif r[i] is None:
-            r[i] = e / r[j] if r[j] > 0 else 0.0
-        if not (0 <= r[i] <= 1 and 0 <= r[j] <= 1) or abs(r[i] * r[j] - e) > 4 * EPS:
+        ri, rj = r[i], r[j]
+        if ri is None:
+            ri = math.sqrt(e) if rj is None else (e / rj if rj > 0 else 0.0)
+            if rj is None:
+                rj = ri
+        elif rj is None:
+            rj = e / ri if ri > 0 else 0.0
+        r[i], r[j] = ri, rj
+        if not (0 <= ri <= 1 and 0 <= rj <= 1) or abs(ri * rj - e) > 4 * EPS:
             return None, (
                 f"PyBullet restitutes a contact with the product of the two bodies' "
                 f"coefficients; no per-body values give pair ({i}, {j}) its e = {e!r} "
@@ -233,7 +235,7 @@ class PyBulletAdapter:
         base, 0 for the pivoted link).  The caller disconnects."""
         p = self._p
         restitution, why = _restitutions(scenario)
-        if why is not None:
+        if restitution is None:  # then why says why
             raise MechanicsValueError(f"scenario {scenario.name!r}: {why}")
         cid = p.connect(p.DIRECT)
         kw = {"physicsClientId": cid}

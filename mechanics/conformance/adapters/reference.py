@@ -92,6 +92,7 @@ def scene_from_scenario(s: Scenario, *, method: str = "integrate", rtol=None, at
     bodies, effects = [], []
     for i, b in enumerate(s.bodies):
         still = not any(b.omega)
+        entry: dict | None  # the body's entry; None: the engine cannot collide the body
         if s.thrust is not None and s.thrust.body == i:
             if not still:
                 return "the scene engine's thrust is space-fixed: the rocket must not spin"

@@ -126,7 +126,12 @@ class SiconosAdapter:
                         "finite set of contact points, which is what the adapter maps"
                     )
         for i, j, _ in scenario.pair_restitution:
-            kinds = {scenario.bodies[k].shape.kind for k in (i, j)}
+            kinds = set()
+            for k in (i, j):
+                shape = scenario.bodies[k].shape
+                if shape is None:  # common_unsupported refused it above
+                    return f"contact pair ({i}, {j}): body {scenario.bodies[k].name!r} has no shape"
+                kinds.add(shape.kind)
             if kinds != {"sphere"}:
                 return (
                     f"contact pair ({i}, {j}) of a {' and a '.join(sorted(kinds))}: the "
