@@ -46,6 +46,16 @@ def module_name(path: Path) -> str:
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
+def _from_module(node: ast.ImportFrom, package: str) -> str:
+    """The module a ``from ... import`` names, a relative one resolved against ``package``."""
+    base = node.module or ""
+    if node.level:
+        anchor = package.split(".")
+        anchor = anchor[: len(anchor) - (node.level - 1)]
+        base = ".".join([*anchor, base] if base else anchor)
+    return base
+
+
 def imported(module: str, source: str, *, is_package: bool = False) -> set[str]:
     """Every module an import statement in ``source`` names (relative ones resolved
     against ``module``), with the line: {"name:line"}."""
@@ -55,11 +65,7 @@ def imported(module: str, source: str, *, is_package: bool = False) -> set[str]:
         if isinstance(node, ast.Import):
             out |= {f"{a.name}:{node.lineno}" for a in node.names}
         elif isinstance(node, ast.ImportFrom):
-            base = node.module or ""
-            if node.level:
-                anchor = package.split(".")
-                anchor = anchor[: len(anchor) - (node.level - 1)]
-                base = ".".join([*anchor, base] if base else anchor)
+            base = _from_module(node, package)
             out.add(f"{base}:{node.lineno}")
             out |= {f"{base}.{a.name}:{node.lineno}" for a in node.names}
     return out
@@ -137,11 +143,7 @@ def import_graph(sources: dict[str, tuple[str, bool]]) -> dict[str, set[str]]:
             if isinstance(node, ast.Import):
                 out |= {a.name for a in node.names if a.name in sources}
             elif isinstance(node, ast.ImportFrom):
-                base = node.module or ""
-                if node.level:
-                    anchor = package.split(".")
-                    anchor = anchor[: len(anchor) - (node.level - 1)]
-                    base = ".".join([*anchor, base] if base else anchor)
+                base = _from_module(node, package)
                 for a in node.names:
                     if f"{base}.{a.name}" in sources:
                         out.add(f"{base}.{a.name}")
