@@ -44,6 +44,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 from scipy import special
 
 from ._validate import as_float_array, broadcast_checked, finite_result
@@ -79,7 +80,7 @@ _PI_LO = 1.2246467991473532e-16  # π − fl(π), so π = _PI_HI + _PI_LO to 2·
 # ------------------------------------------------------------------- validation
 
 
-def _finite(out: np.ndarray, what: str) -> np.ndarray:
+def _finite(out: npt.NDArray[np.float64], what: str) -> npt.NDArray[np.float64]:
     if not np.isfinite(out).all():
         raise ResultOverflowError(
             f"{what} overflows float64 (finite inputs, result beyond 1.8e308)"
@@ -87,7 +88,7 @@ def _finite(out: np.ndarray, what: str) -> np.ndarray:
     return out
 
 
-def _positive(x, name: str) -> np.ndarray:
+def _positive(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     a = as_float_array(x, name)
     bad = ~(a > 0)
     if bad.any():
@@ -95,7 +96,7 @@ def _positive(x, name: str) -> np.ndarray:
     return a
 
 
-def _principal_moments(J_principal) -> np.ndarray:
+def _principal_moments(J_principal: npt.ArrayLike) -> npt.NDArray[np.float64]:
     J = as_float_array(J_principal, "J_principal", (3,))
     bad = ~(J > 0)
     if bad.any():
@@ -122,7 +123,9 @@ def _principal_moments(J_principal) -> np.ndarray:
 # ----------------------------------------------------------- angular momentum
 
 
-def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarray:
+def angular_momentum_rigid(
+    J: npt.ArrayLike, omega: npt.ArrayLike, *, allow_singular: bool = True
+) -> npt.NDArray[np.float64]:
     """L = J ω (4.6), (4.12): about the point ``J`` refers to (G or a fixed point C).
 
     Domain: ``J`` (..., 3, 3) a physical inertia tensor as :func:`~mechanics.inertia.check_inertia`
@@ -165,7 +168,9 @@ def angular_momentum_rigid(J, omega, *, allow_singular: bool = True) -> np.ndarr
 angular_momentum_rigid = broadcast_checked(angular_momentum_rigid)
 
 
-def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.ndarray:
+def rotational_kinetic_energy(
+    J: npt.ArrayLike, omega: npt.ArrayLike, *, allow_singular: bool = True
+) -> npt.NDArray[np.float64]:
     """T = ½ ωᵀ J ω (3.15), (4.32), about G (plus ½ m v_G² for the total) or a fixed point.
 
     Domain: as :func:`angular_momentum_rigid`: ``J`` physical (check_inertia, else
@@ -189,7 +194,9 @@ def rotational_kinetic_energy(J, omega, *, allow_singular: bool = True) -> np.nd
 rotational_kinetic_energy = broadcast_checked(rotational_kinetic_energy)
 
 
-def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
+def euler_equations_rhs(
+    J_principal: npt.ArrayLike, omega: npt.ArrayLike, M: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """dω/dt from Euler's dynamic equations (4.47), body principal components.
 
     Domain: ``J_principal`` (..., 3) each > 0 (else NonPositiveParameterError naming it) and
@@ -243,7 +250,9 @@ def euler_equations_rhs(J_principal, omega, M) -> np.ndarray:
 euler_equations_rhs = finite_result(euler_equations_rhs)
 
 
-def fixed_axis_angular_acceleration(J_axis, M_axis) -> np.ndarray:
+def fixed_axis_angular_acceleration(
+    J_axis: npt.ArrayLike, M_axis: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """φ̈ = M_z / J_z for rotation about a fixed axis (the z-component of (4.42); (4.48)).
 
     Domain: ``J_axis`` > 0 (else NonPositiveParameterError), any finite ``M_axis``, broadcast
@@ -269,7 +278,14 @@ fixed_axis_angular_acceleration = finite_result(fixed_axis_angular_acceleration)
 # --------------------------------------------------------- the physical pendulum
 
 
-def _pendulum(J_axis, m, g, h):
+def _pendulum(
+    J_axis: npt.ArrayLike, m: npt.ArrayLike, g: npt.ArrayLike, h: npt.ArrayLike
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]:
     J = _positive(J_axis, "J_axis")
     mm = _positive(m, "m")
     gg = _positive(g, "g")
@@ -277,12 +293,19 @@ def _pendulum(J_axis, m, g, h):
     return J, mm, gg, hh
 
 
-def _split(*xs):
+def _split(
+    *xs: npt.NDArray[np.float64],
+) -> list[tuple[npt.NDArray[np.float64], npt.NDArray[np.intc]]]:
     """Each x as (f, e) with x = f 2**e, f in [1/2, 1) (exact)."""
     return [np.frexp(x) for x in xs]
 
 
-def _omega0_squared(J, m, g, h):
+def _omega0_squared(
+    J: npt.NDArray[np.float64],
+    m: npt.NDArray[np.float64],
+    g: npt.NDArray[np.float64],
+    h: npt.NDArray[np.float64],
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.intc]]:
     """ω0² = m g h/J_z (4.51) as (q, e), ω0² = q 2**e: q = (m' g' h')/J' of the mantissas,
     the same roundings as the plain quotient, with the powers of two carried apart (exactly),
     so that no intermediate overflows or underflows (q lies in (1/8, 2))."""
@@ -290,13 +313,17 @@ def _omega0_squared(J, m, g, h):
     return (fm * fg) * fh / fJ, em + eg + eh - eJ
 
 
-def _sqrt_parts(q, e):
+def _sqrt_parts(
+    q: npt.NDArray[np.float64], e: npt.NDArray[np.intc]
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.intc]]:
     """√(q 2**e) as (s, k), = s 2**k with s = √(q 2**(e mod 2)): the exponent halved exactly."""
     k, odd = np.divmod(e, 2)
     return np.sqrt(np.ldexp(q, odd)), k
 
 
-def reduced_length(J_axis, m, h) -> np.ndarray:
+def reduced_length(
+    J_axis: npt.ArrayLike, m: npt.ArrayLike, h: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """The reduced length ℓ = J_z/(m h) of a physical pendulum (4.49).
 
     Domain: ``J_axis``, ``m``, ``h`` > 0 (else NonPositiveParameterError naming it), broadcast
@@ -314,18 +341,26 @@ def reduced_length(J_axis, m, h) -> np.ndarray:
     (fJ, eJ), (fm, em), (fh, eh) = _split(
         _positive(J_axis, "J_axis"), _positive(m, "m"), _positive(h, "h")
     )
-    return np.ldexp(fJ / (fm * fh), eJ - em - eh)
+    ell: npt.NDArray[np.float64] = np.ldexp(fJ / (fm * fh), eJ - em - eh)
+    return ell
 
 
 reduced_length = finite_result(reduced_length)
 
 
-def _omega0(J, m, g, h):
+def _omega0(
+    J: npt.NDArray[np.float64],
+    m: npt.NDArray[np.float64],
+    g: npt.NDArray[np.float64],
+    h: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
     s, k = _sqrt_parts(*_omega0_squared(J, m, g, h))
     return np.ldexp(s, k)
 
 
-def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
+def pendulum_small_period(
+    J_axis: npt.ArrayLike, m: npt.ArrayLike, g: npt.ArrayLike, h: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Small-oscillation period T_p = 2π √(J_z/(m g h)) = 2π √(ℓ/g) (4.51)–(4.52).
 
     Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError naming it),
@@ -353,7 +388,9 @@ def pendulum_small_period(J_axis, m, g, h) -> np.ndarray:
 pendulum_small_period = finite_result(pendulum_small_period)
 
 
-def _half_angle_sin_cos(theta_0) -> tuple[np.ndarray, np.ndarray]:
+def _half_angle_sin_cos(
+    theta_0: npt.NDArray[np.float64],
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """k = sin(|θ0|/2) and k' = cos(|θ0|/2), k' from π − |θ0| without cancellation."""
     a = np.abs(theta_0)
     k = np.sin(0.5 * a)
@@ -363,7 +400,7 @@ def _half_angle_sin_cos(theta_0) -> tuple[np.ndarray, np.ndarray]:
     return k, kp
 
 
-def _amplitude(theta_0) -> np.ndarray:
+def _amplitude(theta_0: npt.ArrayLike) -> npt.NDArray[np.float64]:
     t0 = as_float_array(theta_0, "theta_0")
     bad = np.abs(t0) > _PI_HI
     if bad.any():
@@ -374,7 +411,13 @@ def _amplitude(theta_0) -> np.ndarray:
     return t0
 
 
-def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
+def pendulum_period(
+    J_axis: npt.ArrayLike,
+    m: npt.ArrayLike,
+    g: npt.ArrayLike,
+    h: npt.ArrayLike,
+    theta_0: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """Exact period T = 4 K(k²)/ω0 of a physical pendulum with amplitude θ0 (from (4.50)).
 
     Domain: as :func:`pendulum_small_period` for ``J_axis``, ``m``, ``g``, ``h`` (> 0, else
@@ -408,13 +451,21 @@ def pendulum_period(J_axis, m, g, h, theta_0) -> np.ndarray:
     _, kp = _half_angle_sin_cos(t0)
     K = special.ellipkm1(kp * kp)
     s, k = _sqrt_parts(*_omega0_squared(J, mm, gg, hh))
-    return np.ldexp(4.0 * K / s, -k)
+    T: npt.NDArray[np.float64] = np.ldexp(4.0 * K / s, -k)  # K: scipy ships no types
+    return T
 
 
 pendulum_period = finite_result(pendulum_period)
 
 
-def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
+def pendulum_motion(
+    t: npt.ArrayLike,
+    J_axis: npt.ArrayLike,
+    m: npt.ArrayLike,
+    g: npt.ArrayLike,
+    h: npt.ArrayLike,
+    theta_0: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """Exact angle φ(t) of a physical pendulum released from rest at φ(0) = θ0 (4.50).
 
     Domain: ``J_axis``, ``m``, ``g``, ``h``, ``theta_0`` as :func:`pendulum_period` (> 0, else
@@ -467,13 +518,21 @@ def pendulum_motion(t, J_axis, m, g, h, theta_0) -> np.ndarray:
         )
     _, cn, _, _ = ellipj(u, k * k, m1=kp * kp)
     phi = 2.0 * np.arctan2(k * cn, kp)
-    return np.where(t0 < 0, -phi, phi)
+    phi_t: npt.NDArray[np.float64] = np.where(t0 < 0, -phi, phi)
+    return phi_t
 
 
 pendulum_motion = finite_result(pendulum_motion)
 
 
-def pendulum_angular_velocity_at(theta, J_axis, m, g, h, theta_0) -> np.ndarray:
+def pendulum_angular_velocity_at(
+    theta: npt.ArrayLike,
+    J_axis: npt.ArrayLike,
+    m: npt.ArrayLike,
+    g: npt.ArrayLike,
+    h: npt.ArrayLike,
+    theta_0: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """|φ̇| at angle φ = ``theta`` for a pendulum released from rest at θ0, by energy (4.57).
 
     Domain: as :func:`pendulum_period` (> 0, else NonPositiveParameterError; |θ0| ≤ π, else
@@ -525,7 +584,15 @@ pendulum_angular_velocity_at = finite_result(pendulum_angular_velocity_at)
 # ---------------------------------------------------------------------- reactions
 
 
-def axis_reaction(m, h, phidot, phiddot, *, F_a_rho, F_a_phi) -> np.ndarray:
+def axis_reaction(
+    m: npt.ArrayLike,
+    h: npt.ArrayLike,
+    phidot: npt.ArrayLike,
+    phiddot: npt.ArrayLike,
+    *,
+    F_a_rho: npt.ArrayLike,
+    F_a_phi: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """Reaction R from a fixed axis, polar components (R_ρ, R_φ) (4.70)–(4.71).
 
     Domain: ``m`` > 0, ``h`` ≥ 0 (else NonPositiveParameterError), any finite ``phidot``,
@@ -572,7 +639,15 @@ def axis_reaction(m, h, phidot, phiddot, *, F_a_rho, F_a_phi) -> np.ndarray:
 axis_reaction = finite_result(axis_reaction)
 
 
-def pendulum_axis_reaction(phi, J_axis, m, g, h, *, E) -> np.ndarray:
+def pendulum_axis_reaction(
+    phi: npt.ArrayLike,
+    J_axis: npt.ArrayLike,
+    m: npt.ArrayLike,
+    g: npt.ArrayLike,
+    h: npt.ArrayLike,
+    *,
+    E: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """Axis reaction of the physical pendulum as a function of φ and E (4.76)–(4.77).
 
     Domain: ``J_axis``, ``m``, ``g``, ``h`` > 0 (else NonPositiveParameterError), any finite ``phi``
@@ -617,8 +692,17 @@ pendulum_axis_reaction = finite_result(pendulum_axis_reaction)
 
 
 def bearing_reactions(
-    J_O, m, r_G, phidot, phiddot, z_A, *, F_a, M_a, axial_at: str = "O"
-) -> tuple[np.ndarray, np.ndarray]:
+    J_O: npt.ArrayLike,
+    m: npt.ArrayLike,
+    r_G: npt.ArrayLike,
+    phidot: npt.ArrayLike,
+    phiddot: npt.ArrayLike,
+    z_A: npt.ArrayLike,
+    *,
+    F_a: npt.ArrayLike,
+    M_a: npt.ArrayLike,
+    axial_at: str = "O",
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Reactions R1 at bearing A and R2 at bearing O of a body turning about e_z (4.78)–(4.85).
 
     Domain: ``J_O`` (..., 3, 3) as :func:`~mechanics.inertia.check_inertia` about a point, singular

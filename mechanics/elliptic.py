@@ -60,6 +60,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 import scipy.special as sc
 
 from ._floats import EPS
@@ -233,7 +234,9 @@ def _scaled(u, rt):
     return v
 
 
-def ellipj(u, m, *, m1=None):
+def ellipj(
+    u: npt.ArrayLike, m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None
+) -> tuple[np.ndarray, ...]:
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
 
     Domain: every finite u and every finite m (m > 1 by the reciprocal modulus, m < 0 by the

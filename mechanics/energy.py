@@ -28,10 +28,12 @@ Accuracy: sums over particles use the compensated sums of
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 from scipy.integrate import simpson
 
 from ._validate import as_float_array, finite_result
 from .errors import (
+    MechanicsValueError,
     NegativeMassError,
     NonPhysicalInertiaError,
     NonPositiveParameterError,
@@ -66,7 +68,9 @@ __all__ = [
 ]
 
 
-def _nonneg(x, name: str, error=NegativeMassError) -> np.ndarray:
+def _nonneg(
+    x: npt.ArrayLike, name: str, error: type[MechanicsValueError] = NegativeMassError
+) -> npt.NDArray[np.float64]:
     a = as_float_array(x, name)
     neg = a < 0
     if neg.any():
@@ -78,7 +82,9 @@ def _nonneg(x, name: str, error=NegativeMassError) -> np.ndarray:
 # ------------------------------------------------------------ kinetic energy
 
 
-def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
+def kinetic_energy_rigid(
+    m: npt.ArrayLike, v_G: npt.ArrayLike, omega: npt.ArrayLike, J_G: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Kinetic energy of a rigid body, T = ½ m v_G² + ½ ωᵀ J_G ω (3.7), (3.24).
 
     Domain: m ≥ 0 (else NegativeMassError), finite v_G and omega (..., 3), J_G a physical inertia
@@ -123,7 +129,9 @@ def kinetic_energy_rigid(m, v_G, omega, J_G) -> np.ndarray:
 kinetic_energy_rigid = finite_result(kinetic_energy_rigid)
 
 
-def kinetic_energy_fixed_axis(J_axis, omega) -> np.ndarray:
+def kinetic_energy_fixed_axis(
+    J_axis: npt.ArrayLike, omega: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """T = ½ J φ̇² for rotation about a fixed axis (3.26), (3.27), (3.30).
 
     Domain: J_axis ≥ 0 (else NonPhysicalInertiaError), any finite omega; a result beyond float64
@@ -154,7 +162,9 @@ kinetic_energy_fixed_axis = finite_result(kinetic_energy_fixed_axis)
 # --------------------------------------------------------------- power, work
 
 
-def _pair(F, v, names=("F", "v")) -> tuple[np.ndarray, np.ndarray]:
+def _pair(
+    F: npt.ArrayLike, v: npt.ArrayLike, names: tuple[str, str] = ("F", "v")
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     FF = as_float_array(F, names[0], (3,))
     vv = as_float_array(v, names[1], (3,))
     try:
@@ -166,7 +176,7 @@ def _pair(F, v, names=("F", "v")) -> tuple[np.ndarray, np.ndarray]:
     return FF, vv
 
 
-def power(F, v) -> np.ndarray:
+def power(F: npt.ArrayLike, v: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Power of a system of forces, P = Σ_k F_k · v_k (3.1), compensated.
 
     Domain: finite F and v of shape (..., N, 3) (N forces; one force is (1, 3)); a result beyond
@@ -200,7 +210,7 @@ def power(F, v) -> np.ndarray:
 power = finite_result(power)
 
 
-def work_from_power(P, t) -> np.ndarray:
+def work_from_power(P: npt.ArrayLike, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """W_12 = ∫ P dt (3.36) from samples of the power, by composite Simpson.
 
     Domain: t of shape (K,), K ≥ 2, strictly increasing (else NonPositiveParameterError), finite P
@@ -240,7 +250,7 @@ def work_from_power(P, t) -> np.ndarray:
 work_from_power = finite_result(work_from_power)
 
 
-def work_along_path(F, r) -> np.ndarray:
+def work_along_path(F: npt.ArrayLike, r: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Work of a force along a sampled path, W = ∫ F · dr (3.38), by the trapezoid rule.
 
     Domain: finite F and r of shape (..., K, 3) with K ≥ 2 samples (else ShapeError); a result
@@ -287,7 +297,7 @@ def work_along_path(F, r) -> np.ndarray:
 work_along_path = finite_result(work_along_path)
 
 
-def work_of_couple(M, dphi) -> np.ndarray:
+def work_of_couple(M: npt.ArrayLike, dphi: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Work of a constant moment M over a rotation δφ about a fixed axis: W = M · δφ (3.70).
 
     Domain: finite M and dphi of shape (..., 3); a result beyond float64 raises ResultOverflowError.
@@ -308,7 +318,9 @@ def work_of_couple(M, dphi) -> np.ndarray:
 work_of_couple = finite_result(work_of_couple)
 
 
-def rigid_body_power(F, M_A, v_A, omega) -> np.ndarray:
+def rigid_body_power(
+    F: npt.ArrayLike, M_A: npt.ArrayLike, v_A: npt.ArrayLike, omega: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Power of the forces on a rigid body, P = F · v_A + M_A · ω (3.65 per unit time).
 
     Domain: finite F, M_A, v_A, omega of shape (..., 3); a result beyond float64 raises
@@ -338,7 +350,9 @@ rigid_body_power = finite_result(rigid_body_power)
 # ------------------------------------------------------------------ potentials
 
 
-def gravity_potential(m, r, *, g) -> np.ndarray:
+def gravity_potential(
+    m: npt.ArrayLike, r: npt.ArrayLike, *, g: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Potential energy of uniform gravity, Φ^e = −Σ m_k g · r_k = −m g · r_G (3.55)–(3.56).
 
     Domain: masses m ≥ 0 of shape (..., N) (``check_masses``), finite r (..., N, 3) and g (..., 3);
@@ -374,7 +388,14 @@ def gravity_potential(m, r, *, g) -> np.ndarray:
 gravity_potential = finite_result(gravity_potential)
 
 
-def _spring_args(k, ell_0, r_1, r_2):
+def _spring_args(
+    k: npt.ArrayLike, ell_0: npt.ArrayLike, r_1: npt.ArrayLike, r_2: npt.ArrayLike
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]:
     kk = as_float_array(k, "k")
     if (kk < 0).any():
         raise OutOfDomainError(f"spring constant k = {k!r} must be >= 0")
@@ -386,7 +407,14 @@ def _spring_args(k, ell_0, r_1, r_2):
     return kk, ll, d, np.linalg.norm(d, axis=-1)
 
 
-def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
+def spring_potential(
+    k: npt.ArrayLike,
+    ell_0: npt.ArrayLike,
+    r_1: npt.ArrayLike,
+    r_2: npt.ArrayLike,
+    *,
+    tension_only: bool = False,
+) -> npt.NDArray[np.float64]:
     """Φ = ½ k (|r_1 − r_2| − ℓ_0)² of a linear spring between two points (3.53).
 
     Domain: k ≥ 0 and ℓ_0 ≥ 0 (else OutOfDomainError), finite r_1, r_2 (..., 3); a result beyond
@@ -412,7 +440,14 @@ def spring_potential(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.nd
 spring_potential = finite_result(spring_potential)
 
 
-def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarray:
+def spring_force(
+    k: npt.ArrayLike,
+    ell_0: npt.ArrayLike,
+    r_1: npt.ArrayLike,
+    r_2: npt.ArrayLike,
+    *,
+    tension_only: bool = False,
+) -> npt.NDArray[np.float64]:
     """Force on point 1 from the spring: −∇_1 Φ = −k (|r_12| − ℓ_0) r_12/|r_12| (3.48).
 
     Domain: k ≥ 0, ℓ_0 ≥ 0, finite r_1 ≠ r_2 (coincident ends: NonPositiveParameterError, the
@@ -452,7 +487,7 @@ def spring_force(k, ell_0, r_1, r_2, *, tension_only: bool = False) -> np.ndarra
 spring_force = finite_result(spring_force)
 
 
-def torsion_potential(tau_0, phi) -> np.ndarray:
+def torsion_potential(tau_0: npt.ArrayLike, phi: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Φ(φ) = ½ τ_0 φ² of a torsion spring with moment M = −τ_0 φ (3.71)–(3.72).
 
     Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
@@ -476,7 +511,7 @@ def torsion_potential(tau_0, phi) -> np.ndarray:
 torsion_potential = finite_result(torsion_potential)
 
 
-def torsion_moment(tau_0, phi) -> np.ndarray:
+def torsion_moment(tau_0: npt.ArrayLike, phi: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """The restoring moment M(φ) = −τ_0 φ of a torsion spring (Example 3.5).
 
     Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
@@ -485,7 +520,8 @@ def torsion_moment(tau_0, phi) -> np.ndarray:
     tt = as_float_array(tau_0, "tau_0")
     if (tt < 0).any():
         raise OutOfDomainError(f"torsion constant tau_0 = {tau_0!r} must be >= 0")
-    return -tt * as_float_array(phi, "phi")
+    M: npt.NDArray[np.float64] = -tt * as_float_array(phi, "phi")
+    return M
 
 
 torsion_moment = finite_result(torsion_moment)
@@ -494,7 +530,9 @@ torsion_moment = finite_result(torsion_moment)
 # ------------------------------------------------------- forces that do no work
 
 
-def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
+def contact_point_velocity(
+    v_G: npt.ArrayLike, omega: npt.ArrayLike, r_GC: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Velocity of the body point at the contact C, v_C = v_G + ω × GC (2.73).
 
     Domain: finite v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
@@ -515,7 +553,9 @@ def contact_point_velocity(v_G, omega, r_GC) -> np.ndarray:
 contact_point_velocity = finite_result(contact_point_velocity)
 
 
-def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
+def contact_power(
+    F_contact: npt.ArrayLike, v_G: npt.ArrayLike, omega: npt.ArrayLike, r_GC: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Power of a contact force acting on the body point C: P = F · (v_G + ω × GC).
 
     Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
@@ -536,7 +576,9 @@ def contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
 contact_power = finite_result(contact_power)
 
 
-def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
+def rolling_contact_power(
+    F_contact: npt.ArrayLike, v_G: npt.ArrayLike, omega: npt.ArrayLike, r_GC: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Power of the contact force (normal force plus static friction) on a rolling body (3.2.2).
 
     Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
@@ -562,7 +604,7 @@ def rolling_contact_power(F_contact, v_G, omega, r_GC) -> np.ndarray:
 rolling_contact_power = finite_result(rolling_contact_power)
 
 
-def pair_power(N, v_1, v_2) -> np.ndarray:
+def pair_power(N: npt.ArrayLike, v_1: npt.ArrayLike, v_2: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Net power of a force N on body 1 and its reaction −N on body 2: N · (v_1 − v_2).
 
     Domain: finite N, v_1, v_2 of shape (..., 3); a result beyond float64 raises

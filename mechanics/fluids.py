@@ -34,6 +34,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+import numpy.typing as npt
 from scipy.integrate import solve_ivp
 
 from ._validate import as_float_array, as_float_scalar, as_positive_scalar, finite_result
@@ -94,27 +95,30 @@ def _call(f: Field, r: np.ndarray, t: float, name: str, *, vector: bool | None) 
     return out
 
 
-def _points(r) -> np.ndarray:
+def _points(r: npt.ArrayLike) -> npt.NDArray[np.float64]:
     return as_float_array(r, "r", (3,))
 
 
-def _time(t) -> float:
+def _time(t: npt.ArrayLike) -> float:
     tt = as_float_array(t, "t")
     if tt.ndim != 0:
         raise ShapeError(f"t must be a scalar time; got shape {tt.shape}")
     return float(tt)
 
 
-def _space_step(r: np.ndarray, h) -> np.ndarray:
+def _space_step(r: npt.NDArray[np.float64], h: npt.ArrayLike | None) -> npt.NDArray[np.float64]:
     if h is None:
-        return H_REL * (1.0 + np.max(np.abs(r), axis=-1))
+        step: npt.NDArray[np.float64] = H_REL * (1.0 + np.max(np.abs(r), axis=-1))
+        return step
     hh = as_float_array(h, "h")
     if np.any(hh <= 0):
         raise NonPositiveParameterError(f"the step h must be > 0; got {h!r}")
     return np.broadcast_to(hh, r.shape[:-1]).astype(float)
 
 
-def _spatial_derivatives(f: Field, r, t, h, name: str, *, vector: bool | None) -> np.ndarray:
+def _spatial_derivatives(
+    f: Field, r: npt.ArrayLike, t: float, h: npt.ArrayLike | None, name: str, *, vector: bool | None
+) -> npt.NDArray[np.float64]:
     """∂f/∂x_j for j = 0, 1, 2 stacked on a new last axis: ``(..., [3,] 3)``."""
     r = _points(r)
     t = _time(t)
@@ -132,7 +136,9 @@ def _spatial_derivatives(f: Field, r, t, h, name: str, *, vector: bool | None) -
     return np.moveaxis(d, 0, -1)
 
 
-def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def velocity_gradient(
+    v: Field, r: npt.ArrayLike, t: float = 0.0, *, h: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """The velocity gradient G[..., i, j] = ∂v_i/∂x_j at the points ``r``.
 
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
@@ -170,7 +176,9 @@ def velocity_gradient(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
 velocity_gradient = finite_result(velocity_gradient)
 
 
-def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def divergence(
+    v: Field, r: npt.ArrayLike, t: float = 0.0, *, h: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """div v = ∇·v at the points ``r`` (8.6); shape ``(...)``.
 
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
@@ -186,13 +194,16 @@ def divergence(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     >>> abs(float(divergence(v, [1.0, 2.0, 3.0]))) < 1e-11
     True
     """
-    return np.trace(velocity_gradient(v, r, t, h=h), axis1=-2, axis2=-1)
+    div: npt.NDArray[np.float64] = np.trace(velocity_gradient(v, r, t, h=h), axis1=-2, axis2=-1)
+    return div
 
 
 divergence = finite_result(divergence)
 
 
-def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def curl(
+    v: Field, r: npt.ArrayLike, t: float = 0.0, *, h: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """curl v = ∇×v at the points ``r``; shape ``(..., 3)``.
 
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
@@ -219,7 +230,9 @@ def curl(v: Field, r, t=0.0, *, h=None) -> np.ndarray:
 curl = finite_result(curl)
 
 
-def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def gradient(
+    f: Field, r: npt.ArrayLike, t: float = 0.0, *, h: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """∇f of a scalar field at the points ``r``; shape ``(..., 3)``.
 
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
@@ -239,7 +252,9 @@ def gradient(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
 gradient = finite_result(gradient)
 
 
-def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def partial_time_derivative(
+    f: Field, r: npt.ArrayLike, t: float = 0.0, *, h: float | None = None
+) -> npt.NDArray[np.float64]:
     """∂f/∂t at fixed points ``r`` (8.9), for a scalar or a vector field.
 
     Domain: finite r (..., 3), scalar t, time step h > 0; f finite at t ± h, t ± 2h; a result beyond
@@ -260,13 +275,16 @@ def partial_time_derivative(f: Field, r, t=0.0, *, h=None) -> np.ndarray:
         if step <= 0:
             raise NonPositiveParameterError(f"the step h must be > 0; got {h!r}")
     vals = [_call(f, r, t + o * step, "f", vector=None) for o in _OFFSETS]
-    return sum(w * val for w, val in zip(_WEIGHTS, vals, strict=True)) / step
+    d: npt.NDArray[np.float64] = sum(w * val for w, val in zip(_WEIGHTS, vals, strict=True)) / step
+    return d
 
 
 partial_time_derivative = finite_result(partial_time_derivative)
 
 
-def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def material_derivative(
+    f: Field, v: Field, r: npt.ArrayLike, t: float = 0.0, *, h: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """The total (material) time derivative (8.12): df/dt = ∂f/∂t + (v·∇) f.
 
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
@@ -289,15 +307,18 @@ def material_derivative(f: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
     vel = _call(v, r, _time(t), "v", vector=True)
     df_dt = partial_time_derivative(f, r, t, h=None)
     grad = _spatial_derivatives(f, r, t, h, "f", vector=None)  # (..., [3,] 3)
+    rate: npt.NDArray[np.float64]
     if grad.ndim == r.ndim:  # scalar field: (..., 3)
-        return df_dt + np.einsum("...j,...j->...", grad, vel)
-    return df_dt + np.einsum("...ij,...j->...i", grad, vel)
+        rate = df_dt + np.einsum("...j,...j->...", grad, vel)
+        return rate
+    rate = df_dt + np.einsum("...ij,...j->...i", grad, vel)
+    return rate
 
 
 material_derivative = finite_result(material_derivative)
 
 
-def rigid_velocity_field(v_0, omega) -> Field:
+def rigid_velocity_field(v_0: npt.ArrayLike, omega: npt.ArrayLike) -> Field:
     """The velocity field of a rigid motion, v(r) = v(0) + ω × r (8.7).
 
     Domain: finite v_0 and omega of shape (3,) (else ShapeError); the field takes any finite points
@@ -314,7 +335,7 @@ def rigid_velocity_field(v_0, omega) -> Field:
     if v0.shape != (3,) or w.shape != (3,):
         raise ShapeError("v_0 and omega of a rigid velocity field must have shape (3,)")
 
-    def field(r, t=0.0):
+    def field(r: npt.ArrayLike, t: float = 0.0) -> npt.NDArray[np.float64]:
         return v0 + np.cross(w, np.asarray(r, dtype=float))
 
     return field
@@ -323,7 +344,9 @@ def rigid_velocity_field(v_0, omega) -> Field:
 rigid_velocity_field = finite_result(rigid_velocity_field)
 
 
-def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray:
+def continuity_residual(
+    rho: Field, v: Field, r: npt.ArrayLike, t: float = 0.0, *, h: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """∂ρ/∂t + ∇·(ρ v) at the points ``r``: zero when mass is conserved (8.18).
 
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
@@ -332,11 +355,15 @@ def continuity_residual(rho: Field, v: Field, r, t=0.0, *, h=None) -> np.ndarray
     """
     r = _points(r)
 
-    def flux(x, s):
-        return _call(rho, x, s, "rho", vector=False)[..., None] * _call(v, x, s, "v", vector=True)
+    def flux(x: npt.NDArray[np.float64], s: float) -> npt.NDArray[np.float64]:
+        rho_v: npt.NDArray[np.float64] = _call(rho, x, s, "rho", vector=False)[..., None] * _call(
+            v, x, s, "v", vector=True
+        )
+        return rho_v
 
     div_flux = np.trace(_spatial_derivatives(flux, r, t, h, "rho*v", vector=True), 0, -2, -1)
-    return partial_time_derivative(rho, r, t) + div_flux
+    res: npt.NDArray[np.float64] = partial_time_derivative(rho, r, t) + div_flux
+    return res
 
 
 continuity_residual = finite_result(continuity_residual)
@@ -345,7 +372,16 @@ continuity_residual = finite_result(continuity_residual)
 _positive = as_positive_scalar
 
 
-def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarray:
+def euler_residual(
+    v: Field,
+    p: Field,
+    r: npt.ArrayLike,
+    t: float = 0.0,
+    *,
+    rho: float,
+    g: float,
+    h: npt.ArrayLike | None = None,
+) -> npt.NDArray[np.float64]:
     """∂v/∂t + (v·∇)v − g_vec + ∇p/ρ at the points ``r``: zero for a flow of an ideal
     fluid of constant density ``rho`` under gravity g_vec = −g e_z (8.27).
 
@@ -374,13 +410,16 @@ def euler_residual(v: Field, p: Field, r, t=0.0, *, rho, g, h=None) -> np.ndarra
     accel = material_derivative(v, v, r, t, h=h)
     grad_p = _spatial_derivatives(p, r, t, h, "p", vector=False)
     g_vec = np.array([0.0, 0.0, -g_mag])
-    return accel - g_vec + grad_p / rho_0
+    res: npt.NDArray[np.float64] = accel - g_vec + grad_p / rho_0
+    return res
 
 
 euler_residual = finite_result(euler_residual)
 
 
-def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
+def bernoulli_constant(
+    v: npt.ArrayLike, p: npt.ArrayLike, z: npt.ArrayLike, *, rho_0: float, g: float
+) -> npt.NDArray[np.float64]:
     """½ ρ0 v² + ρ0 g z + p (8.34): constant along a streamline of a steady
     incompressible ideal flow.
 
@@ -413,7 +452,10 @@ def bernoulli_constant(v, p, z, *, rho_0, g) -> np.ndarray:
     zz = as_float_array(z, "z")
     rho = _positive(rho_0, "rho_0")
     g_mag = _positive(g, "g")
-    return 0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
+    B: npt.NDArray[np.float64] = (
+        0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
+    )
+    return B
 
 
 bernoulli_constant = finite_result(bernoulli_constant)
@@ -427,7 +469,9 @@ STREAMLINE_MIN_RTOL = 100 * EPS
 STREAMLINE_MAX_EVALS = 12 * 10**4
 
 
-def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
+def streamline(
+    v: Field, r_0: npt.ArrayLike, s: npt.ArrayLike, *, t: float = 0.0, rtol: float = 1e-12
+) -> npt.NDArray[np.float64]:
     """Points of the streamline dr/ds = v(r, t) through ``r_0`` (8.31), at the
     parameter values ``s`` (time frozen at ``t``; for a steady flow s is time).
 
@@ -467,7 +511,7 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
         return r0[None, :].copy()
     calls = [0]
 
-    def rhs(_s, y):
+    def rhs(_s: float, y: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         calls[0] += 1
         if calls[0] > STREAMLINE_MAX_EVALS:
             raise StepSizeError(
@@ -488,13 +532,14 @@ def streamline(v: Field, r_0, s, *, t=0.0, rtol=1e-12) -> np.ndarray:
     )
     if not sol.success:  # pragma: no cover - scipy reports why
         raise OutOfDomainError(f"streamline integration failed: {sol.message}")
-    return sol.y.T
+    points: npt.NDArray[np.float64] = sol.y.T  # scipy ships no types
+    return points
 
 
 streamline = finite_result(streamline)
 
 
-def _area_ratio(area_ratio) -> float:
+def _area_ratio(area_ratio: float) -> float:
     aa = as_float_array(area_ratio, "area_ratio")
     if aa.shape != ():
         raise ShapeError(f"area_ratio must be a scalar; got shape {aa.shape}")
@@ -506,7 +551,9 @@ def _area_ratio(area_ratio) -> float:
     return a
 
 
-def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
+def torricelli_speed(
+    h: npt.ArrayLike, *, g: float, area_ratio: float = 0.0
+) -> npt.NDArray[np.float64]:
     """Outflow speed u from a small hole at depth ``h`` (Example 8.1, 8.37).
 
     Domain: h ≥ 0, g > 0, a scalar area_ratio in [0, 1) (else OutOfDomainError); a result beyond
@@ -532,7 +579,7 @@ def torricelli_speed(h, *, g, area_ratio=0.0) -> np.ndarray:
 torricelli_speed = finite_result(torricelli_speed)
 
 
-def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
+def drain_time(h_0: npt.ArrayLike, *, g: float, area_ratio: float) -> npt.NDArray[np.float64]:
     """Time for a prismatic tank to empty through a small hole in its bottom
     (quasi-steady Torricelli outflow): T = √(2 h0 (1 − a²)/g) / a.
 
@@ -560,7 +607,9 @@ def drain_time(h_0, *, g, area_ratio) -> np.ndarray:
 drain_time = finite_result(drain_time)
 
 
-def tank_level(t, *, h_0, g, area_ratio) -> np.ndarray:
+def tank_level(
+    t: npt.ArrayLike, *, h_0: npt.ArrayLike, g: float, area_ratio: float
+) -> npt.NDArray[np.float64]:
     """Liquid level above a small hole in the bottom of a prismatic tank at times ``t``.
 
     Domain: t ≥ 0, h_0 ≥ 0, g > 0, a scalar area_ratio in (0, 1) (else OutOfDomainError); after the
@@ -587,7 +636,8 @@ def tank_level(t, *, h_0, g, area_ratio) -> np.ndarray:
     a = _area_ratio(area_ratio)
     c2 = a * a * float(g) / (2.0 * (1.0 - a) * (1.0 + a))
     left = np.maximum(T - tt, 0.0)
-    return c2 * left * left
+    level: npt.NDArray[np.float64] = c2 * left * left
+    return level
 
 
 tank_level = finite_result(tank_level)

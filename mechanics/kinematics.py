@@ -18,6 +18,7 @@ Conventions (Essén 1996, ch. 2.5–2.6)
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 
 from ._validate import as_float_array, finite_result
 from .errors import (
@@ -55,7 +56,7 @@ COLLINEAR_RTOL = 1e4 * EPS
 GIMBAL_LOCK_ATOL = 4 * EPS
 
 
-def omega_matrix_from_vector(w_A) -> np.ndarray:
+def omega_matrix_from_vector(w_A: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """The angular-velocity matrix (2.52) of the body components ``w_A``.
 
     Domain: any finite w_A of shape (..., 3); exact (entries are ±w_i).
@@ -71,7 +72,7 @@ def omega_matrix_from_vector(w_A) -> np.ndarray:
 omega_matrix_from_vector = finite_result(omega_matrix_from_vector)
 
 
-def vector_from_omega_matrix(Omega) -> np.ndarray:
+def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Body components of ω from the angular-velocity matrix (2.52).
 
     Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.
@@ -89,7 +90,9 @@ def vector_from_omega_matrix(Omega) -> np.ndarray:
 vector_from_omega_matrix = finite_result(vector_from_omega_matrix)
 
 
-def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> np.ndarray:
+def angular_velocity_from_matrix_rate(
+    R_A_O: npt.ArrayLike, Rdot_A_O: npt.ArrayLike, *, basis: str = "A"
+) -> npt.NDArray[np.float64]:
     """ω of the body A relative to O from ^A R^O and its rate, (2.45)–(2.52).
 
     Domain: R_A_O a rotation (``check_rotation``'s tolerance, else NotARotationError), any finite
@@ -122,14 +125,22 @@ def angular_velocity_from_matrix_rate(R_A_O, Rdot_A_O, *, basis: str = "A") -> n
     Rdot = as_float_array(Rdot_A_O, "Rdot_A_O", (3, 3))
     w_A = vector_from_omega_matrix(Rdot @ np.swapaxes(R, -1, -2))
     if basis == "O":
-        return np.einsum("...ji,...j->...i", R, w_A)
+        w_O: npt.NDArray[np.float64] = np.einsum("...ji,...j->...i", R, w_A)
+        return w_O
     return w_A
 
 
 angular_velocity_from_matrix_rate = finite_result(angular_velocity_from_matrix_rate)
 
 
-def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot) -> np.ndarray:
+def angular_velocity_from_euler_rates(
+    psi: npt.ArrayLike,
+    theta: npt.ArrayLike,
+    phi: npt.ArrayLike,
+    psidot: npt.ArrayLike,
+    thetadot: npt.ArrayLike,
+    phidot: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """Body components of ω from Euler angles and rates: Euler's kinematic equations (2.69).
 
     Domain: all six finite and broadcasting; no singularity in this direction (gimbal lock only
@@ -157,7 +168,9 @@ def angular_velocity_from_euler_rates(psi, theta, phi, psidot, thetadot, phidot)
 angular_velocity_from_euler_rates = finite_result(angular_velocity_from_euler_rates)
 
 
-def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
+def euler_rates_from_angular_velocity(
+    theta: npt.ArrayLike, phi: npt.ArrayLike, w_A: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """(ψ̇, θ̇, φ̇) from the body components of ω: (2.69) inverted.
 
     Domain: finite θ, φ, w_A with |sin θ| > ``GIMBAL_LOCK_ATOL`` (else GimbalLockError: at θ = 0 or
@@ -189,7 +202,9 @@ def euler_rates_from_angular_velocity(theta, phi, w_A) -> np.ndarray:
 euler_rates_from_angular_velocity = finite_result(euler_rates_from_angular_velocity)
 
 
-def point_velocity(v_A, omega, r_AB) -> np.ndarray:
+def point_velocity(
+    v_A: npt.ArrayLike, omega: npt.ArrayLike, r_AB: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Velocity of the body point B: v_B = v_A + ω × AB, the connection formula (2.73).
 
     Domain: any finite v_A, omega, r_AB of shape (..., 3) that broadcast; a result beyond float64
@@ -209,16 +224,19 @@ def point_velocity(v_A, omega, r_AB) -> np.ndarray:
 point_velocity = finite_result(point_velocity)
 
 
-def _exponent(a: np.ndarray, axis) -> np.ndarray:
+def _exponent(a: npt.NDArray[np.float64], axis: int | tuple[int, ...]) -> npt.NDArray[np.intc]:
     """k with max |a| over ``axis`` in [2**(k−1), 2**k) (k = 0 where all are 0); keepdims."""
-    return np.frexp(np.max(np.abs(a), axis=axis, keepdims=True))[1]
+    k: npt.NDArray[np.intc] = np.frexp(np.max(np.abs(a), axis=axis, keepdims=True))[1]
+    return k
 
 
 def _first_index(mask: np.ndarray | np.bool_) -> tuple[int, ...]:
     return tuple(int(i) for i in np.argwhere(mask)[0]) if np.ndim(mask) else ()
 
 
-def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
+def instantaneous_axis(
+    v_A: npt.ArrayLike, omega: npt.ArrayLike
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """The instantaneous axis of rotation (2.77).
 
     Domain: finite v_A, omega of shape (..., 3) with omega ≠ 0 (else ZeroAngularVelocityError); a
@@ -274,7 +292,9 @@ def instantaneous_axis(v_A, omega) -> tuple[np.ndarray, np.ndarray]:
 instantaneous_axis = finite_result(instantaneous_axis)
 
 
-def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
+def _minus_ratio(
+    a: npt.NDArray[np.float64], b: npt.NDArray[np.float64], c: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
     """a − b/c, inf only where the exact value is beyond float64 (c ≠ 0).
 
     b/c alone overflows for |b/c| > 1.8e308 even where a cancels most of it, and
@@ -288,10 +308,13 @@ def _minus_ratio(a: np.ndarray, b: np.ndarray, c: np.ndarray) -> np.ndarray:
     q, m = mb / mc, kb - kc
     e = np.maximum(np.frexp(a)[1], m) + 1
     with np.errstate(over="ignore"):  # the caller checks
-        return np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
+        out: npt.NDArray[np.float64] = np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
+        return out
 
 
-def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
+def instantaneous_centre_plane(
+    r_A: npt.ArrayLike, v_A: npt.ArrayLike, omega_z: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Instantaneous centre of zero velocity in plane motion (2.95).
 
     Domain: finite r_A, v_A of shape (..., 2) and omega_z ≠ 0 (else ZeroAngularVelocityError); a
@@ -340,7 +363,9 @@ def instantaneous_centre_plane(r_A, v_A, omega_z) -> np.ndarray:
 instantaneous_centre_plane = finite_result(instantaneous_centre_plane)
 
 
-def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _centred(
+    X: npt.NDArray[np.float64],
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.intc]]:
     """(mean, D, k) of points X (..., N, 3): X − mean = D 2**k, max |D| in [1/2, 1).
 
     Scale-free at any magnitude.  A sum of N numbers below 2**(1023 − g), g =
@@ -358,7 +383,9 @@ def _centred(X: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return np.ldexp(mean, shift)[..., 0, :], np.ldexp(offsets, -k), k + shift
 
 
-def rigid_velocity_from_points(r, v) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def rigid_velocity_from_points(
+    r: npt.ArrayLike, v: npt.ArrayLike
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """ω and the velocity of the centroid from positions and velocities of N ≥ 3 points.
 
     Domain: finite r, v of one shape (..., N, 3), N ≥ 3 points not collinear (the spread matrix's
