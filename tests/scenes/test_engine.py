@@ -419,6 +419,33 @@ def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -
         )
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="known loss (found by hypothesis's random profile, 2026-11-28, open): a box "
+    "(e = 0, smooth) comes to rest on corner 7, pivots on it, and corner 6 strikes the floor; "
+    "the next step finds corner 7's gap at -2.5e-14, beyond the start tolerance (~2.4e-14), "
+    "and refuses the run as a missed contact.  Cause (traced): while a corner rests its gap "
+    "is held at zero by the support only to the constraint's drift, and when the impact at "
+    "the other corner releases it that drift is read as interpenetration; the start "
+    "tolerance of a feature just released from support should include the support's drift",
+)
+def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_refused() -> None:
+    box = _box(
+        position=[0.0, 0.0, 1.0], psi=1.0, theta=0.0546875, phi=0.125, omega=[-3.546875, 0, 0]
+    )
+    sc = _scene(
+        [box],
+        [
+            {"type": "gravity", "g": 9.81},
+            {"type": "impact", "body": "box", "restitution": 0.0, "friction": 0.0},
+        ],
+        duration=0.45,
+        samples=46,
+    )
+    r = run_scene(sc)  # today: SceneError "interpenetrate ... a contact was missed"
+    assert r.passed, r.summary()
+
+
 def test_an_impulse_that_would_add_energy_is_refused_with_one_line() -> None:
     """Kane's paradox, found by the random test: a tilted box on a very rough floor,
     where Newton's e with Coulomb friction would add 18 % of the kinetic energy."""
