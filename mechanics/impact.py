@@ -68,11 +68,13 @@ validated both bodies (measured on one machine, one after the other, with
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from collections.abc import Iterable, Sequence
+from typing import Any, NamedTuple, Self, cast
 
 import numpy as np
+import numpy.typing as npt
 
-from ._floats import EPS
+from ._floats import EPS, Pair
 from ._floats import dd_add_float as _dd_add_float
 from ._floats import dd_div as _dd_div
 from ._floats import dd_mul as _dd_mul
@@ -156,15 +158,32 @@ class RigidBody(_RigidBodyFields):
 
     __slots__ = ()
 
-    def __new__(cls, m, J_G, r_G, v_G, omega):
+    def __new__(
+        cls,
+        m: npt.ArrayLike,
+        J_G: npt.ArrayLike,
+        r_G: npt.ArrayLike,
+        v_G: npt.ArrayLike,
+        omega: npt.ArrayLike,
+    ) -> Self:
         return tuple.__new__(cls, _body_fields(m, J_G, r_G, v_G, omega, ""))
 
+    # namedtuple's own bypasses __new__ (and so would _replace).  The ignore: mypy synthesises
+    # the NamedTuple's _make as a generic function of `_cls: type[_NT]` and reports every
+    # classmethod override of it as incompatible, even one of the same signature (mypy 2.4)
     @classmethod
-    def _make(cls, iterable):  # namedtuple's own bypasses __new__ (and so would _replace)
+    def _make(cls, iterable: Iterable[Any]) -> Self:  # type: ignore[override]
         return cls(*iterable)
 
 
-def _body_fields(m, J_G, r_G, v_G, omega, prefix: str) -> tuple[np.ndarray, ...]:
+def _body_fields(
+    m: npt.ArrayLike,
+    J_G: npt.ArrayLike,
+    r_G: npt.ArrayLike,
+    v_G: npt.ArrayLike,
+    omega: npt.ArrayLike,
+    prefix: str,
+) -> tuple[np.ndarray, ...]:
     """The validated fields of a :class:`RigidBody`, errors naming ``prefix + field``."""
     fields = (
         _check_mass(m, prefix + "m", allow_zero=False),
@@ -187,7 +206,9 @@ def _body_fields(m, J_G, r_G, v_G, omega, prefix: str) -> tuple[np.ndarray, ...]
     return fields
 
 
-def _trusted_body(m, J_G, r_G, v_G, omega) -> RigidBody:
+def _trusted_body(
+    m: np.ndarray, J_G: np.ndarray, r_G: np.ndarray, v_G: np.ndarray, omega: np.ndarray
+) -> RigidBody:
     """A :class:`RigidBody` of fields computed here from validated ones (the bodies after an
     impact): not checked again (``finite_result`` checks them as a result)."""
     return tuple.__new__(RigidBody, (m, J_G, r_G, v_G, omega))
@@ -239,7 +260,7 @@ class CentreOfPercussion(NamedTuple):
 # ------------------------------------------------------------- validation
 
 
-def _check_e(e) -> np.ndarray:
+def _check_e(e: npt.ArrayLike) -> np.ndarray:
     a = as_float_array(e, "e")
     bad = (a < 0) | (a > 1)
     if bad.any():
@@ -251,7 +272,7 @@ def _check_e(e) -> np.ndarray:
     return a
 
 
-def _check_mass(m, name: str, *, allow_zero: bool) -> np.ndarray:
+def _check_mass(m: npt.ArrayLike, name: str, *, allow_zero: bool) -> np.ndarray:
     a = as_float_array(m, name)
     neg = a < 0
     if neg.any():
@@ -271,7 +292,7 @@ def _check_option(separating: str) -> str:
     return separating
 
 
-def _unit(n, name: str) -> np.ndarray:
+def _unit(n: npt.ArrayLike, name: str) -> np.ndarray:
     a = as_float_array(n, name, (3,))
     scale = np.abs(a).max(axis=-1, keepdims=True)
     zero = scale[..., 0] == 0
@@ -279,10 +300,11 @@ def _unit(n, name: str) -> np.ndarray:
         idx = tuple(int(i) for i in np.argwhere(zero)[0])
         raise ZeroNormalError(f"{name} must be a non-zero vector; found {a[idx].tolist()}")
     b = a / scale  # scaled first: |n|² cannot overflow or underflow
-    return b / np.sqrt((b * b).sum(axis=-1, keepdims=True))
+    out: np.ndarray = b / np.sqrt((b * b).sum(axis=-1, keepdims=True))
+    return out
 
 
-def _check_inertia(J, name: str) -> np.ndarray:
+def _check_inertia(J: npt.ArrayLike, name: str) -> np.ndarray:
     """:func:`mechanics.inertia.check_inertia` (positive definite: J⁻¹ is needed),
     returned symmetrised so that the solves below see an exactly symmetric tensor."""
     return _symmetrised(check_inertia(J, name=name))
@@ -291,7 +313,7 @@ def _check_inertia(J, name: str) -> np.ndarray:
 def _symmetrised(a: np.ndarray) -> np.ndarray:
     """(J + Jᵀ)/2, exactly symmetric; halved first where J + Jᵀ would overflow."""
     with np.errstate(over="ignore"):
-        s = 0.5 * (a + np.swapaxes(a, -1, -2))
+        s: np.ndarray = 0.5 * (a + np.swapaxes(a, -1, -2))
     if not np.isfinite(s).all():
         s = 0.5 * a + 0.5 * np.swapaxes(a, -1, -2)
     return s
@@ -317,7 +339,7 @@ def _body_batch(b: RigidBody) -> tuple[int, ...]:
     return np.broadcast_shapes(b.m.shape, b.J_G.shape[:-2], *(f.shape[:-1] for f in b[2:]))
 
 
-def _separation(v_n: np.ndarray, separating: str, scale=None) -> np.ndarray:
+def _separation(v_n: np.ndarray, separating: str, scale: np.ndarray | None = None) -> np.ndarray:
     """The mask of approaching-or-grazing contacts; raise on separating ones if asked.
 
     ``scale``: exponents k of a v_n given as v_n 2^-k (the message shows v_n).
@@ -340,12 +362,13 @@ def _overflow(x: np.ndarray, what: str) -> np.ndarray:
     return x
 
 
-def _scale_exponent(*xs) -> np.ndarray:
+def _scale_exponent(*xs: np.ndarray) -> np.ndarray:
     """k with max |x| < 2**k (0 when all are 0): x * 2**-k is exact and <= 1."""
     big = np.abs(xs[0])
     for x in xs[1:]:
         big = np.maximum(big, np.abs(x))
-    return np.frexp(big)[1]
+    out: np.ndarray = np.frexp(big)[1]
+    return out
 
 
 class _Direct(NamedTuple):
@@ -357,19 +380,26 @@ class _Direct(NamedTuple):
     e: np.ndarray
     km: np.ndarray
     kv: np.ndarray
-    delta: tuple  # Δẋ 2^-kv, exact
+    delta: Pair  # Δẋ 2^-kv, exact
     approach: np.ndarray  # not separating
-    w1: tuple  # m_2/(m_1 + m_2)
-    w2: tuple  # m_1/(m_1 + m_2)
+    w1: Pair  # m_2/(m_1 + m_2)
+    w2: Pair  # m_1/(m_1 + m_2)
 
 
-def _reduced_mass(d: _Direct):
+def _reduced_mass(d: _Direct) -> Pair:
     """μ 2^-km = m_1 2^-km · m_2/(m_1 + m_2), double-double."""
     p, err = _two_prod(d.m1s, d.w1[0])
     return _fast_two_sum(p, err + d.m1s * d.w1[1])
 
 
-def _direct_parts(m_1, m_2, v_1, v_2, e, separating):
+def _direct_parts(
+    m_1: npt.ArrayLike,
+    m_2: npt.ArrayLike,
+    v_1: npt.ArrayLike,
+    v_2: npt.ArrayLike,
+    e: npt.ArrayLike,
+    separating: str,
+) -> _Direct:
     m1 = _check_mass(m_1, "m_1", allow_zero=True)
     m2 = _check_mass(m_2, "m_2", allow_zero=True)
     v1 = as_float_array(v_1, "v_1")
@@ -386,7 +416,8 @@ def _direct_parts(m_1, m_2, v_1, v_2, e, separating):
     m1s, m2s = np.ldexp(m1, -km), np.ldexp(m2, -km)
     v1s, v2s = np.ldexp(v1, -kv), np.ldexp(v2, -kv)
     delta = _two_sum(v2s, -v1s)  # Δẋ = ẋ_2 − ẋ_1, exact
-    approach = _separation(delta[0], separating, kv)
+    # _two_sum is typed for floats or arrays; given arrays, it returns arrays
+    approach = _separation(cast(np.ndarray, delta[0]), separating, kv)
     total = _two_sum(m1s, m2s)  # m_1 + m_2, exact
     w1 = _dd_div(m2s, total)  # m_2 / (m_1 + m_2)
     w2 = _dd_div(m1s, total)  # m_1 / (m_1 + m_2)
@@ -396,7 +427,15 @@ def _direct_parts(m_1, m_2, v_1, v_2, e, separating):
 # ---------------------------------------------------------- direct impact
 
 
-def direct_impact(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
+def direct_impact(
+    m_1: npt.ArrayLike,
+    m_2: npt.ArrayLike,
+    v_1: npt.ArrayLike,
+    v_2: npt.ArrayLike,
+    e: npt.ArrayLike,
+    *,
+    separating: str = "raise",
+) -> tuple[np.ndarray, np.ndarray]:
     """Velocities after a direct central impact, (6.36)–(6.38).
 
     Domain: masses ``m_1``, ``m_2`` ≥ 0, not both 0 (else NegativeMassError, ZeroTotalMassError),
@@ -463,7 +502,15 @@ def direct_impact(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 direct_impact = broadcast_checked(direct_impact)
 
 
-def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
+def impulse_direct(
+    m_1: npt.ArrayLike,
+    m_2: npt.ArrayLike,
+    v_1: npt.ArrayLike,
+    v_2: npt.ArrayLike,
+    e: npt.ArrayLike,
+    *,
+    separating: str = "raise",
+) -> np.ndarray:
     """The impulse S_12 = m_1 (ẋ_1f − ẋ_1i) from body 2 on body 1 along X, (6.19).
 
     Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
@@ -500,7 +547,15 @@ def impulse_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 impulse_direct = broadcast_checked(impulse_direct)
 
 
-def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
+def energy_loss_direct(
+    m_1: npt.ArrayLike,
+    m_2: npt.ArrayLike,
+    v_1: npt.ArrayLike,
+    v_2: npt.ArrayLike,
+    e: npt.ArrayLike,
+    *,
+    separating: str = "raise",
+) -> np.ndarray:
     """Kinetic energy lost in a direct impact, Q = ½ μ (1 − e²) (Δẋ)², (6.41).
 
     Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
@@ -542,7 +597,15 @@ def energy_loss_direct(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
 energy_loss_direct = broadcast_checked(energy_loss_direct)
 
 
-def compression_restitution_impulses(m_1, m_2, v_1, v_2, e, *, separating: str = "raise"):
+def compression_restitution_impulses(
+    m_1: npt.ArrayLike,
+    m_2: npt.ArrayLike,
+    v_1: npt.ArrayLike,
+    v_2: npt.ArrayLike,
+    e: npt.ArrayLike,
+    *,
+    separating: str = "raise",
+) -> tuple[np.ndarray, np.ndarray]:
     """The impulses on body 1 in the compression and restitution phases (Example 6.3).
 
     Domain: as :func:`direct_impact`: ``m_1``, ``m_2`` ≥ 0 not both 0, finite velocities, ``e`` in
@@ -596,19 +659,19 @@ compression_restitution_impulses = broadcast_checked(compression_restitution_imp
 # ------------------------------------------------------------ rigid bodies
 
 
-def _body(body, name: str) -> RigidBody:
+def _body(body: RigidBody | Sequence[npt.ArrayLike], name: str) -> RigidBody:
     """``body`` (a RigidBody, validated when built, or a 5-tuple, validated here with errors
     naming ``name.field``) with ``J_G`` symmetrised for the solves."""
     if isinstance(body, RigidBody):
         m, J, r, v, w = body
     else:
         try:
-            m, J, r, v, w = body
+            m0, J0, r0, v0, w0 = body
         except (TypeError, ValueError):
             raise OutOfDomainError(
                 f"{name} must be a RigidBody(m, J_G, r_G, v_G, omega); got {body!r}"
             ) from None
-        m, J, r, v, w = _body_fields(m, J, r, v, w, f"{name}.")
+        m, J, r, v, w = _body_fields(m0, J0, r0, v0, w0, f"{name}.")
     return _trusted_body(m, _symmetrised(J), r, v, w)
 
 
@@ -620,16 +683,26 @@ def _solve(J: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.linalg.solve(J, b[..., None])[..., 0]
 
 
-def _dot(a, b):
-    return (a * b).sum(axis=-1)
+def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    out: np.ndarray = (a * b).sum(axis=-1)
+    return out
 
 
-def _inverse_mass(m, J, r, n):
+def _inverse_mass(m: np.ndarray, J: np.ndarray, r: np.ndarray, n: np.ndarray) -> np.ndarray:
     u = np.cross(r, n)
-    return 1.0 / m + _dot(u, _solve(J, u))
+    out: np.ndarray = 1.0 / m + _dot(u, _solve(J, u))
+    return out
 
 
-def effective_mass(m_1, J_1, r_1, n, m_2=None, J_2=None, r_2=None):
+def effective_mass(
+    m_1: npt.ArrayLike,
+    J_1: npt.ArrayLike,
+    r_1: npt.ArrayLike,
+    n: npt.ArrayLike,
+    m_2: npt.ArrayLike | None = None,
+    J_2: npt.ArrayLike | None = None,
+    r_2: npt.ArrayLike | None = None,
+) -> np.ndarray:
     """Effective mass μ of a contact of one or two free rigid bodies along ``n``.
 
     Domain: ``m_1`` (and ``m_2``) > 0 (else NegativeMassError or NonPositiveParameterError), ``J_1``
@@ -685,7 +758,7 @@ def effective_mass(m_1, J_1, r_1, n, m_2=None, J_2=None, r_2=None):
         as_float_array(r_1, "r_1", (3,)),
         nn,
     )
-    if all(given):
+    if m_2 is not None and J_2 is not None and r_2 is not None:  # all(given), narrowed for mypy
         inv = inv + _inverse_mass(
             _check_mass(m_2, "m_2", allow_zero=False),
             _check_inertia(J_2, "J_2"),
@@ -702,7 +775,13 @@ def _contact_velocity(b: RigidBody, r_S: np.ndarray) -> np.ndarray:
     return b.v_G + np.cross(b.omega, r_S - b.r_G)
 
 
-def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
+def normal_relative_velocity(
+    body_1: RigidBody | Sequence[npt.ArrayLike],
+    body_2: RigidBody | Sequence[npt.ArrayLike] | None = None,
+    *,
+    r_S: npt.ArrayLike,
+    n: npt.ArrayLike,
+) -> np.ndarray:
     """v_n = n · (v_S1 − v_S2): the normal velocity of the contact point of body 1
     relative to body 2 (``None``: fixed) at the position ``r_S``; < 0 approaching.
 
@@ -735,7 +814,15 @@ def normal_relative_velocity(body_1, body_2=None, *, r_S, n):
 normal_relative_velocity = finite_result(normal_relative_velocity)
 
 
-def rigid_impact(body_1, body_2=None, *, r_S, n, e, separating: str = "raise") -> RigidImpact:
+def rigid_impact(
+    body_1: RigidBody | Sequence[npt.ArrayLike],
+    body_2: RigidBody | Sequence[npt.ArrayLike] | None = None,
+    *,
+    r_S: npt.ArrayLike,
+    n: npt.ArrayLike,
+    e: npt.ArrayLike,
+    separating: str = "raise",
+) -> RigidImpact:
     """Smooth impact of two free rigid bodies (or one against a fixed body) in 3-D.
 
     Domain: bodies as in :func:`normal_relative_velocity` (RigidBody or 5-tuple, else
@@ -841,7 +928,9 @@ rigid_impact = finite_result(rigid_impact)
 # ------------------------------------------------------------ hinged body
 
 
-def _hinge(J_A, r_G, axis_point, axis):
+def _hinge(
+    J_A: npt.ArrayLike, r_G: npt.ArrayLike, axis_point: npt.ArrayLike, axis: npt.ArrayLike
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     J = _check_inertia(J_A, "J_A")
     rG = as_float_array(r_G, "r_G", (3,))
     A = as_float_array(axis_point, "axis_point", (3,))
@@ -850,7 +939,14 @@ def _hinge(J_A, r_G, axis_point, axis):
     return J, rG - A, A, a, J_aa
 
 
-def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
+def hinged_effective_mass(
+    J_A: npt.ArrayLike,
+    r_P: npt.ArrayLike,
+    n: npt.ArrayLike,
+    *,
+    axis_point: npt.ArrayLike,
+    axis: npt.ArrayLike,
+) -> np.ndarray:
     """Effective mass at the point ``r_P`` along ``n`` of a body hinged on a fixed axis.
 
     Domain: ``J_A`` positive definite as :func:`~mechanics.inertia.check_inertia` (else
@@ -889,13 +985,25 @@ def hinged_effective_mass(J_A, r_P, n, *, axis_point, axis):
             "the axis, or n in the plane of the axis and P); the blow cannot turn the body and "
             "its effective mass is infinite"
         )
-    return (J_aa / arm / arm)[()]
+    out: np.ndarray = (J_aa / arm / arm)[()]
+    return out
 
 
 hinged_effective_mass = finite_result(hinged_effective_mass)
 
 
-def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=None) -> HingedImpact:
+def hinged_impact(
+    m: npt.ArrayLike,
+    J_A: npt.ArrayLike,
+    r_G: npt.ArrayLike,
+    *,
+    axis_point: npt.ArrayLike,
+    axis: npt.ArrayLike,
+    omega: npt.ArrayLike,
+    r_P: npt.ArrayLike,
+    S_P: npt.ArrayLike,
+    bearings: Sequence[npt.ArrayLike] | None = None,
+) -> HingedImpact:
     """A body turning on a fixed frictionless axis struck by the impulse ``S_P`` at ``r_P``.
 
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive
@@ -1000,7 +1108,14 @@ def hinged_impact(m, J_A, r_G, *, axis_point, axis, omega, r_P, S_P, bearings=No
 hinged_impact = finite_result(hinged_impact)
 
 
-def centre_of_percussion(m, J_A, r_G, *, axis_point, axis) -> CentreOfPercussion:
+def centre_of_percussion(
+    m: npt.ArrayLike,
+    J_A: npt.ArrayLike,
+    r_G: npt.ArrayLike,
+    *,
+    axis_point: npt.ArrayLike,
+    axis: npt.ArrayLike,
+) -> CentreOfPercussion:
     """The point where a blow loads a body hinged on a fixed axis with no reaction impulse.
 
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J_A`` positive

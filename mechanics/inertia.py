@@ -58,8 +58,10 @@ Accuracy (``tests/stability/test_inertia_stability.py``, mpmath at 50 digits)
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 
 import numpy as np
+import numpy.typing as npt
 
 from ._floats import dd_add as _dd_add
 from ._floats import dd_times as _dd_times
@@ -122,7 +124,7 @@ _JACOBI_MAX_SWEEPS = 16  # quadratic convergence: 3x3 tensors need 3 to 6 sweeps
 # ------------------------------------------------------------------- validation
 
 
-def _mass(m, name: str = "m", *, positive: bool = False) -> np.ndarray:
+def _mass(m: npt.ArrayLike, name: str = "m", *, positive: bool = False) -> np.ndarray:
     a = as_float_array(m, name)
     if (a < 0).any():
         bad = a[a < 0].flat[0]
@@ -132,7 +134,7 @@ def _mass(m, name: str = "m", *, positive: bool = False) -> np.ndarray:
     return a
 
 
-def _length(x, name: str, *, allow_zero: bool = False) -> np.ndarray:
+def _length(x: npt.ArrayLike, name: str, *, allow_zero: bool = False) -> np.ndarray:
     a = as_float_array(x, name)
     bad = (a < 0) if allow_zero else (a <= 0)
     if bad.any():
@@ -165,7 +167,8 @@ def _check_symmetric(J: np.ndarray, name: str) -> np.ndarray:
 
 def _sym(J: np.ndarray) -> np.ndarray:
     """(J + Jᵀ)/2: exactly symmetric, and equal to J where J already is."""
-    return 0.5 * (J + np.swapaxes(J, -1, -2))
+    out: np.ndarray = 0.5 * (J + np.swapaxes(J, -1, -2))
+    return out
 
 
 # ------------------------------------------------------- Jacobi eigen-solver
@@ -190,7 +193,7 @@ def _jacobi(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     n = A.shape[0]
     V = [[np.full(n, float(i == j)) for j in range(3)] for i in range(3)]
 
-    def off(p, q):
+    def off(p: int, q: int) -> np.ndarray:
         return a[(p, q)] if p < q else a[(q, p)]
 
     with np.errstate(divide="ignore", over="ignore", invalid="ignore"):
@@ -256,7 +259,8 @@ def _principal(J: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def _scale(moments: np.ndarray) -> np.ndarray:
-    return np.maximum(np.abs(moments).max(axis=-1), np.finfo(np.float64).tiny)
+    out: np.ndarray = np.maximum(np.abs(moments).max(axis=-1), np.finfo(np.float64).tiny)
+    return out
 
 
 def _sqrt_quotient(x: np.ndarray, y: np.ndarray) -> np.ndarray:
@@ -264,7 +268,8 @@ def _sqrt_quotient(x: np.ndarray, y: np.ndarray) -> np.ndarray:
     and the exponent halved exactly, so that x/y cannot overflow or underflow on the way."""
     (fx, ex), (fy, ey) = np.frexp(x), np.frexp(y)
     k, odd = np.divmod(ex - ey, 2)
-    return np.ldexp(np.sqrt(np.ldexp(fx / fy, odd)), k)
+    out: np.ndarray = np.ldexp(np.sqrt(np.ldexp(fx / fy, odd)), k)
+    return out
 
 
 def _first(mask: np.ndarray) -> tuple[int, ...]:
@@ -292,7 +297,7 @@ def _check_parts(
     units of 2**k (:func:`_unit_scaled`; the messages print values in the caller's units)."""
     k = np.zeros(moments.shape[:-1], dtype=int) if k is None else k
 
-    def unscaled(x: np.ndarray, i: tuple[int, ...]):
+    def unscaled(x: np.ndarray, i: tuple[int, ...]) -> object:
         with np.errstate(over="ignore"):  # a value beyond float64 is printed as inf
             return np.ldexp(x[i], k[i]).tolist()
 
@@ -338,7 +343,7 @@ def _check_parts(
 
 
 def check_inertia(
-    J,
+    J: npt.ArrayLike,
     *,
     about_centre_of_mass: bool = True,
     allow_singular: bool = False,
@@ -402,7 +407,7 @@ def check_inertia(
     return a
 
 
-def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
+def is_physical_inertia(J: npt.ArrayLike, *, allow_singular: bool = False) -> np.ndarray:
     """Elementwise: does ``J`` (..., 3, 3) pass :func:`check_inertia`?  Shape (...).
 
     Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); the answer (...) is
@@ -418,7 +423,7 @@ def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
     m = np.linalg.eigvalsh(_sym(a))
     scale = _scale(m)
     tol = INERTIA_ATOL * scale
-    ok = np.abs(a - np.swapaxes(a, -1, -2)).max(axis=(-1, -2)) <= tol
+    ok: np.ndarray = np.abs(a - np.swapaxes(a, -1, -2)).max(axis=(-1, -2)) <= tol
     ok &= m[..., 0] >= -tol if allow_singular else m[..., 0] > tol
     ok &= m[..., 0] + m[..., 1] - m[..., 2] >= -tol
     return ok
@@ -427,7 +432,7 @@ def is_physical_inertia(J, *, allow_singular: bool = False) -> np.ndarray:
 # ------------------------------------------------------------- particle systems
 
 
-def inertia_tensor(m, r, *, about) -> np.ndarray:
+def inertia_tensor(m: npt.ArrayLike, r: npt.ArrayLike, *, about: npt.ArrayLike) -> np.ndarray:
     """The inertia tensor J_C of particles about the point C = ``about`` (4.34).
 
     Domain: masses ``m`` (..., N) ≥ 0 (else NegativeMassError) with a positive total and N ≥ 1 (else
@@ -481,7 +486,9 @@ def inertia_tensor(m, r, *, about) -> np.ndarray:
 inertia_tensor = finite_result(inertia_tensor)
 
 
-def _centre_of_mass_tensor(m, r):
+def _centre_of_mass_tensor(
+    m: npt.ArrayLike, r: npt.ArrayLike
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     mm = _mass(m, "m")
     rr = as_float_array(r, "r", (3,))
     if rr.ndim < 2 or mm.shape != rr.shape[:-1]:
@@ -509,7 +516,9 @@ def _centre_of_mass_tensor(m, r):
     return _sym(J), M, ref[..., 0, :] + G_rel
 
 
-def parallel_axis(J_G, m, d, *, allow_singular: bool = False) -> np.ndarray:
+def parallel_axis(
+    J_G: npt.ArrayLike, m: npt.ArrayLike, d: npt.ArrayLike, *, allow_singular: bool = False
+) -> np.ndarray:
     """The parallel-axis (Steiner) theorem in tensor form: J_C = J_G + m(|d|² 1 − d dᵀ) (4.38).
 
     Domain: ``J_G`` (..., 3, 3) as :func:`check_inertia` (``allow_singular`` passed on; else
@@ -596,7 +605,7 @@ def _shift(JG: np.ndarray, mm: np.ndarray, dd: np.ndarray) -> np.ndarray:
 # ---------------------------------------------------------------------- rotation
 
 
-def rotate_inertia(J_A, R_A_O) -> np.ndarray:
+def rotate_inertia(J_A: npt.ArrayLike, R_A_O: npt.ArrayLike) -> np.ndarray:
     """The tensor's components in O from those in A: J^O = ^O R^A J^A ^A R^O (4.11).
 
     Domain: ``J_A`` (..., 3, 3) symmetric to :data:`INERTIA_ATOL` of its largest entry (else
@@ -634,7 +643,7 @@ def rotate_inertia(J_A, R_A_O) -> np.ndarray:
 rotate_inertia = broadcast_checked(rotate_inertia)
 
 
-def inertia_A_from_O(J_O, R_A_O) -> np.ndarray:
+def inertia_A_from_O(J_O: npt.ArrayLike, R_A_O: npt.ArrayLike) -> np.ndarray:
     """The tensor's components in A from those in O: J^A = ^A R^O J^O ^O R^A.
 
     Domain: as :func:`rotate_inertia`: ``J_O`` symmetric (else NonPhysicalInertiaError), ``R_A_O`` a
@@ -662,7 +671,9 @@ inertia_A_from_O = broadcast_checked(inertia_A_from_O)
 # ---------------------------------------------------------------- principal axes
 
 
-def principal_axes(J, *, allow_singular: bool = True) -> tuple[np.ndarray, np.ndarray]:
+def principal_axes(
+    J: npt.ArrayLike, *, allow_singular: bool = True
+) -> tuple[np.ndarray, np.ndarray]:
     """Principal moments (ascending) and principal axes of ``J`` (4.13)–(4.14).
 
     Domain: ``J`` (..., 3, 3) as :func:`check_inertia` (singular allowed by default; else
@@ -717,7 +728,9 @@ def principal_axes(J, *, allow_singular: bool = True) -> tuple[np.ndarray, np.nd
     return moments, R
 
 
-def principal_subspaces(J, *, rtol: float = SUBSPACE_RTOL) -> tuple[np.ndarray, np.ndarray]:
+def principal_subspaces(
+    J: npt.ArrayLike, *, rtol: float = SUBSPACE_RTOL
+) -> tuple[np.ndarray, np.ndarray]:
     """Moments and the orthogonal projectors onto their eigen-subspaces.
 
     Domain: ``J`` as :func:`principal_axes` (physical, singular allowed), ``rtol`` a finite number ≥
@@ -769,7 +782,7 @@ def principal_subspaces(J, *, rtol: float = SUBSPACE_RTOL) -> tuple[np.ndarray, 
 # ------------------------------------------------------------- Example 4.1
 
 
-def four_particle_realisation(m, J) -> tuple[np.ndarray, np.ndarray]:
+def four_particle_realisation(m: npt.ArrayLike, J: npt.ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """Four particles of mass m/4 with total mass m and inertia tensor J about G (Example 4.1).
 
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J`` (..., 3, 3) as
@@ -838,7 +851,13 @@ four_particle_realisation = finite_result(four_particle_realisation)
 # -------------------------------------------------------------- homogeneous bodies
 
 
-def _diag(m, name_values, f1, f2, f3) -> np.ndarray:
+def _diag(
+    m: npt.ArrayLike,
+    name_values: Sequence[tuple[str, npt.ArrayLike]],
+    f1: Callable[..., npt.ArrayLike],
+    f2: Callable[..., npt.ArrayLike],
+    f3: Callable[..., npt.ArrayLike],
+) -> np.ndarray:
     mm = _mass(m, "m")
     vals = [_length(v, n) for n, v in name_values]
     shape = np.broadcast_shapes(mm.shape, *(v.shape for v in vals))
@@ -852,7 +871,7 @@ def _diag(m, name_values, f1, f2, f3) -> np.ndarray:
     return _finite_result(out, "the inertia tensor")
 
 
-def rod(m, ell) -> np.ndarray:
+def rod(m: npt.ArrayLike, ell: npt.ArrayLike) -> np.ndarray:
     """Thin homogeneous rod of mass m and length ℓ along e3, about G: diag(mℓ²/12, mℓ²/12, 0).
 
     Domain: ``m`` ≥ 0 (else NegativeMassError) and ``ell`` > 0 (else NonPositiveParameterError),
@@ -874,7 +893,7 @@ def rod(m, ell) -> np.ndarray:
 rod = broadcast_checked(rod)
 
 
-def ring(m, R) -> np.ndarray:
+def ring(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     """Thin ring (hoop) of radius R in the e1e2-plane, about G: diag(mR²/2, mR²/2, mR²).
 
     Domain: ``m`` ≥ 0 (else NegativeMassError) and ``R`` > 0 (else NonPositiveParameterError),
@@ -895,7 +914,7 @@ def ring(m, R) -> np.ndarray:
 ring = broadcast_checked(ring)
 
 
-def disc(m, R) -> np.ndarray:
+def disc(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     """Thin homogeneous disc of radius R in the e1e2-plane, about G: diag(mR²/4, mR²/4, mR²/2).
 
     Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
@@ -914,7 +933,7 @@ def disc(m, R) -> np.ndarray:
 disc = broadcast_checked(disc)
 
 
-def cylinder(m, R, h) -> np.ndarray:
+def cylinder(m: npt.ArrayLike, R: npt.ArrayLike, h: npt.ArrayLike) -> np.ndarray:
     """Solid homogeneous circular cylinder, radius R, height h, axis e3, about G.
 
     Domain: ``m`` ≥ 0 (else NegativeMassError), ``R``, ``h`` > 0 (else NonPositiveParameterError
@@ -931,8 +950,9 @@ def cylinder(m, R, h) -> np.ndarray:
     True
     """
 
-    def f(m, r, h):
-        return m * (3.0 * r * r + h * h) / 12.0
+    def f(m: np.ndarray, r: np.ndarray, h: np.ndarray) -> np.ndarray:
+        out: np.ndarray = m * (3.0 * r * r + h * h) / 12.0
+        return out
 
     return _diag(m, [("R", R), ("h", h)], f, f, lambda m, r, h: m * r * r / 2.0)
 
@@ -940,7 +960,7 @@ def cylinder(m, R, h) -> np.ndarray:
 cylinder = broadcast_checked(cylinder)
 
 
-def cylindrical_shell(m, R, h) -> np.ndarray:
+def cylindrical_shell(m: npt.ArrayLike, R: npt.ArrayLike, h: npt.ArrayLike) -> np.ndarray:
     """Thin-walled open cylindrical shell (tube), radius R, height h, axis e3, about G.
 
     Domain: as :func:`cylinder`: ``m`` ≥ 0, ``R``, ``h`` > 0, a result beyond float64 raising
@@ -957,8 +977,9 @@ def cylindrical_shell(m, R, h) -> np.ndarray:
     True
     """
 
-    def f(m, r, h):
-        return m * (6.0 * r * r + h * h) / 12.0
+    def f(m: np.ndarray, r: np.ndarray, h: np.ndarray) -> np.ndarray:
+        out: np.ndarray = m * (6.0 * r * r + h * h) / 12.0
+        return out
 
     return _diag(m, [("R", R), ("h", h)], f, f, lambda m, r, h: m * r * r)
 
@@ -966,7 +987,7 @@ def cylindrical_shell(m, R, h) -> np.ndarray:
 cylindrical_shell = broadcast_checked(cylindrical_shell)
 
 
-def solid_sphere(m, R) -> np.ndarray:
+def solid_sphere(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     """Homogeneous solid sphere about its centre: (2/5) m R² 1.
 
     Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
@@ -985,7 +1006,7 @@ def solid_sphere(m, R) -> np.ndarray:
 solid_sphere = broadcast_checked(solid_sphere)
 
 
-def hollow_sphere(m, R) -> np.ndarray:
+def hollow_sphere(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     """Thin homogeneous spherical shell about its centre: (2/3) m R² 1.
 
     Domain: as :func:`ring`: ``m`` ≥ 0, ``R`` > 0 (NegativeMassError, NonPositiveParameterError), a
@@ -1004,7 +1025,7 @@ def hollow_sphere(m, R) -> np.ndarray:
 hollow_sphere = broadcast_checked(hollow_sphere)
 
 
-def rectangular_plate(m, a, b) -> np.ndarray:
+def rectangular_plate(m: npt.ArrayLike, a: npt.ArrayLike, b: npt.ArrayLike) -> np.ndarray:
     """Thin rectangular plate, side a along e1 and b along e2, about G.
 
     Domain: ``m`` ≥ 0 (else NegativeMassError), ``a``, ``b`` > 0 (else NonPositiveParameterError
@@ -1032,7 +1053,7 @@ def rectangular_plate(m, a, b) -> np.ndarray:
 rectangular_plate = broadcast_checked(rectangular_plate)
 
 
-def box(m, a, b, c) -> np.ndarray:
+def box(m: npt.ArrayLike, a: npt.ArrayLike, b: npt.ArrayLike, c: npt.ArrayLike) -> np.ndarray:
     """Homogeneous rectangular box (cuboid), sides a, b, c along e1, e2, e3, about G.
 
     Domain: ``m`` ≥ 0 (else NegativeMassError), ``a``, ``b``, ``c`` > 0 (else
@@ -1060,7 +1081,7 @@ def box(m, a, b, c) -> np.ndarray:
 box = broadcast_checked(box)
 
 
-def solid_cone(m, R, h) -> np.ndarray:
+def solid_cone(m: npt.ArrayLike, R: npt.ArrayLike, h: npt.ArrayLike) -> np.ndarray:
     """Homogeneous solid right circular cone, base radius R, height h, axis e3, about G.
 
     Domain: as :func:`cylinder`: ``m`` ≥ 0, ``R``, ``h`` > 0 (NegativeMassError,
@@ -1079,8 +1100,9 @@ def solid_cone(m, R, h) -> np.ndarray:
     True
     """
 
-    def f(m, r, h):
-        return 3.0 * m * (4.0 * r * r + h * h) / 80.0
+    def f(m: np.ndarray, r: np.ndarray, h: np.ndarray) -> np.ndarray:
+        out: np.ndarray = 3.0 * m * (4.0 * r * r + h * h) / 80.0
+        return out
 
     return _diag(m, [("R", R), ("h", h)], f, f, lambda m, r, h: 0.3 * m * r * r)
 

@@ -48,9 +48,11 @@ v_G: they stay accurate at offsets of 1e8 where T − ½ m v_G² would cancel.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
+import numpy.typing as npt
 
 from ._floats import EPS
 from ._floats import split as _split
@@ -122,7 +124,8 @@ def _tree(x: np.ndarray, c: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def _two_sum_tree(x: np.ndarray, c: np.ndarray) -> np.ndarray:
     """Σ over the last axis of x, plus the compensation terms c, pairwise with TwoSum."""
     s, c = _tree(x, c)
-    return s + c
+    out: np.ndarray = s + c
+    return out
 
 
 #: Elements per block in the compensated sums: the temporaries of a block
@@ -133,7 +136,8 @@ _BLOCK_ELEMENTS = 2**16
 
 def _exponent(a: np.ndarray) -> np.ndarray:
     """k with max |a| over the last axis in [2**(k−1), 2**k) (k = 0 where all are 0); keepdims."""
-    return np.frexp(np.max(np.abs(a), axis=-1, keepdims=True))[1]
+    out: np.ndarray = np.frexp(np.max(np.abs(a), axis=-1, keepdims=True))[1]
+    return out
 
 
 def _scale(a: np.ndarray, k: np.ndarray) -> np.ndarray:
@@ -143,7 +147,8 @@ def _scale(a: np.ndarray, k: np.ndarray) -> np.ndarray:
     because 2**−k alone is beyond float64 for k < −1023.
     """
     h = k // 2
-    return a * np.ldexp(1.0, -h) * np.ldexp(1.0, h - k)
+    out: np.ndarray = a * np.ldexp(1.0, -h) * np.ldexp(1.0, h - k)
+    return out
 
 
 def _dot_scaled(a: np.ndarray, b: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -181,7 +186,8 @@ def _dot(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Σ_j a_j b_j over the last axis, compensated; inf where beyond float64."""
     s, k = _dot_scaled(a, b)
     with np.errstate(over="ignore"):
-        return np.ldexp(s, k)
+        out: np.ndarray = np.ldexp(s, k)
+        return out
 
 
 def _sum_scaled(a: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -193,7 +199,8 @@ def _sum(a: np.ndarray) -> np.ndarray:
     """Σ over the last axis, compensated; inf where beyond float64."""
     s, k = _sum_scaled(a)
     with np.errstate(over="ignore"):
-        return np.ldexp(s, k)
+        out: np.ndarray = np.ldexp(s, k)
+        return out
 
 
 def _weighted_sum(m: np.ndarray, x: np.ndarray) -> np.ndarray:
@@ -235,7 +242,7 @@ def _finite_result(x: np.ndarray, what: str) -> np.ndarray:
 # ------------------------------------------------------------------ validation
 
 
-def check_masses(m, name: str = "m") -> np.ndarray:
+def check_masses(m: npt.ArrayLike, name: str = "m") -> np.ndarray:
     """Return masses ``(..., N)`` as a finite float64 array, all ≥ 0, N ≥ 1.
 
     Domain: any finite m ≥ 0 of shape (..., N), N ≥ 1 (else NegativeMassError or ShapeError).
@@ -271,7 +278,13 @@ def check_masses(m, name: str = "m") -> np.ndarray:
 check_masses = finite_result(check_masses)
 
 
-def _system(m, r, rname: str = "r", *, particle_arrays=()) -> tuple[np.ndarray, ...]:
+def _system(
+    m: npt.ArrayLike,
+    r: npt.ArrayLike,
+    rname: str = "r",
+    *,
+    particle_arrays: Sequence[tuple[npt.ArrayLike, str]] = (),
+) -> tuple[np.ndarray, ...]:
     """Validate masses (..., N) and vectors (..., N, 3); broadcast leading axes."""
     mm = check_masses(m)
     arrays = [as_float_array(r, rname, (3,))]
@@ -295,7 +308,7 @@ def _system(m, r, rname: str = "r", *, particle_arrays=()) -> tuple[np.ndarray, 
     return (mm, *arrays)
 
 
-def _point(p, name: str, lead: tuple[int, ...]) -> np.ndarray:
+def _point(p: npt.ArrayLike, name: str, lead: tuple[int, ...]) -> np.ndarray:
     a = as_float_array(p, name, (3,))
     try:
         np.broadcast_shapes(a.shape[:-1], lead)
@@ -319,7 +332,7 @@ def _nonzero_mass(M: np.ndarray) -> None:
 # --------------------------------------------------------------- mass, centre
 
 
-def total_mass(m) -> np.ndarray:
+def total_mass(m: npt.ArrayLike) -> np.ndarray:
     """Total mass m = Σ m_j (1.4), compensated.
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -353,7 +366,7 @@ def total_mass(m) -> np.ndarray:
 total_mass = finite_result(total_mass)
 
 
-def centre_of_mass(m, r) -> np.ndarray:
+def centre_of_mass(m: npt.ArrayLike, r: npt.ArrayLike) -> np.ndarray:
     """Centre of mass r_G = Σ m_j r_j / Σ m_j (1.5).
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -411,7 +424,7 @@ def centre_of_mass(m, r) -> np.ndarray:
 centre_of_mass = finite_result(centre_of_mass)
 
 
-def centre_of_mass_velocity(m, v) -> np.ndarray:
+def centre_of_mass_velocity(m: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
     """Velocity of the centre of mass v_G = Σ m_j v_j / Σ m_j (1.6).
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -433,7 +446,7 @@ def centre_of_mass_velocity(m, v) -> np.ndarray:
 centre_of_mass_velocity = finite_result(centre_of_mass_velocity)
 
 
-def momentum(m, v) -> np.ndarray:
+def momentum(m: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
     """Linear momentum p = Σ m_j v_j (1.3), compensated.
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -464,7 +477,14 @@ def _offsets(r: np.ndarray, A: np.ndarray, name: str) -> np.ndarray:
     return _finite_result(d, f"the offsets r - {name}")
 
 
-def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
+def angular_momentum(
+    m: npt.ArrayLike,
+    r: npt.ArrayLike,
+    v: npt.ArrayLike,
+    *,
+    about: npt.ArrayLike,
+    about_velocity: npt.ArrayLike | None = None,
+) -> np.ndarray:
     """Angular momentum about the point A: L_A = Σ AP_j × m_j v_j (1.8).
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -527,7 +547,9 @@ def angular_momentum(m, r, v, *, about, about_velocity=None) -> np.ndarray:
 angular_momentum = finite_result(angular_momentum)
 
 
-def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.ndarray]:
+def angular_momentum_decomposition(
+    m: npt.ArrayLike, r: npt.ArrayLike, v: npt.ArrayLike, *, about: npt.ArrayLike
+) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of L_A (1.12): L_A = L_G + AG × m v_G.
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -578,7 +600,9 @@ def angular_momentum_decomposition(m, r, v, *, about) -> tuple[np.ndarray, np.nd
 angular_momentum_decomposition = finite_result(angular_momentum_decomposition)
 
 
-def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
+def moving_base_point_term(
+    m: npt.ArrayLike, v: npt.ArrayLike, *, about_velocity: npt.ArrayLike
+) -> np.ndarray:
     """The extra term v_B × p of the principle for a moving base point (1.50).
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -606,7 +630,15 @@ def moving_base_point_term(m, v, *, about_velocity) -> np.ndarray:
 moving_base_point_term = finite_result(moving_base_point_term)
 
 
-def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
+def angular_momentum_rate(
+    m: npt.ArrayLike,
+    r: npt.ArrayLike,
+    v: npt.ArrayLike,
+    a: npt.ArrayLike,
+    *,
+    about: npt.ArrayLike,
+    about_velocity: npt.ArrayLike,
+) -> np.ndarray:
     """dL_B/dt of the book's L_B (1.8) for a base point B moving with velocity v_B.
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -659,7 +691,7 @@ def angular_momentum_rate(m, r, v, a, *, about, about_velocity) -> np.ndarray:
 angular_momentum_rate = finite_result(angular_momentum_rate)
 
 
-def moment_of_forces(r, F, *, about) -> np.ndarray:
+def moment_of_forces(r: npt.ArrayLike, F: npt.ArrayLike, *, about: npt.ArrayLike) -> np.ndarray:
     """Moment of forces F_j acting at r_j about A: M_A = Σ (r_j − r_A) × F_j (3.63).
 
     Domain: finite r and F of shape (..., N, 3), finite about (..., 3); a result beyond float64
@@ -702,14 +734,14 @@ def moment_of_forces(r, F, *, about) -> np.ndarray:
 moment_of_forces = finite_result(moment_of_forces)
 
 
-def _pair_forces(f) -> np.ndarray:
+def _pair_forces(f: npt.ArrayLike) -> np.ndarray:
     ff = as_float_array(f, "f", (3,))
     if ff.ndim < 3 or ff.shape[-3] != ff.shape[-2]:
         raise ShapeError(f"f has shape {ff.shape}; expected (..., N, N, 3) (f[k, j] = f_kj)")
     return ff
 
 
-def internal_forces(f) -> np.ndarray:
+def internal_forces(f: npt.ArrayLike) -> np.ndarray:
     """Internal force on each particle, F^i_k = Σ_j f_kj (1.18).
 
     Domain: finite f of shape (..., N, N, 3) (f[k, j] the force on k from j; any, Newton's third law
@@ -739,7 +771,7 @@ def internal_forces(f) -> np.ndarray:
 internal_forces = finite_result(internal_forces)
 
 
-def internal_moment(r, f) -> np.ndarray:
+def internal_moment(r: npt.ArrayLike, f: npt.ArrayLike) -> np.ndarray:
     """The moment of the internal forces, M^i = ½ Σ_kj r_jk × f_jk (1.31).
 
     Domain: finite r (..., N, 3) and f (..., N, N, 3) with the same N (else ShapeError); a result
@@ -784,7 +816,7 @@ internal_moment = finite_result(internal_moment)
 # --------------------------------------------------------------- kinetic energy
 
 
-def kinetic_energy(m, v) -> np.ndarray:
+def kinetic_energy(m: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
     """Kinetic energy T = ½ Σ m_j v_j · v_j (3.2), compensated.
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -813,7 +845,9 @@ def kinetic_energy(m, v) -> np.ndarray:
 kinetic_energy = finite_result(kinetic_energy)
 
 
-def kinetic_energy_decomposition(m, v) -> tuple[np.ndarray, np.ndarray]:
+def kinetic_energy_decomposition(
+    m: npt.ArrayLike, v: npt.ArrayLike
+) -> tuple[np.ndarray, np.ndarray]:
     """The two parts of the kinetic energy (3.7): T = T' + ½ m v_G².
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -852,16 +886,17 @@ kinetic_energy_decomposition = finite_result(kinetic_energy_decomposition)
 # ------------------------------------------------- fixed direction, cylindrical
 
 
-def _unit(axis, lead) -> np.ndarray:
+def _unit(axis: npt.ArrayLike, lead: tuple[int, ...]) -> np.ndarray:
     e = _point(axis, "axis", lead)
     norm = np.sqrt(np.sum(np.ldexp(e, -_exponent(e)) ** 2, axis=-1, keepdims=True))
     zero = ~e.any(axis=-1)
     if zero.any():
         raise ZeroAxisError(f"axis = {e[*_first_index(zero)].tolist()} has zero length")
-    return np.ldexp(e, -_exponent(e)) / norm
+    out: np.ndarray = np.ldexp(e, -_exponent(e)) / norm
+    return out
 
 
-def axial_component(x, *, axis) -> np.ndarray:
+def axial_component(x: npt.ArrayLike, *, axis: npt.ArrayLike) -> np.ndarray:
     """The component x · e of a vector along the fixed direction e (1.65).
 
     Domain: finite x (..., 3) and a nonzero axis (..., 3) (else ZeroAxisError); a result beyond
@@ -876,7 +911,8 @@ def axial_component(x, *, axis) -> np.ndarray:
     """
     xx = as_float_array(x, "x", (3,))
     e = _unit(axis, xx.shape[:-1])
-    return np.sum(xx * e, axis=-1)
+    out: np.ndarray = np.sum(xx * e, axis=-1)
+    return out
 
 
 axial_component = finite_result(axial_component)
@@ -900,10 +936,13 @@ def _reference_direction(e: np.ndarray) -> np.ndarray:
     c = np.zeros_like(e)
     np.put_along_axis(c, idx[..., None], 1.0, axis=-1)
     c = c - np.sum(c * e, axis=-1, keepdims=True) * e
-    return c / np.linalg.norm(c, axis=-1, keepdims=True)
+    out: np.ndarray = c / np.linalg.norm(c, axis=-1, keepdims=True)
+    return out
 
 
-def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
+def cylindrical_components(
+    r: npt.ArrayLike, v: npt.ArrayLike, *, about: npt.ArrayLike, axis: npt.ArrayLike
+) -> Cylindrical:
     """Cylindrical coordinates of points about the axis through A along e (1.68).
 
     Domain: finite r, v (..., 3), about (..., 3), a nonzero axis (else ZeroAxisError); no point on
@@ -971,7 +1010,9 @@ def cylindrical_components(r, v, *, about, axis) -> Cylindrical:
 cylindrical_components = finite_result(cylindrical_components)
 
 
-def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
+def moment_of_inertia_about_axis(
+    m: npt.ArrayLike, r: npt.ArrayLike, *, about: npt.ArrayLike, axis: npt.ArrayLike
+) -> np.ndarray:
     """J_z = Σ m_j ρ_j² (1.71), ρ_j the distance of particle j from the axis.
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -998,7 +1039,14 @@ def moment_of_inertia_about_axis(m, r, *, about, axis) -> np.ndarray:
 moment_of_inertia_about_axis = finite_result(moment_of_inertia_about_axis)
 
 
-def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
+def average_angular_velocity(
+    m: npt.ArrayLike,
+    r: npt.ArrayLike,
+    v: npt.ArrayLike,
+    *,
+    about: npt.ArrayLike,
+    axis: npt.ArrayLike,
+) -> np.ndarray:
     """ω_av = Σ m_j ρ_j² ϕ̇_j / Σ m_j ρ_j² = L_Az / J_z (1.70), (1.72).
 
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
@@ -1029,7 +1077,8 @@ def average_angular_velocity(m, r, v, *, about, axis) -> np.ndarray:
             f"J_z = 0 at index {_first_index(zero)}: all mass is on the axis, omega_av is undefined"
         )
     L = angular_momentum(mm, rr, vv, about=about)
-    return axial_component(L, axis=np.broadcast_to(_unit(axis, lead), L.shape)) / Jz
+    out: np.ndarray = axial_component(L, axis=np.broadcast_to(_unit(axis, lead), L.shape)) / Jz
+    return out
 
 
 average_angular_velocity = finite_result(average_angular_velocity)
@@ -1038,7 +1087,7 @@ average_angular_velocity = finite_result(average_angular_velocity)
 # ------------------------------------------------------ continuous distributions
 
 
-def masses_from_density(rho, *, cell_volume) -> np.ndarray:
+def masses_from_density(rho: npt.ArrayLike, *, cell_volume: npt.ArrayLike) -> np.ndarray:
     """Masses dm = ρ dV of a density sampled at the centres of equal cells (1.62–1.64).
 
     Domain: finite rho ≥ 0 of shape (..., N) (else NegativeMassError), a scalar cell_volume > 0
@@ -1077,7 +1126,9 @@ def masses_from_density(rho, *, cell_volume) -> np.ndarray:
 masses_from_density = finite_result(masses_from_density)
 
 
-def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
+def continuous_centre_of_mass(
+    rho: npt.ArrayLike, points: npt.ArrayLike, *, cell_volume: npt.ArrayLike
+) -> np.ndarray:
     """r_G = ∫ r ρ dV / ∫ ρ dV (1.62) by the midpoint rule on equal cells.
 
     Domain: rho and cell_volume as :func:`masses_from_density`, finite points (..., N, 3); rho not
@@ -1108,7 +1159,9 @@ def continuous_centre_of_mass(rho, points, *, cell_volume) -> np.ndarray:
 continuous_centre_of_mass = finite_result(continuous_centre_of_mass)
 
 
-def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
+def continuous_momentum(
+    rho: npt.ArrayLike, velocity: npt.ArrayLike, *, cell_volume: npt.ArrayLike
+) -> np.ndarray:
     """p = ∫ v ρ dV (1.63) by the midpoint rule on equal cells.
 
     Domain: rho and cell_volume as :func:`masses_from_density`, finite velocity (..., N, 3); a
@@ -1133,7 +1186,14 @@ def continuous_momentum(rho, velocity, *, cell_volume) -> np.ndarray:
 continuous_momentum = finite_result(continuous_momentum)
 
 
-def continuous_angular_momentum(rho, points, velocity, *, cell_volume, about) -> np.ndarray:
+def continuous_angular_momentum(
+    rho: npt.ArrayLike,
+    points: npt.ArrayLike,
+    velocity: npt.ArrayLike,
+    *,
+    cell_volume: npt.ArrayLike,
+    about: npt.ArrayLike,
+) -> np.ndarray:
     """L_A = ∫ (r − r_A) × v ρ dV (1.64) by the midpoint rule on equal cells.
 
     Domain: rho and cell_volume as :func:`masses_from_density`, finite points and velocity (..., N,
