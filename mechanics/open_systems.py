@@ -50,7 +50,10 @@ problem (a relative change of eps in g moves the result by eps g t).
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
+import numpy.typing as npt
 
 from ._floats import EPS
 from ._validate import as_float_array, finite_result
@@ -110,7 +113,7 @@ _AFTER_BURN_OUT = ("raise", "coast")
 # ---------------------------------------------------------------- validation
 
 
-def _nonnegative(x, name: str) -> np.ndarray:
+def _nonnegative(x: object, name: str) -> npt.NDArray[np.float64]:
     a = as_float_array(x, name)
     if (a < 0).any():
         bad = a[a < 0].flat[0]
@@ -120,7 +123,7 @@ def _nonnegative(x, name: str) -> np.ndarray:
     return a
 
 
-def _positive(x, name: str) -> np.ndarray:
+def _positive(x: object, name: str) -> npt.NDArray[np.float64]:
     a = as_float_array(x, name)
     if (a <= 0).any():
         bad = a[a <= 0].flat[0]
@@ -128,7 +131,9 @@ def _positive(x, name: str) -> np.ndarray:
     return a
 
 
-def _flows(q, w, qname: str, wname: str) -> tuple[np.ndarray, np.ndarray]:
+def _flows(
+    q: object, w: object, qname: str, wname: str
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Validated flows q (..., n) and vectors w (..., n, 3); one flow may be (), (3,)."""
     qa = _nonnegative(q, qname)
     wa = as_float_array(w, wname, (3,))
@@ -147,14 +152,17 @@ def _flows(q, w, qname: str, wname: str) -> tuple[np.ndarray, np.ndarray]:
     return qa, wa
 
 
-def _flux(q, w, qname: str, wname: str) -> np.ndarray:
+def _flux(
+    q: npt.ArrayLike | None, w: npt.ArrayLike | None, qname: str, wname: str
+) -> npt.NDArray[np.float64]:
     """Σ_a q_a w_a over the flows (zero for no flows)."""
     if q is None and w is None:
         return np.zeros(3)
     if q is None or w is None:
         raise ShapeError(f"{qname} and {wname} must be given together")
     qa, wa = _flows(q, w, qname, wname)
-    return np.sum(qa[..., None] * wa, axis=-2)
+    flux: npt.NDArray[np.float64] = np.sum(qa[..., None] * wa, axis=-2)
+    return flux
 
 
 def _option(after_burn_out: str) -> str:
@@ -168,7 +176,7 @@ def _option(after_burn_out: str) -> str:
 # ------------------------------------------------------- the momentum principle
 
 
-def thrust(q, u_rel) -> np.ndarray:
+def thrust(q: npt.ArrayLike, u_rel: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Force on an open system from an outflow q with relative velocity u_rel: −q u.
 
     Domain: q ≥ 0 (else NegativeMassError), finite u_rel (..., 3); a result beyond float64 raises
@@ -195,13 +203,21 @@ def thrust(q, u_rel) -> np.ndarray:
     """
     qa = _nonnegative(q, "q")
     ua = as_float_array(u_rel, "u_rel", (3,))
-    return -qa[..., None] * ua
+    F: npt.NDArray[np.float64] = -qa[..., None] * ua
+    return F
 
 
 thrust = finite_result(thrust)
 
 
-def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.ndarray:
+def momentum_rate(
+    F_e: npt.ArrayLike,
+    *,
+    q_out: npt.ArrayLike | None = None,
+    v_out: npt.ArrayLike | None = None,
+    q_in: npt.ArrayLike | None = None,
+    v_in: npt.ArrayLike | None = None,
+) -> npt.NDArray[np.float64]:
     """dp_o/dt of an open system, the momentum principle (7.19).
 
     Domain: finite F_e (..., 3); each flow q ≥ 0 of shape (..., n) given together with its
@@ -228,13 +244,18 @@ def momentum_rate(F_e, *, q_out=None, v_out=None, q_in=None, v_in=None) -> np.nd
     [0.0, 0.0, 0.0]
     """
     F = as_float_array(F_e, "F_e", (3,))
-    return F - _flux(q_out, v_out, "q_out", "v_out") + _flux(q_in, v_in, "q_in", "v_in")
+    rate: npt.NDArray[np.float64] = (
+        F - _flux(q_out, v_out, "q_out", "v_out") + _flux(q_in, v_in, "q_in", "v_in")
+    )
+    return rate
 
 
 momentum_rate = finite_result(momentum_rate)
 
 
-def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
+def mass_rate(
+    *, q_out: npt.ArrayLike | None = None, q_in: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """dm/dt = Σ q⁺ − Σ q⁻ (7.21).  ``q_out``, ``q_in`` of shape (..., n); None for none.
 
     Domain: flows q ≥ 0 (else NegativeMassError), the last axis listing the flows; a result beyond
@@ -256,7 +277,15 @@ def mass_rate(*, q_out=None, q_in=None) -> np.ndarray:
 mass_rate = finite_result(mass_rate)
 
 
-def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=None):
+def open_system_acceleration(
+    m: npt.ArrayLike,
+    F_e: npt.ArrayLike,
+    *,
+    q_out: npt.ArrayLike | None = None,
+    u_out: npt.ArrayLike | None = None,
+    q_in: npt.ArrayLike | None = None,
+    u_in: npt.ArrayLike | None = None,
+) -> npt.NDArray[np.float64]:
     """a_o = (F_e − Σ q⁻ u⁻ + Σ q⁺ u⁺)/m, (7.25), velocities relative to the system.
 
     Domain: m > 0, finite F_e (..., 3), flows as :func:`momentum_rate`; a result beyond float64
@@ -283,15 +312,24 @@ def open_system_acceleration(m, F_e, *, q_out=None, u_out=None, q_in=None, u_in=
     ma = _positive(m, "m")
     F = as_float_array(F_e, "F_e", (3,))
     rate = F - _flux(q_out, u_out, "q_out", "u_out") + _flux(q_in, u_in, "q_in", "u_in")
-    return rate / ma[..., None]
+    a: npt.NDArray[np.float64] = rate / ma[..., None]
+    return a
 
 
 open_system_acceleration = finite_result(open_system_acceleration)
 
 
 def angular_momentum_rate(
-    M_e, *, about, q_out=None, r_out=None, v_out=None, q_in=None, r_in=None, v_in=None
-) -> np.ndarray:
+    M_e: npt.ArrayLike,
+    *,
+    about: npt.ArrayLike,
+    q_out: npt.ArrayLike | None = None,
+    r_out: npt.ArrayLike | None = None,
+    v_out: npt.ArrayLike | None = None,
+    q_in: npt.ArrayLike | None = None,
+    r_in: npt.ArrayLike | None = None,
+    v_in: npt.ArrayLike | None = None,
+) -> npt.NDArray[np.float64]:
     """dL_o/dt about a fixed point A of an open system, (7.35).
 
     Domain: finite M_e and about (..., 3); each flow q ≥ 0 given with its points and velocities
@@ -346,7 +384,7 @@ angular_momentum_rate = finite_result(angular_momentum_rate)
 # ------------------------------------------------------------------- the rocket
 
 
-def _phi(x: np.ndarray) -> np.ndarray:
+def _phi(x: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     """φ(x) = (1/x) ∫₀ˣ −log(1 − y) dy = 1 + (1 − x) log(1 − x)/x, 0 ≤ x < 1, φ(0) = 0.
 
     With s = x/(2 − x) (so 1 − x = (1 − s)/(1 + s), −log(1 − x) = 2 atanh s),
@@ -363,10 +401,11 @@ def _phi(x: np.ndarray) -> np.ndarray:
     series = s - (1.0 - s) * A
     with np.errstate(divide="ignore", invalid="ignore"):
         direct = 1.0 + (1.0 - x) * np.log1p(-x) / x
-    return np.where(small, series, direct)
+    phi: npt.NDArray[np.float64] = np.where(small, series, direct)
+    return phi
 
 
-def burn_out_time(*, m_f, q) -> np.ndarray:
+def burn_out_time(*, m_f: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """T = m_f/q, the time at which the fuel m_f = q T is gone (Example 7.2).
 
     Domain: m_f ≥ 0, q > 0; a result beyond float64 raises ResultOverflowError.
@@ -376,13 +415,14 @@ def burn_out_time(*, m_f, q) -> np.ndarray:
     >>> float(burn_out_time(m_f=600.0, q=4.0))
     150.0
     """
-    return _nonnegative(m_f, "m_f") / _positive(q, "q")
+    T: npt.NDArray[np.float64] = _nonnegative(m_f, "m_f") / _positive(q, "q")
+    return T
 
 
 burn_out_time = finite_result(burn_out_time)
 
 
-def _first(values, mask) -> float:
+def _first(values: npt.ArrayLike, mask: npt.ArrayLike) -> float:
     """The first entry of ``values`` where ``mask`` holds (both broadcast)."""
     v, m = np.broadcast_arrays(values, mask)
     return float(v[m].flat[0])
@@ -392,7 +432,23 @@ def _first(values, mask) -> float:
 _UNUSED = object()
 
 
-def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
+def _rocket_inputs(
+    t: npt.ArrayLike,
+    m_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    u: object,
+    m_f: npt.ArrayLike,
+    g: object,
+    after_burn_out: str,
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64] | None,
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64] | None,
+    npt.NDArray[np.float64],
+]:
     """Validate the rocket's inputs; return them as float arrays and T = m_f/q."""
     _option(after_burn_out)
     ta = as_float_array(t, "t")
@@ -434,7 +490,14 @@ def _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out):
     return ta, m0, qa, ua, mf, ga, T
 
 
-def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
+def rocket_mass(
+    t: npt.ArrayLike,
+    *,
+    m_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    m_f: npt.ArrayLike,
+    after_burn_out: str = "raise",
+) -> npt.NDArray[np.float64]:
     """m(t) = m_0 − q t (7.27) up to burn-out, m_0 − m_f after (with ``"coast"``).
 
     Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0; t beyond burn-out only with after_burn_out='coast'
@@ -448,23 +511,47 @@ def rocket_mass(t, *, m_0, q, m_f, after_burn_out: str = "raise") -> np.ndarray:
     400.0
     """
     ta, m0, qa, _, mf, _, T = _rocket_inputs(t, m_0, q, _UNUSED, m_f, _UNUSED, after_burn_out)
-    return np.where(ta > T, m0 - mf, m0 - qa * np.minimum(ta, T))
+    m: npt.NDArray[np.float64] = np.where(ta > T, m0 - mf, m0 - qa * np.minimum(ta, T))
+    return m
 
 
 rocket_mass = finite_result(rocket_mass)
 
 
-def _burn_velocity(t, m0, q, u, g):
+def _burn_velocity(
+    t: npt.NDArray[np.float64],
+    m0: npt.NDArray[np.float64],
+    q: npt.NDArray[np.float64],
+    u: npt.NDArray[np.float64],
+    g: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
     """u L(x) − g t, L = −log1p(−x), x = q t/m_0: (7.30)."""
-    return u * -np.log1p(-(q * t / m0)) - g * t
+    v: npt.NDArray[np.float64] = u * -np.log1p(-(q * t / m0)) - g * t
+    return v
 
 
-def _burn_height(t, m0, q, u, g):
+def _burn_height(
+    t: npt.NDArray[np.float64],
+    m0: npt.NDArray[np.float64],
+    q: npt.NDArray[np.float64],
+    u: npt.NDArray[np.float64],
+    g: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
     """u t φ(x) − g t²/2: the integral of (7.30) from 0 to t."""
-    return u * t * _phi(q * t / m0) - 0.5 * g * t * t
+    z: npt.NDArray[np.float64] = u * t * _phi(q * t / m0) - 0.5 * g * t * t
+    return z
 
 
-def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
+def rocket_velocity(
+    t: npt.ArrayLike,
+    *,
+    m_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    u: npt.ArrayLike,
+    m_f: npt.ArrayLike,
+    g: npt.ArrayLike,
+    after_burn_out: str = "raise",
+) -> npt.NDArray[np.float64]:
     """Vertical velocity of the rocket of Example 7.2, (7.30).
 
     Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
@@ -517,6 +604,8 @@ def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> n
     1.0000000000005e-12
     """
     ta, m0, qa, ua, _, ga, T = _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out)
+    # u and g were given (not _UNUSED), so _rocket_inputs returned them validated, not None
+    ua, ga = cast("npt.NDArray[np.float64]", ua), cast("npt.NDArray[np.float64]", ga)
     tb = np.minimum(ta, T)
     v = _burn_velocity(tb, m0, qa, ua, ga)
     if after_burn_out == "coast":
@@ -527,7 +616,16 @@ def rocket_velocity(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> n
 rocket_velocity = finite_result(rocket_velocity)
 
 
-def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.ndarray:
+def rocket_height(
+    t: npt.ArrayLike,
+    *,
+    m_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    u: npt.ArrayLike,
+    m_f: npt.ArrayLike,
+    g: npt.ArrayLike,
+    after_burn_out: str = "raise",
+) -> npt.NDArray[np.float64]:
     """Height z(t) of the rocket of Example 7.2: the integral of (7.30), z(0) = 0.
 
     Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
@@ -561,6 +659,8 @@ def rocket_height(t, *, m_0, q, u, m_f, g, after_burn_out: str = "raise") -> np.
     True
     """
     ta, m0, qa, ua, _, ga, T = _rocket_inputs(t, m_0, q, u, m_f, g, after_burn_out)
+    # u and g were given (not _UNUSED), so _rocket_inputs returned them validated, not None
+    ua, ga = cast("npt.NDArray[np.float64]", ua), cast("npt.NDArray[np.float64]", ga)
     tb = np.minimum(ta, T)
     z = _burn_height(tb, m0, qa, ua, ga)
     if after_burn_out == "coast":
@@ -577,7 +677,9 @@ rocket_height = finite_result(rocket_height)
 # ---------------------------------------------------------- jets, bends, chains
 
 
-def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
+def jet_velocity(
+    t: npt.ArrayLike, *, m: npt.ArrayLike, q: npt.ArrayLike, w: npt.ArrayLike, v_0: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Speed of a jet plane taking in still air at q and expelling it at w relative.
 
     Domain: t ≥ 0, m > 0, q > 0, w > 0, finite v_0; a result beyond float64 raises
@@ -608,13 +710,16 @@ def jet_velocity(t, *, m, q, w, v_0) -> np.ndarray:
         raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
     k = _positive(q, "q") * ta / _positive(m, "m")
     v0 = as_float_array(v_0, "v_0")
-    return v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
+    v: npt.NDArray[np.float64] = v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
+    return v
 
 
 jet_velocity = finite_result(jet_velocity)
 
 
-def pipe_bend_force(q, v, angle) -> np.ndarray:
+def pipe_bend_force(
+    q: npt.ArrayLike, v: npt.ArrayLike, angle: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Force that holds a pipe bend at rest: F = q (v_out − v_in), from (7.19).
 
     Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
@@ -654,13 +759,16 @@ def pipe_bend_force(q, v, angle) -> np.ndarray:
     F1 = -2.0 * qv * np.sin(0.5 * a) ** 2
     F2 = qv * np.sin(a)
     F1, F2 = np.broadcast_arrays(F1, F2)
-    return np.stack([F1, F2, np.zeros_like(F1)], axis=-1)
+    F: npt.NDArray[np.float64] = np.stack([F1, F2, np.zeros_like(F1)], axis=-1)
+    return F
 
 
 pipe_bend_force = finite_result(pipe_bend_force)
 
 
-def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
+def pipe_bend_force_magnitude(
+    q: npt.ArrayLike, v: npt.ArrayLike, angle: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """|F| = 2 q |v| |sin(α/2)| for the pipe bend of :func:`pipe_bend_force`.
 
     Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
@@ -673,13 +781,16 @@ def pipe_bend_force_magnitude(q, v, angle) -> np.ndarray:
     qa = _nonnegative(q, "q")
     va = as_float_array(v, "v")
     a = as_float_array(angle, "angle")
-    return 2.0 * qa * np.abs(va) * np.abs(np.sin(0.5 * a))
+    F: npt.NDArray[np.float64] = 2.0 * qa * np.abs(va) * np.abs(np.sin(0.5 * a))
+    return F
 
 
 pipe_bend_force_magnitude = finite_result(pipe_bend_force_magnitude)
 
 
-def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
+def falling_chain_table_force(
+    x: npt.ArrayLike, *, lam: npt.ArrayLike, h: npt.ArrayLike, g: npt.ArrayLike, ell: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Force from a falling chain on a table when a length x has landed (Problem 7.4).
 
     Domain: lam > 0, g > 0, ell > 0, 0 ≤ x ≤ ell, h ≥ 0 (else OutOfDomainError); a result beyond
@@ -714,7 +825,8 @@ def falling_chain_table_force(x, *, lam, h, g, ell) -> np.ndarray:
     ha = as_float_array(h, "h")
     if (ha < 0).any():
         raise OutOfDomainError(f"h must be ≥ 0; got {float(ha[ha < 0].flat[0])!r}")
-    return _positive(lam, "lam") * _positive(g, "g") * (3.0 * xa + 2.0 * ha)
+    F: npt.NDArray[np.float64] = _positive(lam, "lam") * _positive(g, "g") * (3.0 * xa + 2.0 * ha)
+    return F
 
 
 falling_chain_table_force = finite_result(falling_chain_table_force)
@@ -723,7 +835,21 @@ falling_chain_table_force = finite_result(falling_chain_table_force)
 # ------------------------------------------------------------ rotating systems
 
 
-def _carousel_inputs(t, J_0, q, v, r, R):
+def _carousel_inputs(
+    t: npt.ArrayLike,
+    J_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    v: npt.ArrayLike,
+    r: npt.ArrayLike,
+    R: npt.ArrayLike,
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]:
     ta = as_float_array(t, "t")
     if (ta < 0).any():
         raise OutOfDomainError(
@@ -739,7 +865,16 @@ def _carousel_inputs(t, J_0, q, v, r, R):
     return ta, J0, qa, va, ra, Ra
 
 
-def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
+def carousel_angular_velocity(
+    t: npt.ArrayLike,
+    *,
+    J_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    v: npt.ArrayLike,
+    r: npt.ArrayLike,
+    R: npt.ArrayLike,
+    phidot_0: npt.ArrayLike = 0.0,
+) -> npt.NDArray[np.float64]:
     """φ̇(t) of the carousel under fire, Example 7.3: the solution of (7.39).
 
     Domain: t ≥ 0, J_0 > 0, q ≥ 0, R > 0, |r| ≤ R (else OutOfDomainError), finite v and phidot_0; a
@@ -771,13 +906,23 @@ def carousel_angular_velocity(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray
     """
     ta, J0, qa, va, ra, Ra = _carousel_inputs(t, J_0, q, v, r, R)
     w0 = as_float_array(phidot_0, "phidot_0")
-    return (J0 * w0 - ra * qa * va * ta) / (J0 + qa * Ra**2 * ta)
+    w: npt.NDArray[np.float64] = (J0 * w0 - ra * qa * va * ta) / (J0 + qa * Ra**2 * ta)
+    return w
 
 
 carousel_angular_velocity = finite_result(carousel_angular_velocity)
 
 
-def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.ndarray:
+def carousel_angular_acceleration(
+    t: npt.ArrayLike,
+    *,
+    J_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    v: npt.ArrayLike,
+    r: npt.ArrayLike,
+    R: npt.ArrayLike,
+    phidot_0: npt.ArrayLike = 0.0,
+) -> npt.NDArray[np.float64]:
     """φ̈(t) from (7.39): (−r q v − q R² φ̇)/(J_0 + q R² t), φ̇ from the solution.
 
     Domain: as :func:`carousel_angular_velocity`; a result beyond float64 raises
@@ -793,13 +938,16 @@ def carousel_angular_acceleration(t, *, J_0, q, v, r, R, phidot_0=0.0) -> np.nda
     ta, J0, qa, va, ra, Ra = _carousel_inputs(t, J_0, q, v, r, R)
     w0 = as_float_array(phidot_0, "phidot_0")
     J = J0 + qa * Ra**2 * ta
-    return -qa * (ra * va + Ra**2 * w0) * J0 / J**2
+    a: npt.NDArray[np.float64] = -qa * (ra * va + Ra**2 * w0) * J0 / J**2
+    return a
 
 
 carousel_angular_acceleration = finite_result(carousel_angular_acceleration)
 
 
-def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
+def carousel_limit_angular_velocity(
+    *, v: npt.ArrayLike, r: npt.ArrayLike, R: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """φ̇_lim = −r v/R² (7.40): the bullets then arrive with the rim's angular velocity.
 
     Domain: R > 0, |r| ≤ R (else OutOfDomainError), finite v; a result beyond float64 raises
@@ -815,13 +963,16 @@ def carousel_limit_angular_velocity(*, v, r, R) -> np.ndarray:
         raise OutOfDomainError("the bullets miss: |r| must be ≤ R")
     # (r/R)·v/R: |r/R| ≤ 1, so no step overflows unless the result does, and R² (which
     # underflows to a subnormal or 0 for R below about 1e-154) is never formed
-    return -(ra / Ra) * as_float_array(v, "v") / Ra
+    w: npt.NDArray[np.float64] = -(ra / Ra) * as_float_array(v, "v") / Ra
+    return w
 
 
 carousel_limit_angular_velocity = finite_result(carousel_limit_angular_velocity)
 
 
-def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
+def rim_rocket_angular_velocity(
+    t: npt.ArrayLike, *, J_0: npt.ArrayLike, q: npt.ArrayLike, u: npt.ArrayLike, r: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """Spin-up of a wheel by rockets on its rim that eject mass tangentially.
 
     Domain: t ≥ 0, J_0, q, u, r > 0 with q r² t < J_0 (else OutOfDomainError); a result beyond
@@ -843,13 +994,21 @@ def rim_rocket_angular_velocity(t, *, J_0, q, u, r) -> np.ndarray:
     x = _positive(q, "q") * _positive(r, "r") ** 2 * ta / _positive(J_0, "J_0")
     if (x >= 1).any():
         raise OutOfDomainError("q r² t must be < J_0 (the wheel cannot expel all its inertia)")
-    return -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)
+    w: npt.NDArray[np.float64] = -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)
+    return w
 
 
 rim_rocket_angular_velocity = finite_result(rim_rocket_angular_velocity)
 
 
-def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
+def rim_rocket_spin_up_time(
+    omega: npt.ArrayLike,
+    *,
+    J_0: npt.ArrayLike,
+    q: npt.ArrayLike,
+    u: npt.ArrayLike,
+    r: npt.ArrayLike,
+) -> npt.NDArray[np.float64]:
     """Time for the rim rockets of :func:`rim_rocket_angular_velocity` to reach ω.
 
     Domain: ω ≥ 0, J_0, q, u, r > 0; a result beyond float64 raises ResultOverflowError.
@@ -868,13 +1027,14 @@ def rim_rocket_spin_up_time(omega, *, J_0, q, u, r) -> np.ndarray:
             f"omega must be ≥ 0 (the rockets push forward); got {float(w[w < 0].flat[0])!r}"
         )
     ra = _positive(r, "r")
-    return (
+    t: npt.NDArray[np.float64] = (
         -_positive(J_0, "J_0")
         * np.expm1(-ra * w / _positive(u, "u"))
         / _positive(q, "q")  # q·r could underflow to 0: divide one at a time
         / ra
         / ra
     )
+    return t
 
 
 rim_rocket_spin_up_time = finite_result(rim_rocket_spin_up_time)

@@ -54,10 +54,13 @@ that much in numpy.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Iterable, Sequence
+from typing import TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 
-from ._floats import EPS
+from ._floats import EPS, Floats
 from ._floats import split as _split
 from ._floats import two_sum as _two_sum
 from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
@@ -113,20 +116,32 @@ _QUAT_NORM_ATOL = 64 * EPS  # |q| − 1 accepted before "not a unit quaternion" 
 #: them as "no unique nearest rotation"
 _SINGULAR_RTOL = 8 * EPS
 
+#: float64 arrays: the columns of a block of rows (see :func:`_by_blocks`) and the results
+_Array: TypeAlias = npt.NDArray[np.float64]
+#: a kernel of :func:`_by_blocks`: the columns of a block in, as many columns out
+_Kernel: TypeAlias = Callable[..., Sequence[_Array]]
+#: a double-double norm (r_hi, r_mid, r_lo) of :func:`_norm_dd`
+_Norm: TypeAlias = tuple[_Array, _Array, _Array]
+#: the (v_hi, v_lo) of a part, split by :func:`_norm_dd`
+_Split: TypeAlias = tuple[_Array, _Array]
+#: (q, q_lo, q_hi, q_mid) of :func:`_ratio_dd`
+_Ratio: TypeAlias = tuple[_Array, _Array, Floats, Floats]
+
 
 # --------------------------------------------------------------------------- basics
 
 
-def _trig(alpha, name: str) -> tuple[np.ndarray, np.ndarray]:
+def _trig(alpha: npt.ArrayLike, name: str) -> tuple[_Array, _Array]:
     a = as_float_array(alpha, name)
     return np.cos(a), np.sin(a)
 
 
-def _stack(rows) -> np.ndarray:
-    return np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+def _stack(rows: Sequence[Sequence[_Array]]) -> _Array:
+    out: _Array = np.stack([np.stack(r, axis=-1) for r in rows], axis=-2)
+    return out
 
 
-def R1(alpha) -> np.ndarray:
+def R1(alpha: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Basis rotation by ``alpha`` about the first axis, (2.30).
 
     Domain: any finite angle ``alpha``, scalar or array (...), giving (..., 3, 3); NaN or inf raise
@@ -144,7 +159,7 @@ def R1(alpha) -> np.ndarray:
     return _stack([(o, z, z), (z, c, s), (z, -s, c)])
 
 
-def R2(alpha) -> np.ndarray:
+def R2(alpha: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Basis rotation by ``alpha`` about the second axis, (2.30).
 
     Domain: as :func:`R1`: any finite ``alpha`` (...), else NonFiniteError or ShapeError.
@@ -154,7 +169,7 @@ def R2(alpha) -> np.ndarray:
     return _stack([(c, z, -s), (z, o, z), (s, z, c)])
 
 
-def R3(alpha) -> np.ndarray:
+def R3(alpha: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Basis rotation by ``alpha`` about the third axis, (2.11) and (2.30).
 
     Domain: as :func:`R1`: any finite ``alpha`` (...), else NonFiniteError or ShapeError.
@@ -171,7 +186,7 @@ def R3(alpha) -> np.ndarray:
     return _stack([(c, s, z), (-s, c, z), (z, z, o)])
 
 
-def active_from_passive(R_A_O) -> np.ndarray:
+def active_from_passive(R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """The active operator R_{O→A} (2.21) in O components: the transpose of ^A R^O.
 
     Domain: a rotation matrix (..., 3, 3), orthogonal with det +1 within :data:`ROTATION_ATOL`
@@ -181,7 +196,7 @@ def active_from_passive(R_A_O) -> np.ndarray:
     return np.swapaxes(check_rotation(R_A_O), -1, -2)
 
 
-def passive_from_active(R_active) -> np.ndarray:
+def passive_from_active(R_active: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """The book's basis matrix ^A R^O of an active operator: its transpose.
 
     Domain: a rotation matrix (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
@@ -190,7 +205,7 @@ def passive_from_active(R_active) -> np.ndarray:
     return np.swapaxes(check_rotation(R_active, name="R_active"), -1, -2)
 
 
-def rotate_vector(R_A_O, r_O) -> np.ndarray:
+def rotate_vector(R_A_O: npt.ArrayLike, r_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Turn ``r`` with the basis, r' = R_{O→A} r (2.21); components in O in and out.
 
     Domain: ``R_A_O`` a rotation as :func:`check_rotation` (else NotARotationError), ``r_O`` any
@@ -207,13 +222,14 @@ def rotate_vector(R_A_O, r_O) -> np.ndarray:
     """
     R = check_rotation(R_A_O)
     r = as_float_array(r_O, "r_O", (3,))
-    return np.einsum("...ji,...j->...i", R, r)
+    out: npt.NDArray[np.float64] = np.einsum("...ji,...j->...i", R, r)
+    return out
 
 
 rotate_vector = finite_result(rotate_vector)
 
 
-def components_A_from_O(R_A_O, r_O) -> np.ndarray:
+def components_A_from_O(R_A_O: npt.ArrayLike, r_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Components in the basis A of a vector given in O: r^A = ^A R^O r^O (2.20).
 
     Domain: as :func:`rotate_vector`: a rotation ``R_A_O`` (else NotARotationError) and any finite
@@ -222,20 +238,24 @@ def components_A_from_O(R_A_O, r_O) -> np.ndarray:
     """
     R = check_rotation(R_A_O)
     r = as_float_array(r_O, "r_O", (3,))
-    return np.einsum("...ij,...j->...i", R, r)
+    out: npt.NDArray[np.float64] = np.einsum("...ij,...j->...i", R, r)
+    return out
 
 
 components_A_from_O = finite_result(components_A_from_O)
 
 
-def compose(R_B_A, R_A_O) -> np.ndarray:
+def compose(R_B_A: npt.ArrayLike, R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """^B R^O = ^B R^A ^A R^O, the chain of basis changes (2.34).
 
     Domain: two rotations (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
     ``R_B_A`` or ``R_A_O``); the leading axes broadcast, and batches that do not raise ShapeError
     listing each argument's shape.
     """
-    return check_rotation(R_B_A, name="R_B_A") @ check_rotation(R_A_O, name="R_A_O")
+    out: npt.NDArray[np.float64] = check_rotation(R_B_A, name="R_B_A") @ check_rotation(
+        R_A_O, name="R_A_O"
+    )
+    return out
 
 
 compose = broadcast_checked(compose)
@@ -257,7 +277,7 @@ compose = broadcast_checked(compose)
 _BLOCK = 16384
 
 
-def _by_blocks(kernel, a: np.ndarray, width: int) -> np.ndarray:
+def _by_blocks(kernel: _Kernel, a: _Array, width: int) -> _Array:
     """``kernel`` applied to the rows of ``a`` (..., m) in blocks: (..., width).
 
     ``kernel`` takes the m columns of a block (1-D arrays) and returns ``width``
@@ -272,7 +292,12 @@ def _by_blocks(kernel, a: np.ndarray, width: int) -> np.ndarray:
     return out.reshape(*a.shape[:-1], width)
 
 
-def _by_subsets(kernels, masks, columns, width: int) -> tuple[np.ndarray, ...]:
+def _by_subsets(
+    kernels: Sequence[_Kernel],
+    masks: Sequence[npt.NDArray[np.bool_]],
+    columns: Sequence[_Array],
+    width: int,
+) -> tuple[_Array, ...]:
     """Each ``kernels[i]`` applied to the rows selected by ``masks[i]`` (a partition)."""
     out = np.empty((width, columns[0].shape[0]))
     for kernel, mask in zip(kernels, masks, strict=True):
@@ -284,7 +309,17 @@ def _by_subsets(kernels, masks, columns, width: int) -> tuple[np.ndarray, ...]:
 # ---------------------------------------------------------------------- validation
 
 
-def _deviation_columns(a, b, c, d, e, f, g, h, i):
+def _deviation_columns(
+    a: _Array,
+    b: _Array,
+    c: _Array,
+    d: _Array,
+    e: _Array,
+    f: _Array,
+    g: _Array,
+    h: _Array,
+    i: _Array,
+) -> tuple[_Array, _Array]:
     """max |R Rᵀ − 1| and |det R − 1| of R = [[a, b, c], [d, e, f], [g, h, i]].
 
     Written out entry by entry (six row products, the cofactor determinant):
@@ -304,14 +339,14 @@ def _deviation_columns(a, b, c, d, e, f, g, h, i):
     return ortho, np.abs(det - 1.0)
 
 
-def _rotation_deviation(R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def _rotation_deviation(R: _Array) -> tuple[_Array, _Array]:
     # Entries beyond 1e154 overflow the products: inf (or nan) marks them as bad.
     with np.errstate(over="ignore", invalid="ignore"):
         dev = _by_blocks(_deviation_columns, R.reshape(*R.shape[:-2], 9), 2)
     return dev[..., 0], dev[..., 1]
 
 
-def _atol(atol) -> float:
+def _atol(atol: float) -> float:
     """``atol`` as a finite Python float ≥ 0, else an error naming ``atol``."""
     v = as_float_scalar(atol, "atol")
     if not v >= 0:
@@ -319,7 +354,9 @@ def _atol(atol) -> float:
     return v
 
 
-def check_rotation(R, *, atol: float = ROTATION_ATOL, name: str = "R_A_O") -> np.ndarray:
+def check_rotation(
+    R: npt.ArrayLike, *, atol: float = ROTATION_ATOL, name: str = "R_A_O"
+) -> npt.NDArray[np.float64]:
     """Validate a rotation matrix and return it as a float64 array.
 
     Domain: any finite array of shape (..., 3, 3) (else NonFiniteError or ShapeError); the check is
@@ -358,7 +395,7 @@ def check_rotation(R, *, atol: float = ROTATION_ATOL, name: str = "R_A_O") -> np
     return a
 
 
-def is_rotation(R, *, atol: float = ROTATION_ATOL) -> np.ndarray:
+def is_rotation(R: npt.ArrayLike, *, atol: float = ROTATION_ATOL) -> npt.NDArray[np.bool_]:
     """Elementwise predicate: orthogonal with det +1 within ``atol``.
 
     Domain: any finite array (..., 3, 3) (else NonFiniteError or ShapeError); the answer, a bool
@@ -372,7 +409,7 @@ def is_rotation(R, *, atol: float = ROTATION_ATOL) -> np.ndarray:
     return (ortho <= atol) & (det <= atol)
 
 
-def nearest_rotation(M) -> np.ndarray:
+def nearest_rotation(M: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """The rotation closest to ``M`` in the Frobenius norm (polar factor, by SVD).
 
     Domain: any finite (..., 3, 3) (else NonFiniteError or ShapeError), entries up to 1e300, whose
@@ -417,7 +454,8 @@ def nearest_rotation(M) -> np.ndarray:
     U[..., :, 2] *= d[..., None]
     Q = U @ Vt
     E = Q @ np.swapaxes(Q, -1, -2) - np.eye(3)
-    return Q - 0.5 * (E @ Q)
+    out: npt.NDArray[np.float64] = Q - 0.5 * (E @ Q)
+    return out
 
 
 # ------------------------------------------------------------ error-free arithmetic
@@ -429,7 +467,7 @@ def nearest_rotation(M) -> np.ndarray:
 # are used only where a plain rounding would break those bounds.
 
 
-def _sum4(a, b, c, d):
+def _sum4(a: Floats, b: Floats, c: Floats, d: Floats) -> Floats:
     """a + b + c + d with compensation: about one rounding in all."""
     s, e1 = _two_sum(a, b)
     s, e2 = _two_sum(s, c)
@@ -441,7 +479,7 @@ _EXPONENT_BITS = np.int64(0x7FF0000000000000)
 _HALF_BIT = np.int64(0x0008000000000000)  # the first mantissa bit: 1.5 * 2**e
 
 
-def _grid_splitter(r: np.ndarray) -> np.ndarray:
+def _grid_splitter(r: _Array) -> _Array:
     """1.5 * 2**(e + 27) for r in [2**e, 2**(e+1)), from the bits of r (normal r > 0).
 
     Adding and subtracting it rounds any |a| ≤ r to a multiple of g = 2**(e − 25),
@@ -450,7 +488,7 @@ def _grid_splitter(r: np.ndarray) -> np.ndarray:
     return ((r.view(np.int64) & _EXPONENT_BITS) | _HALF_BIT).view(np.float64) * 2.0**27
 
 
-def _norm_dd(parts, r: np.ndarray):
+def _norm_dd(parts: Iterable[_Array], r: _Array) -> tuple[_Norm, list[_Split]]:
     """The norm |v| of v = ``parts`` as a double-double, for r = fl(√(Σ v_i²)).
 
     Returns ``(r_hi, r_mid, r_lo), splits``: r = r_hi + r_mid exactly and
@@ -478,7 +516,7 @@ def _norm_dd(parts, r: np.ndarray):
     return (r_hi, r_mid, (hh + (2.0 * hl + ll)) / (2.0 * r)), splits
 
 
-def _ratio_dd(num, norm, r):
+def _ratio_dd(num: Floats, norm: _Norm, r: _Array) -> _Ratio:
     """(q, q_lo, q_hi, q_mid): q + q_lo = num/|v| to about 2**-75 relative.
 
     ``norm`` = (r_hi, r_mid, r_lo) of :func:`_norm_dd`; q = fl(num/r) = q_hi + q_mid
@@ -493,7 +531,7 @@ def _ratio_dd(num, norm, r):
     return q, (e - q * r_lo) / r, q_hi, q_mid
 
 
-def _times_dd(a, split, ratio):
+def _times_dd(a: _Array, split: _Split, ratio: _Ratio) -> _Array:
     """a (q + q_lo) with about one rounding: Dekker's product of a q, plus a q_lo.
 
     ``split`` = (a_hi, a_lo) from :func:`_norm_dd` (a_hi has at most 27 bits, so
@@ -509,7 +547,9 @@ def _times_dd(a, split, ratio):
 # ---------------------------------------------------------------------- Euler angles
 
 
-def matrix_from_euler(psi, theta, phi) -> np.ndarray:
+def matrix_from_euler(
+    psi: npt.ArrayLike, theta: npt.ArrayLike, phi: npt.ArrayLike
+) -> npt.NDArray[np.float64]:
     """^A R^O(ψ, θ, φ) = R3(φ) R1(θ) R3(ψ), written out as in (2.36).
 
     Domain: any finite ``psi``, ``theta``, ``phi`` (...), broadcast together (else NonFiniteError;
@@ -541,7 +581,9 @@ def matrix_from_euler(psi, theta, phi) -> np.ndarray:
 matrix_from_euler = broadcast_checked(matrix_from_euler)
 
 
-def euler_from_matrix(R_A_O) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def euler_from_matrix(
+    R_A_O: npt.ArrayLike,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Euler angles (ψ, θ, φ) of ^A R^O, the inverse of :func:`matrix_from_euler`.
 
     Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError); gimbal lock
@@ -586,7 +628,7 @@ def euler_from_matrix(R_A_O) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 _EULER_SCALE_BELOW = 2.0**-900
 
 
-def _euler_columns(*R):
+def _euler_columns(*R: _Array) -> tuple[_Array, _Array, _Array]:
     w, x, y, z = _shepperd_columns(*R)
     theta = 2.0 * np.arctan2(np.hypot(x, y), np.hypot(w, z))
     # The arguments do not change when a factor is scaled, so near gimbal lock
@@ -610,7 +652,7 @@ def _euler_columns(*R):
     return psi, theta, phi
 
 
-def _unit_scale_where(mask, a, b):
+def _unit_scale_where(mask: npt.NDArray[np.bool_], a: _Array, b: _Array) -> tuple[_Array, _Array]:
     """(a, b) with the rows in ``mask`` divided by 2**k, max(|a|, |b|) in [1/2, 1)."""
     a, b = a.copy(), b.copy()
     _, k = np.frexp(np.maximum(np.abs(a[mask]), np.abs(b[mask])))
@@ -618,7 +660,7 @@ def _unit_scale_where(mask, a, b):
     return a, b
 
 
-def euler_near_gimbal_lock(theta, *, atol: float = 1e-6) -> np.ndarray:
+def euler_near_gimbal_lock(theta: npt.ArrayLike, *, atol: float = 1e-6) -> npt.NDArray[np.bool_]:
     """True where sin θ < ``atol``: Euler-angle rates are ill-conditioned there.
 
     Domain: any finite ``theta`` (...) (else NonFiniteError); ``atol`` a finite number ≥ 0 (else
@@ -628,18 +670,20 @@ def euler_near_gimbal_lock(theta, *, atol: float = 1e-6) -> np.ndarray:
     """
     atol = _atol(atol)
     t = as_float_array(theta, "theta")
-    return np.abs(np.sin(t)) < atol
+    near: npt.NDArray[np.bool_] = np.abs(np.sin(t)) < atol
+    return near
 
 
 # ------------------------------------------------------------------- quaternions
 
 
-def _norm3(v: np.ndarray) -> np.ndarray:
+def _norm3(v: _Array) -> _Array:
     """Euclidean norm of (..., 3) without underflow or overflow (tiny angles)."""
-    return np.hypot(np.hypot(v[..., 0], v[..., 1]), v[..., 2])
+    n: _Array = np.hypot(np.hypot(v[..., 0], v[..., 1]), v[..., 2])
+    return n
 
 
-def _check_quat_raw(q, name: str = "q") -> np.ndarray:
+def _check_quat_raw(q: npt.ArrayLike, name: str = "q") -> _Array:
     """Validate a unit quaternion and return it as given (not renormalised)."""
     a = as_float_array(q, name, (4,))
     # |q|² plainly (a few eps off, far inside the tolerance); an over- or
@@ -658,13 +702,14 @@ def _check_quat_raw(q, name: str = "q") -> np.ndarray:
     return a
 
 
-def _check_quat(q, name: str = "q") -> np.ndarray:
+def _check_quat(q: npt.ArrayLike, name: str = "q") -> _Array:
     """Validate a unit quaternion and return it normalised."""
     a = _check_quat_raw(q, name)
-    return a / np.sqrt(np.einsum("...i,...i->...", a, a))[..., None]
+    unit: _Array = a / np.sqrt(np.einsum("...i,...i->...", a, a))[..., None]
+    return unit
 
 
-def quat_multiply(p, q) -> np.ndarray:
+def quat_multiply(p: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Hamilton product p ⊗ q (scalar first); the operator of p after that of q.
 
     Domain: any finite ``p``, ``q`` of shape (..., 4), unit or not (no check of length); the leading
@@ -690,7 +735,7 @@ def quat_multiply(p, q) -> np.ndarray:
 quat_multiply = finite_result(quat_multiply)
 
 
-def compose_quat(q_B_A, q_A_O) -> np.ndarray:
+def compose_quat(q_B_A: npt.ArrayLike, q_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Quaternion of ^B R^O from those of ^B R^A and ^A R^O (as :func:`compose`).
 
     Domain: two unit quaternions (..., 4) with |q| − 1 within 64 eps (else NotARotationError; a zero
@@ -708,11 +753,19 @@ def compose_quat(q_B_A, q_A_O) -> np.ndarray:
 compose_quat = broadcast_checked(compose_quat)
 
 
-def _canonical(q: np.ndarray) -> np.ndarray:
-    return np.where(q[..., :1] < 0, -q, q)
+def _canonical(q: _Array) -> _Array:
+    out: _Array = np.where(q[..., :1] < 0, -q, q)
+    return out
 
 
-def _matrix_columns(w, x, y, z, f, S=None):
+def _matrix_columns(
+    w: _Array,
+    x: _Array,
+    y: _Array,
+    z: _Array,
+    f: Floats,
+    S: Sequence[_Array] | None = None,
+) -> list[_Array]:
     """The nine entries of ^A R^O (row by row) from quaternion parts, over |q|².
 
     Rows are e^A_i in O components: the transpose of the familiar active
@@ -750,14 +803,16 @@ def _matrix_columns(w, x, y, z, f, S=None):
 _UNIT_SPLITTER = 1.5 * 2.0**27
 
 
-def _length_correction(*parts):
+def _length_correction(*parts: _Array) -> Floats:
     """f = δ/(1 + δ) with δ = Σ q_i² − 1 to about 2**-75, for |q_i| < 2.
 
     The parts are split on the grid 2**-25 (as in :func:`_norm_dd`), so Σ q_hi² − 1
     is exact and the rest is small.  Used to divide out |q|², see
     :func:`matrix_from_quat`.
     """
-    hh, hl, ll = -1.0, 0.0, 0.0
+    hh: Floats = -1.0
+    hl: Floats = 0.0
+    ll: Floats = 0.0
     for a in parts:
         a_hi = (a + _UNIT_SPLITTER) - _UNIT_SPLITTER
         a_lo = a - a_hi
@@ -768,7 +823,7 @@ def _length_correction(*parts):
     return delta / (1.0 + delta)
 
 
-def matrix_from_quat(q) -> np.ndarray:
+def matrix_from_quat(q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """^A R^O of the unit quaternion ``q`` = (w, x, y, z) of the active operator.
 
     Domain: a unit quaternion (..., 4), |q| − 1 within 64 eps (else NotARotationError; a zero
@@ -787,13 +842,23 @@ def matrix_from_quat(q) -> np.ndarray:
     """
     a = _check_quat_raw(q)
 
-    def kernel(w, x, y, z):
+    def kernel(w: _Array, x: _Array, y: _Array, z: _Array) -> list[_Array]:
         return _matrix_columns(w, x, y, z, _length_correction(w, x, y, z))
 
     return _by_blocks(kernel, a, 9).reshape(*a.shape[:-1], 3, 3)
 
 
-def _shepperd_columns(r11, r12, r13, r21, r22, r23, r31, r32, r33):
+def _shepperd_columns(
+    r11: _Array,
+    r12: _Array,
+    r13: _Array,
+    r21: _Array,
+    r22: _Array,
+    r23: _Array,
+    r31: _Array,
+    r32: _Array,
+    r33: _Array,
+) -> tuple[_Array, _Array, _Array, _Array]:
     """A positive multiple (w, x, y, z), w ≥ 0, of the quaternion of ^A R^O (entries r_ij).
 
     For an exact rotation the symmetric matrix K with diagonal P = (1 + tr,
@@ -824,8 +889,9 @@ def _shepperd_columns(r11, r12, r13, r21, r22, r23, r31, r32, r33):
     s_x, s_y, s_z = r23 - r32, r31 - r13, r12 - r21
     p_xy, p_xz, p_yz = r12 + r21, r13 + r31, r23 + r32
 
-    def row(k0, k1, k2, k3):
-        return (m0 * k0 + m1 * k1) + (m2 * k2 + m3 * k3)
+    def row(k0: Floats, k1: Floats, k2: Floats, k3: Floats) -> _Array:
+        out: _Array = (m0 * k0 + m1 * k1) + (m2 * k2 + m3 * k3)
+        return out
 
     w = row(P, s_x, s_y, s_z)
     sign = np.copysign(1.0, w)  # w ≥ 0 (q ≡ −q)
@@ -837,7 +903,7 @@ def _shepperd_columns(r11, r12, r13, r21, r22, r23, r31, r32, r33):
     )
 
 
-def quat_from_matrix(R_A_O) -> np.ndarray:
+def quat_from_matrix(R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Unit quaternion (w ≥ 0) of ^A R^O, by Shepperd's largest-pivot method.
 
     Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError).
@@ -847,7 +913,7 @@ def quat_from_matrix(R_A_O) -> np.ndarray:
     """
     R = check_rotation(R_A_O)
 
-    def kernel(*entries):
+    def kernel(*entries: _Array) -> list[_Array]:
         q = _shepperd_columns(*entries)
         r = np.sqrt(sum(a * a for a in q))
         norm, splits = _norm_dd(q, r)
@@ -873,7 +939,9 @@ _TINY_ANGLE = 2.0**-27
 _HUGE_ANGLE = 2.0**26
 
 
-def _quat_columns_from_rotvec(x, y, z, *, with_sin: bool = False):
+def _quat_columns_from_rotvec(
+    x: _Array, y: _Array, z: _Array, *, with_sin: bool = False
+) -> Sequence[_Array]:
     """The quaternion (w, qx, qy, qz) = (cos φ/2, sin(φ/2) e_a) of rotation vectors
     φ e_a (columns), followed by S = sin φ e_a (three more columns) if ``with_sin``.
     """
@@ -892,7 +960,9 @@ def _quat_columns_from_rotvec(x, y, z, *, with_sin: bool = False):
     )
 
 
-def _quat_from_rotvec_normal(x, y, z, s, with_sin):
+def _quat_from_rotvec_normal(
+    x: _Array, y: _Array, z: _Array, s: _Array, with_sin: bool
+) -> list[_Array]:
     # φ = r + r_lo in double-double: an angle error of one ulp would cost up to
     # π eps in the matrix near a half turn, and one ulp in the round trip.
     r = np.sqrt(s)
@@ -914,12 +984,16 @@ def _quat_from_rotvec_normal(x, y, z, s, with_sin):
     return parts
 
 
-def _quat_from_rotvec_tiny(x, y, z, s, with_sin):
+def _quat_from_rotvec_tiny(
+    x: _Array, y: _Array, z: _Array, s: _Array, with_sin: bool
+) -> list[_Array]:
     parts = [np.ones_like(s), 0.5 * x, 0.5 * y, 0.5 * z]
     return [*parts, x, y, z] if with_sin else parts
 
 
-def _quat_from_rotvec_huge(x, y, z, s, with_sin):
+def _quat_from_rotvec_huge(
+    x: _Array, y: _Array, z: _Array, s: _Array, with_sin: bool
+) -> list[_Array]:
     # s may have overflowed: the norm of v / 2**k, with max |v_i| / 2**k in [1/2, 1).
     k = np.frexp(np.maximum(np.maximum(np.abs(x), np.abs(y)), np.abs(z)))[1]
     x, y, z = np.ldexp(x, -k), np.ldexp(y, -k), np.ldexp(z, -k)
@@ -934,7 +1008,7 @@ def _quat_from_rotvec_huge(x, y, z, s, with_sin):
     return parts
 
 
-def quat_from_rotvec(rotvec) -> np.ndarray:
+def quat_from_rotvec(rotvec: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Unit quaternion (cos φ/2, sin φ/2 e_a) of the rotation vector φ e_a (2.4).
 
     Domain: as :func:`matrix_from_rotvec`: any finite rotation vector (..., 3), subnormal to near
@@ -948,7 +1022,7 @@ def quat_from_rotvec(rotvec) -> np.ndarray:
     return _by_blocks(_quat_columns_from_rotvec, v, 4)
 
 
-def _rotvec_columns_from_quat(w, x, y, z):
+def _rotvec_columns_from_quat(w: _Array, x: _Array, y: _Array, z: _Array) -> Sequence[_Array]:
     """φ e_a of quaternions (w ≥ 0) of any length (columns); every step is scale-free."""
     s = x * x + y * y + z * z
     # t = |(x, y, z)|/w < 2**-27: atan(t)/t = 1 − t²/3 rounds to 1, so φ e_a = 2 (x, y, z)/w.
@@ -960,7 +1034,9 @@ def _rotvec_columns_from_quat(w, x, y, z):
     )
 
 
-def _rotvec_from_quat_normal(w, x, y, z, s):
+def _rotvec_from_quat_normal(
+    w: _Array, x: _Array, y: _Array, z: _Array, s: _Array
+) -> tuple[_Array, ...]:
     # Here |(x, y, z)| ≥ 2**-27 w, and w or |(x, y, z)| is of order 1 (a unit
     # quaternion, or a Shepperd row with its pivot ≥ 1): within range of _norm_dd.
     r = np.sqrt(s)
@@ -971,11 +1047,13 @@ def _rotvec_from_quat_normal(w, x, y, z, s):
     return tuple(_times_dd(a, split, ratio) for a, split in zip((x, y, z), splits, strict=True))
 
 
-def _rotvec_from_quat_tiny(w, x, y, z, s):
+def _rotvec_from_quat_tiny(
+    w: _Array, x: _Array, y: _Array, z: _Array, s: _Array
+) -> tuple[_Array, _Array, _Array]:
     return (x + x) / w, (y + y) / w, (z + z) / w
 
 
-def rotvec_from_quat(q) -> np.ndarray:
+def rotvec_from_quat(q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Rotation vector φ e_a with φ in [0, π] of the unit quaternion ``q``.
 
     Domain: a unit quaternion (..., 4), |q| − 1 within 64 eps (else NotARotationError; a zero
@@ -985,7 +1063,7 @@ def rotvec_from_quat(q) -> np.ndarray:
     return _by_blocks(_rotvec_columns_from_quat, a, 3)
 
 
-def matrix_from_rotvec(rotvec) -> np.ndarray:
+def matrix_from_rotvec(rotvec: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """^A R^O(φ) of the rotation vector φ = φ e_a, (2.28)–(2.29).
 
     Domain: any finite rotation vector (..., 3), from subnormal to near 1e308 in length (tiny and
@@ -1008,14 +1086,14 @@ def matrix_from_rotvec(rotvec) -> np.ndarray:
     """
     v = as_float_array(rotvec, "rotvec", (3,))
 
-    def kernel(x, y, z):
+    def kernel(x: _Array, y: _Array, z: _Array) -> list[_Array]:
         w, qx, qy, qz, *S = _quat_columns_from_rotvec(x, y, z, with_sin=True)
         return _matrix_columns(w, qx, qy, qz, _length_correction(w, qx, qy, qz), S)
 
     return _by_blocks(kernel, v, 9).reshape(*v.shape[:-1], 3, 3)
 
 
-def rotvec_from_matrix(R_A_O) -> np.ndarray:
+def rotvec_from_matrix(R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Rotation vector φ e_a, φ in [0, π], of ^A R^O (inverse of (2.28)).
 
     Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError).
@@ -1026,13 +1104,13 @@ def rotvec_from_matrix(R_A_O) -> np.ndarray:
     """
     R = check_rotation(R_A_O)
 
-    def kernel(*entries):
+    def kernel(*entries: _Array) -> Sequence[_Array]:
         return _rotvec_columns_from_quat(*_shepperd_columns(*entries))
 
     return _by_blocks(kernel, R.reshape(*R.shape[:-2], 9), 3)
 
 
-def matrix_from_axis_angle(axis, angle) -> np.ndarray:
+def matrix_from_axis_angle(axis: npt.ArrayLike, angle: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """^A R^O for a turn ``angle`` about the direction ``axis`` (2.29).
 
     Domain: ``axis`` any finite non-zero (..., 3) of any length, subnormal to 1e308 (its norm is
