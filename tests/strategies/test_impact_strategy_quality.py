@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import Phase, example, find, given, settings
+from hypothesis import example, find, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
@@ -26,7 +26,7 @@ from tests.strategies.sampling import found, never
 
 #: Draws allowed to reach a regime: regimes are branches among at most six, so
 #: a regime is met within a few dozen draws; 1000 leaves room for nesting.
-FIND_SETTINGS = settings(max_examples=1000, database=None, phases=[Phase.generate])
+FIND_DRAWS = 1000
 
 #: For the tests of what the strategies shrink to.
 SHRINK_SETTINGS = settings(max_examples=100, database=None)
@@ -40,7 +40,7 @@ MOMENT_RTOL = 64 * EPS
 
 
 def _found(strategy, predicate):
-    return found(strategy, predicate, FIND_SETTINGS.max_examples)
+    return found(strategy, predicate, FIND_DRAWS)
 
 
 def _moments(J) -> np.ndarray:
@@ -372,14 +372,14 @@ def test_impact_strategies_reject_bad_arguments_quoting_them(factory, kwargs, qu
 
 #: Searches that must fail (a value outside the documented bounds): every branch is
 #: drawn hundreds of times.
-NEVER_SETTINGS = settings(max_examples=600, database=None, phases=[Phase.generate])
+NEVER_DRAWS = 600
 
 #: A ratio of two floats drawn as m_2 / r (or m_2 r) comes back within a few roundings.
 RATIO_RTOL = 4 * EPS
 
 
 def _never(strategy, predicate) -> None:
-    never(strategy, predicate, NEVER_SETTINGS.max_examples)
+    never(strategy, predicate, NEVER_DRAWS)
 
 
 def _spans(lo, hi):

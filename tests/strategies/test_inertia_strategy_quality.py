@@ -13,7 +13,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import Phase, find, given, settings
+from hypothesis import find, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
@@ -24,18 +24,18 @@ from tests.strategies.sampling import found, never
 
 #: Regimes are branches of ``st.sampled_from`` among at most eight, some with a
 #: nested boolean branch: reached within a few dozen draws; 2000 leaves room.
-FIND_SETTINGS = settings(max_examples=2000, database=None, phases=[Phase.generate])
+FIND_DRAWS = 2000
 #: A hard moment regime *and* a general basis (every off-diagonal entry ≥ 1e-3 of the
 #: trace) is a joint event: measured over 60 seeds, "flat in a general basis" took a
 #: median of 323 draws (p90 897, max 1818), so 2000 failed about once in 70 runs
 #: (a fresh `make test` did).  At p ≈ 1/470 per draw, 10^4 draws fail with
 #: probability e^-21.
-FIND_SETTINGS_JOINT = settings(max_examples=10_000, database=None, phases=[Phase.generate])
+FIND_DRAWS_JOINT = 10_000
 SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
 
-def _found(strategy, predicate, find_settings=FIND_SETTINGS):
-    return found(strategy, predicate, find_settings.max_examples)
+def _found(strategy, predicate, draws=FIND_DRAWS):
+    return found(strategy, predicate, draws)
 
 
 def _rel_gaps(J):
@@ -97,7 +97,7 @@ def test_rigid_bodies_reach_every_centre_regime(regime, predicate):
 
 @pytest.mark.parametrize(("regime", "predicate"), list(TENSOR_REGIMES.items()))
 def test_inertia_tensors_reach_the_hard_moments_in_a_general_basis(regime, predicate):
-    _found(ms.inertia_tensors(), predicate, FIND_SETTINGS_JOINT)
+    _found(ms.inertia_tensors(), predicate, FIND_DRAWS_JOINT)
 
 
 @pytest.mark.parametrize("regime", ms.PRINCIPAL_MOMENT_REGIMES)
@@ -223,7 +223,7 @@ def test_inertia_tensors_reject_a_non_strategy():
 # ends of them.  The strategies are built inside the tests.
 
 #: Searches that must fail (a value outside the documented bounds).
-NEVER_SETTINGS = settings(max_examples=1000, database=None, phases=[Phase.generate])
+NEVER_DRAWS = 1000
 
 #: A ratio of moments formed by one product or sum comes back within a few roundings.
 RATIO_RTOL = 8 * EPS
@@ -234,7 +234,7 @@ GAP_ATOL = 2 * EPS
 
 
 def _never(strategy, predicate) -> None:
-    never(strategy, predicate, NEVER_SETTINGS.max_examples)
+    never(strategy, predicate, NEVER_DRAWS)
 
 
 def _moments(regime, **bounds):
@@ -256,8 +256,8 @@ def test_wide_scales_stay_1e20_away_from_one_with_the_default_bounds():
     # log-uniform exponent: over 8 seeds the first hit came at draw 6 … 126, but a
     # fresh `make test` once found none in 2000 (issue 16, third session): the joint
     # budget of 10^4 draws
-    _found(strategy, lambda J: J[2] >= 0.5 * hi, FIND_SETTINGS_JOINT)
-    _found(strategy, lambda J: J[2] <= 2.0 / hi, FIND_SETTINGS_JOINT)
+    _found(strategy, lambda J: J[2] >= 0.5 * hi, FIND_DRAWS_JOINT)
+    _found(strategy, lambda J: J[2] <= 2.0 / hi, FIND_DRAWS_JOINT)
 
 
 def test_wide_scales_bounded_at_1e20_either_way_draw_only_the_two_ends():

@@ -13,7 +13,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import Phase, find, given, settings
+from hypothesis import find, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
@@ -23,12 +23,12 @@ from mechanics.particles import internal_moment
 from tests.strategies.sampling import found, never
 
 #: Regimes are branches among at most five; 2000 draws find each many times over.
-FIND_SETTINGS = settings(max_examples=2000, database=None, phases=[Phase.generate])
+FIND_DRAWS = 2000
 SHRINK_SETTINGS = settings(max_examples=200, database=None)
 
 
 def _found(strategy, predicate):
-    return found(strategy, predicate, FIND_SETTINGS.max_examples)
+    return found(strategy, predicate, FIND_DRAWS)
 
 
 MASS_REGIMES = {
@@ -224,11 +224,11 @@ def test_masses_reject_a_unit_regime_outside_the_bounds():
 # Each regime drawn alone stays within the bounds its docstring states and reaches both
 # ends of them.  The strategies are built inside the tests.
 
-NEVER_SETTINGS = settings(max_examples=500, database=None, phases=[Phase.generate])
+NEVER_DRAWS = 500
 
 
 def _never(strategy, predicate) -> None:
-    never(strategy, predicate, NEVER_SETTINGS.max_examples)
+    never(strategy, predicate, NEVER_DRAWS)
 
 
 @pytest.mark.parametrize(("lo", "hi"), [(1e-6, 1e6), (0.3, 5.0), (2.0, 3.0)])

@@ -15,7 +15,7 @@ import re
 
 import numpy as np
 import pytest
-from hypothesis import Phase, find, given, settings
+from hypothesis import find, given, settings
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
@@ -31,7 +31,7 @@ from tests.strategies.sampling import found
 #: twice (make test-matrix on Python 3.12; make test-oldest), as e^(−2000 p) foretells
 #: (2.5e-3 at p = 0.3 %); 2·10⁴ draws leave e^(−60).  No shrinking: reaching the regime
 #: is the claim, and shrinking composite draws costs seconds.
-FIND_SETTINGS = settings(max_examples=20_000, database=None, phases=[Phase.generate])
+FIND_DRAWS = 20_000
 
 #: The same, shrinking: for the tests of what the strategies shrink to.
 SHRINK_SETTINGS = settings(max_examples=200, database=None)
@@ -53,7 +53,7 @@ MATRIX_ORTHO_ATOL = 8 * EPS
 
 
 def _found(strategy, predicate):
-    return found(strategy, predicate, FIND_SETTINGS.max_examples)
+    return found(strategy, predicate, FIND_DRAWS)
 
 
 def _general_axis(v, floor=0.05) -> bool:

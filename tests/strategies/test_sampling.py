@@ -1,0 +1,30 @@
+"""The shared sample of tests/strategies/sampling.py answers as the ``find`` runs it
+replaced did: ``never`` fails on a draw that satisfies the predicate, ``found`` fails
+when no draw does, and each question reads the draws already made."""
+
+from __future__ import annotations
+
+import pytest
+from hypothesis import strategies as st
+
+from tests.strategies.sampling import found, never, sample
+
+
+def test_never_names_a_draw_that_satisfies_the_predicate() -> None:
+    never(st.integers(0, 10), lambda x: x > 10, 200)
+    with pytest.raises(AssertionError, match="never should: 1"):
+        never(st.just(1), lambda x: x == 1, 10)
+
+
+def test_found_returns_a_satisfying_draw_and_fails_when_none_is_drawn() -> None:
+    assert found(st.integers(0, 10), lambda x: x == 7, 500) == 7
+    with pytest.raises(AssertionError, match="none of 50 draws"):
+        found(st.integers(0, 10**6), lambda x: x > 10**6, 50)
+
+
+def test_a_strategy_is_drawn_once_and_grown_only_as_far_as_asked() -> None:
+    s = st.integers(-(10**9), 10**9)
+    first = sample(s, 150)
+    assert len(first) == 150
+    assert sample(s, 100) == first[:100]  # read, not drawn again
+    assert sample(s, 300)[:150] == first  # grown, the first draws kept
