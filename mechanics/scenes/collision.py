@@ -16,6 +16,13 @@ refined on the exact gap; :meth:`Collision.first_contact` returns the earliest a
 :data:`~.impacts.GAP_ROUNDING` × the largest size the feature's positions (and the
 plane's point) have had so far in the run (:attr:`Collision.reach`).  A crossing with
 zero approach speed (up to rounding) is a touch, not an impact.
+
+A feature that rested (its gap held at zero by :mod:`.support`, to the drift of the
+constraint's integration, which the run checks at every sample) and has just been let
+go, by an impact elsewhere or a lift-off, starts its first free step with the gap that
+drift left: that depth below zero is allowed at the step's start too
+(:attr:`Collision.released`), until the feature's gap is seen at or above zero at a
+step's start; a fall beyond it is still refused as a missed contact.
 """
 
 from __future__ import annotations
@@ -118,6 +125,11 @@ class Collision:
         self.resolver = resolver
         #: (impact, feature) index -> the largest size of its positions so far
         self.reach: dict[tuple[int, int], float] = {}
+        #: (impact, feature) index -> the depth its gap had when its support let it go
+        #: (the resting constraint's drift), allowed at a step's start until it is ≥ 0
+        self.released: dict[tuple[int, int], float] = {}
+        #: the (impact, feature) indices held by the support on the last step searched
+        self.held: set[tuple[int, int]] = set()
         imps = model.impacts
         #: the bodies of the impacts, and each one's reach about G: the radius of a
         #: ball about its centre that holds every contact feature of it
@@ -294,14 +306,17 @@ class Collision:
         best = None
         support = self.resolver.support
         near, sums = self.near(fit)
+        held, self.held = self.held, set()
         for a, imp in enumerate(model.impacts):
             if not near[a]:  # cannot touch on this step (broad phase)
                 self._keep_reach(fit, a, imp, sums)
                 continue
             for b, ft in enumerate(imp.features):
                 if support is not None and support.active(imp, ft):
+                    self.held.add((a, b))
                     continue  # resting: its gap is held at zero (.support)
                 polys, x, other, size = self._polys(fit, imp, ft)
+                slack = self._released(fit, imp, ft, (a, b), (a, b) in held)
                 # positions round relative to their own size, not to their difference
                 reach = np.abs(x).sum() + other + size
                 self.reach[a, b] = max(self.reach.get((a, b), 0.0), reach)
@@ -316,7 +331,8 @@ class Collision:
                         try:
                             xc = contacts.first_downward_crossing(
                                 p,
-                                start_tol=GAP_ROUNDING * (self.reach[a, b] * units + terms),
+                                start_tol=GAP_ROUNDING * (self.reach[a, b] * units + terms)
+                                + slack * units,
                                 refine=gap_at,
                                 after=after,
                             )
@@ -343,6 +359,20 @@ class Collision:
                     else:  # touch after touch within one step: never passed over silently
                         best = self._falls_in(best, imp, ft, tc)
         return best
+
+    def _released(self, fit: StepFit, imp, ft, key, was_held: bool) -> float:
+        """The depth below zero allowed at this step's start to a feature its support
+        has let go (see the module's docstring): the gap's at the first free step,
+        kept until a step starts with the gap ≥ 0; 0 for any other feature."""
+        if not was_held and key not in self.released:
+            return 0.0
+        gap = float(imp.gap(self.forward.snapshot(fit.t_a, fit.state(fit.t_a)), ft))
+        if gap >= 0.0:
+            self.released.pop(key, None)
+            return 0.0
+        if was_held:
+            self.released[key] = -gap
+        return self.released[key]
 
     def _falls_in(self, best, imp, ft, tc) -> Hit:
         """A feature that touches and then falls in comes to rest there (a :class:`Hit`

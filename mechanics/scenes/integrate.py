@@ -36,7 +36,9 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
     from mechanics.integrators import DOP853Stepper
 
     s = model.scene
-    collision.reach.clear()  # a run starts with no sizes and no switches seen
+    collision.reach.clear()  # a run starts with no sizes, releases or switches seen
+    collision.released.clear()
+    collision.held.clear()
     modes.switched.clear()
     switches = sorted({x for e in model.forces for x in e.switch_times() if 0 < x < t_end})
     support = forward.support

@@ -419,17 +419,11 @@ def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -
         )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="known loss (found by hypothesis's random profile, 2026-11-28, open): a box "
-    "(e = 0, smooth) comes to rest on corner 7, pivots on it, and corner 6 strikes the floor; "
-    "the next step finds corner 7's gap at -2.5e-14, beyond the start tolerance (~2.4e-14), "
-    "and refuses the run as a missed contact.  Cause (traced): while a corner rests its gap "
-    "is held at zero by the support only to the constraint's drift, and when the impact at "
-    "the other corner releases it that drift is read as interpenetration; the start "
-    "tolerance of a feature just released from support should include the support's drift",
-)
 def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_refused() -> None:
+    """Found by hypothesis's random profile: a box (e = 0, smooth) comes to rest on corner
+    7, pivots on it, and corner 6 strikes the floor; the impulse lets corner 7 go with
+    the gap its support's drift left (−2.5e-14, beyond a fresh contact's start rounding
+    of ~2.4e-14), which the old search refused as a missed contact."""
     box = _box(
         position=[0.0, 0.0, 1.0], psi=1.0, theta=0.0546875, phi=0.125, omega=[-3.546875, 0, 0]
     )
@@ -442,8 +436,10 @@ def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_ref
         duration=0.45,
         samples=46,
     )
-    r = run_scene(sc)  # today: SceneError "interpenetrate ... a contact was missed"
+    r = run_scene(sc)
     assert r.passed, r.summary()
+    kinds = [(e.kind, e.detail.get("feature")) for e in r.trajectory.events]
+    assert any(k == "impact" for k, _ in kinds), kinds  # the strike that lets go
 
 
 def test_an_impulse_that_would_add_energy_is_refused_with_one_line() -> None:
