@@ -181,12 +181,13 @@ def impact_masses(*, min_value: float = 1e-15, max_value: float = 1e15, regimes=
             f"regimes={regimes!r}: none reachable in [{min_value!r}, {max_value!r}]"
         )
 
+    branches = {r: log_uniform(*spans[r], shrink_to="hi") for r in names}
+
     @st.composite
     def draw_mass(draw) -> float:
         regime = draw(st.sampled_from(names))
         event(f"impact_masses: {regime}")
-        a, b = spans[regime]
-        return draw(log_uniform(a, b, shrink_to="hi"))
+        return draw(branches[regime])
 
     return draw_mass()
 
@@ -202,6 +203,7 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
         raise InvalidArgument(f"max_ratio={max_ratio!r} must be >= 1e6")
     names = check_regimes(regimes, MASS_PAIR_REGIMES, "mass_pairs")
     base = log_uniform(1e-3, 1e3, shrink_to="hi")
+    scales, ratios = log_uniform(*_MASS_SCALES, shrink_to="hi"), log_uniform(1e6, r, shrink_to="hi")
 
     @st.composite
     def draw_pair(draw) -> tuple[float, float]:
@@ -212,10 +214,10 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
         if regime == "generic":
             return (draw(base), draw(base))
         if regime == "scaled":
-            k = draw(log_uniform(*_MASS_SCALES, shrink_to="hi"))
+            k = draw(scales)
             return (draw(base) * k, draw(base) * k)
         m2 = draw(base)
-        ratio = draw(log_uniform(1e6, r, shrink_to="hi"))
+        ratio = draw(ratios)
         return (m2 / ratio, m2) if regime == "light-1" else (m2 * ratio, m2)
 
     return draw_pair()

@@ -145,12 +145,13 @@ def principal_moments(
     unit = st.floats(0.0, 1.0)
     ratio = st.floats(0.05, 1.0)  # J1/J2 in the general regimes: gaps well above rounding
     delta = log_uniform(*NEAR_DEGENERATE_RANGE, shrink_to="hi")
+    near_scale, thin = _log_scale(*near), log_uniform(*THIN_RANGE, shrink_to="hi")
 
     @st.composite
     def draw_moments(draw) -> np.ndarray:
         regime = draw(st.sampled_from(names))
         event(f"principal_moments: {regime}")
-        s = draw(wide if regime == "wide-scales" else _log_scale(*near))
+        s = draw(wide if regime == "wide-scales" else near_scale)
         if regime == "equal":
             return np.array([s, s, s])
         J2 = s * draw(st.floats(0.5, 1.0))
@@ -174,7 +175,7 @@ def principal_moments(
             J1 = J2 * draw(ratio)
             return _triple(J1, J2, (J1 + J2) * (1.0 - draw(delta)))
         # thin
-        J1 = J2 * draw(log_uniform(*THIN_RANGE, shrink_to="hi"))
+        J1 = J2 * draw(thin)
         return _triple(J1, J2, J2 + draw(unit) * J1)
 
     return draw_moments()
@@ -216,21 +217,18 @@ def rigid_bodies(
         raise InvalidArgument(f"tensors={tensors!r} must be a hypothesis strategy")
     names = check_regimes(regimes, CENTRE_REGIMES, "rigid_bodies")
     direction = st.tuples(st.floats(-1.0, 1.0), st.floats(-math.pi, math.pi))
+    mass, far = _log_scale(lo, hi), log_uniform(1e6, 1e10, shrink_to="hi")
 
     @st.composite
     def draw_body(draw) -> RigidBody:
-        m = draw(_log_scale(lo, hi))
+        m = draw(mass)
         J = draw(tensors)
         regime = draw(st.sampled_from(names))
         event(f"rigid_bodies: {regime}")
         if regime == "origin":
             return RigidBody(m, J, np.zeros(3))
         size = math.sqrt(float(np.trace(J)) / (2.0 * m))
-        dist = size * (
-            draw(st.floats(0.0, 10.0))
-            if regime == "general"
-            else draw(log_uniform(1e6, 1e10, shrink_to="hi"))
-        )
+        dist = size * (draw(st.floats(0.0, 10.0)) if regime == "general" else draw(far))
         z, az = draw(direction)
         rho = math.sqrt((1.0 - z) * (1.0 + z))
         return RigidBody(m, J, dist * np.array([rho * math.cos(az), rho * math.sin(az), z]))

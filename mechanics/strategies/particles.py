@@ -123,18 +123,39 @@ def _log_uniform_array(n: int, lo: float, hi: float) -> st.SearchStrategy[np.nda
     return _signed_units(n).map(lambda u: np.clip(10.0 ** (a + (b - a) * np.abs(u)), lo, hi))
 
 
+def _equal_masses(lo: float, hi: float) -> st.SearchStrategy[float]:
+    """The one mass of the ``equal`` regime, log-uniform in [lo, hi], shrinking toward lo."""
+    return log_uniform(lo, hi, shrink_to="lo")
+
+
+class _Built:
+    """The strategies a factory's draws need for a drawn size n, built once per size and
+    factory (not per draw: a strategy built in a draw costs more than the draw; nor
+    shared between factories, so each strategy object stays independent)."""
+
+    def __init__(self) -> None:
+        self._made: dict[tuple, st.SearchStrategy] = {}
+
+    def get(self, make, *args) -> st.SearchStrategy:
+        key = (make.__name__, *args)
+        s = self._made.get(key)
+        if s is None:
+            s = self._made[key] = make(*args)
+        return s
+
+
 # ---------------------------------------------------------------------- masses
 
 
-def _mass_array(draw, n: int, lo: float, hi: float, regime: str) -> np.ndarray:
+def _mass_array(draw, built: _Built, n: int, lo: float, hi: float, regime: str) -> np.ndarray:
     if regime == "unit":
         return np.ones(n)
     if regime == "equal":
-        return np.full(n, draw(log_uniform(lo, hi, shrink_to="lo")))
+        return np.full(n, draw(built.get(_equal_masses, lo, hi)))
     if regime == "log-uniform":
-        return draw(_log_uniform_array(n, lo, hi))
+        return draw(built.get(_log_uniform_array, n, lo, hi))
     # extreme-ratio: each at a bound; the first two differ, so both are present.
-    m = np.where(draw(_signed_units(n)) < 0, hi, lo)
+    m = np.where(draw(built.get(_signed_units, n)) < 0, hi, lo)
     if n >= 2:
         m[0], m[1] = lo, hi
     return m
@@ -167,12 +188,14 @@ def masses(
         if not names:
             raise InvalidArgument(f"regimes={regimes!r}: 'unit' needs 1.0 in [{lo}, {hi}]")
 
+    built = _Built()
+
     @st.composite
     def draw_masses(draw) -> np.ndarray:
         n = draw(st.integers(nlo, nhi))
         regime = draw(st.sampled_from(names))
         event(f"masses: {regime}")
-        return _mass_array(draw, n, lo, hi, regime)
+        return _mass_array(draw, built, n, lo, hi, regime)
 
     return draw_masses()
 
@@ -207,6 +230,10 @@ def particle_systems(
     signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 3).map(np.array)
     unit_ok = lo <= 1.0 <= hi
     mass_regimes = tuple(r for r in MASS_REGIMES if unit_ok or r != "unit")
+    built = _Built()
+
+    def vectors(n: int, bound: float) -> st.SearchStrategy[np.ndarray]:
+        return built.get(_vectors, n, bound)
 
     @st.composite
     def draw_system(draw) -> ParticleSystem:
@@ -214,19 +241,19 @@ def particle_systems(
         regime = draw(st.sampled_from(names))
         event(f"particle_systems: {regime}")
         if regime == "simple":
-            m = _mass_array(draw, n, lo, hi, "unit" if unit_ok else "equal")
-            return ParticleSystem(m, draw(_vectors(n, 1.0)), draw(_vectors(n, 1.0)))
+            m = _mass_array(draw, built, n, lo, hi, "unit" if unit_ok else "equal")
+            return ParticleSystem(m, draw(vectors(n, 1.0)), draw(vectors(n, 1.0)))
         if regime == "wide-mass-ratio":
-            m = _mass_array(draw, n, lo, hi, "extreme-ratio")
+            m = _mass_array(draw, built, n, lo, hi, "extreme-ratio")
         else:
-            m = _mass_array(draw, n, lo, hi, draw(st.sampled_from(mass_regimes)))
+            m = _mass_array(draw, built, n, lo, hi, draw(st.sampled_from(mass_regimes)))
         if regime == "far-offset":
             centre = FAR_OFFSET * draw(signs) * draw(st.floats(1.0, 2.0))
-            return ParticleSystem(m, centre + draw(_vectors(n, 1.0)), draw(_vectors(n, 1.0)))
+            return ParticleSystem(m, centre + draw(vectors(n, 1.0)), draw(vectors(n, 1.0)))
         if regime == "fast-translation":
             V = _FAST_SPEED * draw(signs) * draw(st.floats(1.0, 2.0))
-            return ParticleSystem(m, draw(_vectors(n, 10.0)), V + draw(_vectors(n, 1.0)))
-        return ParticleSystem(m, draw(_vectors(n, 10.0)), draw(_vectors(n, 10.0)))
+            return ParticleSystem(m, draw(vectors(n, 10.0)), V + draw(vectors(n, 1.0)))
+        return ParticleSystem(m, draw(vectors(n, 10.0)), draw(vectors(n, 10.0)))
 
     return draw_system()
 
@@ -254,6 +281,7 @@ def pair_forces(r, *, max_magnitude: float = 1e3, regimes=None) -> st.SearchStra
         raise InvalidArgument(f"max_magnitude={max_magnitude!r} must be > 0")
     names = check_regimes(regimes, PAIR_FORCE_REGIMES, "pair_forces")
     n = rr.shape[0]
+    units = _signed_units(n)  # built once, not per draw
 
     @st.composite
     def draw_forces(draw) -> np.ndarray:
@@ -263,10 +291,10 @@ def pair_forces(r, *, max_magnitude: float = 1e3, regimes=None) -> st.SearchStra
             return np.zeros((n, n, 3))
         # Symmetric pair parameters from per-particle draws (O(N) draws, not
         # O(N²)): t_kj = (u_k + u_j)/2 in [−1, 1], the same for (k, j) and (j, k).
-        u = draw(_signed_units(n))
+        u = draw(units)
         if regime == "non-central":
-            w = 1e-3 + (0.5 - 1e-3) * np.abs(draw(_signed_units(n)))
-            ang = math.pi * draw(_signed_units(n))
+            w = 1e-3 + (0.5 - 1e-3) * np.abs(draw(units))
+            ang = math.pi * draw(units)
         d = rr[:, None, :] - rr[None, :, :]  # r_kj
         dist = np.linalg.norm(d, axis=-1)
         apart = dist > 0

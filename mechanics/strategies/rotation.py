@@ -164,6 +164,8 @@ def unit_vectors() -> st.SearchStrategy[np.ndarray]:
     1e-3, so that two components are tiny).  The norm is 1 within one ulp.
     """
 
+    tilts = log_uniform(1e-12, 1e-3, shrink_to="hi")
+
     @st.composite
     def draw_unit_vector(draw) -> np.ndarray:
         regime = draw(st.sampled_from(UNIT_VECTOR_REGIMES))
@@ -176,7 +178,7 @@ def unit_vectors() -> st.SearchStrategy[np.ndarray]:
             z = draw(st.floats(-1.0, 1.0))
             rho = math.sqrt((1.0 - z) * (1.0 + z))
         else:  # sin of the tilt, not sqrt(1 - z²): cos(1e-12) rounds to 1
-            tilt = draw(log_uniform(1e-12, 1e-3, shrink_to="hi"))
+            tilt = draw(tilts)
             z = math.cos(tilt) * draw(st.sampled_from((1.0, -1.0)))
             rho = math.sin(tilt)
         azimuth = draw(st.floats(-math.pi, math.pi))
@@ -349,6 +351,8 @@ def quaternions() -> st.SearchStrategy[np.ndarray]:
     Shrinks toward the identity.
     """
     signs = st.sampled_from((1.0, -1.0))
+    # built once, not per draw (a strategy built inside a draw costs more than the draw)
+    axes, vecs = unit_vectors(), rotvecs()
 
     @st.composite
     def draw_quaternion(draw) -> np.ndarray:
@@ -357,9 +361,9 @@ def quaternions() -> st.SearchStrategy[np.ndarray]:
         if regime == "identity":
             q = np.array([1.0, 0.0, 0.0, 0.0])
         elif regime == "half-turn":
-            q = np.concatenate([[0.0], draw(unit_vectors())])
+            q = np.concatenate([[0.0], draw(axes)])
         else:
-            q = _rot.quat_from_rotvec(draw(rotvecs()))
+            q = _rot.quat_from_rotvec(draw(vecs))
         return draw(signs) * q
 
     return draw_quaternion()
@@ -381,6 +385,7 @@ def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
     """
     perms = st.permutations([0, 1, 2])
     signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 2)
+    vecs, eulers, quats = rotvecs(), euler_angles(), quaternions()  # built once, not per draw
 
     @st.composite
     def draw_matrix(draw) -> np.ndarray:
@@ -405,9 +410,9 @@ def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
             k = draw(st.integers(0, 2))
             return np.roll(R, (k, k), axis=(0, 1))
         if regime == "rotvec":
-            return _rot.matrix_from_rotvec(draw(rotvecs()))
+            return _rot.matrix_from_rotvec(draw(vecs))
         if regime == "euler":
-            return _rot.matrix_from_euler(*draw(euler_angles()))
-        return _rot.matrix_from_quat(draw(quaternions()))
+            return _rot.matrix_from_euler(*draw(eulers))
+        return _rot.matrix_from_quat(draw(quats))
 
     return draw_matrix()
