@@ -18,7 +18,12 @@ included), as before.
   where it is used.
 
 Draws are added in runs of ``find`` that double the sample (100, 100, 200, 400, ...),
-so a question answered by the first draws costs only those.  A sample lives as long as
+so a question answered by the first draws costs only those.  Under a derandomised
+profile (``ci``) each run is seeded by its index (0, 1, 2, ...): the sample is the same
+on every run of the suite, and its runs are different draws (a derandomised ``find``
+seeds from the predicate's function, the same for every run, so the runs of a grown
+sample used to repeat the first: 1000 draws of ``particle_systems()`` held 387 distinct
+values).  Under ``dev`` each run is random.  A sample lives as long as
 its strategy object, which each test builds for itself: nothing but draws is shared,
 and tests stay independent of each other and of their order.
 """
@@ -26,6 +31,7 @@ and tests stay independent of each other and of their order.
 from __future__ import annotations
 
 import contextlib
+import random
 import weakref
 
 from hypothesis import Phase, find, settings
@@ -38,18 +44,20 @@ FIRST_RUN = 100
 
 
 class _Draws:
-    __slots__ = ("examples", "exhausted")
+    __slots__ = ("examples", "exhausted", "runs")
 
     def __init__(self) -> None:
         self.examples: list = []
+        self.runs = 0  # find runs made so far
         self.exhausted = False  # hypothesis ran out of distinct examples (a finite strategy)
 
 
 _DRAWS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
-def _run(strategy, k: int) -> list:
-    """k examples of one ``find`` run (fewer if the strategy has fewer)."""
+def _run(strategy, k: int, run: int) -> list:
+    """k examples of the ``run``-th ``find`` run of a sample (fewer if the strategy has
+    fewer): seeded by ``run`` under a derandomised profile, random otherwise."""
     got: list = []
 
     def keep(x) -> bool:
@@ -57,9 +65,15 @@ def _run(strategy, k: int) -> list:
         return False
 
     budget = settings(max_examples=k, database=None, phases=[Phase.generate])
+    seeded = random.Random(run) if _derandomized() else None
     with contextlib.suppress(NoSuchExample):
-        find(strategy, keep, settings=budget)
+        find(strategy, keep, settings=budget, random=seeded)
     return got
+
+
+def _derandomized() -> bool:
+    """Is the loaded profile derandomised (``ci``)?"""
+    return bool(settings.default.derandomize)
 
 
 def _draws(strategy) -> _Draws:
@@ -71,7 +85,8 @@ def _draws(strategy) -> _Draws:
 
 def _grow(strategy, d: _Draws, n: int) -> None:
     k = min(max(FIRST_RUN, len(d.examples)), n - len(d.examples))
-    got = _run(strategy, k)
+    got = _run(strategy, k, d.runs)
+    d.runs += 1
     d.exhausted = len(got) < k
     d.examples.extend(got)
 

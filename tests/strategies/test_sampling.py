@@ -7,6 +7,7 @@ from __future__ import annotations
 import pytest
 from hypothesis import strategies as st
 
+from tests.strategies import sampling
 from tests.strategies.sampling import found, never, sample
 
 
@@ -28,3 +29,14 @@ def test_a_strategy_is_drawn_once_and_grown_only_as_far_as_asked() -> None:
     assert len(first) == 150
     assert sample(s, 100) == first[:100]  # read, not drawn again
     assert sample(s, 300)[:150] == first  # grown, the first draws kept
+
+
+@pytest.mark.parametrize("derandomize", [True, False])
+def test_the_runs_of_a_grown_sample_are_new_draws(derandomize, monkeypatch) -> None:
+    """Each run of ``find`` draws anew, under the ``ci`` profile's derandomisation too
+    (where every run used to repeat the first: a sample of 400 held ~100 values)."""
+    monkeypatch.setattr(sampling, "_derandomized", lambda: derandomize)
+    first = sample(st.integers(-(2**62), 2**62), 400)
+    assert len(set(first)) >= 360  # hypothesis repeats a few small and boundary values
+    if derandomize:  # the same sample on every run of the suite
+        assert sample(st.integers(-(2**62), 2**62), 400) == first
