@@ -23,7 +23,9 @@ profile (``ci``) each run is seeded by its index (0, 1, 2, ...): the sample is t
 on every run of the suite, and its runs are different draws (a derandomised ``find``
 seeds from the predicate's function, the same for every run, so the runs of a grown
 sample used to repeat the first: 1000 draws of ``particle_systems()`` held 387 distinct
-values).  Under ``dev`` each run is random.  A sample lives as long as
+values).  Under ``dev`` each run is seeded too, from one random number drawn per
+process (``secrets``: pytest-randomly reseeds ``random`` for every test, and an unseeded
+``find`` then repeated its draws run after run as well).  A sample lives as long as
 its strategy object, which each test builds for itself: nothing but draws is shared,
 and tests stay independent of each other and of their order.
 """
@@ -32,6 +34,7 @@ from __future__ import annotations
 
 import contextlib
 import random
+import secrets
 import weakref
 
 from hypothesis import Phase, find, settings
@@ -41,6 +44,8 @@ __all__ = ["found", "never", "sample"]
 
 #: the first run of draws; each later run doubles the sample
 FIRST_RUN = 100
+#: the seeds of a sample's runs under a random profile start here (one number per process)
+_RANDOM_BASE = secrets.randbits(64)
 
 
 class _Draws:
@@ -57,7 +62,8 @@ _DRAWS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 def _run(strategy, k: int, run: int) -> list:
     """k examples of the ``run``-th ``find`` run of a sample (fewer if the strategy has
-    fewer): seeded by ``run`` under a derandomised profile, random otherwise."""
+    fewer): seeded by ``run`` under a derandomised profile, by a random base + ``run``
+    otherwise."""
     got: list = []
 
     def keep(x) -> bool:
@@ -65,7 +71,7 @@ def _run(strategy, k: int, run: int) -> list:
         return False
 
     budget = settings(max_examples=k, database=None, phases=[Phase.generate])
-    seeded = random.Random(run) if _derandomized() else None
+    seeded = random.Random(run if _derandomized() else _RANDOM_BASE + run)
     with contextlib.suppress(NoSuchExample):
         find(strategy, keep, settings=budget, random=seeded)
     return got
