@@ -4,10 +4,12 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 LOCK   := requirements/lock.txt
-# the suite's one command line; test-latest and test-oldest run it in their own venvs
-PYTEST_ARGS := -n auto
+# the suite's one command line; test-latest and test-oldest run it in their own venvs.
+# Tests marked slow (each says why in its docstring: a stiff run, seconds of it) are left
+# to `make test-slow`, which .ci/run runs after `make test`.
+PYTEST_ARGS := -n auto -m 'not slow'
 
-.PHONY: run test checks bench lock test-latest test-oldest test-matrix clean mutate
+.PHONY: run test test-slow checks bench lock test-latest test-oldest test-matrix clean mutate
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -35,6 +37,10 @@ test: $(STAMP)
 	$(BIN)/ruff format --check .
 	$(BIN)/mypy
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
+
+## make test-slow: the tests marked slow (a long stiff run; CI runs them after make test)
+test-slow: $(STAMP)
+	$(BIN)/python -m pytest -n auto -m slow
 
 ## make checks: regenerate CHECKS.md from the registry and docs/scene-files.md from the schema
 checks: $(STAMP)

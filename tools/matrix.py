@@ -25,6 +25,7 @@ from __future__ import annotations
 import argparse
 import os
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -175,7 +176,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     legs = []
     for minor in minors:
-        leg = run_leg(minor, args.uv, args.pytest_args.split())
+        leg = run_leg(minor, args.uv, shlex.split(args.pytest_args))
         if leg.status in ("absent", "setup failed"):
             print(f"matrix: Python 3.{minor}: {leg.status}: {leg.detail}", flush=True)
         legs.append(leg)

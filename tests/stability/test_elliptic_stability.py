@@ -180,7 +180,6 @@ def hard_parameters(draw):
     return u, 1.0 + 10.0 ** draw(st.floats(min_value=-15, max_value=8)), None
 
 
-@pytest.mark.slow
 @given(hard_parameters())
 @example((25.0, 1.0 - 1e-12, 1e-12))
 @example((-173.0, 1.0, 1e-300))

@@ -150,7 +150,6 @@ def near_separatrix(draw):
     return (J1, J2, J3), (w1, w2, w3), t
 
 
-@pytest.mark.slow
 @given(near_separatrix())
 @example(((1.0, 2.0, 3.0), (1.0, 0.001, 0.5773502691896257), 20.0))
 @example(((1.0, 2.0, 3.0), (1.0, 1e-9, 0.5773502691896258), 29.0))
