@@ -21,6 +21,8 @@ from typing import ClassVar
 
 import numpy as np
 
+from .vectors import cross
+
 __all__ = ["KINDS", "Body", "Fixed", "Guided", "Pinned", "Point", "Rigid", "Tank"]
 
 ZERO = np.zeros(3)
@@ -194,8 +196,8 @@ class Pinned(Body):
         i, o = self.i, self.o
         w, Ri = s.omega[i], s.R[i]
         L = self.JC @ w
-        M = M_A[i] + np.cross(self.g, Ri @ F[i])
-        out[o : o + 3] = np.cross(L, w) + M
+        M = M_A[i] + cross(self.g, Ri @ F[i])
+        out[o : o + 3] = cross(L, w) + M
         out[o + 3 : o + 6] = w[2] * Ri[1] - w[1] * Ri[2]
         out[o + 6 : o + 9] = w[0] * Ri[2] - w[2] * Ri[0]
         out[o + 9 : o + 12] = w[1] * Ri[0] - w[0] * Ri[1]

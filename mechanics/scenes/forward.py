@@ -24,6 +24,7 @@ import numpy as np
 
 from .effects import Loads, Snapshot
 from .state import Hinge
+from .vectors import cross
 
 __all__ = ["Forward"]
 
@@ -92,7 +93,7 @@ class Forward:
             rho = np.einsum("...ji,j->...i", R[..., i, :, :], g)  # r_G − C, space
             w_O = np.einsum("...ji,...j->...i", R[..., i, :, :], w[..., i, :])
             r[..., i, :] = pivot + rho
-            v[..., i, :] = np.cross(w_O, rho)
+            v[..., i, :] = cross(w_O, rho)
         out = Snapshot(t, r, v, L, R, w, m, J, angle=angle)
         out.coords, out.inertia = coords, inertia
         for i in tanks:
@@ -175,7 +176,7 @@ class Forward:
                 continue
             origin, base, w, alpha = self.kinematics(s, dy, k)
             rho = S - origin
-            out[k] = base + np.cross(alpha, rho) + np.cross(w, np.cross(w, rho))
+            out[k] = base + cross(alpha, rho) + cross(w, cross(w, rho))
             if sizes is not None:
                 arm = float(np.linalg.norm(rho))
                 sizes[k] = float(np.linalg.norm(base) + (np.linalg.norm(alpha) + w @ w) * arm)
@@ -191,14 +192,14 @@ class Forward:
         k, (a, zc), n = ft.body, ft.support, imp.normal
         origin, base, w, alpha = self.kinematics(s, self.rhs(t, y), k)
         rho_G = s.r[k] - origin
-        a_G = base + np.cross(alpha, rho_G) + np.cross(w, np.cross(w, rho_G))
+        a_G = base + cross(alpha, rho_G) + cross(w, cross(w, rho_G))
         e3 = s.R[k, 2]
         c = float(n @ e3)
         rho = math.sqrt(max(1.0 - c * c, 0.0))
         if rho == 0.0:
             return None
-        c1 = float(n @ np.cross(w, e3))
-        c2 = float(n @ (np.cross(alpha, e3) + np.cross(w, np.cross(w, e3))))
+        c1 = float(n @ cross(w, e3))
+        c2 = float(n @ (cross(alpha, e3) + cross(w, cross(w, e3))))
         rho2 = -(c1 * c1 + c * c2) / rho - c * c * c1 * c1 / rho**3
         return float(a_G @ n) + zc * c2 - a * rho2
 

@@ -24,6 +24,7 @@ from .effects.base import CONSERVED
 from .effects.impact import centre_gaps
 from .state import body_vertices
 from .trajectory import Trajectory, dense_from_segments, energy_scale, sample_segments
+from .vectors import cross
 
 __all__ = ["finish", "top_angles"]
 
@@ -79,7 +80,7 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
     if moving:
         series["E"] = E
     P = (m[..., None] * v).sum(-2)
-    orb = np.cross(r, m[..., None] * v)
+    orb = cross(r, m[..., None] * v)
     spins = np.einsum("...ji,...j->...i", s.R, s.L_A)
     L_O = orb.sum(-2) + spins.sum(-2)
     conserved, scales, across = {}, {"E": energy_scale(KE, E)}, set()

@@ -36,6 +36,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .vectors import cross, cross3
+
 __all__ = [
     "ROUND_SHAPES",
     "SPHERICAL_SHAPES",
@@ -45,22 +47,12 @@ __all__ = [
     "body_inertia",
     "body_radius",
     "body_vertices",
-    "cross3",
     "point_acceleration",
     "turned",
 ]
 
 ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere", "hollow_sphere")
 SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
-
-
-def cross3(a, b) -> np.ndarray:
-    """a × b of two 3-vectors (1-D), written out: the engine's per-contact products,
-    where ``np.cross`` costs ~15 µs of axis handling for 3 products (measured: a
-    support switch search spent a third of its time there)."""
-    a0, a1, a2 = float(a[0]), float(a[1]), float(a[2])
-    b0, b1, b2 = float(b[0]), float(b[1]), float(b[2])
-    return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
 def point_acceleration(base, alpha, w, r) -> np.ndarray:
@@ -73,7 +65,7 @@ def turned(a, u0, k, theta):
     """The rows of R_A_O of a body turned by θ about the space axis a (any shape of θ):
     body axis k along a, axis j = (k + 1) % 3 along u0 at θ = 0 and axis l = (k + 2) % 3
     along u1 = a × u0; at θ, e_j = cos θ u0 + sin θ u1, e_l = cos θ u1 − sin θ u0."""
-    u1 = np.cross(a, u0)
+    u1 = cross(a, u0)
     c, s = np.cos(theta)[..., None], np.sin(theta)[..., None]
     R = np.empty((*np.shape(theta), 3, 3))
     R[..., k, :] = a
@@ -129,7 +121,7 @@ class Guide:
     def point_rate(self, q, S) -> np.ndarray:
         """u_k (nq, 3): the velocity of the body point at S per unit q̇_k, E_k + W_k × (S − G)."""
         G, E, _ = self.place(q)
-        return E + np.cross(self.W, S - G)
+        return E + cross(self.W, S - G)
 
 
 @dataclass(frozen=True, eq=False)
@@ -212,7 +204,7 @@ class Hinge(Guide):
     def moment(self, R, r, F, M_A) -> np.ndarray:
         """The loads' moment about C in space components: R_A_Oᵀ M_A + (r_G − C) × F, for a
         force F at G and a moment M_A about G in body components."""
-        return R.T @ M_A + np.cross(r - self.C, F)
+        return R.T @ M_A + cross(r - self.C, F)
 
 
 def _col(q, qd):

@@ -68,8 +68,9 @@ from . import contacts
 from .bodies import Point
 from .collision import Hit, StepFit
 from .impacts import CLOSING_ROUNDING, GAP_ROUNDING
-from .state import cross3, point_acceleration
+from .state import point_acceleration
 from .trajectory import DEFAULT_TOL, EPS, Event
+from .vectors import cross3
 
 __all__ = ["FORCE_ROUNDING", "Rest", "Support"]
 

@@ -1204,7 +1204,8 @@ for _name in (
     "scenes.effects.base.unit",
     "scenes.effects.rolling.slope_frame",
     "scenes.trajectory.energy_scale",
-    "scenes.state.cross3",
+    "scenes.vectors.cross",
+    "scenes.vectors.cross3",
     "scenes.state.point_acceleration",
     "scenes.state.turned",
 ):

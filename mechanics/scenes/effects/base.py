@@ -34,6 +34,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from ..vectors import cross
+
 __all__ = [
     "CONSERVED",
     "REGISTRY",
@@ -158,7 +160,7 @@ class Snapshot:
         if at_A is None:
             return self.v[..., i, :]
         w_O = self.to_space(i, self.omega[..., i, :])
-        return self.v[..., i, :] + np.cross(w_O, self.to_space(i, at_A))
+        return self.v[..., i, :] + cross(w_O, self.to_space(i, at_A))
 
 
 class Loads:
@@ -181,7 +183,7 @@ class Loads:
         F_O = np.asarray(F_O, dtype=float)
         self.F[i] += F_O
         if at_A is not None:
-            self.M_A[i] += np.cross(at_A, self.snap.to_body(i, F_O))
+            self.M_A[i] += cross(at_A, self.snap.to_body(i, F_O))
 
     def moment(self, i: int, M_O) -> None:
         """Add a pure moment (a couple) with space components M_O on body i."""

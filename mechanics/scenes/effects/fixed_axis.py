@@ -18,6 +18,7 @@ from typing import ClassVar
 
 import numpy as np
 
+from ..vectors import cross
 from .base import Effect, Schema, check_joint_body, register, unit
 from .capabilities import GuidesBody
 
@@ -83,7 +84,7 @@ class FixedAxis(Effect, GuidesBody):
         u0 = ax.reference(g_vector)
         J_a = ax.moment_of_inertia(b.mass, np.diag(body_inertia(b)))
         return Hinge(
-            ax.point, ax.axis, u0, np.cross(ax.axis, u0), k, (k + 1) % 3, (k + 2) % 3, ax.h, J_a
+            ax.point, ax.axis, u0, cross(ax.axis, u0), k, (k + 1) % 3, (k + 2) % 3, ax.h, J_a
         )
 
     def moment_of_inertia(self, m, J_G) -> float:

@@ -57,7 +57,8 @@ from typing import ClassVar
 import numpy as np
 
 from ..._floats import EPS
-from ..state import SPHERICAL_SHAPES, body_radius, body_vertices, cross3
+from ..state import SPHERICAL_SHAPES, body_radius, body_vertices
+from ..vectors import cross, cross3
 from .base import Effect, Schema, keeps_for_force_along, register, unit
 
 POLYHEDRA = ("box", "rectangular_plate", "rod")
@@ -364,7 +365,7 @@ class Impact(Effect):
         flat = across == 0.0
         # lying flat, every point of the circle is lowest: the one that approaches
         # fastest, along ω × n (the face's centre if it does not turn that way)
-        turn = np.cross(s.omega[..., ft.body, :], -d)
+        turn = cross(s.omega[..., ft.body, :], -d)
         spin = np.sqrt(turn[..., 0] ** 2 + turn[..., 1] ** 2)
         u = np.where(flat[..., None], turn, d)[..., :2]
         size = np.where(flat, spin, across)
@@ -511,7 +512,7 @@ class Impact(Effect):
         e, moving = self.e, self.bodies()
         sign = {self.i: 1.0, self.j: -1.0}
         central = not any(k in self.pins or k in self.guides for k in moving) and all(
-            not np.any(np.cross(S - s.r[k], n)) for k in moving
+            not np.any(cross(S - s.r[k], n)) for k in moving
         )
         if central and len(moving) == 2:  # through both centres: the direct impact, 2 ulps
             from mechanics.impact import direct_impact
@@ -567,14 +568,14 @@ class Impact(Effect):
         pin = self.pins.get(k)
         if pin is None:
             s.v[k] += P / s.m[k]
-            s.L_A[k] += s.to_body(k, np.cross(S - s.r[k], P))
+            s.L_A[k] += s.to_body(k, cross(S - s.r[k], P))
             safe = np.where(s.J[k] > 0, s.J[k], 1.0)
             s.omega[k] = np.where(s.J[k] > 0, s.L_A[k] / safe, 0.0)
             return
         C, _, _, JCinv = pin  # ΔL_C = (S − C) × P; G's velocity follows from ω
-        s.omega[k] = s.omega[k] + JCinv @ s.to_body(k, np.cross(S - C, P))
+        s.omega[k] = s.omega[k] + JCinv @ s.to_body(k, cross(S - C, P))
         s.L_A[k] = s.J[k] * s.omega[k]
-        s.v[k] = np.cross(s.to_space(k, s.omega[k]), s.r[k] - C)
+        s.v[k] = cross(s.to_space(k, s.omega[k]), s.r[k] - C)
 
     def _apply_with_friction(self, s, S, n, v_n) -> None:
         """Stick or slip (see the Conventions); sets ``self._loss`` and ``self._mode``."""
@@ -676,7 +677,7 @@ def totals(s, idx, S):
         Pabs += m * float(np.linalg.norm(v))
         arm = s.r[k] - S
         spin = s.to_space(k, s.L_A[k])
-        L += np.cross(arm, m * v) + spin
+        L += cross(arm, m * v) + spin
         # |ρ| m |v| bounds the orbital term: the size its rounding is relative to
         Labs += float(np.linalg.norm(arm) * m * np.linalg.norm(v) + np.linalg.norm(spin))
     bodies = [

@@ -34,6 +34,7 @@ from typing import ClassVar
 import numpy as np
 
 from ..state import ROUND_SHAPES, Guide, body_inertia, pendulum_from_rest, turned
+from ..vectors import cross
 from .base import Effect, Schema, check_joint_body, register
 from .capabilities import GuidesBody
 
@@ -252,7 +253,7 @@ class Rolling(Effect, GuidesBody):
         across = g - (g @ a) * a
         u0 = across / np.linalg.norm(across) if across.any() else np.array([0.0, 0.0, -1.0])
         R = float(f["track_radius"])
-        return Track(a, u0, np.cross(a, u0), r, R, m, k, np.array([M_eff * (R - r) ** 2]), M_eff)
+        return Track(a, u0, cross(a, u0), r, R, m, k, np.array([M_eff * (R - r) ** 2]), M_eff)
 
     def __init__(self, spec, ctx=None) -> None:
         super().__init__(spec, ctx)
