@@ -4,6 +4,11 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed
 LOCK   := requirements/lock.txt
+# Python's bytecode caches (and pytest's rewritten test modules, cached beside them) are
+# what make a second run start fast: where the environment turns them off
+# (PYTHONDONTWRITEBYTECODE, as on these machines) every process recompiles every module,
+# and collecting the suite took 16 s per pytest worker instead of 5.6 s
+unexport PYTHONDONTWRITEBYTECODE
 # the suite's one command line; test-latest and test-oldest run it in their own venvs.
 # Tests marked slow (each says why in its docstring: a stiff run, seconds of it) are left
 # to `make test-slow`, which .ci/run runs after `make test`.
