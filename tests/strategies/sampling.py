@@ -11,6 +11,11 @@ included), as before.
 
 - :func:`never` holds when none of n draws satisfies the predicate; it names the first
   that does.
+- :func:`shared` gives one strategy object per factory and arguments, so the tests that
+  ask questions of the same strategy (``rotvecs()`` reaching each of its regimes, one
+  parametrised test per regime) read one sample.  The runs being seeded (below), a
+  fresh object of the same strategy would draw the very same sample: sharing it changes
+  what is drawn not at all, only how often.
 - :func:`found` holds when one of the first n draws does (it reads the draws made so
   far first, and draws more only while none matches).  For an event of frequency p, n
   draws miss it with probability (1 − p)ⁿ: at n = 1000 that is below 10⁻⁶ for
@@ -40,7 +45,7 @@ import weakref
 from hypothesis import Phase, find, settings
 from hypothesis.errors import NoSuchExample
 
-__all__ = ["found", "never", "sample"]
+__all__ = ["found", "never", "sample", "shared"]
 
 #: the first run of draws; each later run doubles the sample
 FIRST_RUN = 100
@@ -75,6 +80,19 @@ def _run(strategy, k: int, run: int) -> list:
     with contextlib.suppress(NoSuchExample):
         find(strategy, keep, settings=budget, random=seeded)
     return got
+
+
+_SHARED: dict = {}
+
+
+def shared(factory, **kwargs):
+    """``factory(**kwargs)``, one object per factory and arguments (hashable) for the
+    whole session of a worker (see the module's docstring)."""
+    key = (factory, tuple(sorted(kwargs.items())))
+    s = _SHARED.get(key)
+    if s is None:
+        s = _SHARED[key] = factory(**kwargs)
+    return s
 
 
 def _derandomized() -> bool:

@@ -22,7 +22,7 @@ from hypothesis.errors import InvalidArgument
 from mechanics import impact as im
 from mechanics import strategies as ms
 from mechanics._floats import EPS
-from tests.strategies.sampling import found, never
+from tests.strategies.sampling import found, never, shared
 
 #: Draws allowed to reach a regime: regimes are branches among at most six, so
 #: a regime is met within a few dozen draws; 1000 leaves room for nesting.
@@ -150,12 +150,12 @@ HINGED_REGIMES = {
 
 @pytest.mark.parametrize(("regime", "predicate"), list(MASS_REGIMES.items()))
 def test_impact_masses_reach_every_regime(regime, predicate):
-    _found(ms.impact_masses(), predicate)
+    _found(shared(ms.impact_masses), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(MASS_PAIR_REGIMES.items()))
 def test_mass_pairs_reach_every_regime(regime, predicate):
-    _found(ms.mass_pairs(), predicate)
+    _found(shared(ms.mass_pairs), predicate)
 
 
 @pytest.mark.parametrize(
@@ -177,7 +177,7 @@ def test_mass_pairs_reach_the_extreme_ratios_1e15():
 
 @pytest.mark.parametrize(("regime", "predicate"), list(RESTITUTION_REGIMES.items()))
 def test_restitution_coefficients_reach_every_regime(regime, predicate):
-    _found(ms.restitution_coefficients(), predicate)
+    _found(shared(ms.restitution_coefficients), predicate)
 
 
 def test_restitution_coefficients_reach_one_ulp_below_one():
@@ -186,22 +186,22 @@ def test_restitution_coefficients_reach_one_ulp_below_one():
 
 @pytest.mark.parametrize(("regime", "predicate"), list(DIRECT_VELOCITY_REGIMES.items()))
 def test_direct_velocities_reach_every_regime(regime, predicate):
-    _found(ms.direct_velocities(), predicate)
+    _found(shared(ms.direct_velocities), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(INERTIA_REGIMES.items()))
 def test_impact_inertia_tensors_reach_every_regime(regime, predicate):
-    _found(ms.impact_inertia_tensors(), predicate)
+    _found(shared(ms.impact_inertia_tensors), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(CONTACT_REGIMES.items()))
 def test_contacts_reach_every_regime(regime, predicate):
-    _found(ms.contacts(), predicate)
+    _found(shared(ms.contacts), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(HINGED_REGIMES.items()))
 def test_hinged_bodies_reach_every_regime(regime, predicate):
-    _found(ms.hinged_bodies(), predicate)
+    _found(shared(ms.hinged_bodies), predicate)
 
 
 def test_every_documented_regime_has_a_reachability_test():

@@ -20,7 +20,7 @@ from hypothesis.errors import InvalidArgument
 from mechanics import inertia as I
 from mechanics import strategies as ms
 from mechanics.rotation import EPS
-from tests.strategies.sampling import found, never
+from tests.strategies.sampling import found, never, shared
 
 #: Regimes are branches of ``st.sampled_from`` among at most eight, some with a
 #: nested boolean branch: reached within a few dozen draws; 2000 leaves room.
@@ -87,12 +87,12 @@ def test_every_documented_moment_regime_has_a_reachability_test():
 
 @pytest.mark.parametrize(("regime", "predicate"), list(MOMENT_REGIMES.items()))
 def test_principal_moments_reach_every_regime(regime, predicate):
-    _found(ms.principal_moments(), predicate)
+    _found(shared(ms.principal_moments), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(CENTRE_REGIMES.items()))
 def test_rigid_bodies_reach_every_centre_regime(regime, predicate):
-    _found(ms.rigid_bodies(), predicate)
+    _found(shared(ms.rigid_bodies), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(TENSOR_REGIMES.items()))

@@ -20,7 +20,7 @@ from hypothesis.errors import InvalidArgument
 from mechanics import strategies as ms
 from mechanics._floats import EPS
 from mechanics.particles import internal_moment
-from tests.strategies.sampling import found, never
+from tests.strategies.sampling import found, never, shared
 
 #: Regimes are branches among at most five; 2000 draws find each many times over.
 FIND_DRAWS = 2000
@@ -63,12 +63,12 @@ PAIR_FORCE_REGIMES = {
 
 @pytest.mark.parametrize(("regime", "predicate"), list(MASS_REGIMES.items()))
 def test_masses_reach_every_regime(regime, predicate):
-    _found(ms.masses(), predicate)
+    _found(shared(ms.masses), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(SYSTEM_REGIMES.items()))
 def test_particle_systems_reach_every_regime(regime, predicate):
-    _found(ms.particle_systems(), predicate)
+    _found(shared(ms.particle_systems), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(PAIR_FORCE_REGIMES.items()))

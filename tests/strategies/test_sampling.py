@@ -8,7 +8,7 @@ import pytest
 from hypothesis import strategies as st
 
 from tests.strategies import sampling
-from tests.strategies.sampling import found, never, sample
+from tests.strategies.sampling import found, never, sample, shared
 
 
 def test_never_names_a_draw_that_satisfies_the_predicate() -> None:
@@ -47,3 +47,13 @@ def test_the_runs_of_a_grown_sample_are_new_draws(derandomize, monkeypatch) -> N
         assert again == first
     else:
         assert len(set(again) - set(first)) >= 300
+
+
+def test_shared_gives_one_object_per_factory_and_arguments() -> None:
+    def factory(lo=0, hi=10):
+        return st.integers(lo, hi).map(int)  # a new object on every call
+
+    a = shared(factory, lo=1, hi=5)
+    assert shared(factory, hi=5, lo=1) is a  # the same arguments, in any order
+    assert shared(factory, lo=1, hi=6) is not a
+    assert factory(lo=1, hi=5) is not a

@@ -21,7 +21,7 @@ from hypothesis.errors import InvalidArgument
 
 from mechanics import strategies as ms
 from mechanics.rotation import EPS, is_rotation
-from tests.strategies.sampling import found
+from tests.strategies.sampling import found, shared
 
 #: Draws allowed to reach a regime (a search stops at its first hit, so the budget costs
 #: only in an unlucky run).  Regimes are branches chosen by ``st.sampled_from`` among at
@@ -152,32 +152,32 @@ MATRIX_REGIMES = {
 
 @pytest.mark.parametrize(("regime", "predicate"), list(UNIT_VECTOR_REGIMES.items()))
 def test_unit_vectors_reach_every_regime(regime, predicate):
-    _found(ms.unit_vectors(), predicate)
+    _found(shared(ms.unit_vectors), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(ANGLE_REGIMES.items()))
 def test_rotation_angles_reach_every_regime(regime, predicate):
-    _found(ms.rotation_angles(), predicate)
+    _found(shared(ms.rotation_angles), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(ROTVEC_REGIMES.items()))
 def test_rotvecs_reach_every_regime(regime, predicate):
-    _found(ms.rotvecs(), predicate)
+    _found(shared(ms.rotvecs), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(EULER_REGIMES.items()))
 def test_euler_angles_reach_every_regime(regime, predicate):
-    _found(ms.euler_angles(), predicate)
+    _found(shared(ms.euler_angles), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(QUATERNION_REGIMES.items()))
 def test_quaternions_reach_every_regime(regime, predicate):
-    _found(ms.quaternions(), predicate)
+    _found(shared(ms.quaternions), predicate)
 
 
 @pytest.mark.parametrize(("regime", "predicate"), list(MATRIX_REGIMES.items()))
 def test_rotation_matrices_reach_every_regime(regime, predicate):
-    _found(ms.rotation_matrices(), predicate)
+    _found(shared(ms.rotation_matrices), predicate)
 
 
 def test_every_documented_regime_has_a_reachability_test():
