@@ -83,7 +83,7 @@ def test_every_documented_regime_has_a_reachability_test():
 
 
 def test_particle_systems_reach_fifty_particles():
-    _found(ms.particle_systems(), lambda s: len(s.m) == 50)
+    _found(shared(ms.particle_systems), lambda s: len(s.m) == 50)
 
 
 @pytest.mark.parametrize("regime", ms.SYSTEM_REGIMES)

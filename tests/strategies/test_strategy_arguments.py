@@ -25,7 +25,7 @@ from hypothesis.errors import InvalidArgument, NoSuchExample
 from mechanics import strategies as ms
 from mechanics._floats import EPS
 from mechanics.strategies import _common, batching, impact, inertia, particles
-from tests.strategies.sampling import found, never
+from tests.strategies.sampling import found, never, shared
 
 #: Draws for a search that must find (or must not find) a value: regimes are branches
 #: among at most eight, so every branch is drawn dozens of times in 1000 draws.
@@ -307,7 +307,7 @@ def test_each_strategy_records_exactly_its_documented_regimes_as_events(
 ):
     labels: list[str] = []
     monkeypatch.setattr(module, "event", labels.append)
-    strategy = ms.batches(ms.unit_vectors()) if name == "batches" else _factory(name)()
+    strategy = ms.batches(ms.unit_vectors()) if name == "batches" else shared(_factory(name))
     with pytest.raises(NoSuchExample):
         find(strategy, lambda x: False, settings=EVENT_SETTINGS)
     recorded = {label for label in labels if label.startswith(f"{name}: ")}
@@ -370,7 +370,7 @@ def test_batches_shrink_to_one_row():
 
 @pytest.mark.parametrize("name", ["masses", "particle_systems"])
 def test_particle_counts_default_to_one_through_fifty(name):
-    strategy = _factory(name)()
+    strategy = shared(_factory(name))
     size = len if name == "masses" else (lambda s: len(s.m))
     _found(strategy, lambda x: size(x) == 1)
     _found(strategy, lambda x: size(x) == 50)
@@ -384,7 +384,7 @@ def test_masses_shrink_to_one_unit_mass():
 
 @pytest.mark.parametrize("name", ["masses", "particle_systems"])
 def test_particle_masses_default_to_1e_minus_6_through_1e6(name):
-    strategy = _factory(name)()
+    strategy = shared(_factory(name))
     mass = (lambda m: m) if name == "masses" else (lambda s: s.m)
     _found(strategy, lambda x: mass(x).min() == 1e-6)
     _found(strategy, lambda x: mass(x).max() == 1e6)
@@ -392,25 +392,25 @@ def test_particle_masses_default_to_1e_minus_6_through_1e6(name):
 
 
 def test_impact_masses_default_to_1e_minus_15_through_1e15():
-    strategy = ms.impact_masses()
+    strategy = shared(ms.impact_masses)
     _found(strategy, lambda m: m <= 1e-14)
     _found(strategy, lambda m: m >= 1e14)
     _never(strategy, lambda m: not 1e-15 <= m <= 1e15)
 
 
 def test_mass_pairs_default_to_a_ratio_of_at_most_1e15():
-    strategy = ms.mass_pairs()
+    strategy = shared(ms.mass_pairs)
     _never(strategy, lambda p: not 1e-15 * (1 - 1e-15) <= p[0] / p[1] <= 1e15 * (1 + 1e-15))
 
 
 def test_direct_velocities_default_to_speeds_up_to_1e6():
-    strategy = ms.direct_velocities()
+    strategy = shared(ms.direct_velocities)
     _found(strategy, lambda v: max(abs(v[0]), abs(v[1])) >= 1e5)
     _never(strategy, lambda v: max(abs(v[0]), abs(v[1])) > 1e6)
 
 
 def test_impact_bodies_default_to_masses_1e_minus_6_through_1e6_within_ten():
-    strategy = ms.impact_bodies()
+    strategy = shared(ms.impact_bodies)
     _found(strategy, lambda b: b.m <= 1e-5)
     _found(strategy, lambda b: b.m >= 1e5)
     _found(strategy, lambda b: np.abs(b.r_G).max() >= 9.0)
@@ -445,7 +445,7 @@ def test_impact_bodies_take_the_mass_and_tensor_strategies_given():
 
 
 def test_rigid_bodies_default_to_masses_1e_minus_3_through_1e3():
-    strategy = ms.rigid_bodies()
+    strategy = shared(ms.rigid_bodies)
     _found(strategy, lambda b: b.m <= 2e-3)
     _found(strategy, lambda b: b.m >= 5e2)
     _never(strategy, lambda b: not 1e-3 <= b.m <= 1e3)
