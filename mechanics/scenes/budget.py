@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -160,7 +161,7 @@ def check_steps(scene, estimate: float, how: str) -> None:
 class Clock:
     """The step count and wall time of a run, against its limits."""
 
-    scene: object
+    scene: Any  # a spec.Scene (spec imports this module: a layer above it)
     started: float = 0.0
     steps: int = 0
 

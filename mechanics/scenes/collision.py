@@ -59,12 +59,12 @@ class StepFit:
     def state(self, t) -> np.ndarray:
         return np.asarray(self.dense(t), dtype=float)
 
-    def coef(self) -> np.ndarray:
+    def _get_coef(self) -> np.ndarray:
         """Chebyshev coefficients (K, size) of the whole state along the step (fitted
         once, when first read)."""
         return contacts.chebyshev_fit(lambda tt: np.asarray(self.dense(tt)).T, self.t_a, self.t_b)
 
-    coef = cached_property(coef)
+    coef = cached_property(_get_coef)
 
 
 @dataclass(frozen=True)

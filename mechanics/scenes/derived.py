@@ -99,7 +99,7 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
         if not 0.0 < th < math.pi:
             continue
         psd, thd, phd = kin.euler_rates_from_angular_velocity(th, ph, engine.w0[i])
-        top = HeavySymmetricTop(
+        heavy = HeavySymmetricTop(
             Jc[0],
             Jc[2],
             float(engine.m0[i]) * grav[0].g * g[2],
@@ -109,11 +109,11 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
             phi_dot=phd,
         )
         theta = series[f"{pre(i)}theta"]
-        u1, u2, _ = top.roots
+        u1, u2, _ = heavy.roots
         rows.append(("θ min (rad)", math.acos(min(u2, 1.0)), float(np.min(theta))))
         rows.append(("θ max (rad)", math.acos(max(u1, -1.0)), float(np.max(theta))))
-        if not top.sleeping:
-            exact = top.nutation_period()
+        if not heavy.sleeping:
+            exact = heavy.nutation_period()
             c = series[f"{pre(i)}cos_theta"]
             top_k = [k for k in range(1, len(c) - 1) if c[k] > c[k - 1] and c[k] >= c[k + 1]]
             peaks = [_vertex(t, c, k) for k in top_k]
@@ -121,7 +121,7 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
             # the mean precession rate: ψ advances by the same Δψ in every nutation
             # period (5.2.5), so Δψ/T over one period is the rate over any whole number;
             # measured over the whole periods between the first and the last maximum
-            rate = float(top.psi(exact) - top.psi(0.0)) / exact
+            rate = float(heavy.psi(exact) - heavy.psi(0.0)) / exact
             measured = None
             if len(peaks) >= 2:
                 psi = series[f"{pre(i)}psi"]

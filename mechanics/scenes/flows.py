@@ -114,9 +114,10 @@ def pinned_flow(model, forward, resolver) -> Flow | None:
         return None
     ((i, (_, g, JC, _)),) = lay.pins.items()
     Jc = np.diag(JC).copy()  # diagonal: the pivot lies on the principal axis e3
+    top: FreeAsymmetricTop | HeavySymmetricTop
     if kinds == {"fixed_point"}:
         try:
-            kind, top = "free", FreeAsymmetricTop(Jc, model.w0[i], model.R0[i])
+            top = FreeAsymmetricTop(Jc, model.w0[i], model.R0[i])
         except OutOfDomainError:
             return None
         how = "exact: torque-free top about C, Jacobi elliptic functions (5.3)"
@@ -136,7 +137,6 @@ def pinned_flow(model, forward, resolver) -> Flow | None:
             psd, thd, phd = kin.euler_rates_from_angular_velocity(th, ph, model.w0[i])
         except GimbalLockError:  # sin θ0 within rounding of 0: the rates are undefined
             return None
-        kind = "heavy"
         top = HeavySymmetricTop(
             Jc[0],
             Jc[2],
@@ -154,7 +154,7 @@ def pinned_flow(model, forward, resolver) -> Flow | None:
     @vectorized
     def at(t):  # flat states (L_C, R_A_O)
         tt = np.asarray(t, dtype=float)
-        if kind == "free":
+        if isinstance(top, FreeAsymmetricTop):
             R, w = top.attitude(tt), top.omega(tt)
         else:
             th, ps, ph = top.theta(tt), top.psi(tt), top.phi(tt)

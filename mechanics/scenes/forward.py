@@ -19,6 +19,7 @@ there reads (see :class:`~mechanics.scenes.effects.base.Snapshot`).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -38,8 +39,9 @@ class Forward:
         #: the loads' phase (see the module's docstring); None outside an integration
         self.phase: float | None = None
         #: the resting contacts (:class:`~mechanics.scenes.support.Support`), whose
-        #: forces follow the other loads; None: no impacts, nothing can rest
-        self.support = None
+        #: forces follow the other loads; None: no impacts, nothing can rest (typed Any:
+        #: support is a layer above this module, which cannot import it)
+        self.support: Any = None
 
     # ---------------------------------------------------------------- the state
     def masses(self, t) -> np.ndarray:

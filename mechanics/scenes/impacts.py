@@ -47,6 +47,7 @@
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
@@ -258,7 +259,7 @@ class Resolver:
         law = np.where(P > 0, np.abs(u1 - target), np.maximum(target - u1, 0.0))
         worst = int(np.argmax(law))
         u1_alg = u0 + W @ P  # the LCP's own normal velocities after: the loss's route
-        detail = {  # the contact found first: the one whose rebound is followed
+        detail: dict[str, Any] = {  # the contact found first: the one whose rebound is followed
             "normal_speed_before": float(-u0[0]),
             "normal_speed_after": float(u1[0]),
         }

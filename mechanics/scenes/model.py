@@ -13,6 +13,8 @@ model: :mod:`.forward` (the loads' phase), :mod:`.collision`, :mod:`.modes`.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from mechanics import kinematics as kin
@@ -20,6 +22,7 @@ from mechanics import kinematics as kin
 from .effects import REGISTRY, Context, build_effects
 from .effects.base import gravity_vector
 from .effects.capabilities import AddsInertia, ChangesMass, GuidesBody, HasModes, HasPotential
+from .effects.gravity import Gravity
 from .effects.impact import Impact
 from .effects.tank_outflow import TankOutflow
 from .state import Guide, Layout, body_inertia
@@ -78,7 +81,7 @@ def check(scene) -> None:
     body, a tank acted on by its outflow only, each body's initial keys, no spin about a
     zero principal moment, and each effect's own check of its combination."""
     index = {b.name: i for i, b in enumerate(scene.bodies)}
-    held: dict[str, object] = {}  # body -> the joint that holds it
+    held: dict[str, Any] = {}  # body -> the joint (a spec.EffectSpec) that holds it
     for spec in scene.effects:
         if spec.type not in JOINTS:
             continue
@@ -225,6 +228,6 @@ class Model:
         """The sum of the listed uniform gravity fields (zero without one)."""
         g = np.zeros(3)
         for e in self.effects:
-            if e.type == "gravity":
+            if isinstance(e, Gravity):  # (the effect of type "gravity")
                 g = g + e.vector
         return g

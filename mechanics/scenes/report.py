@@ -237,7 +237,9 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         traj.energy_rise = float(np.max(E - np.minimum.accumulate(E), initial=0.0))
     radii = [ft.a + ft.a_s for imp in model.impacts for ft in imp.features]
     verts = [
-        np.abs(body_vertices(b)).max() for b in model.scene.bodies if body_vertices(b) is not None
+        np.abs(corners).max()
+        for b in model.scene.bodies
+        if (corners := body_vertices(b)) is not None
     ]
     traj.length_scale = float(
         np.max(np.abs(r), initial=0.0) + max(radii, default=0.0) + max(verts, default=0.0)

@@ -99,22 +99,22 @@ class Comparison:
     tolerance: float
     reason: str
 
-    def difference(self) -> float:
+    def _get_difference(self) -> float:
         return float(self.simulated) - float(self.closed_form)
 
-    difference = property(difference)
+    difference = property(_get_difference)
 
-    def relative_difference(self) -> float:
+    def _get_relative_difference(self) -> float:
         d, cf = abs(self.difference), abs(float(self.closed_form))  # Python floats: no warning
         return d / cf if cf != 0 else d
 
-    relative_difference = property(relative_difference)
+    relative_difference = property(_get_relative_difference)
 
-    def ok(self) -> bool:
+    def _get_ok(self) -> bool:
         # NaN compares false, so a comparison with a non-finite side is never ok
         return bool(self.relative_difference <= self.tolerance)
 
-    ok = property(ok)
+    ok = property(_get_ok)
 
     def as_dict(self) -> dict:
         return {
@@ -140,11 +140,11 @@ class ConservedReport:
     tolerance: float
     since: float = 0.0
 
-    def ok(self) -> bool:
+    def _get_ok(self) -> bool:
         finite = math.isfinite(self.value) and math.isfinite(self.drift)
         return bool(finite and self.drift <= self.tolerance)
 
-    ok = property(ok)
+    ok = property(_get_ok)
 
     def as_dict(self) -> dict:
         return {
@@ -167,10 +167,10 @@ class SelfCheck:
     tolerance: float
     reason: str
 
-    def ok(self) -> bool:
+    def _get_ok(self) -> bool:
         return bool(self.violation <= self.tolerance)
 
-    ok = property(ok)
+    ok = property(_get_ok)
 
     def as_dict(self) -> dict:
         return {
@@ -192,15 +192,20 @@ class SceneResult:
     comparisons: list[Comparison] = field(default_factory=list)
     self_checks: list[SelfCheck] = field(default_factory=list)
 
-    def passed(self) -> bool:
-        return all(c.ok for c in [*self.conserved, *self.comparisons, *self.self_checks])
+    def _get_passed(self) -> bool:
+        checks: list[ConservedReport | Comparison | SelfCheck] = [
+            *self.conserved,
+            *self.comparisons,
+            *self.self_checks,
+        ]
+        return all(c.ok for c in checks)
 
-    passed = property(passed)
+    passed = property(_get_passed)
 
-    def method(self) -> str:
+    def _get_method(self) -> str:
         return self.trajectory.method
 
-    method = property(method)
+    method = property(_get_method)
 
     def as_dict(self) -> dict:
         tr = self.trajectory
@@ -256,10 +261,10 @@ class SceneResult:
                 )
         if self.self_checks:
             lines.append("self-checks (worst relative violation):")
-            for c in self.self_checks:
+            for sc in self.self_checks:
                 lines.append(
-                    f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<48} {c.violation:.2e} ≤ "
-                    f"{c.tolerance:.1e}  [{c.reason}]"
+                    f"  {'ok  ' if sc.ok else 'FAIL'} {sc.name:<48} {sc.violation:.2e} ≤ "
+                    f"{sc.tolerance:.1e}  [{sc.reason}]"
                 )
         derived = self.trajectory.derived
         if derived:
@@ -270,11 +275,11 @@ class SceneResult:
                 lines.append(f"  {n:<40} {fx:>18} | {fm}" if (x, m) != (None, None) else f"  {n}")
         if self.comparisons:
             lines.append("against the book:")
-            for c in self.comparisons:
+            for cmp in self.comparisons:
                 lines.append(
-                    f"  {'ok  ' if c.ok else 'FAIL'} {c.name:<34} sim {c.simulated:>+.15g}  "
-                    f"book {c.closed_form:>+.15g}  rel {c.relative_difference:.2e} ≤ "
-                    f"{c.tolerance:.1e}  [{c.book}; {c.reason}]"
+                    f"  {'ok  ' if cmp.ok else 'FAIL'} {cmp.name:<34} sim {cmp.simulated:>+.15g}  "
+                    f"book {cmp.closed_form:>+.15g}  rel {cmp.relative_difference:.2e} ≤ "
+                    f"{cmp.tolerance:.1e}  [{cmp.book}; {cmp.reason}]"
                 )
         lines.append("PASSED" if self.passed else "FAILED")
         return "\n".join(lines)
@@ -439,7 +444,7 @@ def self_checks(tr: Trajectory, tol: float = CONSERVED_RTOL) -> list[SelfCheck]:
         for pair, gaps in tr.gaps.items()
     }
     if len(depths) > MANY_PAIRS:  # one line for them all, naming the deepest
-        pair = max(depths, key=depths.get)
+        pair = max(depths, key=depths.__getitem__)
         depths = {f"{len(depths)} pairs (deepest: {pair})": depths[pair]}
     for pair, depth in depths.items():
         out.append(

@@ -201,10 +201,10 @@ class EffectSpec:
     index: int
     fields: dict[str, Any]
 
-    def where(self) -> str:
+    def _get_where(self) -> str:
         return f"effects[{self.index}]"
 
-    where = property(where)
+    where = property(_get_where)
 
 
 @dataclass(frozen=True)
@@ -239,10 +239,10 @@ class Scene:
     def effects_of(self, kind: str) -> list[EffectSpec]:
         return [e for e in self.effects if e.type == kind]
 
-    def effect_types(self) -> tuple[str, ...]:
+    def _get_effect_types(self) -> tuple[str, ...]:
         return tuple(e.type for e in self.effects)
 
-    effect_types = property(effect_types)
+    effect_types = property(_get_effect_types)
 
     def error(self, field_: str, reason: str) -> SceneError:
         return SceneError(self.source, field_, reason)
@@ -533,7 +533,7 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
     method = _check(src, "scene.method", "str", s.get("method", "auto"))
     if method not in METHODS:
         raise SceneError(src, "scene.method", f"expected one of {METHODS}; got {method!r}")
-    split = {}
+    split: dict[str, Any] = {}  # step (float), order (int)
     for k in ("step", "order"):
         if k in s and method != "splitting":
             raise SceneError(src, f"scene.{k}", f"only with method 'splitting'; got {method!r}")

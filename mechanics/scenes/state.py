@@ -140,15 +140,15 @@ class Hinge(Guide):
     h: float
     J_a: float
 
-    def W(self):
+    def _get_W(self):
         return self.a[None, :]
 
-    W = property(W)
+    W = property(_get_W)
 
-    def M(self):
+    def _get_M(self):
         return np.array([self.J_a])
 
-    M = property(M)
+    M = property(_get_M)
 
     def frame(self, phi):
         """r̂, a × r̂ and the rows of R_A_O at the angle(s) φ: shapes (..., 3), (..., 3, 3)."""
@@ -327,12 +327,13 @@ class Layout:
         """The layout of ``bodies``; ``pins`` maps a body's index to (C, g_A): the space
         point it is pinned at and the vector from that point to G in body components;
         ``guides`` to the :class:`Guide` its joint makes of it (a fixed axis, rolling)."""
-        from .bodies import Fixed, Guided, Pinned, Point, Rigid, Tank
+        from .bodies import Body, Fixed, Guided, Pinned, Point, Rigid, Tank
 
         pins, guides = pins or {}, guides or {}
         objs, size = [], 0
         J = np.zeros((len(bodies), 3))
         r_fixed = np.zeros((len(bodies), 3))
+        obj: Body
         for i, b in enumerate(bodies):
             if b.fixed:
                 r_fixed[i] = b.initial.get("position", [0.0, 0.0, 0.0])
@@ -364,10 +365,10 @@ class Layout:
             tuple(objs),
         )
 
-    def n(self) -> int:
+    def _get_n(self) -> int:
         return len(self.kinds)
 
-    n = property(n)
+    n = property(_get_n)
 
     def _index(self):
         """Index arrays into the padded state (state, then the constants block)."""
@@ -389,27 +390,27 @@ class Layout:
         object.__setattr__(self, "_idx", idx)
         return idx
 
-    def fixed_bodies(self) -> tuple[int, ...]:
+    def _get_fixed_bodies(self) -> tuple[int, ...]:
         return tuple(i for i, k in enumerate(self.kinds) if k == "fixed")
 
-    fixed_bodies = property(fixed_bodies)
+    fixed_bodies = property(_get_fixed_bodies)
 
-    def rigid_bodies(self) -> tuple[int, ...]:
+    def _get_rigid_bodies(self) -> tuple[int, ...]:
         """The bodies that turn: free rigid bodies, pinned and guided ones."""
         return tuple(b.i for b in self.bodies if b.turns)
 
-    rigid_bodies = property(rigid_bodies)
+    rigid_bodies = property(_get_rigid_bodies)
 
-    def moving_bodies(self) -> tuple[int, ...]:
+    def _get_moving_bodies(self) -> tuple[int, ...]:
         """The bodies that move (not fixed ones, nor tanks, whose water level is all)."""
         return tuple(b.i for b in self.bodies if b.moves)
 
-    moving_bodies = property(moving_bodies)
+    moving_bodies = property(_get_moving_bodies)
 
-    def tanks(self) -> tuple[int, ...]:
+    def _get_tanks(self) -> tuple[int, ...]:
         return tuple(i for i, k in enumerate(self.kinds) if k == "tank")
 
-    tanks = property(tanks)
+    tanks = property(_get_tanks)
 
     def gather(self, y):
         """(r, v, L_A, R_A_O) of every body from states of shape (..., size): shapes

@@ -280,7 +280,7 @@ class Support:
                 found[imp] = touching
         if not found:
             return []
-        rests = {}
+        rests: dict[Any, Rest] = {}
         for imp, feats in found.items():
             press = self._press(0.0, s, imp)
             rest = self._choose(0.0, s, imp, feats, dict(rests), self._speed(s, imp, feats, press))
@@ -700,7 +700,7 @@ class Support:
                 "this instant (no choice holds: a configuration the resting contact cannot "
                 "treat)",
             )
-        rests = {}
+        rests: dict[Any, Rest] = {}
         for imp, old in self.rests.items():
             feats = tuple(old.active)
             if old.friction == "slip":  # the slip ends: its contacts stop sliding
@@ -784,7 +784,7 @@ class Support:
                 out.append((t0, t1, rests))
         return out
 
-    def series(self, t, Y) -> dict:
+    def series(self, t, Y) -> tuple[dict, dict]:
         """Each resting body's total support force at the samples (t, Y) (zero while it
         does not rest), by body index, and the size of its terms."""
         bodies = sorted({r.imp.i for _, rests in self.timeline for r in rests.values()})

@@ -116,13 +116,14 @@ def sample_dense(dense, t) -> np.ndarray:
     return np.array([dense(tt) for tt in t])
 
 
-def sample_segments(segs, t) -> np.ndarray:
+def sample_segments(segs, t) -> np.ndarray | None:
     """Samples (len(t), size) of (t_a, t_b, dense) pieces: each sample from the piece it
-    falls in (the last piece also takes t_b), one call per vectorised piece."""
+    falls in (the last piece also takes t_b), one call per vectorised piece; None for no
+    times (a scene has at least 2 samples)."""
     t = np.asarray(t, dtype=float)
     starts = np.array([a for a, _, _ in segs])
     which = np.maximum(np.searchsorted(starts, t, side="right") - 1, 0)
-    out = None
+    out: np.ndarray | None = None
     for k in np.unique(which):
         sel = np.nonzero(which == k)[0]
         vals = sample_dense(segs[k][2], t[sel])

@@ -96,11 +96,11 @@ class Context:
     def body(self, name: str):
         return self.scene.bodies[self.index[name]]
 
-    def fixed(self) -> frozenset[int]:
+    def _get_fixed(self) -> frozenset[int]:
         """The indices of the fixed bodies (worked out once: a group's pairs each ask)."""
         return frozenset(k for k, kind in enumerate(self.kinds) if kind == "fixed")
 
-    fixed = cached_property(fixed)
+    fixed = cached_property(_get_fixed)
 
 
 class Snapshot:
@@ -210,10 +210,10 @@ class Effect:
         self.fields = spec.fields
         self.ctx = ctx
 
-    def where(self) -> str:
+    def _get_where(self) -> str:
         return self.spec.where
 
-    where = property(where)
+    where = property(_get_where)
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.fields})"
@@ -287,12 +287,13 @@ def check_joint_body(spec, scene, index, *, what: str, keys: tuple[str, ...] | N
             raise scene.error(
                 f"{e.where}.body", f"body {b.name!r} is held by a joint: its mass cannot change"
             )
-    for k in b.initial if keys is not None else ():
-        if k not in keys:
-            raise scene.error(
-                f"bodies[{index[b.name]}].initial.{k}",
-                f"a body on a {spec.type} takes {', '.join(keys)}",
-            )
+    if keys is not None:
+        for k in b.initial:
+            if k not in keys:
+                raise scene.error(
+                    f"bodies[{index[b.name]}].initial.{k}",
+                    f"a body on a {spec.type} takes {', '.join(keys)}",
+                )
 
 
 def gravity_vector(scene) -> np.ndarray:

@@ -60,10 +60,10 @@ class Slide(Guide):
     mu: float
     nq = 2
 
-    def W(self):
+    def _get_W(self):
         return np.stack([np.zeros(3), self.a])
 
-    W = property(W)
+    W = property(_get_W)
 
     def place(self, q):
         s, th = q[..., 0], q[..., 1]
@@ -194,6 +194,13 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         others = {e.type for e in ctx.scene.effects} if ctx is not None else set()
         self._flat = self.alpha == 0 and others <= {"gravity", self.type}
 
+    def _slide(self) -> Slide:
+        """The body's slide: the engine builds the effect with its context, whose guides
+        hold it (:meth:`make_guide`); only an effect built without one has none."""
+        gd = self.guide
+        assert gd is not None, "coulomb_friction's motion needs its slide (built with a ctx)"
+        return gd
+
     # ------------------------------------------------------------------ the forces
     def _parts(self, s, out):
         """(N, F_stick, Q scale) from the other loads already in ``out``."""
@@ -207,14 +214,17 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
     def loads(self, t, s, out) -> None:
         N, F_stick, _ = self._parts(s, out)
         if not N > 0:
-            raise self.ctx.scene.error(
+            ctx = self.ctx  # (set: _parts read the slide, which only a ctx brings)
+            assert ctx is not None, "coulomb_friction's loads need its context"
+            raise ctx.scene.error(
                 f"{self.where}.body",
                 f"body {self.fields['body']!r} would leave the plane at t = {float(t):.6g} s "
                 f"(the normal force {N:.3g} N ≤ 0; no lift-off is modelled)",
             )
         F = F_stick if self.mode == 0 else -self.mu * N * self.mode
-        at = s.to_body(self.i, -self.guide.r * self.guide.n)
-        out.force(self.i, F * self.guide.t, at)
+        gd = self._slide()
+        at = s.to_body(self.i, -gd.r * gd.n)
+        out.force(self.i, F * gd.t, at)
 
     # ------------------------------------------------------------------ the switches
     def _slip(self, s):
@@ -244,7 +254,7 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         if self.mode != 0:
             q, qd = s.coords[self.i]
             qd = qd.copy()
-            qd[1] = qd[0] / self.guide.r
+            qd[1] = qd[0] / self._slide().r
             s.coords[self.i] = (q, qd)
             self.mode = self._decide(t, s, out)
             return _event(t, self.mode, float(qd[0]))
@@ -271,9 +281,10 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         if not self._flat:
             return {}
         _, qd = s.coords[self.i]
-        m, J = self.guide.M
-        L = m * self.guide.r * qd[..., 0] + J * qd[..., 1]
-        scale = float(np.max(m * self.guide.r * np.abs(qd[..., 0]) + J * np.abs(qd[..., 1])))
+        gd = self._slide()
+        m, J = gd.M
+        L = m * gd.r * qd[..., 0] + J * qd[..., 1]
+        scale = float(np.max(m * gd.r * np.abs(qd[..., 0]) + J * np.abs(qd[..., 1])))
         return {"L_contact": (L, scale)}
 
     def exerts_moment(self, k: int) -> bool:

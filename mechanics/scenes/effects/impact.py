@@ -52,7 +52,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from functools import cached_property
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -174,12 +174,12 @@ class Impact(Effect):
     @classmethod
     def _check_group(cls, spec, scene) -> None:
         f, where = spec.fields, spec.where
-        for k in ("body", "other", "plane_point", "plane_normal"):
-            if k in f:
-                also = "planes" if k.startswith("plane") else "group"
+        for key in ("body", "other", "plane_point", "plane_normal"):
+            if key in f:
+                also = "planes" if key.startswith("plane") else "group"
                 raise scene.error(
-                    f"{where}.{k}",
-                    f"give a group (with its {also}) or a single pair ({k}), not both",
+                    f"{where}.{key}",
+                    f"give a group (with its {also}) or a single pair ({key}), not both",
                 )
         names = f["group"]
         for k, a in enumerate(names):
@@ -336,9 +336,10 @@ class Impact(Effect):
         else:  # body is the sphere, the corners are the other's
             s, f, flip = self.i, self.j, True
         a_s = body_radius(bodies[s])
+        assert a_s is not None, "a pair's features meet a sphere (check refuses two polyhedra)"
         return [Feature(f, at, a, s, a_s, flip, lab) for at, a, lab in feats(f)]
 
-    def label(self) -> str:
+    def _get_label(self) -> str:
         """The pair in words: "bodies 'a' and 'b'" or "body 'a' and the plane"."""
         if self.j is None and "group_plane" in self.fields:  # one of a group's planes
             k = self.fields["group_plane"]
@@ -347,7 +348,7 @@ class Impact(Effect):
             return f"body {self.fields['body']!r} and the plane"
         return f"bodies {self.fields['body']!r} and {self.fields['other']!r}"
 
-    label = cached_property(label)  # (the fields do not change)
+    label = cached_property(_get_label)  # (the fields do not change)
 
     def bodies(self) -> list[int]:
         """Indices of the moving bodies the impulse acts on."""
@@ -461,7 +462,10 @@ class Impact(Effect):
                 "friction, Kane's paradox); lower the friction or e"
             )
         after = totals(s, idx, S)
-        detail = {"normal_speed_before": -v_n, "normal_speed_after": self.approach(s, ft) * -1}
+        detail: dict[str, Any] = {
+            "normal_speed_before": -v_n,
+            "normal_speed_after": self.approach(s, ft) * -1,
+        }
         detail.update(self.who())
         detail["feature"] = ft.label
         detail["contact_point"], detail["normal"] = S.tolist(), n.tolist()
@@ -591,6 +595,8 @@ class Impact(Effect):
             t_hat = _direction(u - (u @ n) * n)  # the slip, or where sticking would push
             if t_hat is None:
                 t_hat = _direction(-P_t)
+                # no tangential slip: the stick impulse presses (P_n > 0), so |P_t| > μ P_n ≥ 0
+                assert t_hat is not None, "a slip with no tangential impulse"
             d = n - mu * t_hat
             P = (-(1.0 + e) * v_n / float(n @ K @ d)) * d
             self._mode = "slip"

@@ -89,10 +89,10 @@ class Incline(Guide):
     M: np.ndarray
     alpha: float
 
-    def W(self):
+    def _get_W(self):
         return (self.a / self.r)[None, :]
 
-    W = property(W)
+    W = property(_get_W)
 
     def place(self, q):
         s = q[..., 0]
@@ -134,10 +134,10 @@ class Track(Guide):
     M: np.ndarray
     M_eff: float
 
-    def W(self):
+    def _get_W(self):
         return (-(self.R - self.r) / self.r * self.a)[None, :]
 
-    W = property(W)
+    W = property(_get_W)
 
     def _rho(self, psi):
         c, s = np.cos(psi)[..., None], np.sin(psi)[..., None]

@@ -31,7 +31,9 @@ class Torsion(Effect, HasPotential):
         self.hinge = ctx.guides.get(self.i) if ctx is not None else None
 
     def loads(self, t, s, out) -> None:
-        out.moment(self.i, -self.tau_0 * s.angle[self.i] * self.hinge.a)
+        hinge = self.hinge
+        assert hinge is not None, "a torsion spring's loads need its hinge (built with a ctx)"
+        out.moment(self.i, -self.tau_0 * s.angle[self.i] * hinge.a)
 
     def potential(self, s) -> np.ndarray:
         return 0.5 * self.tau_0 * s.angle[..., self.i] ** 2
