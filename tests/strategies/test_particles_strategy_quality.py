@@ -8,6 +8,7 @@ to the simple case, and reject bad arguments by quoting them.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -71,9 +72,14 @@ def test_particle_systems_reach_every_regime(regime, predicate):
     _found(shared(ms.particle_systems), predicate)
 
 
+#: one object for the regime tests below, which then read one sample (the positions are
+#: an array, which sampling.shared cannot key on)
+PAIR_FORCES_R3 = ms.pair_forces(R3)
+
+
 @pytest.mark.parametrize(("regime", "predicate"), list(PAIR_FORCE_REGIMES.items()))
 def test_pair_forces_reach_every_regime(regime, predicate):
-    _found(ms.pair_forces(R3), predicate)
+    _found(PAIR_FORCES_R3, predicate)
 
 
 def test_every_documented_regime_has_a_reachability_test():
@@ -233,6 +239,7 @@ def _never(strategy, predicate) -> None:
 
 @pytest.mark.parametrize(("lo", "hi"), [(1e-6, 1e6), (0.3, 5.0), (2.0, 3.0)])
 def test_masses_each_regime_stays_within_the_bounds(lo, hi):
+    @functools.cache  # one strategy, so one sample, per regime for all its questions
     def regime(r):
         return ms.masses(min_value=lo, max_value=hi, regimes=[r])
 
