@@ -10,6 +10,7 @@ and reject bad arguments by quoting them.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -526,6 +527,8 @@ def test_direct_velocities_mixed_magnitudes_come_from_the_documented_tiers(top):
 
 #: Principal moments, each drawn on the diagonal of an unturned tensor (R = 1 exactly):
 #: (J1, J2, J3) as the regime constructs them, J1 ≤ J2, scale J2 in [1e-3, 1e3].
+#: (one object per regime, so the questions below read one sample of it)
+@functools.cache
 def _diagonal(regime):
     return ms.impact_inertia_tensors(regimes=[regime], rotations=st.just(np.eye(3)))
 

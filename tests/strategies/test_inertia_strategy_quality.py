@@ -8,6 +8,7 @@ strategies shrink to the simple case and reject bad arguments by quoting them.
 
 from __future__ import annotations
 
+import functools
 import math
 import re
 
@@ -237,6 +238,7 @@ def _never(strategy, predicate) -> None:
     never(strategy, predicate, NEVER_DRAWS)
 
 
+@functools.cache  # one object per regime and bounds: its questions read one sample
 def _moments(regime, **bounds):
     return ms.principal_moments(regimes=[regime], **bounds)
 
