@@ -22,7 +22,10 @@ constraint's integration, which the run checks at every sample) and has just bee
 go, by an impact elsewhere or a lift-off, starts its first free step with the gap that
 drift left: that depth below zero is allowed at the step's start too
 (:attr:`Collision.released`), until the feature's gap is seen at or above zero at a
-step's start; a fall beyond it is still refused as a missed contact.
+step's start; a fall beyond it is still refused as a missed contact.  The depth allowed
+is at most what the run's own check of its resting contacts allows
+(:data:`RELEASE_RTOL` × the feature's reach, × the scene's tolerance / 1e-12 where
+looser): a deeper one is refused as before.
 """
 
 from __future__ import annotations
@@ -38,9 +41,15 @@ from numpy.polynomial import chebyshev as C
 from . import contacts
 from .effects.impact import centre_gaps
 from .impacts import GAP_ROUNDING, falls_in
-from .trajectory import EPS
+from .trajectory import DEFAULT_TOL, EPS
 
-__all__ = ["Collision", "Hit", "StepFit", "check_initial_overlap"]
+__all__ = ["RELEASE_RTOL", "Collision", "Hit", "StepFit", "check_initial_overlap"]
+
+#: the largest drift of a resting gap taken at its release, relative to the feature's
+#: reach: the bound the run checks its resting contacts' gaps against at every sample
+#: (:data:`.result.CONSERVED_RTOL_INTEGRATED`, DOP853's drift at rtol 1e-12), × the
+#: scene's rtol or atol / 1e-12 where looser
+RELEASE_RTOL = 2**20 * EPS
 
 
 @dataclass
@@ -316,10 +325,10 @@ class Collision:
                     self.held.add((a, b))
                     continue  # resting: its gap is held at zero (.support)
                 polys, x, other, size = self._polys(fit, imp, ft)
-                slack = self._released(fit, imp, ft, (a, b), (a, b) in held)
                 # positions round relative to their own size, not to their difference
                 reach = np.abs(x).sum() + other + size
                 self.reach[a, b] = max(self.reach.get((a, b), 0.0), reach)
+                slack = self._released(fit, imp, ft, (a, b), (a, b) in held)
 
                 def gap_at(xx, imp=imp, ft=ft):
                     tt = fit.time(xx)
@@ -371,6 +380,10 @@ class Collision:
             self.released.pop(key, None)
             return 0.0
         if was_held:
+            sc = self.model.scene
+            loose = max(1.0, sc.rtol / DEFAULT_TOL, sc.atol / DEFAULT_TOL)
+            if -gap > RELEASE_RTOL * loose * self.reach[key]:
+                return 0.0  # deeper than a resting gap may drift: refused as missed
             self.released[key] = -gap
         return self.released[key]
 

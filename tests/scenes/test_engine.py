@@ -450,7 +450,9 @@ def test_random_rough_corner_impacts_restitute_and_dissipate(w, angles, mu, e) -
         )
 
 
-def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_refused() -> None:
+def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_refused(
+    monkeypatch,
+) -> None:
     """Found by hypothesis's random profile: a box (e = 0, smooth) comes to rest on corner
     7, pivots on it, and corner 6 strikes the floor; the impulse lets corner 7 go with
     the gap its support's drift left (−2.5e-14, beyond a fresh contact's start rounding
@@ -471,6 +473,12 @@ def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_ref
     assert r.passed, r.summary()
     kinds = [(e.kind, e.detail.get("feature")) for e in r.trajectory.events]
     assert any(k == "impact" for k, _ in kinds), kinds  # the strike that lets go
+    # negative control: with no drift allowed at a release, the old refusal comes back
+    from mechanics.scenes import collision
+
+    monkeypatch.setattr(collision, "RELEASE_RTOL", 0.0)
+    with pytest.raises(SceneError, match=r"corner 7 .* a contact was missed"):
+        run_scene(sc)
 
 
 def test_an_impulse_that_would_add_energy_is_refused_with_one_line() -> None:
