@@ -31,8 +31,10 @@ sample used to repeat the first: 1000 draws of ``particle_systems()`` held 387 d
 values).  Under ``dev`` each run is seeded too, from one random number drawn per
 process (``secrets``: pytest-randomly reseeds ``random`` for every test, and an unseeded
 ``find`` then repeated its draws run after run as well).  A sample lives as long as
-its strategy object, which each test builds for itself: nothing but draws is shared,
-and tests stay independent of each other and of their order.
+its strategy object, which a test builds for itself or takes from :func:`shared`:
+nothing but draws is shared, read and never changed, and since the same strategy
+draws the same sample whichever test grows it first, tests stay independent of each
+other and of their order.
 """
 
 from __future__ import annotations
