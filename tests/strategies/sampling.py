@@ -22,8 +22,9 @@ included), as before.
   p ≥ 1.4 % and below 10⁻⁴ for p ≥ 0.92 %; a rarer event needs a larger n, stated
   where it is used.
 
-Draws are added in runs of ``find`` that double the sample (100, 100, 200, 400, ...),
-so a question answered by the first draws costs only those.  Under a derandomised
+Draws are added in runs of ``find`` of :data:`RUN` draws each, so a question answered
+by the first draws costs only those, and a sample's k-th run is the same whichever
+question asked for it (a run's size never depends on how many draws were asked for).  Under a derandomised
 profile (``ci``) each run is seeded by its index (0, 1, 2, ...): the sample is the same
 on every run of the suite, and its runs are different draws (a derandomised ``find``
 seeds from the predicate's function, the same for every run, so the runs of a grown
@@ -49,8 +50,8 @@ from hypothesis.errors import NoSuchExample
 
 __all__ = ["found", "never", "sample", "shared"]
 
-#: the first run of draws; each later run doubles the sample
-FIRST_RUN = 100
+#: the draws of one run of ``find``
+RUN = 100
 #: the seeds of a sample's runs under a random profile start here (one number per process)
 _RANDOM_BASE = secrets.randbits(64)
 
@@ -110,10 +111,9 @@ def _draws(strategy) -> _Draws:
 
 
 def _grow(strategy, d: _Draws, n: int) -> None:
-    k = min(max(FIRST_RUN, len(d.examples)), n - len(d.examples))
-    got = _run(strategy, k, d.runs)
+    got = _run(strategy, RUN, d.runs)
     d.runs += 1
-    d.exhausted = len(got) < k
+    d.exhausted = len(got) < RUN
     d.examples.extend(got)
 
 

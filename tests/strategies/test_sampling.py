@@ -57,3 +57,13 @@ def test_shared_gives_one_object_per_factory_and_arguments() -> None:
     assert shared(factory, hi=5, lo=1) is a  # the same arguments, in any order
     assert shared(factory, lo=1, hi=6) is not a
     assert factory(lo=1, hi=5) is not a
+
+
+def test_a_sample_is_the_same_however_it_was_grown(monkeypatch) -> None:
+    """A shared sample may be grown by any test first: the draws must not depend on the
+    order of the questions (runs of a fixed size, each seeded by its index)."""
+    monkeypatch.setattr(sampling, "_derandomized", lambda: True)
+    a, b = st.integers(0, 2**60).map(int), st.integers(0, 2**60).map(int)
+    sample(a, 150)  # grown in steps: 150, then 270 more
+    grown = sample(a, 420)
+    assert sample(b, 420) == grown  # grown at once
