@@ -24,8 +24,8 @@ drift left: that depth below zero is allowed at the step's start too
 (:attr:`Collision.released`), until the feature's gap is seen at or above zero at a
 step's start; a fall beyond it is still refused as a missed contact.  The depth allowed
 is at most what the run's own check of its resting contacts allows
-(:data:`RELEASE_RTOL` × the feature's reach, × the scene's tolerance / 1e-12 where
-looser): a deeper one is refused as before.
+(:data:`~.trajectory.CONSERVED_RTOL_INTEGRATED` × the feature's reach, × the scene's
+:func:`~.trajectory.tolerance_scale`): a deeper one is refused as before.
 """
 
 from __future__ import annotations
@@ -41,15 +41,9 @@ from numpy.polynomial import chebyshev as C
 from . import contacts
 from .effects.impact import centre_gaps
 from .impacts import GAP_ROUNDING, falls_in
-from .trajectory import DEFAULT_TOL, EPS
+from .trajectory import CONSERVED_RTOL_INTEGRATED, EPS, tolerance_scale
 
-__all__ = ["RELEASE_RTOL", "Collision", "Hit", "StepFit", "check_initial_overlap"]
-
-#: the largest drift of a resting gap taken at its release, relative to the feature's
-#: reach: the bound the run checks its resting contacts' gaps against at every sample
-#: (:data:`.result.CONSERVED_RTOL_INTEGRATED`, DOP853's drift at rtol 1e-12), × the
-#: scene's rtol or atol / 1e-12 where looser
-RELEASE_RTOL = 2**20 * EPS
+__all__ = ["Collision", "Hit", "StepFit", "check_initial_overlap"]
 
 
 @dataclass
@@ -380,9 +374,9 @@ class Collision:
             self.released.pop(key, None)
             return 0.0
         if was_held:
-            sc = self.model.scene
-            loose = max(1.0, sc.rtol / DEFAULT_TOL, sc.atol / DEFAULT_TOL)
-            if -gap > RELEASE_RTOL * loose * self.reach[key]:
+            # at most the drift the run allows its resting gaps (result.self_checks)
+            allowed = CONSERVED_RTOL_INTEGRATED * tolerance_scale(self.model.scene)
+            if -gap > allowed * self.reach[key]:
                 return 0.0  # deeper than a resting gap may drift: refused as missed
             self.released[key] = -gap
         return self.released[key]

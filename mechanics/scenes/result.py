@@ -40,8 +40,8 @@ import numpy as np
 
 from .impacts import LAW_RTOL
 from .simulate import simulate
-from .spec import DEFAULT_TOL, Scene
-from .trajectory import EPS, Trajectory
+from .spec import Scene
+from .trajectory import CONSERVED_RTOL_INTEGRATED, EPS, Trajectory, tolerance_scale
 
 __all__ = [
     "CONSERVED_RTOL",
@@ -59,10 +59,6 @@ __all__ = [
 
 #: exact flows: each sample is a closed form, rounding grows with the terms (≤ ~100 ops)
 CONSERVED_RTOL = 1024 * EPS
-#: DOP853 at rtol = atol = 1e-12 over the scene's duration (measured worst ≈ 1e-11); a
-#: scene with looser rtol/atol gets this × (its tolerance / 1e-12): the drift grows in
-#: proportion (measured 14 × rtol for a spring oscillator at rtol 1e-8)
-CONSERVED_RTOL_INTEGRATED = 2**20 * EPS  # ≈ 2.3e-10
 #: a gap below zero by more than this × (max |position| + the radii) is an
 #: more impact pairs than this (a group's) share one interpenetration check, naming
 #: the deepest
@@ -403,9 +399,7 @@ def _report(scene: Scene, tr: Trajectory, compare) -> SceneResult:
 def conserved_tolerance(scene: Scene, tr: Trajectory) -> float:
     """The relative drift allowed a conserved quantity (see the module Conventions)."""
     if tr.method.startswith("integrated"):  # measured at the default; looser asks more
-        return CONSERVED_RTOL_INTEGRATED * max(
-            1.0, scene.rtol / DEFAULT_TOL, scene.atol / DEFAULT_TOL
-        )
+        return CONSERVED_RTOL_INTEGRATED * tolerance_scale(scene)
     return CONSERVED_RTOL
 
 

@@ -69,7 +69,7 @@ from .bodies import Point
 from .collision import Hit, StepFit
 from .impacts import CLOSING_ROUNDING, GAP_ROUNDING
 from .state import point_acceleration
-from .trajectory import DEFAULT_TOL, EPS, Event
+from .trajectory import EPS, Event, tolerance_scale
 from .vectors import cross3
 
 __all__ = ["FORCE_ROUNDING", "Rest", "Support"]
@@ -615,8 +615,7 @@ class Support:
     def _slip_end(self, speed) -> float:
         """The size of a slip that has come to its end, from ``speed`` (see
         :data:`SLIP_END_RTOL`)."""
-        sc = self.model.scene
-        return SLIP_END_RTOL * speed * max(1.0, sc.rtol / DEFAULT_TOL, sc.atol / DEFAULT_TOL)
+        return SLIP_END_RTOL * speed * tolerance_scale(self.model.scene)
 
     def _slip(self, s, imp, ft):
         """The contact's slip velocity (across the normal) and the size of its terms."""

@@ -137,7 +137,7 @@ class _Built:
         self._made: dict[tuple, st.SearchStrategy] = {}
 
     def get(self, make, *args) -> st.SearchStrategy:
-        key = (make.__name__, *args)
+        key = (make, *args)
         s = self._made.get(key)
         if s is None:
             s = self._made[key] = make(*args)

@@ -1204,6 +1204,7 @@ for _name in (
     "scenes.effects.base.unit",
     "scenes.effects.rolling.slope_frame",
     "scenes.trajectory.energy_scale",
+    "scenes.trajectory.tolerance_scale",
     "scenes.vectors.cross",
     "scenes.vectors.cross3",
     "scenes.state.point_acceleration",

@@ -476,7 +476,7 @@ def test_a_box_released_from_a_resting_corner_by_an_impact_at_another_is_not_ref
     # negative control: with no drift allowed at a release, the old refusal comes back
     from mechanics.scenes import collision
 
-    monkeypatch.setattr(collision, "RELEASE_RTOL", 0.0)
+    monkeypatch.setattr(collision, "CONSERVED_RTOL_INTEGRATED", 0.0)
     with pytest.raises(SceneError, match=r"corner 7 .* a contact was missed"):
         run_scene(sc)
 
