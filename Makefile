@@ -14,7 +14,7 @@ unexport PYTHONDONTWRITEBYTECODE
 # to `make test-slow`, which .ci/run runs after `make test`.
 PYTEST_ARGS := -n auto -m 'not slow'
 
-.PHONY: run test test-slow checks bench lock test-latest test-oldest test-matrix clean mutate
+.PHONY: run test test-slow checks bench lock test-latest test-oldest test-matrix clean mutate mutate-plan
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -97,6 +97,13 @@ MODULE ?= mechanics/rotation.py
 MUTATE_ARGS ?=
 mutate: $(STAMP)
 	$(BIN)/python tools/mutation/run.py $(MODULE) --mutmut $(BIN)/mutmut --max-children 1 $(MUTATE_ARGS)
+
+## make mutate-plan: every run of tools/mutation/plan.toml (the core modules in full, the rest as
+## samples registered by committing the plan), one mutant per core at a time; prints each module's
+## score and writes the table of docs/mutation.md from what it measured (--report: from the last runs)
+mutate-plan: $(STAMP)
+	$(BIN)/python tools/mutation/run.py --plan --mutmut $(BIN)/mutmut \
+		--max-children $(shell nproc) $(MUTATE_ARGS)
 
 clean:
 	rm -rf $(VENV) .venv-latest .venv-oldest .venv-matrix .pytest_cache .hypothesis .benchmarks \

@@ -24,8 +24,12 @@ Conventions
   3 ``max_steps`` reached.  On any code but 0 the caller re-runs the reference path,
   which raises the error naming the time, so a compiled run never returns a wrong
   result.
-- Compiled with ``@njit(cache=True, error_model="numpy")``: the machine code is cached in
+- Compiled with ``njit(cache=True, error_model="numpy")``: the machine code is cached in
   ``mechanics/__pycache__`` (numba's per-file index, safe under concurrent writers).
+  Applied after each definition (``f = _compile(f)``), not as a decorator, so that
+  mutmut mutates the kernels: under mutation (``docs/mutation.md``) numba's JIT is off
+  (``NUMBA_DISABLE_JIT=1``), ``_compile`` returns the Python function, and the kernels
+  run as plain Python against the same tests.
 """
 
 from __future__ import annotations
@@ -40,8 +44,10 @@ STATUS_NONFINITE = 1
 STATUS_STEP_TOO_SMALL = 2
 STATUS_MAX_STEPS = 3
 
+#: how every kernel is compiled (lazily, on its first call; cached on disk)
+_compile = njit(cache=True, error_model="numpy")
 
-@njit(cache=True, error_model="numpy")
+
 def _frb_rhs(J, y, out):  # pragma: no cover (compiled; tested against the reference)
     """out = the free rigid body's dy/dt for every body of the flat state y."""
     for b in range(J.shape[0]):
@@ -61,7 +67,9 @@ def _frb_rhs(J, y, out):  # pragma: no cover (compiled; tested against the refer
             out[o + 9 + c] = r0 * w1 - r1 * w0
 
 
-@njit(cache=True, error_model="numpy")
+_frb_rhs = _compile(_frb_rhs)
+
+
 def _all_finite(v):  # pragma: no cover
     for x in v:  # noqa: SIM110 (a loop numba compiles to a plain loop)
         if not math.isfinite(x):
@@ -69,7 +77,9 @@ def _all_finite(v):  # pragma: no cover
     return True
 
 
-@njit(cache=True, error_model="numpy")
+_all_finite = _compile(_all_finite)
+
+
 def rk4_free_body(J, y0, t, ns, ys):  # pragma: no cover
     """RK4 on the free rigid body: ns[k] equal steps over [t[k], t[k+1]]; the states
     at the output times go into ys (len(t), size).  Returns (status, steps)."""
@@ -107,7 +117,9 @@ def rk4_free_body(J, y0, t, ns, ys):  # pragma: no cover
     return STATUS_OK, steps
 
 
-@njit(cache=True, error_model="numpy")
+rk4_free_body = _compile(rk4_free_body)
+
+
 def _error_norm(K, E5, E3, h, y, y_new, rtol, atol, groups):  # pragma: no cover
     """The DOP853 error norm (the reference's ``_dop853_error``), max over members."""
     n = y.size
@@ -135,7 +147,9 @@ def _error_norm(K, E5, E3, h, y, y_new, rtol, atol, groups):  # pragma: no cover
     return worst
 
 
-@njit(cache=True, error_model="numpy")
+_error_norm = _compile(_error_norm)
+
+
 def _member_rms_min_max(v, scale, groups, want_max):  # pragma: no cover
     n = v.size
     gs = n // groups
@@ -151,7 +165,9 @@ def _member_rms_min_max(v, scale, groups, want_max):  # pragma: no cover
     return out
 
 
-@njit(cache=True, error_model="numpy")
+_member_rms_min_max = _compile(_member_rms_min_max)
+
+
 def dop853_free_body(
     J, y0, t, h0, rtol, atol, groups, max_steps, A, B, C, E3, E5, D, ctrl, ys
 ):  # pragma: no cover
@@ -293,7 +309,9 @@ def dop853_free_body(
     return STATUS_OK, steps, evals, rejected
 
 
-@njit(cache=True, error_model="numpy")
+dop853_free_body = _compile(dop853_free_body)
+
+
 def _project(L, R, norm0):  # pragma: no cover
     """|L| ← norm0 and one Newton–Schulz step R ← R − ½ (R Rᵀ − 1) R (the reference's
     ``_project_batch``, in its order of operations)."""
@@ -317,7 +335,9 @@ def _project(L, R, norm0):  # pragma: no cover
             R[a, b] = R[a, b] - 0.5 * Q[a, b]
 
 
-@njit(cache=True, error_model="numpy")
+_project = _compile(_project)
+
+
 def _flow(J, L, R, i, c):  # pragma: no cover
     """The exact flow of H_i for a time c: L and the rows of R turn about axis i."""
     a = (i + 1) % 3
@@ -336,7 +356,9 @@ def _flow(J, L, R, i, c):  # pragma: no cover
         R[b, m] = co * Rb - si * Ra
 
 
-@njit(cache=True, error_model="numpy")
+_flow = _compile(_flow)
+
+
 def _flow_compensated(J, L, R, cL, cR, i, c):  # pragma: no cover
     """The reference's ``_flow_compensated``: the turn about axis i as an increment
     ((cos − 1) x + sin y, cos − 1 = −2 sin²(θ/2)) added by Kahan summation, the
@@ -370,7 +392,9 @@ def _flow_compensated(J, L, R, cL, cR, i, c):  # pragma: no cover
         R[b, m] = s
 
 
-@njit(cache=True, error_model="numpy")
+_flow_compensated = _compile(_flow_compensated)
+
+
 def splitting_free_body(
     J, L0, R0, norm0, t, ns, axes, fracs, head, every, compensated, ys
 ):  # pragma: no cover
@@ -428,3 +452,6 @@ def splitting_free_body(
                 if not math.isfinite(ys[k + 1, b, i]):
                     status = STATUS_NONFINITE
     return status, flows
+
+
+splitting_free_body = _compile(splitting_free_body)

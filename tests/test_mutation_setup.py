@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import ast
 import importlib.util
+import os
+import sys
 import tomllib
 from pathlib import Path
 
@@ -19,16 +21,19 @@ import pytest
 
 ROOT = Path(__file__).resolve().parent.parent
 
-#: what mutmut is told not to mutate (pyproject's [tool.mutmut] do_not_mutate), with the
-#: reason there: numba compiles these functions and cannot compile mutmut's trampolines
-NOT_MUTATED = {"mechanics/_kernels.py"}
+#: what mutmut is told not to mutate (pyproject's [tool.mutmut] do_not_mutate): nothing
+#: (the numba kernels are mutated with the JIT off, their row's env in modules.toml)
+NOT_MUTATED: set[str] = set()
 #: decorators mutmut 3 does mutate through
 MUTATED_THROUGH = {"staticmethod", "classmethod"}
 
 
 def _run_module():
+    if "mutation_run" in sys.modules:
+        return sys.modules["mutation_run"]
     spec = importlib.util.spec_from_file_location("mutation_run", ROOT / "tools/mutation/run.py")
     mod = importlib.util.module_from_spec(spec)
+    sys.modules["mutation_run"] = mod  # dataclasses look their module up there
     spec.loader.exec_module(mod)
     return mod
 
@@ -39,7 +44,7 @@ def _modules() -> list[str]:
 
 def test_not_mutated_is_what_pyproject_says():
     cfg = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
-    assert set(cfg["tool"]["mutmut"]["do_not_mutate"]) == NOT_MUTATED
+    assert set(cfg["tool"]["mutmut"].get("do_not_mutate", [])) == NOT_MUTATED
 
 
 def test_every_module_of_mechanics_has_a_row_of_tests_that_exist():
@@ -153,3 +158,158 @@ def test_a_packages_own_mutants_belong_to_its_init_and_not_to_its_submodules():
     line, open_ = run.report("mechanics/scenes/__init__.py", status, {})
     assert "1 mutants, 0 killed, 0 equivalent (reviewed), 1 survived" in line
     assert open_ == [own]
+
+
+# ------------------------------------------------------------------ the registered plan
+
+#: the modules issue 35 asks to mutate in full
+CORE = {
+    "mechanics/rotation.py",
+    "mechanics/impact.py",
+    "mechanics/inertia.py",
+    "mechanics/dynamics.py",
+    "mechanics/tops.py",
+    "mechanics/elliptic.py",
+    "mechanics/particles.py",
+    "mechanics/energy.py",
+    "mechanics/kinematics.py",
+    "mechanics/_kernels.py",
+}
+
+
+def test_the_plan_runs_every_module_once_the_core_in_full_the_rest_in_samples_of_100():
+    run = _run_module()
+    rows = run.load_modules()
+    plan = run.load_plan(run.PLAN.read_text(encoding="utf-8"))
+    seen: list[str] = []
+    for r in plan:
+        chosen = run.expand(r.modules, rows)
+        seen += chosen
+        if r.sample is None:
+            assert set(chosen) <= CORE, f"a full run outside the core: {chosen}"
+        else:
+            assert r.sample >= 100
+            assert not set(chosen) & CORE
+    assert sorted(seen) == sorted(set(seen)), "a module in two runs of the plan"
+    assert set(seen) == set(rows), f"modules outside the plan: {sorted(set(rows) - set(seen))}"
+    seeds = [r.seed for r in plan if r.seed is not None]
+    assert len(seeds) == len(set(seeds)), "two samples share a seed"
+
+
+@pytest.mark.parametrize(
+    ("body", "says"),
+    [
+        ('modules = ["m.py"]\nsample = 100\n', "both its size and its seed"),
+        ('modules = ["m.py"]\nseed = 3\n', "both its size and its seed"),
+        ('modules = ["m.py"]\nsample = 40\nseed = 3\n', "a sample of 40 mutants; at least 100"),
+        ("sample = 100\nseed = 3\n", "a run has modules"),
+        ('modules = ["m.py"]\nseeds = 3\n', "a run has modules, and sample and seed"),
+    ],
+)
+def test_a_plan_run_without_its_seed_or_below_100_mutants_is_refused(body, says):
+    with pytest.raises(SystemExit, match=says):
+        _run_module().load_plan("[[run]]\n" + body)
+
+
+def _git(root, *args):
+    import subprocess
+
+    env = {
+        "GIT_AUTHOR_NAME": "t",
+        "GIT_AUTHOR_EMAIL": "t@t",
+        "GIT_COMMITTER_NAME": "t",
+        "GIT_COMMITTER_EMAIL": "t@t",
+        "PATH": "/usr/bin:/bin",
+    }
+    subprocess.run(["git", *args], cwd=root, env=env, check=True, capture_output=True)
+
+
+def test_a_sample_is_registered_by_its_commit_and_counts_only_the_equivalents_listed_then(
+    tmp_path,
+):
+    run = _run_module()
+    (tmp_path / "tools" / "mutation").mkdir(parents=True)
+    plan = tmp_path / "tools" / "mutation" / "plan.toml"
+    equivalent = tmp_path / "tools" / "mutation" / "equivalent.toml"
+    first = '[[run]]\nmodules = ["mechanics/a.py"]\n\n'
+    second = '[[run]]\nmodules = ["mechanics/b.py"]\nsample = 100\nseed = 7\n'
+    _git(tmp_path, "init", "-q")
+    equivalent.write_text('["a"]\n"mechanics.a.x_f__mutmut_1" = "reviewed before"\n')
+    plan.write_text(first)
+    _git(tmp_path, "add", ".")
+    _git(tmp_path, "commit", "-qm", "one")
+    plan.write_text(first + second)
+    runs = run.load_plan(plan.read_text())
+    assert [r.lines for r in runs] == [(1, 3), (4, 7)]
+    assert run.registration(runs[1].lines, tmp_path) is None  # not committed: refused
+    _git(tmp_path, "commit", "-qam", "register b")
+    commit = run.registration(runs[1].lines, tmp_path)
+    assert commit is not None
+    assert commit != run.registration(runs[0].lines, tmp_path)
+    # a run whose lines come from two commits is registered by the newer
+    assert run.registration((1, 7), tmp_path) == commit
+    # reviewed after the registration: counts for the next sample, not for this one
+    equivalent.write_text(
+        equivalent.read_text() + '"mechanics.b.x_g__mutmut_2" = "reviewed after the sample"\n'
+    )
+    _git(tmp_path, "commit", "-qam", "review")
+    assert set(run.equivalent_at(commit, tmp_path)) == {"mechanics.a.x_f__mutmut_1"}
+    assert len(run.load_equivalent(equivalent)) == 2
+    # a changed seed is a new registration
+    plan.write_text(first + second.replace("seed = 7", "seed = 8"))
+    assert run.registration(runs[1].lines, tmp_path) is None
+
+
+def test_a_survivor_accepted_in_writing_still_counts_against_the_score():
+    run = _run_module()
+    status = {
+        "mechanics.x.x_f__mutmut_1": "killed",
+        "mechanics.x.x_f__mutmut_2": "survived",
+        "mechanics.x.x_f__mutmut_3": "survived",
+        "mechanics.x.x_f__mutmut_4": "survived",
+    }
+    equivalent = {"mechanics.x.x_f__mutmut_3": "why"}
+    accepted = {"mechanics.x.x_f__mutmut_4": "a rounding of the last place"}
+    line, open_ = run.report("mechanics/x.py", status, equivalent, accepted)
+    assert "4 mutants, 1 killed, 1 equivalent (reviewed), 2 survived: score 33.3 %" in line
+    assert "1 of the survivors accepted in writing" in line
+    assert open_ == ["mechanics.x.x_f__mutmut_2"]
+
+
+def test_the_table_row_of_a_sample_gives_its_wilson_interval_and_registration():
+    run = _run_module()
+    status = {f"mechanics.x.x_f__mutmut_{i}": "killed" for i in range(95)}
+    status |= {f"mechanics.x.x_g__mutmut_{i}": "survived" for i in range(5)}
+    status |= {f"mechanics.x.x_h__mutmut_{i}": "not checked" for i in range(300)}
+    t = run.tally("mechanics/x.py", status, {"mechanics.x.x_g__mutmut_0": "why"}, {})
+    plan_run = run.PlanRun(["mechanics/x.py"], 100, 41, (1, 4))
+    row = run.table_row(t, plan_run, "0123456789abcdef")
+    lo, hi = run.wilson(95, 99)
+    assert row == (
+        f"| `mechanics/x.py` | 100 of 400 (seed 41) | 95 | 1 | 4 (0 accepted) | 96.0 % | "
+        f"{100 * lo:.1f}–{100 * hi:.1f} % | `012345678` |"
+    )
+    full = run.tally("mechanics/x.py", {k: v for k, v in status.items() if "x_h" not in k}, {})
+    row = run.table_row(full, run.PlanRun(["mechanics/x.py"], None, None, (1, 2)), None)
+    assert "| 100 (all) | 95 | 0 | 5 (0 accepted) | 95.0 % | every mutant | uncommitted |" in row
+
+
+def test_a_copys_verdicts_survive_a_change_of_pyproject_outside_mutmut_and_pytest():
+    run = _run_module()
+    base = '[project]\ndependencies = ["numpy"]\n\n[tool.mutmut]\nonly_mutate = ["a.py"]\n'
+    pinned = base.replace('"numpy"', '"numpy>=2"')
+    assert run._verdict_key(base) == run._verdict_key(pinned)
+    other = base.replace('"a.py"', '"b.py"')
+    assert run._verdict_key(base) != run._verdict_key(other)
+    pytest_cfg = base + '\n[tool.pytest.ini_options]\naddopts = "-x"\n'
+    assert run._verdict_key(base) != run._verdict_key(pytest_cfg)
+
+
+def test_modules_whose_rows_need_different_environments_do_not_share_a_copy():
+    run = _run_module()
+    assert run.environment(["mechanics/_kernels.py"])["NUMBA_DISABLE_JIT"] == "1"
+    plain = run.environment(["mechanics/rotation.py"])
+    assert plain.get("NUMBA_DISABLE_JIT") == os.environ.get("NUMBA_DISABLE_JIT")
+    assert plain["CI"] == "1"
+    with pytest.raises(SystemExit, match="different environments"):
+        run.environment(["mechanics/_kernels.py", "mechanics/rotation.py"])

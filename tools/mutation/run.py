@@ -50,11 +50,15 @@ import subprocess
 import sys
 import time
 import tomllib
+from dataclasses import dataclass
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
 MODULES = ROOT / "tools" / "mutation" / "modules.toml"
 EQUIVALENT = ROOT / "tools" / "mutation" / "equivalent.toml"
+ACCEPTED = ROOT / "tools" / "mutation" / "accepted.toml"
+PLAN = ROOT / "tools" / "mutation" / "plan.toml"
+TABLE = ROOT / "docs" / "mutation.md"
 WORK = ROOT / "build" / "mutation"
 
 #: what the copy of the project holds (mutmut copies these into its mutants/ in turn)
@@ -71,13 +75,23 @@ def load_modules(path: Path = MODULES) -> dict[str, list[str]]:
     return {m: list(row["tests"]) for m, row in data["modules"].items()}
 
 
-def load_equivalent(path: Path = EQUIVALENT) -> dict[str, str]:
-    """Mutant name → the reviewed one-line reason it is equivalent.
+def load_envs(path: Path = MODULES) -> dict[str, dict[str, str]]:
+    """Module path → the environment its tests run in under mutation (a row's ``env``;
+    ``mechanics/_kernels.py`` runs with numba's JIT off, so that its mutants run)."""
+    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    return {m: dict(row.get("env", {})) for m, row in data["modules"].items()}
+
+
+def load_equivalent(path: Path = EQUIVALENT, text: str | None = None) -> dict[str, str]:
+    """Mutant name → the reviewed one-line reason it is equivalent (or, read from
+    ``accepted.toml``, the reason a survivor is accepted in writing).
 
     Every reason must be a non-empty single line: a bare name is not a review."""
-    if not path.exists():
-        return {}
-    data = tomllib.loads(path.read_text(encoding="utf-8"))
+    if text is None:
+        if not path.exists():
+            return {}
+        text = path.read_text(encoding="utf-8")
+    data = tomllib.loads(text)
     out: dict[str, str] = {}
     for module, table in data.items():
         for name, reason in table.items():
@@ -106,20 +120,23 @@ def of_module(name: str, module: str) -> bool:
     return not module.endswith("/__init__.py") or name[len(prefix) :].startswith(("x_", "xǁ"))
 
 
-def _sync(src: Path, dst: Path) -> None:
+def _sync(src: Path, dst: Path) -> list[Path]:
     """Copy src over dst, keeping a file's mtime where its content did not change (mutmut
-    re-generates the mutants of a source whose mtime moved)."""
+    re-generates the mutants of a source whose mtime moved); the files copied."""
     if src.is_file():
         if not dst.exists() or not filecmp.cmp(src, dst, shallow=False):
             dst.parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(src, dst)
-        return
+            return [dst]
+        return []
+    changed: list[Path] = []
     for s in src.rglob("*"):
         rel = s.relative_to(src)
         if any(p in ("__pycache__", ".hypothesis", "mutants") for p in rel.parts):
             continue
         if s.is_file() and s.suffix != ".pyc":
-            _sync(s, dst / rel)
+            changed += _sync(s, dst / rel)
+    return changed
 
 
 def expand(names: list[str], modules: dict[str, list[str]]) -> list[str]:
@@ -146,13 +163,26 @@ def workdir(modules: list[str]) -> Path:
     return WORK / ("group_" + "_".join(Path(m).stem.strip("_") for m in modules))[:120]
 
 
-def prepare(modules: list[str], tests: list[str]) -> Path:
-    """The copy of the project, its pyproject's mutmut table set for the modules."""
+def _verdict_key(pyproject: str) -> tuple:
+    """What mutmut's verdicts in a copy depend on besides the code and the tests: the
+    mutated modules, the test selection and arguments, pytest's own configuration.  (Not
+    the rest of pyproject: a new dependency pin or a linter's setting changes no verdict.)"""
+    cfg = tomllib.loads(pyproject).get("tool", {})
+    mm = cfg.get("mutmut", {})
+    keys = ("only_mutate", "pytest_add_cli_args", "pytest_add_cli_args_test_selection")
+    return (*(repr(mm.get(k)) for k in keys), repr(cfg.get("pytest", {})))
+
+
+def prepare(modules: list[str], tests: list[str]) -> tuple[Path, bool]:
+    """The copy of the project, its pyproject's mutmut table set for the modules; and
+    whether a test file changed since the copy was last made (then mutmut's record of
+    which tests call which function is deleted: it is recorded again)."""
     work = workdir(modules)
     work.mkdir(parents=True, exist_ok=True)
+    changed: list[Path] = []
     for name in COPIED:
         if (ROOT / name).exists():
-            _sync(ROOT / name, work / name)
+            changed += _sync(ROOT / name, work / name)
     text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
     selection = "pytest_add_cli_args_test_selection = " + _toml_list(tests)
     text, n = re.subn(r"(?m)^pytest_add_cli_args_test_selection = .*$", selection, text)
@@ -163,12 +193,16 @@ def prepare(modules: list[str], tests: list[str]) -> Path:
     only = f"[tool.mutmut]\nonly_mutate = {_toml_list(modules)}\n"
     text = text.replace("[tool.mutmut]\n", only, 1)
     target = work / "pyproject.toml"
-    if not target.exists() or target.read_text(encoding="utf-8") != text:
+    old = target.read_text(encoding="utf-8") if target.exists() else None
+    if old != text:
         target.write_text(text, encoding="utf-8")
-        # a new test selection makes mutmut forget every verdict of this copy
+        if old is None or _verdict_key(old) != _verdict_key(text):
+            # a new test selection makes mutmut forget every verdict of this copy
+            shutil.rmtree(work / "mutants", ignore_errors=True)
+    tests_changed = any((work / "tests") in p.parents for p in changed)
+    if tests_changed:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
-        shutil.rmtree(work / "mutants", ignore_errors=True)
-    return work
+    return work, tests_changed
 
 
 def _toml_list(items: list[str]) -> str:
@@ -188,35 +222,74 @@ def results(work: Path, mutmut: str) -> dict[str, str]:
     return found
 
 
-def report(
-    module: str, status: dict[str, str], equivalent: dict[str, str]
-) -> tuple[str, list[str]]:
-    """The score line and the survivors that are not in the reviewed list."""
+@dataclass
+class Tally:
+    """One module's verdicts: its mutants (checked ones; ``unchecked`` more in the module
+    when a sample ran), how many were killed, the survivors counted out as reviewed
+    equivalents, those accepted in writing (still survivors) and the open ones."""
+
+    module: str
+    mutants: int
+    unchecked: int
+    killed: int
+    equivalent: list[str]
+    accepted: list[str]
+    open: list[str]
+
+    @property
+    def denominator(self) -> int:
+        return self.mutants - len(self.equivalent)
+
+    @property
+    def score(self) -> float:
+        return 100.0 * self.killed / self.denominator if self.denominator else 100.0
+
+
+def tally(
+    module: str,
+    status: dict[str, str],
+    equivalent: dict[str, str],
+    accepted: dict[str, str] | None = None,
+) -> Tally:
+    """Count the module's verdicts (see :class:`Tally`)."""
+    accepted = accepted or {}
     everything = {k: v for k, v in status.items() if of_module(k, module)}
     mine = {k: v for k, v in everything.items() if v != "not checked"}
-    unchecked = len(everything) - len(mine)
-    killed = sum(v in KILLED for v in mine.values())
     survivors = sorted(k for k, v in mine.items() if v not in KILLED)
     equiv = [k for k in survivors if k in equivalent]
-    open_ = [k for k in survivors if k not in equivalent]
-    total = len(mine)
-    denom = total - len(equiv)
-    score = 100.0 * killed / denom if denom else 100.0
+    taken = [k for k in survivors if k not in equivalent and k in accepted]
+    open_ = [k for k in survivors if k not in equivalent and k not in accepted]
+    killed = sum(v in KILLED for v in mine.values())
+    return Tally(module, len(mine), len(everything) - len(mine), killed, equiv, taken, open_)
+
+
+def report(
+    module: str,
+    status: dict[str, str],
+    equivalent: dict[str, str],
+    accepted: dict[str, str] | None = None,
+) -> tuple[str, list[str]]:
+    """The score line and the survivors neither reviewed as equivalent nor accepted in
+    writing.  Accepted survivors count against the score like any survivor."""
+    t = tally(module, status, equivalent, accepted)
     line = (
-        f"{module}: {total} mutants, {killed} killed, {len(equiv)} equivalent (reviewed), "
-        f"{len(open_)} survived: score {score:.1f} % = killed / (mutants - equivalent)"
+        f"{module}: {t.mutants} mutants, {t.killed} killed, {len(t.equivalent)} equivalent "
+        f"(reviewed), {len(t.open) + len(t.accepted)} survived: score {t.score:.1f} % = "
+        "killed / (mutants - equivalent)"
     )
-    if not everything:
+    if t.accepted:
+        line += f"  [{len(t.accepted)} of the survivors accepted in writing]"
+    if not t.mutants and not t.unchecked:
         line = f"{module}: no mutants (nothing mutmut can change)"
-    elif not mine:
-        line = f"{module}: not measured (none of its {len(everything)} mutants checked)"
-    elif unchecked:
-        lo, hi = wilson(killed, denom)
+    elif not t.mutants:
+        line = f"{module}: not measured (none of its {t.unchecked} mutants checked)"
+    elif t.unchecked:
+        lo, hi = wilson(t.killed, t.denominator)
         line += (
-            f"  [{unchecked} of {len(everything)} mutants not checked: a sample;"
+            f"  [{t.unchecked} of {t.mutants + t.unchecked} mutants not checked: a sample;"
             f" 95 % interval {100 * lo:.0f}-{100 * hi:.0f} %]"
         )
-    return line, open_
+    return line, t.open
 
 
 def wilson(k: int, n: int, z: float = 1.959963984540054) -> tuple[float, float]:
@@ -267,7 +340,9 @@ def executable(path: str) -> str:
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument(
-        "modules", nargs="+", help="e.g. mechanics/rotation.py, or a folder: mechanics/scenes"
+        "modules",
+        nargs="*",
+        help="e.g. mechanics/rotation.py, or a folder: mechanics/scenes (none with --plan)",
     )
     ap.add_argument("--max-children", type=int, default=1)
     beside = Path(sys.executable).parent / "mutmut"  # the venv's, when run by its python
@@ -289,16 +364,56 @@ def main(argv: list[str] | None = None) -> int:
         action="store_true",
         help="record again which tests call which function (after changing tests)",
     )
+    ap.add_argument(
+        "--plan",
+        action="store_true",
+        help="run every run of tools/mutation/plan.toml (committed first) and write the "
+        "table of docs/mutation.md",
+    )
     args = ap.parse_args(argv)
     args.mutmut = executable(args.mutmut)
-
+    if args.plan:
+        if args.modules or args.names or args.sample:
+            ap.error("--plan runs the plan's modules: give no modules, --names or --sample")
+        return run_plan(args)
+    if not args.modules:
+        ap.error("name a module (or a folder), or give --plan")
     rows = load_modules()
     chosen = expand(args.modules, rows)
-    tests = sorted({t for m in chosen for t in rows[m]})
+    status, work, rc = run_modules(chosen, args)
+    if rc:
+        return rc
     equivalent = load_equivalent()
-    work = prepare(chosen, tests)
-    env = {**os.environ, "CI": "1"}
+    accepted = load_equivalent(ACCEPTED)
+    for module in chosen:
+        report_module(module, status, equivalent, accepted, work, args)
+    return 0
+
+
+def environment(chosen: list[str]) -> dict[str, str]:
+    """The mutants' environment: CI=1 (derandomised hypothesis) and the rows' ``env``;
+    modules whose rows ask for different environments cannot share a copy."""
+    envs = load_envs()
+    wanted = {tuple(sorted(envs[m].items())) for m in chosen}
+    if len(wanted) > 1:
+        raise SystemExit(f"{chosen} need different environments ({sorted(wanted)}): run apart")
+    env = {**os.environ, "CI": "1", **dict(wanted.pop() if wanted else ())}
     env.pop("HYPOTHESIS_PROFILE", None)
+    return env
+
+
+def run_modules(
+    chosen: list[str], args, *, rerun_survivors: bool = False
+) -> tuple[dict[str, str], Path, int]:
+    """Run the chosen modules' mutants (all, ``args.names`` or a sample of
+    ``args.sample`` per module at ``args.seed``) in their copy of the project: (mutant →
+    status, with the mutants outside a sample "not checked"; the copy; mutmut's exit
+    code).  ``rerun_survivors``: after a full run, run the survivors again when a test
+    changed since their verdict (mutmut keeps a verdict until told to re-run it)."""
+    rows = load_modules()
+    tests = sorted({t for m in chosen for t in rows[m]})
+    work, tests_changed = prepare(chosen, tests)
+    env = environment(chosen)
     if args.restat:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
     names = list(args.names or [])
@@ -307,7 +422,7 @@ def main(argv: list[str] | None = None) -> int:
         drawn_all: list[str] = []
         for module in chosen:
             every = generate(work, module, args.mutmut, env, tuple(chosen))
-            drawn = sorted(random.Random(args.seed).sample(every, min(args.sample, len(every))))
+            drawn = draw(every, args.sample, args.seed)
             print(f"{module}: a sample of {len(drawn)} of {len(every)} mutants (seed {args.seed})")
             drawn_all += drawn
         sample = set(drawn_all)
@@ -322,34 +437,201 @@ def main(argv: list[str] | None = None) -> int:
         if not names:
             print("no mutants to run")
     if not args.report and (names or not args.sample):
-        cmd = [args.mutmut, "run", "--max-children", str(args.max_children), *names]
-        shown = cmd if len(names) <= 5 else [*cmd[: len(cmd) - len(names)], f"<{len(names)} names>"]
-        print("$ (cd", work.relative_to(ROOT), "&&", " ".join(shown) + ")", flush=True)
-        rc = subprocess.run(cmd, cwd=work, env=env).returncode
+        rc = _mutmut_run(work, args, env, names)
         if rc:
-            print(f"mutmut run exited with {rc}", file=sys.stderr)
-            return rc
+            return {}, work, rc
+        if rerun_survivors and tests_changed and not names:
+            known = results(work, args.mutmut)
+            again = sorted(k for k, v in known.items() if v not in KILLED)
+            if again:
+                print(f"tests changed since the last run: {len(again)} survivors run again")
+                rc = _mutmut_run(work, args, env, again)
+                if rc:
+                    return {}, work, rc
     status = results(work, args.mutmut)
     if sample is not None:  # the score of this sample only, not of earlier runs' mutants
         status = {k: (v if k in sample else "not checked") for k, v in status.items()}
-    for module in chosen:
-        report_module(module, status, equivalent, work, args)
+    return status, work, 0
+
+
+def draw(every: list[str], size: int, seed: int) -> list[str]:
+    """The sample: ``size`` of a module's mutant names (all if it has fewer), drawn by
+    ``seed`` from the sorted list."""
+    return sorted(random.Random(seed).sample(sorted(every), min(size, len(every))))
+
+
+def _mutmut_run(work: Path, args, env: dict[str, str], names: list[str]) -> int:
+    cmd = [args.mutmut, "run", "--max-children", str(args.max_children), *names]
+    shown = cmd if len(names) <= 5 else [*cmd[: len(cmd) - len(names)], f"<{len(names)} names>"]
+    print("$ (cd", work.relative_to(ROOT), "&&", " ".join(shown) + ")", flush=True)
+    rc = subprocess.run(cmd, cwd=work, env=env).returncode
+    if rc:
+        print(f"mutmut run exited with {rc}", file=sys.stderr)
+    return rc
+
+
+# ------------------------------------------------------------------ the plan
+
+
+@dataclass
+class PlanRun:
+    """One ``[[run]]`` of ``plan.toml``: modules (or folders) run in one copy, in full
+    (``sample`` None) or a sample of ``sample`` mutants per module drawn by ``seed``;
+    ``lines`` are its lines in the file (1-based, inclusive), which date its
+    registration."""
+
+    modules: list[str]
+    sample: int | None
+    seed: int | None
+    lines: tuple[int, int]
+
+
+def load_plan(text: str) -> list[PlanRun]:
+    """The runs of ``plan.toml``; a sample needs its size (at least 100, or every mutant
+    of a smaller module) and its seed, a full run neither."""
+    data = tomllib.loads(text)
+    starts = [i + 1 for i, line in enumerate(text.splitlines()) if line.strip() == "[[run]]"]
+    runs = data.get("run", [])
+    if len(starts) != len(runs):
+        raise SystemExit(f"{PLAN.name}: write each run as its own [[run]] line")
+    ends = [s - 1 for s in starts[1:]] + [len(text.splitlines())]
+    out = []
+    for run, start, end in zip(runs, starts, ends, strict=True):
+        unknown = set(run) - {"modules", "sample", "seed"}
+        if unknown or not run.get("modules"):
+            raise SystemExit(f"{PLAN.name}:{start}: a run has modules, and sample and seed")
+        sample, seed = run.get("sample"), run.get("seed")
+        if (sample is None) != (seed is None):
+            raise SystemExit(f"{PLAN.name}:{start}: a sample needs both its size and its seed")
+        if sample is not None and sample < MIN_SAMPLE:
+            raise SystemExit(
+                f"{PLAN.name}:{start}: a sample of {sample} mutants; at least {MIN_SAMPLE}"
+            )
+        out.append(PlanRun(list(run["modules"]), sample, seed, (start, end)))
+    return out
+
+
+#: the smallest sample the plan accepts (issue 35): its 95 % interval is ±4–6 points
+MIN_SAMPLE = 100
+
+
+def registration(lines: tuple[int, int], root: Path = ROOT) -> str | None:
+    """The commit that registered a run: the newest commit among its lines of the plan
+    (``git blame``); None while any of them is not committed."""
+    plan = PLAN.relative_to(ROOT).as_posix()
+    out = _git(root, "blame", "--porcelain", "-L", f"{lines[0]},{lines[1]}", "--", plan)
+    if out is None:
+        return None
+    shas = {ln.split()[0] for ln in out.splitlines() if re.match(r"^[0-9a-f]{40} ", ln)}
+    if not shas or any(set(sha) == {"0"} for sha in shas):
+        return None
+    # the newest: the one every other is an ancestor of
+    for sha in shas:
+        if all(_git(root, "merge-base", "--is-ancestor", o, sha) is not None for o in shas):
+            return sha
+    return None
+
+
+def equivalent_at(commit: str, root: Path = ROOT) -> dict[str, str]:
+    """The reviewed equivalents as they stood at ``commit`` (none if the list did not
+    exist then)."""
+    text = _git(root, "show", f"{commit}:{EQUIVALENT.relative_to(ROOT).as_posix()}")
+    return load_equivalent(text=text) if text is not None else {}
+
+
+def _git(root: Path, *args: str) -> str | None:
+    """git's output in ``root``, or None if git fails."""
+    out = subprocess.run(["git", *args], cwd=root, capture_output=True, text=True)
+    return out.stdout if out.returncode == 0 else None
+
+
+def run_plan(args) -> int:
+    """Run the plan, print each module's line, and write the table into
+    ``docs/mutation.md``.  A full run counts out every reviewed equivalent; a sample only
+    those reviewed before it was registered (equivalents found in a sample count for
+    the next one), and it must be registered (committed) before it runs."""
+    text = PLAN.read_text(encoding="utf-8")
+    plan = load_plan(text)
+    rows = load_modules()
+    equivalent = load_equivalent()
+    accepted = load_equivalent(ACCEPTED)
+    table: list[str] = []
+    for run in plan:
+        chosen = expand(run.modules, rows)
+        commit = registration(run.lines)
+        if run.sample is not None and commit is None:
+            raise SystemExit(
+                f"{PLAN.name}:{run.lines[0]}: the sample of {run.modules} is not registered: "
+                "commit the plan before running it"
+            )
+        args.sample, args.seed, args.names = run.sample, run.seed, None
+        status, work, rc = run_modules(chosen, args, rerun_survivors=run.sample is None)
+        if rc:
+            return rc
+        counted = equivalent if run.sample is None else equivalent_at(commit or "HEAD")
+        for module in chosen:
+            report_module(module, status, counted, accepted, work, args)
+            table.append(table_row(tally(module, status, counted, accepted), run, commit))
+    write_table(table)
     return 0
 
 
+def table_row(t: Tally, run: PlanRun, commit: str | None) -> str:
+    """The module's row of the table in docs/mutation.md."""
+    total = t.mutants + t.unchecked
+    if not total:
+        return f"| `{t.module}` | 0 | | | | | | no mutants (nothing to change) | |"
+    survived = len(t.open) + len(t.accepted)
+    if t.unchecked:
+        lo, hi = wilson(t.killed, t.denominator)
+        run_ = f"{t.mutants} of {total} (seed {run.seed})"
+        interval = f"{100 * lo:.1f}–{100 * hi:.1f} %"
+    else:
+        run_ = f"{total} (all)"
+        interval = "every mutant"
+    reg = f"`{commit[:9]}`" if commit else "uncommitted"
+    return (
+        f"| `{t.module}` | {run_} | {t.killed} | {len(t.equivalent)} | {survived} "
+        f"({len(t.accepted)} accepted) | {t.score:.1f} % | {interval} | {reg} |"
+    )
+
+
+TABLE_HEAD = (
+    "| module | mutants run | killed | equivalent | survived (accepted in writing) | score "
+    "| 95 % interval | registered |\n|---|---:|---:|---:|---:|---:|---|---|"
+)
+
+
+def write_table(rows: list[str], path: Path = TABLE) -> None:
+    """Replace the table between ``<!-- SCORES -->`` and ``<!-- /SCORES -->``."""
+    doc = path.read_text(encoding="utf-8")
+    a, b = doc.index("<!-- SCORES -->\n"), doc.index("<!-- /SCORES -->")
+    body = TABLE_HEAD + "\n" + "\n".join(rows) + "\n"
+    path.write_text(doc[: a + len("<!-- SCORES -->\n")] + body + doc[b:], encoding="utf-8")
+    print(f"wrote the table of {path.relative_to(ROOT)} ({len(rows)} modules)")
+
+
 def report_module(
-    module: str, status: dict[str, str], equivalent: dict[str, str], work: Path, args
+    module: str,
+    status: dict[str, str],
+    equivalent: dict[str, str],
+    accepted: dict[str, str],
+    work: Path,
+    args,
 ) -> None:
     """Print the module's score line, its open survivors (with diffs on ``--diff``) and
-    the stale entries of the reviewed list."""
-    line, open_ = report(module, status, equivalent)
+    the stale entries of the reviewed lists."""
+    line, open_ = report(module, status, equivalent, accepted)
     stale = sorted(
-        k for k in equivalent if of_module(k, module) and status.get(k, "gone") in KILLED | {"gone"}
+        k
+        for k in (*equivalent, *accepted)
+        if of_module(k, module) and status.get(k, "gone") in KILLED | {"gone"}
     )
     print()
     print(line)
     if open_:
-        print(f"survivors not in {EQUIVALENT.relative_to(ROOT)} ({len(open_)}):")
+        lists = f"{EQUIVALENT.relative_to(ROOT)} or {ACCEPTED.name}"
+        print(f"survivors not in {lists} ({len(open_)}):")
         for name in open_:
             print(f"  {name}: {status[name]}")
             if args.diff:
@@ -358,7 +640,9 @@ def report_module(
                 ).stdout
                 print("    " + "\n    ".join(diff.splitlines()[1:]))
     if stale:
-        print(f"listed as equivalent but killed or gone (remove them): {', '.join(stale)}")
+        print(
+            f"listed as equivalent or accepted but killed or gone (remove them): {', '.join(stale)}"
+        )
 
 
 if __name__ == "__main__":
