@@ -42,6 +42,7 @@ from mechanics.scenes.spec import (
     load_scene,
     parse_scene,
 )
+from tests.scenes.builders import ball, point, scene_data
 
 NAN, INF = math.nan, math.inf
 
@@ -365,25 +366,13 @@ def test_a_missing_file_or_a_folder_is_a_scene_error_naming_it(tmp_path):
 # ------------------------------------------------------------------- hard scenes
 
 
-def _ball(name, position, velocity=(0.0, 0.0, 0.0), radius=0.1, mass=1.0):
-    return {
-        "name": name,
-        "shape": "solid_sphere",
-        "mass": mass,
-        "radius": radius,
-        "initial": {"position": list(position), "velocity": list(velocity)},
-    }
-
-
 def test_two_balls_overlapping_at_t0_are_refused_naming_both():
-    data = {
-        "scene": {"name": "overlap", "duration": 1.0, "samples": 11},
-        "bodies": [
-            _ball("left", (0.0, 0.0, 0.0)),
-            _ball("right", (0.05, 0.0, 0.0), (-1.0, 0.0, 0.0)),
-        ],
-        "effects": [{"type": "impact", "body": "left", "other": "right", "restitution": 1.0}],
-    }
+    bodies = [
+        ball("left", (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)),
+        ball("right", (0.05, 0.0, 0.0), (-1.0, 0.0, 0.0)),
+    ]
+    hit = {"type": "impact", "body": "left", "other": "right", "restitution": 1.0}
+    data = scene_data(bodies, [hit], name="overlap", duration=1.0, samples=11)
     with pytest.raises(SceneError, match="overlap") as info:
         parse_scene(data, source="overlap.toml")
     assert "left" in str(info.value)
@@ -409,19 +398,11 @@ def test_a_thousand_free_bodies_run_in_bounded_time_on_straight_lines():
     rng = np.random.default_rng(16)
     pos = rng.uniform(-100.0, 100.0, (1000, 3))
     vel = rng.uniform(-1.0, 1.0, (1000, 3))
-    data = {
-        "scene": {"name": "crowd", "duration": 1.0, "samples": 11},
-        "bodies": [
-            {
-                "name": f"p{k}",
-                "shape": "point",
-                "mass": 1.0,
-                "initial": {"position": p.tolist(), "velocity": v.tolist()},
-            }
-            for k, (p, v) in enumerate(zip(pos, vel, strict=True))
-        ],
-        "effects": [],
-    }
+    bodies = [
+        point(f"p{k}", p.tolist(), v.tolist())
+        for k, (p, v) in enumerate(zip(pos, vel, strict=True))
+    ]
+    data = scene_data(bodies, name="crowd", duration=1.0, samples=11)
     t0 = time.perf_counter()
     result = run_scene(parse_scene(data, source="crowd.toml"))
     wall = time.perf_counter() - t0

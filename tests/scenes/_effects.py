@@ -8,8 +8,10 @@ import re
 
 import pytest
 
-from mechanics.scenes import SceneError, parse_scene
+from mechanics.scenes import SceneError
 from mechanics.scenes.engine import Engine
+
+from .builders import scene
 
 #: the six walls of the unit box [0, 1]³, normals inward (an impact group's ``planes``)
 WALLS = [
@@ -23,10 +25,8 @@ WALLS = [
 
 
 def scene_of(bodies, effects, *, duration=1.0):
-    return parse_scene(
-        {"scene": {"name": "unit", "duration": duration}, "bodies": bodies, "effects": effects},
-        source="unit.toml",
-    )
+    """The scene of ``bodies`` and ``effects`` read from the file unit.toml."""
+    return scene(bodies, effects, name="unit", duration=duration)
 
 
 def build(bodies, effects):

@@ -17,6 +17,7 @@ from mechanics.scenes.effects import base
 from mechanics.scenes.effects.capabilities import CAPABILITIES
 
 from ._effects import assert_says, refusal, scene_of
+from .builders import snap
 
 #: a product of a rotation matrix and a vector, summed over 3 terms, of O(1) values: a few
 #: roundings each
@@ -38,12 +39,6 @@ R_GENERAL = _r3(0.3) @ _r1(1.1) @ _r3(-0.7)
 #: the body's axes are the space axes y, z, x (rows of R_A_O: e_1 = e_y, e_2 = e_z,
 #: e_3 = e_x; a proper rotation, exact in floats)
 R_CYCLIC = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
-
-
-def snap(r, v, R, omega, m, J, **kw) -> base.Snapshot:
-    r, v, R, omega = (np.array(a, dtype=float) for a in (r, v, R, omega))
-    m, J = np.array(m, dtype=float), np.array(J, dtype=float)
-    return base.Snapshot(0.0, r, v, J * omega, R, omega, m, J, **kw)
 
 
 def two_bodies(**kw) -> base.Snapshot:

@@ -16,6 +16,7 @@ from mechanics.scenes.effects.capabilities import HasPotential
 from mechanics.scenes.effects.newton_gravity import G_NEWTON
 
 from ._effects import assert_says, build, refusal, scene_of
+from .builders import bare_snap, snap
 
 #: a force of a few O(1) factors, each rounded once, and a unit vector (a norm, a
 #: division): a handful of roundings of O(1) values
@@ -39,12 +40,6 @@ POINT = {"name": "p", "shape": "point", "mass": 1.5}
 #: the body's axes are the space axes y, z, x (rows of R_A_O: e_1 = e_y, e_2 = e_z,
 #: e_3 = e_x), exact in floats
 R_CYCLIC = np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]])
-
-
-def snap(r, v, R, omega, m, J, *, t=0.0, **kw) -> Snapshot:
-    r, v, R, omega = (np.array(a, dtype=float) for a in (r, v, R, omega))
-    m, J = np.array(m, dtype=float), np.array(J, dtype=float)
-    return Snapshot(t, r, v, J * omega, R, omega, m, J, **kw)
 
 
 def rotation(rng) -> np.ndarray:
@@ -843,7 +838,7 @@ def test_torsion_twists_back_with_minus_tau0_phi_about_the_axis() -> None:
     # U = ½ τ0 φ² = 0.375, over a time axis too
     assert float(e.potential(s)) == 0.375
     angles = np.array([[0.0, 0.5], [7.0, -2.0]])
-    batch = Snapshot(0.0, None, None, None, None, None, np.ones((2, 2)), None, angle=angles)
+    batch = bare_snap(np.ones((2, 2)), angle=angles)
     np.testing.assert_array_equal(e.potential(batch), [0.375, 6.0])
 
 
@@ -853,8 +848,7 @@ def test_torsion_potential_is_minus_the_work_of_its_couple() -> None:
         s = eng.snapshot(0.0, eng.y0)
         s.angle = np.array([0.0, phi])
         M = float(s.R[1].T @ loads_of(e, s, 2).M_A[1] @ np.array([0.0, 0.6, 0.8]))
-        up, down = (Snapshot(0.0, None, None, None, None, None, s.m, None,
-                             angle=np.array([0.0, phi + h])) for h in (FD_STEP, -FD_STEP))  # fmt: skip
+        up, down = (bare_snap(s.m, angle=np.array([0.0, phi + h])) for h in (FD_STEP, -FD_STEP))
         dU = (e.potential(up) - e.potential(down)) / (2 * FD_STEP)
         assert abs(dU + M) <= FD_RTOL * abs(M)
 

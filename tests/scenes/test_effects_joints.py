@@ -15,10 +15,11 @@ import pytest
 import mechanics.scenes
 from mechanics._floats import EPS
 from mechanics.scenes import builtin_path
-from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads, Snapshot
+from mechanics.scenes.effects import CONSERVED, REGISTRY, Loads
 from mechanics.scenes.engine import Engine
 
 from ._effects import build, refusal, scene_of
+from .builders import bare_snap
 
 #: a product or quotient of two or three O(1) factors: a few roundings
 FORMULA_RTOL = 8 * EPS
@@ -472,7 +473,7 @@ def test_mass_flow_turns_its_body_by_minus_r_q_v_minus_q_r2_phidot_about_the_axi
 
 def test_mass_flow_alone_keeps_j_phidot_plus_r_q_v_t_and_with_another_load_nothing():
     (_, e), _ = build(SPUN, [SLANT, FLOW])
-    s = Snapshot(np.array([0.0, 2.0]), None, None, None, None, None, np.ones((2, 2)), None)
+    s = bare_snap(np.ones((2, 2)), t=np.array([0.0, 2.0]))
     # J(t) = 1 + t (a J_a of 1 and q R² = 1), φ̇ = 3, then 1 (J φ̇: 3, then 3)
     s.inertia = {1: np.array([[1.0], [3.0]])}
     s.coords = {1: (np.zeros((2, 1)), np.array([[3.0], [1.0]]))}
@@ -502,7 +503,7 @@ DRAIN = [{"type": "gravity", "g": 3.0}, {"type": "tank_outflow", "body": "tank",
 
 
 def tank_snap(w, vout):
-    s = Snapshot(0.0, None, None, None, None, None, np.ones((*np.shape(w), 1)), None)
+    s = bare_snap(np.ones((*np.shape(w), 1)))
     s.fluid = {0: np.stack([np.asarray(w, float), np.asarray(vout, float)], axis=-1)}
     return s
 

@@ -4,6 +4,7 @@ rigid-body contacts and simultaneous impacts, and the combinations it refuses.""
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import re
 
@@ -17,6 +18,11 @@ from mechanics.impact import RigidBody, rigid_impact
 from mechanics.scenes import SceneError, parse_scene, run_scene
 from mechanics.scenes import effects as fx
 
+from .builders import ball as _ball
+from .builders import box as _box
+from .builders import cylinder, scene
+from .builders import point as _point
+
 #: DOP853 at rtol = atol = 1e-12 over a few periods of an O(1) motion: the global error
 #: is ~1e-11 relative; 2^20 eps = 2.3e-10 leaves a factor of 20
 INTEGRATED_RTOL = 2**20 * EPS
@@ -26,26 +32,8 @@ IMPULSE_RTOL = 256 * EPS
 #: ci and dev, 300 under explore, which hunts)
 SCENE_EXAMPLES = max(10, settings.default.max_examples * 3 // 10)
 
-
-def _scene(bodies, effects, *, duration=1.0, samples=101, method="auto", **kw):
-    return parse_scene(
-        {
-            "scene": {
-                "name": "engine",
-                "duration": duration,
-                "samples": samples,
-                "method": method,
-                **kw,
-            },
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="engine.toml",
-    )
-
-
-def _point(name, mass=1.0, **initial):
-    return {"name": name, "shape": "point", "mass": mass, "initial": initial}
+_scene = functools.partial(scene, name="engine", duration=1.0, samples=101, method="auto")
+_cylinder = functools.partial(cylinder, mass=2.0)
 
 
 def _conserved(r) -> set[str]:
@@ -78,18 +66,6 @@ def test_newton_gravity_closes_a_circular_orbit_in_its_period() -> None:
     assert _conserved(r) == {"p_x", "p_y", "p_z", "L_x", "L_y", "L_z", "E"}
 
 
-def _box(name="box", mass=1.0, **initial):
-    return {
-        "name": name,
-        "shape": "box",
-        "mass": mass,
-        "a": 0.2,
-        "b": 0.4,
-        "c": 0.6,
-        "initial": initial,
-    }
-
-
 def test_a_spring_attached_off_the_centre_turns_the_body() -> None:
     spring = {"type": "spring", "body": "box", "at": [0.1, 0.2, 0.0], "stiffness": 5.0}
     r = run_scene(_scene([_box(position=[1.0, 0.5, 0.2])], [spring], duration=3.0))
@@ -119,7 +95,7 @@ def test_a_damped_spring_between_two_bodies_keeps_the_momentum_and_dissipates() 
         _scene(
             [
                 _point("a", position=[0, 0, 0], velocity=[1.0, 0.3, 0]),
-                _point("b", 2.0, position=[1.5, 0, 0], velocity=[0, -0.2, 0.1]),
+                _point("b", mass=2.0, position=[1.5, 0, 0], velocity=[0, -0.2, 0.1]),
             ],
             [spring],
             duration=10.0,
@@ -137,8 +113,8 @@ def test_drag_follows_the_closed_forms() -> None:
     r = run_scene(
         _scene(
             [
-                _point("lin", m, velocity=[v0, 0, 0]),
-                _point("quad", m, velocity=[v0, 0, 0]),
+                _point("lin", mass=m, velocity=[v0, 0, 0]),
+                _point("quad", mass=m, velocity=[v0, 0, 0]),
                 {
                     "name": "ball",
                     "shape": "solid_sphere",
@@ -614,7 +590,7 @@ def test_random_effect_sets_conserve_what_their_physics_keeps(chosen, va, wb) ->
                 "omega": [0.0, 0.0, 1.0],
             },
         },
-        _box("b", 2.0, position=[1.0, 0.3, -0.2], omega=list(wb)),
+        _box("b", mass=2.0, position=[1.0, 0.3, -0.2], omega=list(wb)),
     ]
     r = run_scene(_scene(bodies, [EFFECTS[k][0] for k in chosen], duration=1.0, samples=41))
     expected = set.intersection(*(EFFECTS[k][1] for k in chosen))
@@ -977,17 +953,6 @@ def test_a_hinged_body_takes_only_its_angle_and_rate() -> None:
     assert info.value.field == "bodies[0].initial.omega"
 
 
-def _cylinder(name="c", mass=2.0, radius=0.1, **initial):
-    return {
-        "name": name,
-        "shape": "cylinder",
-        "mass": mass,
-        "radius": radius,
-        "height": 0.2,
-        "initial": initial,
-    }
-
-
 def test_the_contact_force_of_a_body_rolling_down_an_incline() -> None:
     """m a = m g sin α + F and J a/r² = −F (the moment of F about G) give the friction
     F = −m g sin α J/(J + m r²) up the slope; the normal force is m g cos α (derived by
@@ -1031,16 +996,6 @@ def test_rolling_refuses_what_cannot_roll(body, extra, where, match) -> None:
 EVENT_RTOL = 2**22 * EPS
 
 
-def _ball(name="b", mass=1.0, radius=0.1, **initial):
-    return {
-        "name": name,
-        "shape": "solid_sphere",
-        "mass": mass,
-        "radius": radius,
-        "initial": initial,
-    }
-
-
 def test_a_ball_rolling_against_a_spring_starts_to_slip_where_friction_gives_out() -> None:
     """Rolling (stick) on a level floor, a spring k x back to the start: x = (v0/ω) sin ωt
     with ω² = k/(m + J/r²); the friction that keeps it rolling is F = J k x/(J + m r²)
@@ -1053,7 +1008,7 @@ def test_a_ball_rolling_against_a_spring_starts_to_slip_where_friction_gives_out
     fr = {"type": "coulomb_friction", "body": "b", "mu": mu}
     res = run_scene(
         _scene(
-            [_ball(speed=v0, spin=v0 / r)],
+            [_ball("b", speed=v0, spin=v0 / r)],
             [{"type": "gravity", "g": g}, spring, fr],
             duration=3.0,
             samples=3001,
@@ -1082,7 +1037,11 @@ def test_a_push_makes_a_rolling_ball_slip_until_friction_rolls_it_again() -> Non
     push = {"type": "force", "body": "b", "force": [P, 0.0, 0.0], "start": 0.2, "end": 0.4}
     fr = {"type": "coulomb_friction", "body": "b", "mu": mu}
     res = run_scene(
-        _scene([_ball(speed=1.0, spin=10.0)], [{"type": "gravity", "g": g}, push, fr], duration=2.0)
+        _scene(
+            [_ball("b", speed=1.0, spin=10.0)],
+            [{"type": "gravity", "g": g}, push, fr],
+            duration=2.0,
+        )
     )
     assert res.passed, res.summary()
     (slip, roll) = res.trajectory.events
@@ -1099,9 +1058,9 @@ def test_a_push_makes_a_rolling_ball_slip_until_friction_rolls_it_again() -> Non
     ("body", "effects", "where", "match"),
     [
         (_box("b"), [], "effects[1].body", "only round bodies roll"),
-        (_ball(), "no gravity", "effects[0].type", "needs a gravity effect"),
-        (_ball(angle=1.0), [], "bodies[0].initial.angle", "takes distance, speed, spin"),
-        (_ball(), [{"angle": -0.1}], "effects[1].angle", r"must lie in \[0, π/2\)"),
+        (_ball("b"), "no gravity", "effects[0].type", "needs a gravity effect"),
+        (_ball("b", angle=1.0), [], "bodies[0].initial.angle", "takes distance, speed, spin"),
+        (_ball("b"), [{"angle": -0.1}], "effects[1].angle", r"must lie in \[0, π/2\)"),
     ],
 )
 def test_coulomb_friction_refuses_what_cannot_slide(body, effects, where, match) -> None:
@@ -1118,7 +1077,7 @@ def test_coulomb_friction_refuses_what_cannot_slide(body, effects, where, match)
 def test_a_ball_pulled_off_the_floor_stops_the_run_with_the_time() -> None:
     lift = {"type": "force", "body": "b", "force": [0.0, 0.0, 20.0], "start": 0.5}
     fr = {"type": "coulomb_friction", "body": "b", "mu": 0.3}
-    sc = _scene([_ball(speed=1.0)], [{"type": "gravity", "g": 9.81}, lift, fr])
+    sc = _scene([_ball("b", speed=1.0)], [{"type": "gravity", "g": 9.81}, lift, fr])
     with pytest.raises(SceneError, match=r"would leave the plane at t = 0.5 s") as info:
         run_scene(sc)
     assert info.value.field == "effects[2].body"
@@ -1138,7 +1097,7 @@ def test_random_sliding_balls_integrate_to_their_exact_phases(speed, spin, mu, a
     steps' dense output) agrees with the exact phases (switch times in closed form) in
     its events and its state at the end, and friction never adds energy."""
     fr = {"type": "coulomb_friction", "body": "b", "mu": mu, "angle": alpha}
-    sc = _scene([_ball(speed=speed, spin=spin)], [{"type": "gravity", "g": 9.81}, fr])
+    sc = _scene([_ball("b", speed=speed, spin=spin)], [{"type": "gravity", "g": 9.81}, fr])
     a = run_scene(sc)
     b = run_scene(dataclasses.replace(sc, method="integrate"))
     assert a.method.startswith("exact")
@@ -1335,7 +1294,7 @@ def test_a_disc_dropped_within_1e_8_of_flat_is_struck_above_the_floor() -> None:
 
 def test_a_rim_meets_only_a_plane() -> None:
     disc = {"name": "d", "shape": "disc", "mass": 1.0, "radius": 0.1}
-    ball = _ball(position=[0.0, 0.0, 1.0])
+    ball = _ball("b", position=[0.0, 0.0, 1.0])
     with pytest.raises(SceneError, match="meets only a plane") as info:
         _scene([disc, ball], [{"type": "impact", "body": "d", "other": "b", "restitution": 0.5}])
     assert info.value.field == "effects[0].body"
@@ -1347,7 +1306,7 @@ def test_a_rim_meets_only_a_plane() -> None:
 def _floating(z0, rho_ball=500.0, duration=1.0, samples=101):
     a = 0.1
     m = rho_ball * 4.0 / 3.0 * math.pi * a**3
-    ball = _ball(mass=m, radius=a, position=[0.0, 0.0, z0])
+    ball = _ball("b", mass=m, radius=a, position=[0.0, 0.0, z0])
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "buoyancy", "body": "b", "density": 1000.0},
@@ -1384,7 +1343,7 @@ def test_a_floating_ball_bobs_with_the_period_of_its_waterline() -> None:
     ("body", "gravity", "where", "match"),
     [
         (_box("b"), {"g": 9.81}, "effects[1].body", "modelled for spheres"),
-        (_ball(), {"g": 9.81, "direction": [1.0, 0.0, 0.0]}, "effects[1].type", "along −z"),
+        (_ball("b"), {"g": 9.81, "direction": [1.0, 0.0, 0.0]}, "effects[1].type", "along −z"),
     ],
 )
 def test_buoyancy_refuses_what_it_does_not_model(body, gravity, where, match) -> None:
@@ -1400,7 +1359,7 @@ def test_a_ball_rolling_into_a_wall_rebounds_rolling() -> None:
     M = m + J/r² = 7m/5: it rebounds at e v, losing ½ M (1 − e²) v² (6.41 with the
     guide's mass; derived by hand)."""
     m, v, e = 1.0, 2.0, 0.5
-    ball = _ball(mass=m, distance=0.0, speed=v)
+    ball = _ball("b", mass=m, distance=0.0, speed=v)
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "rolling", "body": "b", "surface": "incline", "angle": 0.0},

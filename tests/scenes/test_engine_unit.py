@@ -6,6 +6,7 @@ whole-scene checks word for word, and the series of a short exact run."""
 
 from __future__ import annotations
 
+import functools
 import math
 from types import SimpleNamespace
 
@@ -14,9 +15,11 @@ import pytest
 
 from mechanics import kinematics as kin
 from mechanics._floats import EPS
-from mechanics.scenes import SceneError, flows, impacts, integrate, model, parse_scene, report
+from mechanics.scenes import SceneError, flows, impacts, integrate, model, report
 from mechanics.scenes.collision import StepFit
 from mechanics.scenes.engine import Engine
+
+from .builders import ball, box, point, scene
 
 #: products and sums of a few sines and cosines of O(1) angles: a few roundings each
 TRIG_ATOL = 8 * EPS
@@ -37,47 +40,18 @@ def R3(a):
     return np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
-def _scene(bodies, effects=(), **scene):
-    return parse_scene(
-        {
-            "scene": {"name": "unit", "duration": 1.0, "samples": 3, **scene},
-            "bodies": list(bodies),
-            "effects": list(effects),
-        },
-        source="unit.toml",
-    )
+_scene = functools.partial(scene, name="unit", duration=1.0, samples=3)
+#: the box of these tests: J = m (b² + c², a² + c², a² + b²)/12 = (0.05, 0.1, 0.13)
+_box = functools.partial(box, "b", mass=12.0, a=0.3, b=0.2, c=0.1)
 
 
 def _point(name="p", position=(0.0, 0.0, 0.0), velocity=(0.0, 0.0, 0.0), mass=1.0, **kw):
-    return {
-        "name": name,
-        "shape": "point",
-        "mass": mass,
-        "initial": {"position": list(position), "velocity": list(velocity)},
-        **kw,
-    }
+    """A point with its position and velocity always listed; ``kw``: body fields."""
+    return point(name, position, velocity, mass=mass) | kw
 
 
 def _ball(name="ball", position=(0.0, 0.0, 1.0), velocity=(0.0, 0.0, 0.0), radius=0.1):
-    return {
-        "name": name,
-        "shape": "solid_sphere",
-        "mass": 1.0,
-        "radius": radius,
-        "initial": {"position": list(position), "velocity": list(velocity)},
-    }
-
-
-def _box(name="b", **initial):
-    return {
-        "name": name,
-        "shape": "box",
-        "mass": 12.0,  # J = (b² + c², a² + c², a² + b²) = (0.05, 0.1, 0.13)
-        "a": 0.3,
-        "b": 0.2,
-        "c": 0.1,
-        "initial": initial,
-    }
+    return ball(name, position, velocity, radius=radius)
 
 
 GRAVITY = {"type": "gravity", "g": 9.81}

@@ -15,6 +15,7 @@ independent route: closed-form contact times against the dense output's root sea
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
@@ -23,11 +24,12 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechanics._floats import EPS
-from mechanics.scenes import SceneError, parse_scene, run_scene
+from mechanics.scenes import SceneError, run_scene
 from mechanics.scenes import collision as collision_module
 from mechanics.scenes import flows as flows_module
 
 from ._effects import WALLS
+from .builders import ball, scene
 
 #: a contact time or velocity in closed form: a quotient of sums of a few O(1) terms
 CLOSED_RTOL = 16 * EPS
@@ -36,25 +38,8 @@ CLOSED_RTOL = 16 * EPS
 EVENT_RTOL = 2**20 * EPS
 
 
-def _ball(name, position, velocity, radius=0.05, mass=1.0, shape="solid_sphere"):
-    return {
-        "name": name,
-        "shape": shape,
-        "mass": mass,
-        "radius": radius,
-        "initial": {"position": list(position), "velocity": list(velocity)},
-    }
-
-
-def _scene(bodies, effects, *, duration=1.0, method="auto", samples=21):
-    return parse_scene(
-        {
-            "scene": {"name": "group", "duration": duration, "samples": samples, "method": method},
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="group.toml",
-    )
+_ball = functools.partial(ball, radius=0.05)
+_scene = functools.partial(scene, name="group", duration=1.0, samples=21, method="auto")
 
 
 def _group(names, planes=WALLS, e=1.0, **kw):

@@ -24,6 +24,10 @@ from mechanics.scenes.domain import ANGLE_MAX, MAGNITUDE_MAX
 from mechanics.scenes.result import ConservedReport, _json_safe
 from mechanics.scenes.spec import SceneError
 
+from .builders import ball as _ball
+from .builders import box as _box
+from .builders import scene_data
+
 
 def _ball_scene(*, samples=201, duration=1.0, position=(0, 0, 1.0), velocity=(0, 0, 0), floor=True):
     eff = [{"type": "gravity", "g": 9.81}]
@@ -37,19 +41,8 @@ def _ball_scene(*, samples=201, duration=1.0, position=(0, 0, 1.0), velocity=(0,
                 "restitution": 0.8,
             }
         )
-    return {
-        "scene": {"name": "hostile", "duration": duration, "samples": samples},
-        "bodies": [
-            {
-                "name": "ball",
-                "shape": "solid_sphere",
-                "mass": 0.5,
-                "radius": 0.1,
-                "initial": {"position": list(position), "velocity": list(velocity)},
-            }
-        ],
-        "effects": eff,
-    }
+    ball = _ball("ball", position, velocity, mass=0.5)
+    return scene_data([ball], eff, name="hostile", duration=duration, samples=samples)
 
 
 def _box_scene(omega, *, floor=True):
@@ -64,21 +57,8 @@ def _box_scene(omega, *, floor=True):
                 "restitution": 0.5,
             }
         )
-    return {
-        "scene": {"name": "hostile_box", "duration": 1.0},
-        "bodies": [
-            {
-                "name": "box",
-                "shape": "box",
-                "mass": 1.0,
-                "a": 0.2,
-                "b": 0.4,
-                "c": 0.6,
-                "initial": {"position": [0, 0, 1.0], "velocity": [0, 0, 0], "omega": list(omega)},
-            }
-        ],
-        "effects": eff,
-    }
+    box = _box("box", [0, 0, 1.0], [0, 0, 0], omega=omega)
+    return scene_data([box], eff, name="hostile_box", duration=1.0)
 
 
 def _toml(data: dict) -> str:

@@ -4,13 +4,16 @@ listed effects, and the paths without an exact flow integrate."""
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 
 import numpy as np
 import pytest
 
 from mechanics._floats import EPS
-from mechanics.scenes import SceneError, parse_scene, run_scene
+from mechanics.scenes import SceneError, run_scene
+
+from .builders import ball, body, box, cylinder, scene
 
 #: an exact flow evaluated at one time: a few dozen float operations on O(1) values
 EXACT_ATOL = 64 * EPS
@@ -19,15 +22,7 @@ EXACT_ATOL = 64 * EPS
 EVENT_RTOL = 2**22 * EPS
 
 
-def _scene(bodies, effects, duration=3.0, samples=301, **kw):
-    return parse_scene(
-        {
-            "scene": {"name": "m", "duration": duration, "samples": samples, **kw},
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="m.toml",
-    )
+_scene = functools.partial(scene, name="m", duration=3.0, samples=301)
 
 
 def _both(scene):
@@ -44,13 +39,7 @@ def _both(scene):
 
 
 def test_torsion_pendulum_is_harmonic_with_period_2pi_sqrt_J_over_tau() -> None:
-    disc = {
-        "name": "d",
-        "shape": "disc",
-        "mass": 2.0,
-        "radius": 0.5,
-        "initial": {"angle": 0.3, "angular_velocity": 0.4},
-    }
+    disc = body("d", "disc", {"angle": 0.3, "angular_velocity": 0.4}, mass=2.0, radius=0.5)
     sc = _scene(
         [disc],
         [{"type": "fixed_axis", "body": "d"}, {"type": "torsion", "body": "d", "stiffness": 0.25}],
@@ -64,37 +53,15 @@ def test_torsion_pendulum_is_harmonic_with_period_2pi_sqrt_J_over_tau() -> None:
 
 
 def test_torque_free_top_about_a_fixed_point_conserves_L_in_space() -> None:
-    top = {
-        "name": "t",
-        "shape": "box",
-        "mass": 1.0,
-        "a": 0.3,
-        "b": 0.2,
-        "c": 0.1,
-        "initial": {
-            "theta": 0.7,
-            "psi": 0.1,
-            "phi": 0.2,
-            "theta_dot": 0.5,
-            "psi_dot": 1.0,
-            "phi_dot": 3.0,
-        },
-    }
+    top = box("t", a=0.3, b=0.2, c=0.1, theta=0.7, psi=0.1, phi=0.2, theta_dot=0.5,
+              psi_dot=1.0, phi_dot=3.0)  # fmt: skip
     sc = _scene([top], [{"type": "fixed_point", "body": "t", "distance": 0.05}])
     a, _ = _both(sc)
     assert {"L_x", "L_y", "L_z", "E"} <= {c.name for c in a.conserved}
 
 
 def test_asymmetric_heavy_top_has_no_exact_flow_and_integrates() -> None:
-    top = {
-        "name": "t",
-        "shape": "box",
-        "mass": 1.0,
-        "a": 0.3,
-        "b": 0.2,
-        "c": 0.1,
-        "initial": {"theta": 0.7, "phi_dot": 30.0},
-    }
+    top = box("t", a=0.3, b=0.2, c=0.1, theta=0.7, phi_dot=30.0)
     eff = [{"type": "gravity", "g": 9.81}, {"type": "fixed_point", "body": "t", "distance": 0.1}]
     r = run_scene(_scene([top], eff))
     assert r.method.startswith("integrated")
@@ -106,14 +73,7 @@ def test_asymmetric_heavy_top_has_no_exact_flow_and_integrates() -> None:
 
 
 def test_track_with_an_initial_speed_integrates_and_conserves_energy() -> None:
-    cyl = {
-        "name": "c",
-        "shape": "cylinder",
-        "mass": 1.0,
-        "radius": 0.1,
-        "height": 0.1,
-        "initial": {"angle": 0.5, "angular_velocity": 1.0},
-    }
+    cyl = cylinder("c", height=0.1, angle=0.5, angular_velocity=1.0)
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "rolling", "body": "c", "surface": "track", "track_radius": 0.6},
@@ -124,13 +84,7 @@ def test_track_with_an_initial_speed_integrates_and_conserves_energy() -> None:
 
 
 def test_large_amplitude_track_motion_exact_vs_integrated() -> None:
-    cyl = {
-        "name": "c",
-        "shape": "hollow_sphere",
-        "mass": 1.0,
-        "radius": 0.1,
-        "initial": {"angle": 2.5},
-    }
+    cyl = ball("c", shape="hollow_sphere", angle=2.5)
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "rolling", "body": "c", "surface": "track", "track_radius": 0.6},
@@ -140,13 +94,7 @@ def test_large_amplitude_track_motion_exact_vs_integrated() -> None:
 
 @pytest.mark.parametrize("speed", [0.0, -1.5])
 def test_rolling_down_an_incline_exact_vs_integrated(speed) -> None:
-    disc = {
-        "name": "d",
-        "shape": "disc",
-        "mass": 1.0,
-        "radius": 0.2,
-        "initial": {"distance": 0.5, "speed": speed},
-    }
+    disc = body("d", "disc", {"distance": 0.5, "speed": speed}, mass=1.0, radius=0.2)
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "rolling", "body": "d", "surface": "incline", "angle": 0.3},
@@ -166,18 +114,12 @@ def test_rolling_down_an_incline_exact_vs_integrated(speed) -> None:
     ],
 )
 def test_sliding_on_a_plane_exact_vs_integrated(alpha, mu, spin, rolls) -> None:
-    ball = {
-        "name": "b",
-        "shape": "solid_sphere",
-        "mass": 1.0,
-        "radius": 0.1,
-        "initial": {"speed": 2.0 if spin else 0.0, "spin": spin},
-    }
+    rolled = ball("b", speed=2.0 if spin else 0.0, spin=spin)
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "coulomb_friction", "body": "b", "mu": mu, "angle": alpha},
     ]
-    a, _ = _both(_scene([ball], eff, duration=2.0))
+    a, _ = _both(_scene([rolled], eff, duration=2.0))
     slip = a.trajectory.series["slip"]
     assert (abs(slip[-1]) < 1e-12) == rolls
     if alpha == 0:
@@ -187,18 +129,12 @@ def test_sliding_on_a_plane_exact_vs_integrated(alpha, mu, spin, rolls) -> None:
 def test_a_ball_thrown_up_a_slippery_incline_slips_on_the_other_way() -> None:
     """Up a steep slope with μ too small to roll (J D/(J + m r²) > μ N): the slip
     vanishes once and the ball slips on downward (a ``slip_zero`` event, no rolling)."""
-    ball = {
-        "name": "b",
-        "shape": "solid_sphere",
-        "mass": 1.0,
-        "radius": 0.1,
-        "initial": {"speed": -2.0},
-    }
+    thrown = ball("b", speed=-2.0)
     eff = [
         {"type": "gravity", "g": 9.81},
         {"type": "coulomb_friction", "body": "b", "mu": 0.05, "angle": 0.6},
     ]
-    a, b = _both(_scene([ball], eff, duration=2.0))
+    a, b = _both(_scene([thrown], eff, duration=2.0))
     (ea,), (eb,) = a.trajectory.events, b.trajectory.events
     assert ea.kind == eb.kind == "slip_zero"
     assert eb.t == pytest.approx(ea.t, rel=EVENT_RTOL)
@@ -206,7 +142,7 @@ def test_a_ball_thrown_up_a_slippery_incline_slips_on_the_other_way() -> None:
 
 
 def test_tank_integrated_reaches_empty_as_an_event() -> None:
-    tank = {"name": "t", "shape": "tank", "area": 1.0, "initial": {"level": 1.0}}
+    tank = body("t", "tank", {"level": 1.0}, area=1.0)
     eff = [{"type": "gravity", "g": 9.81}, {"type": "tank_outflow", "body": "t", "hole_area": 0.05}]
     a, b = _both(_scene([tank], eff, duration=20.0))
     (ea,), (eb,) = a.trajectory.events, b.trajectory.events
@@ -216,19 +152,9 @@ def test_tank_integrated_reaches_empty_as_an_event() -> None:
 
 
 def test_spinning_ball_bounces_with_its_spin_unchanged() -> None:
-    ball = {
-        "name": "b",
-        "shape": "solid_sphere",
-        "mass": 1.0,
-        "radius": 0.1,
-        "initial": {
-            "position": [0.0, 0.0, 1.0],
-            "velocity": [1.0, 0.0, 0.0],
-            "omega": [0.0, 0.0, 5.0],
-        },
-    }
+    spun = ball("b", [0.0, 0.0, 1.0], [1.0, 0.0, 0.0], omega=[0.0, 0.0, 5.0])
     eff = [{"type": "gravity", "g": 9.81}, {"type": "impact", "body": "b", "restitution": 1.0}]
-    a, _ = _both(_scene([ball], eff, duration=2.0))
+    a, _ = _both(_scene([spun], eff, duration=2.0))
     assert len(a.trajectory.events) >= 2
     assert np.all(a.trajectory.series["omega3"] == 5.0)
     assert a.conserved[[c.name for c in a.conserved].index("E")].drift < 1e-14, "e = 1"

@@ -15,6 +15,7 @@ which is Painlevé's paradox where it is ≤ 0.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -23,9 +24,11 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from mechanics._floats import EPS
-from mechanics.scenes import SceneError, parse_scene, run_scene
+from mechanics.scenes import SceneError, run_scene
 from mechanics.scenes import support as support_module
 from mechanics.scenes.result import PENETRATION_RTOL
+
+from .builders import ball, box, scene
 
 G = 9.81
 #: the issue's bound on the accumulation time
@@ -37,37 +40,17 @@ INTEGRATED_RTOL = 2**20 * EPS
 SWITCH_ATOL = 2**20 * EPS
 
 
-def _scene(bodies, effects, *, duration, method="auto", samples=51):
-    return parse_scene(
-        {
-            "scene": {"name": "rest", "duration": duration, "samples": samples, "method": method},
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="rest.toml",
-    )
+_scene = functools.partial(scene, name="rest", method="auto", samples=51)
 
 
 def _ball(z=0.1, velocity=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0), name="ball"):
-    return {
-        "name": name,
-        "shape": "solid_sphere",
-        "mass": 1.0,
-        "radius": 0.1,
-        "initial": {"position": [0.0, 0.0, z], "velocity": list(velocity), "omega": list(omega)},
-    }
+    """A ball of radius 0.1 on the z axis at height z."""
+    return ball(name, (0.0, 0.0, z), velocity, omega=omega)
 
 
 def _box(z, velocity=(0.0, 0.0, 0.0), a=0.2, b=0.4, c=0.6):
-    return {
-        "name": "box",
-        "shape": "box",
-        "mass": 1.0,
-        "a": a,
-        "b": b,
-        "c": c,
-        "initial": {"position": [0.0, 0.0, z], "velocity": list(velocity)},
-    }
+    """A box on the z axis at height z."""
+    return box("box", (0.0, 0.0, z), velocity, a=a, b=b, c=c)
 
 
 def _floor(body="ball", e=0.5, friction=None):

@@ -9,6 +9,7 @@ smaller v_z; the negative controls below show the checks catch it.
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -17,35 +18,23 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from mechanics._floats import EPS
-from mechanics.scenes import SceneError, impacts, parse_scene, run_scene
+from mechanics.scenes import SceneError, impacts, run_scene
 from mechanics.scenes.engine import Engine
 from mechanics.scenes.impacts import LAW_RTOL, solve_lcp
+
+from .builders import box, scene
 
 G = 9.81
 #: the issue's bound for a body landing flat: v_z = e v and no spin to 1e-12 relative
 FLAT_RTOL = 1e-12
 
 
-def _scene(bodies, effects, *, duration, method="auto"):
-    return parse_scene(
-        {
-            "scene": {"name": "flat", "duration": duration, "samples": 11, "method": method},
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="flat.toml",
-    )
+_scene = functools.partial(scene, name="flat", samples=11, method="auto")
 
 
 def _box(z=1.0, velocity=(0.0, 0.0, 0.0), omega=(0.0, 0.0, 0.0), **dims):
-    d = {"a": 0.2, "b": 0.4, "c": 0.6, **dims}
-    return {
-        "name": "box",
-        "shape": "box",
-        "mass": 1.0,
-        **d,
-        "initial": {"position": [0.0, 0.0, z], "velocity": list(velocity), "omega": list(omega)},
-    }
+    """A box on the z axis at height z (edges 0.2, 0.4, 0.6 unless ``dims`` say)."""
+    return box("box", (0.0, 0.0, z), velocity, omega=omega, **dims)
 
 
 def _floor(e=0.5, friction=None):

@@ -7,6 +7,7 @@ pinned where a wrong comparison shows (0 for > 0 and ≥ 0, 0 and 1 for a restit
 from __future__ import annotations
 
 import copy
+import functools
 import math
 
 import pytest
@@ -14,15 +15,14 @@ import pytest
 from mechanics.scenes import SceneError, spec
 from mechanics.scenes.spec import EFFECT_FIELDS, SHAPES, load_scene, parse_scene
 
+from .builders import body, scene_data
+
 SRC = "spec.toml"
 
 
 def _base() -> dict:
-    return {
-        "scene": {"name": "s", "duration": 1.0},
-        "bodies": [{"name": "a", "shape": "point", "mass": 1.0}],
-        "effects": [{"type": "gravity", "g": 9.81}],
-    }
+    gravity = {"type": "gravity", "g": 9.81}
+    return scene_data([body("a", "point", mass=1.0)], [gravity], name="s", duration=1.0)
 
 
 def _refusal(data, source=SRC) -> SceneError:
@@ -471,8 +471,7 @@ def _body(**fields):
     return _with(["bodies"], [fields])
 
 
-def _ball(**extra):
-    return {"name": "a", "shape": "solid_sphere", "mass": 2.0, "radius": 0.5, **extra}
+_ball = functools.partial(body, "a", "solid_sphere", mass=2.0, radius=0.5)
 
 
 BODY_CASES = [

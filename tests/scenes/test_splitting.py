@@ -4,36 +4,22 @@ and what it refuses."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
 import pytest
 
 from mechanics._floats import EPS
-from mechanics.scenes import SceneError, parse_scene, run_scene
+from mechanics.scenes import SceneError, run_scene
 from mechanics.scenes.engine import Engine
 
+from .builders import box, point, scene
 
-def _scene(bodies, effects, *, duration, samples=41, **scene):
-    return parse_scene(
-        {
-            "scene": {"name": "split", "duration": duration, "samples": samples, **scene},
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="split.toml",
-    )
+_scene = functools.partial(scene, name="split", samples=41)
 
 
-BOX = {
-    "name": "b",
-    "shape": "box",
-    "mass": 1.0,
-    "a": 0.3,
-    "b": 0.2,
-    "c": 0.1,
-    "initial": {"omega": [0.5, 2.0, 0.3]},
-}
+BOX = box("b", a=0.3, b=0.2, c=0.1, omega=[0.5, 2.0, 0.3])
 #: an off-centre spring: a force and a moment on a spinning asymmetric body
 SPRING = [
     {"type": "spring", "body": "b", "at": [0.15, 0, 0], "anchor": [0.5, 0, 0], "stiffness": 3.0}
@@ -43,20 +29,7 @@ SPRING = [
 def _ecc_orbit(duration, **scene):
     """Two unit masses, G = 1, launched at 0.8 of the circular speed: an eccentric orbit."""
     w = 0.8 * math.sqrt(2.0) / 2
-    pts = [
-        {
-            "name": "a",
-            "shape": "point",
-            "mass": 1.0,
-            "initial": {"position": [0.5, 0, 0], "velocity": [0, w, 0]},
-        },
-        {
-            "name": "c",
-            "shape": "point",
-            "mass": 1.0,
-            "initial": {"position": [-0.5, 0, 0], "velocity": [0, -w, 0]},
-        },
-    ]
+    pts = [point("a", [0.5, 0, 0], [0, w, 0]), point("c", [-0.5, 0, 0], [0, -w, 0])]
     return _scene(pts, [{"type": "newton_gravity", "G": 1.0}], duration=duration, **scene)
 
 

@@ -7,6 +7,7 @@ refusals naming scene.method with their reason word for word."""
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -14,8 +15,10 @@ import pytest
 
 from mechanics._floats import EPS
 from mechanics.errors import OutOfDomainError
-from mechanics.scenes import SceneError, parse_scene, splitting
+from mechanics.scenes import SceneError, splitting
 from mechanics.scenes.engine import Engine
+
+from .builders import box, point, scene
 
 #: a few kick–drift steps of O(1) numbers: each update one or two roundings, and the
 #: spring's force −k L (d/L) rounds differently from −k d (a few eps of the force)
@@ -27,42 +30,10 @@ GAMMA_RTOL = 4 * EPS
 TOP_ATOL = 32 * EPS
 
 
-def _scene(bodies, effects, *, duration=0.2, samples=3, **scene):
-    return parse_scene(
-        {
-            "scene": {
-                "name": "split",
-                "duration": duration,
-                "samples": samples,
-                "method": "splitting",
-                **scene,
-            },
-            "bodies": bodies,
-            "effects": effects,
-        },
-        source="split.toml",
-    )
-
-
-def _point(name="p", mass=2.0, position=(1.0, 0.0, 0.0), velocity=(0.0, 0.5, 0.0)):
-    return {
-        "name": name,
-        "shape": "point",
-        "mass": mass,
-        "initial": {"position": list(position), "velocity": list(velocity)},
-    }
-
-
-def _box(name="b", omega=(0.0, 0.0, 2.0), **extra):
-    return {
-        "name": name,
-        "shape": "box",
-        "mass": 12.0,  # J = m (b² + c², a² + c², a² + b²)/12 = (0.05, 0.1, 0.13)
-        "a": 0.3,
-        "b": 0.2,
-        "c": 0.1,
-        "initial": {"omega": list(omega), **extra},
-    }
+_scene = functools.partial(scene, name="split", duration=0.2, samples=3, method="splitting")
+_point = functools.partial(point, mass=2.0, position=(1.0, 0.0, 0.0), velocity=(0.0, 0.5, 0.0))
+#: J = m (b² + c², a² + c², a² + b²)/12 = (0.05, 0.1, 0.13)
+_box = functools.partial(box, "b", mass=12.0, a=0.3, b=0.2, c=0.1, omega=(0.0, 0.0, 2.0))
 
 
 #: a spring to the origin of stiffness 8 on a point of mass 2: ω² = 4

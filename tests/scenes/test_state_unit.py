@@ -35,6 +35,8 @@ from mechanics.scenes.state import (
     turned,
 )
 
+from .builders import snapshot_of
+
 #: a product of a few O(1) factors and a sum of three: each entry within a few roundings
 FEW_ROUNDINGS = 8 * EPS
 #: the catalogue's moments: a product and a division, each rounded once or twice
@@ -612,18 +614,10 @@ def test_omega_is_l_over_j_and_zero_about_a_zero_moment() -> None:
 # ---------------------------------------------------------------- the equations of motion
 
 
-def snapshot(lay, y, m, J, coords=None, inertia=None) -> Snapshot:
-    r, v, L, R = lay.gather(y)
-    s = Snapshot(0.0, r, v, L, R, lay.omega(L, J), np.asarray(m, float), J)
-    s.coords = coords or {}
-    s.inertia = inertia or {}
-    return s
-
-
 def test_a_points_state_moves_at_its_velocity_and_accelerates_at_f_over_m() -> None:
     lay = Layout.of([body("point", 4.0), body("point", 2.0, fixed=True)])
     y = np.array([1.0, 2.0, 3.0, -1.0, 0.5, 2.0])
-    s = snapshot(lay, y, [4.0, 2.0], np.zeros((2, 3)))
+    s = snapshot_of(lay, y, [4.0, 2.0], np.zeros((2, 3)))
     F = np.array([[2.0, -4.0, 8.0], [99.0, 99.0, 99.0]])
     dy = lay.derivative(s, F, np.zeros((2, 3)))
     np.testing.assert_array_equal(dy, [-1.0, 0.5, 2.0, 0.5, -1.0, 2.0])
@@ -731,7 +725,7 @@ def test_a_rigid_bodys_rates_obey_eulers_equations_and_turn_its_attitude() -> No
     lay = Layout.of([body("custom", 2.0, inertia=[1.0, 2.0, 4.0])])
     L, w, M = np.array([2.0, 3.0, -1.0]), np.array([2.0, 1.5, -0.25]), np.array([0.25, 0.5, -1.0])
     y = lay.pack([[0.0, 0.0, 0.0]], [[1.0, 2.0, 3.0]], [L], [R_PYTH])
-    s = snapshot(lay, y, [2.0], lay.J.copy())
+    s = snapshot_of(lay, y, [2.0], lay.J.copy())
     np.testing.assert_array_equal(s.omega[0], w)
     dy = lay.derivative(s, np.array([[2.0, 0.0, -6.0]]), M[None, :])
     np.testing.assert_array_equal(dy[0:3], [1.0, 2.0, 3.0])  # ṙ = v
@@ -755,7 +749,7 @@ def test_a_pinned_bodys_angular_momentum_about_the_pin_changes_by_the_moment_the
     lay = Layout.of([body("disc", 4.0, radius=1.0)], pins={0: ([0, 0, 1], [0.0, 0.0, 0.5])})
     L_C, M_A, F = np.array([2.0, -1.0, 4.0]), np.array([0.5, 0.25, 0.0]), np.array([1, 0, -3.0])
     y = lay.pack(np.zeros((1, 3)), np.zeros((1, 3)), [L_C], [R_PYTH])
-    s = snapshot(lay, y, [4.0], lay.J.copy())
+    s = snapshot_of(lay, y, [4.0], lay.J.copy())
     s.omega = np.array([[1.0, -0.5, 2.0]])  # J_C⁻¹ L_C, as the engine gives it
     dy = lay.derivative(s, F[None, :], M_A[None, :])
     assert dy.shape == (12,)
@@ -783,11 +777,11 @@ def test_a_hinged_body_and_a_tank_take_their_rates_from_the_guide_and_the_effect
     y = np.array([0.0, 3.0, 0.5, 0.25])
     F, M = np.array([[0.0, 8.0, 0.0], [0, 0, 0]]), np.array([[0.0, 0.0, 8.0], [0, 0, 0]])
     coords = {0: (np.array([0.0]), np.array([3.0]))}
-    s = snapshot(lay, y, [12.0, 1.0], lay.J.copy(), coords)
+    s = snapshot_of(lay, y, [12.0, 1.0], lay.J.copy(), coords)
     rates = {1: np.array([-0.125, 2.0])}
     np.testing.assert_array_equal(lay.derivative(s, F, M, rates), [3.0, 1.0, -0.125, 2.0])
     coords = {0: (np.array([0.0]), np.array([-5.0]))}
-    s = snapshot(lay, y, [12.0, 1.0], lay.J.copy(), coords, {0: np.array([32.0])})
+    s = snapshot_of(lay, y, [12.0, 1.0], lay.J.copy(), coords, {0: np.array([32.0])})
     rates = {1: np.array([0.75, -1.0])}
     np.testing.assert_array_equal(lay.derivative(s, F, M, rates), [-5.0, 0.5, 0.75, -1.0])
 
