@@ -143,3 +143,37 @@ def snapshot_of(lay, y, m, J, coords=None, inertia=None) -> Snapshot:
     s.coords = coords or {}
     s.inertia = inertia or {}
     return s
+
+
+# ------------------------------------------------------------------ strategies
+
+
+def snapshots(n: int, *, centres=None, spread: float = 2.0, phase: float = 0.5):
+    """A strategy of snapshots of n bodies (``snap``'s, at t = phase = ``phase``): each
+    body's position within ``spread`` of its row of ``centres`` (default the origin) in
+    each component, velocity and spin components of size 0.5 to 2 (either sign: never a
+    zero spin, whose axis a turn along the motion needs), an attitude from
+    :func:`mechanics.strategies.rotation_matrices`, mass and principal moments in
+    [0.5, 2].  Bodies kept apart (a pair force's singularity) are given far-apart
+    centres: the bound is in the strategy, no draw is rejected."""
+    from hypothesis import strategies as st
+    from hypothesis.extra.numpy import arrays
+
+    from mechanics.strategies import rotation_matrices
+
+    at = np.zeros((n, 3)) if centres is None else np.array(centres, dtype=float)
+    offsets = arrays(float, (n, 3), elements=st.floats(-spread, spread))
+    sizes = st.floats(0.5, 2.0)
+    signed = st.tuples(sizes, st.sampled_from((1.0, -1.0))).map(lambda x: x[0] * x[1])
+    vectors = arrays(float, (n, 3), elements=signed)
+    turns = st.lists(rotation_matrices(), min_size=n, max_size=n)
+
+    @st.composite
+    def draw_snapshot(draw) -> Snapshot:
+        r = at + draw(offsets)
+        v, omega = draw(vectors), draw(vectors)
+        m = draw(arrays(float, (n,), elements=sizes))
+        J = draw(arrays(float, (n, 3), elements=sizes))
+        return snap(r, v, draw(turns), omega, m, J, t=phase, phase=phase)
+
+    return draw_snapshot()

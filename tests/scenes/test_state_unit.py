@@ -16,6 +16,9 @@ from types import SimpleNamespace
 import mpmath
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
 
 from mechanics._floats import EPS
 from mechanics.scenes.effects.base import Snapshot
@@ -34,6 +37,7 @@ from mechanics.scenes.state import (
     pendulum_from_rest,
     turned,
 )
+from mechanics.strategies import rotation_matrices
 
 from .builders import snapshot_of
 
@@ -584,11 +588,15 @@ def test_pack_is_the_inverse_of_gather_on_the_stored_quantities() -> None:
     np.testing.assert_array_equal(back[..., :36], y[..., :36])
 
 
-def test_gather_is_the_inverse_of_pack_on_the_moving_bodies() -> None:
+@settings(max_examples=20)
+@given(
+    r=arrays(float, (6, 3), elements=st.floats(-1e3, 1e3)),
+    v=arrays(float, (6, 3), elements=st.floats(-1e3, 1e3)),
+    L=arrays(float, (6, 3), elements=st.floats(-1e3, 1e3)),
+    R=arrays(float, (6, 3, 3), elements=st.floats(-1e3, 1e3)),
+)
+def test_gather_is_the_inverse_of_pack_on_the_moving_bodies(r, v, L, R) -> None:
     lay, _ = six_bodies()
-    rng = np.random.default_rng(16)
-    r, v, L = (rng.normal(size=(6, 3)) for _ in range(3))
-    R = rng.normal(size=(6, 3, 3))
     r2, v2, L2, R2 = lay.gather(lay.pack(r, v, L, R))
     for i in (0, 1):  # point and box: r and v
         np.testing.assert_array_equal(r2[i], r[i])
@@ -621,12 +629,6 @@ def test_a_points_state_moves_at_its_velocity_and_accelerates_at_f_over_m() -> N
     F = np.array([[2.0, -4.0, 8.0], [99.0, 99.0, 99.0]])
     dy = lay.derivative(s, F, np.zeros((2, 3)))
     np.testing.assert_array_equal(dy, [-1.0, 0.5, 2.0, 0.5, -1.0, 2.0])
-
-
-def rotation(rng) -> np.ndarray:
-    """A random proper rotation (Q of a QR factorisation, det fixed to +1)."""
-    Q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
-    return Q * np.sign(np.linalg.det(Q))
 
 
 def every_kind():
@@ -697,23 +699,29 @@ def expected_rates(lay, hinge, s, F, M, rates) -> np.ndarray:
     return out
 
 
-@pytest.mark.parametrize("seed", [16, 1125])
-def test_the_derivative_of_every_kind_of_body_is_the_books_equations(seed) -> None:
+def _normal(*shape):
+    """O(1) values, as a standard normal's bulk: in [−2, 2]."""
+    return arrays(float, shape, elements=st.floats(-2.0, 2.0))
+
+
+@settings(max_examples=10)
+@given(data=st.data())
+def test_the_derivative_of_every_kind_of_body_is_the_books_equations(data) -> None:
     lay, hinge = every_kind()
-    rng = np.random.default_rng(seed)
+    turns = st.lists(rotation_matrices(), min_size=8, max_size=8)
     for grown in (None, np.array([6.0])):  # twice: no slot may keep a former value
-        y = rng.normal(size=46)
+        y = data.draw(_normal(46))
         r, v, L, R = lay.gather(y)
-        R = np.array([rotation(rng) for _ in range(8)])
-        m = rng.uniform(1.0, 2.0, size=8)
+        R = np.array(data.draw(turns))
+        m = data.draw(arrays(float, 8, elements=st.floats(1.0, 2.0)))
         J = np.tile([1.0, 2.0, 4.0], (8, 1))
         w = lay.omega(L, J)
-        w[2] = rng.normal(size=3)  # the pinned disc's ω, J_C⁻¹ L_C in the engine
+        w[2] = data.draw(_normal(3))  # the pinned disc's ω, J_C⁻¹ L_C in the engine
         s = Snapshot(0.0, r, v, L, R, w, m, J)
-        s.coords = {1: (rng.normal(size=1), rng.normal(size=1))}
+        s.coords = {1: (data.draw(_normal(1)), data.draw(_normal(1)))}
         s.inertia = {} if grown is None else {1: grown}
-        F, M = rng.normal(size=(8, 3)), rng.normal(size=(8, 3))
-        rates = {0: rng.normal(size=2)}
+        F, M = data.draw(_normal(8, 3)), data.draw(_normal(8, 3))
+        rates = {0: data.draw(_normal(2))}
         got = lay.derivative(s, F, M, rates)
         want = expected_rates(lay, hinge, s, F, M, rates)
         np.testing.assert_allclose(got, want, rtol=0, atol=FEW_ROUNDINGS * 16)
