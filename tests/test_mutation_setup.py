@@ -254,7 +254,13 @@ def test_a_sample_is_registered_by_its_commit_and_counts_only_the_equivalents_li
     )
     _git(tmp_path, "commit", "-qam", "review")
     assert set(run.equivalent_at(commit, tmp_path)) == {"mechanics.a.x_f__mutmut_1"}
-    assert len(run.load_equivalent(equivalent)) == 2
+    current = run.load_equivalent(equivalent)
+    assert len(current) == 2
+    assert set(run.sample_equivalents(current, commit, tmp_path)) == {"mechanics.a.x_f__mutmut_1"}
+    # an entry retracted since the registration (found to change a rounding) stops counting
+    retracted = {k: v for k, v in current.items() if k != "mechanics.a.x_f__mutmut_1"}
+    assert run.sample_equivalents(retracted, commit, tmp_path) == {}
+    assert run.sample_equivalents(current, None, tmp_path) == {}
     # a changed seed is a new registration
     plan.write_text(first + second.replace("seed = 7", "seed = 8"))
     assert run.registration(runs[1].lines, tmp_path) is None
@@ -292,6 +298,9 @@ def test_the_table_row_of_a_sample_gives_its_wilson_interval_and_registration():
     full = run.tally("mechanics/x.py", {k: v for k, v in status.items() if "x_h" not in k}, {})
     row = run.table_row(full, run.PlanRun(["mechanics/x.py"], None, None, (1, 2)), None)
     assert "| 100 (all) | 95 | 0 | 5 (0 accepted) | 95.0 % | every mutant | uncommitted |" in row
+    # a full run stopped before its end gives no score
+    row = run.table_row(t, run.PlanRun(["mechanics/x.py"], None, None, (1, 2)), None)
+    assert "| 100 of 400 (unfinished) | 95 | 1 | 4 (0 accepted) | | | uncommitted |" in row
 
 
 def test_a_copys_verdicts_survive_a_change_of_pyproject_outside_mutmut_and_pytest():
@@ -313,3 +322,76 @@ def test_modules_whose_rows_need_different_environments_do_not_share_a_copy():
     assert plain["CI"] == "1"
     with pytest.raises(SystemExit, match="different environments"):
         run.environment(["mechanics/_kernels.py", "mechanics/rotation.py"])
+
+
+def test_a_registered_samples_verdicts_stand_and_an_ad_hoc_sample_reruns_its_survivors():
+    run = _run_module()
+    names = ["a", "b", "c", "d"]
+    known = {"a": "killed", "b": "survived", "c": "not checked"}
+    assert run.sample_to_run(names, known, True, False)[0] == ["c", "d"]
+    assert run.sample_to_run(names, known, False, False)[0] == ["b", "c", "d"]
+    assert run.sample_to_run(names, known, False, True)[0] == names
+    assert (
+        "2 of the registered sample run before" in run.sample_to_run(names, known, True, False)[1]
+    )
+
+
+def test_the_readme_shows_the_same_table_as_docs_mutation():
+    run = _run_module()
+    docs, readme = (run.scores_block(p.read_text(encoding="utf-8")) for p in run.TABLES)
+    assert docs == readme, "write both with make mutate-plan MUTATE_ARGS=--report"
+
+
+def test_the_table_is_written_between_its_markers_and_nothing_else_changes(tmp_path, monkeypatch):
+    run = _run_module()
+    monkeypatch.setattr(run, "ROOT", tmp_path)
+    a, b = tmp_path / "a.md", tmp_path / "b.md"
+    a.write_text("intro\n<!-- SCORES -->\nold\n<!-- /SCORES -->\nrest\n")
+    b.write_text("other\n<!-- SCORES -->\n<!-- /SCORES -->\n")
+    run.write_table(["| `m` | row |"], (a, b))
+    assert (
+        a.read_text()
+        == "intro\n<!-- SCORES -->\n" + run.TABLE_HEAD + "\n| `m` | row |\n<!-- /SCORES -->\nrest\n"
+    )
+    assert run.scores_block(a.read_text()) == run.scores_block(b.read_text())
+
+
+def test_a_copy_is_left_alone_by_a_report_and_forgets_only_what_a_change_invalidates(
+    tmp_path, monkeypatch
+):
+    run = _run_module()
+    root = tmp_path / "project"
+    (root / "mechanics").mkdir(parents=True)
+    (root / "tests").mkdir()
+    (root / "mechanics" / "a.py").write_text("def f():\n    return 1\n")
+    (root / "tests" / "test_a.py").write_text("def test_f():\n    pass\n")
+    pyproject = root / "pyproject.toml"
+    pyproject.write_text(
+        '[project]\ndependencies = ["numpy"]\n\n[tool.mutmut]\n'
+        'pytest_add_cli_args_test_selection = ["tests"]\n'
+    )
+    monkeypatch.setattr(run, "ROOT", root)
+    monkeypatch.setattr(run, "WORK", tmp_path / "work")
+    work, changed = run.prepare(["mechanics/a.py"], ["tests/test_a.py"])
+    assert changed  # a fresh copy: every test file is new
+    text = (work / "pyproject.toml").read_text()
+    assert 'only_mutate = ["mechanics/a.py"]' in text
+    assert 'pytest_add_cli_args_test_selection = ["tests/test_a.py"]' in text
+    stats = work / "mutants" / "mutmut-stats.json"
+    stats.parent.mkdir()
+    stats.write_text("{}")
+    (root / "tests" / "test_a.py").write_text("def test_f():\n    assert True\n")
+    # a report (sync=False) touches nothing, a run may be going on in the copy
+    assert run.prepare(["mechanics/a.py"], ["tests/test_a.py"], sync=False) == (work, False)
+    assert stats.exists()
+    assert "assert True" not in (work / "tests" / "test_a.py").read_text()
+    # a run syncs: the changed test makes mutmut record its tests again, verdicts stay
+    assert run.prepare(["mechanics/a.py"], ["tests/test_a.py"]) == (work, True)
+    assert not stats.exists()
+    assert (work / "mutants").exists()
+    # a new pin changes no verdict; a new test selection forgets them all
+    pyproject.write_text(pyproject.read_text().replace('"numpy"', '"numpy>=2"'))
+    assert run.prepare(["mechanics/a.py"], ["tests/test_a.py"]) == (work, False)
+    assert (work / "mutants").exists()
+    run.prepare(["mechanics/a.py"], ["tests"])
+    assert not (work / "mutants").exists()

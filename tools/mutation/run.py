@@ -58,7 +58,7 @@ MODULES = ROOT / "tools" / "mutation" / "modules.toml"
 EQUIVALENT = ROOT / "tools" / "mutation" / "equivalent.toml"
 ACCEPTED = ROOT / "tools" / "mutation" / "accepted.toml"
 PLAN = ROOT / "tools" / "mutation" / "plan.toml"
-TABLE = ROOT / "docs" / "mutation.md"
+TABLES = (ROOT / "docs" / "mutation.md", ROOT / "README.md")
 WORK = ROOT / "build" / "mutation"
 
 #: what the copy of the project holds (mutmut copies these into its mutants/ in turn)
@@ -173,11 +173,14 @@ def _verdict_key(pyproject: str) -> tuple:
     return (*(repr(mm.get(k)) for k in keys), repr(cfg.get("pytest", {})))
 
 
-def prepare(modules: list[str], tests: list[str]) -> tuple[Path, bool]:
+def prepare(modules: list[str], tests: list[str], *, sync: bool = True) -> tuple[Path, bool]:
     """The copy of the project, its pyproject's mutmut table set for the modules; and
     whether a test file changed since the copy was last made (then mutmut's record of
-    which tests call which function is deleted: it is recorded again)."""
+    which tests call which function is deleted: it is recorded again).  ``sync=False``
+    (a report) leaves an existing copy as it is: a run may be going on in it."""
     work = workdir(modules)
+    if not sync and (work / "mutants").exists():
+        return work, False
     work.mkdir(parents=True, exist_ok=True)
     changed: list[Path] = []
     for name in COPIED:
@@ -403,16 +406,19 @@ def environment(chosen: list[str]) -> dict[str, str]:
 
 
 def run_modules(
-    chosen: list[str], args, *, rerun_survivors: bool = False
+    chosen: list[str], args, *, rerun_survivors: bool = False, registered: bool = False
 ) -> tuple[dict[str, str], Path, int]:
     """Run the chosen modules' mutants (all, ``args.names`` or a sample of
     ``args.sample`` per module at ``args.seed``) in their copy of the project: (mutant →
     status, with the mutants outside a sample "not checked"; the copy; mutmut's exit
     code).  ``rerun_survivors``: after a full run, run the survivors again when a test
-    changed since their verdict (mutmut keeps a verdict until told to re-run it)."""
+    changed since their verdict (mutmut keeps a verdict until told to re-run it).
+    ``registered``: the sample is the plan's, whose figure is that of its first run (a
+    test written after seeing its survivors must not raise it): only sampled mutants
+    without a verdict run."""
     rows = load_modules()
     tests = sorted({t for m in chosen for t in rows[m]})
-    work, tests_changed = prepare(chosen, tests)
+    work, tests_changed = prepare(chosen, tests, sync=not args.report)
     env = environment(chosen)
     if args.restat:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
@@ -427,13 +433,10 @@ def run_modules(
             drawn_all += drawn
         sample = set(drawn_all)
     if sample is not None and not args.report:
-        names = sorted(sample)
-        if not args.recheck:  # a killed mutant stays killed while its tests stay
-            known = results(work, args.mutmut) if (work / "mutants").exists() else {}
-            done = [n for n in names if known.get(n) in KILLED]
-            names = [n for n in names if n not in done]
-            if done:
-                print(f"{len(done)} of the sample killed before: not run again (--recheck does)")
+        known = results(work, args.mutmut) if (work / "mutants").exists() else {}
+        names, why = sample_to_run(sorted(sample), known, registered, args.recheck)
+        if why:
+            print(why)
         if not names:
             print("no mutants to run")
     if not args.report and (names or not args.sample):
@@ -452,6 +455,25 @@ def run_modules(
     if sample is not None:  # the score of this sample only, not of earlier runs' mutants
         status = {k: (v if k in sample else "not checked") for k, v in status.items()}
     return status, work, 0
+
+
+def sample_to_run(
+    names: list[str], known: dict[str, str], registered: bool, recheck: bool
+) -> tuple[list[str], str]:
+    """Which of a sample's mutants run, and what is said of the others.  A registered
+    sample's figure is that of its first run: a mutant with a verdict keeps it, a
+    survivor too (a test written after seeing it must not raise the figure).  Otherwise
+    a killed mutant stays killed while its tests stay (``recheck`` runs it again) and
+    survivors run again."""
+    if registered:
+        done = [n for n in names if known.get(n, "not checked") != "not checked"]
+        said = f"{len(done)} of the registered sample run before: their verdicts stand"
+    elif not recheck:
+        done = [n for n in names if known.get(n) in KILLED]
+        said = f"{len(done)} of the sample killed before: not run again (--recheck does)"
+    else:
+        done = []
+    return [n for n in names if n not in done], (said if done else "")
 
 
 def draw(every: list[str], size: int, seed: int) -> list[str]:
@@ -539,6 +561,16 @@ def equivalent_at(commit: str, root: Path = ROOT) -> dict[str, str]:
     return load_equivalent(text=text) if text is not None else {}
 
 
+def sample_equivalents(
+    current: dict[str, str], commit: str | None, root: Path = ROOT
+) -> dict[str, str]:
+    """The equivalents a sample registered at ``commit`` counts out: those listed then and
+    still listed now (an entry retracted since, moved to ``accepted.toml`` say, no
+    longer counts; one added since counts for the next sample only)."""
+    before = equivalent_at(commit, root) if commit else {}
+    return {k: v for k, v in current.items() if k in before}
+
+
 def _git(root: Path, *args: str) -> str | None:
     """git's output in ``root``, or None if git fails."""
     out = subprocess.run(["git", *args], cwd=root, capture_output=True, text=True)
@@ -549,7 +581,8 @@ def run_plan(args) -> int:
     """Run the plan, print each module's line, and write the table into
     ``docs/mutation.md``.  A full run counts out every reviewed equivalent; a sample only
     those reviewed before it was registered (equivalents found in a sample count for
-    the next one), and it must be registered (committed) before it runs."""
+    the next one; an entry since retracted, moved to ``accepted.toml`` say, does not
+    count), and it must be registered (committed) before it runs."""
     text = PLAN.read_text(encoding="utf-8")
     plan = load_plan(text)
     rows = load_modules()
@@ -564,11 +597,18 @@ def run_plan(args) -> int:
                 f"{PLAN.name}:{run.lines[0]}: the sample of {run.modules} is not registered: "
                 "commit the plan before running it"
             )
+        if args.report and not (workdir(chosen) / "mutants").exists():
+            reg = f"`{commit[:9]}`" if commit else "uncommitted"
+            table += [f"| `{m}` | not run yet | | | | | | {reg} |" for m in chosen]
+            print(f"{', '.join(chosen)}: not run yet")
+            continue
         args.sample, args.seed, args.names = run.sample, run.seed, None
-        status, work, rc = run_modules(chosen, args, rerun_survivors=run.sample is None)
+        status, work, rc = run_modules(
+            chosen, args, rerun_survivors=run.sample is None, registered=run.sample is not None
+        )
         if rc:
             return rc
-        counted = equivalent if run.sample is None else equivalent_at(commit or "HEAD")
+        counted = equivalent if run.sample is None else sample_equivalents(equivalent, commit)
         for module in chosen:
             report_module(module, status, counted, accepted, work, args)
             table.append(table_row(tally(module, status, counted, accepted), run, commit))
@@ -582,6 +622,12 @@ def table_row(t: Tally, run: PlanRun, commit: str | None) -> str:
     if not total:
         return f"| `{t.module}` | 0 | | | | | | no mutants (nothing to change) | |"
     survived = len(t.open) + len(t.accepted)
+    reg = f"`{commit[:9]}`" if commit else "uncommitted"
+    if t.unchecked and run.sample is None:  # a full run still going (or stopped)
+        return (
+            f"| `{t.module}` | {t.mutants} of {total} (unfinished) | {t.killed} | "
+            f"{len(t.equivalent)} | {survived} ({len(t.accepted)} accepted) | | | {reg} |"
+        )
     if t.unchecked:
         lo, hi = wilson(t.killed, t.denominator)
         run_ = f"{t.mutants} of {total} (seed {run.seed})"
@@ -589,7 +635,6 @@ def table_row(t: Tally, run: PlanRun, commit: str | None) -> str:
     else:
         run_ = f"{total} (all)"
         interval = "every mutant"
-    reg = f"`{commit[:9]}`" if commit else "uncommitted"
     return (
         f"| `{t.module}` | {run_} | {t.killed} | {len(t.equivalent)} | {survived} "
         f"({len(t.accepted)} accepted) | {t.score:.1f} % | {interval} | {reg} |"
@@ -602,13 +647,20 @@ TABLE_HEAD = (
 )
 
 
-def write_table(rows: list[str], path: Path = TABLE) -> None:
-    """Replace the table between ``<!-- SCORES -->`` and ``<!-- /SCORES -->``."""
-    doc = path.read_text(encoding="utf-8")
-    a, b = doc.index("<!-- SCORES -->\n"), doc.index("<!-- /SCORES -->")
+def write_table(rows: list[str], paths: tuple[Path, ...] = TABLES) -> None:
+    """Replace the table between ``<!-- SCORES -->`` and ``<!-- /SCORES -->`` in each of
+    ``paths`` (docs/mutation.md and the README show the same table)."""
     body = TABLE_HEAD + "\n" + "\n".join(rows) + "\n"
-    path.write_text(doc[: a + len("<!-- SCORES -->\n")] + body + doc[b:], encoding="utf-8")
-    print(f"wrote the table of {path.relative_to(ROOT)} ({len(rows)} modules)")
+    for path in paths:
+        doc = path.read_text(encoding="utf-8")
+        a, b = doc.index("<!-- SCORES -->\n"), doc.index("<!-- /SCORES -->")
+        path.write_text(doc[: a + len("<!-- SCORES -->\n")] + body + doc[b:], encoding="utf-8")
+        print(f"wrote the table of {path.relative_to(ROOT)} ({len(rows)} modules)")
+
+
+def scores_block(text: str) -> str:
+    """The table between the SCORES markers of a document."""
+    return text[text.index("<!-- SCORES -->\n") : text.index("<!-- /SCORES -->")]
 
 
 def report_module(
