@@ -36,8 +36,13 @@ from __future__ import annotations
 import argparse
 import hashlib
 import sys
+from typing import TYPE_CHECKING
 
 import pytest
+
+if TYPE_CHECKING:  # for annotations only: importing the plugin imports no numpy
+    import numpy as np
+    import numpy.typing as npt
 
 __all__ = ["PROFILE_NAMES", "EpsClose", "register_profiles"]
 
@@ -138,7 +143,7 @@ def _seed(nodeid: str, base: int) -> int:
     return int.from_bytes(digest[:8], "little")
 
 
-def bodycheck_rng(request: pytest.FixtureRequest):
+def bodycheck_rng(request: pytest.FixtureRequest) -> np.random.Generator:
     """A ``numpy.random.Generator`` seeded from this test's node id and ``--bodycheck-seed``."""
     import numpy as np
 
@@ -159,7 +164,15 @@ class EpsClose:
     out, each assertion's documented default applies (4 eps for all three).
     """
 
-    def __call__(self, actual, desired, *, eps=None, scale=None, err_msg: str = "") -> None:
+    def __call__(
+        self,
+        actual: npt.ArrayLike,
+        desired: npt.ArrayLike,
+        *,
+        eps: float | None = None,
+        scale: npt.ArrayLike | None = None,
+        err_msg: str = "",
+    ) -> None:
         """:func:`~mechanics.testing.assert_allclose_eps`: relative, or against ``scale``."""
         __tracebackhide__ = True
         from .testing import ALLCLOSE_EPS_MULTIPLE, assert_allclose_eps
@@ -167,7 +180,9 @@ class EpsClose:
         k = ALLCLOSE_EPS_MULTIPLE if eps is None else _multiple(eps)
         assert_allclose_eps(actual, desired, eps_multiple=k, scale=scale, err_msg=err_msg)
 
-    def rotations(self, R1, R2, *, eps=None, err_msg: str = "") -> None:
+    def rotations(
+        self, R1: npt.ArrayLike, R2: npt.ArrayLike, *, eps: float | None = None, err_msg: str = ""
+    ) -> None:
         """:func:`~mechanics.testing.assert_rotations_close`: matrices, max-abs."""
         __tracebackhide__ = True
         from .testing import EPS, ROTATIONS_CLOSE_ATOL, assert_rotations_close
@@ -175,7 +190,9 @@ class EpsClose:
         atol = ROTATIONS_CLOSE_ATOL if eps is None else _multiple(eps) * EPS
         assert_rotations_close(R1, R2, atol=atol, err_msg=err_msg)
 
-    def quaternions(self, q1, q2, *, eps=None, err_msg: str = "") -> None:
+    def quaternions(
+        self, q1: npt.ArrayLike, q2: npt.ArrayLike, *, eps: float | None = None, err_msg: str = ""
+    ) -> None:
         """:func:`~mechanics.testing.assert_quaternions_close`: q ≡ −q, max-abs."""
         __tracebackhide__ = True
         from .testing import EPS, QUATERNIONS_CLOSE_ATOL, assert_quaternions_close
@@ -184,7 +201,7 @@ class EpsClose:
         assert_quaternions_close(q1, q2, atol=atol, err_msg=err_msg)
 
 
-def _multiple(eps) -> float:
+def _multiple(eps: float) -> float:
     from .testing import _check_tolerance
 
     return _check_tolerance(eps, "eps")

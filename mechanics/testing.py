@@ -35,6 +35,7 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
+import numpy.typing as npt
 
 from .rotation import EPS, ROUNDTRIP_ATOL
 
@@ -65,7 +66,7 @@ QUATERNIONS_CLOSE_ATOL = 4 * EPS
 ALLCLOSE_EPS_MULTIPLE = 4.0
 
 
-def _as_finite(x, name: str) -> np.ndarray:
+def _as_finite(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     a = np.asarray(x)
     if a.dtype.kind not in "biuf":
         raise AssertionError(f"{name} has dtype {a.dtype}; real numbers are required")
@@ -77,7 +78,12 @@ def _as_finite(x, name: str) -> np.ndarray:
     return a
 
 
-def _broadcast(actual, desired, tail: tuple[int, ...], names=("actual", "desired")):
+def _broadcast(
+    actual: npt.ArrayLike,
+    desired: npt.ArrayLike,
+    tail: tuple[int, ...],
+    names: tuple[str, str] = ("actual", "desired"),
+) -> tuple[npt.NDArray[np.float64], ...]:
     a = _as_finite(actual, names[0])
     d = _as_finite(desired, names[1])
     for arr, name in ((a, names[0]), (d, names[1])):
@@ -108,11 +114,13 @@ def _check_tolerance(value: float, name: str) -> float:
 _BEYOND = f"beyond {np.finfo(np.float64).max:.3g}"
 
 
-def _worst(err: np.ndarray) -> tuple[int, ...]:
+def _worst(err: npt.NDArray[np.float64]) -> tuple[int, ...]:
     return tuple(int(i) for i in np.unravel_index(int(np.argmax(err)), err.shape))
 
 
-def assert_rotations_close(R1, R2, *, atol: float = ROTATIONS_CLOSE_ATOL, err_msg: str = ""):
+def assert_rotations_close(
+    R1: npt.ArrayLike, R2: npt.ArrayLike, *, atol: float = ROTATIONS_CLOSE_ATOL, err_msg: str = ""
+) -> None:
     """Assert two rotation matrices (..., 3, 3) agree entrywise within ``atol``.
 
     Compares matrices, not parameters, so it holds across the ambiguities of
@@ -140,7 +148,11 @@ def assert_rotations_close(R1, R2, *, atol: float = ROTATIONS_CLOSE_ATOL, err_ms
 
 
 def assert_quaternions_close(
-    q1, q2, *, atol: float = QUATERNIONS_CLOSE_ATOL, err_msg: str = ""
+    q1: npt.ArrayLike,
+    q2: npt.ArrayLike,
+    *,
+    atol: float = QUATERNIONS_CLOSE_ATOL,
+    err_msg: str = "",
 ) -> None:
     """Assert two quaternions (..., 4) describe the same rotation within ``atol``.
 
@@ -177,11 +189,11 @@ def assert_quaternions_close(
 
 
 def assert_allclose_eps(
-    actual,
-    desired,
+    actual: npt.ArrayLike,
+    desired: npt.ArrayLike,
     *,
     eps_multiple: float = ALLCLOSE_EPS_MULTIPLE,
-    scale=None,
+    scale: npt.ArrayLike | None = None,
     err_msg: str = "",
 ) -> None:
     """Assert |actual − desired| ≤ eps_multiple · eps · scale, entrywise.

@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from numbers import Integral, Real
 
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 
-def check_real(value, name: str) -> float:
+def check_real(value: object, name: str) -> float:
     """A finite real bound, else InvalidArgument quoting it."""
     if isinstance(value, bool) or not isinstance(value, Real):
         raise InvalidArgument(f"{name}={value!r} must be a real number")
@@ -19,7 +20,7 @@ def check_real(value, name: str) -> float:
     return v
 
 
-def check_positive(value, name: str) -> float:
+def check_positive(value: object, name: str) -> float:
     """A finite bound > 0, else InvalidArgument quoting it."""
     v = check_real(value, name)
     if not v > 0:
@@ -27,7 +28,7 @@ def check_positive(value, name: str) -> float:
     return v
 
 
-def check_int(value, name: str, minimum: int) -> int:
+def check_int(value: object, name: str, minimum: int) -> int:
     """An integer ≥ ``minimum``, else InvalidArgument quoting it."""
     if isinstance(value, bool) or not isinstance(value, Integral):
         raise InvalidArgument(f"{name}={value!r} must be an integer")
@@ -36,7 +37,9 @@ def check_int(value, name: str, minimum: int) -> int:
     return int(value)
 
 
-def check_regimes(regimes, allowed: tuple[str, ...], name: str) -> tuple[str, ...]:
+def check_regimes(
+    regimes: Iterable[str] | None, allowed: tuple[str, ...], name: str
+) -> tuple[str, ...]:
     """The chosen regimes (all by default), in the documented order: simplest first."""
     if regimes is None:
         return allowed

@@ -19,6 +19,7 @@ Conventions
 from __future__ import annotations
 
 import numpy as np
+import numpy.typing as npt
 from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
@@ -31,7 +32,9 @@ __all__ = ["BATCH_REGIMES", "batches"]
 BATCH_REGIMES = ("one", "rows", "grid")
 
 
-def batches(elements, *, max_rows: int = 6) -> st.SearchStrategy[np.ndarray]:
+def batches(
+    elements: st.SearchStrategy[npt.ArrayLike], *, max_rows: int = 6
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """float64 arrays of independent draws of ``elements`` on leading axes.
 
     ``elements`` draws floats or arrays of one fixed shape ``e``; the result has
@@ -43,7 +46,7 @@ def batches(elements, *, max_rows: int = 6) -> st.SearchStrategy[np.ndarray]:
     top = check_int(max_rows, "max_rows", 4)
 
     @st.composite
-    def draw_batch(draw) -> np.ndarray:
+    def draw_batch(draw: st.DrawFn) -> npt.NDArray[np.float64]:
         regime = draw(st.sampled_from(BATCH_REGIMES))
         event(f"batches: {regime}")
         if regime == "one":

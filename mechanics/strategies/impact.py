@@ -43,9 +43,11 @@ relative to its size: the bound allows both.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections.abc import Iterable
+from typing import NamedTuple, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
@@ -54,6 +56,8 @@ from .. import rotation as _rot
 from ..impact import RigidBody
 from ._common import check_real, check_regimes, log_uniform
 from .rotation import rotation_matrices, unit_vectors
+
+_Array: TypeAlias = npt.NDArray[np.float64]
 
 __all__ = [
     "CONTACT_REGIMES",
@@ -141,8 +145,8 @@ class Contact(NamedTuple):
 
     body_1: RigidBody
     body_2: RigidBody | None
-    r_S: np.ndarray
-    n: np.ndarray
+    r_S: npt.NDArray[np.float64]
+    n: npt.NDArray[np.float64]
     e: float
 
 
@@ -152,17 +156,19 @@ class HingedBody(NamedTuple):
     takes them; ``J_G`` is the tensor about G it was built from."""
 
     m: float
-    J_A: np.ndarray
-    r_G: np.ndarray
-    axis_point: np.ndarray
-    axis: np.ndarray
-    J_G: np.ndarray
+    J_A: npt.NDArray[np.float64]
+    r_G: npt.NDArray[np.float64]
+    axis_point: npt.NDArray[np.float64]
+    axis: npt.NDArray[np.float64]
+    J_G: npt.NDArray[np.float64]
 
 
 # ------------------------------------------------------------------ scalars
 
 
-def impact_masses(*, min_value: float = 1e-15, max_value: float = 1e15, regimes=None):
+def impact_masses(
+    *, min_value: float = 1e-15, max_value: float = 1e15, regimes: Iterable[str] | None = None
+) -> st.SearchStrategy[float]:
     """Masses > 0 in [``min_value``, ``max_value``] (defaults 1e-15 … 1e15).
 
     Regimes (:data:`IMPACT_MASS_REGIMES`), each used when it meets the bounds.
@@ -190,7 +196,7 @@ def impact_masses(*, min_value: float = 1e-15, max_value: float = 1e15, regimes=
     branches = {r: log_uniform(*spans[r], shrink_to="hi") for r in names}
 
     @st.composite
-    def draw_mass(draw) -> float:
+    def draw_mass(draw: st.DrawFn) -> float:
         regime = draw(st.sampled_from(names))
         event(f"impact_masses: {regime}")
         return draw(branches[regime])
@@ -198,7 +204,9 @@ def impact_masses(*, min_value: float = 1e-15, max_value: float = 1e15, regimes=
     return draw_mass()
 
 
-def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
+def mass_pairs(
+    *, max_ratio: float = 1e15, regimes: Iterable[str] | None = None
+) -> st.SearchStrategy[tuple[float, float]]:
     """Pairs (m_1, m_2) of masses > 0 with m_1/m_2 within [1/max_ratio, max_ratio].
 
     Regimes (:data:`MASS_PAIR_REGIMES`); ``max_ratio`` ≥ 1e6 keeps the extreme
@@ -212,7 +220,7 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
     scales, ratios = log_uniform(*_MASS_SCALES, shrink_to="hi"), log_uniform(1e6, r, shrink_to="hi")
 
     @st.composite
-    def draw_pair(draw) -> tuple[float, float]:
+    def draw_pair(draw: st.DrawFn) -> tuple[float, float]:
         regime = draw(st.sampled_from(names))
         event(f"mass_pairs: {regime}")
         if regime == "equal":
@@ -229,7 +237,7 @@ def mass_pairs(*, max_ratio: float = 1e15, regimes=None):
     return draw_pair()
 
 
-def restitution_coefficients(*, regimes=None):
+def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[float]:
     """Coefficients of restitution e ∈ [0, 1] (:data:`RESTITUTION_REGIMES`).
 
     Shrinks toward 0.
@@ -245,7 +253,7 @@ def restitution_coefficients(*, regimes=None):
     }
 
     @st.composite
-    def draw_e(draw) -> float:
+    def draw_e(draw: st.DrawFn) -> float:
         regime = draw(st.sampled_from(names))
         event(f"restitution_coefficients: {regime}")
         return draw(branches[regime])
@@ -253,13 +261,15 @@ def restitution_coefficients(*, regimes=None):
     return draw_e()
 
 
-def contact_normals():
+def contact_normals() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit contact contact_normals ``(3,)``: :func:`mechanics.strategies.unit_vectors`
     (regimes axis, general, near-axis)."""
     return unit_vectors()
 
 
-def direct_velocities(*, max_speed: float = 1e6, regimes=None):
+def direct_velocities(
+    *, max_speed: float = 1e6, regimes: Iterable[str] | None = None
+) -> st.SearchStrategy[tuple[float, float]]:
     """Approaching velocity pairs (ẋ_1, ẋ_2), ẋ_1 ≥ ẋ_2, |ẋ| ≤ ``max_speed``.
 
     Regimes (:data:`DIRECT_VELOCITY_REGIMES`).  Body 1 is behind body 2 on the
@@ -283,7 +293,7 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
     )
 
     @st.composite
-    def draw_pair(draw) -> tuple[float, float]:
+    def draw_pair(draw: st.DrawFn) -> tuple[float, float]:
         regime = draw(st.sampled_from(names))
         event(f"direct_velocities: {regime}")
         if regime == "mixed-magnitude":
@@ -307,7 +317,7 @@ def direct_velocities(*, max_speed: float = 1e6, regimes=None):
 # ------------------------------------------------------------ rigid bodies
 
 
-def _vectors(max_norm: float):
+def _vectors(max_norm: float) -> st.SearchStrategy[_Array]:
     comp = st.floats(-max_norm, max_norm, allow_subnormal=False)
     return st.tuples(comp, comp, comp).map(np.array)
 
@@ -322,7 +332,7 @@ _SIGNED_UNIT = st.floats(-1.0, 1.0)
 _ANGLES = st.floats(-math.pi, math.pi)
 
 
-def _principal_moments(draw, regime: str) -> tuple[float, float, float]:
+def _principal_moments(draw: st.DrawFn, regime: str) -> tuple[float, float, float]:
     """J1 ≤ J2 and J3 ∈ [J2 − J1, J1 + J2], scale log-uniform in [1e-3, 1e3]."""
     J2 = draw(_MOMENT_SCALES)
     if regime == "sphere":
@@ -345,13 +355,17 @@ def _principal_moments(draw, regime: str) -> tuple[float, float, float]:
     return (J1, J2, max((J2 - J1) + t * (2.0 * J1), 1e-2 * J2))
 
 
-def _turned(moments, R) -> np.ndarray:
+def _turned(moments: tuple[float, float, float], R: _Array) -> _Array:
     """The tensor with principal moments along the rows of R, in O: Rᵀ D R, symmetrised."""
     J = R.T @ np.diag(moments) @ R
     return 0.5 * (J + J.T)
 
 
-def impact_inertia_tensors(*, regimes=None, rotations=None):
+def impact_inertia_tensors(
+    *,
+    regimes: Iterable[str] | None = None,
+    rotations: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Inertia tensors ``(3, 3)`` about the centre of mass, in the fixed basis O.
 
     Principal moments (:data:`IMPACT_INERTIA_REGIMES`), scale 1e-3 … 1e3, are put on
@@ -365,7 +379,7 @@ def impact_inertia_tensors(*, regimes=None, rotations=None):
         raise InvalidArgument(f"rotations={rotations!r} must be a hypothesis strategy")
 
     @st.composite
-    def draw_tensor(draw) -> np.ndarray:
+    def draw_tensor(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(names))
         event(f"impact_inertia_tensors: {regime}")
         return _turned(_principal_moments(draw, regime), draw(rotations))
@@ -373,7 +387,13 @@ def impact_inertia_tensors(*, regimes=None, rotations=None):
     return draw_tensor()
 
 
-def impact_bodies(*, masses_=None, tensors=None, max_position: float = 10.0, max_speed=10.0):
+def impact_bodies(
+    *,
+    masses_: st.SearchStrategy[float] | None = None,
+    tensors: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
+    max_position: float = 10.0,
+    max_speed: float = 10.0,
+) -> st.SearchStrategy[RigidBody]:
     """:class:`~mechanics.impact.RigidBody` records.
 
     Mass from ``masses_`` (default :func:`impact_masses` in 1e-6 … 1e6), inertia
@@ -395,7 +415,9 @@ def impact_bodies(*, masses_=None, tensors=None, max_position: float = 10.0, max
     )
 
 
-def _approaching(b1: RigidBody, b2: RigidBody | None, r_S, n, speed) -> RigidBody:
+def _approaching(
+    b1: RigidBody, b2: RigidBody | None, r_S: _Array, n: _Array, speed: float
+) -> RigidBody:
     """Shift body 1's v_G along n so that v_n = −speed (to rounding)."""
     rel = b1.v_G + np.cross(b1.omega, r_S - b1.r_G)
     if b2 is not None:
@@ -404,7 +426,9 @@ def _approaching(b1: RigidBody, b2: RigidBody | None, r_S, n, speed) -> RigidBod
     return b1._replace(v_G=b1.v_G - (v_n + speed) * n)
 
 
-def contacts(*, regimes=None, restitution=None):
+def contacts(
+    *, regimes: Iterable[str] | None = None, restitution: st.SearchStrategy[float] | None = None
+) -> st.SearchStrategy[Contact]:
     """Approaching contacts of rigid bodies, :class:`Contact` records.
 
     Regimes (:data:`CONTACT_REGIMES`).  The normal relative velocity is minus
@@ -429,14 +453,14 @@ def contacts(*, regimes=None, restitution=None):
     z = np.array([0.0, 0.0, 1.0])
     unit_normals = contact_normals()
 
-    def plane_body(draw) -> RigidBody:
+    def plane_body(draw: st.DrawFn) -> RigidBody:
         m = draw(plane_masses)
         J = _turned(_principal_moments(draw, draw(plane_regimes)), _rot.R3(draw(_ANGLES)))
         r, v = draw(positions) * in_plane, draw(velocities) * in_plane
         return RigidBody(m, m * J, r, v, draw(spins) * z)
 
     @st.composite
-    def draw_contact(draw) -> Contact:
+    def draw_contact(draw: st.DrawFn) -> Contact:
         regime = draw(st.sampled_from(names))
         event(f"contacts: {regime}")
         e = draw(es)
@@ -469,7 +493,7 @@ def contacts(*, regimes=None, restitution=None):
     return draw_contact()
 
 
-def hinged_bodies(*, regimes=None):
+def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[HingedBody]:
     """Bodies on a fixed axis, :class:`HingedBody` records (:data:`HINGED_REGIMES`).
 
     J_A is built from J_G (:func:`impact_inertia_tensors` scaled by the mass) by the
@@ -484,7 +508,7 @@ def hinged_bodies(*, regimes=None):
     points, unit_axes, axial = _vectors(5.0), contact_normals(), st.floats(-5.0, 5.0)
 
     @st.composite
-    def draw_hinged(draw) -> HingedBody:
+    def draw_hinged(draw: st.DrawFn) -> HingedBody:
         regime = draw(st.sampled_from(names))
         event(f"hinged_bodies: {regime}")
         m = draw(body_masses)

@@ -31,9 +31,11 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections.abc import Iterable
+from typing import NamedTuple, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
@@ -41,6 +43,8 @@ from hypothesis.errors import InvalidArgument
 from .. import inertia as _inertia
 from ._common import check_positive, check_regimes, log_uniform
 from .rotation import rotation_matrices
+
+_Array: TypeAlias = npt.NDArray[np.float64]
 
 __all__ = [
     "CENTRE_REGIMES",
@@ -104,8 +108,8 @@ class RigidBody(NamedTuple):
     """A rigid body as drawn by :func:`rigid_bodies`: J_G about G, G at r_G."""
 
     m: float
-    J_G: np.ndarray
-    r_G: np.ndarray
+    J_G: npt.NDArray[np.float64]
+    r_G: npt.NDArray[np.float64]
 
 
 def _log_scale(lo: float, hi: float) -> st.SearchStrategy[float]:
@@ -114,15 +118,18 @@ def _log_scale(lo: float, hi: float) -> st.SearchStrategy[float]:
     return st.floats(a, b).map(lambda e: min(hi, max(lo, 10.0**e)))
 
 
-def _triple(J1: float, J2: float, J3: float) -> np.ndarray:
+def _triple(J1: float, J2: float, J3: float) -> _Array:
     """Sorted and valid in float64: J3 is capped at fl(J1 + J2)."""
     J1, J2, J3 = sorted((J1, J2, J3))
     return np.array([J1, J2, min(J3, J1 + J2)])
 
 
 def principal_moments(
-    *, min_scale: float = 1e-100, max_scale: float = 1e100, regimes=None
-) -> st.SearchStrategy[np.ndarray]:
+    *,
+    min_scale: float = 1e-100,
+    max_scale: float = 1e100,
+    regimes: Iterable[str] | None = None,
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Principal moments (J1, J2, J3), ascending, with J3 ≤ J1 + J2; shape ``(3,)``.
 
     The largest moment J3 lies in [``min_scale``, ``max_scale``] (up to a
@@ -148,7 +155,7 @@ def principal_moments(
     near_scale, thin = _log_scale(*near), log_uniform(*THIN_RANGE, shrink_to="hi")
 
     @st.composite
-    def draw_moments(draw) -> np.ndarray:
+    def draw_moments(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(names))
         event(f"principal_moments: {regime}")
         s = draw(wide if regime == "wide-scales" else near_scale)
@@ -181,7 +188,11 @@ def principal_moments(
     return draw_moments()
 
 
-def inertia_tensors(*, moments=None, rotations=None) -> st.SearchStrategy[np.ndarray]:
+def inertia_tensors(
+    *,
+    moments: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
+    rotations: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Physical inertia tensors J = Rᵀ diag(J1, J2, J3) R, shape ``(3, 3)``, exactly symmetric.
 
     ``moments`` defaults to :func:`principal_moments` and ``rotations`` to
@@ -198,7 +209,11 @@ def inertia_tensors(*, moments=None, rotations=None) -> st.SearchStrategy[np.nda
 
 
 def rigid_bodies(
-    *, min_mass: float = 1e-3, max_mass: float = 1e3, tensors=None, regimes=None
+    *,
+    min_mass: float = 1e-3,
+    max_mass: float = 1e3,
+    tensors: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
+    regimes: Iterable[str] | None = None,
 ) -> st.SearchStrategy[RigidBody]:
     """Rigid bodies: mass m, inertia tensor J_G about G, and the position r_G of G.
 
@@ -220,7 +235,7 @@ def rigid_bodies(
     mass, far = _log_scale(lo, hi), log_uniform(1e6, 1e10, shrink_to="hi")
 
     @st.composite
-    def draw_body(draw) -> RigidBody:
+    def draw_body(draw: st.DrawFn) -> RigidBody:
         m = draw(mass)
         J = draw(tensors)
         regime = draw(st.sampled_from(names))

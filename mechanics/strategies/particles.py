@@ -29,14 +29,19 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
+from collections.abc import Callable, Hashable, Iterable
+from typing import Any, NamedTuple, TypeAlias, TypeVar
 
 import numpy as np
+import numpy.typing as npt
 from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from ._common import check_int, check_real, check_regimes, log_uniform
+
+_Array: TypeAlias = npt.NDArray[np.float64]
+_T = TypeVar("_T")
 
 __all__ = [
     "FAR_OFFSET",
@@ -79,15 +84,17 @@ PAIR_FORCE_REGIMES = ("none", "central", "non-central")
 class ParticleSystem(NamedTuple):
     """Masses ``(N,)``, positions ``(N, 3)`` and velocities ``(N, 3)``."""
 
-    m: np.ndarray
-    r: np.ndarray
-    v: np.ndarray
+    m: npt.NDArray[np.float64]
+    r: npt.NDArray[np.float64]
+    v: npt.NDArray[np.float64]
 
 
 # ------------------------------------------------------------------ validation
 
 
-def _check_mass_bounds(min_value, max_value, names: tuple[str, str]) -> tuple[float, float]:
+def _check_mass_bounds(
+    min_value: float, max_value: float, names: tuple[str, str]
+) -> tuple[float, float]:
     """The bounds as floats, 0 < lo ≤ hi; errors name the caller's parameters ``names``."""
     lo_name, hi_name = names
     lo = check_real(min_value, lo_name)
@@ -99,7 +106,7 @@ def _check_mass_bounds(min_value, max_value, names: tuple[str, str]) -> tuple[fl
     return lo, hi
 
 
-def _signed_units(k: int) -> st.SearchStrategy[np.ndarray]:
+def _signed_units(k: int) -> st.SearchStrategy[_Array]:
     """k floats in [−1, 1), from one draw of 8k bytes (int64 / 2**63).
 
     One ``st.binary`` draw instead of k ``st.floats`` draws: 50 particles need
@@ -112,12 +119,12 @@ def _signed_units(k: int) -> st.SearchStrategy[np.ndarray]:
     )
 
 
-def _vectors(n: int, bound: float) -> st.SearchStrategy[np.ndarray]:
+def _vectors(n: int, bound: float) -> st.SearchStrategy[_Array]:
     """(n, 3) arrays of floats in [−bound, bound), shrinking toward 0."""
     return _signed_units(3 * n).map(lambda u: bound * u.reshape(n, 3))
 
 
-def _log_uniform_array(n: int, lo: float, hi: float) -> st.SearchStrategy[np.ndarray]:
+def _log_uniform_array(n: int, lo: float, hi: float) -> st.SearchStrategy[_Array]:
     """n floats in [lo, hi], log-uniform, from one byte draw (shrinking toward ``lo``)."""
     a, b = math.log10(lo), math.log10(hi)
     return _signed_units(n).map(lambda u: np.clip(10.0 ** (a + (b - a) * np.abs(u)), lo, hi))
@@ -134,9 +141,11 @@ class _Built:
     shared between factories, so each strategy object stays independent)."""
 
     def __init__(self) -> None:
-        self._made: dict[tuple, st.SearchStrategy] = {}
+        self._made: dict[tuple[Hashable, ...], st.SearchStrategy[Any]] = {}
 
-    def get(self, make, *args) -> st.SearchStrategy:
+    def get(
+        self, make: Callable[..., st.SearchStrategy[_T]], *args: Hashable
+    ) -> st.SearchStrategy[_T]:
         key = (make, *args)
         s = self._made.get(key)
         if s is None:
@@ -147,7 +156,9 @@ class _Built:
 # ---------------------------------------------------------------------- masses
 
 
-def _mass_array(draw, built: _Built, n: int, lo: float, hi: float, regime: str) -> np.ndarray:
+def _mass_array(
+    draw: st.DrawFn, built: _Built, n: int, lo: float, hi: float, regime: str
+) -> _Array:
     if regime == "unit":
         return np.ones(n)
     if regime == "equal":
@@ -167,8 +178,8 @@ def masses(
     max_particles: int = 50,
     min_value: float = 1e-6,
     max_value: float = 1e6,
-    regimes=None,
-) -> st.SearchStrategy[np.ndarray]:
+    regimes: Iterable[str] | None = None,
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Mass vectors ``(N,)``, each mass in [``min_value``, ``max_value``] (> 0).
 
     Regimes (:data:`MASS_REGIMES`): ``unit`` (all 1.0, when 1 is in the
@@ -191,7 +202,7 @@ def masses(
     built = _Built()
 
     @st.composite
-    def draw_masses(draw) -> np.ndarray:
+    def draw_masses(draw: st.DrawFn) -> _Array:
         n = draw(st.integers(nlo, nhi))
         regime = draw(st.sampled_from(names))
         event(f"masses: {regime}")
@@ -209,7 +220,7 @@ def particle_systems(
     max_particles: int = 50,
     min_mass: float = 1e-6,
     max_mass: float = 1e6,
-    regimes=None,
+    regimes: Iterable[str] | None = None,
 ) -> st.SearchStrategy[ParticleSystem]:
     """Particle systems (m, r, v) with 1 … 50 particles, masses 1e-6 … 1e6.
 
@@ -232,11 +243,11 @@ def particle_systems(
     mass_regimes = tuple(r for r in MASS_REGIMES if unit_ok or r != "unit")
     built = _Built()
 
-    def vectors(n: int, bound: float) -> st.SearchStrategy[np.ndarray]:
+    def vectors(n: int, bound: float) -> st.SearchStrategy[_Array]:
         return built.get(_vectors, n, bound)
 
     @st.composite
-    def draw_system(draw) -> ParticleSystem:
+    def draw_system(draw: st.DrawFn) -> ParticleSystem:
         n = draw(st.integers(nlo, nhi))
         regime = draw(st.sampled_from(names))
         event(f"particle_systems: {regime}")
@@ -261,7 +272,9 @@ def particle_systems(
 # ------------------------------------------------------------------ pair forces
 
 
-def pair_forces(r, *, max_magnitude: float = 1e3, regimes=None) -> st.SearchStrategy[np.ndarray]:
+def pair_forces(
+    r: npt.ArrayLike, *, max_magnitude: float = 1e3, regimes: Iterable[str] | None = None
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Internal pair forces ``(N, N, 3)`` between particles at ``r`` ``(N, 3)``.
 
     ``f[k, j]`` is the force on k from j; f_jk = −f_kj and f_kk = 0 by
@@ -284,7 +297,7 @@ def pair_forces(r, *, max_magnitude: float = 1e3, regimes=None) -> st.SearchStra
     units = _signed_units(n)  # built once, not per draw
 
     @st.composite
-    def draw_forces(draw) -> np.ndarray:
+    def draw_forces(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(names))
         event(f"pair_forces: {regime}")
         if regime == "none":

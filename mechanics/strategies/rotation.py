@@ -39,14 +39,19 @@ Examples
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
+from typing import TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
 from ._common import check_real, check_regimes, log_uniform
+
+_Array: TypeAlias = npt.NDArray[np.float64]
 
 __all__ = [
     "ANGLE_REGIMES",
@@ -155,7 +160,7 @@ MATRIX_REGIMES = (
 # --------------------------------------------------------------------- vectors
 
 
-def unit_vectors() -> st.SearchStrategy[np.ndarray]:
+def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit vectors, shape ``(3,)``, in all directions.
 
     Regimes (:data:`UNIT_VECTOR_REGIMES`): ``axis`` (±e1, ±e2, ±e3, shrinking to
@@ -167,7 +172,7 @@ def unit_vectors() -> st.SearchStrategy[np.ndarray]:
     tilts = log_uniform(1e-12, 1e-3, shrink_to="hi")
 
     @st.composite
-    def draw_unit_vector(draw) -> np.ndarray:
+    def draw_unit_vector(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(UNIT_VECTOR_REGIMES))
         event(f"unit_vectors: {regime}")
         if regime == "axis":
@@ -194,7 +199,7 @@ def unit_vectors() -> st.SearchStrategy[np.ndarray]:
 
 
 def rotation_angles(
-    *, min_value: float = 0.0, max_value: float = math.pi, regimes=None
+    *, min_value: float = 0.0, max_value: float = math.pi, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[float]:
     """Rotation angles φ in [``min_value``, ``max_value``] ⊆ [0, π].
 
@@ -239,7 +244,7 @@ def rotation_angles(
         )
 
     @st.composite
-    def draw_angle(draw) -> float:
+    def draw_angle(draw: st.DrawFn) -> float:
         regime = draw(st.sampled_from(names))
         event(f"rotation_angles: {regime}")
         return draw(branches[regime])
@@ -247,7 +252,12 @@ def rotation_angles(
     return draw_angle()
 
 
-def rotvecs(*, axes=None, angles=None, regimes=None) -> st.SearchStrategy[np.ndarray]:
+def rotvecs(
+    *,
+    axes: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
+    angles: st.SearchStrategy[float] | None = None,
+    regimes: Iterable[str] | None = None,
+) -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Rotation vectors φ e_a, shape ``(3,)``, of any length.
 
     Regimes (:data:`ROTVEC_REGIMES`): ``axis-angle`` (a direction from ``axes``,
@@ -284,7 +294,7 @@ def rotvecs(*, axes=None, angles=None, regimes=None) -> st.SearchStrategy[np.nda
     ).map(np.array)
 
     @st.composite
-    def draw_rotvec(draw) -> np.ndarray:
+    def draw_rotvec(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(names))
         event(f"rotvecs: {regime}")
         if regime == "axis-angle":
@@ -297,7 +307,9 @@ def rotvecs(*, axes=None, angles=None, regimes=None) -> st.SearchStrategy[np.nda
     return draw_rotvec()
 
 
-def euler_angles(*, regimes=None) -> st.SearchStrategy[tuple[float, float, float]]:
+def euler_angles(
+    *, regimes: Iterable[str] | None = None
+) -> st.SearchStrategy[tuple[float, float, float]]:
     """Euler angles (ψ, θ, φ), z-x-z, as a tuple of floats.
 
     Regimes (:data:`EULER_REGIMES`): ``zero``; ``generic`` (ψ, φ in [−π, π], θ
@@ -321,7 +333,7 @@ def euler_angles(*, regimes=None) -> st.SearchStrategy[tuple[float, float, float
     }
 
     @st.composite
-    def draw_euler(draw) -> tuple[float, float, float]:
+    def draw_euler(draw: st.DrawFn) -> tuple[float, float, float]:
         regime = draw(st.sampled_from(names))
         event(f"euler_angles: {regime}")
         if regime == "zero":
@@ -340,7 +352,7 @@ def euler_angles(*, regimes=None) -> st.SearchStrategy[tuple[float, float, float
 # ---------------------------------------------------------- quaternions, matrices
 
 
-def quaternions() -> st.SearchStrategy[np.ndarray]:
+def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit quaternions (w, x, y, z), scalar first, shape ``(4,)``.
 
     Regimes (:data:`QUATERNION_REGIMES`): ``identity`` (1, 0, 0, 0);
@@ -355,7 +367,7 @@ def quaternions() -> st.SearchStrategy[np.ndarray]:
     axes, vecs = unit_vectors(), rotvecs()
 
     @st.composite
-    def draw_quaternion(draw) -> np.ndarray:
+    def draw_quaternion(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(QUATERNION_REGIMES))
         event(f"quaternions: {regime}")
         if regime == "identity":
@@ -369,7 +381,7 @@ def quaternions() -> st.SearchStrategy[np.ndarray]:
     return draw_quaternion()
 
 
-def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
+def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """The book's passive rotation matrices ^A R^O, shape ``(3, 3)``.
 
     Regimes (:data:`MATRIX_REGIMES`): ``identity``; ``signed-permutation`` (an
@@ -388,7 +400,7 @@ def rotation_matrices() -> st.SearchStrategy[np.ndarray]:
     vecs, eulers, quats = rotvecs(), euler_angles(), quaternions()  # built once, not per draw
 
     @st.composite
-    def draw_matrix(draw) -> np.ndarray:
+    def draw_matrix(draw: st.DrawFn) -> _Array:
         regime = draw(st.sampled_from(MATRIX_REGIMES))
         event(f"rotation_matrices: {regime}")
         if regime == "identity":
