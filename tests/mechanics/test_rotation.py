@@ -9,6 +9,7 @@ quaternions are scalar *last*.
 
 from __future__ import annotations
 
+import math
 import re
 from fractions import Fraction
 
@@ -321,6 +322,23 @@ def test_compose_quat_follows_the_matrix_chain_2_34():
     assert_allclose(rot.matrix_from_quat(q_B_O), R_B_O, atol=SCIPY_ATOL, rtol=0)
 
 
+@pytest.mark.parametrize(
+    "q",
+    [
+        [0.0, 1.0, 0.0, 0.0],  # half turns: w = 0, and −q has w = −0, also "≥ 0"
+        [0.0, 0.0, 0.6, 0.8],
+        [0.5, 0.5, -0.5, 0.5],
+        [1.0, 0.0, 0.0, 0.0],
+    ],
+)
+def test_composing_with_the_identity_returns_a_canonical_quaternion_as_it_is(q):
+    # q ⊗ 1 = q (the Hamilton product with (1, 0, 0, 0) is exact); a q that already
+    # has w ≥ 0 is canonical, so it comes back as q itself and not as −q.
+    one = [1.0, 0.0, 0.0, 0.0]
+    assert_array_equal(rot.compose_quat(q, one), q)
+    assert_array_equal(rot.compose_quat(one, q), q)
+
+
 def test_rotvec_from_quat_returns_angles_in_0_pi():
     q = rot.quat_from_rotvec(_random_rotvecs(2000) * 1.9)  # angles up to 1.9 π
     v = rot.rotvec_from_quat(q)
@@ -575,6 +593,61 @@ def test_nearest_rotation_refuses_a_matrix_without_a_unique_nearest_rotation(M, 
         rf"at index {index}$",
     ):
         rot.nearest_rotation(M)
+
+
+@pytest.mark.parametrize(
+    ("M", "why", "values"),
+    [
+        pytest.param(
+            np.zeros((3, 3)),
+            "two of its singular values are zero (rank <= 1: every turn about the remaining "
+            "direction is equally near)",
+            "[0.0, 0.0, 0.0]",
+            id="zero",
+        ),
+        pytest.param(
+            np.diag([1.0, 1.0, -1.0]),
+            "det M < 0 and its two smallest singular values are equal (several half turns "
+            "are equally near)",
+            "[1.0, 1.0, 1.0]",
+            id="reflection",
+        ),
+    ],
+)
+def test_nearest_rotation_refusal_says_why_to_what_tolerance_and_the_singular_values(
+    M, why, values
+):
+    # the singular values of a diagonal matrix are its |entries|, exactly
+    with pytest.raises(OutOfDomainError) as info:
+        rot.nearest_rotation(M)
+    assert str(info.value) == (
+        f"M has no unique nearest rotation: {why}, to 8 eps of the largest; "
+        f"singular values {values} at index ()"
+    )
+
+
+@pytest.mark.parametrize(
+    ("diagonal", "unique"),
+    [
+        # "zero" is s2 ≤ 8 eps s1, inclusive, relative to the largest s1
+        pytest.param([1.0, 8 * EPS, 0.0], False, id="s2-at-8-eps"),
+        pytest.param([1.0, 4 * EPS, 0.0], False, id="s2-at-4-eps"),
+        pytest.param([1.0, 9 * EPS, 0.0], True, id="s2-at-9-eps"),
+        pytest.param([2.0**40, 2.0**40 * 9 * EPS, 0.0], True, id="s2-at-9-eps-scaled"),
+        # "equal" (with det M < 0) is s2 − s3 ≤ 8 eps s1, inclusive
+        pytest.param([1.0, 1.0, -(1.0 - 8 * EPS)], False, id="s2-s3-at-8-eps"),
+        pytest.param([1.0, 1.0, -(1.0 - 16 * EPS)], True, id="s2-s3-at-16-eps"),
+    ],
+)
+def test_nearest_rotation_tolerances_are_8_eps_of_the_largest_singular_value(diagonal, unique):
+    # For diag(a, b, ±c) with a ≥ b > c ≥ 0 the nearest rotation is the identity (the
+    # smallest direction flipped if det < 0); exact singular values a, b, c.
+    M = np.diag(diagonal)
+    if unique:
+        assert_allclose(rot.nearest_rotation(M), np.eye(3), atol=4 * EPS, rtol=0)
+    else:
+        with pytest.raises(OutOfDomainError, match="^M has no unique nearest rotation"):
+            rot.nearest_rotation(M)
 
 
 def test_nearest_rotation_of_a_rank_2_matrix_is_unique_and_returned():
@@ -1161,6 +1234,47 @@ def test_double_double_norm_and_ratio_keep_2_to_the_minus_70():
             assert abs(mpmath.mpf(float(prod[i])) - exact) <= EPS * abs(exact), ("times", i)
 
 
+def test_norm_dd_splits_every_part_on_one_grid_of_2_to_the_e_minus_25():
+    # r in [2**e, 2**(e+1)): the splitter is 1.5 * 2**(e + 27), so every part and r
+    # itself split into a multiple of g = 2**(e − 25), below 2**26 g, and a remainder
+    # of at most g/2 (so the squares of the high parts and their sums are exact).
+    rng = np.random.default_rng(RNG_SEED + 11)
+    v = rng.normal(size=(200, 3)) * 10.0 ** rng.uniform(-100, 100, size=(200, 1))
+    x, y, z = v.T.copy()
+    r = np.sqrt(x * x + y * y + z * z)
+    e = np.frexp(r)[1] - 1  # r = m 2**e with m in [1, 2)
+    assert_array_equal(rot._grid_splitter(r), np.ldexp(1.5, e + 27))
+    (r_hi, r_mid, _), splits = rot._norm_dd((x, y, z), r)
+    for hi, lo in [(r_hi, r_mid), *splits]:
+        units = np.ldexp(hi, 25 - e)  # hi / g, exact
+        assert_array_equal(units, np.round(units))
+        assert (np.abs(units) <= 2.0**26).all()
+        assert (np.abs(lo) <= np.ldexp(0.5, e - 25)).all()
+
+
+#: Angles whose sin φ, rebuilt as 2 cos(φ/2) sin(φ/2) from rounded halves, is 1.5 ulps
+#: off (a scan of 6000 angles); sin φ itself is within half an ulp and more.
+_SIN_HARD_ANGLES = [2.8203351711612186, 2.6753595900118, 0.006867616399000689, 0.029750776118053046]
+
+
+@pytest.mark.parametrize("axis", range(3))
+def test_matrix_from_rotvec_about_a_coordinate_axis_has_sin_phi_within_an_ulp(axis):
+    # R_k(φ) of (2.30): the off-diagonal pair is ±sin φ.  |v| = φ exactly, so the
+    # antisymmetric part, formed from sin φ itself (one rounding, a faithful library
+    # sin), is within an ulp of the exact sin φ (mpmath).
+    phi = np.array(_SIN_HARD_ANGLES)
+    v = np.zeros((phi.size, 3))
+    v[:, axis] = phi
+    R = rot.matrix_from_rotvec(v)
+    i, j = (axis + 1) % 3, (axis + 2) % 3
+    mpmath = pytest.importorskip("mpmath")
+    with mpmath.workdps(40):
+        for n, p in enumerate(phi):
+            exact = mpmath.sin(mpmath.mpf(float(p)))
+            for got in (R[n, i, j], -R[n, j, i]):
+                assert abs(mpmath.mpf(float(got)) - exact) <= math.ulp(float(exact)), (p, got)
+
+
 def test_unit_quaternion_tolerance_is_inclusive():
     # |q| − 1 = _QUAT_NORM_ATOL exactly (64 eps) is accepted, 65 eps is not.
     g = np.array([0.5, 0.5, 0.5, 0.5])
@@ -1199,6 +1313,12 @@ def test_conversions_of_a_batch_larger_than_one_block_reach_every_row():
 def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
     with pytest.raises(ShapeError, match=r"compose: .* R_B_A \(2, 3, 3\), R_A_O \(3, 3, 3\)$"):
         rot.compose(np.stack([np.eye(3)] * 2), np.stack([np.eye(3)] * 3))
+    # compose_quat names its own arguments, not those of the quat_multiply it calls
+    one = np.array([1.0, 0.0, 0.0, 0.0])
+    with pytest.raises(
+        ShapeError, match=r"compose_quat: .* q_B_A \(2, 4\), q_A_O \(3, 4\)$"
+    ):
+        rot.compose_quat(np.stack([one] * 2), np.stack([one] * 3))
 
 
 def test_no_domain_says_batches_end_in_numpys_bare_value_error():
