@@ -167,6 +167,23 @@ def test_euler_from_matrix_ranges():
     assert ((theta >= 0) & (theta <= np.pi)).all()
 
 
+@pytest.mark.parametrize(
+    "axis",
+    [[1, 0, 0], [0, 1, 0], [0, 0, 1], [0, 0.6, 0.8], [0, 0.8, 0.6], [0.6, 0, 0.8], [0.8, 0.6, 0]],
+)
+def test_euler_angles_of_an_exact_half_turn_are_in_range_and_reproduce_it(axis):
+    # A half turn about n is 2 n nᵀ − 1 (symmetric: its quaternion has w = 0 exactly,
+    # the sign of q is then a free choice).  Whatever the choice, ψ, φ in (−π, π] and
+    # θ in [0, π], as documented; ψ = ±π must come out as +π.
+    n = np.array(axis, dtype=float)
+    M = 2.0 * np.outer(n, n) - np.eye(3)
+    psi, theta, phi = rot.euler_from_matrix(M)
+    assert -np.pi < psi <= np.pi
+    assert -np.pi < phi <= np.pi
+    assert 0.0 <= theta <= np.pi
+    assert_allclose(rot.matrix_from_euler(psi, theta, phi), M, atol=4 * EPS, rtol=0)
+
+
 def test_euler_from_matrix_of_a_negative_middle_angle_folds_theta_into_0_pi():
     # R3(φ) R1(−θ) R3(ψ) = R3(φ + π) R1(θ) R3(ψ + π): the same matrix with θ > 0.
     psi, theta, phi = rot.euler_from_matrix(rot.matrix_from_euler(0.2, -0.7, 0.4))
@@ -646,7 +663,7 @@ def test_nearest_rotation_tolerances_are_8_eps_of_the_largest_singular_value(dia
     if unique:
         assert_allclose(rot.nearest_rotation(M), np.eye(3), atol=4 * EPS, rtol=0)
     else:
-        with pytest.raises(OutOfDomainError, match="^M has no unique nearest rotation"):
+        with pytest.raises(OutOfDomainError, match=r"^M has no unique nearest rotation"):
             rot.nearest_rotation(M)
 
 
@@ -1315,9 +1332,7 @@ def test_batches_that_do_not_broadcast_raise_a_shape_error_listing_each_shape():
         rot.compose(np.stack([np.eye(3)] * 2), np.stack([np.eye(3)] * 3))
     # compose_quat names its own arguments, not those of the quat_multiply it calls
     one = np.array([1.0, 0.0, 0.0, 0.0])
-    with pytest.raises(
-        ShapeError, match=r"compose_quat: .* q_B_A \(2, 4\), q_A_O \(3, 4\)$"
-    ):
+    with pytest.raises(ShapeError, match=r"compose_quat: .* q_B_A \(2, 4\), q_A_O \(3, 4\)$"):
         rot.compose_quat(np.stack([one] * 2), np.stack([one] * 3))
 
 

@@ -50,8 +50,8 @@ from pathlib import Path
 import mpmath
 import numpy as np
 import pytest
-from numpy.testing import assert_array_equal
 from hypothesis import example, given, target
+from numpy.testing import assert_array_equal
 from scipy.spatial.transform import Rotation
 
 from identities.stability.rotation import (
@@ -377,7 +377,10 @@ def test_rotvec_from_quat_carries_the_low_part_of_the_vector_length_into_the_ang
         w, *xyz = (mpmath.mpf(a) for a in q)
         n = mpmath.sqrt(sum(a * a for a in xyz))
         want = [2 * mpmath.atan2(n, w) / n * a for a in xyz]
-        ulps = [abs(mpmath.mpf(float(g)) - e) / math.ulp(float(e)) for g, e in zip(got, want)]
+        ulps = [
+            abs(mpmath.mpf(float(g)) - e) / math.ulp(float(e))
+            for g, e in zip(got, want, strict=True)
+        ]
     assert max(ulps) <= ROTVEC_FROM_QUAT_ULPS, [float(u) for u in ulps]
 
 
