@@ -320,3 +320,124 @@ def test_batches_that_do_not_broadcast_name_each_argument_with_its_own_shape(cal
     assert re.search(
         rf"{word(first)} \(2, 2, 3\) and {word(second)} \(3, 2, 3\) do not broadcast", msg
     ), msg
+
+
+# ------------------------------------------- boundaries of the domains, signs, batches
+
+
+def test_a_negative_mass_or_moment_is_reported_with_its_value_and_its_own_index():
+    # The first negative entry in C order, with its value and its full index: (2,) in a
+    # vector, (1, 0) in a (2, 2) batch, never the whole array or an empty index.
+    with pytest.raises(
+        NonPhysicalInertiaError, match=r"J_axis must be >= 0; found -0\.5 at index \(2,\)$"
+    ):
+        me.kinetic_energy_fixed_axis([1.0, 2.0, -0.5, -3.0], 1.0)
+    with pytest.raises(NegativeMassError, match=r"m must be >= 0; found -2\.0 at index \(1, 0\)$"):
+        me.kinetic_energy_rigid([[1.0, 0.0], [-2.0, 4.0]], [1.0, 0, 0], [0, 0, 1.0], np.eye(3))
+
+
+def test_zero_and_small_spring_and_torsion_constants_are_in_the_domain():
+    # k >= 0 and tau_0 >= 0 (3.53), (3.72): zero stiffness is a spring that stores nothing
+    # and pulls with nothing; a constant below 1 is as valid as any other.
+    assert float(me.spring_potential(0.0, 1.0, [0, 0, 0], [3.0, 4.0, 0.0])) == 0.0
+    np.testing.assert_array_equal(me.spring_force(0.0, 1.0, [0, 0, 0], [3.0, 4.0, 0.0]), 0.0)
+    # ½ · 0.5 · (5 − 1)² = 4 and −0.5 · (5 − 1) · (−3, −4, 0)/5 = (1.2, 1.6, 0)
+    assert float(me.spring_potential(0.5, 1.0, [0, 0, 0], [3.0, 4.0, 0.0])) == 4.0
+    np.testing.assert_allclose(
+        me.spring_force(0.5, 1.0, [0, 0, 0], [3.0, 4.0, 0.0]), [1.2, 1.6, 0.0], rtol=2 * EPS
+    )  # rounded once in ext/dist = 4/5 and once in the product
+    assert float(me.torsion_potential(0.0, 3.0)) == 0.0
+    assert float(me.torsion_moment(0.0, 3.0)) == 0.0
+    assert float(me.torsion_potential(0.5, 2.0)) == 1.0  # ½ · 0.5 · 2² (3.72)
+    assert float(me.torsion_moment(0.5, 2.0)) == -1.0  # −0.5 · 2
+
+
+def test_the_torsion_moment_restores_minus_tau_0_phi():
+    # M = −τ_0 φ (3.71): opposite to the twist, on both sides; products exact in binary.
+    assert float(me.torsion_moment(2.5, 0.5)) == -1.25
+    assert float(me.torsion_moment(2.0, -0.75)) == 1.5
+    np.testing.assert_array_equal(me.torsion_moment([1.0, 4.0], [0.25, -0.5]), [-0.25, 2.0])
+    # and M = −dΦ/dφ: Φ(φ) = ½ τ_0 φ² has the central difference τ_0 φ exactly for a parabola
+    tau0, phi, h = 3.0, 0.625, 0.125
+    dPhi = (me.torsion_potential(tau0, phi + h) - me.torsion_potential(tau0, phi - h)) / (2 * h)
+    assert float(me.torsion_moment(tau0, phi)) == -float(dPhi) == -1.875
+
+
+def test_coincident_spring_ends_are_reported_at_their_index():
+    r1 = np.array([[0.0, 0.0, 0.0], [1.0, 2.0, 3.0], [5.0, 0.0, 0.0]])
+    r2 = np.array([[1.0, 0.0, 0.0], [1.0, 2.0, 3.0], [5.0, 0.0, 0.0]])
+    with pytest.raises(NonPositiveParameterError) as info:
+        me.spring_force(1.0, 0.5, r1, r2)
+    assert str(info.value) == (
+        "the spring's end points coincide (index (1,)): |r_1 - r_2| = 0, its direction is undefined"
+    )
+
+
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        pytest.param(
+            lambda: me.power([1.0, 2.0, 3.0], [[1.0, 0.0, 0.0]]),
+            r"F \(3,\) and v \(1, 3\) must be \(\.\.\., N, 3\); one force is \(1, 3\)",
+            id="power-F",
+        ),
+        pytest.param(
+            lambda: me.power([[1.0, 2.0, 3.0]], [1.0, 0.0, 0.0]),
+            r"F \(1, 3\) and v \(3,\) must be \(\.\.\., N, 3\); one force is \(1, 3\)",
+            id="power-v",
+        ),
+        pytest.param(
+            lambda: me.work_along_path([0.0, 0.0, 1.0], [[0.0, 0.0, 0.0], [0.0, 0.0, 1.0]]),
+            r"F \(3,\) and r \(2, 3\) must be \(\.\.\., K, 3\) with K >= 2 samples",
+            id="work_along_path-F",
+        ),
+        pytest.param(
+            lambda: me.work_along_path([[0.0, 0.0, 1.0], [0.0, 0.0, 1.0]], [0.0, 0.0, 1.0]),
+            r"F \(2, 3\) and r \(3,\) must be \(\.\.\., K, 3\) with K >= 2 samples",
+            id="work_along_path-r",
+        ),
+        pytest.param(
+            lambda: me.work_from_power([1.0], [0.0]),
+            r"K >= 2 and P \(\.\.\., K\); got t \(1,\), P \(1,\)",
+            id="work_from_power-one-sample",
+        ),
+        pytest.param(
+            lambda: me.work_from_power(1.0, [0.0, 1.0]),
+            r"K >= 2 and P \(\.\.\., K\); got t \(2,\), P \(\)",
+            id="work_from_power-scalar-P",
+        ),
+        pytest.param(
+            lambda: me.work_from_power([1.0, 2.0], [[0.0, 1.0], [2.0, 3.0]]),
+            r"K >= 2 and P \(\.\.\., K\); got t \(2, 2\), P \(2,\)",
+            id="work_from_power-2d-t",
+        ),
+        pytest.param(
+            lambda: me.work_from_power([1.0, 2.0], 2.0),
+            r"K >= 2 and P \(\.\.\., K\); got t \(\), P \(2,\)",
+            id="work_from_power-scalar-t",
+        ),
+    ],
+)
+def test_each_argument_of_the_wrong_rank_is_refused_alone(call, message):
+    # One argument of the right rank does not excuse the other: a bare (3,) force is
+    # not a system of forces even when the velocities are (1, 3), and t must be (K,)
+    # with K >= 2 whatever P is.
+    with pytest.raises(ShapeError, match=message):
+        call()
+
+
+def test_gravity_potential_of_a_batch_of_systems():
+    # Two systems of two particles, each with its own gravity vector; Φ = −Σ m_k g · r_k:
+    # system 0: g = −10 e_z, Φ = 10 (1 · 2 + 3 · 6) = 200 (Example 3.2's numbers);
+    # system 1: g = −2 e_y, Φ = 2 (2 · 3 + 0.5 · 4) = 16.
+    m = [[1.0, 3.0], [2.0, 0.5]]
+    r = [[[0.0, 0.0, 2.0], [5.0, 1.0, 6.0]], [[1.0, 3.0, 1.0], [0.0, 4.0, 8.0]]]
+    g = [[0.0, 0.0, -10.0], [0.0, -2.0, 0.0]]
+    np.testing.assert_array_equal(me.gravity_potential(m, r, g=g), [200.0, 16.0])
+    # one system's masses and one g, three configurations of it: Φ = 10 Σ m_k z_k
+    z = np.array([[2.0, 6.0], [0.0, 1.0], [-1.0, 0.5]])
+    rs = np.zeros((3, 2, 3))
+    rs[..., 2] = z
+    np.testing.assert_array_equal(
+        me.gravity_potential([1.0, 3.0], rs, g=[0.0, 0.0, -10.0]), [200.0, 30.0, 5.0]
+    )
