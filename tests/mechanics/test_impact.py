@@ -1191,3 +1191,219 @@ def test_centre_of_percussion_far_from_the_axis_is_that_of_the_scaled_body_exact
     near = im.centre_of_percussion(1.0, J_A, [1.5, 0, 0], axis_point=[0] * 3, axis=Z3)
     np.testing.assert_array_equal(far.point, near.point)
     np.testing.assert_array_equal(far.direction, near.direction)
+
+
+# ------------------------------------ issue 35: every batch axis and every branch checked
+
+
+def _batch_of_two(field):
+    """The value of ``field`` of :func:`_ball` for a batch of two bodies (each still valid)."""
+    one = dict(J_G=0.4 * np.eye(3), r_G=[0, 0, 1.0], v_G=[0, 0, -1.0], omega=[0, 0, 0.0])[field]
+    return np.stack([np.asarray(one, float)] * 2)
+
+
+@pytest.mark.parametrize(
+    ("fields", "listed"),
+    [
+        pytest.param(
+            {"J_G": np.stack([np.eye(3)] * 2), "v_G": np.zeros((3, 3))},
+            r"J_G \(2, 3, 3\), r_G \(3,\), v_G \(3, 3\), omega \(3,\)",
+            id="J_G-2-against-v_G-3",
+        ),
+        pytest.param(
+            {"r_G": np.zeros((2, 3)), "omega": np.zeros((3, 3))},
+            r"J_G \(3, 3\), r_G \(2, 3\), v_G \(3,\), omega \(3, 3\)",
+            id="r_G-2-against-omega-3",
+        ),
+    ],
+)
+def test_a_rigid_body_compares_the_batch_axes_of_every_field(fields, listed):
+    # the batch axes are m's shape, J_G's without its (3, 3) and r_G's, v_G's, omega's without
+    # their 3: a batch of 2 in J_G or r_G against 3 in another field is refused
+    with pytest.raises(
+        ShapeError,
+        match=r"^the batch axes of the rigid body's fields do not broadcast: m \(\), " + listed + "$",
+    ):
+        im.RigidBody(**(_FIELDS | fields))
+
+
+@pytest.mark.parametrize("field", ["J_G", "r_G", "v_G", "omega"])
+@pytest.mark.parametrize("which", ["body_1", "body_2"])
+def test_a_bodys_batch_is_that_of_each_of_its_fields_and_is_named(field, which):
+    # a batch of two bodies, the batch in one field only, against three contact points
+    batched = _ball(**{field: _batch_of_two(field)})
+    bodies = (batched, None) if which == "body_1" else (_ball(), batched)
+    listed = "body_1 (2,)" if which == "body_1" else "body_1 (), body_2 (2,)"
+    r_S = np.zeros((3, 3))
+    head = "the batch axes of the arguments do not broadcast: " + listed + ", r_S (3,), n ()"
+    with pytest.raises(ShapeError, match="^" + re.escape("normal_relative_velocity: " + head) + "$"):
+        im.normal_relative_velocity(*bodies, r_S=r_S, n=[0, 0, 1.0])
+    with pytest.raises(ShapeError, match="^" + re.escape("rigid_impact: " + head + ", e ()") + "$"):
+        im.rigid_impact(*bodies, r_S=r_S, n=[0, 0, 1.0], e=0.5)
+
+
+def test_contact_points_and_normals_are_batches_of_their_own():
+    # r_S (3, 3) is a batch of 3 points, n (2, 3) a batch of 2 normals: refused, each named
+    head = "the batch axes of the arguments do not broadcast: body_1 (), r_S (3,), n (2,)"
+    r_S, n = np.zeros((3, 3)), np.array([[0, 0, 1.0], [0, 1.0, 0]])
+    with pytest.raises(ShapeError, match="^" + re.escape("normal_relative_velocity: " + head) + "$"):
+        im.normal_relative_velocity(_ball(), r_S=r_S, n=n)
+    with pytest.raises(ShapeError, match="^" + re.escape("rigid_impact: " + head + ", e ()") + "$"):
+        im.rigid_impact(_ball(), r_S=r_S, n=n, e=0.5)
+
+
+def test_one_contact_point_serves_a_batch_of_normals_and_one_normal_a_batch_of_points():
+    # _ball: G at e_z, v_G = −e_z, no spin: every contact point moves at −e_z.
+    # Normals e_z and e_y at the one point r_S = 0: v_n = (−1, 0).
+    n = np.array([[0, 0, 1.0], [0, 1.0, 0]])
+    assert im.normal_relative_velocity(_ball(), r_S=[0, 0, 0.0], n=n).tolist() == [-1.0, 0.0]
+    # one normal e_z, two points (the bottom and the side of the ball): v_n = (−1, −1)
+    r_S = np.array([[0, 0, 0.0], [1.0, 0, 1.0]])
+    assert im.normal_relative_velocity(_ball(), r_S=r_S, n=[0, 0, 1.0]).tolist() == [-1.0, -1.0]
+    # rigid_impact at the bottom, n = e_z: arm −e_z ∥ n, μ = m = 1, S = (1 + e)·1 = 1.5;
+    # along e_y the contact grazes (v_n = 0): no impulse
+    out = im.rigid_impact(_ball(), r_S=[0, 0, 0.0], n=n, e=0.5)
+    assert out.S.tolist() == [1.5, 0.0]
+    assert out.body_1.v_G.tolist() == [[0, 0, 0.5], [0, 0, -1.0]]
+    out = im.rigid_impact(_ball(), r_S=r_S[:1].repeat(2, axis=0), n=[0, 0, 1.0], e=0.5)
+    assert out.S.tolist() == [1.5, 1.5]
+
+
+def test_rigid_impact_names_a_normal_relative_velocity_beyond_float64():
+    # v_G = −1.5e308 (e_y + e_z), n = (e_y + e_z)/√2: v_n = −3e308/√2 ≈ −2.1e308 overflows
+    fast = im.RigidBody(1.0, np.eye(3), [0, 0, 1.0], [0, -1.5e308, -1.5e308], [0, 0, 0.0])
+    with pytest.raises(
+        ResultOverflowError,
+        match="^"
+        + re.escape(
+            "rigid_impact: the normal relative velocity v_n exceeds float64's range (~1.8e308) "
+            "for these finite inputs; rescale the inputs (choose units)"
+        )
+        + "$",
+    ):
+        im.rigid_impact(fast, r_S=[0, 0, 0.0], n=[0, 1.0, 1.0], e=0.5)
+
+
+_HINGED = dict(
+    m=2.0,
+    J_A=np.diag([30.0, 30.0, 49.0]),
+    r_G=[0.5, 0, 0],
+    axis_point=[0, 0, 0.0],
+    axis=[0, 0, 1.0],
+    omega=0.0,
+    r_P=[1.0, 0, 0],
+    S_P=[0, 1.0, 0],
+)
+
+
+def test_hinged_impact_broadcasts_one_vector_of_each_kind_over_a_batch_of_masses():
+    # Δω = a·(AP × S_P)/J_a = 1/49 whatever the mass; S_axis = m Δω a × AG − S_P with
+    # a × AG = 0.5 e_y: (m/98 − 1) e_y, for m = 2 and 4
+    out = im.hinged_impact(**(_HINGED | {"m": [2.0, 4.0], "omega": [0.0, 1.0]}))
+    dw = 1 / 49
+    assert out.omega.tolist() == [dw, 1.0 + dw]
+    np.testing.assert_allclose(out.S_axis[:, 1], [2 / 98 - 1, 4 / 98 - 1], rtol=HAND_RTOL)
+
+
+_HINGED_BATCHES = {
+    "J_A": np.stack([np.diag([30.0, 30.0, 49.0])] * 3),
+    "r_G": np.tile([0.5, 0, 0], (3, 1)),
+    "axis_point": np.zeros((3, 3)),
+    "axis": np.tile([0, 0, 1.0], (3, 1)),
+    "r_P": np.tile([1.0, 0, 0], (3, 1)),
+    "S_P": np.tile([0, 1.0, 0], (3, 1)),
+}
+
+
+@pytest.mark.parametrize("name", list(_HINGED_BATCHES))
+def test_hinged_impact_names_each_argument_whose_batch_does_not_broadcast(name):
+    # a batch of 2 masses against a batch of 3 in one of the vectors or tensors
+    shapes = dict.fromkeys(["J_A", "r_G", "axis_point", "axis", "omega", "r_P", "S_P"], "()")
+    shapes[name] = "(3,)"
+    if name == "axis_point":  # r_G and r_P are taken relative to it: AG, AP carry its batch
+        shapes["r_G"] = shapes["r_P"] = "(3,)"
+    listed = ", ".join(f"{k} {v}" for k, v in shapes.items())
+    message = f"hinged_impact: the batch axes of the arguments do not broadcast: m (2,), {listed}"
+    with pytest.raises(ShapeError, match="^" + re.escape(message) + "$"):
+        im.hinged_impact(**(_HINGED | {"m": [2.0, 4.0], name: _HINGED_BATCHES[name]}))
+
+
+def test_hinged_impact_leaves_no_moment_about_the_axis_not_even_a_rounding():
+    # J_a = 49, AP × S_P = e_z: Δω = fl(1/49), and fl(fl(1/49)·49) = 1 − 2^-53 ≠ 1, so
+    # Δω J_A a − AP × S_P has a rounding 2^-53 along the axis; frictionless bearings take
+    # no moment about it, and with a = e_z its removal is exact: M_axis = 0 (J_A a ∥ a).
+    assert (1 / 49) * 49 != 1.0  # the rounding is there to remove
+    out = im.hinged_impact(**_HINGED)
+    assert float(out.omega) == 1 / 49
+    assert out.M_axis.tolist() == [0.0, 0.0, 0.0]
+
+
+def test_hinged_effective_mass_names_the_index_of_a_blow_without_lever_arm():
+    _, J_A, _ = _rod_on_axis()
+    r_P = np.array([[1.0, 0, 0], [0, 0, 2.5]])  # the second on the axis
+    message = (
+        "r_P gives the blow no lever arm about the axis (a.(AP x n) = 0 at index {}: P on the "
+        "axis, or n in the plane of the axis and P); the blow cannot turn the body and its "
+        "effective mass is infinite"
+    )
+    with pytest.raises(OutOfDomainError, match="^" + re.escape(message.format("(1,)")) + "$"):
+        im.hinged_effective_mass(J_A, r_P, [0, 1.0, 0], axis_point=[0, 0, 0], axis=Z3)
+    with pytest.raises(OutOfDomainError, match="^" + re.escape(message.format("()")) + "$"):
+        im.hinged_effective_mass(J_A, r_P[1], [0, 1.0, 0], axis_point=[0, 0, 0], axis=Z3)
+
+
+def test_centre_of_percussion_scales_each_body_of_a_batch_by_its_own_distance():
+    # rows 2^±600 apart: scaled by one common power of two the near row would underflow.
+    # Each row is the rod of the scalar case with m h = 1.5 exactly: P = (J_zz/(m h)) e_x =
+    # (4/1.5) e_x for both, to the bit.
+    J_A = np.diag([1e-3, 4.0, 4.0])
+    m = np.array([2.0**-600, 2.0**600])
+    r_G = np.array([[1.5 * 2.0**600, 0, 0], [1.5 * 2.0**-600, 0, 0]])
+    P, b = im.centre_of_percussion(m, J_A, r_G, axis_point=[0] * 3, axis=Z3)
+    near = im.centre_of_percussion(1.0, J_A, [1.5, 0, 0], axis_point=[0] * 3, axis=Z3)
+    np.testing.assert_array_equal(P, [near.point] * 2)
+    np.testing.assert_array_equal(b, [near.direction] * 2)
+    assert math.isclose(float(near.point[0]), 4 / 1.5, rel_tol=HAND_RTOL)
+
+
+def _asymmetric_inertia():
+    """A tensor of entries in [1, 2) (off the diagonal in [0.1, 0.2)) that is symmetric but
+    for one pair, 16 eps of its largest entry apart (check_inertia accepts 64 eps)."""
+    J = np.array([[1.0, 0.15, -0.125], [0.15, 1.25, 0.1875], [-0.125, 0.1875, 1.5]])
+    J[1, 0] += 16 * EPS * 1.5
+    return J
+
+
+@pytest.mark.parametrize("batched", [False, True], ids=["one", "batch"])
+@pytest.mark.parametrize(
+    ("k", "arm"),
+    [
+        pytest.param(0, 0, id="unit-tensor"),
+        # J 2^1023: J + Jᵀ overflows on the diagonal; the arm 2^511 keeps J⁻¹ (r × n) normal
+        pytest.param(1023, 511, id="tensor-near-1.8e308"),
+    ],
+)
+def test_rigid_impact_reads_a_tensor_through_its_symmetric_part(batched, k, arm):
+    # J, Jᵀ and the exact mean (J + Jᵀ)/2 rounded once are the same tensor to the solves:
+    # the impacts agree to the bit, also where J + Jᵀ overflows float64
+    J = np.ldexp(_asymmetric_inertia(), k)
+    mean = np.array(
+        [[float((Fraction(J[i, j]) + Fraction(J[j, i])) / 2) for j in range(3)] for i in range(3)]
+    )
+    r_S = np.ldexp(np.array([0.3, -0.2, 0.5]), arm)
+
+    def impact(tensor):
+        tensor = np.stack([tensor] * 2) if batched else tensor
+        body = im.RigidBody(1.0, tensor, [0, 0, 0], [0, 0, -1.0], [0, 0, 0])
+        return im.rigid_impact(body, None, r_S=r_S, n=[0.0, 0.6, 0.8], e=0.5)
+
+    want = impact(mean)
+    assert np.all(want.body_1.omega != 0) and np.isfinite(want.body_1.omega).all()
+    for tensor in (J, J.T):
+        got = impact(tensor)
+        for name in ("S", "mu", "v_n", "Q"):
+            np.testing.assert_array_equal(getattr(got, name), getattr(want, name), err_msg=name)
+        for name in ("v_G", "omega", "J_G"):
+            np.testing.assert_array_equal(
+                getattr(got.body_1, name), getattr(want.body_1, name), err_msg=name
+            )

@@ -243,3 +243,41 @@ def test_naive_energy_difference_cancels_where_the_loss_is_small():
     exact = _exact(m1, m2, v1, v2, e)["Q"]
     assert error_ulps(naive, exact) > 1e6
     assert error_ulps(im.energy_loss_direct(m1, m2, v1, v2, e), exact) <= PROMISE_ULPS
+
+
+# ------------------------------- one rounding: just above a power of two
+
+
+#: m_1 = m_2 = 2 (1 + 2^-52): μ = 1 + 2^-52 exactly, the mass fractions exactly ½.
+M_ABOVE_ONE = 2.0 + 2.0**-51
+
+#: e ≈ √5 2^-27.5: (1 + 2^-52)(1 − e²) = 1 + (3/8) 2^-52 + O(2^-104).
+E_Q = math.sqrt(5.0) * 2.0**-27.5
+
+
+@pytest.mark.parametrize(
+    ("name", "case"),
+    [
+        # Δẋ = −(1 − 2^-53): S_12 = μ Δẋ = −(1 + 2^-53 − 2^-105) at e = 0
+        pytest.param("S_12", (M_ABOVE_ONE, M_ABOVE_ONE, 1 - 2.0**-53, 0.0, 0.0), id="S_12"),
+        # the same S_1, and S_2 = ½ S_1 at e = ½
+        pytest.param("S_1", (M_ABOVE_ONE, M_ABOVE_ONE, 1 - 2.0**-53, 0.0, 0.5), id="S_1"),
+        pytest.param("S_2", (M_ABOVE_ONE, M_ABOVE_ONE, 1 - 2.0**-53, 0.0, 0.5), id="S_2"),
+        # Δẋ = −1: Q = ½ μ (1 − e²) = ½ (1 + (3/8) 2^-52 + ...)
+        pytest.param("Q", (M_ABOVE_ONE, M_ABOVE_ONE, 1.0, 0.0, E_Q), id="Q"),
+    ],
+)
+def test_a_result_just_above_a_power_of_two_is_rounded_once(name, case):
+    # Here every factor is exact in double-double (μ, the fractions ½, 1 ± e and Δẋ), so the
+    # exact value is carried to ~2^-104 and only the final rounding remains (DIRECT_ULPS'
+    # reason): the result is the correctly rounded value, within ½ ulp.  The exact value lies
+    # between ¼ and ½ ulp above a power of two, where that one rounding goes down to it; a
+    # result that dropped or negated the low part of the double-double would be an ulp off.
+    exact = _exact(*case)[name]
+    power = 2.0 ** math.frexp(abs(float(exact)))[1] / 2
+    above = (abs(exact) - Fraction(power)) / Fraction(math.ulp(power))
+    assert abs(float(exact)) == power
+    assert Fraction(1, 4) < above < Fraction(1, 2), float(above)
+    got = _ours(*case)[name]
+    assert float(got) == float(exact)  # float(Fraction) rounds to nearest
+    assert error_ulps(got, exact) <= 0.5
