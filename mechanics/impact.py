@@ -96,6 +96,10 @@ from .errors import (
 )
 from .inertia import check_inertia
 
+#: Above this magnitude Dekker's split (a product with 2**27 + 1) of a double-double
+#: overflows (2**1024 / (2**27 + 1) ≈ 2**997); 2**960 leaves room for the low part.
+_SPLIT_SAFE = 2.0**960
+
 __all__ = [
     "DIRECT_ULPS",
     "CentreOfPercussion",
@@ -646,9 +650,13 @@ def compression_restitution_impulses(
     with np.errstate(over="ignore", invalid="ignore"):
         out1 = np.ldexp(np.where(d.approach, s1[0] + s1[1], 0.0), k)
         # e S1 at full scale: in the scaled units a tiny e (down to the smallest normal)
-        # would push the product into the subnormals and lose its digits there
-        s2 = _dd_mul((np.ldexp(s1[0], k), np.ldexp(s1[1], k)), (d.e, np.zeros_like(d.e)))
-        out2 = np.where(d.approach, s2[0] + s2[1], 0.0)
+        # would push the product into the subnormals and lose its digits there.  Dekker's
+        # split multiplies by 2**27 + 1, which overflows beyond ~2**996: a huge S1 is
+        # multiplied 2**64 lower and scaled back (powers of two: the same rounding)
+        hi, lo = np.ldexp(s1[0], k), np.ldexp(s1[1], k)
+        down = np.where(np.abs(hi) > _SPLIT_SAFE, -64, 0)
+        s2 = _dd_mul((np.ldexp(hi, down), np.ldexp(lo, down)), (d.e, np.zeros_like(d.e)))
+        out2 = np.where(d.approach, np.ldexp(s2[0] + s2[1], -down), 0.0)
     out1 = _overflow(out1, "S_1")
     return out1[()], _overflow(out2, "S_2")[()]
 

@@ -1412,14 +1412,10 @@ def test_rigid_impact_reads_a_tensor_through_its_symmetric_part(batched, k, arm)
             )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=ResultOverflowError,
-    reason="bug: S_2 = e S_1 is formed at full scale by dd_mul, whose two_prod splits S_1 with "
-    "SPLITTER = 2^27 + 1; for |S_1| above 2^1024/SPLITTER (~1.34e300) the split overflows, S_2 "
-    "comes out NaN and a false 'S_2 overflows float64' is raised although |S_2| <= |S_1| is finite",
-)
 def test_the_restitution_impulse_of_a_compression_impulse_near_1e305_is_finite():
+    # Found by the full mutation run of issue 35: S_2 = e S_1 was formed by Dekker's split
+    # (a product with 2**27 + 1), which overflowed for |S_1| above ~1.34e300 and raised a
+    # false "S_2 overflows float64".
     # m_1 = m_2 = 2: μ = 1, Δẋ = −1e305: S_1 = μ Δẋ = −1e305; e = ½: S_2 = e S_1, exact
     S1, S2 = im.compression_restitution_impulses(2.0, 2.0, 1e305, 0.0, 0.5)
     assert float(S1) == -1e305
