@@ -10,6 +10,7 @@ worked Examples 4.3 and 4.4 with their printed results.
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -424,6 +425,9 @@ def test_axis_reactions_broadcast_over_states():
 def test_axis_reaction_rejects_a_negative_distance_naming_it():
     with pytest.raises(NonPositiveParameterError, match=r"^h must be >= 0; found -0\.5"):
         D.axis_reaction(1.0, [0.2, -0.5], 1.0, 0.0, F_a_rho=0.0, F_a_phi=0.0)
+    # h = 0 (G on the axis) is allowed: the message names the negative one after it
+    with pytest.raises(NonPositiveParameterError, match=r"^h must be >= 0; found -0\.5$"):
+        D.axis_reaction(1.0, [0.0, -0.5], 1.0, 0.0, F_a_rho=0.0, F_a_phi=0.0)
 
 
 def test_bearing_reactions_name_the_bad_argument():
@@ -439,7 +443,10 @@ def test_bearing_reactions_name_the_bad_argument():
         D.bearing_reactions(*args, 1.0, F_a=[0, 0], M_a=[0, 0, 0])
     with pytest.raises(ShapeError, match=r"^M_a has shape \(2,\)"):
         D.bearing_reactions(*args, 1.0, F_a=[0, 0, 0], M_a=[0, 0])
-    with pytest.raises(NonPhysicalInertiaError, match=r"^J_O"):
+    with pytest.raises(
+        NonPhysicalInertiaError,
+        match=r"^J_O breaks the triangle inequality J1 \+ J2 >= J3 about the given point: ",
+    ):
         D.bearing_reactions(np.diag([1.0, 1.0, 3.0]), *args[1:], 1.0, **kw)
 
 
@@ -697,6 +704,56 @@ _AR = {"F_a_rho": 0.0, "F_a_phi": 0.0}
             r"^m must be > 0",
             id="reduced-m",
         ),
+        pytest.param(
+            lambda: D.reduced_length(1.0, 1.0, 0.0),
+            NonPositiveParameterError,
+            r"^h must be > 0; found 0\.0$",
+            id="reduced-h",
+        ),
+        pytest.param(
+            lambda: D.angular_momentum_rigid(np.eye(3), [1.0, 0.0]),
+            ShapeError,
+            r"^omega has shape \(2,\); expected \(\.\.\., 3\)$",
+            id="L-omega-shape",
+        ),
+        pytest.param(
+            lambda: D.angular_momentum_rigid(np.diag([1.0, 1.0, 3.0]), [1.0, 0, 0]),
+            NonPhysicalInertiaError,
+            r"^J breaks the triangle inequality J1 \+ J2 >= J3 about the given point: ",
+            id="L-triangle-about-point",
+        ),
+        pytest.param(
+            lambda: D.rotational_kinetic_energy(np.eye(3), [1.0, 0.0]),
+            ShapeError,
+            r"^omega has shape \(2,\); expected \(\.\.\., 3\)$",
+            id="T-omega-shape",
+        ),
+        pytest.param(
+            lambda: D.rotational_kinetic_energy(np.eye(3), [0, _NAN, 0]),
+            NonFiniteError,
+            r"^omega must be finite; found nan at index \(1,\)$",
+            id="T-omega-nan",
+        ),
+        pytest.param(
+            lambda: D.euler_equations_rhs([1.0, 2.0, 2.5], [0, 0, 1.0], [0.0, 0.0]),
+            ShapeError,
+            r"^M has shape \(2,\); expected \(\.\.\., 3\)$",
+            id="euler-M-shape",
+        ),
+        pytest.param(
+            lambda: D.pendulum_axis_reaction(0.5, 1.0, 2.0, 9.81, 0.5, E=_NAN),
+            NonFiniteError,
+            r"^E must be finite; found nan at index \(\)$",
+            id="reaction-E-nan",
+        ),
+        pytest.param(
+            # φ = π/2 needs E ≥ m g h (1 − cos φ) = m g h = 1: E = 3/4 is refused, at index 1
+            lambda: D.pendulum_axis_reaction([0.0, np.pi / 2], 1.0, 0.5, 8.0, 0.25, E=[0.0, 0.75]),
+            OutOfDomainError,
+            r"^E is below the potential energy m g h \(1 - cos phi\) at phi: the pendulum does "
+            r"not reach phi \(first at index \(1,\)\)$",
+            id="reaction-E-batched",
+        ),
     ],
 )
 def test_dynamics_messages_name_the_argument_the_value_and_the_condition(call, error, match):
@@ -714,6 +771,52 @@ def test_principal_moment_checks_judge_each_row_of_a_batch():
         np.testing.assert_array_equal(
             out[i], D.euler_equations_rhs(J[i], [0.1, 0.2, 0.3], [0.0, 0.0, 0.0])
         )
+
+
+#: (1/2, 1/2 − n eps, 1): J1 + J2 − J3 = −n eps exactly, whatever the order of the sums
+#: (every partial sum, 1 − n eps, 3/2 − n eps, 2 − n eps, is a float: ulp 2 eps in [1, 2))
+def _broken_by(n):
+    return np.array([0.5, 0.5 - n * EPS, 1.0])
+
+
+@pytest.mark.parametrize("scale", [1.0, 2.0**-30, 2.0**40])
+def test_principal_moments_may_break_the_triangle_by_64_eps_of_the_largest_and_no_more(scale):
+    """The documented tolerance of Euler's equations: J1 + J2 − J3 ≥ −64 eps · J3 is taken, at
+    exactly −64 eps too, and −65 eps is refused with its value; scaled by a power of two
+    (exact), the tolerance scales with the largest moment."""
+    w, M = [0.3, -1.0, 0.7], [0.0, 0.0, 0.0]
+    edge, beyond = _broken_by(64) * scale, _broken_by(65) * scale
+    wdot = D.euler_equations_rhs(edge, w, M)
+    assert np.isfinite(wdot).all()
+    want = re.escape(
+        f"J_principal breaks the triangle inequality: {beyond.tolist()} has "
+        f"J_j + J_k - J_i = {-65 * EPS * scale:.6g} < 0 for i = 3"
+    )
+    with pytest.raises(NonPhysicalInertiaError, match=f"^{want}$"):
+        D.euler_equations_rhs(beyond, w, M)
+
+
+def test_principal_moments_tolerance_is_each_rows_own_not_the_batchs_largest():
+    # row 0 breaks the triangle by 65 eps of its own largest moment 1; against row 1's
+    # largest moment 4 it would be within 64 eps (256 eps of 1)
+    J = np.stack([_broken_by(65), [4.0, 4.0, 4.0]])
+    want = re.escape(f"{J[0].tolist()} has J_j + J_k - J_i = {-65 * EPS:.6g} < 0 for i = 3")
+    with pytest.raises(NonPhysicalInertiaError, match=f"^J_principal .*: {want}$"):
+        D.euler_equations_rhs(J, [0.3, -1.0, 0.7], [0.0, 0.0, 0.0])
+
+
+def test_pendulum_axis_reaction_takes_an_energy_down_to_8_eps_below_the_potential():
+    """The reach of (4.74): E ≥ m g h (1 − cos φ) to 8 eps.  At φ = fl(π), with m g h =
+    0.5 · 8 · 0.25 = 1 exactly, 1 − cos φ = 2 sin²(φ/2) = 2 (sin(fl(π)/2) = 1 − 4e-33 rounds
+    to 1): the potential is 2 and its edge 2 (1 − 8 eps) = 2 − 2**-48, a float.  There the
+    pendulum rests at the top and the axis holds up its weight: R = (m g, 0) = (4, 0)."""
+    m, g, h = 0.5, 8.0, 0.25
+    R = D.pendulum_axis_reaction(np.pi, 1.0, m, g, h, E=2.0 * (1 - 8 * EPS))
+    # R_ρ = 4 + 4 eps (E is 16 eps below 2 m g h, times 2 m h/J = 1/4); R_φ ∝ sin fl(π) ≈ 1e-16
+    np.testing.assert_allclose(R, [m * g, 0.0], rtol=0, atol=16 * EPS * m * g)
+    # the next float below the edge, 2 (1 − 8.5 eps) = 2 − 2**-48 − 2**-52, is refused
+    with pytest.raises(OutOfDomainError, match=r"^E is below the potential energy"):
+        D.pendulum_axis_reaction(np.pi, 1.0, m, g, h, E=2.0 * (1 - 8.5 * EPS))
 
 
 def test_kinetic_energy_accepts_a_singular_tensor_by_default():
@@ -790,7 +893,8 @@ def test_the_pendulums_phase_is_exact_for_mixed_magnitudes():
         ),
         pytest.param(
             lambda: D.pendulum_motion(1e300, 1e-300, 1.0, 9.81, 1.0, 0.5),
-            r"^pendulum_motion: the phase omega0 t = sqrt\(m g h/J_axis\) t exceeds float64",
+            r"^pendulum_motion: the phase omega0 t = sqrt\(m g h/J_axis\) t exceeds float64's "
+            r"range \(~1\.8e308\); rescale the inputs \(choose units\)$",
             id="phase-1e450",
         ),
         pytest.param(
