@@ -9,6 +9,7 @@ derivatives of the basic matrices (2.30) worked out by hand.
 from __future__ import annotations
 
 import re
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -729,3 +730,248 @@ def test_an_instantaneous_centre_beyond_float64_names_the_inputs_of_its_own_row(
         "the instantaneous centre of r_A = [1.0, 2.0], v_A = [1e+300, 0.0], omega_z = 1e-200 "
         "(index (1,)) is beyond float64"
     ), msg
+
+
+# --------------------------------------------- guards at their edges, rows of a batch
+
+#: 2**−1074, the smallest subnormal: offsets of this size are exact only if never halved.
+TINY = 2.0**-1074
+
+
+def test_gimbal_lock_is_refused_at_sin_theta_equal_to_the_tolerance_and_not_beyond():
+    # GIMBAL_LOCK_ATOL = 4 eps = 2**-50.  sin(2**-50) = 2**-50 − 2**-150/6 + ..., and the
+    # float below 2**-50 is 2**-50 − 2**-103, so sin rounds to 2**-50 exactly (mpmath:
+    # sin(2**-50) − 2**-50 = −1.17e-46): |sin θ| <= atol holds with equality.
+    edge = 4 * EPS
+    assert kin.GIMBAL_LOCK_ATOL == edge == 2.0**-50
+    for theta in (edge, -edge):
+        with pytest.raises(GimbalLockError, match=rf"^theta = {re.escape(repr(theta))} gives"):
+            kin.euler_rates_from_angular_velocity(theta, 0.0, [0.0, 1.0, 0.0])
+    # One float above, sin θ = θ again (the cubic term is 1e-47 of θ): accepted, and
+    # ψ̇ = (w1 sin φ + w2 cos φ)/sin θ = 1/θ for w = e2, φ = 0 (2.69 inverted).
+    above = np.nextafter(edge, 1.0)
+    rates = kin.euler_rates_from_angular_velocity(above, 0.0, [0.0, 1.0, 0.0])
+    assert rates[0] == 1.0 / above
+
+
+def test_a_zero_omega_in_a_batch_is_named_by_its_own_row():
+    with pytest.raises(
+        ZeroAngularVelocityError,
+        match=r"^omega = \[0\.0, 0\.0, 0\.0\] is zero: a translating body has no",
+    ):
+        kin.instantaneous_axis([1.0, 0, 0], [[0.0, 0, 2.0], [0.0, 0, 0]])
+
+
+def test_instantaneous_axis_scales_each_row_of_a_batch_on_its_own():
+    # ω = e3: AC = (ω × v_A)/ω² = e3 × (x e1) = x e2, exact for any x.  A row with
+    # |v_A| = 1e-300 next to one with 1e300 must not be scaled by the other's power of two
+    # (1e-300 / 2**997 would underflow to 0).
+    v = [[1e-300, 0.0, 0.0], [1e300, 0.0, 0.0]]
+    r_AC, v_C = kin.instantaneous_axis(v, [0.0, 0.0, 1.0])
+    assert_array_equal(r_AC, [[0.0, 1e-300, 0.0], [0.0, 1e300, 0.0]])
+    assert_array_equal(v_C, np.zeros((2, 3)))
+
+
+def test_an_axial_velocity_beyond_float64_names_its_own_row():
+    # Row 1: ω = (1, 2, 0), v_A = (1.5, 1.5, 0) 1e308.  AC = (ω × v_A)/ω² = (0, 0, −0.3e308)
+    # is representable, but v_C = (v_A·ω/ω²) ω = 0.9e308 (1, 2, 0) has 1.8e308 > 1.797e308.
+    v = [[1.0, 0.0, 0.0], [1.5e308, 1.5e308, 0.0]]
+    w = [[0.0, 0.0, 1.0], [1.0, 2.0, 0.0]]
+    with pytest.raises(ResultOverflowError) as info:
+        kin.instantaneous_axis(v, w)
+    msg = str(info.value)
+    assert msg.startswith(
+        "the instantaneous axis of v_A = [1.5e+308, 1.5e+308, 0.0], omega = [1.0, 2.0, 0.0] "
+        "(index (1,)) is beyond float64"
+    ), msg
+
+
+def test_the_instantaneous_centre_overflow_message_states_the_condition():
+    # y_C = y_A + xdot_A/ω = 1e300/1e-200 = 1e500 is beyond float64 (row 0 of one)
+    with pytest.raises(ResultOverflowError) as info:
+        kin.instantaneous_centre_plane([0.0, 0.0], [1e300, 0.0], 1e-200)
+    assert str(info.value) == (
+        "the instantaneous centre of r_A = [0.0, 0.0], v_A = [1e+300, 0.0], omega_z = 1e-200 "
+        "(index ()) is beyond float64: |r_A + e_z x v_A/omega_z| exceeds 1.8e308"
+    )
+
+
+@pytest.mark.parametrize(
+    ("x", "omega_z"),
+    [
+        pytest.param(3 * TINY, 1.0, id="subnormal-x-unit-spin"),
+        pytest.param(3 * TINY, -2.0, id="subnormal-x-fast-spin"),
+        pytest.param(1.0, 3.0, id="ordinary"),
+        pytest.param(
+            3 * TINY,
+            0.25,
+            id="subnormal-x-slow-spin",
+            marks=pytest.mark.xfail(
+                strict=True,
+                reason="_minus_ratio takes frexp(0)'s exponent 0 for b/c = 0/ω, so it scales "
+                "x_A by 2**-2 into the subnormal range: 3·2**-1074 comes back as 4·2**-1074",
+            ),
+        ),
+        pytest.param(
+            1e-200,
+            1e-200,
+            id="small-x-slow-spin",
+            marks=pytest.mark.xfail(
+                strict=True,
+                reason="_minus_ratio takes frexp(0)'s exponent 0 for b/c = 0/ω = 0, m = −k(ω) "
+                "= 665, and scales x_A = 1e-200 by 2**-665 to 0: the centre comes back as 0",
+            ),
+        ),
+    ],
+)
+def test_the_centre_of_a_body_whose_point_A_is_at_rest_is_A_itself(x, omega_z):
+    # (2.95) with v_A = 0: x_C = x_A − 0/ω, y_C = y_A + 0/ω, exactly (A has zero velocity).
+    r_C = kin.instantaneous_centre_plane([x, -x], [0.0, 0.0], omega_z)
+    assert_array_equal(r_C, [x, -x])
+
+
+@pytest.mark.parametrize(
+    ("n", "omega_z"),
+    [
+        pytest.param(3, 0.5, id="quotient-6-tiny"),
+        pytest.param(2, 1.0, id="quotient-2-tiny"),
+        pytest.param(3, -0.25, id="quotient-minus-12-tiny"),
+        pytest.param(
+            4,
+            4.0,
+            id="quotient-1-tiny",
+            marks=pytest.mark.xfail(
+                strict=True,
+                reason="_minus_ratio takes frexp(0)'s exponent 0 for x_A = 0, so e = 1 and "
+                "ẏ/ω = 2**-1074 is formed as 2**-1075, which rounds (to even) to 0",
+            ),
+        ),
+    ],
+)
+def test_the_centre_seen_from_the_origin_is_the_exact_quotient(n, omega_z):
+    # (2.95) with A at the origin: x_C = −ẏ_A/ω, y_C = ẋ_A/ω.  With ẋ_A = ẏ_A = n·2**-1074
+    # and ω a power of two the quotient n/ω·2**-1074 is a multiple of 2**-1074: exact.
+    q = Fraction(n) / Fraction(omega_z)
+    assert q.denominator == 1
+    expected = float(q) * TINY
+    r_C = kin.instantaneous_centre_plane([0.0, 0.0], [n * TINY, n * TINY], omega_z)
+    assert_array_equal(r_C, [-expected, expected])
+
+
+# rigid motion with ω = (1, 2, 3) of the four points c ± h e2, c ± h e3: ω × (±h e2) =
+# ±h (−3, 0, 1), ω × (±h e3) = ±h (2, −1, 0), exact for h a power of two (v_c = 0).
+_SPIN = np.array([1.0, 2.0, 3.0])
+
+
+def _cross_of_four(c, h):
+    d = h * np.array([[0.0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]])
+    v = h * np.array([[-3.0, 0, 1], [3, 0, -1], [2, -1, 0], [-2, 1, 0]])
+    return np.array([c, 0.0, 0.0]) + d, v
+
+
+@pytest.mark.parametrize(
+    ("c", "h"),
+    [
+        # at the origin, offsets of the smallest subnormal: never shifted, never halved
+        pytest.param(0.0, TINY, id="subnormal-at-origin"),
+        # max entry 2**1019 has exponent 1020 = 1023 − g (g = ⌈log2 4⌉ + 1 = 3): a sum of
+        # four cannot overflow, so the set is not divided by 2**g and the offsets stay exact
+        pytest.param(2.0**1019, TINY, id="at-the-shift-threshold"),
+        # max entry 1.5·2**1023: four of them overflow (6·2**1023); divided by 2**3 first
+        pytest.param(1.5 * 2.0**1023, 1.0, id="huge-coordinate"),
+        pytest.param(1.5 * 2.0**1023, 2.0**-30, id="huge-coordinate-small-offsets"),
+    ],
+)
+def test_rigid_velocity_from_points_at_the_edges_of_the_range(c, h):
+    r, v = _cross_of_four(c, h)
+    omega, v_c, residual = kin.rigid_velocity_from_points(r, v)
+    # every step is exact here: offsets and velocities are ±h times small integers, the
+    # spread matrix is diag(4, 2, 2) h², and ω is a power-of-two rescaling of its solution
+    assert_array_equal(omega, _SPIN)
+    assert_array_equal(v_c, [0.0, 0.0, 0.0])
+    assert residual == 0.0
+
+
+def test_rigid_velocity_from_points_scales_each_point_set_of_a_batch_on_its_own():
+    # set 0 needs the overflow shift (coordinates 1.5·2**1023); set 1 has subnormal offsets
+    # that a shift by 2**3, or set 0's exponent, would round to 0 (a false "coincide")
+    r0, v0 = _cross_of_four(1.5 * 2.0**1023, 1.0)
+    r1, v1 = _cross_of_four(0.0, TINY)
+    omega, v_c, residual = kin.rigid_velocity_from_points(np.stack([r0, r1]), np.stack([v0, v1]))
+    assert_array_equal(omega, [_SPIN, _SPIN])
+    assert_array_equal(v_c, np.zeros((2, 3)))
+    assert_array_equal(residual, [0.0, 0.0])
+
+
+def test_the_rigidity_residual_is_per_point_set():
+    # set 0 is the exact rigid motion above (residual 0); set 1 is a uniform expansion
+    # v_i = d_i of the same points, whose best rigid fit is ω = 0, v_c = 0 and whose
+    # residual is max |d_i| = 1
+    r, v = _cross_of_four(0.0, 1.0)
+    omega, _, residual = kin.rigid_velocity_from_points(np.stack([r, r]), np.stack([v, r]))
+    assert_array_equal(residual, [0.0, 1.0])
+    assert_array_equal(omega, [_SPIN, [0.0, 0.0, 0.0]])
+
+
+def test_an_angular_velocity_beyond_float64_names_its_point_set_and_spreads():
+    # set 1: ω = 2**1030 e3 (beyond float64) turning the points ±2**-10 e1, ±2**-10 e2:
+    # v = ω × d = ±2**1020 e2, ∓2**1020 e1, all finite.  Spreads: max |v_i − u| = 2**1020
+    # ∈ [2**1020, 2**1021), so 2**1021; max |d_i| = 2**-10 ∈ [2**-10, 2**-9), so 2**-9.
+    # The rigidity residual is 0: only ω overflows.
+    h, big = 2.0**-10, 2.0**1020
+    r1 = h * np.array([[1.0, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0]])
+    v1 = big * np.array([[0.0, 1, 0], [0, -1, 0], [-1, 0, 0], [1, 0, 0]])
+    r0, v0 = _cross_of_four(0.0, 1.0)
+    with pytest.raises(ResultOverflowError) as info:
+        kin.rigid_velocity_from_points(np.stack([r0, r1]), np.stack([v0, v1]))
+    assert str(info.value) == (
+        "the angular velocity of the point set at index (1,) is beyond float64: "
+        "velocity spread 2**1021 over position spread 2**-9 exceeds 1.8e308"
+    )
+
+
+def test_points_off_their_line_by_a_little_more_than_the_tolerance_are_accepted():
+    # Points ±e1, ±b e2 with b = 2**-19: J = Σ(|d|² 1 − d dᵀ) = diag(2b², 2, 2 + 2b²), so the
+    # eigenvalue ratio is b²/(1 + b²) = 2**-38 (1 − 2**-38) ≈ 1.64 COLLINEAR_RTOL
+    # (COLLINEAR_RTOL = 1e4 eps = 0.61·2**-38): accepted, and, every step being exact
+    # (diagonal J of powers of two), ω = (1, 2, 3) comes back exactly.
+    b = 2.0**-19
+    assert kin.COLLINEAR_RTOL < b**2 / (1 + b**2) < 2 * kin.COLLINEAR_RTOL
+    r = np.array([[1.0, 0, 0], [-1, 0, 0], [0, b, 0], [0, -b, 0]])
+    v = np.array([[0.0, 3, -2], [0, -3, 2], [-3 * b, 0, b], [3 * b, 0, -b]])  # ω × r
+    omega, v_c, residual = kin.rigid_velocity_from_points(r, v)
+    assert_array_equal(omega, _SPIN)
+    assert_array_equal(v_c, [0.0, 0.0, 0.0])
+    assert residual == 0.0
+
+
+def _points_with_ratio(y):
+    # Points ±x_j e1 (x = 2**24 − 1, 5791, 134, 13) and ±y e2: Σx² = 2(2**48 − 625) and
+    # Σy² = 2y², so J = diag(2y², Σx², Σx² + 2y²) exactly (integers below 2**53).
+    xs = (2**24 - 1, 5791, 134, 13)
+    assert sum(x * x for x in xs) == 2**48 - 625
+    pts = [[s * x, 0, 0] for x in xs for s in (1, -1)] + [[0, y, 0], [0, -y, 0]]
+    return np.array(pts, dtype=float)
+
+
+def test_the_collinearity_tolerance_refuses_a_ratio_equal_to_it():
+    # y = 25: 2y² = 1250, λ_max = 2**49 − 1250 + 1250 = 2**49, so the eigenvalue ratio is
+    # 1250/2**49 = 10000·2**-52 = COLLINEAR_RTOL exactly (1e4 eps, a power-of-two scaling
+    # of 10000): the documented bound is "> COLLINEAR_RTOL", so this set is refused.
+    assert Fraction(1250, 2**49) == Fraction(kin.COLLINEAR_RTOL)
+    r = _points_with_ratio(25)
+    with pytest.raises(
+        CollinearPointsError, match=r"spread matrix is 2\.22e-12 <= 2\.22e-12; the rotation"
+    ):
+        kin.rigid_velocity_from_points(r, np.zeros_like(r))
+    # y = 26: ratio 1352/(2**49 + 102) = 1.08 COLLINEAR_RTOL, accepted (at rest: ω = 0)
+    r = _points_with_ratio(26)
+    omega, _, _ = kin.rigid_velocity_from_points(r, np.zeros_like(r))
+    assert_array_equal(omega, [0.0, 0.0, 0.0])
+
+
+def test_the_collinear_message_states_the_condition():
+    r = [[0.0, 0, 0], [1, 1, 1], [2, 2, 2]]
+    with pytest.raises(CollinearPointsError) as info:
+        kin.rigid_velocity_from_points(r, np.zeros((3, 3)))
+    assert str(info.value).endswith("; the rotation about their line is undetermined")
