@@ -747,8 +747,8 @@ def test_gimbal_lock_is_refused_at_sin_theta_equal_to_the_tolerance_and_not_beyo
     for theta in (edge, -edge):
         with pytest.raises(GimbalLockError, match=rf"^theta = {re.escape(repr(theta))} gives"):
             kin.euler_rates_from_angular_velocity(theta, 0.0, [0.0, 1.0, 0.0])
-    # One float above, sin θ = θ again (the cubic term is 1e-47 of θ): accepted, and
-    # ψ̇ = (w1 sin φ + w2 cos φ)/sin θ = 1/θ for w = e2, φ = 0 (2.69 inverted).
+    # One float above, sin θ = θ again (θ³/6 is 1e-31 of θ, far below half an ulp): accepted,
+    # and ψ̇ = (w1 sin φ + w2 cos φ)/sin θ = 1/θ for w = e2, φ = 0 (2.69 inverted).
     above = np.nextafter(edge, 1.0)
     rates = kin.euler_rates_from_angular_velocity(above, 0.0, [0.0, 1.0, 0.0])
     assert rates[0] == 1.0 / above
