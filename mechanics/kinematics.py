@@ -301,12 +301,14 @@ def _minus_ratio(
     underflows where it is tiny.  So b/c = q 2**m with q = mant(b)/mant(c) in
     (1/2, 2), and both terms are brought to a common exponent e that leaves them
     below 1 (exact, save for parts below 2**−1074 of the larger term).  In the
-    normal range this rounds exactly as a − b/c.
+    normal range this rounds exactly as a − b/c.  A zero term has no exponent (frexp
+    gives 0): it takes the other term's, so that the other is not scaled away.
     """
     mb, kb = np.frexp(b)
     mc, kc = np.frexp(c)
     q, m = mb / mc, kb - kc
-    e = np.maximum(np.frexp(a)[1], m) + 1
+    ka = np.frexp(a)[1]
+    e = np.maximum(np.where(a == 0, m, ka), np.where(b == 0, ka, m)) + 1
     with np.errstate(over="ignore"):  # the caller checks
         out: npt.NDArray[np.float64] = np.ldexp(np.ldexp(a, -e) - np.ldexp(q, m - e), e)
         return out

@@ -806,25 +806,17 @@ def test_the_instantaneous_centre_overflow_message_states_the_condition():
             3 * TINY,
             0.25,
             id="subnormal-x-slow-spin",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="_minus_ratio takes frexp(0)'s exponent 0 for b/c = 0/ω, so it scales "
-                "x_A by 2**-2 into the subnormal range: 3·2**-1074 comes back as 4·2**-1074",
-            ),
         ),
         pytest.param(
             1e-200,
             1e-200,
             id="small-x-slow-spin",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="_minus_ratio takes frexp(0)'s exponent 0 for b/c = 0/ω = 0, m = −k(ω) "
-                "= 665, and scales x_A = 1e-200 by 2**-665 to 0: the centre comes back as 0",
-            ),
         ),
     ],
 )
 def test_the_centre_of_a_body_whose_point_A_is_at_rest_is_A_itself(x, omega_z):
+    # Found by the full mutation run of issue 35 (then a strict xfail): _minus_ratio took
+    # frexp(0)'s exponent 0 for a zero term and scaled the other term away.
     # (2.95) with v_A = 0: x_C = x_A − 0/ω, y_C = y_A + 0/ω, exactly (A has zero velocity).
     r_C = kin.instantaneous_centre_plane([x, -x], [0.0, 0.0], omega_z)
     assert_array_equal(r_C, [x, -x])
@@ -840,11 +832,6 @@ def test_the_centre_of_a_body_whose_point_A_is_at_rest_is_A_itself(x, omega_z):
             4,
             4.0,
             id="quotient-1-tiny",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="_minus_ratio takes frexp(0)'s exponent 0 for x_A = 0, so e = 1 and "
-                "ẏ/ω = 2**-1074 is formed as 2**-1075, which rounds (to even) to 0",
-            ),
         ),
     ],
 )
