@@ -337,6 +337,25 @@ _Z3 = [0.0, 0.0, 0.0]
             id="L-m_AP",
         ),
         pytest.param(
+            lambda: mp.moment_of_forces([[_H, 0, 0]], [[0, 1, 0]], about=[-_H, 0, 0]),
+            "the offsets r - about",
+            id="M-offsets",
+        ),
+        pytest.param(
+            lambda: mp.moment_of_inertia_about_axis(
+                [1.0], [[_H, 0, 0]], about=[-_H, 0, 0], axis=[0, 0, 1]
+            ),
+            "the offsets r - about",
+            id="J_z-offsets",
+        ),
+        pytest.param(
+            lambda: mp.angular_momentum_rate(
+                [1.0], [_Z3], [[_H, 0, 0]], [_Z3], about=_Z3, about_velocity=[-_H, 0, 0]
+            ),
+            "the offsets r - about_velocity",
+            id="Ldot-about_velocity",
+        ),
+        pytest.param(
             lambda: mp.angular_momentum([1.0], [[_B, 0, 0]], [[0, _B, 0]], about=_Z3),
             "the angular momentum",
             id="L",
@@ -1120,3 +1139,95 @@ def test_one_point_about_two_axes_gives_two_sets_of_cylindrical_coordinates():
     np.testing.assert_allclose(c.rho, [math.sqrt(5.0), math.sqrt(13.0)], rtol=EPS, atol=0)
     assert c.z.tolist() == [3.0, 1.0]
     assert c.zdot.tolist() == [0.0, 0.0]
+
+
+def test_masses_from_density_are_density_times_cell_volume():
+    # m_j = rho_j dV (the midpoint rule of (1.3)); dV = 0.25 is a power of two, so the
+    # products are exact: 1 * 0.25 and 3 * 0.25
+    assert mp.masses_from_density([1.0, 3.0], cell_volume=0.25).tolist() == [0.25, 0.75]
+
+
+# a system batched over (2, 3) with N = 4 particles, and a base point, velocity of the
+# base point and axis per element of the *inner* batch axis (shape (3, 3)): they broadcast
+# against the system's leading axes (2, 3) as the module's conventions say, so element
+# [i, j] is the unbatched result for configuration [i, j] with the point and axis j
+_BR = np.arange(2 * 3 * 4 * 3, dtype=float).reshape(2, 3, 4, 3) % 7 - 3.0
+_BV = np.arange(2 * 3 * 4 * 3, dtype=float).reshape(2, 3, 4, 3) % 5 - 2.0
+_BA = np.arange(2 * 3 * 4 * 3, dtype=float).reshape(2, 3, 4, 3) % 3 - 1.0
+_BM = np.array([1.0, 2.0, 0.5, 3.0])
+_PTS = np.array([[0.5, -1.0, 2.0], [1.0, 1.0, 1.0], [-2.0, 0.0, 3.0]])
+_PVS = np.array([[1.0, 0.0, -1.0], [0.0, 2.0, 0.0], [3.0, 1.0, 1.0]])
+_AXES = np.array([[0.0, 0.0, 1.0], [1.0, 2.0, 2.0], [0.0, 3.0, 4.0]])
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        pytest.param(lambda r, v, a, A, vA, e: mp.angular_momentum(_BM, r, v, about=A), id="L"),
+        pytest.param(
+            lambda r, v, a, A, vA, e: mp.angular_momentum(_BM, r, v, about=A, about_velocity=vA),
+            id="L-relative",
+        ),
+        pytest.param(
+            lambda r, v, a, A, vA, e: np.stack(
+                mp.angular_momentum_decomposition(_BM, r, v, about=A)
+            ),
+            id="L-decomposition",
+        ),
+        pytest.param(
+            lambda r, v, a, A, vA, e: mp.angular_momentum_rate(
+                _BM, r, v, a, about=A, about_velocity=vA
+            ),
+            id="Ldot",
+        ),
+        pytest.param(
+            lambda r, v, a, A, vA, e: mp.moving_base_point_term(_BM, v, about_velocity=vA),
+            id="v_B x p",
+        ),
+        pytest.param(
+            lambda r, v, a, A, vA, e: mp.moment_of_inertia_about_axis(_BM, r, about=A, axis=e),
+            id="J_z",
+        ),
+        pytest.param(
+            lambda r, v, a, A, vA, e: mp.average_angular_velocity(_BM, r, v, about=A, axis=e),
+            id="omega_av",
+        ),
+        pytest.param(lambda r, v, a, A, vA, e: mp.axial_component(r[..., 0, :], axis=e), id="x.e"),
+    ],
+)
+def test_a_point_and_axis_per_inner_batch_element_broadcast_against_the_system(call):
+    got = call(_BR, _BV, _BA, _PTS, _PVS, _AXES)
+    for i in range(2):
+        for j in range(3):
+            one = call(_BR[i, j], _BV[i, j], _BA[i, j], _PTS[j], _PVS[j], _AXES[j])
+            np.testing.assert_array_equal(got[..., i, j, :] if got.ndim == 4 else got[i, j], one)
+
+
+def test_one_system_about_a_batch_of_base_points_gives_one_result_per_point():
+    # an unbatched system (N = 4) about 3 points: the points' batch (3,) is the result's;
+    # L_A = L_O − OA × p (the connection formula (1.46)), here exact in integers
+    r, v = _BR[0, 0], _BV[0, 0]
+    L = mp.angular_momentum(_BM, r, v, about=_PTS)
+    p = (_BM[:, None] * v).sum(axis=0)
+    L_O = (_BM[:, None] * np.cross(r, v)).sum(axis=0)
+    np.testing.assert_array_equal(L, L_O - np.cross(_PTS, p))
+
+
+def test_a_particle_axis_longer_than_one_block_sums_every_block():
+    # one row of 2**16 + 3 particles: more than one block of _BLOCK_ELEMENTS (2**16), so
+    # the blocks' sums are added; unit masses with velocities 1 sum to N exactly
+    n = 2**16 + 3
+    assert mp.total_mass(np.ones(n)) == float(n)
+    v = np.zeros((n, 3))
+    v[:, 0] = 1.0
+    v[-1, 1] = 2.0  # only in the last (second) block
+    assert mp.momentum(np.ones(n), v).tolist() == [float(n), 2.0, 0.0]
+
+
+def test_the_compensated_helpers_return_inf_beyond_float64_whatever_the_callers_errstate():
+    # _dot (shared with mechanics.energy) and _sum promise inf where the exact sum is beyond
+    # float64 (1e200 * 1e200 = 1e400; 2 * 1.5e308 = 3e308), not a FloatingPointError
+    # under a caller's errstate(over="raise")
+    with np.errstate(over="raise"):
+        assert mp._dot(np.array([1e200, 1e200]), np.array([1e200, 1e200])) == math.inf
+        assert mp._sum(np.array([1.5e308, 1.5e308])) == math.inf
