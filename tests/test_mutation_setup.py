@@ -395,3 +395,13 @@ def test_a_copy_is_left_alone_by_a_report_and_forgets_only_what_a_change_invalid
     assert (work / "mutants").exists()
     run.prepare(["mechanics/a.py"], ["tests"])
     assert not (work / "mutants").exists()
+
+
+def test_every_row_of_the_table_has_the_heads_number_of_cells():
+    run = _run_module()
+    heads = run.TABLE_HEAD.splitlines()[0].count("|")
+    rows = run.scores_block(run.TABLES[0].read_text(encoding="utf-8")).splitlines()[3:]
+    empty = run.tally("mechanics/x.py", {}, {})
+    rows.append(run.table_row(empty, run.PlanRun(["mechanics/x.py"], None, None, (1, 2)), None))
+    assert rows
+    assert all(r.count("|") == heads for r in rows), [r for r in rows if r.count("|") != heads]

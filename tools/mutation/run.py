@@ -620,7 +620,7 @@ def table_row(t: Tally, run: PlanRun, commit: str | None) -> str:
     """The module's row of the table in docs/mutation.md."""
     total = t.mutants + t.unchecked
     if not total:
-        return f"| `{t.module}` | 0 | | | | | | no mutants (nothing to change) | |"
+        return f"| `{t.module}` | 0 | | | | no mutants (nothing to change) | | |"
     survived = len(t.open) + len(t.accepted)
     reg = f"`{commit[:9]}`" if commit else "uncommitted"
     if t.unchecked and run.sample is None:  # a full run still going (or stopped)
