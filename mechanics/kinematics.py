@@ -240,7 +240,8 @@ def instantaneous_axis(
     """The instantaneous axis of rotation (2.77).
 
     Domain: finite v_A, omega of shape (..., 3) with omega ≠ 0 (else ZeroAngularVelocityError); a
-    point beyond float64 (|ω| tiny against |v|) raises ResultOverflowError.
+    point beyond float64 (|ω| tiny against |v|), or an axial velocity v_C beyond it (|v_A|
+    near float64's limit), raises ResultOverflowError naming which.
 
     Returns
     -------
@@ -282,9 +283,14 @@ def instantaneous_axis(
     if bad.any():
         idx = _first_index(bad)
         vb, wb = np.broadcast_arrays(v, w)
+        what = (
+            "|AC| = |v_A x omega|/omega^2"
+            if not np.isfinite(r_AC[idx]).all()
+            else "|v_C| = |v_A . omega| |omega|/omega^2"
+        )
         raise ResultOverflowError(
             f"the instantaneous axis of v_A = {vb[idx].tolist()}, omega = {wb[idx].tolist()} "
-            f"(index {idx}) is beyond float64: |AC| = |v_A x omega|/omega^2 exceeds 1.8e308"
+            f"(index {idx}) is beyond float64: {what} exceeds 1.8e308"
         )
     return r_AC, v_C
 

@@ -779,11 +779,12 @@ def test_an_axial_velocity_beyond_float64_names_its_own_row():
     w = [[0.0, 0.0, 1.0], [1.0, 2.0, 0.0]]
     with pytest.raises(ResultOverflowError) as info:
         kin.instantaneous_axis(v, w)
-    msg = str(info.value)
-    assert msg.startswith(
+    # the message names what overflowed: v_C, not AC (it named |AC| before issue 35's
+    # third session, though |AC| = 3e307 is finite here)
+    assert str(info.value) == (
         "the instantaneous axis of v_A = [1.5e+308, 1.5e+308, 0.0], omega = [1.0, 2.0, 0.0] "
-        "(index (1,)) is beyond float64"
-    ), msg
+        "(index (1,)) is beyond float64: |v_C| = |v_A . omega| |omega|/omega^2 exceeds 1.8e308"
+    )
 
 
 def test_the_instantaneous_centre_overflow_message_states_the_condition():
@@ -962,3 +963,14 @@ def test_the_collinear_message_states_the_condition():
     with pytest.raises(CollinearPointsError) as info:
         kin.rigid_velocity_from_points(r, np.zeros((3, 3)))
     assert str(info.value).endswith("; the rotation about their line is undetermined")
+
+
+def test_an_axis_distance_beyond_float64_is_named_as_ac():
+    # v_A = 1e300 e_x, ω = 1e-10 e_z: AC = (ω × v_A)/ω² = 1e310 e_y is beyond float64,
+    # while v_C = (v_A·ω/ω²) ω = 0 is not: the message names |AC|
+    with pytest.raises(ResultOverflowError) as info:
+        kin.instantaneous_axis([1e300, 0.0, 0.0], [0.0, 0.0, 1e-10])
+    assert str(info.value) == (
+        "the instantaneous axis of v_A = [1e+300, 0.0, 0.0], omega = [0.0, 0.0, 1e-10] "
+        "(index ()) is beyond float64: |AC| = |v_A x omega|/omega^2 exceeds 1.8e308"
+    )
