@@ -9,7 +9,8 @@ of :data:`EPS`, take it from here too.
   magnitude, no branch: 6 operations, elementwise on arrays).
 - :func:`fast_two_sum`: the same in 3 operations where |a| ≥ |b| or a = 0 (Dekker).
 - :func:`split`: a = hi + lo exactly, hi with 26 significant bits (Veltkamp's
-  splitting with :data:`SPLITTER` = 2²⁷ + 1; |a| < 2⁹⁹⁶, else the product overflows).
+  splitting with :data:`SPLITTER` = 2²⁷ + 1; |a| < :data:`SPLIT_LIMIT` = 2⁹⁹⁶, else the
+  product overflows).
 - :func:`two_prod`: p + e = a b exactly, p = fl(a b) (Dekker's product from two splits;
   |a|, |b| < 2⁹⁹⁶ and no underflow of e, which the callers ensure by scaling).
 - :func:`two_prod_or_zero` (arrays) and :func:`two_prod_or_zero_scalar` (floats): the same
@@ -38,6 +39,7 @@ import numpy.typing as npt
 __all__ = [
     "EPS",
     "SPLITTER",
+    "SPLIT_LIMIT",
     "dd_add",
     "dd_add_float",
     "dd_div",
@@ -61,6 +63,9 @@ Pair: TypeAlias = tuple[Floats, Floats]
 EPS = float(np.finfo(np.float64).eps)
 #: Veltkamp's splitter for float64: 2²⁷ + 1
 SPLITTER = 2.0**27 + 1.0
+#: the magnitude below which :func:`split` (a product with :data:`SPLITTER`) cannot
+#: overflow: (2²⁷ + 1) 2⁹⁹⁶ < 2¹⁰²⁴; callers scale their operands below it
+SPLIT_LIMIT = 2.0**996
 
 
 def two_sum(a: Floats, b: Floats) -> Pair:

@@ -74,7 +74,7 @@ from typing import Any, NamedTuple, Self, cast
 import numpy as np
 import numpy.typing as npt
 
-from ._floats import EPS, Pair
+from ._floats import EPS, SPLIT_LIMIT, Pair
 from ._floats import dd_add_float as _dd_add_float
 from ._floats import dd_div as _dd_div
 from ._floats import dd_mul as _dd_mul
@@ -95,10 +95,6 @@ from .errors import (
     ZeroTotalMassError,
 )
 from .inertia import check_inertia
-
-#: Above this magnitude Dekker's split (a product with 2**27 + 1) of a double-double
-#: overflows (2**1024 / (2**27 + 1) ≈ 2**997); 2**960 leaves room for the low part.
-_SPLIT_SAFE = 2.0**960
 
 __all__ = [
     "DIRECT_ULPS",
@@ -651,10 +647,10 @@ def compression_restitution_impulses(
         out1 = np.ldexp(np.where(d.approach, s1[0] + s1[1], 0.0), k)
         # e S1 at full scale: in the scaled units a tiny e (down to the smallest normal)
         # would push the product into the subnormals and lose its digits there.  Dekker's
-        # split multiplies by 2**27 + 1, which overflows beyond ~2**996: a huge S1 is
-        # multiplied 2**64 lower and scaled back (powers of two: the same rounding)
+        # split overflows from SPLIT_LIMIT on: a huge S1 is multiplied 2**64 lower and
+        # scaled back (powers of two: the same rounding)
         hi, lo = np.ldexp(s1[0], k), np.ldexp(s1[1], k)
-        down = np.where(np.abs(hi) > _SPLIT_SAFE, -64, 0)
+        down = np.where(np.abs(hi) >= SPLIT_LIMIT, -64, 0)
         s2 = _dd_mul((np.ldexp(hi, down), np.ldexp(lo, down)), (d.e, np.zeros_like(d.e)))
         out2 = np.where(d.approach, np.ldexp(s2[0] + s2[1], -down), 0.0)
     out1 = _overflow(out1, "S_1")

@@ -284,9 +284,11 @@ def test_a_result_just_above_a_power_of_two_is_rounded_once(name, case):
 
 
 @pytest.mark.parametrize("e", [1.0, 0.5, 1 - 2.0**-53, 1e-300, 2.0**-1022])
-@pytest.mark.parametrize("dv", [1e299, 7e299, 1.4e300, 2.0**960 * 1.5, 1e305, 1.7e308])
+@pytest.mark.parametrize(
+    "dv", [1e299, 7e299, 2.0**996 * (1 - 2.0**-53), 2.0**996, 1.4e300, 1e305, 1.7e308]
+)
 def test_the_restitution_impulse_of_a_huge_compression_impulse_rounds_e_mu_dv_once(e, dv):
-    """S_2 = e μ Δẋ for |S_1| on both sides of 2**960, where the product with e is made
+    """S_2 = e μ Δẋ for |S_1| on both sides of SPLIT_LIMIT = 2**996 (and at it), where the product with e is made
     2**64 lower (Dekker's split overflowed above ~1.34e300 before, issue 35), against
     exact rationals: within the promised ulps, never a false overflow."""
     m1, m2, v1, v2 = 2.0, 2.0, dv, 0.0  # μ = 1, Δẋ = −dv: S_1 = −dv exactly
