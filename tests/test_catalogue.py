@@ -10,6 +10,8 @@ from pathlib import Path
 
 import pytest
 import sympy as sp
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from identities.verify import catalogue
 from identities.verify.catalogue import (
@@ -21,7 +23,7 @@ from identities.verify.catalogue import (
     load_all,
     run_check,
 )
-from identities.verify.proof import CheckFailure, Derivation, is_zero
+from identities.verify.proof import _EXACT, STRATEGIES, CheckFailure, Derivation, is_zero
 from identities.verify.render import render_checks_md
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -184,6 +186,58 @@ def test_probabilistic_evidence_is_labelled_as_such() -> None:
 )
 def test_strategies_reduce_exactly_the_zero_expressions(expr, strategy: str, zero: bool) -> None:
     assert is_zero(expr, strategy) is zero
+
+
+z = sp.Symbol("z")
+
+#: small polynomials in x, y, z with integer coefficients: the pieces of the rational
+#: functions below
+_POLYNOMIALS = st.builds(
+    lambda cs, es: sum(c * x**a * y**b * z**e for c, (a, b, e) in zip(cs, es, strict=False)),
+    st.lists(st.integers(-5, 5), min_size=1, max_size=4),
+    st.lists(st.tuples(*[st.integers(0, 3)] * 3), min_size=4, max_size=4),
+)
+
+
+@st.composite
+def _rational_differences(draw):
+    """A rational function written two ways, minus each other, plus a drawn remainder
+    that is zero about half the time: each strategy's zero and non-zero cases."""
+    a, b, c = draw(_POLYNOMIALS), draw(_POLYNOMIALS), draw(_POLYNOMIALS)
+    d = draw(_POLYNOMIALS.filter(lambda p: p != 0))
+    e = draw(_POLYNOMIALS.filter(lambda p: p != 0))
+    rest = draw(st.sampled_from([0, 0, x - y, sp.Rational(1, 3), 1 / (x + 2)]))
+    if draw(st.booleans()):  # a polynomial: a product against its expansion
+        return a * (b + c) - sp.expand(a * b + a * c) + sp.expand(rest * d)
+    return a / d + c / e - (a * e + c * d) / (d * e) + rest
+
+
+@settings(max_examples=60, deadline=None)
+@given(_rational_differences(), st.sampled_from(sorted(_EXACT)))
+def test_the_exact_zero_test_agrees_with_the_strategy_it_stands_for(expr, strategy) -> None:
+    """The ring arithmetic of ``is_zero`` decides exactly what the strategy decides."""
+    verdict = _EXACT[strategy](expr)
+    if verdict is not None:
+        assert verdict is (STRATEGIES[strategy](expr) == 0), (expr, strategy)
+
+
+@pytest.mark.parametrize(
+    ("expr", "zero"),
+    [
+        # not polynomials with rational coefficients: the strategy itself decides
+        ((sp.sqrt(2) * x + 1) ** 2 - (2 * x**2 + 2 * sp.sqrt(2) * x + 1), True),
+        (sp.sin(x) * (x + 1) - sp.sin(x) * x - sp.sin(x), True),
+        (sp.sqrt(x**2 + 1) * (x + 1) - sp.sqrt(x**2 + 1) * x - sp.sqrt(x**2 + 1), True),
+        (sp.I * x * (x + sp.I) - (sp.I * x**2 - x), True),
+        # binary floats stay floats: 0.1 + 0.2 - 0.3 is not 0 in float64
+        (sp.Float(0.1) * x + sp.Float(0.2) * x - sp.Float(0.3) * x, False),
+        (sp.Float(0.5) * x * (x + 1) - sp.Float(0.5) * x**2 - sp.Float(0.5) * x, True),
+    ],
+)
+def test_expressions_outside_the_ring_fall_back_to_the_strategy(expr, zero: bool) -> None:
+    assert _EXACT["expand"](expr) is None
+    assert is_zero(expr, "expand") is zero
+    assert is_zero(expr, "expand") is (sp.expand(expr) == 0)
 
 
 def test_registration_rejects_unknown_items_and_bad_ids() -> None:

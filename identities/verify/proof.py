@@ -34,6 +34,8 @@ from fractions import Fraction
 from typing import Any
 
 import sympy as sp
+from sympy.polys.polyerrors import CoercionFailed
+from sympy.polys.rings import ring
 
 __all__ = ["LABELS", "STRATEGIES", "CheckFailure", "Derivation", "Step", "is_zero"]
 
@@ -117,7 +119,61 @@ def is_zero(expr, strategy: str) -> bool:
     # the expression is algebraic in them, and it vanishes identically as a
     # function of t iff it vanishes for all independent values (at any t the
     # values f(t), f'(t), ... can be chosen freely).  This keeps cancel fast.
-    return all(reduce(_functions_to_symbols(e)) == 0 for e in _entries(expr))
+    exact = _EXACT.get(strategy)
+    for e in _entries(expr):
+        e = _functions_to_symbols(e)
+        verdict = exact(e) if exact is not None else None
+        if verdict is None:
+            verdict = reduce(e) == 0
+        if not verdict:
+            return False
+    return True
+
+
+def _polynomial(expr):
+    """``expr`` as an element of ℚ[x₁, …, xₙ] over its free symbols (sympy's sparse
+    polynomial ring), or None when it is not one: a non-integer power, a function, a
+    float, an irrational or complex constant, or no symbol at all."""
+    gens = sorted(expr.free_symbols, key=str)
+    if not gens or expr.atoms(sp.Float):
+        return None
+    try:
+        R, *_ = ring(gens, sp.QQ)
+        return R.from_expr(expr)
+    except (ValueError, CoercionFailed):
+        return None
+
+
+def _polynomial_zero(expr) -> bool | None:
+    """Is ``expr``, a polynomial with rational coefficients, the zero polynomial?  None
+    when it is not such a polynomial."""
+    if expr.is_Rational:
+        return expr == 0
+    p = _polynomial(expr)
+    return None if p is None else not p
+
+
+def _rational_zero(expr) -> bool | None:
+    """Is ``expr``, a rational function with rational coefficients, identically zero?
+    None when it is not one.  ``together`` writes it as N/D with D a non-zero
+    polynomial, so it vanishes iff N is the zero polynomial."""
+    if expr.atoms(sp.Float):
+        return None
+    return _polynomial_zero(sp.numer(sp.together(expr)))
+
+
+#: The same decision, made exactly and faster, for the strategies whose verdict on a
+#: polynomial or rational function with rational coefficients is "is it the zero
+#: polynomial / rational function": arithmetic in sympy's sparse polynomial ring
+#: instead of ``expand`` on expression trees (eq2.63's proof: 15 s → 0.6 s).
+#: ``None`` (not such an expression) falls back to the strategy itself; a test holds
+#: the two routes to the same verdict.
+_EXACT = {
+    "expand": _polynomial_zero,
+    "cancel": _rational_zero,
+    "together": _rational_zero,
+    "numerator": _rational_zero,
+}
 
 
 def _difference(lhs, rhs):
