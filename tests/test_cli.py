@@ -116,14 +116,32 @@ def test_timings_lists_the_slowest_checks_with_their_strategies(capsys) -> None:
     assert all("expand" in line and "proved (expand" in line for line in rows.values())
 
 
-def test_bench_quick_writes_the_study(tmp_path, capsys) -> None:
+def test_bench_runs_the_study_with_its_arguments_and_prints_its_summary(
+    tmp_path, capsys, monkeypatch
+) -> None:
+    """The command's wiring: what it passes to the study and what it prints.  The study
+    itself (its files, its figures, its power to fail) is tests/test_workprecision.py's."""
+    import bench.workprecision as wp
+
+    calls: list[dict] = []
+    study = {
+        "total_time_s": 1.5,
+        "headline": {
+            "targets": [{"status": "met", "name": "a target", "measured": 2.5, "goal": "≥ 2"}]
+        },
+    }
+
+    def run_study(**kwargs):
+        calls.append(kwargs)
+        return study
+
+    monkeypatch.setattr(wp, "run_study", run_study)
     assert main(["bench", "--quick", "--out", str(tmp_path)]) == 0
-    out = capsys.readouterr().out
-    assert "exact solution (one evaluation) / scipy DOP853's time" in out  # a target row
-    assert out.count("(goal ") >= 4  # every target with its goal
-    study = json.loads((tmp_path / "workprecision.json").read_text())
-    assert study["quick"] is True
-    assert {"free_top", "heavy_top", "pendulum"} <= set(study["problems"])
-    for name in ("workprecision.md", "workprecision.png", "energy_drift.png"):
-        assert (tmp_path / name).stat().st_size > 0
+    assert calls == [dict(quick=True, out_dir=tmp_path, repeats=1, progress=True)]
+    assert capsys.readouterr().out.splitlines() == wp.summary_lines(study, str(tmp_path))
+    assert main(["bench", "--out", str(tmp_path), "--repeats", "2"]) == 0
+    assert calls[-1] == dict(quick=False, out_dir=tmp_path, repeats=2, progress=True)
+    capsys.readouterr()
     assert main(["bench", "--quick", "--repeats", "0", "--out", str(tmp_path)]) == 2
+    assert "--repeats must be at least 1; got 0" in capsys.readouterr().err
+    assert len(calls) == 2, "a refused command runs nothing"

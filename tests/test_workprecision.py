@@ -9,6 +9,8 @@ moment of inertia) goes through the same pipeline and must show a large error.
 
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import math
 import struct
@@ -76,8 +78,11 @@ def quick_run(tmp_path_factory):
         # loaded machine (the suite in parallel, two cores) a method could stop after one
         # run and its convergence go unchecked; these tests check results, not speed
         mp.setitem(wp.BUDGET_S, True, 10 * wp.BUDGET_S[True])
-        rc = wp.main_bench(["--quick", "--out", str(out), "--repeats", "1"])
+        printed = io.StringIO()
+        with contextlib.redirect_stdout(printed):
+            rc = wp.main_bench(["--quick", "--out", str(out), "--repeats", "1"])
     data = json.loads((out / "workprecision.json").read_text(encoding="utf-8"))
+    data["printed"] = printed.getvalue()
     return rc, out, data
 
 
@@ -99,6 +104,17 @@ def test_quick_bench_writes_the_four_outputs(quick_run):
         w, h = _png_size(out / name)
         assert w >= 300, (name, w, h)
         assert h >= 200, (name, w, h)
+
+
+def test_the_summary_prints_every_target_with_its_goal(quick_run):
+    _, out, d = quick_run
+    lines = d["printed"].splitlines()
+    assert lines[0].startswith(f"wrote {out}/workprecision.")
+    assert "exact solution (one evaluation) / scipy DOP853's time" in d["printed"]
+    targets = d["headline"]["targets"]
+    assert len(targets) >= 4
+    for t in targets:  # one line per target: status, name, goal
+        assert any(t["name"] in line and f"(goal {t['goal']})" in line for line in lines), t
 
 
 def test_json_schema_has_every_problem_and_method(quick_run):
