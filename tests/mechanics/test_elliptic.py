@@ -592,3 +592,115 @@ def test_an_amplitude_on_the_edge_of_the_real_domain_is_accepted_for_m_above_one
     got = el.ellipf(phi, m)
     assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * want
     assert np.isfinite(el.ellippi(0.3, phi, m))
+
+
+# ------------------------------------------------ edges of the domains and of float64
+@pytest.mark.parametrize(
+    ("call", "message"),
+    [
+        # m1 is named in its own refusal (not "m", not another name)
+        (lambda: el.ellipj(1.0, 0.5, m1=np.nan), "m1 must be finite; found nan at index ()"),
+        (lambda: el.ellipk(0.5, m1=[0.5, np.inf]), "m1 must be finite; found inf at index (1,)"),
+        # the batch's offending element is the one beyond its own tolerance: m = −1e10 with
+        # m1 = 1e10 + 1 is exact (its tolerance, 8 eps · 1e10 ≈ 1.8e-5, is the larger), the
+        # second pair is 1e-10 off where 8 eps ≈ 1.8e-15 is allowed
+        (
+            lambda: el.ellipk([-1e10, 0.5], m1=[1e10 + 1.0, 0.5 + 1e-10]),
+            "m1 must equal 1 − m to rounding; got m = 0.5, m1 = 0.5000000001 (m + m1 − 1 = 1e-10)",
+        ),
+        # m = 1 is inside the domain: the message names the first m > 1, not the first m ≥ 1
+        (lambda: el.ellipk([1.0, 2.0]), "ellipk needs m ≤ 1; got m = 2.0"),
+        (lambda: el.ellipe([1.0, 3.0]), "ellipe needs m ≤ 1; got m = 3.0"),
+        # n sin²φ = 1 exactly (sin(fl(π/2)) rounds to 1): the integrand's pole, refused
+        (
+            lambda: el.ellippi(1.0, np.pi / 2, 0.3),
+            "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
+            "got n = 1.0",
+        ),
+    ],
+)
+def test_refusals_at_the_edges_name_the_right_parameter_and_element(call, message):
+    with pytest.raises((OutOfDomainError, NonFiniteError)) as info:
+        call()
+    assert str(info.value) == message
+
+
+def test_the_m1_tolerance_scales_with_the_size_of_m():
+    # "m1 = 1 − m to rounding": within 8 eps · max(1, |m|, |m1|). At m = −1000, m1 = 1001:
+    # 8 eps · 1001 = 15.6 ulps of 1001 (ulp = 2⁻⁴³), so 15 ulps off is accepted, 16 refused
+    ulp = math.ulp(1001.0)
+    assert 15 * ulp <= 8 * EPS * 1001 < 16 * ulp
+    with mpmath.workdps(40):
+        want = mpmath.ellipk(1 - (mpmath.mpf(1001) + 15 * mpmath.mpf(ulp)))
+    got = el.ellipk(-1000.0, m1=1001.0 + 15 * ulp)
+    assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * want
+    with pytest.raises(OutOfDomainError, match=r"m1 must equal 1 − m to rounding"):
+        el.ellipk(-1000.0, m1=1001.0 + 16 * ulp)
+
+
+@pytest.mark.parametrize("u", [0.3, -1.2, 1.5])
+@pytest.mark.parametrize("n", [-2.0, 0.5])
+def test_ellippi_jacobi_at_m_zero_is_the_elementary_integral(u, n):
+    # m = 0 is inside the domain 0 ≤ m ≤ 1: sn = sin, and for |u| < π/2
+    # ∫₀^u dv/(1 − n sin²v) = atan(√(1 − n) tan u)/√(1 − n) (substitute t = tan v)
+    with mpmath.workdps(40):
+        k = mpmath.sqrt(1 - mpmath.mpf(n))
+        want = mpmath.atan(k * mpmath.tan(mpmath.mpf(u))) / k
+    got = el.ellippi_jacobi(u, n, 0.0)
+    assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * abs(want)
+
+
+@pytest.mark.parametrize("u", [400.0, -500.0, 700.0])
+def test_ellipj_at_m_one_where_sech_squared_underflows_is_quiet_and_hyperbolic(u):
+    # m = 1, 373 ≲ |u| < 710: sech u (~1e-162 … 1e-305) is a normal float but sech²u underflows,
+    # so dn = √(m1 + m cn²) is 0 and the unused branch cn/dn divides by zero: no warning (the
+    # suite turns one into an error), sn = tanh u, cn = sech u to the stated accuracy
+    sn, cn, _, am = el.ellipj(u, 1.0)
+    with mpmath.workdps(40):
+        sech = mpmath.sech(mpmath.mpf(u))
+        # the conditioned error scale of cn: eps (|cn| + |u cn'|), cn' = −sn dn = −tanh·sech
+        scale = EPS * (sech + abs(u) * sech)
+    assert float(sn) == math.copysign(1.0, u)
+    assert abs(mpmath.mpf(float(cn)) - sech) <= el.ELLIPJ_EPS * scale
+    assert float(am) == pytest.approx(math.copysign(math.pi / 2, u), rel=4 * EPS)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="library bug: at m = 1 (m1 = 0) dn = √(m1 + m cn²) underflows to 0 for |u| ≳ 373 "
+    "(sech²u below float64's range) though dn = sech u is a normal float there; "
+    "error ~1e13 eps against the promised 64",
+)
+def test_dn_at_m_one_is_sech_where_sech_squared_underflows():
+    # DLMF 22.5.ii: at m = 1, cn = dn = sech u (the docstring of ellipj says so)
+    u = 500.0
+    _, cn, dn, _ = el.ellipj(u, 1.0)
+    with mpmath.workdps(40):
+        sech = mpmath.sech(mpmath.mpf(u))
+    assert abs(mpmath.mpf(float(dn)) - sech) <= el.ELLIPJ_EPS * EPS * (1 + u) * sech
+    assert float(dn) == float(cn)
+
+
+def test_third_kind_at_n_zero_is_the_first_kind_where_scipys_rj_fails():
+    # Π(0; φ|m) = F(φ|m) and ∫₀^u dv = u (n = 0), also where the R_J of the tail is not
+    # finite and only its factor n = 0 makes the tail 0:
+    # - m = −1e300, beyond |φ| = π/2: the complete tail's R_J(0, 1e300, 1, 1) is NaN in scipy;
+    # - m1 = 5e-324 at u = 373, just below K ≈ 373.6: cn² and dn² underflow, R_J(0, 0, 1, 1) = inf
+    for phi in (2.0, 4.0, -7.0):
+        assert el.ellippi(0.0, phi, -1e300) == el.ellipf(phi, -1e300)
+    assert el.ellippi_jacobi(373.0, 0.0, 1.0, m1=5e-324) == 373.0
+    assert el.ellippi_jacobi(-373.0, 0.0, 1.0, m1=1e-320) == -373.0
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="library bug: for m ≪ −1 beyond |φ| = π/2 the complete tail Π(n|m) − K calls scipy's "
+    "elliprj(0, m1, 1, 1 − n) unscaled, which is NaN for m1 ~ 1e200 and beyond, so a finite "
+    "Π(n; φ|m) is refused as an overflow (the incomplete tail scales R_J's arguments; this one "
+    "does not)",
+)
+def test_ellippi_of_a_hugely_negative_parameter_beyond_a_quarter_turn_is_finite():
+    with mpmath.workdps(40):
+        want = mpmath.ellippi(0.5, 4.0, -1e300)  # 1.0413e-147
+    got = el.ellippi(0.5, 4.0, -1e300)
+    assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * abs(want)

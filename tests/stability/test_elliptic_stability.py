@@ -41,6 +41,7 @@ from hypothesis import strategies as st
 from mechanics import _floats
 from mechanics import elliptic as el
 from mechanics._floats import EPS
+from mechanics.errors import OutOfDomainError
 
 TINY = 2.0**-1022
 DATA = Path(__file__).resolve().parent.parent / "data" / "elliptic_reference.json"
@@ -261,6 +262,10 @@ ASINH_CASES = [
     (2e-149, 390.0),
     (1e-300, 351.0),
     (0.0, 400.0),
+    # log y = 40.5, between the huge branch's switch (40) and 41: log y + log 2 there
+    (3.5e-139, 360.0),
+    # log y ≈ 799, beyond exp's range (709.8): only the huge branch can evaluate it
+    (0.5, 800.0),
 ]
 
 
@@ -328,6 +333,10 @@ AGM_CASES = [
     # y_max where the growth e^{2ⁿ a_n y_max} decides between 5 and 6 steps (2 bits of margin)
     (0.625, 0.375, True, 0.325),
     (0.75, 0.25, True, 0.575),
+    # p1 = 2⁻¹⁰⁷²: a₁ = 1 and c₁ = p1/4 = 2⁻¹⁰⁷⁴ (the smallest subnormal), and 2 a₁ y_max = 800
+    # caps the growth at e^700: 2⁻¹⁰⁷⁴ e^700 = 5.0e-20 < 2⁻⁶⁴ = 5.4e-20 stops after one step
+    # (e^701 would not)
+    (1.0, 2.0**-1072, True, 400.0),
 ]
 
 
@@ -371,6 +380,24 @@ def test_agm_ratios_of_mixed_parameters_are_each_parameters_own():
                 abs(mpmath.mpf(float(r[i])) - refs[n - 1])
                 <= AGM_RATIO_EPS * 2**n * EPS * refs[n - 1] + TINY
             ), (case, n)
+
+
+@pytest.mark.parametrize("ymax", [0.0, 1.0, 300.0])
+def test_agm_stopping_rule_at_its_threshold_in_trigonometric_form(ymax):
+    # the trigonometric form has no growth factor (|sin φ_n| ≤ 1), whatever y_max is, and a
+    # ratio stops the iteration only when strictly below 2⁻⁶⁴. By hand, with p1 = 1 (the
+    # rounded complement of a tiny p): a₁ = (1 + √1)/2 = 1, b₁ = 1, c₁ = c₀²/(4 a₁) = p/4.
+    # p = 2⁻⁶²: c₀ = 2⁻³¹ and c₁ = 2⁻⁶⁴ exactly, not below: a second step, c₂ = 2⁻¹³⁰
+    # (the exact ratio (1 − √(1 − p))/(1 + √(1 − p)) is above 2⁻⁶⁴ too)
+    # p = 1.5 · 2⁻⁶³: c₁ ≈ 1.5 · 2⁻⁶⁵ (two roundings), below 2⁻⁶⁴: one step
+    cases = [(2.0**-62, [2.0**-64, 2.0**-130]), (1.5 * 2.0**-63, [1.5 * 2.0**-65])]
+    for p, want in cases:
+        a, ratios = el._agm_ratios_scalar(p, 1.0, False, ymax)
+        aa, rr = el._agm_ratios(np.full(3, p), np.full(3, 1.0), False, ymax)
+        for got_a, got in ((a, ratios), (aa, rr)):
+            assert got_a == 1.0
+            assert len(got) == len(want), (p, ymax, got)
+            np.testing.assert_allclose(np.array(got, dtype=float), want, rtol=4 * EPS)
 
 
 def _scalar_kernel_args(p, p1):
@@ -514,13 +541,32 @@ def test_rj_is_accurate_where_both_first_arguments_are_tiny(x, y, p):
         assert abs(mpmath.mpf(g) - ref) <= RJ_EPS * EPS * abs(ref), (g, ref)
 
 
+@pytest.mark.xfail(
+    strict=True,
+    reason="library bug: scipy's elliprj(x, y, 1, p) is inf when one of x, y is 0 and the other "
+    "below ~2e-308 (mpmath: ~2.1e3), and _rj/_rj_scalar send it there (the duplication step is "
+    "taken only where both are positive); cn² underflowing to 0 beside a subnormal dn² reaches "
+    "it (test_third_kind_in_jacobis_form_just_below_k_at_the_smallest_m1)",
+)
+@pytest.mark.parametrize("kernel", ["array", "scalar"])
+@pytest.mark.parametrize(("x", "y"), [(0.0, 1e-310), (1e-310, 0.0)])
+def test_rj_with_a_zero_beside_a_subnormal_first_argument(x, y, kernel):
+    p = 0.5
+    ref = mpmath.elliprj(x, y, 1, p)
+    got = el._rj(x, y, 1.0, p) if kernel == "array" else el._rj_scalar(x, y, 1.0, p)
+    assert abs(mpmath.mpf(float(got)) - ref) <= RJ_EPS * EPS * abs(ref), (float(got), ref)
+
+
 def test_the_duplication_step_agrees_with_scipys_rj_where_scipy_is_accurate():
     # the identity R_J = 2 R_J(x + λ, ...) + 3 R_C(α², β²) checked at ordinary arguments
     # (a wrong λ, α or β, or a wrong factor 2 or 3, is far off here)
-    x, y, z, p = np.array([0.3, 1e-3, 2.0]), np.array([0.7, 0.5, 3.0]), 1.0, 0.4
-    ref = np.array([float(mpmath.elliprj(a, b, z, p)) for a, b in zip(x, y, strict=True)])
-    got = el._rj_duplicated(x, y, z, p)
-    np.testing.assert_allclose(got, ref, rtol=RJ_EPS * EPS, atol=0)
+    # (a wrong λ, α or β, or a wrong factor 2 or 3, is far off here), also with z ≠ 1, where
+    # √z = 1 no longer hides a √z put in the wrong place
+    for z in (1.0, 4.0, 0.3):
+        x, y, p = np.array([0.3, 1e-3, 2.0]), np.array([0.7, 0.5, 3.0]), 0.4
+        ref = np.array([float(mpmath.elliprj(a, b, z, p)) for a, b in zip(x, y, strict=True)])
+        got = el._rj_duplicated(x, y, z, p)
+        np.testing.assert_allclose(got, ref, rtol=RJ_EPS * EPS, atol=0)
 
 
 @pytest.mark.parametrize("n", [-3.0, 0.5])
@@ -562,3 +608,57 @@ def test_ellipj_of_one_float_near_float64s_limit_is_finite_and_on_the_unit_circl
     assert all(math.isfinite(x) for x in (sn, cn, dn))
     assert abs(sn * sn + cn * cn - 1.0) <= 4 * EPS
     assert abs(dn * dn + p * sn * sn - 1.0) <= 4 * EPS
+
+
+def test_the_kernels_are_quiet_on_their_own_at_the_edges_of_float64():
+    # the kernels are called outside ellipj's error state too (ellippi_jacobi, the free top),
+    # so each keeps its own numpy warnings off (the suite turns a warning into an error):
+    # m = 1 (K = inf) at |u| ≥ 710, where cosh overflows and the unused flipped quarter
+    # divides 0 by 0
+    j, s, snx, cnx, dnx, K = el._reduced(np.array([800.0, -900.0]), np.ones(2), np.zeros(2))
+    assert K.tolist() == [np.inf, np.inf]
+    assert (j == 0).all()
+    assert s.tolist() == [1.0, -1.0]
+    assert snx.tolist() == [1.0, 1.0]  # tanh
+    assert cnx.tolist() == [0.0, 0.0]  # sech, below the smallest subnormal
+    assert dnx.tolist() == [0.0, 0.0]  # dn = sech too at m = 1
+    # the modulus transformation's scale overflows: a specific error, not a numpy warning
+    with pytest.raises(OutOfDomainError, match=r"got u = 1e\+300 with scale 1e\+150"):
+        el._scaled(np.array([1.0, 1e300]), np.array([1e150, 1e150]))
+    # G(u) ~ u n/(1 − n) beyond float64 for u = 1.7e308: not finite, quietly (the caller raises)
+    one = np.ones(1)
+    g = el._third_kind_excess(1.7e308 * one, 0.9 * one, 0.5 * one, 0.5 * one)
+    assert not np.isfinite(g).any()
+
+
+def test_ellippi_jacobi_takes_m1_as_authoritative_near_the_separatrix():
+    # m = 1.0 as a float with m1 = 1e-300 given: K ≈ 346.8 is finite, and beyond it sn leaves
+    # tanh (at u = 2.3 K, sn ≈ −0.8 where tanh ≈ 1): the integral is the one of m = 1 − 1e-300,
+    # far from the separatrix's closed form
+    p1 = 1e-300
+    K, _ = _scalar_kernel_args(1.0, p1)
+    for u, n in ((2.3 * K, -3.0), (-1.3 * K, 0.5)):
+        ref, _ = _third_kind_reference(u, n, p1)
+        got = float(el.ellippi_jacobi(u, n, 1.0, m1=p1)) - u
+        scale = abs(ref) + abs(u * n / (1 - n))
+        assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (u, n, got, ref)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="library bug: just below K at m1 = 5e-324, cn² underflows to 0 and dn² is subnormal; "
+    "_rj sends R_J(0, dn², 1, p) to scipy (its duplication step needs both x, y > 0), whose "
+    "elliprj(0, 5e-324, 1, 0.5) is inf (mpmath: 2234.2), so a finite integral is refused as "
+    "an overflow (and the one-float kernel returns inf)",
+)
+def test_third_kind_in_jacobis_form_just_below_k_at_the_smallest_m1():
+    # the one-float kernel of the free top takes the same route (_rj_scalar): inf there
+    p1 = 5e-324
+    u, n = 373.0, 0.5  # K ≈ 373.6: the flipped quarter
+    K, trig = _scalar_kernel_args(1.0, p1)
+    ref, full = _third_kind_reference(u, n, p1)
+    scale = abs(ref) + abs(u * n / (1 - n))
+    got_scalar = el._third_kind_excess_scalar(u, n, 1.0, p1, K, trig, float(full))
+    assert abs(mpmath.mpf(got_scalar) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got_scalar,)
+    got = float(el.ellippi_jacobi(u, n, 1.0, m1=p1)) - u
+    assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
