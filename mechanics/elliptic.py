@@ -184,7 +184,9 @@ def _core(y, p, p1):
             with np.errstate(over="ignore"):
                 s_ = np.tanh(phi)
                 c_ = 1.0 / np.cosh(phi)
-            d_ = np.sqrt(qq + pp * c_ * c_)
+            # √(m1 + m cn²) as a hypotenuse: cn² underflows for cn below ~1e-154 (at
+            # m = 1, |u| ≳ 355) while dn = √m |cn| is still a normal float
+            d_ = np.hypot(np.sqrt(qq), np.sqrt(pp) * c_)
         else:
             for r in reversed(ratios):
                 phi = 0.5 * (phi + np.arcsin(r * np.sin(phi)))
@@ -653,7 +655,7 @@ def _core_scalar(y: float, p: float, p1: float, trig_agm):
         phi = 0.5 * (phi + _asinh_r_sinh_scalar(r, phi))
     s_ = math.tanh(phi)
     c_ = 1.0 / math.cosh(phi) if phi < 710.0 else 0.0
-    return s_, c_, math.sqrt(p1 + p * c_ * c_)
+    return s_, c_, math.hypot(math.sqrt(p1), math.sqrt(p) * c_)  # see _core
 
 
 def _reduced_scalar(u: float, p: float, p1: float, K: float, trig_agm):
