@@ -40,6 +40,22 @@ from mechanics.integrators import _compiled as compiled_path
 from mechanics.strategies.inertia import principal_moments
 from mechanics.strategies.rotation import rotation_matrices
 
+#: a test of the compiled path fails if the compiled path did not run: a kernel that
+#: raises makes the integrators fall back to the reference path with a
+#: CompiledPathWarning (same results), which would let "compiled equals reference" pass
+#: without the compiled path (the two tests of the fallback itself catch the warning)
+pytestmark = pytest.mark.filterwarnings("error::mechanics.integrators.CompiledPathWarning")
+
+
+@pytest.fixture(autouse=True)
+def _compiled_path_not_given_up(monkeypatch):
+    """Each test starts with the compiled path loadable, whatever ran before it in the
+    process: a kernel that raised earlier (a test of the fallback, or under mutation
+    mutmut's forced-failure run in the process its mutants fork from) gives the path
+    up for the whole process, and every later "compiled" run would be the reference."""
+    monkeypatch.setattr(compiled_path, "_KERNELS", None)
+
+
 J_TOP = np.array([1.0, 2.0, 3.0])
 W_TOP = np.array([0.4, 0.2, 1.0])
 
