@@ -818,3 +818,57 @@ def test_a_motion_within_float64s_reach_of_the_separatrix_is_refused_with_the_re
         "underflows float64 (the transverse components are below ~1e-150 of |ω|); set them "
         "to zero for the steady rotation or scale them up"
     )
+
+
+# -- HeavySymmetricTop: construction and validation (mutation review) --
+
+
+def test_heavy_top_triangle_inequality_edge_and_message():
+    # J_3 = 2 J_1 exactly is allowed (a flat disc's limit, J_3 ≤ J_1 + J_2 = 2 J_1);
+    # one ulp above is refused, the message naming both values
+    tops.HeavySymmetricTop(1.0, 2.0, 1.0, theta=0.5)
+    over = math.nextafter(2.0, 3.0)
+    with pytest.raises(NonPhysicalInertiaError) as e:
+        tops.HeavySymmetricTop(1.0, over, 1.0, theta=0.5)
+    assert str(e.value).startswith(f"J_3 = {over!r} exceeds 2 J_1 = 2.0: ")
+
+
+def test_heavy_top_ratio_underflow_message():
+    # m g ℓ = 1e-310 against J_1 = 1: ratio 1e-310 below float64's normal range (2.2e-308)
+    with pytest.raises(OutOfDomainError) as e:
+        tops.HeavySymmetricTop(1.0, 1.0, 1e-310, theta=0.5)
+    assert str(e.value).startswith(
+        "m_g_ell = 1e-310 is below 1e-308 of the largest of J_1, J_3, m_g_ell (1.0): "
+    )
+
+
+def test_heavy_top_angle_shape_and_domain_messages():
+    with pytest.raises(ShapeError, match=r"^psi_dot must be a scalar; got shape \(2,\)$"):
+        tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=0.5, psi_dot=[1.0, 2.0])
+    # the closed interval [0, π]: both ends accepted, one ulp outside refused
+    tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=0.0)
+    tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=math.pi)
+    bad = math.nextafter(math.pi, 4.0)
+    with pytest.raises(OutOfDomainError, match=r"^theta must lie in \[0, π\]; got "):
+        tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=bad)
+
+
+def test_heavy_top_conserved_quantities_by_hand():
+    # J_1 = 2, J_3 = 1, m g ℓ = 3, θ = π/2, ψ' = 1, φ' = 4, θ' = 0; u0 = cos θ ≈ 6e-17
+    # (float π/2), within the tolerance of 0, so the book's formulas at u0 = 0, S = 1:
+    # L3 = J3 (ψ' u0 + φ') = 4; Lz = J1 S² ψ' + L3 u0 = 2;
+    # E = ½ J1 (θ'² + ψ'² S²) + L3²/(2 J3) + m g ℓ u0 = 1 + 8 + 0 = 9
+    t = tops.HeavySymmetricTop(2.0, 1.0, 3.0, theta=math.pi / 2, psi_dot=1.0, phi_dot=4.0)
+    tol = 8 * EPS * 10  # a few roundings of terms of size ≤ 10
+    assert abs(t.L_3 - 4.0) <= tol
+    assert abs(t.L_z - 2.0) <= tol
+    assert abs(t.energy - 9.0) <= tol
+    assert t.sleeping is False
+
+
+def test_heavy_top_sleeping_and_gimbal_lock():
+    t = tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=0.0, phi_dot=5.0)
+    assert t.sleeping is True
+    assert t.roots == (1.0, 1.0, math.inf)
+    with pytest.raises(GimbalLockError, match=r"^theta = 0 or π with theta_dot ≠ 0: "):
+        tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=0.0, theta_dot=0.1)
