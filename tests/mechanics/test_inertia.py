@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 
 import numpy as np
 import pytest
@@ -998,3 +999,290 @@ def test_four_particles_of_a_mass_near_float64s_limit_keep_their_distances():
     _, r = I.four_particle_realisation(1e308, J)
     _, r_1 = I.four_particle_realisation(1.0, J)
     np.testing.assert_allclose(r * 1e154, r_1, rtol=4 * EPS, atol=0)
+
+
+# ------------------------------ the edges of check_inertia's tolerance, names in messages
+
+#: INERTIA_ATOL of a tensor whose largest moment is 0.75: 64 eps · 0.75 = 3·2⁻⁴⁸, exact.
+#: Every tensor below has largest entry 0.75 (so check_inertia's power-of-two scaling is
+#: the identity) and moments a hand can read off: a diagonal tensor's are its entries
+#: (LAPACK's tridiagonal solver splits at the zero off-diagonals and returns them exactly),
+#: and a 2×2 block [[a, δ/2], [δ/2, a]] decoupled from 0.75 leaves 0.75 untouched.
+_EDGE = 64 * EPS * 0.75
+_BEYOND = np.nextafter(_EDGE, 1.0)  # the next float above the edge
+
+
+def _asym(delta: float) -> np.ndarray:
+    J = np.diag([0.5, 0.5, 0.75])
+    J[0, 1] = delta  # |J − Jᵀ| = delta exactly; largest moment 0.75
+    return J
+
+
+@pytest.mark.parametrize(
+    ("J", "allow_singular", "refusal"),
+    [
+        # 'by more than INERTIA_ATOL of the largest moment': the edge itself is accepted
+        pytest.param(_asym(_EDGE), False, None, id="asymmetry-at-edge"),
+        pytest.param(_asym(_BEYOND), False, "is not symmetric", id="asymmetry-beyond"),
+        # J1 = −tol, and J1 + J2 − J3 = −tol too: both at the edge of semidefinite
+        pytest.param(np.diag([-_EDGE, 0.75, 0.75]), True, None, id="negative-J1-at-edge"),
+        # one ulp below −tol; J1 + J2 rounds back to 0.75 − tol, so only J1 says no
+        pytest.param(
+            np.diag([-_BEYOND, 0.75, 0.75]), True, "is not positive semidefinite", id="J1-beyond"
+        ),
+        # positive definite: J1 at the tolerance is 'zero to rounding'; one ulp more is not
+        pytest.param(
+            np.diag([_EDGE, 0.75, 0.75]), False, "is not positive definite", id="J1-at-tol"
+        ),
+        pytest.param(np.diag([_BEYOND, 0.75, 0.75]), False, None, id="J1-above-tol"),
+        # J1 + J2 − J3 = 0.25 + (0.5 − tol) − 0.75 = −tol exactly: accepted ...
+        pytest.param(np.diag([0.25, 0.5 - _EDGE, 0.75]), False, None, id="triangle-at-edge"),
+        # ... and 2⁻⁵³ (one ulp of 0.75 − tol) further: refused
+        pytest.param(
+            np.diag([0.25, 0.5 - _EDGE - 2.0**-53, 0.75]),
+            False,
+            "breaks the triangle inequality",
+            id="triangle-beyond",
+        ),
+        # J1 < J2: the sum is J1 + J2, not 2 J2 (2 + 2 > 3.5 > 1 + 2)
+        pytest.param(
+            np.diag([1.0, 2.0, 3.5]), False, "breaks the triangle inequality", id="triangle-J1<J2"
+        ),
+        pytest.param(
+            np.diag([-1.0, 2.0, 2.0]), True, "is not positive semidefinite", id="negative-J1"
+        ),
+    ],
+)
+def test_check_inertia_and_is_physical_inertia_agree_at_the_edges_of_the_tolerance(
+    J, allow_singular, refusal
+):
+    assert bool(I.is_physical_inertia(J, allow_singular=allow_singular)) is (refusal is None)
+    if refusal is None:
+        np.testing.assert_array_equal(I.check_inertia(J, allow_singular=allow_singular), J)
+    else:
+        with pytest.raises(NonPhysicalInertiaError, match=f"^J {refusal}"):
+            I.check_inertia(J, allow_singular=allow_singular)
+
+
+def test_the_singular_refusal_ends_with_its_remedy():
+    with pytest.raises(
+        NonPhysicalInertiaError,
+        match=r"an ideal line mass or point has this: pass allow_singular=True to accept it$",
+    ):
+        I.check_inertia(I.rod(12.0, 1.0))
+
+
+def test_an_empty_batch_of_tensors_is_checked_and_rotated_to_an_empty_batch():
+    empty = np.zeros((0, 3, 3))
+    for allow_singular in (False, True):
+        out = I.check_inertia(empty, allow_singular=allow_singular)
+        assert out.shape == (0, 3, 3)
+    assert I.is_physical_inertia(empty).shape == (0,)
+    assert I.rotate_inertia(empty, np.eye(3)).shape == (0, 3, 3)
+
+
+def test_rotate_inertia_judges_symmetry_against_each_tensors_own_size():
+    # a 1e6 tensor next to a tensor of size 2 that is asymmetric by 1e-12, i.e. 2e3 eps of
+    # its size: refused at index 1, although 1e-12 is far below 64 eps of 1e6
+    lopsided = 2.0 * np.eye(3)
+    lopsided[0, 1] += 1e-12
+    batch = np.array([1e6 * np.eye(3), lopsided])
+    with pytest.raises(
+        NonPhysicalInertiaError, match=r"^J_A is not symmetric: .*\(index \(1,\)\)$"
+    ):
+        I.rotate_inertia(batch, np.eye(3))
+    with pytest.raises(
+        NonPhysicalInertiaError, match=r"^J_O is not symmetric: .*\(index \(1,\)\)$"
+    ):
+        I.inertia_A_from_O(batch, np.eye(3))
+
+
+_FOUR = np.array([[0.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        pytest.param(
+            # the first negative mass is reported, not the first mass below 1 or at 0
+            lambda: I.inertia_tensor([0.5, 0.0, -2.0, 1.0], _FOUR, about=ORIGIN),
+            NegativeMassError,
+            r"^m must be >= 0; found -2\.0$",
+            id="particles-negative-mass",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), [0.5, 0.0, -3.0], [1.0, 0, 0]),
+            NegativeMassError,
+            r"^m must be >= 0; found -3\.0$",
+            id="parallel-negative-mass-batched",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([1.0], _FOUR[:2], about=ORIGIN),
+            ShapeError,
+            r"^m has shape \(1,\) and r \(2, 3\); expected \(\.\.\., N\) and \(\.\.\., N, 3\)$",
+            id="particles-count-mismatch",
+        ),
+    ],
+)
+def test_particle_messages_name_the_argument_the_value_and_the_condition(call, error, match):
+    with pytest.raises(error, match=match):
+        call()
+
+
+#: Each body's lengths, in order, with the name its messages use.
+_LENGTHS = {
+    "rod": ["ell"],
+    "ring": ["R"],
+    "disc": ["R"],
+    "cylinder": ["R", "h"],
+    "cylindrical_shell": ["R", "h"],
+    "solid_sphere": ["R"],
+    "hollow_sphere": ["R"],
+    "rectangular_plate": ["a", "b"],
+    "box": ["a", "b", "c"],
+    "solid_cone": ["R", "h"],
+}
+
+
+@pytest.mark.parametrize(
+    ("body", "k"),
+    [(b, k) for b, names in _LENGTHS.items() for k in range(len(names))],
+    ids=[f"{b}-{n}" for b, names in _LENGTHS.items() for n in names],
+)
+def test_each_body_names_the_length_that_is_not_positive(body, k):
+    name = _LENGTHS[body][k]
+    lengths = [1.0] * len(_LENGTHS[body])
+    lengths[k] = 0.0
+    with pytest.raises(NonPositiveParameterError, match=rf"^{name} must be > 0; found 0\.0$"):
+        getattr(I, body)(1.0, *lengths)
+
+
+def test_a_massless_rod_has_the_zero_tensor():
+    # m = 0 is in the domain (m >= 0): m ℓ²/12 = 0 and the axial moment 0 · m = 0
+    np.testing.assert_array_equal(I.rod(0.0, 2.0), np.zeros((3, 3)))
+
+
+# ---------------------------------------------------------- _shift's overflow fallback
+
+
+def test_parallel_axis_uses_the_plain_formula_only_where_the_exact_one_overflows():
+    """A batch of two shifts: the first needs the plain formula (m = 1e301, beyond Dekker's
+    split), the second is exact, and must stay so: about C = G + (1e8, 1, 0) with J_G = 1,
+    m = 1, the plain |d|² − d_x² would give J_xx = 1 + (1e16 + 1 − 1e16) = 1 + 0 (cancelled),
+    the exact m(d_y² + d_z²) gives 1 + 1 = 2."""
+    J_G = np.array([1e300 * np.eye(3), np.eye(3)])
+    m = np.array([1e301, 1.0])
+    d = np.array([[1.0, 2.0, 0.5], [1e8, 1.0, 0.0]])
+    J = I.parallel_axis(J_G, m, d)
+    # by hand: J_xx = 1 + 1, J_xy = −1e8, J_yy = 1 + 1e16 (= 1e16 + 1, a tie, even: 1e16),
+    # J_zz = 1 + (1e16 + 1) = 1e16 + 2 (exact)
+    want = np.array([[2.0, -1e8, 0.0], [-1e8, 1e16, 0.0], [0.0, 0.0, 1e16 + 2.0]])
+    np.testing.assert_array_equal(J[1], want)
+    np.testing.assert_array_equal(J[1], I.parallel_axis(J_G[1], m[1], d[1]))
+
+
+def test_parallel_axis_broadcasts_a_batch_of_masses_over_one_tensor_and_offset():
+    J = I.parallel_axis(np.eye(3), [1.0, 2.0], [0.0, 0.0, 1.0])
+    # J_G + m (|d|² 1 − d dᵀ) with d = e3: diag(1 + m, 1 + m, 1)
+    np.testing.assert_array_equal(J, [np.diag([2.0, 2.0, 1.0]), np.diag([3.0, 3.0, 1.0])])
+
+
+# --------------------------------------------------------------- four particles, Jacobi
+
+
+def test_four_particles_realise_a_line_mass():
+    """Singular tensors are in the domain (a thin rod): moments (0, 1, 1) give
+    m a² = 1 − 0 + 1 = 2, b = 0, c = 0 (4.26)-(4.29): two particles at ±√2 on the rod's
+    axis e3, two at G."""
+    masses, r = I.four_particle_realisation(1.0, I.rod(12.0, 1.0))
+    assert masses.tolist() == [0.25] * 4
+    a = math.sqrt(2.0)
+    np.testing.assert_allclose(np.abs(r), [[0, 0, a], [0, 0, a], [0, 0, 0], [0, 0, 0]], atol=0)
+    np.testing.assert_allclose(
+        I.inertia_tensor(masses, r, about=ORIGIN), I.rod(12.0, 1.0), rtol=0, atol=ENTRY_ATOL
+    )
+
+
+def test_four_particles_broadcast_one_tensor_over_masses_and_one_mass_over_tensors():
+    J = np.diag([1.0, 2.0, 2.5])
+    masses, r = I.four_particle_realisation([1.0, 4.0], J)
+    assert masses.shape == (2, 4)
+    assert r.shape == (2, 4, 3)
+    # four times the mass: half the distances (a, b, c ∝ 1/√m)
+    np.testing.assert_array_equal(r[1], r[0] / 2.0)
+    masses, r = I.four_particle_realisation(2.0, np.array([J, 4.0 * J]))
+    assert masses.tolist() == [[0.5] * 4] * 2
+    np.testing.assert_array_equal(r[1], 2.0 * r[0])  # four times the tensor: twice the distances
+
+
+def test_four_particles_of_a_product_of_inertia_of_exactly_one():
+    """The unscaled tensor [[2, 1, 0], [1, 2, 0], [0, 0, 3]] (moments 1, 3, 3: the block
+    [[2, 1], [1, 2]] has eigenvalues 2 ∓ 1) reaches Jacobi with a_01 = 1 exactly; the
+    rotation must still be made."""
+    J = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 3.0]])
+    masses, r = I.four_particle_realisation(4.0, J)
+    np.testing.assert_allclose(
+        I.inertia_tensor(masses, r, about=ORIGIN), J, rtol=0, atol=ENTRY_ATOL * 3.0
+    )
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug: four_particle_realisation runs Jacobi on the unscaled tensor (principal_axes "
+    "scales it first): subnormal tensors lose digits (2.7e-6 relative) and a tensor whose "
+    "largest moment is beyond float64 overflows, although the distances are ordinary",
+)
+@pytest.mark.parametrize(
+    ("J", "power"),
+    [
+        # entries 2**-1059, 2**-1063, 3 * 2**-1060, 2**-1058: subnormal and exact
+        pytest.param(
+            [[2.0, 0.125, 0.0], [0.125, 3.0, 0.0], [0.0, 0.0, 4.0]], -1060, id="subnormal"
+        ),
+        # entries up to 0.8 * 2**1024 (finite), moments 0.4, 0.9, 1.2 times 2**1024: the
+        # largest is beyond float64, the distances √(J/m) are of order 1
+        pytest.param(
+            [[1.6, 0.8, 0.0], [0.8, 1.6, 0.0], [0.0, 0.0, 1.8]], 1023, id="moment-beyond-float64"
+        ),
+    ],
+)
+def test_four_particles_at_any_scale_are_the_scaled_ones(J, power):
+    """Scaling m and J by one power of two leaves the distances √(J/m) unchanged: the
+    realisation at 2**power is that of the tensor at scale 1, masses scaled exactly."""
+    J = np.array(J)
+    masses_1, r_1 = I.four_particle_realisation(0.25, J)
+    masses, r = I.four_particle_realisation(np.ldexp(0.25, power), np.ldexp(J, power))
+    np.testing.assert_array_equal(masses, np.ldexp(masses_1, power))
+    np.testing.assert_allclose(r, r_1, rtol=0, atol=ENTRY_ATOL * np.abs(r_1).max())
+
+
+def test_principal_axes_of_a_subnormal_tensor_are_exact():
+    """Entries 3, 1, 5 times 2**-1074 (subnormal): the moments are those of [[3, 1], [1, 3]]
+    and 5, i.e. 2, 4, 5 times 2**-1074, all representable; Jacobi on the tensor scaled to
+    [1/2, 1) finds them exactly (one rotation by π/4: 3 ∓ 1)."""
+    tiny = 2.0**-1074
+    J = np.array([[3.0, 1.0, 0.0], [1.0, 3.0, 0.0], [0.0, 0.0, 5.0]]) * tiny
+    moments, R = I.principal_axes(J)
+    np.testing.assert_array_equal(moments, np.array([2.0, 4.0, 5.0]) * tiny)
+    np.testing.assert_allclose(np.abs(R[0]), [2**-0.5, 2**-0.5, 0.0], rtol=0, atol=ENTRY_ATOL)
+
+
+def test_principal_axes_of_a_subnormal_product_of_inertia_warn_of_nothing():
+    """A product of inertia of 1e-310 next to unequal moments: the rotation angle's
+    cotangent (0.5 − 0.75)/(2e-310) overflows to -inf, which Jacobi takes as 'no rotation';
+    the caller sees no RuntimeWarning (an error under -W error) and LAPACK's moments."""
+    J = np.array([[0.75, 1e-310, 0.1], [1e-310, 0.5, 0.0], [0.1, 0.0, 0.6]])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        moments, _ = I.principal_axes(J)
+    # the 1e-310 is far below eps² of the tensor: the moments are those of J without it,
+    # 0.5 and the eigenvalues 0.675 ∓ √(0.075² + 0.1²) = 0.675 ∓ 0.125 of the (0, 2) block
+    np.testing.assert_allclose(moments, [0.5, 0.55, 0.8], rtol=0, atol=ENTRY_ATOL)
+
+
+def test_principal_subspaces_with_rtol_zero_group_exactly_equal_upper_moments():
+    # J2 = J3 exactly: gap 0 <= 0 · J3, one plane (the J1 = J2 case is tested above)
+    _, P = I.principal_subspaces(np.diag([1.0, 3.0, 3.0]), rtol=0.0)
+    assert np.diag(P[0]).tolist() == [1.0, 0.0, 0.0]
+    assert np.diag(P[1]).tolist() == [0.0, 1.0, 1.0]
+    assert np.diag(P[2]).tolist() == [0.0, 1.0, 1.0]
