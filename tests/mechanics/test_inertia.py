@@ -587,6 +587,10 @@ def test_parallel_axis_rejects_a_singular_centroidal_tensor_unless_allowed():
     np.testing.assert_allclose(J, np.diag([1.0, 1.0, 2.0]), rtol=0, atol=ENTRY_ATOL)
 
 
+#: four particles at the origin and the unit points (the particle-input cases below)
+_FOUR = np.array([[0.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]])
+
+
 @pytest.mark.parametrize(
     ("call", "error", "match"),
     [
@@ -631,6 +635,25 @@ def test_parallel_axis_rejects_a_singular_centroidal_tensor_unless_allowed():
             ShapeError,
             r"^about has shape \(2,\)",
             id="particles-about-shape",
+        ),
+        pytest.param(
+            # the first negative mass is reported, not the first mass below 1 or at 0
+            lambda: I.inertia_tensor([0.5, 0.0, -2.0, 1.0], _FOUR, about=ORIGIN),
+            NegativeMassError,
+            r"^m must be >= 0; found -2\.0$",
+            id="particles-negative-mass",
+        ),
+        pytest.param(
+            lambda: I.parallel_axis(np.eye(3), [0.5, 0.0, -3.0], [1.0, 0, 0]),
+            NegativeMassError,
+            r"^m must be >= 0; found -3\.0$",
+            id="parallel-negative-mass-batched",
+        ),
+        pytest.param(
+            lambda: I.inertia_tensor([1.0], _FOUR[:2], about=ORIGIN),
+            ShapeError,
+            r"^m has shape \(1,\) and r \(2, 3\); expected \(\.\.\., N\) and \(\.\.\., N, 3\)$",
+            id="particles-count-mismatch",
         ),
     ],
 )
@@ -1095,38 +1118,6 @@ def test_rotate_inertia_judges_symmetry_against_each_tensors_own_size():
         NonPhysicalInertiaError, match=r"^J_O is not symmetric: .*\(index \(1,\)\)$"
     ):
         I.inertia_A_from_O(batch, np.eye(3))
-
-
-_FOUR = np.array([[0.0, 0, 0], [1.0, 0, 0], [0, 1.0, 0], [0, 0, 1.0]])
-
-
-@pytest.mark.parametrize(
-    ("call", "error", "match"),
-    [
-        pytest.param(
-            # the first negative mass is reported, not the first mass below 1 or at 0
-            lambda: I.inertia_tensor([0.5, 0.0, -2.0, 1.0], _FOUR, about=ORIGIN),
-            NegativeMassError,
-            r"^m must be >= 0; found -2\.0$",
-            id="particles-negative-mass",
-        ),
-        pytest.param(
-            lambda: I.parallel_axis(np.eye(3), [0.5, 0.0, -3.0], [1.0, 0, 0]),
-            NegativeMassError,
-            r"^m must be >= 0; found -3\.0$",
-            id="parallel-negative-mass-batched",
-        ),
-        pytest.param(
-            lambda: I.inertia_tensor([1.0], _FOUR[:2], about=ORIGIN),
-            ShapeError,
-            r"^m has shape \(1,\) and r \(2, 3\); expected \(\.\.\., N\) and \(\.\.\., N, 3\)$",
-            id="particles-count-mismatch",
-        ),
-    ],
-)
-def test_particle_messages_name_the_argument_the_value_and_the_condition(call, error, match):
-    with pytest.raises(error, match=match):
-        call()
 
 
 #: Each body's lengths, in order, with the name its messages use.
