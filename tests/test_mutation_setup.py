@@ -177,21 +177,34 @@ CORE = {
 }
 
 
-def test_the_plan_runs_every_module_once_the_core_in_full_the_rest_in_samples_of_100():
+def test_the_plan_runs_the_core_in_full_the_rest_in_samples_of_100_then_full_runs_of_shortfalls():
+    """Every module of modules.toml is run: the core once, in full; the rest first in a
+    sample of at least 100, and a module of the rest may come again later (never
+    before its sample) in a full run, after a review of its sample's shortfall: both
+    rows are reported.  No module is sampled twice (a re-draw is what registration
+    forbids hiding, so the plan has one sample per module) or run in full twice."""
     run = _run_module()
     rows = run.load_modules()
     plan = run.load_plan(run.PLAN.read_text(encoding="utf-8"))
-    seen: list[str] = []
+    sampled: list[str] = []
+    full: list[str] = []
     for r in plan:
         chosen = run.expand(r.modules, rows)
-        seen += chosen
         if r.sample is None:
-            assert set(chosen) <= CORE, f"a full run outside the core: {chosen}"
+            early = sorted(set(chosen) - CORE - set(sampled))
+            assert not early, f"a full run of the rest before its sample: {early}"
+            full += chosen
         else:
             assert r.sample >= 100
             assert not set(chosen) & CORE
-    assert sorted(seen) == sorted(set(seen)), "a module in two runs of the plan"
-    assert set(seen) == set(rows), f"modules outside the plan: {sorted(set(rows) - set(seen))}"
+            assert not set(chosen) & set(full), f"sampled after a full run: {chosen}"
+            sampled += chosen
+    assert sorted(full) == sorted(set(full)), "a module in two full runs of the plan"
+    assert sorted(sampled) == sorted(set(sampled)), "a module in two samples of the plan"
+    assert set(full) >= CORE, f"core modules not run in full: {sorted(CORE - set(full))}"
+    assert set(full) | set(sampled) == set(rows), (
+        f"modules outside the plan: {sorted(set(rows) - set(full) - set(sampled))}"
+    )
     seeds = [r.seed for r in plan if r.seed is not None]
     assert len(seeds) == len(set(seeds)), "two samples share a seed"
 
@@ -240,7 +253,7 @@ def test_a_sample_is_registered_by_its_commit_and_counts_only_the_equivalents_li
     _git(tmp_path, "commit", "-qm", "one")
     plan.write_text(first + second)
     runs = run.load_plan(plan.read_text())
-    assert [r.lines for r in runs] == [(1, 3), (4, 7)]
+    assert [r.lines for r in runs] == [(1, 2), (4, 7)]
     assert run.registration(runs[1].lines, tmp_path) is None  # not committed: refused
     _git(tmp_path, "commit", "-qam", "register b")
     commit = run.registration(runs[1].lines, tmp_path)
@@ -354,6 +367,38 @@ def test_the_table_is_written_between_its_markers_and_nothing_else_changes(tmp_p
         == "intro\n<!-- SCORES -->\n" + run.TABLE_HEAD + "\n| `m` | row |\n<!-- /SCORES -->\nrest\n"
     )
     assert run.scores_block(a.read_text()) == run.scores_block(b.read_text())
+
+
+def test_a_runs_lines_end_at_its_last_setting_not_at_the_next_runs_comment():
+    """The lines of a run date its registration (git blame): a comment written later
+    above the next run must not move it."""
+    text = (
+        "# the plan\n[[run]]\nmodules = ['a.py']\nsample = 100\nseed = 1\n\n"
+        "# a later comment, about the next run\n\n[[run]]\nmodules = ['b.py']\n\n# tail\n"
+    )
+    first, second = _run_module().load_plan(text)
+    assert (first.lines, second.lines) == ((2, 5), (9, 10))
+
+
+def test_a_report_without_a_runs_copy_keeps_the_row_the_table_had(tmp_path):
+    """A fresh checkout has no build/mutation/: --report keeps each row as last written,
+    a sample's by its seed, a full run's apart from it (fluids has both)."""
+    run = _run_module()
+    full = "| `m.py` | 784 (all) | 700 | 0 | 84 (0 accepted) | 89.3 % | every mutant | `abc` |"
+    unfinished = "| `k.py` | 615 of 1060 (unfinished) | 529 | 0 | 86 (0 accepted) | | | `abc` |"
+    sampled = "| `m.py` | 100 of 784 (seed 3501) | 89 | 0 | 11 (0 accepted) | 89.0 % | x | `abc` |"
+    empty = "| `e.py` | 0 | | | | no mutants (nothing to change) | | |"
+    waiting = "| `w.py` | not run yet | | | | | | `abc` |"
+    doc = tmp_path / "d.md"
+    rows = "\n".join([run.TABLE_HEAD, full, unfinished, sampled, empty, waiting])
+    doc.write_text(f"intro\n<!-- SCORES -->\n{rows}\n<!-- /SCORES -->\n", encoding="utf-8")
+    assert run.previous_rows(doc) == {
+        ("m.py", None): full,
+        ("k.py", None): unfinished,
+        ("m.py", 3501): sampled,
+        ("e.py", "any"): empty,
+        ("w.py", "any"): waiting,
+    }
 
 
 def test_a_copy_is_left_alone_by_a_report_and_forgets_only_what_a_change_invalidates(

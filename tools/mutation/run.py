@@ -516,7 +516,13 @@ def load_plan(text: str) -> list[PlanRun]:
     runs = data.get("run", [])
     if len(starts) != len(runs):
         raise SystemExit(f"{PLAN.name}: write each run as its own [[run]] line")
-    ends = [s - 1 for s in starts[1:]] + [len(text.splitlines())]
+    lines = text.splitlines()
+    ends = []
+    for nxt in [*starts[1:], len(lines) + 1]:
+        end = nxt - 1  # a run's lines end at its last setting: the comments and blank
+        while lines[end - 1].strip() == "" or lines[end - 1].lstrip().startswith("#"):
+            end -= 1  # lines before the next run are that run's (they date it, not this)
+        ends.append(end)
     out = []
     for run, start, end in zip(runs, starts, ends, strict=True):
         unknown = set(run) - {"modules", "sample", "seed"}
@@ -589,6 +595,7 @@ def run_plan(args) -> int:
     equivalent = load_equivalent()
     accepted = load_equivalent(ACCEPTED)
     table: list[str] = []
+    previous = previous_rows()
     for run in plan:
         chosen = expand(run.modules, rows)
         commit = registration(run.lines)
@@ -598,9 +605,12 @@ def run_plan(args) -> int:
                 "commit the plan before running it"
             )
         if args.report and not (workdir(chosen) / "mutants").exists():
+            # no copy of this run here (a fresh checkout): the row the table had stays
             reg = f"`{commit[:9]}`" if commit else "uncommitted"
-            table += [f"| `{m}` | not run yet | | | | | | {reg} |" for m in chosen]
-            print(f"{', '.join(chosen)}: not run yet")
+            for m in chosen:
+                kept = previous.get((m, run.seed)) or previous.get((m, "any"))
+                table.append(kept or f"| `{m}` | not run yet | | | | | | {reg} |")
+                print(f"{m}: {'no copy here, its row kept' if kept else 'not run yet'}")
             continue
         args.sample, args.seed, args.names = run.sample, run.seed, None
         status, work, rc = run_modules(
@@ -656,6 +666,20 @@ def write_table(rows: list[str], paths: tuple[Path, ...] = TABLES) -> None:
         a, b = doc.index("<!-- SCORES -->\n"), doc.index("<!-- /SCORES -->")
         path.write_text(doc[: a + len("<!-- SCORES -->\n")] + body + doc[b:], encoding="utf-8")
         print(f"wrote the table of {path.relative_to(ROOT)} ({len(rows)} modules)")
+
+
+def previous_rows(path: Path = TABLES[0]) -> dict[tuple[str, int | str | None], str]:
+    """The table's rows as last written, by (module, the sample's seed): None for a full
+    run's row, "any" for a row of no mutants or of a run not made yet."""
+    out: dict[tuple[str, int | str | None], str] = {}
+    for line in scores_block(path.read_text(encoding="utf-8")).splitlines():
+        m = re.match(r"^\| `([^`]+)` \| ([^|]*)\|", line)
+        if m is None:
+            continue
+        seed = re.search(r"\(seed (\d+)\)", m.group(2))
+        full = "(all)" in m.group(2) or "(unfinished)" in m.group(2)
+        out[(m.group(1), int(seed.group(1)) if seed else None if full else "any")] = line
+    return out
 
 
 def scores_block(text: str) -> str:
