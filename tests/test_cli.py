@@ -122,6 +122,7 @@ def test_bench_runs_the_study_with_its_arguments_and_prints_its_summary(
     """The command's wiring: what it passes to the study and what it prints.  The study
     itself (its files, its figures, its power to fail) is tests/test_workprecision.py's."""
     import bench.workprecision as wp
+    import bench.workprecision.study as study_module
 
     calls: list[dict] = []
     study = {
@@ -135,7 +136,7 @@ def test_bench_runs_the_study_with_its_arguments_and_prints_its_summary(
         calls.append(kwargs)
         return study
 
-    monkeypatch.setattr(wp, "run_study", run_study)
+    monkeypatch.setattr(study_module, "run_study", run_study)
     assert main(["bench", "--quick", "--out", str(tmp_path)]) == 0
     assert calls == [dict(quick=True, out_dir=tmp_path, repeats=1, progress=True)]
     assert capsys.readouterr().out.splitlines() == wp.summary_lines(study, str(tmp_path))

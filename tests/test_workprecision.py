@@ -262,9 +262,20 @@ def test_impact_exact_follows_energy_and_restitution():
     assert t_end > times[-1]
 
 
-def test_main_bench_rejects_a_bad_repeats(tmp_path):
+def test_main_bench_rejects_a_bad_repeats(tmp_path, capsys):
     with pytest.raises(SystemExit):
         wp.main_bench(["--quick", "--out", str(tmp_path), "--repeats", "0"])
+    assert "--repeats must be at least 1; got 0" in capsys.readouterr().err
+    assert not any(tmp_path.iterdir())  # refused before the study ran
+
+
+@pytest.mark.parametrize(
+    ("quick", "given", "want"), [(False, None, 3), (True, None, 1), (True, 5, 5), (False, 1, 1)]
+)
+def test_bench_repeats_default_to_three_or_one_when_quick(quick, given, want):
+    from bench.workprecision.study import bench_repeats
+
+    assert bench_repeats(quick, given) == want
 
 
 def _record(method, family, error, time_s, param=1.0):

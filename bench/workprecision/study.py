@@ -117,11 +117,26 @@ def main_bench(argv=None) -> int:
         help="timing repeats, median taken (default 3; 1 with --quick)",
     )
     args = ap.parse_args(argv)
-    repeats = args.repeats if args.repeats is not None else (1 if args.quick else 3)
-    if repeats < 1:
-        ap.error(f"--repeats must be ≥ 1; got {repeats}")
-    study = run_study(quick=args.quick, out_dir=Path(args.out), repeats=repeats, progress=True)
-    print("\n".join(summary_lines(study, args.out)))
+    try:
+        repeats = bench_repeats(args.quick, args.repeats)
+    except ValueError as exc:
+        ap.error(str(exc))
+    return run_bench(quick=args.quick, out=args.out, repeats=repeats)
+
+
+def bench_repeats(quick: bool, repeats: int | None) -> int:
+    """The timing repeats of ``bodycheck bench``: ``--repeats`` as given, else 3 (1 with
+    ``--quick``); fewer than 1 is a ValueError naming the value."""
+    n = repeats if repeats is not None else (1 if quick else 3)
+    if n < 1:
+        raise ValueError(f"--repeats must be at least 1; got {n}")
+    return n
+
+
+def run_bench(*, quick: bool, out, repeats: int) -> int:
+    """Run the study as ``bodycheck bench`` does (progress shown) and print its summary."""
+    study = run_study(quick=quick, out_dir=Path(out), repeats=repeats, progress=True)
+    print("\n".join(summary_lines(study, out)))
     return 0
 
 

@@ -613,14 +613,13 @@ def _cmd_demo(args) -> int:
 
 
 def _cmd_bench(args) -> int:
-    from bench.workprecision import run_study, summary_lines
+    from bench.workprecision.study import bench_repeats, run_bench
 
-    repeats = args.repeats if args.repeats is not None else (1 if args.quick else 3)
-    if repeats < 1:
-        raise UsageError(f"--repeats must be at least 1; got {repeats}")
-    study = run_study(quick=args.quick, out_dir=Path(args.out), repeats=repeats, progress=True)
-    print("\n".join(summary_lines(study, args.out)))
-    return 0
+    try:
+        repeats = bench_repeats(args.quick, args.repeats)
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+    return run_bench(quick=args.quick, out=args.out, repeats=repeats)
 
 
 def _cmd_site(args) -> int:
