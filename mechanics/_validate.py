@@ -33,7 +33,7 @@ def _first_bad(a: np.ndarray) -> str:
     return f"{float(a[tuple(idx)])!r} at index {tuple(int(i) for i in idx)}"
 
 
-def as_float_array(x, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
+def as_float_array(x: object, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
     """Return ``x`` as a finite float64 array whose shape ends with ``tail``."""
     try:
         a = np.asarray(x)
@@ -52,7 +52,7 @@ def as_float_array(x, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
     return a
 
 
-def as_float_scalar(x, name: str) -> float:
+def as_float_scalar(x: object, name: str) -> float:
     """Return ``x`` as a finite Python float; a ShapeError naming ``name`` if not a scalar."""
     a = as_float_array(x, name)
     if a.shape != ():
@@ -60,7 +60,7 @@ def as_float_scalar(x, name: str) -> float:
     return float(a)
 
 
-def as_positive_scalar(x, name: str) -> float:
+def as_positive_scalar(x: object, name: str) -> float:
     """Return ``x`` as a finite Python float > 0; a ShapeError, NonFiniteError or
     NonPositiveParameterError naming ``name`` otherwise."""
     v = as_float_scalar(x, name)
@@ -69,7 +69,7 @@ def as_positive_scalar(x, name: str) -> float:
     return v
 
 
-def _nonfinite(x) -> bool:
+def _nonfinite(x: object) -> bool:
     """True if a result (array, number, tuple, dataclass) holds NaN or an infinity."""
     if isinstance(x, (bool, np.bool_, str, type(None))):
         return False
@@ -88,13 +88,13 @@ def _nonfinite(x) -> bool:
 _BROADCAST = re.compile(r"could not be broadcast|cannot be broadcast|shape mismatch")
 
 
-def _shapes(sig: inspect.Signature, args, kwargs) -> str:
+def _shapes(sig: inspect.Signature, args: tuple[Any, ...], kwargs: dict[str, Any]) -> str:
     """ "name shape, ..." of the array-like arguments of a call (for a ShapeError)."""
     try:
         bound = sig.bind(*args, **kwargs)
     except TypeError:
         return "(arguments not bound)"
-    out = []
+    out: list[str] = []
     for name, v in bound.arguments.items():
         if isinstance(v, (np.ndarray, list, tuple, float, int)) and not isinstance(v, bool):
             try:
@@ -128,7 +128,7 @@ def finite_result(fn: _F) -> _F:
     sig = inspect.signature(fn)
 
     @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             with np.errstate(over="ignore", invalid="ignore"):
                 out = fn(*args, **kwargs)
@@ -165,7 +165,7 @@ def broadcast_checked(fn: _F) -> _F:
     sig = inspect.signature(fn)
 
     @functools.wraps(fn)
-    def wrapper(*args, **kwargs):
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
         try:
             return fn(*args, **kwargs)
         except ValueError as exc:
