@@ -88,7 +88,9 @@ _N_AGM = 6
 0.17, 7e-3, 1.4e-5, 5e-11, 6e-22, 9e-44: six steps leave nothing at float64."""
 
 
-def _params(m, m1, name: str = "m"):
+def _params(
+    m: npt.ArrayLike, m1: npt.ArrayLike | None, name: str = "m"
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Validated, broadcast (m, m1) with m1 = 1 − m exact where given."""
     m = as_float_array(m, name)
     if m1 is None:
@@ -106,7 +108,9 @@ def _params(m, m1, name: str = "m"):
     return m.astype(np.float64), m1.astype(np.float64)
 
 
-def _no_overflow(out, m1, name: str):
+def _no_overflow(
+    out: npt.NDArray[np.float64], m1: npt.ArrayLike, name: str
+) -> npt.NDArray[np.float64]:
     """``out``, or ResultOverflowError where it is not finite though m < 1 (m1 > 0): there
     the value is finite, ~φ·2K/π, and only a |φ| near float64's limit overflows it; at
     m = 1 (m1 = 0) an infinite value is the true one, K(1) = inf (documented)."""
@@ -118,13 +122,15 @@ def _no_overflow(out, m1, name: str):
     return out
 
 
-def _quarter_period(p1):
+def _quarter_period(p1: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """K for parameter p = 1 − p1 ≥ 0 given p1 exactly (inf at p1 = 0)."""
     with np.errstate(divide="ignore"):
-        return sc.ellipkm1(p1)
+        return sc.ellipkm1(p1)  # type: ignore[no-any-return]  # scipy ships no types
 
 
-def _asinh_r_sinh(r, psi):
+def _asinh_r_sinh(
+    r: float | npt.NDArray[np.float64], psi: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
     """asinh(r · sinh ψ) for r ≥ 0, ψ ≥ 0, without overflow for large ψ."""
     big = psi > 350.0
     if not np.any(big):
@@ -138,7 +144,9 @@ def _asinh_r_sinh(r, psi):
     return np.where(big, big_val, out)
 
 
-def _agm_ratios(p, p1, hyper, ymax):
+def _agm_ratios(
+    p: npt.NDArray[np.float64], p1: npt.NDArray[np.float64], hyper: bool, ymax: float
+) -> tuple[npt.NDArray[np.float64], list[npt.NDArray[np.float64]]]:
     """a_N and the ratios c_n/a_n (n = 1..N) of the AGM for the amplitude recurrence.
 
     Trig: AGM(1, √p1) with c0 = √p; hyperbolic: AGM(1, √p) with c0 = √p1.  A constant
@@ -166,7 +174,9 @@ def _agm_ratios(p, p1, hyper, ymax):
     return a, ratios
 
 
-def _core(y, p, p1):
+def _core(
+    y: npt.NDArray[np.float64], p: npt.NDArray[np.float64], p1: npt.NDArray[np.float64]
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """sn, cn, dn of 0 ≤ y ≤ K/2 for 0 ≤ p ≤ 1 (relative accuracy)."""
     sn = np.empty_like(y)
     cn = np.empty_like(y)
@@ -197,7 +207,16 @@ def _core(y, p, p1):
     return sn, cn, dn
 
 
-def _reduced(u, p, p1):
+def _reduced(
+    u: npt.NDArray[np.float64], p: npt.NDArray[np.float64], p1: npt.NDArray[np.float64]
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]:
     """Reduce u = 2jK + s·x (0 ≤ x ≤ K) and evaluate at x.
 
     Returns (j, s, snx, cnx, dnx, K) with snx, cnx ≥ 0 the functions at x.
@@ -223,7 +242,7 @@ def _reduced(u, p, p1):
     return j, s, snx, cnx, dnx, K
 
 
-def _scaled(u, rt):
+def _scaled(u: npt.NDArray[np.float64], rt: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     """u·√|m| or u·√(1 − m) for the transformations; refuse what overflows float64."""
     with np.errstate(over="ignore"):
         v = u * rt
@@ -330,7 +349,7 @@ def ellipj(
 ellipj = finite_result(ellipj)
 
 
-def ellipk(m, *, m1=None):
+def ellipk(m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None) -> npt.NDArray[np.float64]:
     """Complete elliptic integral of the first kind K(m) for m ≤ 1 (K(1) = inf).
 
     Domain: every float64 m ≤ 1 (down to −1.8e308: K ~ ln(4√−m)/√−m); K(1) = inf is the one
@@ -368,7 +387,7 @@ def ellipk(m, *, m1=None):
 ellipk = broadcast_checked(ellipk)
 
 
-def ellipe(m, *, m1=None):
+def ellipe(m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None) -> npt.NDArray[np.float64]:
     """Complete elliptic integral of the second kind E(m) for m ≤ 1.
 
     Domain: every float64 m ≤ 1 (E(1) = 1); m > 1 raises OutOfDomainError.
@@ -391,7 +410,14 @@ def ellipe(m, *, m1=None):
 ellipe = broadcast_checked(ellipe)
 
 
-def _amplitude(phi, m, m1, name):
+def _amplitude(
+    phi: npt.NDArray[np.float64], m: npt.NDArray[np.float64], m1: npt.NDArray[np.float64], name: str
+) -> tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]:
     """Reduce φ = jπ + φr, |φr| ≤ π/2; return (j, sin φr, cos φr, Δ²)."""
     j = np.rint(phi / np.pi)
     pr, err = _two_prod_or_zero(j, np.pi)
@@ -412,7 +438,9 @@ def _amplitude(phi, m, m1, name):
     return j, s, c, np.maximum(delta2, 0.0)
 
 
-def ellipf(phi, m, *, m1=None):
+def ellipf(
+    phi: npt.ArrayLike, m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None
+) -> npt.NDArray[np.float64]:
     """Incomplete elliptic integral of the first kind F(φ|m).
 
     Domain: any finite φ for m ≤ 1 (φ = ±π/2 at m = 1 is the logarithmic singularity); for m > 1,
@@ -450,7 +478,12 @@ ellipf = broadcast_checked(ellipf)
 _RJ_TINY = 2.0**-400
 
 
-def _rj_duplicated(x, y, z, p):
+def _rj_duplicated(
+    x: float | npt.NDArray[np.float64],
+    y: float | npt.NDArray[np.float64],
+    z: float | npt.NDArray[np.float64],
+    p: float | npt.NDArray[np.float64],
+) -> float | npt.NDArray[np.float64]:
     """R_J by one step of Carlson's duplication theorem (Carlson 1995, eq. 2.22):
     R_J(x, y, z, p) = 2 R_J(x + λ, y + λ, z + λ, p + λ) + 3 R_C(α², β²) with
     λ = √x√y + √y√z + √z√x, α = p(√x + √y + √z) + √x√y√z, β = √p (p + λ).
@@ -459,16 +492,21 @@ def _rj_duplicated(x, y, z, p):
     lam = sx * sy + sy * sz + sz * sx
     alpha = p * (sx + sy + sz) + sx * sy * sz
     beta = np.sqrt(p) * (p + lam)
-    return 2.0 * sc.elliprj(x + lam, y + lam, z + lam, p + lam) + 3.0 * sc.elliprc(
+    return 2.0 * sc.elliprj(x + lam, y + lam, z + lam, p + lam) + 3.0 * sc.elliprc(  # type: ignore[no-any-return]  # scipy: no types
         alpha * alpha, beta * beta
     )
 
 
-def _rj(x, y, z, p):
+def _rj(
+    x: npt.NDArray[np.float64],
+    y: npt.NDArray[np.float64],
+    z: npt.NDArray[np.float64],
+    p: npt.NDArray[np.float64],
+) -> float | npt.NDArray[np.float64]:
     """scipy's R_J, but by :func:`_rj_duplicated` where x and y are both positive and
     below :data:`_RJ_TINY` (cn² and dn² near u = K with m1 below ~1e-160)."""
     x, y, z, p = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (x, y, z, p)))
-    out = sc.elliprj(x, y, z, p)
+    out: float | npt.NDArray[np.float64] = sc.elliprj(x, y, z, p)
     tiny = (x > 0) & (y > 0) & (x < _RJ_TINY) & (y < _RJ_TINY)
     if tiny.any():
         out = np.array(out, dtype=float)  # a 0-d result too
@@ -483,7 +521,12 @@ def _rj_scalar(x: float, y: float, z: float, p: float) -> float:
     return float(sc.elliprj(x, y, z, p))
 
 
-def _third_kind_tail(s, c, d2, n):
+def _third_kind_tail(
+    s: npt.NDArray[np.float64],
+    c: npt.NDArray[np.float64],
+    d2: npt.NDArray[np.float64],
+    n: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
     """(n/3) sin³φ R_J(cos²φ, Δ², 1, 1 − n sin²φ), zero at sin φ = 0."""
     s2 = s * s
     # R_J is homogeneous of degree −3/2: for m ≪ −1 (Δ² up to 1e300) scale its arguments
@@ -496,14 +539,16 @@ def _third_kind_tail(s, c, d2, n):
     return np.where((s == 0) | (n == 0), 0.0, t)
 
 
-def _complete_tail(n, m1):
+def _complete_tail(
+    n: float | npt.NDArray[np.float64], m1: float | npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
     """(n/3) R_J(0, m1, 1, 1 − n): Π(n|m) − K(m)."""
     with np.errstate(divide="ignore", invalid="ignore"):
         t = (n / 3.0) * sc.elliprj(0.0, m1, 1.0, 1.0 - n)
     return np.where(n == 0, 0.0, t)
 
 
-def _check_characteristic(n, limit_ok):
+def _check_characteristic(n: npt.NDArray[np.float64], limit_ok: npt.NDArray[np.bool_]) -> None:
     if np.any(~limit_ok):
         raise OutOfDomainError(
             "the characteristic n must satisfy n sin²φ < 1 (and n < 1 beyond |φ| = π/2); "
@@ -511,7 +556,13 @@ def _check_characteristic(n, limit_ok):
         )
 
 
-def ellippi(n, phi, m, *, m1=None):
+def ellippi(
+    n: npt.ArrayLike,
+    phi: npt.ArrayLike,
+    m: npt.ArrayLike,
+    *,
+    m1: npt.ArrayLike | None = None,
+) -> npt.NDArray[np.float64]:
     """Incomplete elliptic integral of the third kind Π(n; φ|m) (mpmath's order).
 
     Domain: n sin²φ < 1, and n < 1 beyond |φ| = π/2 (else OutOfDomainError); the φ and m of
@@ -549,7 +600,13 @@ def ellippi(n, phi, m, *, m1=None):
 ellippi = broadcast_checked(ellippi)
 
 
-def ellippi_jacobi(u, n, m, *, m1=None):
+def ellippi_jacobi(
+    u: npt.ArrayLike,
+    n: npt.ArrayLike,
+    m: npt.ArrayLike,
+    *,
+    m1: npt.ArrayLike | None = None,
+) -> npt.NDArray[np.float64]:
     """Third-kind integral in Jacobi's form, ∫₀^u dv / (1 − n sn²(v|m)) = Π(n; am u | m).
 
     Domain: 0 ≤ m ≤ 1 and n < 1, any finite u (else OutOfDomainError).  Evaluated from the reduced
@@ -584,7 +641,12 @@ def ellippi_jacobi(u, n, m, *, m1=None):
 ellippi_jacobi = broadcast_checked(ellippi_jacobi)
 
 
-def _third_kind_excess(u, n, m, m1):
+def _third_kind_excess(
+    u: npt.NDArray[np.float64],
+    n: npt.NDArray[np.float64],
+    m: npt.NDArray[np.float64],
+    m1: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
     """G(u) = ∫₀^u n sn²/(1 − n sn²) dv (flat arrays, 0 ≤ m ≤ 1, n < 1)."""
     out = np.empty_like(u)
     sep = m1 <= 0
@@ -615,7 +677,7 @@ def _third_kind_excess(u, n, m, m1):
 # trigonometric AGM ratios are the caller's, computed once per parameter.
 
 
-def _agm_ratios_scalar(p: float, p1: float, hyper: bool, ymax: float):
+def _agm_ratios_scalar(p: float, p1: float, hyper: bool, ymax: float) -> tuple[float, list[float]]:
     """:func:`_agm_ratios` of one parameter."""
     a = 1.0
     b = math.sqrt(p) if hyper else math.sqrt(p1)
@@ -640,10 +702,12 @@ def _asinh_r_sinh_scalar(r: float, psi: float) -> float:
     return logy + math.log(2.0) if logy > 40.0 else math.asinh(math.exp(logy))
 
 
-def _core_scalar(y: float, p: float, p1: float, trig_agm):
+def _core_scalar(
+    y: float, p: float, p1: float, trig_agm: tuple[float, list[float]] | None
+) -> tuple[float, float, float]:
     """:func:`_core` of one argument; ``trig_agm`` the (a, ratios) of p ≤ 1/2."""
     if p <= 0.5:
-        a, ratios = trig_agm
+        a, ratios = trig_agm  # type: ignore[misc]  # the caller gives it whenever p ≤ 1/2
         phi = (2.0 ** len(ratios)) * a * y
         for r in reversed(ratios):
             phi = 0.5 * (phi + math.asin(r * math.sin(phi)))
@@ -658,7 +722,9 @@ def _core_scalar(y: float, p: float, p1: float, trig_agm):
     return s_, c_, math.hypot(math.sqrt(p1), math.sqrt(p) * c_)  # see _core
 
 
-def _reduced_scalar(u: float, p: float, p1: float, K: float, trig_agm):
+def _reduced_scalar(
+    u: float, p: float, p1: float, K: float, trig_agm: tuple[float, list[float]] | None
+) -> tuple[float, float, float, float, float]:
     """:func:`_reduced` of one argument: (j, s, snx, cnx, dnx)."""
     finite = math.isfinite(K)
     if finite:
@@ -680,14 +746,24 @@ def _reduced_scalar(u: float, p: float, p1: float, K: float, trig_agm):
     return j, s, sy, cy, dy
 
 
-def _ellipj_scalar(u: float, p: float, p1: float, K: float, trig_agm):
+def _ellipj_scalar(
+    u: float, p: float, p1: float, K: float, trig_agm: tuple[float, list[float]] | None
+) -> tuple[float, float, float]:
     """sn, cn, dn of one argument, 0 ≤ p ≤ 1 (:func:`ellipj`'s middle branch)."""
     j, s, snx, cnx, dnx = _reduced_scalar(u, p, p1, K, trig_agm)
     sign = 1.0 - 2.0 * (j % 2.0)
     return sign * s * snx, sign * cnx, dnx
 
 
-def _third_kind_excess_scalar(u: float, n: float, p: float, p1: float, K: float, trig_agm, full):
+def _third_kind_excess_scalar(
+    u: float,
+    n: float,
+    p: float,
+    p1: float,
+    K: float,
+    trig_agm: tuple[float, list[float]] | None,
+    full: float,
+) -> float:
     """:func:`_third_kind_excess` of one argument; ``full`` = _complete_tail(n, p1)."""
     if p1 <= 0:
         a = math.sqrt(abs(n))
