@@ -16,6 +16,7 @@ from collections.abc import Callable
 from typing import Any, TypeVar, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from .errors import (
     MechanicsValueError,
@@ -33,7 +34,7 @@ def _first_bad(a: np.ndarray) -> str:
     return f"{float(a[tuple(idx)])!r} at index {tuple(int(i) for i in idx)}"
 
 
-def as_float_array(x: object, name: str, tail: tuple[int, ...] = ()) -> np.ndarray:
+def as_float_array(x: object, name: str, tail: tuple[int, ...] = ()) -> npt.NDArray[np.float64]:
     """Return ``x`` as a finite float64 array whose shape ends with ``tail``."""
     try:
         a = np.asarray(x)

@@ -257,7 +257,7 @@ def _scaled(u: npt.NDArray[np.float64], rt: npt.NDArray[np.float64]) -> npt.NDAr
 
 def ellipj(
     u: npt.ArrayLike, m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None
-) -> tuple[np.ndarray, ...]:
+) -> tuple[npt.NDArray[np.float64], ...]:
     """Jacobi elliptic functions sn, cn, dn and the amplitude am, for every real m.
 
     Domain: every finite u and every finite m (m > 1 by the reciprocal modulus, m < 0 by the

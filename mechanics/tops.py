@@ -67,6 +67,7 @@ from dataclasses import dataclass
 from fractions import Fraction
 
 import numpy as np
+import numpy.typing as npt
 import scipy.special as sc
 
 from . import elliptic
@@ -99,7 +100,7 @@ __all__ = [
 # --------------------------------------------------------------------------- helpers
 
 
-def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
+def check_principal_moments(J: npt.ArrayLike, *, name: str = "J") -> npt.NDArray[np.float64]:
     """Validate principal moments (J1, J2, J3): positive and J_i ≤ J_j + J_k.
 
     Domain: any finite positive moments (1e-300 … 1e300 and beyond: the check compares moments, it
@@ -143,14 +144,14 @@ def check_principal_moments(J, *, name: str = "J") -> np.ndarray:
 check_principal_moments = finite_result(check_principal_moments)
 
 
-def _vec3(x, name):
+def _vec3(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     a = as_float_array(x, name, (3,))
     if a.shape != (3,):
         raise ShapeError(f"{name} must have shape (3,); got {a.shape}")
     return a
 
 
-def _fsqrt(x: Fraction) -> float:
+def _fsqrt(x: Fraction | int) -> float:
     """√x of a non-negative exact rational, rounded once-ish, without under/overflow."""
     if x == 0:
         return 0.0
@@ -159,11 +160,11 @@ def _fsqrt(x: Fraction) -> float:
     return math.ldexp(math.sqrt(float(y)), k)
 
 
-def _skew(w):
+def _skew(w: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
 
-def _mul3(A, B):
+def _mul3(A: list[list[float]], B: list[list[float]]) -> list[list[float]]:
     """The product of two 3×3 matrices given as nested lists (row times column, left
     to right)."""
     return [
@@ -178,7 +179,9 @@ _TINY_POLE = 2.0**-900
 _NORMAL_MIN = float(np.finfo(np.float64).tiny)
 
 
-def _pole_frame(nx, ny, nz):
+def _pole_frame(
+    nx: npt.NDArray[np.float64], ny: npt.NDArray[np.float64], nz: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
     """W = R3(φ) R1(θ) whose third column is the unit vector (nx, ny, nz) (arrays).
 
     (nx, ny) of subnormal size carry fewer significant bits than 53, and so would their
@@ -258,7 +261,9 @@ class FreeAsymmetricTop:
     True
     """
 
-    def __init__(self, J, omega_0, R_A_O_0=None):
+    def __init__(
+        self, J: npt.ArrayLike, omega_0: npt.ArrayLike, R_A_O_0: npt.ArrayLike | None = None
+    ) -> None:
         J = check_principal_moments(J)
         w0 = _vec3(omega_0, "omega_0")
         R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
@@ -295,7 +300,7 @@ class FreeAsymmetricTop:
         if np.linalg.det(P) < 0:
             P[1] *= -1.0
         self._P = P
-        Js = J[order]
+        Js: npt.NDArray[np.float64] = J[order]
         ws = P @ w0
         self._Js = Js
         J1, J2, J3 = (Fraction(float(x)) for x in Js)
@@ -389,15 +394,15 @@ class FreeAsymmetricTop:
         if self._M0 is not None:
             front = self._P.T @ self._Q().T  # a signed permutation
             self._front = front.tolist()
-            self._front_rows = np.abs(front).argmax(axis=1)
-            self._front_signs = front[np.arange(3), self._front_rows]
+            self._front_rows: npt.NDArray[np.intp] = np.abs(front).argmax(axis=1)
+            self._front_signs: npt.NDArray[np.float64] = front[np.arange(3), self._front_rows]
             self._M0_list = self._M0.tolist()
             self._P_list = self._P.tolist()
 
     __init__ = finite_result(__init__)
 
     # -- construction helpers
-    def _initial_argument(self, sn0, cn0, dn0):
+    def _initial_argument(self, sn0: float, cn0: float, dn0: float) -> float:
         """u0 with sn(u0) = sn0, cn(u0) = cn0, dn(u0) = dn0 (|u0| ≤ 2K)."""
         f = sn0 * float(sc.elliprf(cn0 * cn0, dn0 * dn0, 1.0)) if sn0 != 0 else 0.0
         if cn0 >= 0:
@@ -405,7 +410,19 @@ class FreeAsymmetricTop:
         K = float(elliptic.ellipk(self.m, m1=self.m1))
         return math.copysign(2.0 * K, sn0 if sn0 != 0 else 1.0) - f
 
-    def _excess(self, u, reduced=None):
+    def _excess(
+        self,
+        u: npt.NDArray[np.float64],
+        reduced: tuple[
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+        ]
+        | None = None,
+    ) -> npt.NDArray[np.float64]:
         """G(u) of flat u: :func:`mechanics.elliptic._third_kind_excess` with this top's
         constant n and m, Π − K taken once per top and the reduction of u shared
         with ω when given (the same arithmetic)."""
@@ -419,10 +436,34 @@ class FreeAsymmetricTop:
         tail = elliptic._third_kind_tail(s * snx, cnx, dnx * dnx, np.full_like(u, self._n))
         return tail + 2.0 * j * np.where(j != 0, self._full, 0.0)
 
-    def _reduce(self, flat):
+    def _reduce(
+        self, flat: npt.NDArray[np.float64]
+    ) -> tuple[
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+        npt.NDArray[np.float64],
+    ]:
         return elliptic._reduced(flat, np.full_like(flat, self.m), np.full_like(flat, self.m1))
 
-    def _sorted_omega(self, t, with_reduced=False):
+    def _sorted_omega(
+        self, t: npt.NDArray[np.float64], with_reduced: bool = False
+    ) -> (
+        npt.NDArray[np.float64]
+        | tuple[
+            npt.NDArray[np.float64],
+            tuple[
+                npt.NDArray[np.float64],
+                npt.NDArray[np.float64],
+                npt.NDArray[np.float64],
+                npt.NDArray[np.float64],
+                npt.NDArray[np.float64],
+                npt.NDArray[np.float64],
+            ],
+        ]
+    ):
         """ω in the sorted frame, shape t.shape + (3,) (and the reduction of λt + u0)."""
         if self.regime in ("rest", "steady"):
             return np.broadcast_to(self._P @ self.omega_0, (*t.shape, 3)).copy()
@@ -441,7 +482,7 @@ class FreeAsymmetricTop:
             w = (s * a1 * dn, s * a2 * sn, a3 * cn)
         return (np.stack(w, axis=-1), red) if with_reduced else np.stack(w, axis=-1)
 
-    def _pole_vector(self, ws):
+    def _pole_vector(self, ws: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         """L in the pole frame (third axis = the axis ω does not circulate), normalised;
         ω is scaled by its largest component first (J ω of a subnormal ω underflows)."""
         ws = ws / np.abs(ws).max(axis=-1, keepdims=True)
@@ -449,12 +490,12 @@ class FreeAsymmetricTop:
         if self._pole_first:
             L = L[..., [1, 2, 0]]
         L = L / np.abs(L).max(axis=-1, keepdims=True)  # no underflow in the norm
-        return L / np.linalg.norm(L, axis=-1, keepdims=True)
+        return L / np.linalg.norm(L, axis=-1, keepdims=True)  # type: ignore[no-any-return]  # numpy types norm(axis=) as Any
 
-    def _Q(self):
+    def _Q(self) -> npt.NDArray[np.float64]:
         return np.eye(3)[[1, 2, 0]] if self._pole_first else np.eye(3)
 
-    def _attitude_offset(self):
+    def _attitude_offset(self) -> npt.NDArray[np.float64] | None:
         if self.regime in ("rest", "steady"):
             return None
         nvec = self._pole_vector(self._P @ self.omega_0)
@@ -463,7 +504,7 @@ class FreeAsymmetricTop:
 
     # -- one instant in Python floats (issue 15): the array path's steps, without
     # numpy's per-call overhead; the same values within ONE_INSTANT_EPS
-    def _sorted_omega_scalar(self, t: float):
+    def _sorted_omega_scalar(self, t: float) -> tuple[tuple[float, float, float], float]:
         u = self._lam * t + self._u0
         sn, cn, dn = elliptic._ellipj_scalar(u, self.m, self.m1, self._K, self._trig_agm)
         a1, a2, a3 = self._amp.tolist()
@@ -472,11 +513,13 @@ class FreeAsymmetricTop:
             return (sg * a1 * cn, sg * s * a2 * sn, s * a3 * dn), u
         return (s * a1 * dn, s * a2 * sn, a3 * cn), u
 
-    def _omega_scalar(self, ws) -> np.ndarray:
+    def _omega_scalar(self, ws: tuple[float, float, float]) -> npt.NDArray[np.float64]:
         P = self._P_list
         return np.array([ws[0] * P[0][i] + ws[1] * P[1][i] + ws[2] * P[2][i] for i in range(3)])
 
-    def _attitude_scalar(self, t: float, ws, u) -> np.ndarray:
+    def _attitude_scalar(
+        self, t: float, ws: tuple[float, float, float], u: float
+    ) -> npt.NDArray[np.float64]:
         m = max(abs(ws[0]), abs(ws[1]), abs(ws[2]))
         Js = self._Js.tolist()
         L = [Js[i] * (ws[i] / m) for i in range(3)]
@@ -525,7 +568,7 @@ class FreeAsymmetricTop:
     # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
     separatrix_distance = property(_get_separatrix_distance)
 
-    def omega(self, t) -> np.ndarray:
+    def omega(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Angular velocity ω_A(t), body components, shape ``t.shape + (3,)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
             return self._omega_scalar(self._sorted_omega_scalar(t)[0])
@@ -534,7 +577,7 @@ class FreeAsymmetricTop:
 
     omega = finite_result(omega)
 
-    def state(self, t) -> tuple[np.ndarray, np.ndarray]:
+    def state(self, t: npt.ArrayLike) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """(ω_A(t), ^A R^O(t)) together, sharing the elliptic functions of ω: shapes
         ``t.shape + (3,)`` and ``t.shape + (3, 3)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
@@ -548,13 +591,25 @@ class FreeAsymmetricTop:
 
     state = finite_result(state)
 
-    def angular_momentum_body(self, t) -> np.ndarray:
+    def angular_momentum_body(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """L_A(t) = J ω_A(t)."""
         return self.J * self.omega(t)
 
     angular_momentum_body = finite_result(angular_momentum_body)
 
-    def precession_angle(self, t, _reduced=None) -> np.ndarray:
+    def precession_angle(
+        self,
+        t: npt.ArrayLike,
+        _reduced: tuple[
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+        ]
+        | None = None,
+    ) -> npt.NDArray[np.float64]:
         """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind);
         0 at rest and for a steady rotation, where ω ∥ L and the whole turn is spin about
         the pole, which then lies along L (the attitude is exp(t ω))."""
@@ -565,7 +620,11 @@ class FreeAsymmetricTop:
         if self._uniform:
             return Lm * self._uniform_rate * t
         u = self._lam * t + self._u0
-        G = self._excess(np.ascontiguousarray(u).ravel(), _reduced).reshape(u.shape)
+        G: npt.NDArray[np.float64] = self._excess(
+            np.ascontiguousarray(u).ravel(), _reduced
+        ).reshape(u.shape)
+        J1: float
+        J3: float
         J1, _, J3 = self._Js
         if self._pole_first:
             return Lm * t / J3 - (self._C / self._lam) * (G - self._G0)
@@ -573,7 +632,7 @@ class FreeAsymmetricTop:
 
     precession_angle = finite_result(precession_angle)
 
-    def attitude(self, t) -> np.ndarray:
+    def attitude(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The attitude ^A R^O(t), shape ``t.shape + (3, 3)``."""
         if type(t) is float and math.isfinite(t) and self._M0 is not None:
             return self._attitude_scalar(t, *self._sorted_omega_scalar(t))
@@ -581,11 +640,24 @@ class FreeAsymmetricTop:
         if self.regime in ("rest", "steady"):
             rv = t[..., None] * self.omega_0
             return matrix_from_rotvec(rv) @ self.R_A_O_0
-        return self._attitude_from(t, self._sorted_omega(t))
+        return self._attitude_from(t, self._sorted_omega(t))  # type: ignore[arg-type]  # without with_reduced: an array
 
     attitude = finite_result(attitude)
 
-    def _attitude_from(self, t, ws, reduced=None):
+    def _attitude_from(
+        self,
+        t: npt.NDArray[np.float64],
+        ws: npt.NDArray[np.float64],
+        reduced: tuple[
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+            npt.NDArray[np.float64],
+        ]
+        | None = None,
+    ) -> npt.NDArray[np.float64]:
         nvec = self._pole_vector(ws)
         W = _pole_frame(nvec[..., 0], nvec[..., 1], nvec[..., 2])
         psi = self.precession_angle(t, reduced)
@@ -596,13 +668,13 @@ class FreeAsymmetricTop:
         X[..., 0] = c * W[..., 0] - s * W[..., 1]
         X[..., 1] = s * W[..., 0] + c * W[..., 1]
         X[..., 2] = W[..., 2]
-        Y = (X.reshape(-1, 3) @ self._M0).reshape(X.shape)
+        Y: npt.NDArray[np.float64] = (X.reshape(-1, 3) @ self._M0).reshape(X.shape)  # type: ignore[operator]  # _M0 is set off rest and steady motion, the only callers
         return Y[..., self._front_rows, :] * self._front_signs[:, None]
 
-    def omega_space(self, t) -> np.ndarray:
+    def omega_space(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """ω_O(t) = Rᵀ ω_A, space components."""
         R = self.attitude(t)
-        return np.einsum("...ji,...j->...i", R, self.omega(t))
+        return np.einsum("...ji,...j->...i", R, self.omega(t))  # type: ignore[no-any-return]  # numpy types einsum as Any
 
     omega_space = finite_result(omega_space)
 
@@ -614,7 +686,9 @@ class FreeAsymmetricTop:
         K = float(elliptic.ellipk(self.m, m1=self.m1))
         return 4.0 * K / self._lam
 
-    def poinsot_residuals(self, t) -> tuple[np.ndarray, np.ndarray]:
+    def poinsot_residuals(
+        self, t: npt.ArrayLike
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """(ω·Jω − 2E, L_O·ω_O − 2E): ω on the inertia ellipsoid and on the invariable
         plane (5.85), (5.90); both zero for the exact motion."""
         w = self.omega(t)
@@ -641,7 +715,7 @@ class StabilityResult:
     """The product C_i C_k of (5.102) times ω0² (its sign decides)."""
 
 
-def principal_axis_stability(J, axis: int, *, omega: float = 1.0) -> StabilityResult:
+def principal_axis_stability(J: npt.ArrayLike, axis: int, *, omega: float = 1.0) -> StabilityResult:
     """Stability of rotation at rate ``omega`` about principal ``axis`` (1, 2 or 3), (5.102).
 
     Domain: J as :func:`check_principal_moments` (only ratios enter: any scale); axis 1, 2 or 3; a
@@ -718,7 +792,13 @@ class FreeSymmetricTop:
     True
     """
 
-    def __init__(self, J1, J3, omega_0, R_A_O_0=None):
+    def __init__(
+        self,
+        J1: float,
+        J3: float,
+        omega_0: npt.ArrayLike,
+        R_A_O_0: npt.ArrayLike | None = None,
+    ) -> None:
         for x, name in ((J1, "J1"), (J3, "J3")):
             a = as_float_array(x, name)
             if a.shape != ():
@@ -765,7 +845,7 @@ class FreeSymmetricTop:
 
     __init__ = finite_result(__init__)
 
-    def omega(self, t) -> np.ndarray:
+    def omega(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """ω_A(t) = (|A| cos(βt + α), |A| sin(βt + α), ω3) (5.44)–(5.45)."""
         t = as_float_array(t, "t")
         w1, w2, w3 = self.omega_0
@@ -774,7 +854,7 @@ class FreeSymmetricTop:
 
     omega = finite_result(omega)
 
-    def attitude(self, t) -> np.ndarray:
+    def attitude(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """^A R^O(t) = R3(φ̇t) R3(φ0) R1(θ0) R3(ψ̇t) R3(ψ0) ^S R^O, L along e^S_3.
 
         The spin φ̇ (5.35) and the precession ψ̇ (5.34) are uniform; R3(φ0) R1(θ0)
@@ -790,7 +870,7 @@ class FreeSymmetricTop:
 # --------------------------------------------------------------------------- heavy symmetric top
 
 
-def sleeping_top_is_stable(J_1, L_3, m_g_ell) -> bool:
+def sleeping_top_is_stable(J_1: float, L_3: float, m_g_ell: float) -> bool:
     """Example 5.3: the vertical (sleeping) top is stable iff L3² > 4 J'1 m g ℓ (5.72).
 
     Domain: J'1, m g ℓ > 0, any finite L3: the criterion is homogeneous and evaluated on the three
@@ -825,7 +905,9 @@ def _scaled(*xs: float) -> tuple[float, ...]:
 _positive = as_positive_scalar
 
 
-def steady_precession_rates(J_1, L_3, m_g_ell, theta) -> tuple[float, float]:
+def steady_precession_rates(
+    J_1: float, L_3: float, m_g_ell: float, theta: float
+) -> tuple[float, float]:
     """The two steady precession rates Ω (slow, fast) at nutation angle θ (5.60).
 
     Domain: J'1, m g ℓ > 0, finite L3 and θ with L3² ≥ 4 J'1 m g ℓ cos θ (else OutOfDomainError);
@@ -932,8 +1014,18 @@ class HeavySymmetricTop:
     """
 
     def __init__(
-        self, J_1, J_3, m_g_ell, *, theta, psi=0.0, phi=0.0, theta_dot=0.0, psi_dot=0.0, phi_dot=0.0
-    ):
+        self,
+        J_1: float,
+        J_3: float,
+        m_g_ell: float,
+        *,
+        theta: float,
+        psi: float = 0.0,
+        phi: float = 0.0,
+        theta_dot: float = 0.0,
+        psi_dot: float = 0.0,
+        phi_dot: float = 0.0,
+    ) -> None:
         self.J_1 = _positive(J_1, "J_1")
         self.J_3 = _positive(J_3, "J_3")
         if self.J_3 > 2.0 * self.J_1:
@@ -1025,10 +1117,10 @@ class HeavySymmetricTop:
         vertical = amb * amb == 0.0  # a = b (to the square's range): u = 1 is a root
         ebeta = T0 - beta * s2h  # e − β: how far the energy is above the vertical's
 
-        def h(y):
+        def h(y: float) -> float:
             return (2.0 + y) * (ebeta - beta * y) - 2.0 * amb * b + b * b * y
 
-        def F(y):
+        def F(y: float) -> float:
             return -y * h(y) - amb * amb
 
         if vertical and h(0.0) <= 0:
@@ -1106,11 +1198,11 @@ class HeavySymmetricTop:
 
     __init__ = finite_result(__init__)
 
-    def _f(self, x):
+    def _f(self, x: float) -> float:
         b3, c2, c1, c0 = self._coef
         return ((b3 * x + c2) * x + c1) * x + c0
 
-    def _polish(self, x, lo, hi):
+    def _polish(self, x: float, lo: float, hi: float) -> float:
         b3, c2, c1, _ = self._coef
         fx = self._f(x)
         d = (3 * b3 * x + 2 * c2) * x + c1
@@ -1120,7 +1212,7 @@ class HeavySymmetricTop:
                 return y
         return x
 
-    def f(self, u) -> np.ndarray:
+    def f(self, u: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """The cubic f(u) = u̇² (the book's 5.66–5.71 in u = cos θ)."""
         u = as_float_array(u, "u")
         a = self._Lzn / self._J1n
@@ -1129,7 +1221,7 @@ class HeavySymmetricTop:
 
     f = finite_result(f)
 
-    def effective_potential(self, theta) -> np.ndarray:
+    def effective_potential(self, theta: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Φ_eff(θ) = (L_z − L3 cos θ)²/(2J'1 sin²θ) − mgℓ(1 − cos θ) (5.70)."""
         th = as_float_array(theta, "theta")
         s = np.sin(th)
@@ -1148,7 +1240,7 @@ class HeavySymmetricTop:
     # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
     reduced_energy = property(_get_reduced_energy)
 
-    def _arg(self, t):
+    def _arg(self, t: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         return self._kappa * t + self._w0
 
     def nutation_period(self) -> float:
@@ -1158,7 +1250,7 @@ class HeavySymmetricTop:
             return math.inf
         return 2.0 * float(elliptic._quarter_period(np.float64(self._m1))) / self._kappa
 
-    def u(self, t) -> np.ndarray:
+    def u(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """u(t) = cos θ(t) = u1 + (u2 − u1) sn²(κt + w0 | m)."""
         t = as_float_array(t, "t")
         if self.sleeping:
@@ -1168,23 +1260,23 @@ class HeavySymmetricTop:
 
     u = finite_result(u)
 
-    def theta(self, t) -> np.ndarray:
+    def theta(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """θ(t) from u(t), as atan2(sin θ, cos θ) with sin θ = √((1 − u)(1 + u))."""
         u = self.u(t)
         return np.arctan2(np.sqrt(np.maximum((1 - u) * (1 + u), 0.0)), u)
 
     theta = finite_result(theta)
 
-    def _integral(self, n, t):
+    def _integral(self, n: float, t: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
         """∫₀^t dt'/(1 − n sn²(κt' + w0)) = t + [G(w) − G(w0)]/κ."""
         w = np.ascontiguousarray(self._arg(t)).ravel()
         ww = np.concatenate([w, [self._w0]])
         G = elliptic._third_kind_excess(
             ww, np.full_like(ww, n), np.full_like(ww, self._m), np.full_like(ww, self._m1)
         )
-        return t + ((G[:-1] - G[-1]) / self._kappa).reshape(np.shape(t))
+        return t + ((G[:-1] - G[-1]) / self._kappa).reshape(np.shape(t))  # type: ignore[no-any-return]  # numpy: an element (G[-1]) is Any
 
-    def psi(self, t) -> np.ndarray:
+    def psi(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Precession angle ψ(t): ψ̇ = (a − bu)/(1 − u²) (5.67) integrated in closed form."""
         t = as_float_array(t, "t")
         if self.sleeping:
@@ -1198,7 +1290,7 @@ class HeavySymmetricTop:
 
     psi = finite_result(psi)
 
-    def phi(self, t) -> np.ndarray:
+    def phi(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Spin angle φ(t): φ̇ = L3/J3 − u ψ̇ (5.53), in closed form."""
         t = as_float_array(t, "t")
         if self.sleeping:
@@ -1212,7 +1304,9 @@ class HeavySymmetricTop:
 
     phi = finite_result(phi)
 
-    def rates(self, t):
+    def rates(
+        self, t: npt.ArrayLike
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
         """(θ̇, ψ̇, φ̇)(t) along the exact motion.
 
         1 ± u are carried as (1 + u1) + (u2 − u1) sn² and (1 − u2) + (u2 − u1) cn², and
@@ -1237,13 +1331,13 @@ class HeavySymmetricTop:
 
     rates = finite_result(rates)
 
-    def energy_at(self, t) -> np.ndarray:
+    def energy_at(self, t: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """E(t) from the exact motion (5.66); constant."""
         return self.integrals_at(t)[2]
 
     energy_at = finite_result(energy_at)
 
-    def integrals_at(self, t):
+    def integrals_at(self, t: npt.ArrayLike) -> tuple[npt.NDArray[np.float64], ...]:
         """(L_z, L_3, E) evaluated along the exact motion, (5.55), (5.53), (5.66)."""
         thd, psid, phid = self.rates(t)
         u = self.u(t)
@@ -1259,7 +1353,18 @@ class HeavySymmetricTop:
 # --------------------------------------------------------------------------- Example 5.1
 
 
-def spherical_top_on_incline(t, *, m, R, J, beta, g, x0=0.0, y0=0.0, omega_0=(0.0, 0.0, 0.0)):
+def spherical_top_on_incline(
+    t: npt.ArrayLike,
+    *,
+    m: float,
+    R: float,
+    J: float,
+    beta: float,
+    g: float,
+    x0: float = 0.0,
+    y0: float = 0.0,
+    omega_0: npt.ArrayLike = (0.0, 0.0, 0.0),
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Sphere rolling without slipping on a rough incline (Example 5.1).
 
     Domain: m, R, J, g > 0, β in [0, π/2], finite t, x0, y0, ω0; a result beyond float64 raises
