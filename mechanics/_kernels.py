@@ -37,6 +37,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
+import numpy.typing as npt
 from numba import njit
 
 STATUS_OK = 0
@@ -48,7 +49,9 @@ STATUS_MAX_STEPS = 3
 _compile = njit(cache=True, error_model="numpy")
 
 
-def _frb_rhs(J, y, out):  # pragma: no cover (compiled; tested against the reference)
+def _frb_rhs(
+    J: npt.NDArray[np.float64], y: npt.NDArray[np.float64], out: npt.NDArray[np.float64]
+) -> None:  # pragma: no cover (compiled; tested against the reference)
     """out = the free rigid body's dy/dt for every body of the flat state y."""
     for b in range(J.shape[0]):
         o = 12 * b
@@ -70,7 +73,7 @@ def _frb_rhs(J, y, out):  # pragma: no cover (compiled; tested against the refer
 _frb_rhs = _compile(_frb_rhs)
 
 
-def _all_finite(v):  # pragma: no cover
+def _all_finite(v: npt.NDArray[np.float64]) -> bool:  # pragma: no cover
     for x in v:  # noqa: SIM110 (a loop numba compiles to a plain loop)
         if not math.isfinite(x):
             return False
@@ -80,7 +83,13 @@ def _all_finite(v):  # pragma: no cover
 _all_finite = _compile(_all_finite)
 
 
-def rk4_free_body(J, y0, t, ns, ys):  # pragma: no cover
+def rk4_free_body(
+    J: npt.NDArray[np.float64],
+    y0: npt.NDArray[np.float64],
+    t: npt.NDArray[np.float64],
+    ns: npt.NDArray[np.int64],
+    ys: npt.NDArray[np.float64],
+) -> tuple[int, int]:  # pragma: no cover
     """RK4 on the free rigid body: ns[k] equal steps over [t[k], t[k+1]]; the states
     at the output times go into ys (len(t), size).  Returns (status, steps)."""
     n = y0.size
@@ -120,7 +129,17 @@ def rk4_free_body(J, y0, t, ns, ys):  # pragma: no cover
 rk4_free_body = _compile(rk4_free_body)
 
 
-def _error_norm(K, E5, E3, h, y, y_new, rtol, atol, groups):  # pragma: no cover
+def _error_norm(
+    K: npt.NDArray[np.float64],
+    E5: npt.NDArray[np.float64],
+    E3: npt.NDArray[np.float64],
+    h: float,
+    y: npt.NDArray[np.float64],
+    y_new: npt.NDArray[np.float64],
+    rtol: float,
+    atol: float,
+    groups: int,
+) -> float:  # pragma: no cover
     """The DOP853 error norm (the reference's ``_dop853_error``), max over members."""
     n = y.size
     gs = n // groups
@@ -150,7 +169,9 @@ def _error_norm(K, E5, E3, h, y, y_new, rtol, atol, groups):  # pragma: no cover
 _error_norm = _compile(_error_norm)
 
 
-def _member_rms_min_max(v, scale, groups, want_max):  # pragma: no cover
+def _member_rms_min_max(
+    v: npt.NDArray[np.float64], scale: npt.NDArray[np.float64], groups: int, want_max: bool
+) -> float:  # pragma: no cover
     n = v.size
     gs = n // groups
     out = -1.0
@@ -169,8 +190,23 @@ _member_rms_min_max = _compile(_member_rms_min_max)
 
 
 def dop853_free_body(
-    J, y0, t, h0, rtol, atol, groups, max_steps, A, B, C, E3, E5, D, ctrl, ys
-):  # pragma: no cover
+    J: npt.NDArray[np.float64],
+    y0: npt.NDArray[np.float64],
+    t: npt.NDArray[np.float64],
+    h0: float,
+    rtol: float,
+    atol: float,
+    groups: int,
+    max_steps: int,
+    A: npt.NDArray[np.float64],
+    B: npt.NDArray[np.float64],
+    C: npt.NDArray[np.float64],
+    E3: npt.NDArray[np.float64],
+    E5: npt.NDArray[np.float64],
+    D: npt.NDArray[np.float64],
+    ctrl: npt.NDArray[np.float64],
+    ys: npt.NDArray[np.float64],
+) -> tuple[int, int, int, int]:  # pragma: no cover
     """DOP853 on the free rigid body (the reference's ``_integrate_dop853``): steps
     set by the error control towards t[-1], outputs inside a step from its 7th-order
     continuous extension.  A (16, 16), C (16,) the extended tableau, D (4, 16) the
@@ -312,7 +348,9 @@ def dop853_free_body(
 dop853_free_body = _compile(dop853_free_body)
 
 
-def _project(L, R, norm0):  # pragma: no cover
+def _project(
+    L: npt.NDArray[np.float64], R: npt.NDArray[np.float64], norm0: float
+) -> None:  # pragma: no cover
     """|L| ← norm0 and one Newton–Schulz step R ← R − ½ (R Rᵀ − 1) R (the reference's
     ``_project_batch``, in its order of operations)."""
     nrm = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
@@ -338,7 +376,13 @@ def _project(L, R, norm0):  # pragma: no cover
 _project = _compile(_project)
 
 
-def _flow(J, L, R, i, c):  # pragma: no cover
+def _flow(
+    J: npt.NDArray[np.float64],
+    L: npt.NDArray[np.float64],
+    R: npt.NDArray[np.float64],
+    i: int,
+    c: float,
+) -> None:  # pragma: no cover
     """The exact flow of H_i for a time c: L and the rows of R turn about axis i."""
     a = (i + 1) % 3
     b = (i + 2) % 3
@@ -359,7 +403,15 @@ def _flow(J, L, R, i, c):  # pragma: no cover
 _flow = _compile(_flow)
 
 
-def _flow_compensated(J, L, R, cL, cR, i, c):  # pragma: no cover
+def _flow_compensated(
+    J: npt.NDArray[np.float64],
+    L: npt.NDArray[np.float64],
+    R: npt.NDArray[np.float64],
+    cL: npt.NDArray[np.float64],
+    cR: npt.NDArray[np.float64],
+    i: int,
+    c: float,
+) -> None:  # pragma: no cover
     """The reference's ``_flow_compensated``: the turn about axis i as an increment
     ((cos − 1) x + sin y, cos − 1 = −2 sin²(θ/2)) added by Kahan summation, the
     compensations cL (3,), cR (3, 3) carried from flow to flow."""
@@ -396,8 +448,19 @@ _flow_compensated = _compile(_flow_compensated)
 
 
 def splitting_free_body(
-    J, L0, R0, norm0, t, ns, axes, fracs, head, every, compensated, ys
-):  # pragma: no cover
+    J: npt.NDArray[np.float64],
+    L0: npt.NDArray[np.float64],
+    R0: npt.NDArray[np.float64],
+    norm0: npt.NDArray[np.float64],
+    t: npt.NDArray[np.float64],
+    ns: npt.NDArray[np.int64],
+    axes: npt.NDArray[np.int64],
+    fracs: npt.NDArray[np.float64],
+    head: float,
+    every: int,
+    compensated: bool,
+    ys: npt.NDArray[np.float64],
+) -> tuple[int, int]:  # pragma: no cover
     """The Lie–Poisson splitting of each body (the reference's run and projection):
     axes/fracs the schedule's middle flows, head its opening H1 fraction; ns[k]
     steps over [t[k], t[k+1]], the drift removed every ``every`` steps and at each
