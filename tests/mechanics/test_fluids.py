@@ -345,3 +345,382 @@ def test_a_streamline_that_needs_too_many_evaluations_reports_the_whole_interval
 def test_a_result_beyond_float64_is_an_overflow_error_naming_the_function(fname, call):
     with pytest.raises(ResultOverflowError, match=rf"^{fname}: .*float64"):
         call()
+
+
+# ------------------------------------------- mutation review: step choice, defaults, messages
+#: a quintic's fifth derivative is constant, so the fourth-order stencil's truncation error
+#: -h⁴ f⁽⁵⁾/30 is exact: d/dx x⁵ comes out as 5x⁴ - 4h⁴; with h = 1/8 (a power of two) every
+#: stencil value is exact or rounded once, leaving a few eps of the values (~10 at x = 1)
+QUINTIC_ATOL = 2**8 * EPS
+
+
+def _recording(field, seen):
+    """The field, recording the points and times it is called at."""
+
+    def f(r, t):
+        seen.append((np.array(r, copy=True), t))
+        return field(r, t)
+
+    return f
+
+
+def _linear_in_x(r, t):
+    return r[..., 0] + 0.0 * t
+
+
+def test_the_default_spatial_step_is_h_rel_times_one_plus_the_largest_component_of_each_point():
+    # two points of different size: each gets its own step, H_REL (1 + |r|∞)
+    r = np.array([[0.5, -3.0, 1.0], [0.25, 0.0, -0.125]])
+    seen = []
+    fluids.gradient(_recording(_linear_in_x, seen), r, 0.0)
+    (pts, _t), *_ = seen
+    assert pts.shape == (4, 3, 2, 3)  # offsets, directions, points, components
+    h = fluids.H_REL * np.array([1.0 + 3.0, 1.0 + 0.25])
+    for k, o in enumerate([-2.0, -1.0, 1.0, 2.0]):
+        for j in range(3):
+            expected = r + o * h[:, None] * np.eye(3)[j]
+            np.testing.assert_array_equal(pts[k, j], expected)
+
+
+def test_the_default_time_step_is_h_rel_times_one_plus_abs_t():
+    seen = []
+    fluids.partial_time_derivative(_recording(_linear_in_x, seen), [0.1, 0.2, 0.3], -3.0)
+    h = fluids.H_REL * (1.0 + 3.0)
+    assert [t for _r, t in seen] == [-3.0 + o * h for o in (-2.0, -1.0, 1.0, 2.0)]
+
+
+def test_a_step_per_point_is_used_for_each_point():
+    # h may be an array over the points: d/dx x⁵ = 5x⁴ - 4h⁴ for each point's own h
+    def quintic(r, t):
+        return r[..., 0] ** 5
+
+    r = np.array([[[1.0, 0.0, 0.0], [0.5, 2.0, 0.0]], [[-1.0, 0.0, 1.0], [2.0, 0.0, 0.0]]])
+    h = np.array([[1 / 8, 1 / 4], [1 / 16, 1 / 8]])
+    g = fluids.gradient(quintic, r, 0.0, h=h)
+    expected = np.zeros_like(r)
+    expected[..., 0] = 5 * r[..., 0] ** 4 - 4 * h**4
+    np.testing.assert_allclose(g, expected, rtol=0, atol=QUINTIC_ATOL * 16)
+
+
+def _quintic_v(r, t):
+    x = r[..., 0]
+    return np.stack([x**5, 0.0 * x, 0.0 * x], axis=-1)
+
+
+def test_a_user_step_reaches_every_spatial_derivative():
+    # with h = 1/8 each x-derivative of x⁵ at x = 1 is 5 - 4h⁴, not 5 - 4 H_REL⁴ (1 + 1)⁴
+    h = 1 / 8
+    d = 5.0 - 4 * h**4
+    r = [1.0, 0.0, 0.0]
+    assert fluids.divergence(_quintic_v, r, h=h) == pytest.approx(d, abs=QUINTIC_ATOL)
+
+    def one(x, t):
+        return 1.0 + 0.0 * x[..., 0]
+
+    res = fluids.continuity_residual(one, _quintic_v, r, h=h)
+    assert res == pytest.approx(d, abs=QUINTIC_ATOL)
+    # steady: ∂f/∂t = 0; (v·∇) f = v_x ∂f/∂x = 1 (5 - 4h⁴)
+    assert fluids.material_derivative(_quintic_v, _quintic_v, r, h=h)[0] == pytest.approx(
+        d, abs=QUINTIC_ATOL
+    )
+
+    # Euler: (v·∇)v = x⁵ (5 - 4h⁴) and ∇p/ρ = 5 - 4h⁴ for p = x⁵, ρ = 1; -g_vec = (0, 0, g)
+    def p(x, t):
+        return x[..., 0] ** 5
+
+    res = fluids.euler_residual(_quintic_v, p, r, rho=1.0, g=2.0, h=h)
+    np.testing.assert_allclose(res, [2 * d, 0.0, 2.0], rtol=0, atol=QUINTIC_ATOL)
+
+
+def test_a_user_time_step_may_exceed_one():
+    # f = t⁵: the stencil gives 5t⁴ - 4h⁴ exactly; h = 1/2 at t = 1 gives 5 - 1/4
+    def f(r, t):
+        return t**5 + 0.0 * r[..., 0]
+
+    d = fluids.partial_time_derivative(f, [0.0, 0.0, 0.0], 1.0, h=0.5)
+    assert d == pytest.approx(5.0 - 0.25, abs=QUINTIC_ATOL)
+
+
+def _grows(r, t):
+    """v = (1 + t) r: div v = 3 (1 + t), curl 0, ∂v/∂t = r."""
+    return (1.0 + t) * np.asarray(r)
+
+
+def _spins(r, t):
+    """v = (1 + t) e_z × r: curl v = 2 (1 + t) e_z."""
+    x, y, _z = np.moveaxis(np.asarray(r), -1, 0)
+    return (1.0 + t) * np.stack([-y, x, 0.0 * x], axis=-1)
+
+
+def test_the_default_time_is_zero():
+    r = np.array([0.5, -1.0, 2.0])
+    np.testing.assert_allclose(
+        fluids.velocity_gradient(_grows, r), np.eye(3), rtol=0, atol=STENCIL_ATOL
+    )
+    assert fluids.divergence(_grows, r) == pytest.approx(3.0, abs=STENCIL_ATOL)
+    np.testing.assert_allclose(fluids.curl(_spins, r), [0, 0, 2.0], rtol=0, atol=STENCIL_ATOL)
+
+    def f(x, t):  # ∇f = (1 + t + t², 0, 0); ∂f/∂t = (1 + 2t) x
+        return (1.0 + t) * x[..., 0] + t**2 * x[..., 0]
+
+    np.testing.assert_allclose(fluids.gradient(f, r), [1.0, 0, 0], rtol=0, atol=STENCIL_ATOL)
+    assert fluids.partial_time_derivative(f, r) == pytest.approx(0.5, abs=STENCIL_ATOL)
+
+    def still(x, t):
+        return 0.0 * np.asarray(x)
+
+    # still fluid: df/dt = ∂f/∂t = (1 + 2t) x = x at t = 0
+    assert fluids.material_derivative(f, still, r) == pytest.approx(0.5, abs=STENCIL_ATOL)
+
+    def rho(x, t):  # ∂ρ/∂t = 2 t
+        return 1.0 + t**2 + 0.0 * x[..., 0]
+
+    assert fluids.continuity_residual(rho, still, r) == pytest.approx(0.0, abs=STENCIL_ATOL)
+
+    def v(x, t):  # ∂v/∂t = (2t, 0, 0), (v·∇)v = 0
+        return np.stack([t**2 + 0.0 * x[..., 0], 0.0 * x[..., 1], 0.0 * x[..., 2]], axis=-1)
+
+    def p0(x, t):
+        return 0.0 * x[..., 0]
+
+    res = fluids.euler_residual(v, p0, r, rho=1.0, g=1.0)
+    np.testing.assert_allclose(res, [0.0, 0.0, 1.0], rtol=0, atol=STENCIL_ATOL)
+    # and at t = 1.5 the local acceleration 2t = 3 is there, read at the time asked
+    res = fluids.euler_residual(v, p0, r, 1.5, rho=1.0, g=1.0)
+    np.testing.assert_allclose(res, [3.0, 0.0, 1.0], rtol=0, atol=STENCIL_ATOL)
+
+
+def test_material_derivative_reads_the_time_derivative_at_the_time_asked():
+    # f = t² x, still fluid: df/dt = 2 t x = 8 at t = 2, x = 2
+    def f(x, t):
+        return t**2 * x[..., 0]
+
+    def still(x, t):
+        return 0.0 * np.asarray(x)
+
+    d = fluids.material_derivative(f, still, [2.0, 0.0, 0.0], 2.0)
+    assert d == pytest.approx(8.0, abs=STENCIL_ATOL)
+
+
+def test_material_derivative_of_a_scalar_field_adds_the_convective_rate():
+    # f = x y + t z in the uniform flow v = (1, 2, 3): df/dt = z + (y·1 + x·2 + t·3)
+    def f(x, t):
+        return x[..., 0] * x[..., 1] + t * x[..., 2]
+
+    def v(x, t):
+        return np.broadcast_to([1.0, 2.0, 3.0], np.shape(x)).copy()
+
+    r = np.array([[0.5, -1.0, 2.0], [1.0, 1.0, 1.0]])
+    t = 0.25
+    expected = r[:, 2] + r[:, 1] + 2 * r[:, 0] + 3 * t
+    d = fluids.material_derivative(f, v, r, t)
+    assert d.shape == (2,)
+    np.testing.assert_allclose(d, expected, rtol=0, atol=STENCIL_ATOL)
+
+
+def _vector_of(r, t):
+    return np.asarray(r) * 1.0
+
+
+def _scalar_of(r, t):
+    return np.asarray(r)[..., 0] * 1.0
+
+
+def _zero_scalar(r, t):
+    return 0.0 * np.asarray(r)[..., 0]
+
+
+def _off_the_point_nan(r, t):
+    # finite (zero) at x = 0.1 exactly, NaN at every other x: the spatial stencil's x-offsets
+    return np.where(np.asarray(r)[..., 0] == 0.1, 0.0, np.nan)
+
+
+_R = [0.1, 0.2, 0.3]
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "message"),
+    [
+        # a scalar field that returns a vector is named, as a scalar field
+        (
+            lambda: fluids.gradient(_vector_of, _R),
+            ShapeError,
+            r"^f\(r, t\) returned shape \(4, 3, 3\) for r of shape \(4, 3, 3\); "
+            r"a scalar field must return \(4, 3\)$",
+        ),
+        # a field of either kind that returns neither shape is judged as a scalar one
+        (
+            lambda: fluids.partial_time_derivative(lambda r, t: np.zeros(2), _R),
+            ShapeError,
+            r"^f\(r, t\) returned shape \(2,\) for r of shape \(3,\); "
+            r"a scalar field must return \(\)$",
+        ),
+        (
+            lambda: fluids.continuity_residual(_vector_of, _vector_of, _R),
+            ShapeError,
+            r"^rho\(r, t\) returned shape .*a scalar field must return",
+        ),
+        (
+            lambda: fluids.continuity_residual(_scalar_of, _scalar_of, _R),
+            ShapeError,
+            r"^v\(r, t\) returned shape .*a vector field must return",
+        ),
+        (
+            lambda: fluids.euler_residual(_zero_vector, _vector_of, _R, rho=1.0, g=1.0),
+            ShapeError,
+            r"^p\(r, t\) returned shape .*a scalar field must return",
+        ),
+        (
+            lambda: fluids.material_derivative(_zero_scalar, _scalar_of, _R),
+            ShapeError,
+            r"^v\(r, t\) returned shape \(\) for r of shape \(3,\); a vector field must return",
+        ),
+        # finite at r for every t (the time stencil) but not at r ± h e_x: named f
+        (
+            lambda: fluids.material_derivative(_off_the_point_nan, _vector_of, _R),
+            NonFiniteError,
+            r"^f\(r, t\) returned a non-finite value at t = 0\.0$",
+        ),
+        (
+            lambda: fluids.gradient(_scalar_of, _R, h=np.nan),
+            NonFiniteError,
+            r"^h must be finite",
+        ),
+        (
+            lambda: fluids.partial_time_derivative(_scalar_of, _R, h=np.nan),
+            NonFiniteError,
+            r"^h must be finite",
+        ),
+        (
+            lambda: fluids.rigid_velocity_field([0, 0, 0], [[1, 0, 0]]),
+            ShapeError,
+            r"^v_0 and omega of a rigid velocity field must have shape \(3,\)$",
+        ),
+        (
+            lambda: fluids.streamline(_vector_of, [1.0, 0.0, 0.0], [0.0, 1.0], rtol=1.0),
+            OutOfDomainError,
+            r"^rtol must lie in \[2\.22e-14, 1\) .*; got 1\.0$",
+        ),
+        # dr/ds = x² from x = 1 blows up at s = 1: the integrator gives up and says why
+        (
+            lambda: fluids.streamline(_x_squared, [1.0, 0.0, 0.0], [0.0, 2.0]),
+            OutOfDomainError,
+            r"^streamline integration failed: Required step size",
+        ),
+    ],
+)
+def test_refusals_name_the_field_and_the_condition(call, error, message):
+    with pytest.raises(error, match=message):
+        call()
+
+
+def _zero_vector(r, t):
+    return 0.0 * np.asarray(r)
+
+
+def _x_squared(r, t):
+    x = np.asarray(r)[..., 0]
+    return np.stack([x**2, 0.0 * x, 0.0 * x], axis=-1)
+
+
+def test_fields_returning_float32_are_read_as_float64():
+    # ρ = 1e20 and v = (1e20, 0, 0) in float32: the flux ρ v = 1e40 is beyond float32 but not
+    # float64; the float32 values are exact in float64, so the residual is the float64 one
+    # (a uniform steady flow: zero up to the stencil's rounding of a constant 1e40)
+    def fields(dtype):
+        def rho(r, t):
+            return np.full(np.shape(r)[:-1], 1e20, dtype=dtype)
+
+        def v(r, t):
+            out = np.zeros(np.shape(r), dtype=dtype)
+            out[..., 0] = 1e20
+            return out
+
+        return rho, v
+
+    big = float(np.float32(1e20))  # the float32 value, exact in float64
+    assert big != 1e20
+
+    def rho64(r, t):
+        return np.full(np.shape(r)[:-1], big)
+
+    def v64(r, t):
+        out = np.zeros(np.shape(r))
+        out[..., 0] = big
+        return out
+
+    r = [0.1, 0.2, 0.3]
+    res = fluids.continuity_residual(*fields(np.float32), r)
+    assert res == fluids.continuity_residual(rho64, v64, r)
+
+
+def test_a_rigid_field_reads_any_integer_point_as_float():
+    # an integer beyond int64 is a finite point; v = ω × r with ω = e_z, r = 2⁷⁰ e_x
+    v = fluids.rigid_velocity_field([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    out = v([2**70, 0, 0], 0.0)
+    assert out.dtype == np.float64
+    assert out.tolist() == [0.0, 2.0**70, 0.0]
+
+
+def test_a_streamline_reads_the_field_at_the_frozen_time():
+    # v = (1 + t) e_x frozen at t: r(s) = r_0 + (1 + t) s e_x; the default t is 0
+    def v(r, t):
+        return np.array([1.0 + t, 0.0, 0.0])
+
+    s = np.linspace(0.0, 1.0, 7)
+    r0 = np.array([0.5, 1.0, -1.0])
+    pts = fluids.streamline(v, r0, s)
+    assert pts.shape == (7, 3)
+    np.testing.assert_allclose(pts, r0 + np.outer(s, [1.0, 0, 0]), rtol=0, atol=STENCIL_ATOL)
+    pts = fluids.streamline(v, r0, s, t=2.0)
+    np.testing.assert_allclose(pts, r0 + np.outer(s, [3.0, 0, 0]), rtol=0, atol=STENCIL_ATOL)
+
+
+def test_a_streamline_at_one_parameter_value_is_the_start_point():
+    pts = fluids.streamline(_zero_vector, [0.5, 1.0, -1.0], [0.25])
+    assert pts.tolist() == [[0.5, 1.0, -1.0]]
+    with pytest.raises(ShapeError, match=r"got shape \(0,\)$"):
+        fluids.streamline(_zero_vector, [0.5, 1.0, -1.0], [])
+
+
+def test_the_smallest_rtol_is_allowed():
+    v = fluids.rigid_velocity_field([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    pts = fluids.streamline(v, [1.0, 0.0, 0.0], [0.0, 1.0], rtol=fluids.STREAMLINE_MIN_RTOL)
+    # the circle through (1, 0, 0): (cos 1, sin 1, 0), to the tolerance asked (a few ulps)
+    np.testing.assert_allclose(pts[1], [np.cos(1.0), np.sin(1.0), 0.0], rtol=0, atol=2**8 * EPS)
+
+
+def test_a_streamline_may_take_exactly_streamline_max_evals_evaluations(monkeypatch):
+    n = [0]
+
+    def v(r, t):
+        n[0] += 1
+        return np.array([-r[1], r[0], 0.0])
+
+    s = [0.0, 1.0, 2.0]
+    fluids.streamline(v, [1.0, 0.0, 0.0], s)
+    needed = n[0]
+    monkeypatch.setattr(fluids, "STREAMLINE_MAX_EVALS", needed)
+    fluids.streamline(v, [1.0, 0.0, 0.0], s)
+    monkeypatch.setattr(fluids, "STREAMLINE_MAX_EVALS", needed - 1)
+    with pytest.raises(StepSizeError, match=rf"^streamline: more than {needed - 1} evaluations"):
+        fluids.streamline(v, [1.0, 0.0, 0.0], s)
+
+
+def test_a_streamline_is_integrated_by_an_eighth_order_method(monkeypatch):
+    # DOP853 follows a rotation for about three turns at rtol 1e-12 in ~1100 evaluations of v
+    # (RK45, fifth order, would need ~7000): 2000 is enough only for the eighth order
+    monkeypatch.setattr(fluids, "STREAMLINE_MAX_EVALS", 2000)
+    v = fluids.rigid_velocity_field([0.0, 0.0, 0.0], [0.0, 0.0, 1.0])
+    pts = fluids.streamline(v, [1.0, 0.0, 0.0], [0.0, 20.0])
+    np.testing.assert_allclose(np.hypot(pts[:, 0], pts[:, 1]), 1.0, rtol=0, atol=2**16 * EPS)
+
+
+def test_an_empty_tank_and_a_surface_hole_are_allowed():
+    # h = 0: the hole is at the surface, nothing flows out; an empty tank drains in no time
+    assert fluids.torricelli_speed(0.0, g=9.8) == 0.0
+    assert fluids.drain_time(0.0, g=9.8, area_ratio=0.1) == 0.0
+    # a level below one unit: T = √h0 / c with c = a √(g / (2 (1 - a²))), c² = 0.01·9.8/1.98
+    c = 0.1 * np.sqrt(9.8 / (2 * 0.99))
+    drain = fluids.drain_time(0.25, g=9.8, area_ratio=0.1)
+    assert drain == pytest.approx(0.5 / c, rel=CLOSED_RTOL)
