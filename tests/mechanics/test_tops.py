@@ -872,3 +872,65 @@ def test_heavy_top_sleeping_and_gimbal_lock():
     assert t.roots == (1.0, 1.0, math.inf)
     with pytest.raises(GimbalLockError, match=r"^theta = 0 or π with theta_dot ≠ 0: "):
         tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=0.0, theta_dot=0.1)
+
+
+# ------------------------------------------------- mutation review (full run of tops.py)
+
+
+def test_skew_is_the_cross_product_matrix():
+    """[w]× v = w × v for every v (the matrix of the cross product, 4.2): checked on the
+    basis vectors, so each column is w × e_i, exactly (a product by 0 or 1 and a sign)."""
+    w = np.array([2.0, -3.0, 5.0])
+    S = tops._skew(w)
+    assert S.shape == (3, 3)
+    for i, e in enumerate(np.eye(3)):
+        np.testing.assert_array_equal(S[:, i], np.cross(w, e))
+    np.testing.assert_array_equal(S, -S.T)
+
+
+def test_spherical_top_on_incline_exactly_at_the_steepest_and_flattest_slopes():
+    """Example 5.1 with numbers that are exact in binary: m = 2, R = ½, J = ½, g = 4 at
+    β = π/2 (sin of the float π/2 is 1.0 exactly): α = R m g / (J + m R²) = 4 / 1 = 4
+    (5.15); x = x0 + R ω_y0 t + ½ R α t², y = y0 − R ω_x0 t, ω = (ω_x0, ω_y0 + α t, ω_z0)
+    (5.16)–(5.23), every term a dyadic rational: exact."""
+    t = np.array([0.0, 0.5, 1.0, 2.0])
+    w0 = [3.0, -1.0, 7.0]
+    x, y, w = tops.spherical_top_on_incline(
+        t, m=2.0, R=0.5, J=0.5, beta=math.pi / 2, g=4.0, x0=1.0, y0=-2.0, omega_0=w0
+    )
+    np.testing.assert_array_equal(x, 1.0 + 0.5 * -1.0 * t + 0.5 * 0.5 * 4.0 * t * t)
+    np.testing.assert_array_equal(y, -2.0 - 0.5 * 3.0 * t)
+    assert w.shape == (4, 3)
+    np.testing.assert_array_equal(w, np.stack([3.0 + 0 * t, -1.0 + 4.0 * t, 7.0 + 0 * t], -1))
+    # β = 0, a level floor: no acceleration, uniform rolling; the defaults start at rest
+    # at the origin, where the sphere stays
+    x, y, w = tops.spherical_top_on_incline(t, m=2.0, R=0.5, J=0.5, beta=0.0, g=4.0, omega_0=w0)
+    np.testing.assert_array_equal(x, -0.5 * t)
+    np.testing.assert_array_equal(y, -1.5 * t)
+    np.testing.assert_array_equal(w, np.tile(w0, (4, 1)))
+    x, y, w = tops.spherical_top_on_incline(t, m=2.0, R=0.5, J=0.5, beta=0.0, g=4.0)
+    np.testing.assert_array_equal(np.concatenate([x, y, w.ravel()]), 0.0)
+    # one instant: scalars and ω of shape (3,)
+    x, y, w = tops.spherical_top_on_incline(
+        2.0, m=2.0, R=0.5, J=0.5, beta=math.pi / 2, g=4.0, omega_0=w0
+    )
+    assert (float(x), float(y)) == (-1.0 + 4.0, -3.0)
+    np.testing.assert_array_equal(w, [3.0, 7.0, 7.0])
+    # a steep slope between π/3 and π/2 is inside the domain: α = (5/7) g sin β / R for
+    # a uniform sphere (J = 2 m R²/5), a few roundings
+    x, _, _ = tops.spherical_top_on_incline(1.0, m=1.0, R=1.0, J=0.4, beta=1.2, g=1.0)
+    assert float(x) == pytest.approx(0.5 * 5 / 7 * math.sin(1.2), rel=8 * EPS)
+
+
+@pytest.mark.parametrize("beta", [-1e-300, math.nextafter(math.pi / 2, 4.0), 2.0])
+def test_spherical_top_on_incline_refuses_a_slope_outside_0_to_pi_over_2_naming_it(beta):
+    with pytest.raises(OutOfDomainError) as info:
+        tops.spherical_top_on_incline(1.0, m=1.0, R=1.0, J=0.4, beta=beta, g=1.0)
+    assert str(info.value) == f"beta must lie in [0, π/2]; got {beta!r}"
+
+
+@pytest.mark.parametrize("param", ["t", "x0", "y0", "beta"])
+def test_spherical_top_on_incline_names_a_non_finite_argument(param):
+    kw = {"t": 1.0, "m": 1.0, "R": 1.0, "J": 0.4, "beta": 0.5, "g": 1.0} | {param: math.nan}
+    with pytest.raises(NonFiniteError, match=rf"(?<![A-Za-z0-9_]){param}(?![A-Za-z0-9_])"):
+        tops.spherical_top_on_incline(**kw)
