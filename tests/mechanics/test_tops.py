@@ -934,3 +934,55 @@ def test_spherical_top_on_incline_names_a_non_finite_argument(param):
     kw = {"t": 1.0, "m": 1.0, "R": 1.0, "J": 0.4, "beta": 0.5, "g": 1.0} | {param: math.nan}
     with pytest.raises(NonFiniteError, match=rf"(?<![A-Za-z0-9_]){param}(?![A-Za-z0-9_])"):
         tops.spherical_top_on_incline(**kw)
+
+
+def test_steady_precession_at_a_double_root_is_l3_over_2_j1():
+    """(5.60) J'1 cos θ Ω² − L3 Ω + m g ℓ = 0 at θ = 0 (cos θ = 1 exactly) with L3² = 4 J'1 m g ℓ:
+    J'1 = 1, L3 = 2, m g ℓ = 1 gives the double root Ω = L3/(2 J'1) = 1, exact (the edge of
+    the domain, L3² − 4 J'1 m g ℓ cos θ = 0, is inside it)."""
+    assert tops.steady_precession_rates(1.0, 2.0, 1.0, 0.0) == (1.0, 1.0)
+    assert tops.steady_precession_rates(1.0, -2.0, 1.0, 0.0) == (-1.0, -1.0)
+    # just inside: L3 = 2 + 2^-51 gives two distinct real roots about 1
+    slow, fast = tops.steady_precession_rates(1.0, 2.0 + 2.0**-51, 1.0, 0.0)
+    assert slow < 1.0 < fast
+    # and at θ = 0 away from the edge, J'1 = 1, L3 = 5, m g ℓ = 4: Ω² − 5 Ω + 4 = 0, Ω = 1, 4
+    assert tops.steady_precession_rates(1.0, 5.0, 4.0, 0.0) == (1.0, 4.0)
+
+
+def test_a_hanging_top_without_spin_is_a_conical_pendulum_of_rate_root_mgl_over_j1():
+    """θ = π (cos θ = −1 exactly in float64), L3 = 0: (5.60) is −J'1 Ω² + m g ℓ = 0,
+    Ω = ±√(m g ℓ / J'1) = ±2 for J'1 = 1, m g ℓ = 4: exact, the negative one first (the
+    documented pair (−r, r))."""
+    assert tops.steady_precession_rates(1.0, 0.0, 4.0, math.pi) == (-2.0, 2.0)
+
+
+@pytest.mark.parametrize(("L3", "shown"), [(1.0, "-0.75"), (-1.0, "-0.75")])
+def test_no_steady_precession_is_refused_with_the_condition(L3, shown):
+    """J'1 = m g ℓ = 1, θ = 0, |L3| = 1: L3² − 4 J'1 m g ℓ cos θ = −3 < 0.  The message
+    prints the discriminant of the quadratic scaled by a power of two (here 2^-2: −0.75),
+    the same sign as the book's."""
+    with pytest.raises(OutOfDomainError) as info:
+        tops.steady_precession_rates(1.0, L3, 1.0, 0.0)
+    assert str(info.value) == f"no steady precession: L3² − 4 J'1 m g ℓ cos θ = {shown} < 0"
+
+
+@pytest.mark.xfail(strict=True, reason="library bug: the message shows the scaled discriminant")
+def test_no_steady_precession_message_shows_the_discriminant_of_the_values_given():
+    """The message says 'L3² − 4 J'1 m g ℓ cos θ = …' of the arguments: for J'1 = m g ℓ =
+    L3 = 1, θ = 0 that is 1 − 4 = −3, but steady_precession_rates prints the quadratic's
+    discriminant after dividing J'1, L3, m g ℓ by 2 (−0.75): a value the user never gave."""
+    with pytest.raises(OutOfDomainError, match=r"cos θ = -3 < 0$"):
+        tops.steady_precession_rates(1.0, 1.0, 1.0, 0.0)
+
+
+def test_steady_precession_takes_a_ratio_exactly_at_float64s_normal_minimum():
+    """J'1/(2|L3|) = 2^-1022 is the smallest normal ratio after scaling by a power of two
+    (L3 = 1 scales to ½): taken, and equal to the same top scaled by 2^1021 (homogeneous);
+    half of it is refused."""
+    a = tops.steady_precession_rates(2.0**-1021, 1.0, 2.0**-1021, 0.5)
+    b = tops.steady_precession_rates(1.0, 2.0**1021, 1.0, 0.5)
+    # the same quadratic scaled by a power of two; the scaled inputs differ only by the
+    # exact scaling, the roots by a few roundings
+    assert a == pytest.approx(b, rel=4 * EPS)
+    with pytest.raises(OutOfDomainError, match=r"^J_1 = 2\.2250738585072014e-308 is below"):
+        tops.steady_precession_rates(2.0**-1022, 1.0, 2.0**-1021, 0.5)
