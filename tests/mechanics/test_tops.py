@@ -986,3 +986,99 @@ def test_steady_precession_takes_a_ratio_exactly_at_float64s_normal_minimum():
     assert a == pytest.approx(b, rel=4 * EPS)
     with pytest.raises(OutOfDomainError, match=r"^J_1 = 2\.2250738585072014e-308 is below"):
         tops.steady_precession_rates(2.0**-1022, 1.0, 2.0**-1021, 0.5)
+
+
+def test_free_top_omega_space_is_omega_turned_to_space_by_the_integrated_attitude():
+    """ω_O = Rᵀ ω_A: from DOP853's ω and R on Euler's equations (4.47) and Ṙ = −[ω]× R,
+    over times and at one instant (shape (3,))."""
+    J, w0 = [1.0, 2.0, 3.0], np.array([0.4, 0.2, 1.0])
+    top = tops.FreeAsymmetricTop(J, w0, R0)
+    ts = np.linspace(0, 10, 11)
+    w_ref, R_ref = _integrate(J, w0, ts)
+    want = np.einsum("nji,nj->ni", R_ref, w_ref)
+    got = top.omega_space(ts)
+    assert got.shape == (11, 3)
+    # ω and R each within the integrator's error, a sum of three products of them
+    assert np.abs(got - want).max() <= 4 * ODE_ATOL * 10
+    one = top.omega_space(ts[4])
+    assert one.shape == (3,)
+    assert np.abs(one - want[4]).max() <= 4 * ODE_ATOL * 10
+    # at t = 0: R0ᵀ ω0, a sum of three products (a few roundings of |ω0| ~ 1)
+    np.testing.assert_allclose(top.omega_space(0.0), R0.T @ w0, rtol=0, atol=8 * EPS)
+
+
+@pytest.mark.parametrize("w0", [[0.4, 0.0, 0.7], [0.0, 0.4, 0.7]])
+def test_free_symmetric_top_with_one_transverse_spin_component_zero_precesses(w0):
+    """ω0 with ω1 = 0 or ω2 = 0 (but not both) is not along L: the top precesses
+    (5.34)–(5.45); its attitude must follow DOP853 on Euler's equations, not a uniform turn
+    about ω0."""
+    J1, J3 = 1.0, 1.5
+    top = tops.FreeSymmetricTop(J1, J3, w0, R0)
+    ts = np.linspace(0, 10, 11)
+    w_ref, R_ref = _integrate([J1, J1, J3], np.asarray(w0), ts)
+    assert np.abs(top.omega(ts) - w_ref).max() <= ODE_ATOL
+    assert np.abs(top.attitude(ts) - R_ref).max() <= ODE_ATOL * 10
+
+
+def test_free_symmetric_top_refuses_j3_above_2_j1_with_both_values():
+    with pytest.raises(NonPhysicalInertiaError) as info:
+        tops.FreeSymmetricTop(2.0, 5.0, [0.0, 0.0, 1.0])
+    assert str(info.value) == (
+        "J3 = 5.0 exceeds 2 J1 = 4.0: the moments of a symmetric body obey the triangle "
+        "inequality J3 ≤ J1 + J2 = 2 J1"
+    )
+
+
+def test_free_symmetric_top_refuses_an_angular_momentum_beyond_float64():
+    """J3 ω3 = 1e300 · 1e10 = 1e310 > float64's largest (1.8e308): ResultOverflowError."""
+    with pytest.raises(ResultOverflowError, match="exceeds float64's range"):
+        tops.FreeSymmetricTop(1e300, 1e300, [0.0, 0.0, 1e10])
+
+
+@pytest.mark.parametrize(("Jscale", "wscale"), [(1e-200, 1e160), (1e200, 1e-170)])
+def test_free_symmetric_tops_energy_where_omega_squared_leaves_float64(Jscale, wscale):
+    """ω² = 1e320 overflows and 1e-340 underflows float64, yet E = ½ Σ J ω² ≈ 1e120 and
+    1e-140 fit: the documented domain (|L| and E within float64).  Expected values from
+    exact rationals of the same floats, rounded once."""
+    from fractions import Fraction
+
+    import mpmath
+
+    def root(x: Fraction) -> float:  # √x of an exact rational, rounded once (mpmath, 80 digits)
+        with mpmath.workdps(80):
+            return float(mpmath.sqrt(mpmath.mpf(x.numerator) / x.denominator))
+
+    J1, J3 = 2.0 * Jscale, 3.0 * Jscale
+    w0 = [0.3 * wscale, -0.2 * wscale, 0.5 * wscale]
+    top = tops.FreeSymmetricTop(J1, J3, w0)
+    Js = [Fraction(J1), Fraction(J1), Fraction(J3)]
+    E = sum(j * Fraction(w) ** 2 for j, w in zip(Js, w0, strict=True)) / 2
+    L2 = sum((j * Fraction(w)) ** 2 for j, w in zip(Js, w0, strict=True))
+    # a handful of roundings in the scaled products and sums
+    assert top.energy == pytest.approx(float(E), rel=8 * EPS)
+    assert top.angular_momentum_norm == pytest.approx(root(L2), rel=8 * EPS)
+    # |L|/J1, the precession rate (5.34): of order ω
+    assert top.space_precession_rate == pytest.approx(root(L2 / Fraction(J1) ** 2), rel=8 * EPS)
+
+
+def test_the_sleeping_top_at_the_margin_l3_squared_equal_4_j1_mgl_is_not_stable():
+    """(5.72) asks L3² > 4 J'1 m g ℓ, strictly: at L3 = 2, J'1 = m g ℓ = 1 equality holds
+    (exact), the sleeping top is not stable (the double root u = 1 of f)."""
+    assert not tops.sleeping_top_is_stable(1.0, 2.0, 1.0)
+    assert tops.sleeping_top_is_stable(1.0, math.nextafter(2.0, 3.0), 1.0)
+
+
+def test_principal_axis_stability_neutral_refusals_and_messages():
+    """J = (1, 1, 2) about axis 1: C_k = (J_1 − J_2)/J_3 = 0, the linearisation (5.102) is
+    neutral (rate 0, C_i C_k = 0); a vector omega and a bool or float axis are refused."""
+    assert tops.principal_axis_stability([1.0, 1.0, 2.0], 1) == tops.StabilityResult(
+        "neutral", 0.0, 0.0
+    )
+    assert tops.principal_axis_stability([1.0, 2.0, 3.0], 2, omega=0.0).kind == "neutral"
+    with pytest.raises(ShapeError) as info:
+        tops.principal_axis_stability([1.0, 2.0, 3.0], 2, omega=[1.0, 2.0])
+    assert str(info.value) == "omega must be a scalar"
+    for axis in (True, 2.0):
+        with pytest.raises(UnknownOptionError) as info:
+            tops.principal_axis_stability([1.0, 2.0, 3.0], axis)
+        assert str(info.value) == f"axis must be 1, 2 or 3; got {axis!r}"
