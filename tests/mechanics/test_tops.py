@@ -1082,3 +1082,54 @@ def test_principal_axis_stability_neutral_refusals_and_messages():
         with pytest.raises(UnknownOptionError) as info:
             tops.principal_axis_stability([1.0, 2.0, 3.0], axis)
         assert str(info.value) == f"axis must be 1, 2 or 3; got {axis!r}"
+
+
+_HEAVY_UNDERFLOW = (
+    "{name} = {shown} is below 1e-308 of the largest of J_1, J_3, m_g_ell ({largest}): the "
+    "ratio underflows float64 (for m_g_ell: gravity is negligible, use FreeSymmetricTop)"
+)
+
+
+@pytest.mark.parametrize(
+    ("J_1", "J_3", "mgl", "name", "shown", "largest"),
+    [
+        (1e-310, 1e-310, 1.0, "J_1", "1e-310", "1.0"),  # the largest is m g ℓ
+        (1.0, 1e-310, 0.5, "J_3", "1e-310", "1.0"),  # the largest is J'1
+        (0.75, 1.0, 1e-310, "m_g_ell", "1e-310", "1.0"),  # the largest is J3
+        (1e300, 1e-10, 1e-10, "J_3", "1e-10", "1e+300"),  # J'1 beyond 2^1024 of the others
+    ],
+)
+def test_heavy_top_ratio_underflow_names_the_parameter_and_the_largest(
+    J_1, J_3, mgl, name, shown, largest
+):
+    with pytest.raises(OutOfDomainError) as e:
+        tops.HeavySymmetricTop(J_1, J_3, mgl, theta=0.5)
+    assert str(e.value) == _HEAVY_UNDERFLOW.format(name=name, shown=shown, largest=largest)
+
+
+def test_heavy_top_full_messages_for_the_triangle_inequality_and_gimbal_lock():
+    with pytest.raises(NonPhysicalInertiaError) as e:
+        tops.HeavySymmetricTop(1.0, 3.0, 1.0, theta=0.5)
+    assert str(e.value) == (
+        "J_3 = 3.0 exceeds 2 J_1 = 2.0: the moments of a symmetric body obey the triangle "
+        "inequality J_3 ≤ J_1 + J_2 = 2 J_1 (about G, and so about any point of the axis)"
+    )
+    with pytest.raises(GimbalLockError) as e:
+        tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=0.0, theta_dot=-0.1)
+    assert str(e.value) == (
+        "theta = 0 or π with theta_dot ≠ 0: the Euler angles are singular; start the top at "
+        "a small θ > 0 instead"
+    )
+
+
+def test_a_sleeping_top_turns_uniformly_at_its_initial_rates():
+    """θ = 0, θ̇ = 0 and L3² > 4 J'1 m g ℓ (5.72): the top stays upright and ψ, φ advance
+    at their initial rates, ψ0 + ψ̇0 t and φ0 + φ̇0 t, exact at dyadic times."""
+    top = tops.HeavySymmetricTop(
+        1.0, 1.0, 1.0, theta=0.0, psi=0.25, phi=0.5, psi_dot=1.5, phi_dot=5.0
+    )
+    assert top.sleeping is True
+    t = np.array([0.0, 0.5, 2.0, 8.0])
+    np.testing.assert_array_equal(top.psi(t), 0.25 + 1.5 * t)
+    np.testing.assert_array_equal(top.phi(t), 0.5 + 5.0 * t)
+    np.testing.assert_array_equal(top.theta(t), 0.0)
