@@ -1133,3 +1133,27 @@ def test_a_sleeping_top_turns_uniformly_at_its_initial_rates():
     np.testing.assert_array_equal(top.psi(t), 0.25 + 1.5 * t)
     np.testing.assert_array_equal(top.phi(t), 0.5 + 5.0 * t)
     np.testing.assert_array_equal(top.theta(t), 0.0)
+
+
+#: the heavy top's rates at t = 0 rebuilt from the roots of f(u) (refined to rounding) and
+#: sn, cn, dn of the initial argument: a few roundings of rates of size ≤ 8
+HEAVY_RATES_ATOL = 64 * EPS * 8
+#: central difference of θ(t) with h = 1e-5: truncation h² θ''' ~ 1e-9, rounding eps/h ~ 2e-11
+THETA_FD_ATOL = 2**22 * EPS
+
+
+@pytest.mark.parametrize("theta_dot", [0.3, -0.3])
+def test_heavy_top_rates_start_at_the_initial_rates_and_are_the_derivative_of_theta(theta_dot):
+    """(θ̇, ψ̇, φ̇)(0) are the initial rates given, with θ̇'s sign (rising or falling top);
+    later θ̇ is dθ/dt of θ(t) (a central difference)."""
+    top = tops.HeavySymmetricTop(
+        2.0, 1.0, 3.0, theta=0.5, theta_dot=theta_dot, psi_dot=1.0, phi_dot=8.0
+    )
+    thd, psid, phid = top.rates(0.0)
+    assert abs(thd - theta_dot) <= HEAVY_RATES_ATOL
+    assert abs(psid - 1.0) <= HEAVY_RATES_ATOL
+    assert abs(phid - 8.0) <= HEAVY_RATES_ATOL
+    h = 1e-5
+    for t in (0.37, 1.3, 2.9):
+        fd = (top.theta(t + h) - top.theta(t - h)) / (2 * h)
+        assert abs(top.rates(t)[0] - fd) <= THETA_FD_ATOL
