@@ -1157,3 +1157,55 @@ def test_heavy_top_rates_start_at_the_initial_rates_and_are_the_derivative_of_th
     for t in (0.37, 1.3, 2.9):
         fd = (top.theta(t + h) - top.theta(t - h)) / (2 * h)
         assert abs(top.rates(t)[0] - fd) <= THETA_FD_ATOL
+
+
+#: the flip period 4K(m)/λ: K of a complementary parameter held exactly (m1 ~ 1e-16) and
+#: λ a square root, a few roundings each (measured 0 eps against mpmath)
+FLIP_PERIOD_RTOL = 16 * EPS
+
+
+def test_flip_period_within_an_ulp_of_the_separatrix_uses_the_exact_complementary_parameter():
+    """J = (1, 2, 3), ω0 = (1, 0, fl(1/√3)): L² − 2E J2 = 3 ω3² − 1 ≈ 1e-16, so
+    m1 = 1 − k² ≈ 1.2e-16, below the ulp of 1 (1 − m in float64 would be 1.1e-16 and K off
+    by 1e-3).  Period 4K(k²)/λ with λ² and k² of the book's Jacobi solution (5.3.2, the
+    standard closed form), from exact rationals of the floats given and mpmath's K."""
+    from fractions import Fraction
+
+    import mpmath
+
+    J, w = [1.0, 2.0, 3.0], [1.0, 0.0, 0.5773502691896257]
+    J1, J2, J3 = (Fraction(x) for x in J)
+    wf = [Fraction(x) for x in w]
+    E2 = sum(j * x * x for j, x in zip((J1, J2, J3), wf, strict=True))
+    L2 = sum((j * x) ** 2 for j, x in zip((J1, J2, J3), wf, strict=True))
+    if L2 > E2 * J2:
+        lam2 = (J3 - J2) * (L2 - E2 * J1) / (J1 * J2 * J3)
+        k2 = (J2 - J1) * (E2 * J3 - L2) / ((J3 - J2) * (L2 - E2 * J1))
+    else:
+        lam2 = (J2 - J1) * (E2 * J3 - L2) / (J1 * J2 * J3)
+        k2 = (J3 - J2) * (L2 - E2 * J1) / ((J2 - J1) * (E2 * J3 - L2))
+    m1 = 1 - k2
+    assert 0 < m1 < Fraction(2**-52)
+    with mpmath.workdps(60):
+        K = mpmath.ellipk(1 - mpmath.mpf(m1.numerator) / m1.denominator)
+        want = float(4 * K / mpmath.sqrt(mpmath.mpf(lam2.numerator) / lam2.denominator))
+    assert tops.FreeAsymmetricTop(J, w).flip_period() == pytest.approx(want, rel=FLIP_PERIOD_RTOL)
+
+
+def test_angular_momentum_in_the_body_is_j_omega_and_keeps_its_length():
+    """L_A = J ω_A (4.5, principal axes): (0.4, 0.4, 3.0) at t = 0 for J = (1, 2, 3),
+    ω0 = (0.4, 0.2, 1.0); later |L_A| = |L| (L fixed in space, 5.3.1) and
+    R(t)ᵀ L_A(t) = L_O."""
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.4, 0.2, 1.0], R0)
+    # ω(0) is rebuilt from sn, cn, dn at the initial argument: a few eps of |ω|, times J ≤ 3
+    np.testing.assert_allclose(top.angular_momentum_body(0.0), [0.4, 0.4, 3.0], atol=8 * EPS * 3)
+    ts = np.linspace(0, 10, 11)
+    LA = top.angular_momentum_body(ts)
+    assert LA.shape == (11, 3)
+    norm = math.hypot(0.4, 0.4, 3.0)
+    # products J ω of values to a few eps of |ω| ≤ 1, J ≤ 3
+    np.testing.assert_allclose(np.linalg.norm(LA, axis=-1), norm, rtol=0, atol=32 * EPS * 3)
+    LO = np.einsum("nji,nj->ni", top.attitude(ts), LA)
+    np.testing.assert_allclose(
+        LO, np.tile(R0.T @ [0.4, 0.4, 3.0], (11, 1)), atol=SEPARATRIX_L_ATOL * 3
+    )
