@@ -27,6 +27,7 @@ from mechanics.conformance import (
     reference,
     run_battery,
 )
+from mechanics.conformance import thresholds as thresholds_module
 from mechanics.conformance.adapters import (
     ExactAdapter,
     MissingExtraError,
@@ -503,7 +504,7 @@ def test_importing_the_battery_and_its_adapters_is_light():
 
 def test_every_default_threshold_is_2_to_the_minus_10_and_order_is_unchecked():
     # called, not read: DEFAULT_THRESHOLDS is built once at import
-    d = battery._defaults()
+    d = thresholds_module._defaults()
     assert d.pop("order") is None
     assert set(d.values()) == {2.0**-10}  # docs/conformance.md: 2^-10 ≈ 0.1 %
     expected = {"position", "velocity", "attitude", "omega", "mass"}

@@ -1318,8 +1318,6 @@ for _name in (
     "battery.Report",
     "battery.Run",
     "battery.ScenarioResult",
-    "battery.known_threshold_keys",
-    "battery.resolve_thresholds",
     "battery.run_battery",
     "battery.state_errors",
     "compare.Comparison",
@@ -1336,5 +1334,7 @@ for _name in (
     "scenarios.invariants",
     "scenarios.measure",
     "scenarios.reference",
+    "thresholds.known_threshold_keys",
+    "thresholds.resolve_thresholds",
 ):
     EXEMPT[f"mechanics.conformance.{_name}"] = _BATTERY
