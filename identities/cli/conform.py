@@ -24,6 +24,7 @@ from __future__ import annotations
 import importlib
 import importlib.util
 import inspect
+import math
 import os
 import sys
 from pathlib import Path
@@ -60,8 +61,31 @@ def add_parser(sub) -> None:
         help="only these scenarios (default: all)",
     )
     c.add_argument("--json", metavar="FILE", help="write the report as JSON ('-': stdout)")
+    c.add_argument("--markdown", metavar="FILE", help="also write the printed table to FILE")
     c.add_argument(
-        "--markdown", metavar="FILE", help="also write the printed table to FILE (for 'all')"
+        "--profile",
+        metavar="NAME",
+        help="what the engine claims, the base of every threshold: first-order, second-order, "
+        "high-order, exact or default (docs/conformance.md, 'Profiles'); default: the "
+        "thresholds file's, else the adapter's profile attribute, else default",
+    )
+    c.add_argument(
+        "--config",
+        metavar="FILE",
+        help="a thresholds file (TOML: profile and a [thresholds] table); default: the "
+        "[tool.bodycheck.conformance] table of the nearest pyproject.toml, if any",
+    )
+    c.add_argument(
+        "--baseline",
+        metavar="FILE",
+        help="write a thresholds file pinning this run's accuracy (each figure at MARGIN x "
+        "its value), to use with --config",
+    )
+    c.add_argument(
+        "--margin",
+        type=float,
+        default=2.0,
+        help="the baseline's margin over the measured figures (>= 1; default 2)",
     )
     c.add_argument("--plot", metavar="FILE", help="write a bar chart (.svg or .png)")
     c.add_argument(
@@ -219,31 +243,67 @@ def _plot(report, path: Path) -> None:
 def cmd_conform(args) -> int:
     """Run the battery; print the table; write JSON and the plot if asked."""
     from mechanics.conformance import SCENARIOS, run_battery
-    from mechanics.conformance.battery import ThresholdError, resolve_thresholds
+    from mechanics.conformance.thresholds import (
+        Config,
+        ThresholdError,
+        baseline,
+        find_config,
+        get_profile,
+        load_config,
+        resolve_thresholds,
+    )
 
     if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
         raise _usage(f"--plot {args.plot!r}: the file must end in .svg or .png")
     for name in args.scenarios or ():
         if name not in SCENARIOS:
             raise _usage(f"unknown scenario {name!r} (known: {', '.join(SCENARIOS)})")
+    if args.baseline is not None:
+        if args.adapter == ALL:
+            raise _usage("--baseline pins one adapter's accuracy; name the adapter, not 'all'")
+        if Path(args.baseline).name == "pyproject.toml":
+            raise _usage(
+                f"--baseline {args.baseline!r}: the baseline is a thresholds file of its own "
+                "(use it with --config, or copy its table under [tool.bodycheck.conformance])"
+            )
+        if not (args.margin >= 1 and math.isfinite(args.margin)):
+            raise _usage(f"--margin {args.margin!r}: the margin must be a number >= 1")
     try:
         thresholds = resolve_thresholds(parse_thresholds(args.thresholds))
+        if args.profile is not None:
+            get_profile(args.profile)
+        path = args.config if args.config is not None else find_config()
+        config = Config() if path is None else load_config(path)
     except ThresholdError as exc:
         raise _usage(str(exc)) from None
     if args.adapter == ALL:
-        return _conform_all(args, thresholds)
-    if args.markdown:
-        raise _usage("--markdown is for 'bodycheck conform all'; one adapter's table is printed")
+        return _conform_all(args, thresholds, config)
     adapter = load_adapter(args.adapter)
-    report = run_battery(adapter, scenarios=args.scenarios, thresholds=thresholds)
+    try:
+        report = run_battery(
+            adapter,
+            scenarios=args.scenarios,
+            thresholds=thresholds,
+            profile=args.profile,
+            config=config,
+        )
+    except ThresholdError as exc:  # the adapter's own profile or thresholds
+        raise _usage(f"adapter {args.adapter!r}: {exc}") from None
+    table = report.to_markdown()
     if args.json == "-":
         print(report.to_json())
     else:
-        print(report.to_markdown(), end="")
+        print(table, end="")
         if args.json:
             Path(args.json).write_text(report.to_json() + "\n", encoding="utf-8")
+    if args.markdown:
+        Path(args.markdown).write_text(table, encoding="utf-8")
     if args.plot:
         _plot(report, Path(args.plot))
+    if args.baseline is not None:
+        Path(args.baseline).write_text(baseline(report, args.margin), encoding="utf-8")
+        print(f"wrote the baseline {args.baseline} (use it with --config {args.baseline})")
+        return 0
     return 0 if report.passed else 1
 
 
@@ -281,10 +341,12 @@ def _plot_all(comparison, path: Path) -> None:
     plt.close(fig)
 
 
-def _conform_all(args, thresholds) -> int:
+def _conform_all(args, thresholds, config) -> int:
     from mechanics.conformance.compare import compare
 
-    comparison = compare(scenarios=args.scenarios, thresholds=thresholds)
+    comparison = compare(
+        scenarios=args.scenarios, thresholds=thresholds, profile=args.profile, config=config
+    )
     table = comparison.to_markdown()
     if args.json == "-":
         print(comparison.to_json())

@@ -132,14 +132,20 @@ class Comparison:
         )
 
 
-def compare(adapters=None, *, scenarios=None, thresholds=None) -> Comparison:
+def compare(
+    adapters=None, *, scenarios=None, thresholds=None, profile=None, config=None
+) -> Comparison:
     """Run the battery on each of ``adapters`` ((family, adapter or reason) pairs;
-    default :func:`engine_adapters`)."""
+    default :func:`engine_adapters`), each with the same ``scenarios``, ``thresholds``,
+    ``profile`` and ``config`` (:func:`~.battery.run_battery`)."""
     adapters = engine_adapters() if adapters is None else adapters
     reports, missing = [], []
     for family, adapter in adapters:
         if isinstance(adapter, str):
             missing.append((family, adapter))
             continue
-        reports.append((family, run_battery(adapter, scenarios=scenarios, thresholds=thresholds)))
+        report = run_battery(
+            adapter, scenarios=scenarios, thresholds=thresholds, profile=profile, config=config
+        )
+        reports.append((family, report))
     return Comparison(reports, missing)

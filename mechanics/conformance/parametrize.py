@@ -21,14 +21,15 @@ when :func:`conformance_tests` is called (not by :mod:`mechanics.conformance`).
 
 from __future__ import annotations
 
-from .battery import resolve_thresholds, run_battery
+from .battery import run_battery
 from .protocol import Scenario
 from .scenarios import SCENARIOS, get_scenario
+from .thresholds import Config, find_config, get_profile, load_config, resolve_thresholds
 
 __all__ = ["conformance_tests"]
 
 
-def conformance_tests(adapter, *, thresholds=None, scenarios=None):
+def conformance_tests(adapter, *, thresholds=None, scenarios=None, profile=None, config=None):
     """A test function parametrised over the battery's scenarios for ``adapter``.
 
     Parameters
@@ -39,6 +40,15 @@ def conformance_tests(adapter, *, thresholds=None, scenarios=None):
         As for :func:`~mechanics.conformance.battery.run_battery`; checked now.
     scenarios : iterable of str or Scenario, optional
         Default: all of :data:`~mechanics.conformance.scenarios.SCENARIOS`.
+    profile : str, optional
+        What the engine claims (``"first-order"``, ``"second-order"``, ``"high-order"``,
+        ``"exact"``; :data:`~mechanics.conformance.thresholds.PROFILES`), as for
+        :func:`~mechanics.conformance.battery.run_battery`; checked now.
+    config : path or False, optional
+        A thresholds file (:func:`~mechanics.conformance.thresholds.load_config`); by
+        default the nearest ``pyproject.toml`` from the working directory up (its table
+        ``[tool.bodycheck.conformance]``, if it has one), as ``bodycheck conform``
+        reads it; ``False``: none.  Read and checked now.
 
     Returns
     -------
@@ -53,12 +63,22 @@ def conformance_tests(adapter, *, thresholds=None, scenarios=None):
         for x in (SCENARIOS if scenarios is None else scenarios)
     ]
     th = resolve_thresholds(thresholds, chosen)
+    if profile is not None:
+        get_profile(profile)
+    if config is False:
+        cfg = Config()
+    else:
+        path = find_config() if config is None else config
+        cfg = Config() if path is None else load_config(path, chosen)
     by_name = {s.name: s for s in chosen}
     label = getattr(adapter, "name", type(adapter).__name__)
 
     @pytest.mark.parametrize("scenario_name", list(by_name), ids=list(by_name))
     def test_conformance(scenario_name):
-        r = run_battery(adapter, scenarios=[by_name[scenario_name]], thresholds=th).results[0]
+        one = [by_name[scenario_name]]
+        r = run_battery(adapter, scenarios=one, thresholds=th, profile=profile, config=cfg).results[
+            0
+        ]
         if r.status == "unsupported":
             pytest.skip(f"{label} does not support {scenario_name}: {r.message}")
         if r.status == "error":

@@ -740,6 +740,9 @@ def test_hand_built_report_markdown_is_the_documented_table():
     assert _hand_report().to_markdown() == (
         "# Conformance: hand\n"
         "\n"
+        "Profile default: engineering accuracy 2^-10 on every figure; the order reported, "
+        "not checked.\n"
+        "\n"
         "1 pass, 1 fail, 1 unsupported, 1 error\n"
         "\n"
         "| scenario | status | worst figure | threshold | order | wall time (s) |\n"
@@ -771,6 +774,7 @@ def test_hand_built_report_json_has_every_field_and_no_bare_non_finite_number():
     assert d["passed"] is False
     assert d["counts"] == {"pass": 1, "fail": 1, "unsupported": 1, "error": 1}
     assert d["thresholds"] == {"velocity": 1.0}
+    assert d["profile"] == "default"
     by = {s["scenario"]: s for s in d["scenarios"]}
     assert list(by) == ["parabola", "rocket", "heavy_top", "bouncing_ball"]
     assert [by[k]["status"] for k in by] == ["pass", "fail", "unsupported", "error"]

@@ -4,6 +4,7 @@ bad input as one line on stderr with exit code 2."""
 from __future__ import annotations
 
 import json
+import os
 
 import pytest
 
@@ -34,6 +35,10 @@ class Broken:
 class NeedsArgs(ExactAdapter):
     def __init__(self, x):
         self.x = x
+
+
+class Fast(ExactAdapter):
+    profile = "fast"
 """
 
 
@@ -56,7 +61,10 @@ def test_exact_prints_the_table_with_every_scenario_passing(capsys):
     code, out, err = run(capsys, "exact")
     assert code == 0
     assert err == ""
-    assert out.startswith("# Conformance: exact (closed forms)\n\n8 pass, 0 fail, 0 unsupported")
+    assert out.startswith(
+        "# Conformance: exact (closed forms)\n\nProfile default: engineering accuracy 2^-10 "
+        "on every figure; the order reported, not checked.\n\n8 pass, 0 fail, 0 unsupported"
+    )
     for name in SCENARIOS:
         assert f"| {name} | pass | " in out
 
@@ -136,9 +144,18 @@ def test_a_failing_adapter_exits_1_and_thresholds_override(capsys, project):
         (["exact", "--threshold", "velocity=-1"], "threshold 'velocity' must be a finite"),
         (["exact", "--plot", "out.pdf"], "--plot 'out.pdf': the file must end in .svg or .png"),
         (["engine_needing_extra:A"], "pip install 'bodycheck[mujoco]'"),
+        (["exact", "--profile", "fast"], "unknown conformance profile 'fast'; known: first-order"),
+        (["exact", "--config", "nope.toml"], "thresholds file 'nope.toml' does not exist"),
+        (["exact", "--config", "bad.toml"], "bad.toml: unknown key(s) 'profle'; expected 'profile'"),
+        (["exact", "--baseline", "pyproject.toml"], "the baseline is a thresholds file of its own"),
+        (["all", "--baseline", "b.toml"], "--baseline pins one adapter's accuracy; name the adapter"),
+        (["exact", "--baseline", "b.toml", "--margin", "0.5"], "--margin 0.5: the margin must be a number >= 1"),
+        (["exact", "--baseline", "b.toml", "--margin", "nan"], "--margin nan: the margin must be"),
+        (["conform_adapters_cli:Fast"], "adapter 'conform_adapters_cli:Fast': unknown conformance profile 'fast'"),
     ],
-)
+)  # fmt: skip
 def test_bad_input_is_one_line_naming_the_value_with_exit_2(capsys, project, args, message):
+    (project / "bad.toml").write_text('profle = "exact"\n', encoding="utf-8")
     (project / "engine_needing_extra.py").write_text(
         "from mechanics.conformance.adapters import require\n"
         "require('no_such_engine_pkg_xyz', 'mujoco', engine='MuJoCo')\n",
@@ -150,3 +167,40 @@ def test_bad_input_is_one_line_naming_the_value_with_exit_2(capsys, project, arg
     assert err.count("\n") == 1, err
     assert err.startswith("bodycheck: error: "), err
     assert message in err, err
+
+
+def test_the_profile_comes_from_the_option_the_nearest_pyproject_or_the_adapter(capsys, project):
+    args = ["toy_engine_cli.py:SemiImplicitEuler", "--scenario", "parabola"]
+    code, out, _ = run(capsys, *args, "--profile", "first-order")
+    assert code == 0
+    assert "Profile first-order: an engine of order 1" in out
+    assert "Thresholds from" not in out
+    (project / "pyproject.toml").write_text(
+        '[tool.bodycheck.conformance]\nprofile = "second-order"\n', encoding="utf-8"
+    )
+    below = project / "sub"
+    below.mkdir()
+    os.chdir(below)  # the fixture's monkeypatch restores the working directory
+    code, out, _ = run(capsys, "../toy_engine_cli.py:SemiImplicitEuler", "--scenario", "parabola")
+    assert code == 1
+    assert "Profile second-order: " in out
+    assert f"Thresholds from {project / 'pyproject.toml'} [tool.bodycheck.conformance]." in out
+    code, out, _ = run(capsys, "../toy_engine_cli.py:SemiImplicitEuler", "--scenario",
+                       "parabola", "--profile", "first-order")  # fmt: skip
+    assert code == 0  # the option wins over the file
+
+
+def test_a_baseline_is_written_and_then_passes_with_config(capsys, project):
+    args = ["toy_engine_cli.py:SemiImplicitEuler", "--scenario", "parabola", "free_top_axis1"]
+    code, out, _ = run(capsys, *args, "--baseline", "base.toml", "--margin", "3")
+    assert code == 0  # the run fails at the default profile; the baseline is written
+    assert "| parabola | fail |" in out
+    assert out.endswith("wrote the baseline base.toml (use it with --config base.toml)\n")
+    text = (project / "base.toml").read_text(encoding="utf-8")
+    assert 'profile = "default"' in text
+    assert "each figure at 3 x its measured value" in text
+    code, out, _ = run(capsys, *args, "--config", "base.toml")
+    assert code == 0, out
+    assert "Thresholds from base.toml." in out
+    code, out, _ = run(capsys, *args, "--config", "base.toml", "--threshold", "position=1e-3")
+    assert code == 1  # the command line wins over the file

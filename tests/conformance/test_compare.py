@@ -71,9 +71,12 @@ def test_conform_all_fails_when_a_reference_fails(capsys, monkeypatch) -> None:
     assert main(["conform", "all", "--scenario", "parabola"]) == 1
 
 
-def test_markdown_is_only_for_all(capsys, tmp_path) -> None:
-    assert main(["conform", "exact", "--markdown", str(tmp_path / "x.md")]) == 2
-    assert "--markdown is for" in capsys.readouterr().err
+def test_markdown_writes_one_adapters_printed_table_too(capsys, tmp_path) -> None:
+    md = tmp_path / "x.md"
+    assert main(["conform", "exact", "--scenario", "parabola", "--markdown", str(md)]) == 0
+    printed = capsys.readouterr().out
+    assert printed.startswith("# Conformance: exact (closed forms)")
+    assert md.read_text(encoding="utf-8") == printed
 
 
 @pytest.mark.parametrize("bad", ["all", "exact"])

@@ -9,15 +9,27 @@ first, so that the code under test is the code of this tree.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
 
-from .toys import doc_example_source
+from identities.cli.main import main
+
+from .toys import BROKEN, BUGS, doc_example_source, planted_source
 
 pytest_plugins = ["pytester"]
 
 ROOT = Path(__file__).resolve().parents[2]
+
+PYPROJECT = """
+[project]
+name = "toy-engine"
+version = "0"
+
+[tool.bodycheck.conformance]
+profile = "first-order"
+"""
 
 TEST_TOY = """
 from hypothesis import settings
@@ -25,13 +37,8 @@ from hypothesis import settings
 from mechanics.conformance import conformance_tests
 from toy_engine import SemiImplicitEuler
 
-# loose bounds for a first-order engine at 2^-8 s, and a lower bound on its order
-THRESHOLDS = {
-    "position": 2.0**-6, "attitude": 2.0**-6, "omega": 2.0**-6, "apex_height": 2.0**-6,
-    "E_drift": 2.0**-6, "L_drift": 2.0**-6, "order": 0.9,
-}
-
-test_toy = conformance_tests(SemiImplicitEuler(), thresholds=THRESHOLDS)
+# no thresholds of its own: the profile comes from pyproject.toml
+test_toy = conformance_tests(SemiImplicitEuler())
 
 
 def test_the_bodycheck_profile_is_loaded():
@@ -40,39 +47,88 @@ def test_the_bodycheck_profile_is_loaded():
 """
 
 
+def _module(bug: str) -> str:
+    return "toy_" + bug.replace(" ", "_").replace("-", "_")
+
+
+def _bug_tests() -> str:
+    """One parametrised test per planted bug, over the scenarios where its law acts."""
+    lines = ["from mechanics.conformance import conformance_tests", ""]
+    for bug, scenarios in BROKEN.items():
+        m = _module(bug)
+        lines += [
+            f"from {m} import SemiImplicitEuler as {m}",
+            f"test_{m} = conformance_tests({m}(), scenarios={scenarios!r})",
+        ]
+    return "\n".join(lines) + "\n"
+
+
 @pytest.fixture
 def project(pytester, monkeypatch):
-    pytester.makepyfile(toy_engine=doc_example_source(), test_toy=TEST_TOY)
+    pytester.makepyfile(
+        toy_engine=doc_example_source(),
+        test_toy=TEST_TOY,
+        test_bugs=_bug_tests(),
+        **{_module(bug): planted_source(bug) for bug in BUGS},
+    )
+    (pytester.path / "pyproject.toml").write_text(PYPROJECT, encoding="utf-8")
     monkeypatch.setenv("PYTHONPATH", str(ROOT))
     monkeypatch.delenv("PYTEST_ADDOPTS", raising=False)
     return pytester
 
 
-def test_a_separate_project_runs_the_battery_on_its_own_toy_integrator(project):
+def test_a_separate_project_passes_a_correct_first_order_engine_and_fails_each_planted_bug(
+    project,
+):
+    """Issue 29's outside trial: at the profile its pyproject.toml names, with no
+    threshold of its own, the doc's correct first-order toy passes every scenario it
+    supports, and each of four bugs planted in it fails where its law acts."""
     result = project.runpytest_subprocess(
         "--bodycheck-profile", "bodycheck-ci", "-p", "no:randomly", "-rfs", "-v"
     )
-    result.assert_outcomes(passed=4, failed=2, skipped=3)
+    result.assert_outcomes(passed=6, failed=4, skipped=3)
     result.stdout.fnmatch_lines_random(
         [
             "bodycheck: hypothesis profile 'bodycheck-ci' (from --bodycheck-profile)",
-            "*test_toy[[]free_top_axis1[]] PASSED*",
-            "*test_toy[[]free_top_axis3[]] PASSED*",
-            "*test_toy[[]parabola[]] PASSED*",
+            *(f"*test_toy[[]{s}[]] PASSED*" for s in SUPPORTED),
             "*test_the_bodycheck_profile_is_loaded PASSED*",
-            "*test_toy[[]free_top_near_separatrix[]] FAILED*",
-            "*test_toy[[]bouncing_ball[]] FAILED*",
-            "toy semi-implicit Euler, scenario free_top_near_separatrix: attitude 0.24 "
-            "violates threshold <= 0.0156; E_drift 0.0223 violates threshold <= 0.0156",
-            "toy semi-implicit Euler, scenario bouncing_ball: *; order 0.154 violates "
-            "threshold >= 0.9",
-            "FAILED test_toy.py::test_toy[[]free_top_near_separatrix[]] - Failed: toy*",
+            *(
+                f"*test_{_module(bug)}[[]{scenarios[0]}[]] FAILED*"
+                for bug, scenarios in BROKEN.items()
+            ),
             "SKIPPED [[]1[]] *toy semi-implicit Euler does not support heavy_top: the toy has "
             "no joints, no thrust and no body-body contacts",
             "SKIPPED*two_body_impact*",
             "SKIPPED*rocket*",
+            "*scenario free_top_axis1: attitude 0.449 violates threshold <= 0.0625; * order "
+            "0.00142 violates threshold >= 0.8",
+            "*scenario bouncing_ball: * apex_heights inf violates threshold <= 0.0625 (found 6 "
+            "apexes (v·n falling through 0) in the samples; expected 3)*",
         ]
     )
+
+
+#: the scenarios the doc's toy supports
+SUPPORTED = ["free_top_axis1", "free_top_axis3", "free_top_near_separatrix", "parabola",
+             "bouncing_ball"]  # fmt: skip
+
+
+def test_the_command_gives_the_same_verdicts_from_the_same_pyproject(project, monkeypatch, capsys):
+    """``bodycheck conform`` in the project's folder reads the same pyproject.toml (run
+    in process: the command's code is the same, without five interpreters' start-up)."""
+    monkeypatch.chdir(project.path)
+    for module, scenarios, code in [
+        ("toy_engine", SUPPORTED, 0),
+        *((_module(bug), s, 1) for bug, s in BROKEN.items()),
+    ]:
+        args = ["conform", f"{module}.py:SemiImplicitEuler", "--json", "-", "--scenario"]
+        assert main([*args, *scenarios]) == code, module
+        report = json.loads(capsys.readouterr().out)
+        assert report["profile"] == "first-order"
+        assert report["config"] == f"{project.path / 'pyproject.toml'} [tool.bodycheck.conformance]"
+        want = "pass" if code == 0 else "fail"
+        got = {r["scenario"]: r["status"] for r in report["scenarios"]}
+        assert got == dict.fromkeys(scenarios, want), module
 
 
 def test_the_parametrisation_checks_thresholds_when_the_module_is_collected(project):

@@ -35,6 +35,48 @@ def doc_example():
     return ns
 
 
+# -- four bugs planted in the doc's first-order toy, as in issue 29's outside trial
+
+#: each bug: the line of the doc's toy it replaces, and what with
+BUGS = {
+    "world-frame inertia in the gyroscopic term": (
+        "w = w + step * np.cross(J * w, w) / J",
+        "w = w + step * np.cross(np.einsum('nji,nj,njk,nk->ni', R, J, R, w), w) / J",
+    ),
+    "gyroscopic term dropped": ("w = w + step * np.cross(J * w, w) / J", "w = w"),
+    "restitution squared": ("(1.0 + e) * vn", "(1.0 + e * e) * vn"),
+    "attitude untransposed": (
+        "(x, v, R_out, w)):",
+        "(x, v, np.swapaxes(R_out, -1, -2), w)):",
+    ),
+}
+#: the scenarios each bug breaks (the others it passes: a bug in a law the scenario
+#: does not exercise is invisible there, as it should be)
+BROKEN = {
+    "world-frame inertia in the gyroscopic term": ["free_top_axis1"],
+    "gyroscopic term dropped": ["free_top_axis3"],
+    "restitution squared": ["bouncing_ball"],
+    "attitude untransposed": ["parabola"],
+}
+
+
+def planted_source(bug: str | None = None) -> str:
+    """The doc's semi-implicit Euler's module, with ``bug`` planted (None: as documented)."""
+    src = doc_example_source()
+    if bug is not None:
+        old, new = BUGS[bug]
+        assert src.count(old) == 1, f"the doc's toy no longer has the line {old!r}"
+        src = src.replace(old, new)
+    return src
+
+
+def planted_toy(bug: str | None = None):
+    """The doc's semi-implicit Euler, with ``bug`` planted (None: as documented)."""
+    ns: dict = {"__name__": "toy_engine"}
+    exec(compile(planted_source(bug), "toy_engine", "exec"), ns)
+    return ns["SemiImplicitEuler"]()
+
+
 class RK4:
     """Classical Runge-Kutta on free bodies (no contacts, joints or thrust): x, v, the
     nine entries of R (Ṙ = −[ω]× R, passive) and ω (Euler's equations 4.47); R is
@@ -72,19 +114,34 @@ class RK4:
         out, n = [], 0
         for t in scenario.sample_times:
             while n < round(t / step):
-                k1 = f(y)
-                k2 = f(add(y, k1, step / 2))
-                k3 = f(add(y, k2, step / 2))
-                k4 = f(add(y, k3, step))
-                y = [
-                    a + step / 6 * (p + 2 * q + 2 * r + s)
-                    for a, p, q, r, s in zip(y, k1, k2, k3, k4, strict=True)
-                ]
+                y = self._step(f, add, y, step)
                 n += 1
             out.append([a.copy() for a in y])
         x, v, R, w = (np.array([o[i] for o in out]) for i in range(4))
         R = np.array([[nearest_rotation(M) for M in row] for row in R])
         return Trajectory(np.array(scenario.sample_times), x, v, R, w)
+
+    @staticmethod
+    def _step(f, add, y, h):
+        k1 = f(y)
+        k2 = f(add(y, k1, h / 2))
+        k3 = f(add(y, k2, h / 2))
+        k4 = f(add(y, k3, h))
+        return [
+            a + h / 6 * (p + 2 * q + 2 * r + s)
+            for a, p, q, r, s in zip(y, k1, k2, k3, k4, strict=True)
+        ]
+
+
+class Midpoint(RK4):
+    """The explicit midpoint rule (a two-stage Runge-Kutta method) on the same free
+    bodies: order 2."""
+
+    name = "toy midpoint"
+
+    @staticmethod
+    def _step(f, add, y, h):
+        return add(y, f(add(y, f(y), h / 2)), h)
 
 
 class Wrapped(ExactAdapter):

@@ -1310,8 +1310,9 @@ EXEMPT["mechanics.conformance.adapters.reference.scene_from_scenario"] = (
 )
 _BATTERY = (
     "the battery's machinery: takes an adapter, Scenarios or Trajectories, whose bad "
-    "answers are ConformanceErrors naming scenario and field, and thresholds, whose bad "
-    "keys and values are ThresholdErrors (tests/conformance/test_battery.py)"
+    "answers are ConformanceErrors naming scenario and field, and thresholds, profiles "
+    "and thresholds files, whose bad keys and values are ThresholdErrors naming them "
+    "(tests/conformance/test_battery.py, test_thresholds.py)"
 )
 for _name in (
     "battery.Figure",
@@ -1334,6 +1335,12 @@ for _name in (
     "scenarios.invariants",
     "scenarios.measure",
     "scenarios.reference",
+    "thresholds.Config",
+    "thresholds.Profile",
+    "thresholds.baseline",
+    "thresholds.find_config",
+    "thresholds.get_profile",
+    "thresholds.load_config",
     "thresholds.known_threshold_keys",
     "thresholds.resolve_thresholds",
 ):
