@@ -201,6 +201,7 @@ def load_adapter(spec: str):
 
 def _plot(report, path: Path) -> None:
     import matplotlib
+    import matplotlib.ticker
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -217,6 +218,10 @@ def _plot(report, path: Path) -> None:
         if w is not None and w.threshold:
             ax1.plot([w.threshold] * 2, [k - 0.4, k + 0.4], color="black", lw=1)
         label = w.name if w is not None else res[k].status
+        if res[k].unmeasured:  # an unmatched event has no bar of its own: say so
+            label += f", +{len(res[k].unmeasured)} not measured"
+        if res[k].status == "fail":
+            label += " (fail)"
         ax1.annotate(
             label,
             (0, k),
@@ -229,10 +234,12 @@ def _plot(report, path: Path) -> None:
     ax1.set_xscale("log")
     ax1.set_xlabel("worst figure (relative error or drift); bar: threshold")
     ax1.set_yticks(list(y), names)
-    ax1.invert_yaxis()
+    # every row in view, the first on top (a row without a bar does not widen the axis)
+    ax1.set_ylim(len(res) - 0.5, -0.5)
     wall = [r.wall_time for r in res]
     ax2.barh(y, wall, color="tab:blue")
     ax2.set_xscale("log")
+    ax2.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # labels overlapped
     ax2.set_xlabel("wall time of the finest run (s)")
     fig.suptitle(f"Conformance: {report.adapter}")
     fig.tight_layout()

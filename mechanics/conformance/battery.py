@@ -52,6 +52,7 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from .._floats import EPS
+from .diagnosis import diagnose
 from .protocol import ConformanceError, Scenario, Trajectory, check_trajectory
 from .scenarios import (
     SCENARIOS,
@@ -148,6 +149,8 @@ class ScenarioResult:
     message: str = ""
     figures: list[Figure] = field(default_factory=list)
     runs: list[Run] = field(default_factory=list)
+    #: what the failing figures imply (:mod:`~mechanics.conformance.diagnosis`)
+    diagnosis: list[str] = field(default_factory=list)
 
     def _get_wall_time(self) -> float:
         """Wall time of the finest (last) run, s; nan when nothing ran."""
@@ -167,17 +170,27 @@ class ScenarioResult:
         return next((f for f in self.figures if f.name == name), None)
 
     def _get_worst(self) -> Figure | None:
-        """The checked error or drift figure nearest to (or furthest beyond) its bound."""
+        """The checked error or drift figure nearest to (or furthest beyond) its bound,
+        among those measured (a finite value: see :attr:`unmeasured`)."""
         checked = [
             (f, f.value / f.threshold)
             for f in self.figures
             if f.kind != "order" and f.threshold and f.value is not None
+            if math.isfinite(f.value)
         ]
         best = max(checked, key=lambda pair: pair[1], default=None)
         return None if best is None else best[0]
 
     # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
     worst = property(_get_worst)
+
+    def _get_unmeasured(self) -> list[Figure]:
+        """The figures that could not be read off the samples (an unmatched event: the
+        value is inf and the note says why)."""
+        return [f for f in self.figures if f.value is not None and not math.isfinite(f.value)]
+
+    # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
+    unmeasured = property(_get_unmeasured)
 
 
 @dataclass
@@ -252,6 +265,8 @@ class Report:
         for r in self.results:
             w = r.worst
             fig = f"{w.name} {w.value:.3g}" if w is not None else ""
+            if r.unmeasured:
+                fig += f" (+{len(r.unmeasured)} not measured)"
             thr = f"{w.threshold:.3g}" if w is not None else ""
             order = f"{r.order:.2f}" if r.order is not None else ""
             wall = f"{r.wall_time:.3g}" if r.runs else ""
@@ -375,7 +390,8 @@ def _run_one(adapter, s: Scenario, th: list[Mapping]) -> ScenarioResult:
             res.message = str(exc)
             return res
         errs = state_errors(s, ref.trajectory, tr)
-        events = _figure_errors(s, ref, measure(s, tr))
+        measured = measure(s, tr)
+        events = _figure_errors(s, ref, measured)
         if _has_impacts(s):  # a sample between two impacts sees a jump: the events judge
             error = max(v for v, _ in events.values())
         else:
@@ -404,6 +420,11 @@ def _run_one(adapter, s: Scenario, th: list[Mapping]) -> ScenarioResult:
     bad = [f for f in figs if f.passed is False]
     res.status = "fail" if bad else "pass"
     res.message = "; ".join(f.describe() for f in bad)
+    if bad:
+        by_name = {f.name: f for f in figs}
+        res.diagnosis = diagnose(s, ref.trajectory, tr, by_name, measured)
+        if res.diagnosis:
+            res.message += ". " + " ".join(res.diagnosis)
     return res
 
 

@@ -15,6 +15,7 @@ wall time of its finest run.  ``bodycheck conform all`` prints it (``--markdown`
 from __future__ import annotations
 
 import json
+import math
 from dataclasses import dataclass, field
 
 from .battery import Figure, Report, ScenarioResult, run_battery
@@ -51,7 +52,13 @@ def engine_adapters() -> list[tuple[str, object]]:
 
 
 def _worst(r: ScenarioResult, kind: str) -> Figure | None:
-    figs = [(f, f.value) for f in r.figures if f.kind == kind and f.value is not None]
+    """The worst measured figure of ``kind`` (by value over threshold where checked):
+    an unmeasured one (inf) is counted apart, never shown as the worst."""
+    figs = [
+        (f, f.value)
+        for f in r.figures
+        if f.kind == kind and f.value is not None and math.isfinite(f.value)
+    ]
     if not figs:
         return None
     checked = [(f, value / f.threshold) for f, value in figs if f.threshold]
@@ -85,6 +92,7 @@ class Comparison:
                         "status": r.status,
                         "error": None if err is None else [err.name, err.value],
                         "drift": None if drift is None else [drift.name, drift.value],
+                        "unmeasured": len(r.unmeasured),
                         "order": r.order,
                         "wall_time": r.wall_time if r.runs else None,
                         "message": r.message if r.status in ("unsupported", "error") else "",
@@ -104,6 +112,8 @@ class Comparison:
             scenario = row["scenario"] if row["scenario"] != last else ""
             last = row["scenario"]
             err = "" if row["error"] is None else f"{row['error'][1]:.2g} ({row['error'][0]})"
+            if row["unmeasured"]:
+                err += f" +{row['unmeasured']} not measured"
             drift = "" if row["drift"] is None else f"{row['drift'][1]:.2g} ({row['drift'][0]})"
             order = "" if row["order"] is None else f"{row['order']:.2f}"
             wall = "" if row["wall_time"] is None else f"{row['wall_time']:.2g}"

@@ -81,6 +81,7 @@ __all__ = [
     "Reference",
     "UnknownScenarioError",
     "body_sizes",
+    "bounce_apexes",
     "crossings",
     "figure_names",
     "get_scenario",
@@ -629,7 +630,10 @@ def _ref_bounce(s: Scenario) -> Reference:
     return Reference(_stack(t, s.bodies, [pos], [vel], [R], [w]), figs)
 
 
-def _measure_bounce(s: Scenario, tr: Trajectory) -> dict:
+def bounce_apexes(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, np.ndarray]:
+    """The apexes of a bouncing ball's trajectory, every one in the samples: their times
+    (where v·n falls through 0) and heights (of the ball's lowest point above the
+    ground)."""
     gr = _required(s, "a ground", s.ground)
     nrm = np.asarray(gr.normal, dtype=float)
     b = s.bodies[0]
@@ -637,13 +641,25 @@ def _measure_bounce(s: Scenario, tr: Trajectory) -> dict:
     vn = tr.velocity[:, 0] @ nrm
     zn = tr.position[:, 0] @ nrm - gr.height - r
     apex = crossings(tr.t, vn, deg=2, direction=-1)
-    expected = _ref_bounce(s).figures["apex_times"].size
+    return apex, np.array([interpolate(tr.t, zn, a, deg=2) for a in apex])
+
+
+def _first(values, unit: str, n: int = 3) -> str:
+    shown = ", ".join(f"{v:.3g}" for v in values[:n])
+    return f"{shown}{', ...' if len(values) > n else ''} {unit}"
+
+
+def _measure_bounce(s: Scenario, tr: Trajectory) -> dict:
+    apex, h = bounce_apexes(s, tr)
+    ref = _ref_bounce(s).figures
+    expected = ref["apex_times"].size
     if apex.size != expected:
         msg = (
-            f"found {apex.size} apexes (v·n falling through 0) in the samples; expected {expected}"
+            f"found {apex.size} apexes (v·n falling through 0) in the samples; expected "
+            f"{expected}: heights {_first(h, 'm')} at {_first(apex, 's')}, exact "
+            f"{_first(ref['apex_heights'], 'm')} at {_first(ref['apex_times'], 's')}"
         )
         return {"apex_heights": msg, "apex_times": msg}
-    h = np.array([interpolate(tr.t, zn, a, deg=2) for a in apex])
     return {"apex_heights": h, "apex_times": apex}
 
 

@@ -836,7 +836,10 @@ def test_a_failure_names_every_figure_beyond_its_bound_in_order_joined_by_semico
     assert r.status == "fail"
     assert r.message == (
         f"position {pos:.3g} violates threshold <= 0; velocity {vel:.3g} violates threshold <= 0"
+        ". The error shrinks with the step at order 1: step error, not a wrong law (a finer "
+        "step, or a looser profile; the profile for an engine of this order is first-order)."
     )
+    assert r.message.endswith(" ".join(r.diagnosis))
 
 
 def test_an_order_is_a_figure_only_for_an_adapter_that_takes_a_step():

@@ -247,7 +247,9 @@ def test_json_of_a_hand_built_comparison_carries_every_cell_and_only_the_reasons
         "constant masses",
         "",
     ]
-    assert [list(r) for r in data["rows"]] == [[*cells, "wall_time", "message"]] * 6
+    keys = ["scenario", "family", "adapter", "status", "error", "drift", "unmeasured", "order"]
+    assert [list(r) for r in data["rows"]] == [[*keys, "wall_time", "message"]] * 6
+    assert [r["unmeasured"] for r in data["rows"]] == [0] * 6
 
 
 #: the adapter modules of ENGINE_MODULES, written out
