@@ -43,7 +43,15 @@ from .protocol import (
     Trajectory,
     check_trajectory,
 )
-from .scenarios import SCENARIOS, Reference, UnknownScenarioError, get_scenario, reference
+from .scenarios import (
+    SCENARIOS,
+    Reference,
+    ScenarioRangeError,
+    UnknownScenarioError,
+    check_scenario,
+    get_scenario,
+    reference,
+)
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -62,12 +70,14 @@ __all__ = [
     "Report",
     "Run",
     "Scenario",
+    "ScenarioRangeError",
     "ScenarioResult",
     "Shape",
     "ThresholdError",
     "Thrust",
     "Trajectory",
     "UnknownScenarioError",
+    "check_scenario",
     "check_trajectory",
     "conformance_tests",
     "get_scenario",

@@ -58,6 +58,7 @@ from .scenarios import (
     SCENARIOS,
     UnknownScenarioError,
     body_sizes,
+    check_scenario,
     get_scenario,
     invariants,
     measure,
@@ -487,6 +488,8 @@ def run_battery(adapter, *, scenarios=None, thresholds=None, profile=None, confi
     chosen = []
     for x in SCENARIOS if scenarios is None else scenarios:
         if isinstance(x, Scenario):
+            if x not in SCENARIOS.values():  # a user's variant: inside its valid range?
+                check_scenario(x)
             chosen.append(x)
         elif isinstance(x, str):
             chosen.append(get_scenario(x))

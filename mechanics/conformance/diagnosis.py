@@ -20,8 +20,9 @@ must not name (tests/conformance/test_diagnosis.py):
     the matrix returned), the engine returns its active body-to-world matrix, the
     protocol's passive ^A R^O transposed.
 ``rotational``
-    Angular momentum drifts while energy holds (the L drift :data:`DRIFT_RATIO` times
-    the E drift or more).  A wrong gyroscopic term (dropped, or J taken in world axes)
+    Angular momentum drifts while energy holds (the L drift above rounding and
+    :data:`DRIFT_RATIO` times the E drift or more, in a failing scenario whose error does
+    not converge).  A wrong gyroscopic term (dropped, or J taken in world axes)
     still conserves T = ½ Σ Jᵢωᵢ² (J ω̇ = X × ω gives Ṫ = ω · (X × ω) = 0
     whatever X is), but turns L in space: the rotational dynamics, Euler's equations
     (4.47), are wrong.  Not said
@@ -41,25 +42,31 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from .._floats import EPS
 from .protocol import Scenario, Trajectory
 from .scenarios import bounce_apexes
+from .thresholds import PROFILES
 
 __all__ = ["DRIFT_RATIO", "NO_CONVERGENCE", "diagnose"]
 
-#: an order below this reads as "the error does not shrink with the step": half the
-#: lowest order of a consistent method
-NO_CONVERGENCE = 0.5
+#: the stepping profiles' order bounds, highest first: (bound, profile)
+_CLASSES = sorted(
+    ((float(o), p.name) for p in PROFILES.values() if (o := p.thresholds["order"]) is not None),
+    reverse=True,
+)
+#: an order below this reads as "the error does not shrink with the step": the lowest
+#: order bound of a stepping profile (first-order's ½, half the lowest order of a
+#: consistent method)
+NO_CONVERGENCE = _CLASSES[-1][0]
 #: L drifting this many times more than E (2⁴): the rotational dynamics, not the step
 DRIFT_RATIO = 2.0**4
+#: a drift at or below this (2¹⁰ eps, relative) is rounding, not a drift
+_ROUNDING = 2**10 * EPS
 
 
 def _failed(figures: Mapping, name: str) -> bool:
     f = figures.get(name)
     return f is not None and f.passed is False
-
-
-#: the profile for an engine whose order reads at least this (the profiles' 80 %)
-_CLASSES = ((3.2, "high-order"), (1.6, "second-order"), (0.8, "first-order"))
 
 
 def _converging(figures: Mapping) -> bool | None:
@@ -80,11 +87,11 @@ def _order(figures: Mapping) -> list[str]:
             f"The error does not shrink with the step (order {p:.2g}): a law is wrong, "
             "not the step size."
         ]
-    fits = next((name for bound, name in _CLASSES if p >= bound), None)
-    advice = f"; the profile for an engine of this order is {fits}" if fits else ""
+    fits = next(name for bound, name in _CLASSES if p >= bound)  # p >= NO_CONVERGENCE
     return [
         f"The error shrinks with the step at order {p:.2g}: step error, not a wrong "
-        f"law (a finer step, or a looser profile{advice})."
+        f"law (a finer step, or a looser profile; the profile for an engine of this order "
+        f"is {fits})."
     ]
 
 
@@ -115,7 +122,7 @@ def _rotational(figures: Mapping) -> list[str]:
     e = figures.get("E_drift")
     for name in ("L_drift", "L_z_drift", "L_3_drift"):
         f = figures.get(name)
-        if e is None or f is None or f.passed is not False:
+        if e is None or f is None or f.value is None or f.value <= _ROUNDING:
             continue
         if f.value >= DRIFT_RATIO * e.value:
             return [

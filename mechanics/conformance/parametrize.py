@@ -23,7 +23,7 @@ from __future__ import annotations
 
 from .battery import run_battery
 from .protocol import Scenario
-from .scenarios import SCENARIOS, get_scenario
+from .scenarios import SCENARIOS, check_scenario, get_scenario
 from .thresholds import Config, find_config, get_profile, load_config, resolve_thresholds
 
 __all__ = ["conformance_tests"]
@@ -62,6 +62,9 @@ def conformance_tests(adapter, *, thresholds=None, scenarios=None, profile=None,
         x if isinstance(x, Scenario) else get_scenario(x)
         for x in (SCENARIOS if scenarios is None else scenarios)
     ]
+    for s in chosen:
+        if s not in SCENARIOS.values():  # a user's variant: inside its valid range?
+            check_scenario(s)
     th = resolve_thresholds(thresholds, chosen)
     if profile is not None:
         get_profile(profile)

@@ -76,12 +76,17 @@ from .protocol import Body, Ground, Pivot, Scenario, Shape, Thrust, Trajectory
 
 __all__ = [
     "FIGURES",
+    "FLIGHT_STEPS",
+    "GRID_RTOL",
+    "IMPACT_MARGIN_STEPS",
     "INVARIANTS",
     "SCENARIOS",
     "Reference",
+    "ScenarioRangeError",
     "UnknownScenarioError",
     "body_sizes",
     "bounce_apexes",
+    "check_scenario",
     "crossings",
     "figure_names",
     "get_scenario",
@@ -592,22 +597,31 @@ def _bounce_numbers(s: Scenario):
     return g, r, h0, tf, gr.restitution
 
 
-def _ref_bounce(s: Scenario) -> Reference:
-    t = np.asarray(s.sample_times)
-    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
-    g, r, h0, tf, e = _bounce_numbers(s)
-    nrm = np.asarray(gr.normal, dtype=float)
+def _bounce_impacts(s: Scenario) -> tuple[list[float], float]:
+    """The impact times up to the first past the last sample, and the time the ball
+    comes to rest (inf for e ≥ 1)."""
+    _, _, _, tf, e = _bounce_numbers(s)
+    end = s.sample_times[-1]
     # impacts at tf (1 + 2e + … + 2e^{k−1}); between them free flight.  For e < 1 they
     # accumulate at t_rest = tf (1 + e)/(1 − e) (infinitely many; at once for e = 0), after
     # which the ball rests on the ground: the list stops where the next impact no longer
     # moves the time in float64 (issue 16: the loop ran forever past t_rest)
     t_rest = math.inf if e >= 1 else tf * (1.0 + e) / (1.0 - e)
     impacts = [tf]
-    while impacts[-1] <= t[-1]:
+    while impacts[-1] <= end:
         following = impacts[-1] + 2.0 * tf * e ** len(impacts)
         if following == impacts[-1]:
             break
         impacts.append(following)
+    return impacts, t_rest
+
+
+def _ref_bounce(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
+    g, r, h0, tf, e = _bounce_numbers(s)
+    nrm = np.asarray(gr.normal, dtype=float)
+    impacts, t_rest = _bounce_impacts(s)
     n_apex = sum(1 for k in range(1, len(impacts)) if impacts[k - 1] + tf * e**k <= t[-1])
     apex_t = np.array([impacts[k - 1] + tf * e**k for k in range(1, n_apex + 1)])
     apex_h = h0 * e ** (2.0 * np.arange(1, n_apex + 1))
@@ -784,6 +798,93 @@ def invariants(scenario: Scenario, trajectory: Trajectory) -> dict:
     the scales from the exact trajectory, so that a run-away engine cannot inflate
     them."""
     return _kind(scenario)[2](scenario, trajectory)
+
+
+# --------------------------------------------------------------------------- valid range
+
+#: a step divides a sample time when their ratio is a whole number within 2⁴ eps of it
+#: (rounding in the division; the built-in grids are binary fractions, exact)
+GRID_RTOL = 2**4 * EPS
+#: an impact stays this many of the scenario's finest steps from every sample, so that no
+#: sample falls between an impact and an engine's one step late (the built-in scenarios
+#: keep 9 ms at 2⁻⁸ s: 2.3 steps)
+IMPACT_MARGIN_STEPS = 2.0
+#: a bounce's flight lasts at least this many of the coarsest steps, so that an engine
+#: sees its apex (the built-in ball's shortest flight holds 33 steps of 2⁻⁶ s)
+FLIGHT_STEPS = 8.0
+
+
+class ScenarioRangeError(MechanicsValueError):
+    """A scenario (a variant of a known kind) outside the range its reference and the
+    battery's figures hold for."""
+
+
+def _impact_times(s: Scenario) -> list[float]:
+    kind = s.extra.get("kind")
+    if kind == "bounce":
+        impacts, _ = _bounce_impacts(s)
+        return [t for t in impacts if t <= s.sample_times[-1]]
+    if kind == "impact":
+        t = _ref_impact(s).figures["impact_time"]
+        return [t] if t <= s.sample_times[-1] else []
+    return []
+
+
+def check_scenario(s: Scenario) -> None:
+    """Refuse a scenario outside its valid range, naming it and the reason.
+
+    - its kind is known, its samples start at 0, increase and end at the duration, and
+      each step divides every sample time;
+    - a bouncing ball does not come to rest within the duration (its last bounces would
+      be shorter than any step), each flight lasts :data:`FLIGHT_STEPS` coarsest steps;
+    - the battery's own reading of its exact samples gives every figure (the apex, the
+      periods, the impact: otherwise no engine can be judged on them);
+    - every impact is :data:`IMPACT_MARGIN_STEPS` finest steps from every sample.
+
+    Raises :class:`ScenarioRangeError`; returns None for a valid scenario.
+    """
+
+    def refuse(why: str) -> ScenarioRangeError:
+        return ScenarioRangeError(f"scenario {s.name!r} is outside its valid range: {why}")
+
+    _kind(s)
+    t = np.asarray(s.sample_times, dtype=float)
+    if t.ndim != 1 or t.size < 2 or t[0] != 0 or np.any(np.diff(t) <= 0):
+        raise refuse("its sample times must start at 0 and increase")
+    if abs(t[-1] - s.duration) > GRID_RTOL * s.duration:
+        raise refuse(f"its last sample {float(t[-1])!r} is not its duration {s.duration!r}")
+    for h in s.steps:
+        n = t / h
+        if not (h > 0 and np.all(np.abs(n - np.round(n)) <= GRID_RTOL * np.maximum(n, 1))):
+            raise refuse(f"the step {h!r} does not divide every sample time")
+    if s.extra.get("kind") == "bounce":
+        impacts, t_rest = _bounce_impacts(s)
+        if t_rest <= s.duration:
+            raise refuse(
+                f"the ball comes to rest at t_f (1 + e)/(1 − e) = {t_rest:.4g} s, within the "
+                f"duration {s.duration:g} s: its last bounces are shorter than any step"
+            )
+        coarse = max(s.steps, default=0.0)
+        starts = np.array(impacts[:-1])
+        flights = np.diff(impacts)[starts <= s.duration]  # those that start in the run
+        short = flights[flights < FLIGHT_STEPS * coarse]
+        if short.size:
+            raise refuse(
+                f"a flight between bounces lasts {short[0]:.3g} s, under {FLIGHT_STEPS:g} "
+                f"of its coarsest steps ({coarse:g} s)"
+            )
+    ref = reference(s)
+    for name, value in measure(s, ref.trajectory).items():
+        if isinstance(value, str):
+            raise refuse(f"the figure {name!r} cannot be read off its exact samples: {value}")
+    fine = min(s.steps, default=0.0)
+    for ti in _impact_times(s):
+        gap = float(np.min(np.abs(t - ti)))
+        if gap < IMPACT_MARGIN_STEPS * fine:
+            raise refuse(
+                f"an impact at {ti:.6g} s falls {gap:.3g} s from a sample, under "
+                f"{IMPACT_MARGIN_STEPS:g} of its finest steps ({fine:g} s)"
+            )
 
 
 # --------------------------------------------------------------------------- scenarios

@@ -10,6 +10,8 @@ One submodule per concept of :mod:`mechanics`, all re-exported here, so that
 - :mod:`mechanics.strategies.impact`: contacts and restitution.
 - :mod:`mechanics.strategies.batching`: stacks of independent draws, for the
   promise that every function broadcasts over leading axes.
+- :mod:`mechanics.strategies.conformance`: rigid-body states an engine can step and
+  random variants of the conformance battery's scenarios, with their exact references.
 
 Each submodule states its regimes (``*_REGIMES``); importing this package imports
 hypothesis, ``import mechanics`` does not.
@@ -17,8 +19,9 @@ hypothesis, ``import mechanics`` does not.
 
 from __future__ import annotations
 
-from . import batching, impact, inertia, particles, rotation
+from . import batching, conformance, impact, inertia, particles, rotation
 from .batching import *  # noqa: F403
+from .conformance import *  # noqa: F403
 from .impact import *  # noqa: F403
 from .inertia import *  # noqa: F403
 from .particles import *  # noqa: F403
@@ -30,4 +33,5 @@ __all__ = [
     *inertia.__all__,
     *impact.__all__,
     *batching.__all__,
+    *conformance.__all__,
 ]

@@ -122,10 +122,10 @@ def test_scene_engine_adapter_passes_every_scenario_near_rounding():
 
 def test_scene_engine_adapter_says_why_it_cannot_run_a_scenario():
     s = get_scenario("parabola")
-    odd = dataclasses.replace(s, sample_times=(0.0, 0.1, 1.5), duration=1.5)
+    odd = dataclasses.replace(s, sample_times=(0.0, 0.1, 1.5), duration=1.5, steps=())
+    ball = get_scenario("bouncing_ball")
     box = dataclasses.replace(
-        get_scenario("bouncing_ball"),
-        bodies=(dataclasses.replace(s.bodies[0], inertia=(0.001, 0.002, 0.003)),),
+        ball, bodies=(dataclasses.replace(ball.bodies[0], inertia=(0.001, 0.002, 0.003)),)
     )
     r = run_battery(SceneEngineAdapter(), scenarios=[odd, box])
     assert statuses(r) == {"parabola": "unsupported", "bouncing_ball": "unsupported"}

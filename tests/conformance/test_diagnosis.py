@@ -9,6 +9,7 @@ import dataclasses
 import numpy as np
 import pytest
 
+from mechanics._floats import EPS
 from mechanics.conformance import get_scenario, reference, run_battery
 from mechanics.conformance.battery import Figure
 from mechanics.conformance.diagnosis import (
@@ -137,7 +138,8 @@ def test_the_rotational_rule_fires_from_a_drift_ratio_of_2_to_the_4():
     below = np.nextafter(DRIFT_RATIO * e, 0.0)
     assert _rotational(_drifts(below, e)) == []
     assert _rotational(_drifts(0.5, 0.0, order=NO_CONVERGENCE)) == []  # converging
-    assert _rotational({**_drifts(0.005, 0.0)}) == []  # L within its bound
+    assert _rotational(_drifts(2**10 * EPS, 0.0)) == []  # L at rounding: no drift
+    assert _rotational(_drifts(np.nextafter(2**10 * EPS, 1.0), 0.0))[0].startswith(ROTATIONAL)
     assert _rotational({"L_drift": _drifts(0.5, 0.0)["L_drift"]}) == []  # no E figure
 
 
@@ -146,11 +148,17 @@ def test_the_order_rule_reads_no_convergence_below_one_half():
         return {"order": Figure("order", "order", p, 0.8, p >= 0.8)}
 
     assert _order(fig(np.nextafter(NO_CONVERGENCE, 0.0)))[0].startswith(NO_SHRINK)
+    assert NO_CONVERGENCE == 0.5  # first-order's order bound
     at = _order(fig(NO_CONVERGENCE))[0]
-    assert at.startswith(f"{STEP_ERROR} 0.5: step error")
-    assert at.endswith("(a finer step, or a looser profile).")  # below every class
-    assert _order(fig(0.8))[0].endswith("the profile for an engine of this order is first-order).")
-    assert _order(fig(3.2))[0].endswith("the profile for an engine of this order is high-order).")
+    assert at == (
+        f"{STEP_ERROR} 0.5: step error, not a wrong law (a finer step, or a looser "
+        "profile; the profile for an engine of this order is first-order)."
+    )
+    fits = "the profile for an engine of this order is {})."
+    assert _order(fig(np.nextafter(1.5, 0)))[0].endswith(fits.format("first-order"))
+    assert _order(fig(1.5))[0].endswith(fits.format("second-order"))
+    assert _order(fig(np.nextafter(3.0, 0)))[0].endswith(fits.format("second-order"))
+    assert _order(fig(3.0))[0].endswith(fits.format("high-order"))
     assert _order({"order": Figure("order", "order", None, 0.8, None, "no order")}) == []
     assert _order({}) == []
 

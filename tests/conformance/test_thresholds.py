@@ -61,12 +61,16 @@ def test_a_correct_engine_passes_its_class_and_fails_the_stricter_one(make, own,
     ran = [s for s, v in verdicts(report).items() if v == "pass"]
     assert where in ran, ran
     assert len(ran) >= 4, ran  # not passed by skipping everything
-    for s in ran:  # the order is checked, and read (not passed for want of errors)
+    checked = 0
+    for s in ran:  # the order is read, and checked where the profile checks it
         order = report[s].figure("order")
         assert order is not None, s
-        assert order.passed is True, (s, order)
-        assert order.value is not None
-        assert order.value >= 0.8 * PROFILES[own].order
+        assert order.value is not None, s
+        if order.threshold is not None:
+            assert order.passed is True, (s, order)
+            assert order.value >= PROFILES[own].thresholds["order"]
+            checked += 1
+    assert checked >= 4  # not passed for want of an order
     strict = run_battery(engine, scenarios=[where], profile=stricter)[where]
     assert strict.status == "fail", strict.message
 
@@ -92,11 +96,12 @@ def test_the_first_order_profile_separates_a_bug_that_magnitudes_alone_cannot():
                     scenarios=["free_top_axis1"], thresholds={"attitude": 1.0, "omega": 1.0,
                     "omega_period": None, "L_drift": None})["free_top_axis1"]  # fmt: skip
     assert r.status == "fail"
-    assert re.fullmatch(
-        r"order -?\d\.\d+e-\d+ violates threshold >= 0\.8\. The error does not shrink with "
-        r"the step \(order -?\d\.?\d*e-\d+\): a law is wrong, not the step size\.",
+    assert re.match(
+        r"order -?\d\.\d+e-\d+ violates threshold >= 0\.5\. The error does not shrink with "
+        r"the step \(order -?\d\.?\d*e-\d+\): a law is wrong, not the step size\. ",
         r.message,
     ), r.message
+    assert [f.name for f in r.figures if f.passed is False] == ["order"]
 
 
 # -- the order of an impact scenario is read from its event figures --------------------
@@ -134,24 +139,30 @@ def test_an_unreadable_event_figure_leaves_no_order_and_says_at_which_step():
 # -- the profiles' bounds -----------------------------------------------------------------
 
 
-def test_each_stepping_profile_bounds_every_figure_and_the_order_at_80_percent():
-    for name, order, rtol in [("first-order", 1, 2**-4), ("second-order", 2, 2**-8),
-                              ("high-order", 4, 2**-20)]:  # fmt: skip
+def test_each_stepping_profile_bounds_every_figure_and_the_order():
+    near = "free_top_near_separatrix"
+    for name, least, rtol in [("first-order", 0.5, 2**-2), ("second-order", 1.5, 2**-8),
+                              ("high-order", 3.0, 2**-20)]:  # fmt: skip
         p = get_profile(name)
         th = dict(p.thresholds)
-        assert th.pop("order") == 0.8 * order
+        assert th.pop("order") == least
         plain = {k: v for k, v in th.items() if "." not in k}
         assert set(plain) == set(DEFAULT_THRESHOLDS) - {"order"}
         assert set(plain.values()) == {rtol}
         special = {k: v for k, v in th.items() if "." in k}
-        assert special == {
+        impacts = {
             "two_body_impact.velocity": None,
             "two_body_impact.omega": None,
             "bouncing_ball.velocity": None,
             "bouncing_ball.omega": None,
-            "free_top_near_separatrix.attitude": 8 * rtol,
-            "free_top_near_separatrix.omega": 8 * rtol,
         }
+        if name == "first-order":  # the phase near the separatrix is not resolved
+            separatrix = dict.fromkeys(
+                (f"{near}.attitude", f"{near}.omega", f"{near}.omega_period", f"{near}.order")
+            )
+        else:
+            separatrix = {f"{near}.attitude": 8 * rtol, f"{near}.omega": 8 * rtol}
+        assert special == {**impacts, **separatrix}
     exact = dict(get_profile("exact").thresholds)
     assert exact.pop("order") is None
     assert set(exact.values()) == {2**-28}
@@ -197,7 +208,7 @@ def test_the_adapter_says_what_it_claims_and_the_caller_and_file_win_over_it():
     r = run_battery(Claims(), scenarios=["parabola"])
     assert r.profile == "first-order"
     assert r["parabola"].figure("position").threshold == 0.5
-    assert r["parabola"].figure("velocity").threshold == 2**-4
+    assert r["parabola"].figure("velocity").threshold == 2**-2
     cfg = Config("second-order", {"position": 0.25}, "f.toml")
     r = run_battery(Claims(), scenarios=["parabola"], config=cfg)
     assert (r.profile, r.config) == ("second-order", "f.toml")

@@ -1265,6 +1265,8 @@ for _name in (
     "rotation.rotvecs",
     "rotation.unit_vectors",
     "batching.batches",
+    "conformance.body_states",
+    "conformance.scenarios",
 ):
     EXEMPT[f"mechanics.strategies.{_name}"] = _STRAT
 _CONFORMANCE = (
@@ -1329,6 +1331,7 @@ for _name in (
     "scenarios.Reference",
     "scenarios.body_sizes",
     "scenarios.bounce_apexes",
+    "scenarios.check_scenario",
     "scenarios.crossings",
     "scenarios.figure_names",
     "scenarios.get_scenario",
