@@ -132,6 +132,13 @@ def _import(module: str):
             path = Path(module)
             if not path.is_file():
                 raise _usage(f"adapter module file {module!r} does not exist")
+            dotted, root = _package_module(path)
+            if dotted is not None:  # inside a package: imported as its module, so that
+                sys.path.insert(0, str(root))  # its relative imports resolve
+                try:
+                    return importlib.import_module(dotted)
+                finally:
+                    sys.path.remove(str(root))
             name = f"_bodycheck_conform_{path.stem}"
             spec = importlib.util.spec_from_file_location(name, path)
             if spec is None or spec.loader is None:
@@ -160,6 +167,20 @@ def _import(module: str):
         raise _usage(
             f"importing adapter module {module!r} raised {type(exc).__name__}: {exc}"
         ) from None
+
+
+def _package_module(path: Path) -> tuple[str | None, Path]:
+    """For a file inside a package (its folder has an ``__init__.py``): its dotted name
+    and the folder that holds the outermost package; else (None, its folder)."""
+    path = path.resolve()
+    parts = [path.stem] if path.name != "__init__.py" else []
+    folder = path.parent
+    while (folder / "__init__.py").is_file():
+        parts.insert(0, folder.name)
+        folder = folder.parent
+    if not parts or folder == path.parent:
+        return None, path.parent
+    return ".".join(parts), folder
 
 
 def load_adapter(spec: str):

@@ -204,3 +204,25 @@ def test_a_baseline_is_written_and_then_passes_with_config(capsys, project):
     assert "Thresholds from base.toml." in out
     code, out, _ = run(capsys, *args, "--config", "base.toml", "--threshold", "position=1e-3")
     assert code == 1  # the command line wins over the file
+
+
+def test_a_file_inside_a_package_is_imported_as_its_module_so_relative_imports_resolve(
+    capsys, project
+):
+    pkg = project / "my_engine" / "sub"
+    pkg.mkdir(parents=True)
+    (project / "my_engine" / "__init__.py").write_text("", encoding="utf-8")
+    (pkg / "__init__.py").write_text("", encoding="utf-8")
+    (pkg / "core.py").write_text("NAME = 'packaged exact'\n", encoding="utf-8")
+    (pkg / "adapter.py").write_text(
+        "from mechanics.conformance.adapters import ExactAdapter\n"
+        "from .core import NAME\n\n\n"
+        "class Packaged(ExactAdapter):\n    name = NAME\n",
+        encoding="utf-8",
+    )
+    code, out, err = run(capsys, "my_engine/sub/adapter.py:Packaged", "--scenario", "parabola")
+    assert (code, err) == (0, "")
+    assert out.startswith("# Conformance: packaged exact\n")
+    import sys
+
+    assert str(project.resolve()) not in sys.path  # on the path for the import only
