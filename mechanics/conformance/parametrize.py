@@ -14,12 +14,16 @@ In a test module::
 gives one test per scenario (ids = the scenario names): it passes, fails with the
 figure, its value and the threshold, fails with the adapter's exception (type and
 message) or with what the protocol refused in its answer, or is skipped with the
-adapter's reason when the adapter does not support the scenario.  Thresholds and
+adapter's reason when the adapter does not support the scenario (asked at collection,
+so that pytest reports the skip at the user's test).  Thresholds and
 scenario names are checked when the module is collected.  pytest is imported here only
 when :func:`conformance_tests` is called (not by :mod:`mechanics.conformance`).
 """
 
 from __future__ import annotations
+
+import inspect
+import types
 
 from .battery import run_battery
 from .protocol import Scenario
@@ -76,18 +80,42 @@ def conformance_tests(adapter, *, thresholds=None, scenarios=None, profile=None,
     by_name = {s.name: s for s in chosen}
     label = getattr(adapter, "name", type(adapter).__name__)
 
-    @pytest.mark.parametrize("scenario_name", list(by_name), ids=list(by_name))
-    def test_conformance(scenario_name):
+    def param(s):
+        """The scenario as a parameter, marked skip where the adapter says it cannot run
+        it: a mark is reported at the user's test (a skip raised here would name this
+        file).  An adapter whose supports() raises is left to the run, which reports it."""
+        try:
+            why = adapter.supports(s)
+        except Exception:
+            why = None
+        if not why:
+            return pytest.param(s.name, id=s.name)
+        skip = pytest.mark.skip(reason=f"{label} does not support {s.name}: {why}")
+        return pytest.param(s.name, id=s.name, marks=skip)
+
+    def check(scenario_name):
         one = [by_name[scenario_name]]
-        r = run_battery(adapter, scenarios=one, thresholds=th, profile=profile, config=cfg).results[
-            0
-        ]
-        if r.status == "unsupported":
+        report = run_battery(adapter, scenarios=one, thresholds=th, profile=profile, config=cfg)
+        r = report.results[0]
+        if r.status == "unsupported":  # supports() changed its mind between collection and run
             pytest.skip(f"{label} does not support {scenario_name}: {r.message}")
         if r.status == "error":
             pytest.fail(f"{label}, scenario {scenario_name}: adapter error: {r.message}", False)
         if r.status == "fail":
             pytest.fail(f"{label}, scenario {scenario_name}: {r.message}", pytrace=False)
 
+    def test_conformance(scenario_name):
+        check(scenario_name)
+
+    # pytest places a test (its skips, its failures) where its function's code is: the
+    # code of this one-line function is placed at the line that called conformance_tests,
+    # in the user's test module, not here (its body, check, stays here)
+    caller = inspect.stack(0)[1]
+    code = test_conformance.__code__.replace(
+        co_filename=caller.filename, co_firstlineno=caller.lineno
+    )
+    test_conformance = types.FunctionType(
+        code, test_conformance.__globals__, "test_conformance", None, test_conformance.__closure__
+    )
     test_conformance.__doc__ = f"The conformance battery on {label}, one scenario per test."
-    return test_conformance
+    return pytest.mark.parametrize("scenario_name", [param(s) for s in chosen])(test_conformance)

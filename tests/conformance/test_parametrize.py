@@ -50,14 +50,32 @@ class _Nameless:
     run = ExactAdapter.run
 
 
+def _params(mark) -> list[tuple[str, str, list]]:
+    """(value, id, marks) per parameter of a parametrize mark."""
+    assert mark.args[0] == "scenario_name"
+    assert mark.kwargs == {}
+    return [(p.values[0], p.id, list(p.marks)) for p in mark.args[1]]
+
+
 def test_one_test_per_scenario_named_by_it_and_every_scenario_by_default():
-    mark = _marks(conformance_tests(ExactAdapter()))
     names = list(SCENARIOS)
-    assert mark.args == ("scenario_name", names)
-    assert mark.kwargs == {"ids": names}
+    assert _params(_marks(conformance_tests(ExactAdapter()))) == [(n, n, []) for n in names]
     chosen = _marks(conformance_tests(ExactAdapter(), scenarios=["parabola"]))
-    assert chosen.args == ("scenario_name", ["parabola"])
-    assert chosen.kwargs == {"ids": ["parabola"]}
+    assert _params(chosen) == [("parabola", "parabola", [])]
+
+
+def test_an_unsupported_scenario_is_marked_skip_at_collection_so_pytest_names_the_users_test():
+    ((value, ident, marks),) = _params(
+        _marks(conformance_tests(_Unsupported(), scenarios=["rocket"]))
+    )
+    assert (value, ident) == ("rocket", "rocket")
+    assert [m.name for m in marks] == ["skip"]
+    assert marks[0].kwargs == {"reason": "cannot does not support rocket: no such joint here"}
+    # an adapter whose supports() raises is not marked: the run reports the error
+    raising = type("R", (ExactAdapter,), {"supports": lambda self, s: 1 / 0})()
+    assert _params(_marks(conformance_tests(raising, scenarios=["rocket"]))) == [
+        ("rocket", "rocket", [])
+    ]
 
 
 def test_the_exact_adapter_passes_and_the_test_says_what_it_runs():
@@ -124,9 +142,7 @@ def _lob():
 def test_a_users_own_scenario_object_is_taken_as_it_is_not_looked_up_by_name():
     lob = _lob()
     test = conformance_tests(ExactAdapter(), scenarios=[lob])
-    mark = _marks(test)
-    assert mark.args == ("scenario_name", ["lob"])
-    assert mark.kwargs == {"ids": ["lob"]}
+    assert _params(_marks(test)) == [("lob", "lob", [])]
     assert test("lob") is None  # get_scenario("lob") would raise: the battery has no lob
 
 

@@ -126,7 +126,7 @@ def test_a_separate_project_passes_a_correct_first_order_engine_and_fails_each_p
                 f"*test_{_module(bug)}[[]{scenarios[0]}[]] FAILED*"
                 for bug, scenarios in BROKEN.items()
             ),
-            "SKIPPED [[]1[]] *toy semi-implicit Euler does not support heavy_top: the toy has "
+            "SKIPPED [[]1[]] test_toy.py:*: toy semi-implicit Euler does not support heavy_top: the toy has "
             "no joints, no thrust and no body-body contacts",
             "SKIPPED*two_body_impact*",
             "SKIPPED*rocket*",
