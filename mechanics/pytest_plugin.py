@@ -160,8 +160,10 @@ class EpsClose:
     """Assertions with tolerances in eps: ``eps_close(actual, desired, eps=8)``.
 
     A thin front to :mod:`mechanics.testing`, whose messages name the worst index and
-    its error in eps.  ``eps`` is the allowed error as a multiple of float64 eps; left
-    out, each assertion's documented default applies (4 eps for all three).
+    its error in eps.  ``eps`` is the allowed error as a multiple of float64 eps (the
+    same keyword as :func:`~mechanics.testing.assert_allclose_eps`); left out, each
+    assertion's documented default applies (4 eps for all three).  The first also takes
+    ``rtol``, the error as a fraction (``rtol=1e-2``: 1 %, reported as a fraction).
     """
 
     def __call__(
@@ -170,15 +172,16 @@ class EpsClose:
         desired: npt.ArrayLike,
         *,
         eps: float | None = None,
+        rtol: float | None = None,
         scale: npt.ArrayLike | None = None,
         err_msg: str = "",
     ) -> None:
-        """:func:`~mechanics.testing.assert_allclose_eps`: relative, or against ``scale``."""
+        """:func:`~mechanics.testing.assert_allclose_eps`: relative, or against ``scale``;
+        the tolerance in eps (``eps=8``) or as a fraction (``rtol=1e-2``)."""
         __tracebackhide__ = True
-        from .testing import ALLCLOSE_EPS_MULTIPLE, assert_allclose_eps
+        from .testing import assert_allclose_eps
 
-        k = ALLCLOSE_EPS_MULTIPLE if eps is None else _multiple(eps)
-        assert_allclose_eps(actual, desired, eps_multiple=k, scale=scale, err_msg=err_msg)
+        assert_allclose_eps(actual, desired, eps=eps, rtol=rtol, scale=scale, err_msg=err_msg)
 
     def rotations(
         self, R1: npt.ArrayLike, R2: npt.ArrayLike, *, eps: float | None = None, err_msg: str = ""

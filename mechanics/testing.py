@@ -33,6 +33,7 @@ AssertionError: not close: relative error 8 eps at index () exceeds 4 eps (actua
 from __future__ import annotations
 
 import numbers
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -188,23 +189,32 @@ def assert_quaternions_close(
     )
 
 
+#: eps_multiple not given (None is a value it refuses, as before)
+_UNSET: Any = object()
+
+
 def assert_allclose_eps(
     actual: npt.ArrayLike,
     desired: npt.ArrayLike,
     *,
-    eps_multiple: float = ALLCLOSE_EPS_MULTIPLE,
+    eps: float | None = None,
+    rtol: float | None = None,
     scale: npt.ArrayLike | None = None,
     err_msg: str = "",
+    eps_multiple: Any = _UNSET,
 ) -> None:
-    """Assert |actual − desired| ≤ eps_multiple · eps · scale, entrywise.
+    """Assert |actual − desired| ≤ eps · EPS · scale (or ≤ rtol · scale), entrywise.
 
     Parameters
     ----------
     actual, desired : array_like
         Broadcast against each other.
-    eps_multiple : float
-        The allowed error in units of eps (default
-        :data:`ALLCLOSE_EPS_MULTIPLE`).
+    eps : float, optional
+        The allowed error in units of float64's eps (default
+        :data:`ALLCLOSE_EPS_MULTIPLE`).  ``eps_multiple`` is the same, its older name.
+    rtol : float, optional
+        The allowed error as a plain fraction instead (``rtol=1e-2``: 1 %); the message
+        then states the error as a fraction too.  Give ``eps`` or ``rtol``, not both.
     scale : array_like, optional
         The size the error is measured against.  Default: ``|desired|``
         entrywise, a relative test (a zero ``desired`` then needs an exact
@@ -219,7 +229,17 @@ def assert_allclose_eps(
         two values.
     """
     __tracebackhide__ = True  # under pytest, a failure points at the caller
-    k = _check_tolerance(eps_multiple, "eps_multiple")
+    named = {"eps": eps is not None, "rtol": rtol is not None}
+    named["eps_multiple"] = eps_multiple is not _UNSET
+    given = [n for n, v in named.items() if v]
+    if len(given) > 1:
+        raise TypeError(f"give one tolerance, eps or rtol; got {' and '.join(given)}")
+    if rtol is not None:
+        k = _check_tolerance(rtol, "rtol") / EPS
+    elif eps_multiple is not _UNSET:
+        k = _check_tolerance(eps_multiple, "eps_multiple")
+    else:
+        k = ALLCLOSE_EPS_MULTIPLE if eps is None else _check_tolerance(eps, "eps")
     a, d = _broadcast(actual, desired, ())
     if scale is None:
         s, kind = np.abs(d), "relative error"
@@ -244,12 +264,15 @@ def assert_allclose_eps(
     idx = _worst(units)
     if s[idx] == 0:
         what = f"{float(diff[idx])!r} (scale 0)" if not huge[idx] else f"{_BEYOND} (scale 0)"
-    elif np.isfinite(units[idx]):
-        what = f"{units[idx]:.3g} eps"
+    elif not np.isfinite(units[idx]):
+        what = f"{_BEYOND}" + ("" if rtol is not None else " eps")
+    elif rtol is not None:  # the error as the fraction the tolerance was given in
+        what = f"{units[idx] * EPS:.3g}"
     else:
-        what = f"{_BEYOND} eps"
+        what = f"{units[idx]:.3g} eps"
+    bound = f"rtol {rtol:.3g}" if rtol is not None else f"{k:.3g} eps"
     prefix = f"{err_msg}: " if err_msg else ""
     raise AssertionError(
-        f"{prefix}not close: {kind} {what} at index {idx} exceeds {k:.3g} eps "
+        f"{prefix}not close: {kind} {what} at index {idx} exceeds {bound} "
         f"(actual {float(a[idx])!r}, desired {float(d[idx])!r})"
     )

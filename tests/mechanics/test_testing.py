@@ -457,3 +457,40 @@ def test_a_negative_scale_is_refused_naming_it(scale, shown):
     with pytest.raises(ValueError, match=r"\bscale must be >= 0") as info:
         assert_allclose_eps([1.0, 1.0], [1.0, 1.0], scale=scale)
     assert str(info.value) == f"scale must be >= 0; got {shown}"
+
+
+def test_rtol_is_a_plain_fraction_and_the_message_states_the_error_as_one():
+    assert_allclose_eps([1.0, 2.0], [1.0, 2.0 * (1 + 0.0099)], rtol=1e-2)
+    with pytest.raises(AssertionError) as e:
+        assert_allclose_eps([1.0, 2.0], [1.0, 1.95], rtol=1e-2, err_msg="q")
+    assert str(e.value) == (
+        f"q: not close: relative error {0.05 / 1.95:.3g} at index (1,) exceeds rtol 0.01 "
+        "(actual 2.0, desired 1.95)"
+    )
+    # the bound itself passes, one ulp beyond it does not
+    d = 1.0
+    a = d * (1 + 2.0**-7)
+    assert_allclose_eps(a, d, rtol=2.0**-7)
+    with pytest.raises(AssertionError, match=r"exceeds rtol 0\.00781"):
+        assert_allclose_eps(np.nextafter(a, 2.0), d, rtol=2.0**-7)
+
+
+def test_eps_is_the_one_spelling_eps_multiple_its_older_alias_and_one_tolerance_at_a_time():
+    a, d = 1.0 + 6 * EPS, 1.0
+    assert_allclose_eps(a, d, eps=6)
+    assert_allclose_eps(a, d, eps_multiple=6)
+    for kwargs in ({"eps": 5}, {"eps_multiple": 5}):
+        with pytest.raises(
+            AssertionError, match=r"relative error 6 eps at index \(\) exceeds 5 eps"
+        ):
+            assert_allclose_eps(a, d, **kwargs)
+    for kwargs, names in [
+        ({"eps": 4, "rtol": 1e-2}, "eps and rtol"),
+        ({"rtol": 1e-2, "eps_multiple": 4}, "rtol and eps_multiple"),
+    ]:
+        with pytest.raises(TypeError) as e:
+            assert_allclose_eps(a, d, **kwargs)
+        assert str(e.value) == f"give one tolerance, eps or rtol; got {names}"
+    for bad in (-1.0, math.nan, "1e-2", True):
+        with pytest.raises(ValueError, match=r"^rtol="):
+            assert_allclose_eps(a, d, rtol=bad)

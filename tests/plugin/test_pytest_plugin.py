@@ -676,3 +676,13 @@ def test_eps_close_failures_point_at_the_caller_not_the_plugin(eps_close, kind):
         tb = tb.tb_next
     assert own, "no frame of mechanics/pytest_plugin.py in the traceback"
     assert all(own), f"a frame of mechanics/pytest_plugin.py is shown by pytest: {own}"
+
+
+def test_eps_close_takes_rtol_as_assert_allclose_eps_does(eps_close):
+    eps_close([1.0, 2.0], [1.0, 2.0 * (1 - 0.0099)], rtol=1e-2)
+    with pytest.raises(AssertionError) as e:
+        eps_close(2.0, 1.95, rtol=1e-2)
+    assert str(e.value) == (
+        f"not close: relative error {0.05 / 1.95:.3g} at index () exceeds rtol 0.01 "
+        "(actual 2.0, desired 1.95)"
+    )
