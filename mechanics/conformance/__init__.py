@@ -28,6 +28,7 @@ from .battery import (
     ThresholdError,
     run_battery,
 )
+from .laws import LAW_EQUATIONS, law_violations
 from .protocol import (
     ORTHOGONALITY_ATOL,
     SAMPLE_TIME_RTOL,
@@ -56,6 +57,7 @@ from .scenarios import (
 __all__ = [
     "DEFAULT_RTOL",
     "DEFAULT_THRESHOLDS",
+    "LAW_EQUATIONS",
     "ORTHOGONALITY_ATOL",
     "SAMPLE_TIME_RTOL",
     "SCENARIOS",
@@ -81,6 +83,7 @@ __all__ = [
     "check_trajectory",
     "conformance_tests",
     "get_scenario",
+    "law_violations",
     "reference",
     "run_battery",
 ]

@@ -1327,6 +1327,7 @@ for _name in (
     "compare.compare",
     "compare.engine_adapters",
     "diagnosis.diagnose",
+    "laws.law_violations",
     "parametrize.conformance_tests",
     "scenarios.Reference",
     "scenarios.body_sizes",
