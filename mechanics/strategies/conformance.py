@@ -32,12 +32,19 @@ from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 from hypothesis import assume, event
 from hypothesis import strategies as st
 
 from ..conformance.protocol import Body, Ground, Pivot, Scenario, Shape, Thrust
-from ..conformance.scenarios import _bounce_impacts, _heavy_top, check_scenario, get_scenario
+from ..conformance.scenarios import (
+    _bounce_impacts,
+    _heavy_top,
+    _rows,
+    _times,
+    check_scenario,
+    get_scenario,
+)
+from ..conformance.scenarios import _vec3 as _vec
 from ..rotation import matrix_from_euler
 from ._common import check_positive, check_regimes
 
@@ -76,19 +83,6 @@ _THETA_MAX = 2.0
 def _grid(t: float, dt: float) -> float:
     """t rounded up to the sample grid."""
     return math.ceil(t / dt - 2**-20) * dt
-
-
-def _times(duration: float, dt: float) -> tuple[float, ...]:
-    return tuple(k * dt for k in range(round(duration / dt) + 1))
-
-
-def _rows(R: npt.ArrayLike) -> tuple[tuple[float, float, float], ...]:
-    return tuple((float(a), float(b), float(c)) for a, b, c in np.asarray(R))
-
-
-def _vec(v: npt.ArrayLike) -> tuple[float, float, float]:
-    a, b, c = (float(x) for x in np.asarray(v, dtype=float))
-    return a, b, c
 
 
 _angles = st.tuples(
