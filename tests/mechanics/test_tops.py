@@ -1196,3 +1196,33 @@ def test_angular_momentum_in_the_body_is_j_omega_and_keeps_its_length():
     np.testing.assert_allclose(
         LO, np.tile(R0.T @ [0.4, 0.4, 3.0], (11, 1)), atol=SEPARATRIX_L_ATOL * 3
     )
+
+
+def test_heavy_top_accepts_gravity_whose_scaled_ratio_is_the_smallest_normal():
+    # J'1 = J3 = 1 scale to 1/2 (k = 1), so m g ℓ = 2^-1021 scales to 2^-1022, float64's
+    # smallest normal: its ratio to the largest (4.5e-308) is above the documented 1e-308,
+    # so the top is built (at rest in θ, u0 = cos 0.5 is one of the roots)
+    top = tops.HeavySymmetricTop(1.0, 1.0, 2.0**-1021, theta=0.5, phi_dot=1.0)
+    assert top.m_g_ell == 2.0**-1021
+    assert math.cos(0.5) in top.roots
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug: m g ℓ = 3e-308 with J'1 = J3 = 1 is 3e-308 of the largest, above the "
+    "documented 1e-308, but refused with a message saying it is below 1e-308 of it (the "
+    "check is 2^-1022 on the value scaled to [1/2, 1): 2.2e-308 to 4.5e-308 of the largest)",
+)
+def test_heavy_top_accepts_gravity_above_1e308_of_the_largest():
+    tops.HeavySymmetricTop(1.0, 1.0, 3e-308, theta=0.5, phi_dot=1.0)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug: θ̇0² J'1/mgℓ beyond float64 (θ̇0 = 1e150, mgℓ = 2^-1021) raises scipy's "
+    "ValueError ('The function value at x=inf is NaN') from the root bracket, not the "
+    "documented ResultOverflowError",
+)
+def test_heavy_top_rates_overflowing_against_gravity_are_a_result_overflow():
+    with pytest.raises(ResultOverflowError):
+        tops.HeavySymmetricTop(1.0, 1.0, 2.0**-1021, theta=1.0, theta_dot=1e150)
