@@ -90,6 +90,14 @@ CASES = {
     "separatrix to 1e-16": ([1.0, 2.0, 3.0], [1.0, 0.0, 0.5773502691896257], "axis1"),
     "on the separatrix": ([3.0, 4.0, 6.0], [2.0, 0.5, 1.0], "separatrix"),
     "on the separatrix, ω1 < 0": ([3.0, 4.0, 6.0], [-2.0, 0.5, 1.0], "separatrix"),
+    # D = 6·2·ω3² − 3·1·ω1² = 0 exactly with 0 < ω1 < 1 (the sign of ω1, not its size)
+    "on the separatrix, 0 < ω1 < 1": ([3.0, 4.0, 6.0], [0.5, 0.3, 0.25], "separatrix"),
+    # J2 near J1: |n3| = J3(J2 − J1)/(J1(J3 − J2)) ≈ 2e-3 below |n1| ≈ 0.77, so ψ is
+    # measured about pole 3 (the other cases' poles are 1)
+    "about pole 3": ([1.0, 1.001, 1.9], [1.0, 0.0, 0.6], "axis3"),
+    # J2 four ulps below J3 (issue 16): |n1| ≈ 1.3e-18 against |n3| ≈ 3.4e15, pole 1 (about
+    # pole 3 the two terms of ψ cancel, to ~3e-9 of a turn)
+    "J2 four ulps below J3": ([1.0, 3.0 - 4 * 2.0**-51, 3.0], [0.0, 0.1, 1.5], "axis3"),
     "prolate symmetric": ([1.0, 1.0, 2.0], [0.3, 0.4, 1.0], "axis3"),
     "oblate symmetric": ([1.0, 2.0, 2.0], [0.3, 0.4, 1.0], "axis1"),
     "spherical": ([2.0, 2.0, 2.0], [0.3, 0.4, 1.0], "steady"),
@@ -1226,3 +1234,37 @@ def test_heavy_top_accepts_gravity_above_1e308_of_the_largest():
 def test_heavy_top_rates_overflowing_against_gravity_are_a_result_overflow():
     with pytest.raises(ResultOverflowError):
         tops.HeavySymmetricTop(1.0, 1.0, 2.0**-1021, theta=1.0, theta_dot=1e150)
+
+
+@pytest.mark.parametrize(
+    ("J", "w0", "regime"),
+    [
+        ([1.0, 2.0, 3.0], [0.0, 0.0, 0.0], "rest"),
+        ([1.0, 2.0, 3.0], [0.0, 1.0, 0.0], "steady"),
+        ([2.0, 2.0, 2.0], [0.3, 0.4, 1.0], "steady"),
+    ],
+)
+def test_free_top_at_rest_or_steady_has_the_documented_parameters(J, w0, regime):
+    # the class docstring: m, m1 are "0 and 1 for steady motions" (sn = sin, a uniform turn)
+    top = tops.FreeAsymmetricTop(J, w0)
+    assert (top.regime, top.m, top.m1) == (regime, 0.0, 1.0)
+
+
+def test_free_top_refuses_a_stack_of_initial_attitudes_by_its_shape():
+    with pytest.raises(ShapeError) as e:
+        tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [1.0, 2.0, 3.0], np.stack([np.eye(3)] * 2))
+    assert str(e.value) == "R_A_O_0 must have shape (3, 3); got (2, 3, 3)"
+
+
+def test_free_top_refuses_m1_between_2_to_the_minus_1023_and_1022():
+    # J = (1, 2, 3), ω = (0, 1, 2^-512): D = J3(J3 − J2)ω3² = 3·2^-1024 and
+    # B = J2(J2 − J1) + J3(J3 − J1)ω3² = 2 + 6·2^-1024, so m1 = (J3 − J1) D/((J3 − J2) B)
+    # = 3·2^-1024/(1 + 3·2^-1024): just below 1.5·2^-1023, under float64's normal range
+    # (2^-1022) but not under half of it
+    with pytest.raises(OutOfDomainError) as e:
+        tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.0, 1.0, 2.0**-512])
+    assert str(e.value) == (
+        "the motion is within m1 ≈ 2^-1023 of the separatrix: the complementary parameter m1 "
+        "underflows float64 (the transverse components are below ~1e-150 of |ω|); set them to "
+        "zero for the steady rotation or scale them up"
+    )
