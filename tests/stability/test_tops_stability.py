@@ -272,6 +272,10 @@ def test_a_pole_a_tiny_angle_off_its_axis_gives_the_attitude_to_rounding(w2):
     for R in [*top.attitude(ts), *(top.attitude(float(t)) for t in ts)]:
         assert np.abs(R @ R.T - np.eye(3)).max() <= ORTHOGONAL_ATOL
     np.testing.assert_allclose(top.attitude(ts), steady.attitude(ts), rtol=0, atol=16 * EPS)
+    for t in ts:  # the one-instant path (its own scaling of the pole's offset) alike
+        np.testing.assert_allclose(
+            top.attitude(float(t)), steady.attitude(float(t)), rtol=0, atol=16 * EPS
+        )
     # the frame of a subnormal offset without the scaling: off by more than the bound
     nx, ny = 1.39067116e-313, 4.17138772e-315
     s = np.hypot(nx, ny)
