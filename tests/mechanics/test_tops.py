@@ -315,6 +315,8 @@ HEAVY = {
     "from rest in θ": dict(theta=0.6, theta_dot=0.0, psi_dot=0.0, phi_dot=12.0),
     "looping": dict(theta=1.2, theta_dot=0.0, psi_dot=-1.5, phi_dot=6.0),
     "slow spin": dict(theta=0.8, theta_dot=-0.5, psi_dot=0.7, phi_dot=1.0),
+    # horizontal, L3 = J3 ψ̇ cos(π/2) ≈ 3e-17: (L_z ∓ L3)/J'1 = 1 ∓ 3e-17 round to 1.0 exactly
+    "horizontal, a ∓ b = 1": dict(theta=math.pi / 2, theta_dot=0.2, psi_dot=1.0, phi_dot=0.0),
 }
 
 
@@ -338,6 +340,7 @@ def test_heavy_top_matches_dop853_on_the_books_equations(case):
     assert np.abs(top.theta(ts) - sol.y[0]).max() <= 1e-10
     assert np.abs(top.psi(ts) - sol.y[1]).max() <= 1e-10
     assert np.abs(top.phi(ts) - sol.y[2]).max() <= 1e-10
+    assert np.abs(np.array(top.rates(ts)) - sol.y[3:]).max() <= 1e-10
 
 
 def _axis_rhs(J1, mgl):
@@ -1268,3 +1271,22 @@ def test_free_top_refuses_m1_between_2_to_the_minus_1023_and_1022():
         "underflows float64 (the transverse components are below ~1e-150 of |ω|); set them to "
         "zero for the steady rotation or scale them up"
     )
+
+
+def test_heavy_top_angles_of_a_scalar_time_are_scalars():
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, **HEAVY["nutating"])
+    assert top.psi(0.5).shape == ()
+    assert top.phi(0.5).shape == ()
+
+
+def test_heavy_top_effective_potential_at_the_poles_is_refused_without_a_warning(recwarn):
+    # (5.70): (L_z − L3 cos θ)²/(2J'1 sin²θ) with L_z ≠ ±L3 diverges at θ = 0 and π: one
+    # ResultOverflowError, and no floating-point warning on the way
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, **HEAVY["nutating"])
+    with pytest.raises(ResultOverflowError) as e:
+        top.effective_potential(np.array([0.0, math.pi]))
+    assert str(e.value) == (
+        "effective_potential: the result is not finite for finite inputs: an intermediate "
+        "exceeds float64's range (~1.8e308); rescale the inputs (choose units)"
+    )
+    assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
