@@ -20,10 +20,17 @@ given) the battery
    max |Q(t) − Q(0)| / scale (``E_drift``, ``p_drift``, ``L_drift``, about the point
    where each is conserved: the pivot's vertical ``L_z_drift`` for the heavy top);
 4. with two or more steps, the **order of convergence**: the slope of log(error) against
-   log(step) through the runs whose largest state error is above rounding
-   (:data:`ORDER_FLOOR`);
+   log(step) through the runs whose error is above rounding (:data:`ORDER_FLOOR`), the
+   error being the largest state error, or for a scenario with impacts the largest
+   error of its event figures (a sample between an impact and an engine's late one
+   sees a jump that does not shrink with the step);
 5. marks the scenario **pass** when every checked figure is within its threshold, else
-   **fail** naming each figure, its value and the threshold.
+   **fail** naming each figure, its value and the threshold, followed by what the
+   figures imply (:mod:`~mechanics.conformance.diagnosis`).
+
+The thresholds come from a profile (:mod:`~mechanics.conformance.thresholds`), the
+adapter's own ``profile`` and ``thresholds``, a thresholds file and the caller, each
+overriding the one before.
 
 Thresholds
 ----------
