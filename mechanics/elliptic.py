@@ -207,16 +207,20 @@ def _core(
     return sn, cn, dn
 
 
+#: what :func:`_reduced` returns: (j, s, sn x, cn x, dn x, K), each an array of u's shape
+_Reduction = tuple[
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+    npt.NDArray[np.float64],
+]
+
+
 def _reduced(
     u: npt.NDArray[np.float64], p: npt.NDArray[np.float64], p1: npt.NDArray[np.float64]
-) -> tuple[
-    npt.NDArray[np.float64],
-    npt.NDArray[np.float64],
-    npt.NDArray[np.float64],
-    npt.NDArray[np.float64],
-    npt.NDArray[np.float64],
-    npt.NDArray[np.float64],
-]:
+) -> _Reduction:
     """Reduce u = 2jK + s·x (0 ≤ x ≤ K) and evaluate at x.
 
     Returns (j, s, snx, cnx, dnx, K) with snx, cnx ≥ 0 the functions at x.

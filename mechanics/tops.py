@@ -413,15 +413,7 @@ class FreeAsymmetricTop:
     def _excess(
         self,
         u: npt.NDArray[np.float64],
-        reduced: tuple[
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-        ]
-        | None = None,
+        reduced: elliptic._Reduction | None = None,
     ) -> npt.NDArray[np.float64]:
         """G(u) of flat u: :func:`mechanics.elliptic._third_kind_excess` with this top's
         constant n and m, Π − K taken once per top and the reduction of u shared
@@ -436,16 +428,7 @@ class FreeAsymmetricTop:
         tail = elliptic._third_kind_tail(s * snx, cnx, dnx * dnx, np.full_like(u, self._n))
         return tail + 2.0 * j * np.where(j != 0, self._full, 0.0)
 
-    def _reduce(
-        self, flat: npt.NDArray[np.float64]
-    ) -> tuple[
-        npt.NDArray[np.float64],
-        npt.NDArray[np.float64],
-        npt.NDArray[np.float64],
-        npt.NDArray[np.float64],
-        npt.NDArray[np.float64],
-        npt.NDArray[np.float64],
-    ]:
+    def _reduce(self, flat: npt.NDArray[np.float64]) -> elliptic._Reduction:
         return elliptic._reduced(flat, np.full_like(flat, self.m), np.full_like(flat, self.m1))
 
     def _sorted_omega(
@@ -454,14 +437,7 @@ class FreeAsymmetricTop:
         npt.NDArray[np.float64]
         | tuple[
             npt.NDArray[np.float64],
-            tuple[
-                npt.NDArray[np.float64],
-                npt.NDArray[np.float64],
-                npt.NDArray[np.float64],
-                npt.NDArray[np.float64],
-                npt.NDArray[np.float64],
-                npt.NDArray[np.float64],
-            ],
+            elliptic._Reduction,
         ]
     ):
         """ω in the sorted frame, shape t.shape + (3,) (and the reduction of λt + u0)."""
@@ -600,15 +576,7 @@ class FreeAsymmetricTop:
     def precession_angle(
         self,
         t: npt.ArrayLike,
-        _reduced: tuple[
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-        ]
-        | None = None,
+        _reduced: elliptic._Reduction | None = None,
     ) -> npt.NDArray[np.float64]:
         """ψ(t) − ψ(0), the turn of the body about the fixed L (closed form, third kind);
         0 at rest and for a steady rotation, where ω ∥ L and the whole turn is spin about
@@ -648,15 +616,7 @@ class FreeAsymmetricTop:
         self,
         t: npt.NDArray[np.float64],
         ws: npt.NDArray[np.float64],
-        reduced: tuple[
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-            npt.NDArray[np.float64],
-        ]
-        | None = None,
+        reduced: elliptic._Reduction | None = None,
     ) -> npt.NDArray[np.float64]:
         nvec = self._pole_vector(ws)
         W = _pole_frame(nvec[..., 0], nvec[..., 1], nvec[..., 2])

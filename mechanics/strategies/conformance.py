@@ -35,6 +35,7 @@ import numpy as np
 from hypothesis import assume, event
 from hypothesis import strategies as st
 
+from .._floats import EPS
 from ..conformance.protocol import Body, Ground, Pivot, Scenario, Shape, Thrust
 from ..conformance.scenarios import (
     _bounce_impacts,
@@ -68,6 +69,8 @@ _STEPS = (2.0**-6, 2.0**-7, 2.0**-8)
 #: 4 rad/s (at 2⁻⁴ s the period read off the exact samples was off by up to 1.5e-8, at
 #: 2⁻⁵ s by ≤ 2.5e-10, below the exact profile's 2⁻²⁸)
 _FREE_DT = 2.0**-5
+#: t/dt rounds by an ulp or two: a t on the sample grid is not pushed to the next point
+_GRID_RTOL = 2**4 * EPS
 #: a unit vector's components below this are drawn as 0
 _TINY = 2.0**-30
 #: a drawn free top away from the separatrix has |L² − 2EJ₂| ≥ this × L² (near it the
@@ -81,8 +84,8 @@ _THETA_MAX = 2.0
 
 
 def _grid(t: float, dt: float) -> float:
-    """t rounded up to the sample grid."""
-    return math.ceil(t / dt - 2**-20) * dt
+    """t rounded up to the sample grid (a t on it, within the division's rounding, stays)."""
+    return math.ceil(t / dt * (1.0 - _GRID_RTOL)) * dt
 
 
 _angles = st.tuples(

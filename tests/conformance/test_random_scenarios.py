@@ -15,6 +15,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from mechanics import strategies as ms
+from mechanics._floats import EPS
 from mechanics.conformance import (
     SCENARIOS,
     ScenarioRangeError,
@@ -30,6 +31,11 @@ from mechanics.conformance.scenarios import FLIGHT_STEPS, IMPACT_MARGIN_STEPS, m
 
 from .toys import planted_toy
 
+#: a drawn bound times a fraction, or a unit vector (norm 1 within an ulp) times a size,
+#: lands within a few ulps of the bound
+ULPS = 2**2 * EPS
+#: a matrix of matrix_from_euler is orthogonal to a few ulps per entry
+ORTHOGONAL = 2**4 * EPS
 #: the engine's scenarios take 0.05-0.5 s each: a few draws per run
 FEW = settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -109,15 +115,15 @@ def test_an_unknown_kind_is_refused_naming_the_known_ones():
 def test_body_states_stay_in_the_ranges_a_stepper_takes(b):
     assert isinstance(b, Body)
     J1, J2, J3 = b.inertia
-    assert 0.1 * (1 - 2**-40) <= J1 <= J2 <= J3 <= J1 + J2
+    assert 0.1 * (1 - ULPS) <= J1 <= J2 <= J3 <= J1 + J2
     assert J3 <= 10.0
-    assert J1 >= 0.2 * J2 * (1 - 2**-40)
+    assert J1 >= 0.2 * J2 * (1 - ULPS)
     assert 0.1 <= b.mass <= 10.0
     R = np.array(b.R_A_O)
-    np.testing.assert_allclose(R @ R.T, np.eye(3), atol=2**4 * np.finfo(float).eps)
-    assert np.linalg.norm(b.omega) <= 2.0 * (1 + 2**-40)
-    assert np.linalg.norm(b.velocity) <= 3.0 * (1 + 2**-40)
-    assert np.linalg.norm(b.position) <= 1.0 * (1 + 2**-40)
+    np.testing.assert_allclose(R @ R.T, np.eye(3), atol=ORTHOGONAL)
+    assert np.linalg.norm(b.omega) <= 2.0 * (1 + ULPS)
+    assert np.linalg.norm(b.velocity) <= 3.0 * (1 + ULPS)
+    assert np.linalg.norm(b.position) <= 1.0 * (1 + ULPS)
 
 
 # -- the valid range ---------------------------------------------------------------------
