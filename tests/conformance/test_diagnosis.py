@@ -5,6 +5,7 @@ item 2); its thresholds are checked at their edges on hand-made figures."""
 from __future__ import annotations
 
 import dataclasses
+import math
 
 import numpy as np
 import pytest
@@ -15,6 +16,7 @@ from mechanics.conformance.battery import Figure
 from mechanics.conformance.diagnosis import (
     DRIFT_RATIO,
     NO_CONVERGENCE,
+    TRANSPOSE_GAIN,
     _attitude,
     _order,
     _rotational,
@@ -120,6 +122,77 @@ def test_the_transpose_is_named_only_where_the_transpose_matches():
     assert got[0].startswith("The attitude is off by 2 while ω is right: the attitude's update")
     # ... and silent where the error converges (step error: the order rule speaks)
     assert _attitude(figs(2.0, order=NO_CONVERGENCE), ref, turned) == ([], False)
+
+
+def test_the_transpose_is_named_where_it_is_the_gain_nearer_and_not_below():
+    s = get_scenario("free_top_axis1")
+    ref = reference(s).trajectory
+    off = 2.0**-5  # the transposed matrix's own (step) error, within the 0.1 bound
+    active = np.swapaxes(ref.R_A_O, -1, -2).copy()
+    active[:, 0, 0] += off
+    tr = dataclasses.replace(ref, R_A_O=active)
+    sw = float(np.max(np.abs(np.swapaxes(active, -1, -2) - ref.R_A_O)))
+    assert abs(sw - off) <= EPS  # off, rounded where it was added to an entry near 1
+
+    def figs(attitude):
+        return {
+            "attitude": Figure("attitude", "error", attitude, 0.1, False),
+            "omega": Figure("omega", "error", 0.0, 0.1, True),
+            "order": Figure("order", "order", 0.0, 0.8, False),
+        }
+
+    assert _attitude(figs(TRANSPOSE_GAIN * sw), ref, tr)[1]
+    assert not _attitude(figs(np.nextafter(TRANSPOSE_GAIN * sw, 0.0)), ref, tr)[1]
+
+
+def test_an_attitude_within_its_bound_is_read_when_its_error_does_not_converge():
+    # drawn by ms.scenarios() (a parabola without spin, turned 1/8 rad about x): the
+    # transposed matrix is off by 2 sin(1/8) = 0.249, within first-order's 0.25, and
+    # only the order fails
+    s = get_scenario("parabola")
+    ref = reference(s).trajectory
+    tr = dataclasses.replace(ref, R_A_O=np.swapaxes(ref.R_A_O, -1, -2))
+
+    def figs(order):
+        return {
+            "attitude": Figure("attitude", "error", 0.249, 0.25, True),
+            "omega": Figure("omega", "error", 0.0, 0.25, True),
+            "order": Figure("order", "order", order, 0.5, order >= 0.5),
+        }
+
+    assert _attitude(figs(0.0), ref, tr)[1]
+    assert _attitude(figs(NO_CONVERGENCE), ref, tr) == ([], False)  # converging: silent
+    # within its bound, not converging, and not the transpose: no sentence (the figure
+    # passed; the order rule speaks)
+    turned = dataclasses.replace(ref, R_A_O=ref.R_A_O @ np.diag([1.0, -1.0, -1.0]))
+    assert _attitude(figs(0.0), ref, turned) == ([], False)
+
+
+def test_the_transpose_is_named_where_the_engines_step_error_is_most_of_its_bound():
+    # drawn by ms.scenarios() in CI (stop 46): the correct toy's attitude error here is
+    # 0.15 of first-order's 0.25, which a gain of 2^4 took for "no match"
+    base = get_scenario("free_top_axis1")
+    c, s_ = math.cos(1.0), math.sin(1.0)
+    body = dataclasses.replace(
+        base.bodies[0],
+        inertia=(0.5, 1.0, 1.25),
+        R_A_O=((1.0, 0.0, 0.0), (0.0, c, s_), (0.0, -s_, c)),
+        omega=(math.sqrt(175.0) / 4.0, 0.0, 2.25),
+    )
+    n = 187  # 5.84375 s sampled every 2^-5 s
+    s = dataclasses.replace(
+        base,
+        bodies=(body,),
+        duration=n / 32.0,
+        sample_times=tuple(k / 32.0 for k in range(n + 1)),
+        steps=(2.0**-6, 2.0**-7, 2.0**-8),
+    )
+    correct = run_battery(planted_toy(), scenarios=[s], profile="first-order")[s.name]
+    assert correct.status == "pass", correct.message
+    assert correct.figure("attitude").value > 0.25 / 2**4  # the case the old gain missed
+    r = run_battery(planted_toy("attitude untransposed"), scenarios=[s], profile="first-order")
+    assert r[s.name].status == "fail"
+    assert TRANSPOSE in r[s.name].message
 
 
 def _drifts(L, E, order=0.0):
