@@ -283,6 +283,13 @@ def cmd_conform(args) -> int:
 
     if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
         raise _usage(f"--plot {args.plot!r}: the file must end in .svg or .png")
+    if args.plot:  # said before the battery runs, not after
+        from mechanics._extras import MissingExtraError, require_extra
+
+        try:
+            require_extra("matplotlib", "bodycheck conform --plot")
+        except MissingExtraError as exc:
+            raise _usage(str(exc)) from None
     for name in args.scenarios or ():
         if name not in SCENARIOS:
             raise _usage(f"unknown scenario {name!r} (known: {', '.join(SCENARIOS)})")

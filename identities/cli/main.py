@@ -32,6 +32,7 @@ from identities.cli import conform
 from identities.cli.usage import UsageError
 from identities.verify import catalogue
 from identities.verify.catalogue import KINDS, Outcome
+from mechanics._extras import missing_extra
 
 __all__ = ["main"]
 
@@ -639,8 +640,10 @@ def _cmd_site(args) -> int:
 
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bodycheck`` console script."""
+    command = "?"
     try:
         args = _parser().parse_args(argv)
+        command = args.command
         handler = {
             "check": _cmd_check,
             "explain": _cmd_explain,
@@ -655,6 +658,12 @@ def main(argv: list[str] | None = None) -> int:
         return handler(args)
     except UsageError as exc:
         print(f"bodycheck: error: {exc}", file=sys.stderr)
+        return 2
+    except ModuleNotFoundError as exc:  # an optional part (mechanics/_extras.py) not installed
+        missing = missing_extra(exc, f"bodycheck {command}")
+        if missing is None:
+            raise
+        print(f"bodycheck: error: {missing}", file=sys.stderr)
         return 2
     except KeyboardInterrupt:
         return 130

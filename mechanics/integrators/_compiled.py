@@ -13,6 +13,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from .._extras import missing_extra
 from ._solution import FloatArray, Rhs
 
 
@@ -43,8 +44,10 @@ def _compiled_failed(exc: BaseException) -> None:
     """Give up the compiled path for this process, saying why once."""
     global _KERNELS
     _KERNELS = False
+    missing = missing_extra(exc, "the compiled steppers") if isinstance(exc, ImportError) else None
+    why = str(missing) if missing is not None else f"{type(exc).__name__}: {exc}"
     warnings.warn(
-        f"the compiled steppers are unavailable ({type(exc).__name__}: {exc}); "
+        f"the compiled steppers are unavailable ({why}); "
         f"mechanics.integrators runs its pure-numpy reference path instead (same "
         f"results, slower)",
         CompiledPathWarning,

@@ -26,8 +26,8 @@ ENGINE_NAMES = {
 }
 
 
-class MissingExtraError(ImportError):
-    """An optional engine is not installed; the message names the extra to install."""
+# one class for every optional package, engines and bodycheck's own extras alike
+from ..._extras import MissingExtraError  # noqa: E402
 
 
 def require(module: str, extra: str, *, engine: str | None = None, package: str | None = None):
@@ -53,7 +53,7 @@ def require(module: str, extra: str, *, engine: str | None = None, package: str 
     >>> require("mujoco_is_not_here", "mujoco", engine="MuJoCo")
     Traceback (most recent call last):
     ...
-    mechanics.conformance.adapters.MissingExtraError: the MuJoCo adapter needs the \
+    mechanics._extras.MissingExtraError: the MuJoCo adapter needs the \
 mujoco_is_not_here package: pip install 'bodycheck[mujoco]'
     """
     try:
