@@ -52,6 +52,24 @@ The scenarios (:data:`SCENARIOS`)
     body axis 3, in free space.  Exact: Tsiolkovsky's Δv = u ln(m₀/m₁) (7.30) and the
     mass m₀ − q t.  Figures: Δv and the burn-out mass.  Nothing is conserved (mass
     leaves with momentum and energy).
+``box_landing_flat``
+    A box (half extents 0.3, 0.2, 0.1 m) dropped flat onto rough ground, e = 0.7,
+    μ = 0.5: its four corners strike at once, so it bounces as the ball does (kind
+    ``bounce``: the lowest point's depth below G is the box's half height), with no spin
+    and no sliding.
+``sliding_stop``
+    The box sliding on its face at 2 m/s, μ = 0.5: decelerated by μ g to rest at
+    v₀/(μ g), v₀²/(2 μ g) from its start (it does not tip: μ h under its half length).
+    Figures: the stop distance and time.  Nothing is conserved.
+``incline_rolling``
+    A solid ball released on a 0.3 rad incline (flat ground, gravity tilted), μ = 0.5:
+    it rolls without slipping at a = g_t / (1 + J/(m r²)) = 5/7 g sin α, ω = n × v / r.
+    Figures: the acceleration and the final ω r.  Conserved: E (rolling does no work).
+``newtons_cradle``
+    Three equal balls, the first at 1 m/s striking the two touching at rest, each pair
+    elastic: the momentum passes down the row (the direct impact with e = 1, pair by
+    pair), the first two stop and the last leaves at 1 m/s.  Figures: the velocities
+    after and the impact time.  Conserved: E, p, L.
 
 Samples are uniform at binary fractions of a second (1/128 to 1/8 s) and ``steps`` are
 2⁻⁶, 2⁻⁷, 2⁻⁸ s (the heavy top 2⁻⁷ … 2⁻⁹): every product n·h is exact, every sample a
@@ -582,10 +600,47 @@ def _inv_impact(s: Scenario, tr: Trajectory) -> dict:
 # --------------------------------------------------------------------------- bounce
 
 
+#: a face lies flat when its normal is the ground's to 2^4 eps (rounding of a few
+#: products: the built-in boxes are axis-aligned, exactly flat)
+FLAT_RTOL = 2**4 * EPS
+
+
+def _lowest(s: Scenario, b: Body, nrm: np.ndarray) -> float:
+    """How far the body's lowest point lies below G along the ground's normal ``nrm``:
+    a sphere's radius; for a box or a cylinder, its extent along the normal when it lies
+    flat on a face and does not turn (then all the face's corners strike at once, and
+    the landing is a bounce: no torque, the same impulse as a ball's).  Friction needs
+    no tangential motion at the contact (a sliding or spinning body is not a bounce)."""
+    shape = _required(s, f"a shape for body {b.name!r}", b.shape)
+    gr = _required(s, "a ground", s.ground)
+    v = np.asarray(b.velocity, dtype=float)
+    v_t = v - np.dot(v, nrm) * nrm
+    if gr.friction > 0 and (np.any(v_t) or np.any(b.omega)):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: on rough ground (friction {gr.friction!r}) a bounce's "
+            f"reference needs no sliding and no spin; got velocity {b.velocity}, omega "
+            f"{b.omega}"
+        )
+    if shape.kind == "sphere":
+        return float(shape.dims[0])
+    n_body = np.array(b.R_A_O, dtype=float) @ nrm
+    axis = 2 if shape.kind == "cylinder" else int(np.argmax(np.abs(n_body)))
+    flat = abs(abs(n_body[axis]) - 1.0) <= FLAT_RTOL
+    if shape.kind not in ("box", "cylinder") or not flat or np.any(b.omega):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: a {shape.kind} lands as a bounce only lying flat on a "
+            f"face (a box's, a cylinder's end) and not turning; got the ground's normal "
+            f"{tuple(float(x) for x in n_body)} in body axes, omega {b.omega}"
+        )
+    if shape.kind == "cylinder":
+        return float(shape.dims[1])
+    return float(shape.dims[axis])
+
+
 def _bounce_numbers(s: Scenario):
     b, gr = s.bodies[0], _required(s, "a ground", s.ground)
     g = -float(np.dot(_gravity(s), gr.normal))
-    r = _required(s, f"a shape for body {b.name!r}", b.shape).dims[0]
+    r = _lowest(s, b, np.asarray(gr.normal, dtype=float))
     h0 = float(np.dot(b.position, gr.normal)) - gr.height - r
     if np.dot(b.velocity, gr.normal) != 0 or h0 <= 0 or g <= 0:
         raise MechanicsValueError(
@@ -650,8 +705,7 @@ def bounce_apexes(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, np.ndarray]:
     ground)."""
     gr = _required(s, "a ground", s.ground)
     nrm = np.asarray(gr.normal, dtype=float)
-    b = s.bodies[0]
-    r = _required(s, f"a shape for body {b.name!r}", b.shape).dims[0]
+    r = _lowest(s, s.bodies[0], nrm)
     vn = tr.velocity[:, 0] @ nrm
     zn = tr.position[:, 0] @ nrm - gr.height - r
     apex = crossings(tr.t, vn, deg=2, direction=-1)
@@ -728,6 +782,303 @@ def _measure_rocket(s: Scenario, tr: Trajectory) -> dict:
     return out
 
 
+# --------------------------------------------------------------------------- contacts
+
+
+def _unit(v) -> np.ndarray:
+    v = np.asarray(v, dtype=float)
+    return v / float(np.linalg.norm(v))
+
+
+def _on_ground(s: Scenario, b: Body, nrm: np.ndarray, what: str) -> None:
+    """Refuse a body that does not rest on the ground (its lowest point at the ground's
+    height, no velocity along the normal): ``what`` names the reference."""
+    gr = _required(s, "a ground", s.ground)
+    gap = float(np.dot(b.position, nrm)) - gr.height - _lowest_resting(s, b, nrm)
+    size = float(body_sizes(s).max())
+    if abs(gap) > FLAT_RTOL * max(size, abs(gr.height), float(np.linalg.norm(b.position))) or (
+        float(np.dot(b.velocity, nrm)) != 0
+    ):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: {what} starts with the body resting on the ground; its "
+            f"lowest point is {gap!r} m above it, its normal velocity "
+            f"{float(np.dot(b.velocity, nrm))!r} m/s"
+        )
+
+
+def _lowest_resting(s: Scenario, b: Body, nrm: np.ndarray) -> float:
+    """The lowest point's depth below G of a sphere or a box lying flat (any motion)."""
+    shape = _required(s, f"a shape for body {b.name!r}", b.shape)
+    if shape.kind == "sphere":
+        return float(shape.dims[0])
+    n_body = np.array(b.R_A_O, dtype=float) @ nrm
+    axis = int(np.argmax(np.abs(n_body)))
+    if shape.kind != "box" or abs(abs(n_body[axis]) - 1.0) > FLAT_RTOL:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the body must be a sphere or a box lying flat on a face; "
+            f"got a {shape.kind} with the ground's normal {tuple(map(float, n_body))} in "
+            "body axes"
+        )
+    return float(shape.dims[axis])
+
+
+def _slide_numbers(s: Scenario):
+    """(body, unit direction d, initial speed v0, deceleration μ g_n, stop time, stop
+    distance) of a box sliding on its face over rough flat ground."""
+    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
+    nrm = np.asarray(gr.normal, dtype=float)
+    g = _gravity(s)
+    g_n = -float(np.dot(g, nrm))
+    v = np.asarray(b.velocity, dtype=float)
+    shape = _required(s, f"a shape for body {b.name!r}", b.shape)
+    if (
+        len(s.bodies) != 1
+        or shape.kind != "box"
+        or np.any(b.omega)
+        or g_n <= 0
+        or np.linalg.norm(g + g_n * nrm) > FLAT_RTOL * g_n
+        or not gr.friction > 0
+        or not np.any(v)
+    ):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the sliding box's reference is one box, not turning, "
+            "sliding over rough ground (friction > 0) with gravity along the normal; got "
+            f"{len(s.bodies)} bodies, shape {shape.kind!r}, omega {b.omega}, gravity "
+            f"{s.gravity}, friction {gr.friction!r}, velocity {b.velocity}"
+        )
+    _on_ground(s, b, nrm, "the sliding box's reference")
+    d = _unit(v)
+    # the normal forces' resultant stays inside the face (the box does not tip): friction
+    # at the face, μ m g_n, turns it about G with arm h (the half height), balanced by
+    # shifting the normal resultant μ h along d, at most the half length along d
+    n_body, d_body = np.array(b.R_A_O) @ nrm, np.array(b.R_A_O) @ d
+    h = float(np.abs(n_body) @ np.asarray(shape.dims))
+    half = float(np.abs(d_body) @ np.asarray(shape.dims))
+    if gr.friction * h >= half:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the box tips over (μ h = {gr.friction * h:.4g} m is not "
+            f"under its half length {half:.4g} m along the motion): the sliding box's "
+            "reference holds only while it slides flat"
+        )
+    v0 = float(np.linalg.norm(v))
+    a = gr.friction * g_n
+    return b, d, v0, a, v0 / a, v0 * v0 / (2.0 * a)
+
+
+def _ref_slide(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    b, d, v0, a, t_s, dist = _slide_numbers(s)
+    tau = np.minimum(t, t_s)
+    along = v0 * tau - 0.5 * a * tau**2
+    speed = np.maximum(v0 - a * t, 0.0)
+    pos = np.asarray(b.position, dtype=float) + along[:, None] * d
+    vel = speed[:, None] * d
+    R, w = _free_rotation(b, t)
+    return Reference(
+        _stack(t, s.bodies, [pos], [vel], [R], [w]), {"stop_distance": dist, "stop_time": t_s}
+    )
+
+
+#: a body whose speed falls below this fraction of its initial speed has stopped (2^-10:
+#: far above an integrated engine's resting jitter, far below any speed on the way)
+STOP_FRACTION = 2.0**-10
+
+
+def _measure_slide(s: Scenario, tr: Trajectory) -> dict:
+    _, d, v0, _, _, _ = _slide_numbers(s)
+    speed = tr.velocity[:, 0] @ d
+    stopped = np.nonzero(speed <= STOP_FRACTION * v0)[0]
+    out: dict[str, float | str] = {
+        "stop_distance": float((tr.position[-1, 0] - tr.position[0, 0]) @ d)
+    }
+    k = int(stopped[0]) - 1 if stopped.size else speed.size  # the last sample still moving
+    if not 1 <= k < speed.size:
+        out["stop_time"] = (
+            "the box does not stop within the samples"
+            if k == speed.size
+            else "the box stops before the second sample: no deceleration to read"
+        )
+        return out
+    # v falls linearly while sliding: extend the last two moving samples' line to v = 0
+    decel = (speed[k - 1] - speed[k]) / (tr.t[k] - tr.t[k - 1])
+    out["stop_time"] = float(tr.t[k] + speed[k] / decel) if decel > 0 else "the speed does not fall"
+    return out
+
+
+def _roll_numbers(s: Scenario):
+    """(body, radius, unit normal, unit downhill d, acceleration a, v0 along d) of a
+    solid ball rolling without slipping on rough ground, gravity having a component
+    g_t along the ground (an incline: the ground flat, gravity tilted)."""
+    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
+    nrm = np.asarray(gr.normal, dtype=float)
+    g = _gravity(s)
+    g_n = -float(np.dot(g, nrm))
+    g_t = g + g_n * nrm
+    r = _lowest_resting(s, b, nrm)
+    sphere = b.shape is not None and b.shape.kind == "sphere"
+    v = np.asarray(b.velocity, dtype=float)
+    if len(s.bodies) != 1 or not sphere or g_n <= 0 or not np.any(g_t):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the rolling ball's reference is one ball on the ground, "
+            f"gravity pressing it down and along the ground; got {len(s.bodies)} bodies, "
+            f"gravity {s.gravity}"
+        )
+    _on_ground(s, b, nrm, "the rolling ball's reference")
+    d = _unit(g_t)
+    v0 = float(v @ d)
+    w_space = np.array(b.R_A_O).T @ np.asarray(b.omega, dtype=float)
+    rolling = np.cross(nrm, v) / r
+    scale = max(float(np.linalg.norm(v)), r * float(np.linalg.norm(w_space)), 1e-300)
+    if (
+        np.linalg.norm(v - v0 * d) > FLAT_RTOL * scale
+        or np.linalg.norm(w_space - rolling) * r > FLAT_RTOL * scale
+    ):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the rolling ball starts rolling downhill, ω = n × v / r "
+            f"= {tuple(map(float, rolling))} rad/s with v along the slope "
+            f"{tuple(map(float, d))}; got v {b.velocity}, ω in space "
+            f"{tuple(map(float, w_space))}"
+        )
+    # J a / r² + m a = m g_t with the friction f = J a / r²; f ≤ μ m g_n keeps it rolling
+    k = max(b.inertia) / (b.mass * r * r)  # 2/5 for a solid ball
+    a = float(np.linalg.norm(g_t)) / (1.0 + k)
+    if k * a > gr.friction * g_n:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the ball slips: rolling needs friction "
+            f"{k * a / g_n:.4g} ≥ J/(m r²) a/g_n, the ground has {gr.friction!r}"
+        )
+    return b, r, nrm, d, a, v0
+
+
+def _rodrigues(axis: np.ndarray, angle: np.ndarray) -> np.ndarray:
+    """Active rotations by ``angle`` (m,) about the unit ``axis``: (m, 3, 3)."""
+    K = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    c, s_ = np.cos(angle)[:, None, None], np.sin(angle)[:, None, None]
+    return np.eye(3) + s_ * K + (1.0 - c) * (K @ K)
+
+
+def _ref_roll(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    b, r, nrm, d, a, v0 = _roll_numbers(s)
+    along = v0 * t + 0.5 * a * t**2
+    speed = v0 + a * t
+    pos = np.asarray(b.position, dtype=float) + along[:, None] * d
+    vel = speed[:, None] * d
+    axis = np.cross(nrm, d)  # ω = n × v / r
+    # passive R(t) = R(0) Q(t)ᵀ, Q the active turn by along / r about the axis
+    R = np.asarray(b.R_A_O, dtype=float) @ np.swapaxes(_rodrigues(axis, along / r), -1, -2)
+    w = np.einsum("tij,j->ti", R, axis) * (speed / r)[:, None]
+    figs = {"acceleration": a, "roll_speed": float(speed[-1])}
+    return Reference(_stack(t, s.bodies, [pos], [vel], [R], [w]), figs)
+
+
+def _measure_roll(s: Scenario, tr: Trajectory) -> dict:
+    _, r, nrm, d, _, _ = _roll_numbers(s)
+    along = (tr.position[:, 0] - tr.position[0, 0]) @ d
+    # s(t) is a parabola: its least-squares quadratic's second derivative
+    acc = 2.0 * float(np.polyfit(tr.t, along, 2)[0])
+    w_space = tr.R_A_O[-1, 0].T @ tr.omega[-1, 0]
+    return {"acceleration": acc, "roll_speed": float(np.cross(w_space, nrm) @ d) * r}
+
+
+def _cradle_numbers(s: Scenario):
+    """(direction d, speed v, time of the first contact) of Newton's cradle: equal
+    balls in a row along d, touching but for the first, which approaches the row at v;
+    every neighbouring pair elastic (e = 1), no gravity, no ground."""
+    bodies = s.bodies
+    n = len(bodies)
+    pairs = {(i, j): e for i, j, e in s.pair_restitution}
+    ok = (
+        n >= 3
+        and s.ground is None
+        and not np.any(_gravity(s))
+        and pairs == {(i, i + 1): 1.0 for i in range(n - 1)}
+        and all(b.shape is not None and b.shape.kind == "sphere" for b in bodies)
+        and len({(b.mass, b.shape.dims) for b in bodies if b.shape is not None}) == 1
+        and not any(np.any(b.omega) for b in bodies)
+        and not any(np.any(b.velocity) for b in bodies[1:])
+        and np.any(bodies[0].velocity)
+    )
+    if not ok:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: Newton's cradle's reference is 3 or more equal balls, "
+            "not spinning, each pair of neighbours elastic (i, i+1, 1.0), the first moving "
+            "and the others at rest, no gravity, no ground"
+        )
+    r = float(bodies[0].shape.dims[0])  # type: ignore[union-attr]
+    v = np.asarray(bodies[0].velocity, dtype=float)
+    d = _unit(v)
+    x = np.array([b.position for b in bodies], dtype=float)
+    rel = x - x[0]
+    off_line = np.linalg.norm(rel - np.outer(rel @ d, d), axis=-1)
+    gaps = np.diff(x @ d) - 2.0 * r
+    size = max(float(np.abs(x).max()), r)
+    if np.any(off_line > FLAT_RTOL * size) or np.any(np.abs(gaps[1:]) > FLAT_RTOL * size):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the cradle's balls lie on the line of the first's motion "
+            f"and the others touch; got offsets {off_line.tolist()} m from the line, gaps "
+            f"{gaps.tolist()} m"
+        )
+    if not gaps[0] > 0:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the first ball starts apart from the row; gap {gaps[0]!r} m"
+        )
+    speed = float(np.linalg.norm(v))
+    return d, speed, float(gaps[0]) / speed
+
+
+def _ref_cradle(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    d, v, tc = _cradle_numbers(s)
+    n = len(s.bodies)
+    pos, vel, Rs, ws = [], [], [], []
+    for i, b in enumerate(s.bodies):
+        x0 = np.asarray(b.position, dtype=float)
+        if i == 0:  # moves until the contact, then rests
+            travel = v * np.minimum(t, tc)
+            speed = np.where(t < tc, v, 0.0)
+        elif i == n - 1:  # the momentum passes down the row: the last leaves at v
+            travel = v * np.maximum(t - tc, 0.0)
+            speed = np.where(t > tc, v, 0.0)
+        else:
+            travel = speed = np.zeros_like(t)
+        pos.append(x0 + travel[:, None] * d)
+        vel.append(speed[:, None] * d)
+        R, w = _free_rotation(b, t)
+        Rs.append(R)
+        ws.append(w)
+    after = np.zeros(n)
+    after[-1] = v
+    figs = {"velocities_after": after, "impact_time": tc}
+    return Reference(_stack(t, s.bodies, pos, vel, Rs, ws), figs)
+
+
+def _measure_cradle(s: Scenario, tr: Trajectory) -> dict:
+    d, _, _ = _cradle_numbers(s)
+    after = tr.velocity[-1] @ d
+    out: dict[str, object] = {"velocities_after": after}
+    # the last ball's departure, read back from its final displacement and speed
+    moved = float((tr.position[-1, -1] - tr.position[0, -1]) @ d)
+    out["impact_time"] = (
+        float(tr.t[-1] - moved / after[-1])
+        if after[-1] > 0
+        else "the last ball does not leave the row"
+    )
+    return out
+
+
+def _inv_cradle(s: Scenario, tr: Trajectory) -> dict:
+    return {
+        "E": _energy(s, tr),
+        "p": _momentum(s, tr),
+        "L": _angular_momentum(s, tr, (0.0, 0.0, 0.0)),
+    }
+
+
+def _inv_roll(s: Scenario, tr: Trajectory) -> dict:
+    return {"E": _energy(s, tr)}
+
+
 # --------------------------------------------------------------------------- registry
 
 #: per kind: the derived figures and the conserved quantities (names of the report)
@@ -738,6 +1089,9 @@ FIGURES = {
     "impact": ("v1_after", "v2_after", "restitution", "impact_time"),
     "bounce": ("apex_heights", "apex_times"),
     "rocket": ("delta_v", "burnout_mass"),
+    "slide": ("stop_distance", "stop_time"),
+    "roll": ("acceleration", "roll_speed"),
+    "cradle": ("velocities_after", "impact_time"),
 }
 INVARIANTS = {
     "free_top": ("E", "p", "L"),
@@ -746,6 +1100,9 @@ INVARIANTS = {
     "impact": ("p", "L"),
     "bounce": ("p_tangential",),
     "rocket": (),
+    "slide": (),
+    "roll": ("E",),
+    "cradle": ("E", "p", "L"),
 }
 
 _KINDS = {
@@ -755,6 +1112,9 @@ _KINDS = {
     "impact": (_ref_impact, _measure_impact, _inv_impact),
     "bounce": (_ref_bounce, _measure_bounce, _inv_bounce),
     "rocket": (_ref_rocket, _measure_rocket, lambda s, tr: {}),
+    "slide": (_ref_slide, _measure_slide, lambda s, tr: {}),
+    "roll": (_ref_roll, _measure_roll, _inv_roll),
+    "cradle": (_ref_cradle, _measure_cradle, _inv_cradle),
 }
 
 
@@ -824,8 +1184,8 @@ def _impact_times(s: Scenario) -> list[float]:
     if kind == "bounce":
         impacts, _ = _bounce_impacts(s)
         return [t for t in impacts if t <= s.sample_times[-1]]
-    if kind == "impact":
-        t = _ref_impact(s).figures["impact_time"]
+    if kind in ("impact", "cradle"):
+        t = reference(s).figures["impact_time"]
         return [t] if t <= s.sample_times[-1] else []
     return []
 
@@ -1054,7 +1414,97 @@ def _build() -> dict[str, Scenario]:
             extra={"kind": "rocket"},
         )
     )
+    out += _contact_scenarios()
     return {s.name: s for s in out}
+
+
+def _box_inertia(m: float, dims) -> tuple[float, float, float]:
+    a, b, c = dims
+    return (m * (b * b + c * c) / 3, m * (a * a + c * c) / 3, m * (a * a + b * b) / 3)
+
+
+def _contact_scenarios() -> list[Scenario]:
+    g = 9.81
+    slab = (0.3, 0.2, 0.1)  # half extents: lying on its largest face, 0.1 m high
+    box = Body("box", 1.0, _box_inertia(1.0, slab), Shape("box", slab))
+    r = 0.1
+    ball = Body("ball", 1.0, (0.4 * r * r,) * 3, Shape("sphere", (r,)))
+    alpha = 0.3
+    out = [
+        Scenario(
+            "box_landing_flat",
+            "a box dropped flat onto rough ground (e = 0.7, μ = 0.5): its four corners "
+            "strike at once, and it bounces without turning or sliding",
+            "(6.6), Example 6.1; simultaneous contacts",
+            (Body(box.name, box.mass, box.inertia, box.shape, position=(0.0, 0.0, 0.52)),),
+            duration=1.125,
+            sample_times=_times(1.125, 2.0**-5),
+            gravity=(0.0, 0.0, -g),
+            ground=Ground(0.7, friction=0.5),
+            steps=_STEPS,
+            extra={"kind": "bounce"},
+        ),
+        Scenario(
+            "sliding_stop",
+            "a box sliding on its face at 2 m/s over ground with μ = 0.5: it stops after "
+            "v0/(μ g) at v0²/(2 μ g)",
+            "Coulomb friction, ṗ = F (1.1)",
+            (
+                Body(
+                    box.name,
+                    box.mass,
+                    box.inertia,
+                    box.shape,
+                    position=(0.0, 0.0, slab[2]),
+                    velocity=(2.0, 0.0, 0.0),
+                ),
+            ),
+            duration=0.75,
+            sample_times=_times(0.75, 2.0**-5),
+            gravity=(0.0, 0.0, -g),
+            ground=Ground(0.5, friction=0.5),
+            steps=_STEPS,
+            extra={"kind": "slide"},
+        ),
+        Scenario(
+            "incline_rolling",
+            "a solid ball released on a 0.3 rad incline (gravity tilted over flat ground, "
+            "μ = 0.5): it rolls without slipping at a = 5/7 g sin α",
+            "rolling: (4.47) with the contact force, J = 2/5 m r²",
+            (Body(ball.name, ball.mass, ball.inertia, ball.shape, position=(0.0, 0.0, r)),),
+            duration=1.0,
+            sample_times=_times(1.0, 2.0**-5),
+            gravity=(g * math.sin(alpha), 0.0, -g * math.cos(alpha)),
+            ground=Ground(0.5, friction=0.5),
+            steps=_STEPS,
+            extra={"kind": "roll"},
+        ),
+        Scenario(
+            "newtons_cradle",
+            "Newton's cradle: a ball at 1 m/s strikes two touching equal balls, every "
+            "pair elastic: the textbook answer, the first two stop and the last leaves at "
+            "1 m/s",
+            "(6.36)-(6.38) with e = 1, applied down the row; Essén 6.3",
+            (
+                Body(
+                    "b0",
+                    ball.mass,
+                    ball.inertia,
+                    ball.shape,
+                    position=(-0.51, 0.0, 0.0),
+                    velocity=(1.0, 0.0, 0.0),
+                ),
+                Body("b1", ball.mass, ball.inertia, ball.shape, position=(0.2, 0.0, 0.0)),
+                Body("b2", ball.mass, ball.inertia, ball.shape, position=(0.4, 0.0, 0.0)),
+            ),
+            duration=1.0,
+            sample_times=_times(1.0, 2.0**-5),
+            pair_restitution=((0, 1, 1.0), (1, 2, 1.0)),
+            steps=_STEPS,
+            extra={"kind": "cradle"},
+        ),
+    ]
+    return out
 
 
 #: The battery, by name, in the order of the report.

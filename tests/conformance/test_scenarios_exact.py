@@ -107,6 +107,10 @@ def test_the_battery_has_its_eight_scenarios_in_the_report_order():
         "two_body_impact",
         "bouncing_ball",
         "rocket",
+        "box_landing_flat",
+        "sliding_stop",
+        "incline_rolling",
+        "newtons_cradle",
     ]
     kinds = [s.extra["kind"] for s in _build().values()]
     assert kinds == [
@@ -118,6 +122,10 @@ def test_the_battery_has_its_eight_scenarios_in_the_report_order():
         "impact",
         "bounce",
         "rocket",
+        "bounce",
+        "slide",
+        "roll",
+        "cradle",
     ]
     for s in SCENARIOS.values():
         assert get_scenario(s.name) is s
@@ -595,6 +603,9 @@ def test_the_invariant_names_of_each_kind():
         "impact": ("p", "L"),
         "bounce": ("p_tangential",),
         "rocket": (),
+        "slide": (),
+        "roll": ("E",),
+        "cradle": ("E", "p", "L"),
     }
 
 
@@ -688,7 +699,8 @@ def test_figure_and_invariant_names_of_an_unknown_kind_are_refused():
     s = dataclasses.replace(_fresh("parabola"), extra={"kind": "spring"})
     msg = (
         "scenario 'parabola': extra['kind'] must be one of "
-        "['bounce', 'free_top', 'heavy_top', 'impact', 'parabola', 'rocket']; got 'spring'"
+        "['bounce', 'cradle', 'free_top', 'heavy_top', 'impact', 'parabola', 'rocket', 'roll', "
+        "'slide']; got 'spring'"
     )
     for f in (figure_names, invariant_names, reference):
         with pytest.raises(UnknownScenarioError) as info:
@@ -708,7 +720,8 @@ def test_an_unknown_scenario_name_lists_the_batterys():
         get_scenario("pendulum")
     assert str(info.value) == (
         "unknown scenario 'pendulum'; the battery has free_top_axis1, free_top_axis3, "
-        "free_top_near_separatrix, heavy_top, parabola, two_body_impact, bouncing_ball, rocket"
+        "free_top_near_separatrix, heavy_top, parabola, two_body_impact, bouncing_ball, rocket, "
+        "box_landing_flat, sliding_stop, incline_rolling, newtons_cradle"
     )
 
 

@@ -113,7 +113,7 @@ def test_a_separate_project_passes_a_correct_first_order_engine_and_fails_each_p
     result = project.runpytest_subprocess(
         "--bodycheck-profile", "bodycheck-ci", "-p", "no:randomly", "-rfs", "-v"
     )
-    result.assert_outcomes(passed=7, failed=5, skipped=3)
+    result.assert_outcomes(passed=7, failed=5, skipped=7)
     result.stdout.fnmatch_lines_random(
         [
             "bodycheck: hypothesis profile 'bodycheck-ci' (from --bodycheck-profile)",
@@ -130,6 +130,10 @@ def test_a_separate_project_passes_a_correct_first_order_engine_and_fails_each_p
             "no joints, no thrust and no body-body contacts",
             "SKIPPED*two_body_impact*",
             "SKIPPED*rocket*",
+            "SKIPPED*box_landing_flat: the toy's ground is smooth and meets spheres only",
+            "SKIPPED*sliding_stop: the toy's ground is smooth and meets spheres only",
+            "SKIPPED*incline_rolling: the toy's ground is smooth and meets spheres only",
+            "SKIPPED*newtons_cradle: the toy has no joints, no thrust and no body-body contacts",
             "*scenario free_top_axis1: attitude 0.449 violates threshold <= 0.25; * order "
             "0.00142 violates threshold >= 0.5. The error does not shrink with the step "
             "(order 0.0014): a law is wrong, not the step size. Angular momentum drifts "

@@ -165,10 +165,20 @@ def main():
         print(getattr(siconos, "version", "unknown"))
         return 0
     req = json.load(sys.stdin)
+    # Siconos's C++ writes its warnings (a friction solve that did not converge) to
+    # file descriptor 1: while it runs, that descriptor is stderr, and the answer goes
+    # to the original stdout alone
+    sys.stdout.flush()
+    answer_fd = os.dup(1)
+    os.dup2(2, 1)
     try:
         ans = run(req)
     except Exception as exc:  # one line back to the adapter, which raises it
         ans = {"error": f"{type(exc).__name__}: {exc}"}
+    finally:
+        sys.stdout.flush()
+        os.dup2(answer_fd, 1)
+        os.close(answer_fd)
     json.dump(ans, sys.stdout)
     return 0
 
