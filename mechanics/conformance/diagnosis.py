@@ -161,7 +161,8 @@ def _nearest_law(measured: float, e: float) -> str:
 
 def _restitution(s: Scenario, figures: Mapping, tr: Trajectory, measured: Mapping) -> list[str]:
     kind = s.extra.get("kind")
-    if kind == "bounce" and (_failed(figures, "apex_heights") or _failed(figures, "apex_times")):
+    apexes = _failed(figures, "apex_heights") or _failed(figures, "apex_times")
+    if kind in ("bounce", "rest") and apexes:
         e = s.ground.restitution if s.ground is not None else math.nan
         _, h = bounce_apexes(s, tr)
         h = h[h > 0]

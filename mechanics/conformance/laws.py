@@ -65,7 +65,7 @@ def law_violations(s: Scenario, trajectory: Trajectory, *, rtol: float) -> list[
                 f"rtol {rtol:.3g} ({law})"
             )
     kind = s.extra.get("kind")
-    if kind == "bounce" and s.ground is not None:
+    if kind in ("bounce", "rest") and s.ground is not None:
         e = s.ground.restitution
         _, h = bounce_apexes(s, tr)
         h = h[h > 0]

@@ -65,6 +65,19 @@ The scenarios (:data:`SCENARIOS`)
     A solid ball released on a 0.3 rad incline (flat ground, gravity tilted), μ = 0.5:
     it rolls without slipping at a = g_t / (1 + J/(m r²)) = 5/7 g sin α, ω = n × v / r.
     Figures: the acceleration and the final ω r.  Conserved: E (rolling does no work).
+``bounce_to_rest``
+    A ball dropped from 0.41 m onto smooth ground, e = 0.5 (kind ``rest``): its impacts
+    accumulate at t_f (1 + e)/(1 − e) = 0.867 s, then it rests.  Figures: the first two
+    apexes (the later flights are shorter than the samples) and the rest time, the first
+    sample from which the speed stays at or below :data:`REST_FRACTION` of the first
+    impact speed.  Conserved: the tangential momentum.
+``oblique_impact_sticks``, ``oblique_impact_slips``
+    A solid ball falling 0.45 m, moving sideways at 1 or 3 m/s, onto rough ground
+    (e = 0.5, μ = 0.5 or 0.1; kind ``oblique``): the impulse at the contact point
+    (Section 6.2) with Newton's e (6.6) on the normal part; the tangential impulse stops
+    the slip where that takes at most μ P_n (the ball leaves rolling), else it is μ P_n
+    against the slip (Coulomb's bound).  Figures: the tangential velocity and ω after,
+    the rebound's apex height.
 ``newtons_cradle``
     Three equal balls, the first at 1 m/s striking the two touching at rest, each pair
     elastic: the momentum passes down the row (the direct impact with e = 1, pair by
@@ -1079,6 +1092,192 @@ def _inv_roll(s: Scenario, tr: Trajectory) -> dict:
     return {"E": _energy(s, tr)}
 
 
+#: a bouncing ball is at rest once its speed stays at or below this fraction of its
+#: first impact speed (2^-10: far below a bounce the samples resolve, far above an
+#: integrated engine's resting jitter)
+REST_FRACTION = 2.0**-10
+#: the apexes a ball bouncing to rest is judged on: the first two (the later flights
+#: shrink below any sample spacing as the impacts accumulate: the built-in ball's third
+#: lasts 0.072 s, two samples of 2^-5 s, and reads 11 % off its exact height)
+REST_APEXES = 2
+
+
+def _rest_numbers(s: Scenario):
+    """(first impact speed v1, index k of the first impact whose rebound is at or below
+    REST_FRACTION v1, its time t_k, the accumulation time t_rest) of a ball bouncing to
+    rest: impacts at t_f (1 + 2e + … + 2e^{k−1}), rebounds e^k v1, accumulating at
+    t_rest = t_f (1 + e)/(1 − e) (Example 6.1's law (6.6) applied at every impact).  A
+    ball with e ≥ 1 never rests: k, t_k and t_rest are infinite."""
+    g, _, _, tf, e = _bounce_numbers(s)
+    if e >= 1:
+        return g * tf, math.inf, math.inf, math.inf
+    k = 1 if e == 0 else math.ceil(math.log(REST_FRACTION) / math.log(e))
+    t_k = tf * (1.0 + 2.0 * e * (1.0 - e ** (k - 1)) / (1.0 - e))
+    return g * tf, k, t_k, tf * (1.0 + e) / (1.0 - e)
+
+
+def _rest_time(t: np.ndarray, speed: np.ndarray, v1: float) -> float | str:
+    """The first sample from which the speed stays at or below REST_FRACTION v1."""
+    moving = np.nonzero(speed > REST_FRACTION * v1)[0]
+    k = int(moving[-1]) + 1 if moving.size else 0
+    if k >= t.size:
+        return (
+            "the ball does not come to rest within the samples (its speed is above "
+            f"{REST_FRACTION * v1:.3g} m/s at the end)"
+        )
+    return float(t[k])
+
+
+def _ref_rest(s: Scenario) -> Reference:
+    ref = _ref_bounce(s)
+    _, _, t_k, _ = _rest_numbers(s)
+    t = np.asarray(s.sample_times)
+    after = t[t >= t_k]
+    figs = {
+        "apex_heights": ref.figures["apex_heights"][:REST_APEXES],
+        "apex_times": ref.figures["apex_times"][:REST_APEXES],
+        "rest_time": float(after[0]) if after.size else math.inf,
+    }
+    return Reference(ref.trajectory, figs)
+
+
+def _measure_rest(s: Scenario, tr: Trajectory) -> dict:
+    v1 = _rest_numbers(s)[0]
+    apex, h = bounce_apexes(s, tr)
+    out: dict[str, object] = {}
+    if apex.size < REST_APEXES:
+        msg = (
+            f"found {apex.size} apexes (v·n falling through 0) in the samples; the first "
+            f"{REST_APEXES} are judged: heights {_first(h, 'm')} at {_first(apex, 's')}"
+        )
+        out["apex_heights"] = out["apex_times"] = msg
+    else:
+        out["apex_heights"], out["apex_times"] = h[:REST_APEXES], apex[:REST_APEXES]
+    out["rest_time"] = _rest_time(tr.t, np.linalg.norm(tr.velocity[:, 0], axis=-1), v1)
+    return out
+
+
+def _oblique_numbers(s: Scenario):
+    """The oblique impact of a solid ball on rough ground (Coulomb friction μ, Newton's
+    e), gravity along the normal: (body, r, n, t1 the impact time, v and ω (space) just
+    before, v' and ω' just after, whether the contact sticks).
+
+    At the impact (Section 6.2's momentum principles for an impulse P at the contact
+    point −r n): m Δv = P, J Δω = (−r n) × P.  Newton's law (6.6) on the normal part gives
+    P_n = m (1 + e)|v_n| (the contact normal passes through G: friction does not change
+    it).  The slip u = v_t + ω × (−r n) is stopped by the tangential impulse
+    −m u k/(1 + k), k = J/(m r²) (2/5 for a solid ball); where that exceeds μ P_n the
+    contact slips throughout and the impulse is −μ P_n û (Coulomb's bound)."""
+    b, gr = s.bodies[0], _required(s, "a ground", s.ground)
+    nrm = np.asarray(gr.normal, dtype=float)
+    g = _gravity(s)
+    g_n = -float(np.dot(g, nrm))
+    shape = _required(s, f"a shape for body {b.name!r}", b.shape)
+    if (
+        len(s.bodies) != 1
+        or shape.kind != "sphere"
+        or g_n <= 0
+        or np.linalg.norm(g + g_n * nrm) > FLAT_RTOL * g_n
+        or not gr.friction > 0
+    ):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the oblique impact's reference is one ball dropped on "
+            "rough ground (friction > 0), gravity along the normal; got "
+            f"{len(s.bodies)} bodies, shape {shape.kind!r}, gravity {s.gravity}, friction "
+            f"{gr.friction!r}"
+        )
+    r = float(shape.dims[0])
+    x0, v0 = np.asarray(b.position, dtype=float), np.asarray(b.velocity, dtype=float)
+    h = float(x0 @ nrm) - gr.height - r
+    vn0 = float(v0 @ nrm)
+    if h <= 0:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the ball starts above the ground; its lowest point is "
+            f"{h!r} m above it"
+        )
+    if vn0 > 0:
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the ball starts falling or at rest along the normal (its "
+            f"one apex is the rebound's); got normal velocity {vn0!r} m/s"
+        )
+    t1 = (vn0 + math.sqrt(vn0 * vn0 + 2.0 * g_n * h)) / g_n  # h + vn0 t − ½ g_n t² = 0
+    v1 = v0 + t1 * g
+    w = np.array(b.R_A_O, dtype=float).T @ np.asarray(b.omega, dtype=float)  # space
+    m = b.mass
+    k = max(b.inertia) / (m * r * r)
+    v_n = float(v1 @ nrm)
+    u = v1 - v_n * nrm + np.cross(w, -r * nrm)
+    P_n = m * (1.0 + gr.restitution) * -v_n
+    stick_impulse = m * k / (1.0 + k) * float(np.linalg.norm(u))
+    sticks = stick_impulse <= gr.friction * P_n
+    # sticking: the impulse that stops the slip; slipping: Coulomb's μ P_n against it
+    P_t = -m * k / (1.0 + k) * u if sticks else -gr.friction * P_n * u / float(np.linalg.norm(u))
+    v_after = v1 + (P_n * nrm + P_t) / m
+    w_after = w + np.cross(-r * nrm, P_t) / max(b.inertia)
+    return b, r, nrm, t1, v1, w, v_after, w_after, sticks
+
+
+def _rot_space(R0: np.ndarray, w_space: np.ndarray, tau: np.ndarray) -> np.ndarray:
+    """Passive attitudes of a body turning at the constant space ω from R0, after tau."""
+    speed = float(np.linalg.norm(w_space))
+    if speed == 0:
+        return np.broadcast_to(R0, (tau.size, 3, 3)).copy()
+    return R0 @ np.swapaxes(_rodrigues(w_space / speed, speed * tau), -1, -2)
+
+
+def _ref_oblique(s: Scenario) -> Reference:
+    t = np.asarray(s.sample_times)
+    b, _, nrm, t1, _, w, v_after, w_after, _ = _oblique_numbers(s)
+    g = _gravity(s)
+    x0, v0 = np.asarray(b.position, dtype=float), np.asarray(b.velocity, dtype=float)
+    x1 = x0 + t1 * v0 + 0.5 * t1 * t1 * g
+    before = t <= t1
+    tau = np.where(before, t, t - t1)[:, None]
+    pos = np.where(
+        before[:, None], x0 + tau * v0 + 0.5 * tau**2 * g, x1 + tau * v_after + 0.5 * tau**2 * g
+    )
+    vel = np.where(before[:, None], v0 + tau * g, v_after + tau * g)
+    R0 = np.array(b.R_A_O, dtype=float)
+    R1 = _rot_space(R0, w, np.array([t1]))[0]
+    R = np.where(
+        before[:, None, None],
+        _rot_space(R0, w, np.where(before, t, 0.0)),
+        _rot_space(R1, w_after, np.where(before, 0.0, t - t1)),
+    )
+    w_t = np.where(before[:, None], w, w_after)
+    omega = np.einsum("tij,tj->ti", R, w_t)
+    g_n = -float(g @ nrm)
+    v_n = float(v_after @ nrm)
+    figs = {
+        "v_tangential_after": v_after - v_n * nrm,
+        "omega_after": w_after,
+        "apex_height_after": v_n * v_n / (2.0 * g_n),
+    }
+    return Reference(_stack(t, s.bodies, [pos], [vel], [R], [omega]), figs)
+
+
+def _measure_oblique(s: Scenario, tr: Trajectory) -> dict:
+    _, r, nrm, _, _, _, _, _, _ = _oblique_numbers(s)
+    gr = _required(s, "a ground", s.ground)
+    # after the impact the ball flies: its tangential velocity and its ω are constant,
+    # its normal velocity falls through zero once, at the rebound's apex
+    v_end = tr.velocity[-1, 0]
+    out: dict[str, object] = {
+        "v_tangential_after": v_end - float(v_end @ nrm) * nrm,
+        "omega_after": tr.R_A_O[-1, 0].T @ tr.omega[-1, 0],
+    }
+    apex = crossings(tr.t, tr.velocity[:, 0] @ nrm, deg=2, direction=-1)
+    if apex.size != 1:
+        out["apex_height_after"] = (
+            f"v·n falls through zero {apex.size} times in the samples; expected once (the "
+            "rebound's apex)"
+        )
+    else:
+        zn = tr.position[:, 0] @ nrm - gr.height - r
+        out["apex_height_after"] = interpolate(tr.t, zn, float(apex[0]), deg=2)
+    return out
+
+
 # --------------------------------------------------------------------------- registry
 
 #: per kind: the derived figures and the conserved quantities (names of the report)
@@ -1092,6 +1291,8 @@ FIGURES = {
     "slide": ("stop_distance", "stop_time"),
     "roll": ("acceleration", "roll_speed"),
     "cradle": ("velocities_after", "impact_time"),
+    "rest": ("apex_heights", "apex_times", "rest_time"),
+    "oblique": ("v_tangential_after", "omega_after", "apex_height_after"),
 }
 INVARIANTS = {
     "free_top": ("E", "p", "L"),
@@ -1103,6 +1304,8 @@ INVARIANTS = {
     "slide": (),
     "roll": ("E",),
     "cradle": ("E", "p", "L"),
+    "rest": ("p_tangential",),
+    "oblique": (),
 }
 
 _KINDS = {
@@ -1115,6 +1318,8 @@ _KINDS = {
     "slide": (_ref_slide, _measure_slide, lambda s, tr: {}),
     "roll": (_ref_roll, _measure_roll, _inv_roll),
     "cradle": (_ref_cradle, _measure_cradle, _inv_cradle),
+    "rest": (_ref_rest, _measure_rest, _inv_bounce),
+    "oblique": (_ref_oblique, _measure_oblique, lambda s, tr: {}),
 }
 
 
@@ -1169,6 +1374,11 @@ GRID_RTOL = 2**4 * EPS
 #: sample falls between an impact and an engine's one step late (the built-in scenarios
 #: keep 9 ms at 2⁻⁸ s: 2.3 steps)
 IMPACT_MARGIN_STEPS = 2.0
+#: a figure read off a scenario's exact samples is within this of the exact figure
+#: (relative), or the samples are too sparse to judge an engine on it: the exact profile's
+#: bound, 2^-28 (thresholds.PROFILES["exact"].rtol, which imports this module; a test
+#: holds the two equal)
+READ_RTOL = 2.0**-28
 #: a bounce's flight lasts at least this many of the coarsest steps, so that an engine
 #: sees its apex (the built-in ball's shortest flight holds 33 steps of 2⁻⁶ s)
 FLIGHT_STEPS = 8.0
@@ -1187,6 +1397,15 @@ def _impact_times(s: Scenario) -> list[float]:
     if kind in ("impact", "cradle"):
         t = reference(s).figures["impact_time"]
         return [t] if t <= s.sample_times[-1] else []
+    if kind == "oblique":
+        t = _oblique_numbers(s)[3]
+        return [t] if t <= s.sample_times[-1] else []
+    if kind == "rest":  # those a step resolves, and the one from which the ball rests
+        impacts, _ = _bounce_impacts(s)
+        coarse = max(s.steps, default=0.0)
+        flights = np.diff(impacts)
+        resolved = [t for t, f in zip(impacts, flights, strict=False) if f >= FLIGHT_STEPS * coarse]
+        return [*resolved, _rest_numbers(s)[2]]
     return []
 
 
@@ -1198,7 +1417,10 @@ def check_scenario(s: Scenario) -> None:
     - a bouncing ball does not come to rest within the duration (its last bounces would
       be shorter than any step), each flight lasts :data:`FLIGHT_STEPS` coarsest steps;
     - the battery's own reading of its exact samples gives every figure (the apex, the
-      periods, the impact: otherwise no engine can be judged on them);
+      periods, the impact: otherwise no engine can be judged on them), each within
+      :data:`READ_RTOL` of the exact figure;
+    - a ball bouncing to rest comes to rest within the duration; an oblique impact's run
+      ends between the rebound's apex and the second impact;
     - every impact is :data:`IMPACT_MARGIN_STEPS` finest steps from every sample.
 
     Raises :class:`ScenarioRangeError`; returns None for a valid scenario.
@@ -1233,10 +1455,39 @@ def check_scenario(s: Scenario) -> None:
                 f"a flight between bounces lasts {short[0]:.3g} s, under {FLIGHT_STEPS:g} "
                 f"of its coarsest steps ({coarse:g} s)"
             )
+    if s.extra.get("kind") == "rest":
+        _, _, t_k, t_rest = _rest_numbers(s)
+        if math.isinf(t_k):
+            e = _required(s, "a ground", s.ground).restitution
+            raise refuse(f"a ball with e = {e:g} never comes to rest")
+        if not t_k < s.duration:
+            raise refuse(
+                f"the ball's rebounds fall below {REST_FRACTION:g} of its first impact speed "
+                f"at {t_k:.4g} s (accumulating at {t_rest:.4g} s), after the duration "
+                f"{s.duration:g} s: it does not come to rest within the run"
+            )
+    if s.extra.get("kind") == "oblique":
+        _, _, nrm, t1, _, _, v_after, _, _ = _oblique_numbers(s)
+        g_n = -float(_gravity(s) @ nrm)
+        rise = float(v_after @ nrm) / g_n
+        if not t1 + rise < s.duration < t1 + 2.0 * rise:
+            raise refuse(
+                f"the run must end between the rebound's apex ({t1 + rise:.4g} s) and the "
+                f"second impact ({t1 + 2.0 * rise:.4g} s); its duration is {s.duration:g} s"
+            )
     ref = reference(s)
+    floor = READ_RTOL
     for name, value in measure(s, ref.trajectory).items():
         if isinstance(value, str):
             raise refuse(f"the figure {name!r} cannot be read off its exact samples: {value}")
+        exact = ref.figures[name]
+        scale = float(np.max(np.abs(exact)))
+        off = float(np.max(np.abs(np.asarray(value) - exact))) / (scale if scale > 0 else 1.0)
+        if not off <= floor:
+            raise refuse(
+                f"the figure {name!r} read off its exact samples is {off:.3g} off (relative), "
+                f"above the exact profile's {floor:.3g}: its samples are too sparse to read it"
+            )
     fine = min(s.steps, default=0.0)
     for ti in _impact_times(s):
         gap = float(np.min(np.abs(t - ti)))
@@ -1470,7 +1721,7 @@ def _contact_scenarios() -> list[Scenario]:
             "incline_rolling",
             "a solid ball released on a 0.3 rad incline (gravity tilted over flat ground, "
             "μ = 0.5): it rolls without slipping at a = 5/7 g sin α",
-            "rolling: (4.47) with the contact force, J = 2/5 m r²",
+            "Example 5.1 (a sphere rolling on a rough incline), Example 3.6",
             (Body(ball.name, ball.mass, ball.inertia, ball.shape, position=(0.0, 0.0, r)),),
             duration=1.0,
             sample_times=_times(1.0, 2.0**-5),
@@ -1503,8 +1754,59 @@ def _contact_scenarios() -> list[Scenario]:
             steps=_STEPS,
             extra={"kind": "cradle"},
         ),
+        Scenario(
+            "bounce_to_rest",
+            "a ball dropped from 0.41 m onto smooth ground, e = 0.5: its impacts accumulate "
+            "at t_f (1 + e)/(1 − e) = 0.867 s, and it rests",
+            "(6.6), Example 6.1",
+            (Body(ball.name, ball.mass, ball.inertia, ball.shape, position=(0.0, 0.0, 0.51)),),
+            duration=1.25,
+            sample_times=_times(1.25, 2.0**-5),
+            gravity=(0.0, 0.0, -g),
+            ground=Ground(0.5),
+            steps=_STEPS,
+            extra={"kind": "rest"},
+        ),
+        _oblique(
+            "oblique_impact_sticks",
+            "sticks: the friction stops the slip within the impact (μ = 0.5), the ball "
+            "leaves rolling",
+            speed=1.0,
+            mu=0.5,
+        ),
+        _oblique(
+            "oblique_impact_slips",
+            "slips: Coulomb's bound μ P_n (μ = 0.1) cannot stop the slip, the ball leaves "
+            "sliding and spinning",
+            speed=3.0,
+            mu=0.1,
+        ),
     ]
     return out
+
+
+def _oblique(name: str, what: str, *, speed: float, mu: float) -> Scenario:
+    r = 0.1
+    ball = Body(
+        "ball",
+        1.0,
+        (0.4 * r * r,) * 3,
+        Shape("sphere", (r,)),
+        position=(0.0, 0.0, r + 0.45),
+        velocity=(speed, 0.0, 0.0),
+    )
+    return Scenario(
+        name,
+        f"a ball falling 0.45 m at {speed:g} m/s sideways onto rough ground (e = 0.5) {what}",
+        "impulse and angular impulse (Section 6.2), Newton's e (6.6), Coulomb's bound",
+        (ball,),
+        duration=0.5,
+        sample_times=_times(0.5, 2.0**-5),
+        gravity=(0.0, 0.0, -9.81),
+        ground=Ground(0.5, friction=mu),
+        steps=_STEPS,
+        extra={"kind": "oblique"},
+    )
 
 
 #: The battery, by name, in the order of the report.

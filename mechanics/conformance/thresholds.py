@@ -40,7 +40,8 @@ default         —   —      2⁻¹⁰ ≈ 9.8e-4         (engineering accurac
 Two exceptions, each for a reason that holds for every engine of a stepping class:
 
 - **impacts** (``two_body_impact``, ``bouncing_ball``, ``box_landing_flat``,
-  ``newtons_cradle``): an engine that does not locate
+  ``newtons_cradle``, ``bounce_to_rest``, ``oblique_impact_sticks``,
+  ``oblique_impact_slips``): an engine that does not locate
   events bounces up to a step late, and a sample between its impact and the exact one
   sees the velocity before against the velocity after (the toy: 1.13 relative at
   2⁻⁸ s).  ``velocity`` and ``omega`` (the quantities that jump) are reported, not
@@ -122,7 +123,15 @@ class ThresholdError(MechanicsValueError):
 
 
 #: the scenarios with impacts, whose velocity and omega jump at an event
-_IMPACT_SCENARIOS = ("two_body_impact", "bouncing_ball", "box_landing_flat", "newtons_cradle")
+_IMPACT_SCENARIOS = (
+    "two_body_impact",
+    "bouncing_ball",
+    "box_landing_flat",
+    "newtons_cradle",
+    "bounce_to_rest",
+    "oblique_impact_sticks",
+    "oblique_impact_slips",
+)
 #: how much looser the near-separatrix phase figures are than the profile's bound
 _SEPARATRIX_FACTOR = 2.0**3
 

@@ -199,7 +199,14 @@ def test_unknown_scenario_names_the_known_ones():
 def test_ignored_restitution_fails_exactly_the_impact_scenarios_naming_e():
     r = run_battery(ignores_restitution())
     failing = {n for n, s in statuses(r).items() if s == "fail"}
-    assert failing == {"two_body_impact", "bouncing_ball", "box_landing_flat"}
+    assert failing == {
+        "two_body_impact",
+        "bouncing_ball",
+        "box_landing_flat",
+        "bounce_to_rest",
+        "oblique_impact_sticks",
+        "oblique_impact_slips",
+    }
     assert "restitution 0.667 violates threshold <= 0.000977" in r["two_body_impact"].message
     assert "apex_heights inf violates threshold" in r["bouncing_ball"].message
     assert "found 2 apexes" in r["bouncing_ball"].message

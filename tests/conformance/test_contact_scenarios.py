@@ -101,7 +101,16 @@ def test_the_box_lands_flat_as_a_ball_would_bounce():
 
 
 @pytest.mark.parametrize(
-    "name", ["box_landing_flat", "sliding_stop", "incline_rolling", "newtons_cradle"]
+    "name",
+    [
+        "box_landing_flat",
+        "sliding_stop",
+        "incline_rolling",
+        "newtons_cradle",
+        "bounce_to_rest",
+        "oblique_impact_sticks",
+        "oblique_impact_slips",
+    ],
 )
 def test_each_figure_reads_back_off_the_exact_samples(name):
     s, ref = _ref(name)
@@ -283,3 +292,142 @@ def test_a_box_that_never_stops_or_stops_at_once_says_so():
     assert measure(s, at_once)["stop_time"] == (
         "the box stops before the second sample: no deceleration to read"
     )
+
+
+# -- oblique impacts on rough ground, and a ball bouncing to rest ---------------------
+
+
+def _impact_states(name):
+    """(scenario, the states just before and just after the impact, whether it sticks)."""
+    from mechanics.conformance.scenarios import _oblique_numbers
+
+    s = get_scenario(name)
+    b, r, n, _, v1, w1, v2, w2, sticks = _oblique_numbers(s)
+    return s, b, r, np.asarray(n), (v1, w1), (v2, w2), sticks
+
+
+@pytest.mark.parametrize("name", ["oblique_impact_sticks", "oblique_impact_slips"])
+def test_an_oblique_impact_keeps_the_angular_momentum_about_the_contact_point(name):
+    s, b, r, n, (v1, w1), (v2, w2), _ = _impact_states(name)
+    m, J = b.mass, b.inertia[0]
+    # every impulse acts at the contact point C = G − r n: L about C is kept (Section 6.2)
+    L1 = m * np.cross(r * n, v1) + J * w1
+    L2 = m * np.cross(r * n, v2) + J * w2
+    np.testing.assert_allclose(L2, L1, rtol=0, atol=LAW_RTOL * np.linalg.norm(L1))
+    # Newton's e on the normal part (6.6), and no energy gained
+    assert abs(v2 @ n + s.ground.restitution * (v1 @ n)) <= LAW_RTOL * abs(v1 @ n)
+    T = lambda v, w: 0.5 * m * v @ v + 0.5 * J * w @ w  # noqa: E731
+    assert T(v2, w2) <= T(v1, w1)
+
+
+def test_the_sticking_impact_leaves_rolling_and_the_slipping_one_at_coulombs_bound():
+    s, b, r, n, (v1, w1), (v2, w2), sticks = _impact_states("oblique_impact_sticks")
+    assert sticks
+    slip_after = v2 - (v2 @ n) * n + np.cross(w2, -r * n)
+    assert np.linalg.norm(slip_after) <= LAW_RTOL * np.linalg.norm(v1)
+    # a solid ball from a slide with no spin leaves at 5/7 of its tangential speed
+    np.testing.assert_allclose(v2 - (v2 @ n) * n, 5 / 7 * (v1 - (v1 @ n) * n), rtol=LAW_RTOL)
+    s, b, r, n, (v1, w1), (v2, w2), sticks = _impact_states("oblique_impact_slips")
+    assert not sticks
+    m = b.mass
+    P = m * (v2 - v1)
+    P_n, P_t = P @ n, P - (P @ n) * n
+    assert abs(np.linalg.norm(P_t) - s.ground.friction * P_n) <= LAW_RTOL * P_n
+    slip_before = v1 - (v1 @ n) * n + np.cross(w1, -r * n)
+    slip_after = v2 - (v2 @ n) * n + np.cross(w2, -r * n)
+    # still slipping the same way, more slowly
+    assert slip_after @ slip_before > 0
+    assert np.linalg.norm(slip_after) < np.linalg.norm(slip_before)
+
+
+def test_an_impact_without_friction_fails_on_the_tangential_velocity_and_the_spin():
+    def smooth(s):
+        return dataclasses.replace(s, ground=dataclasses.replace(s.ground, friction=2.0**-60))
+
+    for name in ("oblique_impact_sticks", "oblique_impact_slips"):
+        bad = Wrapped("friction ignored", scenario=smooth, only={name})
+        res = run_battery(bad, scenarios=[name], profile="second-order")[name]
+        assert res.status == "fail", name
+        assert res.figure("omega_after").passed is False
+        assert res.figure("v_tangential_after").passed is False
+        assert res.figure("apex_height_after").passed is True  # the normal law holds
+
+
+def test_the_ball_rests_at_the_sum_of_its_flights():
+    from mechanics.conformance.scenarios import REST_FRACTION, _rest_numbers
+
+    s, ref = _ref("bounce_to_rest")
+    v1, k, t_k, t_rest = _rest_numbers(s)
+    e, g = s.ground.restitution, -s.gravity[2]
+    # the flights one by one (rebound e^j v1 flies 2 e^j v1 / g) against the closed sums
+    t, j = v1 / g, 0
+    while e ** (j + 1) > REST_FRACTION:
+        j += 1
+        t += 2 * e**j * v1 / g
+    assert j + 1 == k
+    assert abs(t - t_k) <= LAW_RTOL * t_rest
+    assert abs(v1 / g * (1 + e) / (1 - e) - t_rest) <= LAW_RTOL * t_rest
+    tr = ref.trajectory
+    rest = tr.t >= t_rest
+    assert rest.any()
+    assert not np.any(tr.velocity[rest])
+    np.testing.assert_allclose(tr.position[rest, 0, 2], s.bodies[0].shape.dims[0], rtol=LAW_RTOL)
+    # the rest time read is the first sample after impact k
+    samples = np.asarray(s.sample_times)
+    assert ref.figures["rest_time"] == samples[samples >= t_k][0]
+
+
+def _jitters(s, tr):
+    v = tr.velocity.copy()
+    v[tr.t > 1.0, 0, 2] = 0.01  # a ball that never settles: 1 cm/s at the end
+    return dataclasses.replace(tr, velocity=v)
+
+
+def test_a_ball_that_never_settles_fails_on_the_rest_time_saying_so():
+    bad = Wrapped("jitters", answer=_jitters, only={"bounce_to_rest"})
+    res = run_battery(bad, scenarios=["bounce_to_rest"], profile="first-order")["bounce_to_rest"]
+    assert res.status == "fail"
+    assert res.figure("rest_time").value == math.inf
+    assert "the ball does not come to rest within the samples" in res.message
+
+
+@pytest.mark.parametrize(
+    ("scenario", "match"),
+    [
+        (
+            _with_body("oblique_impact_sticks", velocity=(1.0, 0.0, 0.5)),
+            r"the ball starts falling or at rest along the normal",
+        ),
+        (
+            dataclasses.replace(get_scenario("oblique_impact_sticks"), duration=1.0,
+                                sample_times=tuple(k / 32 for k in range(33))),
+            r"the run must end between the rebound's apex \(0\.45\d* s\) and the second "
+            r"impact \(0\.6\d* s\)",
+        ),
+        (
+            dataclasses.replace(get_scenario("bounce_to_rest"), duration=0.75,
+                                sample_times=tuple(k / 32 for k in range(25))),
+            r"rebounds fall below 0\.000976562 of its first impact speed at 0\.866\d s",
+        ),
+        (
+            dataclasses.replace(get_scenario("bounce_to_rest"), ground=Ground(1.0)),
+            r"a ball with e = 1 never comes to rest",
+        ),
+        (
+            dataclasses.replace(get_scenario("free_top_axis1"),
+                                sample_times=tuple(k / 4 for k in range(33))),
+            r"the figure 'omega_period' read off its exact samples is 4\.27e-08 off "
+            r"\(relative\), above the exact profile's 3\.73e-09: its samples are too sparse",
+        ),
+    ],
+)  # fmt: skip
+def test_a_variant_outside_the_range_its_figures_hold_for_is_refused(scenario, match):
+    with pytest.raises(MechanicsValueError, match=match):
+        check_scenario(scenario)
+
+
+def test_the_reading_floor_is_the_exact_profiles_bound():
+    from mechanics.conformance.scenarios import READ_RTOL
+    from mechanics.conformance.thresholds import PROFILES
+
+    assert PROFILES["exact"].rtol == READ_RTOL

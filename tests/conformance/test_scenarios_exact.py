@@ -111,6 +111,9 @@ def test_the_battery_has_its_eight_scenarios_in_the_report_order():
         "sliding_stop",
         "incline_rolling",
         "newtons_cradle",
+        "bounce_to_rest",
+        "oblique_impact_sticks",
+        "oblique_impact_slips",
     ]
     kinds = [s.extra["kind"] for s in _build().values()]
     assert kinds == [
@@ -126,6 +129,9 @@ def test_the_battery_has_its_eight_scenarios_in_the_report_order():
         "slide",
         "roll",
         "cradle",
+        "rest",
+        "oblique",
+        "oblique",
     ]
     for s in SCENARIOS.values():
         assert get_scenario(s.name) is s
@@ -606,6 +612,8 @@ def test_the_invariant_names_of_each_kind():
         "slide": (),
         "roll": ("E",),
         "cradle": ("E", "p", "L"),
+        "rest": ("p_tangential",),
+        "oblique": (),
     }
 
 
@@ -699,8 +707,8 @@ def test_figure_and_invariant_names_of_an_unknown_kind_are_refused():
     s = dataclasses.replace(_fresh("parabola"), extra={"kind": "spring"})
     msg = (
         "scenario 'parabola': extra['kind'] must be one of "
-        "['bounce', 'cradle', 'free_top', 'heavy_top', 'impact', 'parabola', 'rocket', 'roll', "
-        "'slide']; got 'spring'"
+        "['bounce', 'cradle', 'free_top', 'heavy_top', 'impact', 'oblique', 'parabola', 'rest', "
+        "'rocket', 'roll', 'slide']; got 'spring'"
     )
     for f in (figure_names, invariant_names, reference):
         with pytest.raises(UnknownScenarioError) as info:
@@ -721,7 +729,8 @@ def test_an_unknown_scenario_name_lists_the_batterys():
     assert str(info.value) == (
         "unknown scenario 'pendulum'; the battery has free_top_axis1, free_top_axis3, "
         "free_top_near_separatrix, heavy_top, parabola, two_body_impact, bouncing_ball, rocket, "
-        "box_landing_flat, sliding_stop, incline_rolling, newtons_cradle"
+        "box_landing_flat, sliding_stop, incline_rolling, newtons_cradle, bounce_to_rest, "
+        "oblique_impact_sticks, oblique_impact_slips"
     )
 
 
