@@ -3,7 +3,8 @@
 :func:`engine_adapters` lists the reference columns (the closed forms, the project's
 integrated scene engine) and every variant of each engine with an adapter here (MuJoCo's
 integrators and contacts, PyBullet's steps and contacts, Drake's discrete and continuous
-plants with point and hydroelastic contact, Siconos's Moreau–Jean at θ = 1/2 and 1); an
+plants with point and hydroelastic contact, Siconos's Moreau–Jean at θ = 1/2 and 1,
+DART's Dantzig and PGS boxed LCP); an
 engine that is not installed is listed
 once with the extra that installs it.  :func:`compare` runs the battery on each and
 :meth:`Comparison.to_markdown` writes the table: per scenario and adapter its status,
@@ -28,6 +29,7 @@ ENGINE_MODULES = (
     ("pybullet", "PyBullet", "pybullet"),
     ("drake", "Drake", "drake"),
     ("siconos", "Siconos", "python3-siconos (Debian's python3)"),
+    ("dart", "DART", "dart"),
 )
 
 

@@ -43,7 +43,7 @@ def test_one_row_per_scenario_and_adapter_with_the_worst_figures() -> None:
 def test_every_engine_variant_or_its_missing_extra_is_listed() -> None:
     families = [f for f, _ in engine_adapters()]
     assert families[:2] == ["reference", "reference"]
-    for engine in ("MuJoCo", "PyBullet", "Drake", "Siconos"):
+    for engine in ("MuJoCo", "PyBullet", "Drake", "Siconos", "DART"):
         assert engine in families  # each variant, or once with the extra to install
 
 
@@ -253,7 +253,7 @@ def test_json_of_a_hand_built_comparison_carries_every_cell_and_only_the_reasons
 
 
 #: the adapter modules of ENGINE_MODULES, written out
-ENGINES = ("mujoco", "pybullet", "drake", "siconos")
+ENGINES = ("mujoco", "pybullet", "drake", "siconos", "dart")
 
 
 def test_engine_adapters_list_each_variant_or_the_missing_engines_reason_once(
@@ -274,6 +274,7 @@ def test_engine_adapters_list_each_variant_or_the_missing_engines_reason_once(
     monkeypatch.setattr(mods["pybullet"], "variants", missing("pybullet"))
     monkeypatch.setattr(mods["drake"], "variants", lambda: ["dk"])
     monkeypatch.setattr(mods["siconos"], "variants", missing("siconos"))
+    monkeypatch.setattr(mods["dart"], "variants", lambda: ["dart-a"])
     got = engine_adapters()
     assert [type(a) for _, a in got[:2]] == [ExactAdapter, SceneEngineAdapter]
     assert got[2:] == [
@@ -282,6 +283,7 @@ def test_engine_adapters_list_each_variant_or_the_missing_engines_reason_once(
         ("PyBullet", "pip install 'bodycheck[pybullet]'"),
         ("Drake", "dk"),
         ("Siconos", "pip install 'bodycheck[siconos]'"),
+        ("DART", "dart-a"),
     ]
     # compare() runs no battery for a reason: it lists the engine as not run
     c = compare([("PyBullet", "pip install 'bodycheck[pybullet]'")], scenarios=["parabola"])
