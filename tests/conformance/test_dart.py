@@ -287,9 +287,10 @@ def test_contact_coefficients_give_each_contact_its_e_and_mu():
     # pairs only: √e on each
     r, mu, why = contact_coefficients(get_scenario("newtons_cradle"))
     assert why is None
-    assert all(abs(r[i] * r[j] - e) <= PRODUCT_ATOL for i, j, e in get_scenario(
-        "newtons_cradle"
-    ).pair_restitution)
+    assert all(
+        abs(r[i] * r[j] - e) <= PRODUCT_ATOL
+        for i, j, e in get_scenario("newtons_cradle").pair_restitution
+    )
     assert mu == [0.0, 0.0, 0.0]
     r, _, why = contact_coefficients(get_scenario("two_body_impact"))
     assert why is None
@@ -309,9 +310,7 @@ def test_pairs_that_no_per_body_product_gives_are_refused_with_the_reason():
 
 def test_pairs_beside_a_rough_ground_are_refused_with_the_reason():
     s = _two_bodies_and_ground()
-    s = dataclasses.replace(
-        s, ground=Ground(0.5, friction=0.3), pair_restitution=((0, 1, 0.25),)
-    )
+    s = dataclasses.replace(s, ground=Ground(0.5, friction=0.3), pair_restitution=((0, 1, 0.25),))
     why = contact_coefficients(s)[2]
     assert why is not None
     assert "least" in why
@@ -335,8 +334,9 @@ def test_a_rocket_is_unsupported_with_the_reason_and_never_run():
 def test_a_missing_engine_names_the_extra_to_install(monkeypatch):
     monkeypatch.setitem(sys.modules, "dartpy", None)  # import of it now fails
     with pytest.raises(
-        MissingExtraError, match=r"the DART adapter needs the dartpy package: "
-        r"pip install 'bodycheck\[dart\]'"
+        MissingExtraError,
+        match=r"the DART adapter needs the dartpy package: "
+        r"pip install 'bodycheck\[dart\]'",
     ):
         dart_module.DartAdapter()
     with pytest.raises(MissingExtraError, match=r"bodycheck\[dart\]"):
