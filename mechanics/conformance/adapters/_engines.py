@@ -8,12 +8,14 @@ its engine's conventions.
 from __future__ import annotations
 
 import contextlib
+import math
 import os
 import sys
 from collections.abc import Iterator
 
 import numpy as np
 
+from ..._floats import EPS
 from ..._validate import as_float_scalar
 from ...errors import (
     MechanicsValueError,
@@ -29,6 +31,7 @@ __all__ = [
     "body_rows",
     "check_option",
     "common_unsupported",
+    "product_restitutions",
     "quiet_stdout",
     "require",
     "step_counts",
@@ -173,3 +176,38 @@ def unit_interval(x, name: str, what: str, *, error=OutOfDomainError) -> float:
     if not 0.0 <= v <= 1.0:
         raise error(f"{name} ({what}) must lie in [0, 1]; got {v!r}")
     return v
+
+
+#: per-body coefficients whose product must give a pair's e: a square root and a
+#: product, a few roundings
+PRODUCT_RTOL = 4 * EPS
+
+
+def product_restitutions(scenario: Scenario, engine: str) -> tuple[list[float] | None, str | None]:
+    """Per-body restitution coefficients (bodies in order) for an engine that restitutes a
+    contact with the *product* of the two bodies' coefficients (PyBullet's Bullet,
+    DART): a body that meets the ground gets the ground's e (the ground 1), a pair of
+    free bodies √e each, a body paired with a fixed one e over the other's; ``(values,
+    None)``, or ``(None, the reason)`` when no per-body values give every contact its e."""
+    n = len(scenario.bodies)
+    r: list[float | None] = [None] * n
+    if scenario.ground is not None:
+        for k, b in enumerate(scenario.bodies):
+            if b.shape is not None:
+                r[k] = float(scenario.ground.restitution)
+    for i, j, e in scenario.pair_restitution:
+        ri, rj = r[i], r[j]
+        if ri is None:
+            ri = math.sqrt(e) if rj is None else (e / rj if rj > 0 else 0.0)
+            if rj is None:
+                rj = ri
+        elif rj is None:
+            rj = e / ri if ri > 0 else 0.0
+        r[i], r[j] = ri, rj
+        if not (0 <= ri <= 1 and 0 <= rj <= 1) or abs(ri * rj - e) > PRODUCT_RTOL:
+            return None, (
+                f"{engine} restitutes a contact with the product of the two bodies' "
+                f"coefficients; no per-body values give pair ({i}, {j}) its e = {e!r} "
+                "together with the scenario's other contacts"
+            )
+    return [1.0 if x is None else x for x in r], None

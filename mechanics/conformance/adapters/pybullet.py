@@ -87,8 +87,6 @@ ground restitutions that no per-body product reproduces (above).
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from ..._floats import EPS
@@ -100,6 +98,7 @@ from ._engines import (
     body_rows,
     check_option,
     common_unsupported,
+    product_restitutions,
     require,
     step_counts,
 )
@@ -153,29 +152,7 @@ def _R_A_O(q_xyzw) -> np.ndarray:
 
 def _restitutions(scenario: Scenario) -> tuple[list[float] | None, str | None]:
     """Per-body restitution values whose products give the scenario's e, or a reason."""
-    n = len(scenario.bodies)
-    r: list[float | None] = [None] * n
-    if scenario.ground is not None:
-        e = scenario.ground.restitution
-        for k, b in enumerate(scenario.bodies):
-            if b.shape is not None:
-                r[k] = e
-    for i, j, e in scenario.pair_restitution:
-        ri, rj = r[i], r[j]
-        if ri is None:
-            ri = math.sqrt(e) if rj is None else (e / rj if rj > 0 else 0.0)
-            if rj is None:
-                rj = ri
-        elif rj is None:
-            rj = e / ri if ri > 0 else 0.0
-        r[i], r[j] = ri, rj
-        if not (0 <= ri <= 1 and 0 <= rj <= 1) or abs(ri * rj - e) > 4 * EPS:
-            return None, (
-                f"PyBullet restitutes a contact with the product of the two bodies' "
-                f"coefficients; no per-body values give pair ({i}, {j}) its e = {e!r} "
-                "together with the scenario's other contacts"
-            )
-    return [1.0 if x is None else x for x in r], None
+    return product_restitutions(scenario, "PyBullet")
 
 
 class PyBulletAdapter:
