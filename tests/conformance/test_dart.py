@@ -221,6 +221,9 @@ FIRST_ORDER_PASSES = (
     "box_landing_flat",
     "sliding_stop",
     "incline_rolling",
+    "bounce_to_rest",
+    "oblique_impact_sticks",
+    "oblique_impact_slips",
 )
 
 
