@@ -798,6 +798,18 @@ def _measure_rocket(s: Scenario, tr: Trajectory) -> dict:
 # --------------------------------------------------------------------------- contacts
 
 
+def _isotropic(s: Scenario, b: Body) -> float:
+    """The ball's one moment J (its three equal to 2^4 eps): a sphere whose ω after a
+    contact stays constant in flight, as the references below assume."""
+    J = np.asarray(b.inertia, dtype=float)
+    if float(J.max() - J.min()) > FLAT_RTOL * float(J.max()):
+        raise MechanicsValueError(
+            f"scenario {s.name!r}: the ball's principal moments must be equal (a uniform "
+            f"ball or a shell), so that its spin stays constant in flight; got {b.inertia}"
+        )
+    return float(J.max())
+
+
 def _unit(v) -> np.ndarray:
     v = np.asarray(v, dtype=float)
     return v / float(np.linalg.norm(v))
@@ -953,7 +965,7 @@ def _roll_numbers(s: Scenario):
             f"{tuple(map(float, w_space))}"
         )
     # J a / r² + m a = m g_t with the friction f = J a / r²; f ≤ μ m g_n keeps it rolling
-    k = max(b.inertia) / (b.mass * r * r)  # 2/5 for a solid ball
+    k = _isotropic(s, b) / (b.mass * r * r)  # 2/5 for a solid ball
     a = float(np.linalg.norm(g_t)) / (1.0 + k)
     if k * a > gr.friction * g_n:
         raise MechanicsValueError(
@@ -1204,7 +1216,7 @@ def _oblique_numbers(s: Scenario):
     v1 = v0 + t1 * g
     w = np.array(b.R_A_O, dtype=float).T @ np.asarray(b.omega, dtype=float)  # space
     m = b.mass
-    k = max(b.inertia) / (m * r * r)
+    k = _isotropic(s, b) / (m * r * r)
     v_n = float(v1 @ nrm)
     u = v1 - v_n * nrm + np.cross(w, -r * nrm)
     P_n = m * (1.0 + gr.restitution) * -v_n
@@ -1213,7 +1225,7 @@ def _oblique_numbers(s: Scenario):
     # sticking: the impulse that stops the slip; slipping: Coulomb's μ P_n against it
     P_t = -m * k / (1.0 + k) * u if sticks else -gr.friction * P_n * u / float(np.linalg.norm(u))
     v_after = v1 + (P_n * nrm + P_t) / m
-    w_after = w + np.cross(-r * nrm, P_t) / max(b.inertia)
+    w_after = w + np.cross(-r * nrm, P_t) / _isotropic(s, b)
     return b, r, nrm, t1, v1, w, v_after, w_after, sticks
 
 
