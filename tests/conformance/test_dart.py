@@ -28,15 +28,14 @@ from mechanics.conformance import reference, run_battery
 from mechanics.conformance.adapters import dart as dart_module
 from mechanics.conformance.adapters._engines import MissingExtraError
 from mechanics.conformance.adapters.dart import contact_coefficients
-from mechanics.conformance.protocol import Ground, Thrust, check_trajectory
+from mechanics.conformance.protocol import Ground, check_trajectory
 from mechanics.conformance.scenarios import get_scenario
 from mechanics.errors import MechanicsValueError, UnknownOptionError
 
+from .test_engines import _two_bodies_and_ground
+
 #: the exact solutions' own error: a few hundred roundings of O(1) terms
 EXACT_ATOL = 2**10 * EPS
-#: the initial state written into DART and read back at t = 0: a rotation matrix into an
-#: isometry and back, velocities turned into world components and back: a few eps each
-READBACK_RTOL = 2**6 * EPS
 #: a few hundred fixed steps, each adding one rounding of numbers of size ~10 (the
 #: parabola's speed): measured 212 eps at 384 steps; 2^10 eps relative to the size
 STEPPED_ROUNDING_RTOL = 2**10 * EPS
@@ -63,58 +62,7 @@ def _adapter(solver: str = "dantzig"):
     return DartAdapter(solver)
 
 
-def _two_bodies_and_ground():
-    """Two free boxes above the ground, tumbling: every body field, two bodies."""
-    s = get_scenario("free_top_axis1")
-    a = s.bodies[0]
-    b = dataclasses.replace(
-        a, name="other", position=(1.0, -1.0, 2.0), omega=(-0.3, 0.8, 0.1), mass=0.5
-    )
-    return dataclasses.replace(
-        s,
-        bodies=(dataclasses.replace(a, position=(0.0, 0.0, 1.0)), b),
-        ground=Ground(0.5),
-        gravity=(0.0, 0.0, -G),
-        duration=0.125,
-        sample_times=(0.0, 0.0625, 0.125),
-    )
-
-
-def _general_pivot():
-    """The heavy top with a general initial ω (all three body components), 0.1 s."""
-    s, _ = heavy_top(duration=0.1, samples=11)
-    b = s.bodies[0]
-    R = np.array(b.R_A_O)
-    omega = np.array([1.5, -2.0, 30.0])
-    arm = -np.array(s.pivot.point)  # pivot to G, body components
-    v = R.T @ np.cross(omega, arm)
-    return dataclasses.replace(
-        s, bodies=(dataclasses.replace(b, omega=tuple(omega), velocity=tuple(v)),)
-    )
-
-
 # ------------------------------------------------------------------ the protocol
-
-
-@pytest.mark.parametrize("solver", SOLVERS)
-@pytest.mark.parametrize("case", ["two_bodies", "pivot"])
-def test_each_variant_returns_valid_samples_that_start_at_the_initial_state(solver, case):
-    a = _adapter(solver)
-    s = _two_bodies_and_ground() if case == "two_bodies" else _general_pivot()
-    assert a.supports(s) is None
-    tr = check_trajectory(s, a.run(s, 1e-3 if case == "pivot" else 2.0**-10))
-    for k, b in enumerate(s.bodies):
-        for got, want in (
-            (tr.position[0, k], b.position),
-            (tr.velocity[0, k], b.velocity),
-            (tr.R_A_O[0, k], b.R_A_O),
-            (tr.omega[0, k], b.omega),
-        ):
-            want = np.asarray(want, dtype=float)
-            tol = READBACK_RTOL * max(1.0, np.abs(want).max())
-            assert np.abs(got - want).max() <= tol, (a.name, b.name, got, want)
-    assert a.name.startswith("DART ")
-    assert a.takes_step is True
 
 
 def test_variants_are_the_two_boxed_lcp_solvers():
@@ -318,17 +266,6 @@ def test_pairs_beside_a_rough_ground_are_refused_with_the_reason():
     assert why is not None
     assert "least" in why
     assert "mu = 0.3" in why
-
-
-def test_a_rocket_is_unsupported_with_the_reason_and_never_run():
-    a = _adapter()
-    s = dataclasses.replace(_two_bodies_and_ground(), thrust=Thrust(0, 0.1, 100.0, 1.0))
-    why = a.supports(s)
-    assert why is not None
-    assert "mass changes" in why
-    assert "Tsiolkovsky" in why
-    with pytest.raises(MechanicsValueError, match="DART cannot run it"):
-        a.run(s, 2.0**-8)
 
 
 # ------------------------------------------------------------------ bad input

@@ -78,7 +78,18 @@ def _drake():
     )
 
 
+def _dart():
+    return pytest.importorskip(
+        "dartpy", reason="DART is not installed: pip install 'bodycheck[dart]'"
+    )
+
+
 def _adapter(engine: str, *args):
+    if engine == "dart":
+        _dart()
+        from mechanics.conformance.adapters.dart import DartAdapter
+
+        return DartAdapter(*args)
     if engine == "mujoco":
         _mujoco()
         from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
@@ -107,6 +118,8 @@ VARIANTS = [
     ("drake", ("discrete", "hydroelastic")),
     ("drake", ("continuous", "point")),
     ("drake", ("continuous", "hydroelastic")),
+    ("dart", ("dantzig",)),
+    ("dart", ("pgs",)),
 ]
 IDS = [f"{e}-{'-'.join(a)}" for e, a in VARIANTS]
 
@@ -372,8 +385,8 @@ def _rocket() -> Scenario:
 
 @pytest.mark.parametrize(
     ("engine", "args"),
-    [("mujoco", ()), ("pybullet", ()), ("drake", ())],
-    ids=["mujoco", "pybullet", "drake"],
+    [("mujoco", ()), ("pybullet", ()), ("drake", ()), ("dart", ())],
+    ids=["mujoco", "pybullet", "drake", "dart"],
 )
 def test_a_rocket_is_unsupported_with_the_reason_and_never_run(engine, args) -> None:
     a = _adapter(engine, *args)
