@@ -89,6 +89,7 @@ def test_the_library_imports_nothing_beyond_the_core_but_the_compiled_kernels():
     # adapters.require, naming their extras)
     assert outside == {
         "mechanics/_kernels.py": ["numba"],
+        "mechanics/_kernels_rhs.py": ["numba"],
         "mechanics/conformance/adapters/_siconos_worker.py": ["siconos"],
     }
 

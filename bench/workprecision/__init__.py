@@ -40,12 +40,20 @@ Conventions
   top one ``FreeAsymmetricTop.state`` call on a top built beforehand, its construction
   timed apart in :func:`exact_evaluation`; its "error" is an independent residual: the
   invariants of the exact motion, or for the impact scene |φ| at the closed-form impact
-  times), ``rk4`` (fixed step h), ``dop853`` (ours, rtol = atol), ``splitting-2/4/6/8``
+  times), ``rk4`` (fixed step h), ``dop853`` (ours, rtol = atol), ``dop853-pi`` (the
+  same with the PI step control, β = :data:`PI_BETA`; not on the free top, whose kernel
+  has scipy's control), ``splitting-2/4/6/8``
   and ``splitting-6/8-kahan`` (compensated summation; free top only,
   :func:`mechanics.integrators.free_rigid_body_splitting`), and scipy's ``solve_ivp``
   with ``RK45``, ``DOP853``, ``LSODA``, ``Radau`` (rtol = atol) on the same right-hand
-  side.  On the free top ours run compiled (numba; :func:`warm_compiled` loads every
-  kernel before anything is timed).  The splitting runs in the body frame relabelled (a
+  side.  Ours run compiled (numba): on the free top the free body's kernels, on the
+  others the right-hand side (and the impact's event φ) compiled by :func:`compiled`
+  and run by :func:`mechanics.integrators.integrate`'s compiled path (issue 30);
+  :func:`warm_compiled` and each problem's construction load every kernel and convert
+  every function before anything is timed.  The impact's ``dop853`` runs stop at the
+  wall by ``integrate``'s terminal event, one run per flight; ``rk4`` (no events)
+  locates each impact by Newton on its own step map.  scipy gets the Python functions
+  (it calls them from Python either way).  The splitting runs in the body frame relabelled (a
   proper signed permutation) to the axis order (J_mid, J_max, J_min): of the six orders
   this one was measured best for this top (order 6, 40 steps per flip period, 100
   periods: 2.2e-4 against 1.3e-3 for (J_min, J_mid, J_max) and 6e-2 for the worst).
@@ -79,7 +87,10 @@ Headline (``headline`` in the JSON, every ratio of two times measured in the sam
 not", "NOT MET", "not measured"): our fastest stepper at scipy DOP853's most accurate
 error (goal ≥ 10, must ≥ 3); the exact solution's one evaluation against that DOP853
 run (≥ 1e5); at each error 1e-4 … 1e-12 (:data:`DECADES`) our fastest run reaching it
-against scipy's fastest (at least as fast); :func:`batched_vs_scipy` (≥ 50); and
+against scipy's fastest (at least as fast; :func:`decades`), on the free top and (issue
+30, the last row) on each other problem, where a level neither side reaches (below the
+problem's float64 floor: the pendulum near its separatrix amplifies rounding 10⁵-fold
+over 100 periods) compares nothing; :func:`batched_vs_scipy` (≥ 50); and
 :func:`mujoco_peer` (MuJoCo's RK4 at dt 1e-3 against our fastest at its error; without
 ``mujoco`` the row names the extra).  Also the energy drift's growth and the batch
 against one body (issue 6).
@@ -95,12 +106,14 @@ from .problems import (
     IMPACT_E,
     IMPACT_THETA0,
     PEND,
+    PI_BETA,
     Problem,
+    compiled,
     heavy_top_rhs,
     pendulum_rhs,
     reference_problems,
 )
-from .report import headline
+from .report import decades, headline
 from .settings import (
     BATCH_BODIES,
     BUDGET_S,
@@ -130,9 +143,12 @@ __all__ = [
     "LONG_RUN_S",
     "MUJOCO_EXTRA",
     "PEND",
+    "PI_BETA",
     "SCHEMA",
     "TARGET_ERROR",
     "Problem",
+    "compiled",
+    "decades",
     "headline",
     "heavy_top_rhs",
     "main_bench",

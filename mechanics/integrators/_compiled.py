@@ -1,5 +1,6 @@
-"""The compiled path's loader: :mod:`mechanics._kernels` imported on first use, one
-:class:`CompiledPathWarning` if that fails, and the free rigid body's arguments.
+"""The compiled path's loader: :mod:`mechanics._kernels` (the free rigid body) and
+:mod:`mechanics._kernels_rhs` (a user's numba-compiled right-hand side) imported on first
+use, one :class:`CompiledPathWarning` if that fails, and the kernels' arguments.
 
 Part of :mod:`mechanics.integrators` (its docstring states the conventions).
 """
@@ -24,6 +25,8 @@ class CompiledPathWarning(RuntimeWarning):
 
 # the module mechanics._kernels once imported; False after a failure
 _KERNELS: ModuleType | Literal[False] | None = None
+# the module mechanics._kernels_rhs once imported; False after a failure
+_RHS_KERNELS: ModuleType | Literal[False] | None = None
 
 
 def _kernels() -> ModuleType | None:
@@ -80,3 +83,70 @@ def _free_body_args(rhs: Rhs, y0: FloatArray) -> tuple[FloatArray, FloatArray] |
     except ValueError:
         return None  # the reference raises the ShapeError
     return np.ascontiguousarray(Jb.reshape(-1, 3)), np.ascontiguousarray(y0.reshape(-1))
+
+
+def is_numba_function(rhs: object) -> bool:
+    """``rhs`` is a numba dispatcher (``@numba.njit``), told without importing numba."""
+    return type(rhs).__module__.startswith("numba.") and hasattr(rhs, "py_func")
+
+
+def _warn_user_rhs(rhs: object, why: str, stacklevel: int = 6) -> None:
+    """One CompiledPathWarning saying why a numba-compiled ``rhs`` runs on the reference
+    path; ``stacklevel`` counts the frames up to the caller of ``integrate`` (6 from the
+    kernel runners: here, :func:`_run_user_rhs`, the method's runner, its dispatch,
+    ``integrate``)."""
+    name = getattr(rhs, "__name__", type(rhs).__name__)
+    warnings.warn(
+        f"the numba-compiled rhs {name!r} runs on the reference path (compiled to Python "
+        f"calls, slower): {why}",
+        CompiledPathWarning,
+        stacklevel=stacklevel,
+    )
+
+
+#: An argument of :func:`_run_user_rhs` that stands for the kernels' ``no_event`` (the
+#: event function of a run without one: a kernel's function argument cannot be None).
+NO_EVENT = object()
+
+
+def _run_user_rhs(name: str, rhs: Rhs, y0: FloatArray, *args: Any) -> tuple[int, ...] | None:
+    """kernels_rhs.<name>(rhs, y0, *args) for a numba-compiled ``rhs``, or None after one
+    warning saying why not (a state of another shape than (n,), numba's typing of the
+    ``rhs`` against :data:`mechanics._kernels_rhs.RHS_SIGNATURE` failing, numba missing):
+    the caller then runs the reference path, which calls ``rhs`` from Python."""
+    global _RHS_KERNELS
+    if y0.ndim != 1:
+        _warn_user_rhs(
+            rhs, f"the compiled path takes a state of shape (n,); y0 has shape {y0.shape}"
+        )
+        return None
+    if _RHS_KERNELS is None:
+        try:
+            _RHS_KERNELS = importlib.import_module(".._kernels_rhs", __package__)
+        except Exception as exc:  # numba missing or broken: the reference path
+            _RHS_KERNELS = False
+            missing = (
+                missing_extra(exc, "the compiled steppers")
+                if isinstance(exc, ImportError)
+                else None
+            )
+            _warn_user_rhs(
+                rhs, str(missing) if missing is not None else f"{type(exc).__name__}: {exc}"
+            )
+            return None
+    if _RHS_KERNELS is False:
+        _warn_user_rhs(rhs, "the compiled steppers failed to load earlier in this process")
+        return None
+    kernels = _RHS_KERNELS
+    args = tuple(kernels.no_event if a is NO_EVENT else a for a in args)
+    try:
+        done: tuple[int, ...] = getattr(kernels, name)(rhs, y0, *args)
+        return done
+    except Exception as exc:  # numba's typing or lowering errors are not one class
+        first = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        _warn_user_rhs(
+            rhs,
+            f"it does not compile as rhs(t: float64, y: float64[::1]) -> float64[::1] "
+            f"({type(exc).__name__}: {first})",
+        )
+        return None

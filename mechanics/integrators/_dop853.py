@@ -14,16 +14,27 @@ import numpy.typing as npt
 from scipy.integrate._ivp import dop853_coefficients as _d853
 
 from .._validate import as_float_array
-from ..errors import ResultOverflowError, ShapeError, StepSizeError
-from ._compiled import _free_body_args, _run_compiled
-from ._rhs import _checked
-from ._solution import FloatArray, Rhs, Run
+from ..errors import NonFiniteError, ResultOverflowError, ShapeError, StepSizeError
+from ._compiled import (
+    NO_EVENT,
+    _free_body_args,
+    _run_compiled,
+    _run_user_rhs,
+    _warn_user_rhs,
+    is_numba_function,
+)
+from ._events import EVENT_XTOL, bracket_step, crosses
+from ._rhs import _checked, _wrap_rhs
+from ._solution import Event, EventHit, FloatArray, Rhs, Run
 
 #: Step control of ``"dop853"``: the values of Hairer's DOP853 and of scipy.
 DOP853_SAFETY = 0.9
 DOP853_MIN_FACTOR = 0.2
 DOP853_MAX_FACTOR = 10.0
 _DOP853_EXPONENT = -1.0 / 8.0  # −1/(q + 1), q = 7 the order of the error estimator
+#: The PI step control's gain β (``integrate(..., beta=β)``): at most Hairer's bound 0.2.
+DOP853_MAX_BETA = 0.2
+_ERR_OLD_FLOOR = 1e-4  # Hairer's DOP853: facold = max(err, 1e-4)
 
 # (scipy ships no types: the tableau's names are annotated here)
 _N_STAGES: int = _d853.N_STAGES  # 12
@@ -121,6 +132,12 @@ def _dop853_initial_step(
     d1 = float(_member_norms(f0.reshape(-1) / scale, nb).max())
     h0 = 1e-6 if d0 < 1e-5 or d1 < 1e-5 else 0.01 * d0 / d1
     h0 = min(h0, t_end - t0)
+    if not h0 > 0.0:  # d1 = inf: rates beyond float64 once scaled by the tolerances
+        raise StepSizeError(
+            f"dop853: the starting step at t={t0!r} underflows to {h0!r}: the rates there, "
+            f"scaled by rtol={rtol!r} and atol={atol!r}, have RMS norm {d1!r}; "
+            f"give a step h or loosen the tolerances"
+        )
     f1 = f(t0 + h0, (y + h0 * f0.reshape(-1)).reshape(f0.shape))
     d2 = float(_member_norms((f1.reshape(-1) - f0.reshape(-1)) / scale, nb).max()) / h0
     if d1 <= 1e-15 and d2 <= 1e-15:
@@ -145,7 +162,9 @@ def _dop853_advance(
     atol: float,
     nb: int,
     comp: FloatArray | None,
-) -> tuple[float, FloatArray, FloatArray, float, float, int, int, FloatArray | None]:
+    beta: float = 0.0,
+    err_old: float = 1.0,
+) -> tuple[float, FloatArray, FloatArray, float, float, int, int, FloatArray | None, float]:
     """One accepted DOP853 step from ``tc`` towards ``t_end``, rejected attempts inside.
 
     The step control of scipy's ``RungeKutta._step_impl``: the proposed ``h_abs`` is
@@ -153,14 +172,17 @@ def _dop853_advance(
     that it ends exactly on ``t_end``, a rejected attempt shrinks the step by
     max(0.2, 0.9 err^(−1/8)) and an accepted one proposes hh · min(10, 0.9 err^(−1/8))
     (at most hh right after a rejection).  ``comp`` is the Kahan compensation (or
-    None): the increment added is then z = incr − comp.
+    None): the increment added is then z = incr − comp.  With ``beta`` = β > 0 the
+    control is Gustafsson's PI control as in Hairer's DOP853: err^(−1/8 + 0.2 β) in
+    place of err^(−1/8), and an accepted step's factor times ``err_old``^β, the error
+    of the last accepted step (at least 1e-4); β = 0 is the control above, exactly.
 
     Returns
     -------
-    t_new, y_new, f_new, hh, h_next, evals, rejected, z
+    t_new, y_new, f_new, hh, h_next, evals, rejected, z, err
         The accepted step hh = t_new − tc (K holds its 12 stages and K[12] =
-        f_new), the next proposal, the evaluations and rejections it took, and z
-        (None without compensation).
+        f_new), the next proposal, the evaluations and rejections it took, z
+        (None without compensation), and the ``err_old`` of the next step.
     """
     min_step = 10.0 * math.ulp(tc)
     if max_step < min_step:  # scipy fails here only if the proposal exceeds max_step
@@ -199,8 +221,13 @@ def _dop853_advance(
         if err < 1.0:
             if err == 0.0:
                 factor = DOP853_MAX_FACTOR
-            else:
+            elif beta == 0.0:
                 factor = min(DOP853_MAX_FACTOR, DOP853_SAFETY * err**_DOP853_EXPONENT)
+            else:
+                factor = min(
+                    DOP853_MAX_FACTOR,
+                    DOP853_SAFETY * err ** (_DOP853_EXPONENT + 0.2 * beta) * err_old**beta,
+                )
             if was_rejected:
                 factor = min(1.0, factor)
             # An infinite y_new makes its scale infinite and so the error norm 0, which
@@ -210,10 +237,16 @@ def _dop853_advance(
                     f"dop853: the state overflowed in the step from t={tc!r} to t={t_new!r} "
                     f"(|y| beyond the float64 range, the rates finite)"
                 )
-            return t_new, y_new, f_new, hh, hh * factor, evals, rejected, z
+            err_next = max(err, _ERR_OLD_FLOOR)
+            return t_new, y_new, f_new, hh, hh * factor, evals, rejected, z, err_next
         rejected += 1
         was_rejected = True
-        h_abs = hh * max(DOP853_MIN_FACTOR, DOP853_SAFETY * err**_DOP853_EXPONENT)
+        if beta == 0.0:
+            h_abs = hh * max(DOP853_MIN_FACTOR, DOP853_SAFETY * err**_DOP853_EXPONENT)
+        else:
+            h_abs = hh * max(
+                DOP853_MIN_FACTOR, DOP853_SAFETY * err ** (_DOP853_EXPONENT + 0.2 * beta)
+            )
         if h_abs < min_step:
             raise StepSizeError(
                 f"dop853: the step fell to {h_abs!r}, below the rounding of t={tc!r}; "
@@ -231,10 +264,15 @@ def _integrate_dop853(
     kahan: bool,
     batch_ndim: int,
     max_steps: int,
-) -> Run:
+    beta: float = 0.0,
+    event: Event | None = None,
+    direction: float = 0.0,
+) -> tuple[Run, EventHit]:
     """Steps chosen by the error control alone, towards t[-1]; the outputs inside a
     step come from its 7th-order continuous extension (3 more evaluations for a
-    step that holds any), an output on a step's end is that step's state."""
+    step that holds any), an output on a step's end is that step's state.  With an
+    ``event``, the run stops where it first crosses zero in ``direction``: the outputs
+    before it, and (t_event, y_event) located on the step's extension."""
     shape = y0.shape
     nb = int(np.prod(shape[:batch_ndim], dtype=np.int64)) if batch_ndim else 1
     nt = t.shape[0]
@@ -255,23 +293,46 @@ def _integrate_dop853(
     else:
         h_abs = h
     tl = t.tolist()
+    g_old = _event_value(event, tc, y0) if event is not None else 0.0
 
     def f_flat(tt: float, yy: FloatArray) -> FloatArray:
         return f(tt, yy.reshape(shape)).reshape(-1)
 
     steps = rejected = 0
+    err_old = 1.0
     k = 1  # the next output
     while k < nt:
-        t_new, y_new, f0, hh, h_abs, ev, rej, z = _dop853_advance(
-            f, tc, y, f0, h_abs, t_final, math.inf, K, Kv, shape, rtol, atol, nb, comp
+        t_new, y_new, f0, hh, h_abs, ev, rej, z, err_old = _dop853_advance(
+            f,
+            tc,
+            y,
+            f0,
+            h_abs,
+            t_final,
+            math.inf,
+            K,
+            Kv,
+            shape,
+            rtol,
+            atol,
+            nb,
+            comp,
+            beta,
+            err_old,
         )
         evals += ev
         rejected += rej
         steps += 1
+        hit = False
+        g_new = 0.0
+        if event is not None:
+            g_new = _event_value(event, t_new, y_new.reshape(shape))
+            hit = crosses(g_old, g_new, direction)
         j = k
         while j < nt and tl[j] < t_new:
             j += 1
-        if j > k:  # outputs strictly inside the step: its continuous extension
+        dense: DenseStep | None = None
+        if j > k or hit:  # outputs strictly inside the step, an event: its extension
             F = _dop853_dense(f_flat, tc, y, y_new, hh, K_ext)
             evals += _N_STAGES_EXTENDED - _N_STAGES - 1
             if not np.isfinite(F).all():
@@ -279,7 +340,17 @@ def _integrate_dop853(
                 raise ResultOverflowError(
                     f"dop853: the dense output of the step from t={tc!r} to t={t_new!r} overflowed"
                 )
-            ys[k:j] = DenseStep(tc, t_new, y, F)(t[k:j]).T.reshape(j - k, *shape)
+            dense = DenseStep(tc, t_new, y, F)
+        if hit and event is not None:
+            t_ev, y_ev = _locate_event(event, dense, g_old, g_new, y_new, shape)
+            j = k
+            while j < nt and tl[j] < t_ev:
+                j += 1
+            if j > k and dense is not None:
+                ys[k:j] = dense(t[k:j]).T.reshape(j - k, *shape)
+            return (ys[:j], steps, evals, rejected), (t_ev, y_ev)
+        if j > k and dense is not None:
+            ys[k:j] = dense(t[k:j]).T.reshape(j - k, *shape)
         if j < nt and tl[j] == t_new:
             ys[j] = y_new.reshape(shape)
             j += 1
@@ -287,12 +358,62 @@ def _integrate_dop853(
         if z is not None:  # None exactly when comp is (no compensation)
             comp = (y_new - y) - z
         y, tc = y_new, t_new
+        g_old = g_new
         if steps >= max_steps and k < nt:
             raise StepSizeError(
                 f"dop853: {steps} steps reached t={tc!r} of {t_final!r}; "
                 f"raise max_steps={max_steps} or loosen rtol={rtol!r}"
             )
-    return ys, steps, evals, rejected
+    return (ys, steps, evals, rejected), None
+
+
+def _event_value(event: Event, t: float, y: FloatArray) -> float:
+    """event(t, y) as a float: a ShapeError if it is not one real number, a
+    NonFiniteError if it is NaN or infinite, both naming the time."""
+    v = event(t, y)
+    if np.ndim(v) != 0 or isinstance(v, (bool, np.bool_)):
+        raise ShapeError(f"event returned {v!r} at t={t!r}; expected one real number")
+    try:
+        g = float(v)
+    except (TypeError, ValueError):
+        raise ShapeError(f"event returned {v!r} at t={t!r}; expected one real number") from None
+    if not math.isfinite(g):
+        raise NonFiniteError(f"event returned {g!r} at t={t!r}")
+    return g
+
+
+def _locate_event(
+    event: Event,
+    dense: DenseStep | None,
+    g_old: float,
+    g_new: float,
+    y_new: FloatArray,
+    shape: tuple[int, ...],
+) -> tuple[float, FloatArray]:
+    """The crossing in the step ``dense`` covers, bracketed on its interpolant to
+    EVENT_XTOL · max(|t|, h) (the kernel's loop, step for step): the bracket's right
+    end, on or past the crossing, and the state there."""
+    assert dense is not None  # the caller built the step's extension
+    a, ga, b, gb = dense.t_old, g_old, dense.t, g_new
+    t_new = b
+    tol = EVENT_XTOL * max(abs(t_new), dense.h)
+    side = it = 0
+    while b - a > tol and gb != 0.0:
+        m = bracket_step(a, ga, b, gb, tol, it)
+        gm = _event_value(event, m, dense(m).reshape(shape))
+        if (gm > 0.0) == (g_old > 0.0) and gm != 0.0:  # still before the crossing
+            a, ga = m, gm
+            if side == -1:
+                gb *= 0.5  # Illinois
+            side = -1
+        else:
+            b, gb = m, gm
+            if side == 1:
+                ga *= 0.5
+            side = 1
+        it += 1
+    y_ev = y_new if b == t_new else dense(b)
+    return b, y_ev.reshape(shape).copy()
 
 
 class DenseStep:
@@ -383,11 +504,21 @@ def _dop853_compiled(
     atol: float,
     batch_ndim: int,
     max_steps: int,
-) -> Run | None:
-    args = _free_body_args(rhs, y0)
-    if args is None:
-        return None
+    beta: float = 0.0,
+    event: Event | None = None,
+    direction: float = 0.0,
+) -> tuple[Run, EventHit] | None:
+    """The run on a compiled kernel, or None: the reference path runs (it also raises the
+    error, naming the time, of a kernel that stopped on a non-finite value)."""
     nb = int(np.prod(y0.shape[:batch_ndim], dtype=np.int64)) if batch_ndim else 1
+    if is_numba_function(rhs):
+        if event is not None and not is_numba_function(event):
+            _warn_user_rhs(rhs, "its event function is not numba-compiled", stacklevel=4)
+            return None
+        return _dop853_user(rhs, y0, t, h, rtol, atol, nb, max_steps, beta, event, direction)
+    args = _free_body_args(rhs, y0)
+    if args is None or beta != 0.0 or event is not None:  # the free body's kernel: neither
+        return None
     ys = np.empty((t.shape[0], y0.size))
     ctrl = np.array([DOP853_SAFETY, DOP853_MIN_FACTOR, DOP853_MAX_FACTOR, _DOP853_EXPONENT])
     done = _run_compiled(
@@ -410,4 +541,64 @@ def _dop853_compiled(
     )
     if done is None or done[0] != 0:  # the reference raises, naming the time
         return None
-    return ys.reshape(t.shape[0], *y0.shape), done[1], done[2], done[3]
+    return (ys.reshape(t.shape[0], *y0.shape), done[1], done[2], done[3]), None
+
+
+def _dop853_user(
+    rhs: Rhs,
+    y0: FloatArray,
+    t: FloatArray,
+    h: float | None,
+    rtol: float,
+    atol: float,
+    nb: int,
+    max_steps: int,
+    beta: float,
+    event: Event | None,
+    direction: float,
+) -> tuple[Run, EventHit] | None:
+    """The run on :func:`mechanics._kernels_rhs.dop853_rhs`, or None (the reference path
+    then runs): ``rhs`` and ``event`` numba-compiled (plain functions when numba's JIT is
+    off, as under mutation, where the kernel runs as Python).  Hairer's starting step is
+    the reference's own :func:`_dop853_initial_step`, called from here (one rate more
+    than the kernel counts), so that both paths start with the same step to the bit."""
+    probe = 0
+    if h is None and y0.ndim == 1:  # (another shape: the kernel's runner refuses it)
+        f = _wrap_rhs(rhs, y0.shape)
+        t0 = float(t[0])
+        h = _dop853_initial_step(f, t0, y0, _checked(f)(t0, y0), float(t[-1]), rtol, atol, nb)
+        probe = 1
+    ys = np.empty((t.shape[0], y0.size))
+    ev = np.empty(y0.size + 1)
+    ctrl = np.array([DOP853_SAFETY, DOP853_MIN_FACTOR, DOP853_MAX_FACTOR, _DOP853_EXPONENT, beta])
+    done = _run_user_rhs(
+        "dop853_rhs",
+        rhs,
+        y0,
+        t,
+        h,
+        rtol,
+        atol,
+        nb,
+        max_steps,
+        _A_FULL,
+        _B,
+        _C_ARRAY,
+        _E3,
+        _E5,
+        _D_ARRAY,
+        ctrl,
+        ys,
+        NO_EVENT if event is None else event,
+        event is not None,
+        direction,
+        EVENT_XTOL,
+        ev,
+    )
+    if done is None or done[0] != 0:  # the reference raises, naming the time
+        return None
+    n_out = done[4]
+    run = ys[:n_out].reshape(n_out, *y0.shape), done[1], done[2] + probe, done[3]
+    # an event drops the outputs from t_event on, t[-1] among them (t_event ≤ t[-1])
+    met = n_out < t.shape[0]
+    return run, ((float(ev[0]), ev[1:].reshape(y0.shape).copy()) if met else None)

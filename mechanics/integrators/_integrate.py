@@ -11,12 +11,12 @@ import numpy as np
 import numpy.typing as npt
 
 from .._validate import as_float_array
-from ..errors import NonPositiveParameterError, ShapeError, UnknownOptionError
-from ._dop853 import _dop853_compiled, _integrate_dop853
+from ..errors import NonPositiveParameterError, OutOfDomainError, ShapeError, UnknownOptionError
+from ._dop853 import DOP853_MAX_BETA, _dop853_compiled, _integrate_dop853
 from ._grid import _check_step_budget, _check_times, _positive_scalar
 from ._rhs import _wrap_rhs
 from ._rk4 import _integrate_rk4, _rk4_compiled
-from ._solution import Rhs, Solution, _solution
+from ._solution import Event, Rhs, Solution, _solution
 
 #: The methods of :func:`integrate`.
 METHODS = ("rk4", "dop853")
@@ -35,17 +35,23 @@ def integrate(
     batch_ndim: int = 0,
     max_steps: int = 10**7,
     compiled: bool = True,
+    beta: float = 0.0,
+    event: Event | None = None,
+    event_direction: float = 0.0,
 ) -> Solution:
     """Integrate dy/dt = rhs(t, y) from y(t[0]) = y0, returning y at the times ``t``.
 
     Domain: finite y0, t strictly increasing with n ≥ 2 entries, method "rk4" (h > 0, at most
-    max_steps steps: else StepSizeError before any work) or "dop853" (rtol > 0, atol > 0;
-    StepSizeError beyond max_steps or below the rounding of t); rhs finite.
+    max_steps steps: else StepSizeError before any work) or "dop853" (rtol > 0, atol > 0,
+    0 ≤ beta ≤ 0.2; StepSizeError beyond max_steps or below the rounding of t); rhs finite.
 
     Parameters
     ----------
     rhs : callable
-        ``rhs(t, y)``: float and array of ``y0``'s shape → array of that shape.
+        ``rhs(t, y)``: float and array of ``y0``'s shape → array of that shape.  A
+        numba-compiled function (``@numba.njit``, see the module Conventions, *A
+        compiled right-hand side*) with a state of shape (n,) runs the whole stepper
+        compiled.
     y0 : array_like
         Initial state, any shape; leading axes may be a batch.
     t : array_like, shape (n,), n ≥ 2
@@ -66,8 +72,21 @@ def integrate(
     max_steps : int
         ``"dop853"`` raises :class:`~mechanics.errors.StepSizeError` beyond it.
     compiled : bool
-        Run :func:`free_rigid_body_rhs`'s problem on the compiled path (the default;
-        see the module Conventions); False forces the pure-numpy reference path.
+        Run :func:`free_rigid_body_rhs`'s problem, or a numba-compiled ``rhs``, on the
+        compiled path (the default; see the module Conventions); False forces the
+        pure-numpy reference path.
+    beta : float
+        ``"dop853"``'s step control: 0 (the default) is scipy's; β in (0, 0.2] is
+        Gustafsson's PI control as in Hairer's DOP853 (fewer rejected steps).
+    event : callable, optional
+        ``"dop853"`` only, without a batch: ``event(t, y)`` → float.  The run stops at
+        the first zero crossing of ``event`` (checked at the end of each step, so two
+        crossings within one step are not seen), located on the step's continuous
+        extension to 4 ulps of its time; :attr:`Solution.t_event` and ``y_event`` hold
+        it, and ``t``, ``y`` the outputs before it.  Numba-compiled, with a
+        compiled ``rhs``, it runs in the kernel.
+    event_direction : {-1, 0, 1}
+        Stop only where ``event`` falls through zero (−1), rises (1), or either (0).
 
     Returns
     -------
@@ -79,6 +98,8 @@ def integrate(
         An unknown ``method`` (naming the choices) or an option the method lacks.
     NonPositiveParameterError
         ``h``, ``rtol`` or ``atol`` ≤ 0, or a required one missing.
+    OutOfDomainError
+        ``beta`` outside [0, 0.2], ``event_direction`` not −1, 0 or 1.
     NonFiniteError, ShapeError
         Bad ``y0``/``t``, or ``rhs`` returning NaN/inf or the wrong shape (naming t).
     ResultOverflowError, StepSizeError
@@ -110,9 +131,9 @@ def integrate(
     f = _wrap_rhs(rhs, y0a.shape)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         if method == "rk4":
-            if rtol is not None or atol is not None:
+            if rtol is not None or atol is not None or beta != 0.0 or event is not None:
                 raise UnknownOptionError(
-                    "rtol/atol are options of the adaptive method 'dop853'; "
+                    "rtol/atol/beta/event are options of the adaptive method 'dop853'; "
                     "'rk4' takes a fixed step h"
                 )
             if h is None:
@@ -128,12 +149,55 @@ def integrate(
             r = _positive_scalar(rtol, "rtol")
             a = r if atol is None else _positive_scalar(atol, "atol")
             hh = None if h is None else _positive_scalar(h, "h")
-            out = None
+            b = _check_beta(beta)
+            d = _check_event(event, event_direction, batch_ndim)
+            done = None
             if compiled and not kahan:
-                out = _dop853_compiled(rhs, y0a, tt, hh, r, a, int(batch_ndim), int(max_steps))
-            if out is None:
-                out = _integrate_dop853(
-                    f, y0a, tt, hh, r, a, bool(kahan), int(batch_ndim), int(max_steps)
+                done = _dop853_compiled(
+                    rhs, y0a, tt, hh, r, a, int(batch_ndim), int(max_steps), b, event, d
                 )
+            if done is None:
+                done = _integrate_dop853(
+                    f,
+                    y0a,
+                    tt,
+                    hh,
+                    r,
+                    a,
+                    bool(kahan),
+                    int(batch_ndim),
+                    int(max_steps),
+                    b,
+                    event,
+                    d,
+                )
+            out, hit = done
+            ys, steps, evals, rej = out
+            return _solution(tt, ys, method, steps, evals, rej, hit)
     ys, steps, evals, rej = out
     return _solution(tt, ys, method, steps, evals, rej)
+
+
+def _check_beta(beta: object) -> float:
+    """The PI gain β as a float in [0, DOP853_MAX_BETA], or OutOfDomainError naming it."""
+    if isinstance(beta, bool) or not isinstance(beta, (int, float, np.floating, np.integer)):
+        raise OutOfDomainError(
+            f"beta must be a real number in [0, {DOP853_MAX_BETA}]; got {beta!r}"
+        )
+    b = float(beta)
+    if not 0.0 <= b <= DOP853_MAX_BETA:  # NaN fails too
+        raise OutOfDomainError(f"beta must lie in [0, {DOP853_MAX_BETA}]; got {beta!r}")
+    return b
+
+
+def _check_event(event: object, direction: float, batch_ndim: int) -> float:
+    """The event's direction as a float (−1, 0 or 1), the event callable and alone."""
+    if event is not None and not callable(event):
+        raise UnknownOptionError(f"event must be callable event(t, y); got {type(event).__name__}")
+    if event is not None and batch_ndim:
+        raise UnknownOptionError(
+            f"an event stops one run; it takes batch_ndim=0, got batch_ndim={batch_ndim}"
+        )
+    if isinstance(direction, bool) or direction not in (-1, 0, 1):
+        raise OutOfDomainError(f"event_direction must be -1, 0 or 1; got {direction!r}")
+    return float(direction)

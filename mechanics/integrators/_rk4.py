@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ResultOverflowError
-from ._compiled import _free_body_args, _run_compiled
+from ._compiled import _free_body_args, _run_compiled, _run_user_rhs, is_numba_function
 from ._grid import _substep_counts, _substeps
 from ._rhs import _checked
 from ._solution import FloatArray, Rhs, Run
@@ -73,12 +73,26 @@ def _integrate_rk4(f: Rhs, y0: FloatArray, t: FloatArray, h: float, kahan: bool)
 
 
 def _rk4_compiled(rhs: Rhs, y0: FloatArray, t: FloatArray, h: float) -> Run | None:
+    if is_numba_function(rhs):
+        return _rk4_user(rhs, y0, t, h)
     args = _free_body_args(rhs, y0)
     if args is None:
         return None
     ns = _substep_counts(t, h)
     ys = np.empty((t.shape[0], y0.size))
     done = _run_compiled("rk4_free_body", *args, t, ns, ys)
+    if done is None or done[0] != 0:  # the reference raises, naming the time
+        return None
+    return ys.reshape(t.shape[0], *y0.shape), done[1], 4 * done[1], 0
+
+
+def _rk4_user(rhs: Rhs, y0: FloatArray, t: FloatArray, h: float) -> Run | None:
+    """The run on :func:`mechanics._kernels_rhs.rk4_rhs`, or None (the reference path
+    then runs): ``rhs`` numba-compiled (a plain function when numba's JIT is off, as
+    under mutation, where the kernel runs as Python)."""
+    ns = _substep_counts(t, h)
+    ys = np.empty((t.shape[0], y0.size))
+    done = _run_user_rhs("rk4_rhs", rhs, y0, t, ns, ys)
     if done is None or done[0] != 0:  # the reference raises, naming the time
         return None
     return ys.reshape(t.shape[0], *y0.shape), done[1], 4 * done[1], 0

@@ -19,6 +19,10 @@ FloatArray: TypeAlias = npt.NDArray[np.float64]
 Rhs: TypeAlias = Callable[[float, FloatArray], FloatArray]
 #: What a method's run returns: (ys, steps, rhs_evals, rejected_steps).
 Run: TypeAlias = tuple[FloatArray, int, int, int]
+#: An event function event(t, y) → float, whose zero crossing ends a run.
+Event: TypeAlias = Callable[[float, FloatArray], float]
+#: Where a run met its event: (t_event, y_event), or None.
+EventHit: TypeAlias = tuple[float, FloatArray] | None
 
 
 @dataclass(frozen=True)
@@ -28,7 +32,8 @@ class Solution:
     Attributes
     ----------
     t : ndarray, shape (n,)
-        Output times (the grid that was asked for, unchanged).
+        Output times: the grid that was asked for, unchanged; with an ``event`` that
+        was met, its times before ``t_event``.
     y : ndarray, shape (n, *y0.shape)
         The state at each output time; ``y[0]`` is the initial state.
     method : str
@@ -40,6 +45,11 @@ class Solution:
         cosine each).
     rejected_steps : int
         Steps the adaptive method rejected (0 for fixed-step methods).
+    t_event : float or None
+        Where the run's ``event`` crossed zero (the run stopped there); None if no
+        event was given or it was not met by ``t[-1]``.
+    y_event : ndarray, shape y0.shape, or None
+        The state at ``t_event``.
     """
 
     t: FloatArray
@@ -48,12 +58,24 @@ class Solution:
     steps: int
     rhs_evals: int
     rejected_steps: int
+    t_event: float | None = None
+    y_event: FloatArray | None = None
 
 
 def _solution(
-    t: FloatArray, ys: FloatArray, method: str, steps: int, evals: int, rejected: int
+    t: FloatArray,
+    ys: FloatArray,
+    method: str,
+    steps: int,
+    evals: int,
+    rejected: int,
+    hit: EventHit = None,
 ) -> Solution:
-    t = t.copy()
+    t = t[: ys.shape[0]].copy()
     t.flags.writeable = False
     ys.flags.writeable = False
-    return Solution(t, ys, method, int(steps), int(evals), int(rejected))
+    if hit is None:
+        return Solution(t, ys, method, int(steps), int(evals), int(rejected))
+    y_event = hit[1]
+    y_event.flags.writeable = False
+    return Solution(t, ys, method, int(steps), int(evals), int(rejected), float(hit[0]), y_event)

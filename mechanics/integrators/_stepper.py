@@ -194,7 +194,7 @@ class DOP853Stepper:
                 f"the stepper has finished: t = t_bound = {self.t!r}; step() needs t < t_bound"
             )
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            t_new, y_new, _, hh, h_next, evals, rejected, _ = _dop853_advance(
+            t_new, y_new, _, hh, h_next, evals, rejected, _, _ = _dop853_advance(
                 self._f,
                 self.t,
                 self.y,

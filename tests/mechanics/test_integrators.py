@@ -675,7 +675,7 @@ def test_the_package_modules_import_only_those_before_them_in_the_layout():
     import ast
     from pathlib import Path
 
-    layout = ["_solution", "_grid", "_rhs", "_compiled", "_rk4", "_dop853", "_stepper"]
+    layout = ["_solution", "_events", "_grid", "_rhs", "_compiled", "_rk4", "_dop853", "_stepper"]
     layout += ["_integrate", "_rigid_body", "_splitting"]
     folder = Path(integrators.__file__).parent
     assert sorted(p.stem for p in folder.glob("_*.py") if p.stem != "__init__") == sorted(layout)
