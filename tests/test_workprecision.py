@@ -395,3 +395,17 @@ def test_the_batch_against_scipy_is_as_accurate(quick_run):
     assert b["bodies"] == wp.BATCH_BODIES[True]
     assert b["worst_error_ours"] <= b["worst_error_scipy"] + 10 * b["rtol"], b
     assert b["worst_error_ours"] < 1e3 * b["rtol"], b
+
+
+def test_every_fixed_step_point_of_the_full_free_top_sweep_is_within_the_step_budget():
+    """The full study (``bodycheck bench``, not run by the tests) stopped at splitting-2's
+    12800 steps per rotation: 1.28e7 steps over 1000 rotations, past the library's budget
+    of 10⁷ (issue 16), a StepSizeError before any work.  Every fixed-step point of the
+    full sweep must fit it."""
+    from mechanics.integrators._grid import MAX_STEPS
+
+    top = problems._free_top_problem(quick=False)
+    rotations = wp.FREE_TOP_ROTATIONS[False]
+    for name, (pname, params, _) in top.methods.items():
+        if pname == "steps per rotation":
+            assert max(params) * rotations <= MAX_STEPS, (name, max(params))

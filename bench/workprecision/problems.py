@@ -217,7 +217,8 @@ def _free_top_problem(quick: bool) -> Problem:
         sw = {
             "rk4": [50, 100, 200, 400, 800, 1600, 3200, 6400],
             "dop853": [1e-6, 1e-8, 1e-10, 1e-12, 1e-13, 1e-14, 1e-15, 1e-16],
-            "splitting-2": [200, 800, 3200, 12800],
+            # (10⁴ per rotation over 1000 rotations is the splitting's step budget, 10⁷)
+            "splitting-2": [200, 800, 3200, 10000],
             "splitting-4": [50, 100, 200, 400, 800, 1600],
             "splitting-6": [50, 100, 200, 400, 800, 1600],
             "splitting-8": [25, 50, 100, 200, 400, 800],
