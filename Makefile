@@ -14,7 +14,7 @@ unexport PYTHONDONTWRITEBYTECODE
 # to `make test-slow`, which .ci/run runs after `make test`.
 PYTEST_ARGS := -n auto -m 'not slow'
 
-.PHONY: run test test-slow checks bench lock test-latest test-oldest test-matrix clean mutate mutate-plan
+.PHONY: run test test-slow checks bench bench-check lock test-latest test-oldest test-matrix clean mutate mutate-plan
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -83,6 +83,11 @@ test-oldest: $(STAMP)
 ## make bench: time the kernels (pytest-benchmark, saved for --benchmark-compare), then
 ## the work-precision study (bodycheck bench: table, JSON and plots in bench-results/) and the
 ## roundoff study of the splittings, plain and compensated (bench/roundoff.py)
+## make bench-check: the speed targets as ratios against scipy measured now, at quick sizes
+## (bodycheck bench --check, ~3 s); fails naming each figure below its target (.ci/run runs it)
+bench-check: $(STAMP)
+	$(BIN)/bodycheck bench --check
+
 bench: $(STAMP)
 	$(BIN)/python -m pytest tests/benchmarks --benchmark-enable --benchmark-only \
 		--benchmark-autosave --benchmark-columns=min,median,max,rounds -p no:randomly

@@ -139,6 +139,28 @@ rk4_rhs = _compile(types.UniTuple(types.int64, 2)(_RHS, _ARRAY, _ARRAY, types.in
 )
 
 
+def _stage_input(
+    K: npt.NDArray[np.float64],
+    A: npt.NDArray[np.float64],
+    s: int,
+    y: npt.NDArray[np.float64],
+    hh: float,
+    out: npt.NDArray[np.float64],
+) -> None:  # pragma: no cover
+    """out = y + hh Σ_{j<s} a_sj k_j: the state stage s is evaluated at (the sum in the
+    order of :mod:`mechanics._kernels`' loops)."""
+    for i in range(y.size):
+        acc = 0.0
+        for j in range(s):
+            acc += K[j, i] * A[s, j]
+        out[i] = y[i] + hh * acc
+
+
+_stage_input = _compile(types.none(_MATRIX, _MATRIX, types.int64, _ARRAY, types.float64, _ARRAY))(
+    _stage_input
+)
+
+
 def _dense(
     rhs: Callable[..., npt.NDArray[np.float64]],
     tc: float,
@@ -159,11 +181,7 @@ def _dense(
     n = y.size
     n_ext = A.shape[0]
     for q in range(ns + 1, n_ext):
-        for i in range(n):
-            acc = 0.0
-            for r in range(q):
-                acc += K[r, i] * A[q, r]
-            tmp[i] = y[i] + hh * acc
+        _stage_input(K, A, q, y, hh, tmp)
         if not _eval(rhs, tc + C[q] * hh, tmp, K[q]):
             return STATUS_SHAPE
     for i in range(n):
@@ -296,11 +314,7 @@ def dop853_rhs(
             for i in range(n):
                 K[0, i] = f0[i]
             for s in range(1, ns):
-                for i in range(n):
-                    acc = 0.0
-                    for j in range(s):
-                        acc += K[j, i] * A[s, j]
-                    tmp[i] = y[i] + hh * acc
+                _stage_input(K, A, s, y, hh, tmp)
                 if not _eval(rhs, tc + C[s] * hh, tmp, K[s]):
                     return STATUS_SHAPE, steps, evals + s, rejected, k
             for i in range(n):

@@ -162,6 +162,12 @@ def _parser() -> argparse.ArgumentParser:
         metavar="N",
         help="timing repeats, the median is taken (default 3; 1 with --quick)",
     )
+    b.add_argument(
+        "--check",
+        action="store_true",
+        help="only the speed targets, as ratios against scipy measured now at quick sizes "
+        "(best of --repeats); exit 1 naming each figure below its target",
+    )
     si = sub.add_parser("site", help="write the book as a static site (pages, MathML, plots)")
     si.add_argument("out", metavar="OUT", help="output folder (new, empty or a previous site)")
     conform.add_parser(sub)
@@ -616,10 +622,16 @@ def _cmd_demo(args) -> int:
 def _cmd_bench(args) -> int:
     from bench.workprecision.study import bench_repeats, run_bench
 
-    try:
+    if args.check and args.quick:
+        raise UsageError("--check always runs the quick sizes; leave out --quick")
+    try:  # (--check's default is 3 repeats, as the full study's)
         repeats = bench_repeats(args.quick, args.repeats)
     except ValueError as exc:
         raise UsageError(str(exc)) from None
+    if args.check:
+        from bench.check import main as check_main
+
+        return check_main(["--repeats", str(repeats)])
     return run_bench(quick=args.quick, out=args.out, repeats=repeats)
 
 

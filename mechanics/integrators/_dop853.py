@@ -57,6 +57,8 @@ _A_EXTRA_ROWS: list[FloatArray] = [
 _C_EXTRA: list[float] = [float(c) for c in _d853.C[_N_STAGES + 1 :]]
 _D: FloatArray = _d853.D
 _D_ARRAY: FloatArray = np.ascontiguousarray(_D)
+#: what every DOP853 kernel takes after its tolerances and budget: A, B, C, E3, E5, D
+_KERNEL_TABLEAU = (_A_FULL, _B, _C_ARRAY, _E3, _E5, _D_ARRAY)
 _INTERPOLATOR_POWER: int = _d853.INTERPOLATOR_POWER  # 7
 _TINY = np.finfo(np.float64).tiny
 
@@ -530,12 +532,7 @@ def _dop853_compiled(
         atol,
         nb,
         max_steps,
-        _A_FULL,
-        _B,
-        _C_ARRAY,
-        _E3,
-        _E5,
-        _D_ARRAY,
+        *_KERNEL_TABLEAU,
         ctrl,
         ys,
     )
@@ -581,12 +578,7 @@ def _dop853_user(
         atol,
         nb,
         max_steps,
-        _A_FULL,
-        _B,
-        _C_ARRAY,
-        _E3,
-        _E5,
-        _D_ARRAY,
+        *_KERNEL_TABLEAU,
         ctrl,
         ys,
         NO_EVENT if event is None else event,

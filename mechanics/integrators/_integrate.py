@@ -115,6 +115,15 @@ def integrate(
     >>> sol = integrate(lambda t, y: -y, 1.0, (0.0, 1.0), method="dop853", rtol=1e-12)
     >>> bool(abs(sol.y[-1] - np.exp(-1.0)) < 1e-11)
     True
+
+    An event: y'' = −y from (1, 0) is cos t, which falls through 0 at π/2; the run stops
+    there, with the outputs before it.
+
+    >>> osc = lambda t, y: np.array([y[1], -y[0]])
+    >>> sol = integrate(osc, [1.0, 0.0], np.linspace(0.0, 10.0, 11), method="dop853",
+    ...                 rtol=1e-12, event=lambda t, y: y[0], event_direction=-1)
+    >>> bool(abs(sol.t_event - np.pi / 2) < 1e-10), sol.t.tolist()
+    (True, [0.0, 1.0])
     """
     if method not in METHODS:
         raise UnknownOptionError(f"method must be one of {METHODS}; got {method!r}")
