@@ -62,8 +62,16 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 def _compile(sig: Signature) -> Callable[[F], F]:
     """``njit`` for one signature, cached on disk (the kernels' one compile setting); the
-    dispatcher it returns is called as the function it compiles."""
+    dispatcher it returns is called as the function it compiles.  For the kernels, whose
+    function arguments must be typed as :data:`RHS_SIGNATURE`'s first-class functions:
+    compiled (or loaded from the cache) when this module is imported."""
     return cast(Callable[[F], F], njit(sig, cache=True, error_model="numpy"))
+
+
+def _helper(fn: F) -> F:
+    """``njit`` without a signature, for the helpers the kernels call: compiled into each
+    kernel that calls them, so that loading a kernel from the cache loads no helper."""
+    return cast(F, njit(cache=True, error_model="numpy")(fn))
 
 
 def _eval(
@@ -81,7 +89,7 @@ def _eval(
     return True
 
 
-_eval = _compile(types.boolean(_RHS, types.float64, _ARRAY, _ARRAY))(_eval)
+_eval = _helper(_eval)
 
 
 def rk4_rhs(
@@ -156,9 +164,7 @@ def _stage_input(
         out[i] = y[i] + hh * acc
 
 
-_stage_input = _compile(types.none(_MATRIX, _MATRIX, types.int64, _ARRAY, types.float64, _ARRAY))(
-    _stage_input
-)
+_stage_input = _helper(_stage_input)
 
 
 def _dense(
@@ -199,22 +205,7 @@ def _dense(
     return STATUS_OK
 
 
-_dense = _compile(
-    types.int64(
-        _RHS,
-        types.float64,
-        types.float64,
-        _ARRAY,
-        _ARRAY,
-        _MATRIX,
-        _MATRIX,
-        _ARRAY,
-        _MATRIX,
-        types.int64,
-        _ARRAY,
-        _MATRIX,
-    )
-)(_dense)
+_dense = _helper(_dense)
 
 
 def _interpolate(
@@ -233,11 +224,11 @@ def _interpolate(
         out[i] = v + y[i]
 
 
-_interpolate = _compile(types.none(_MATRIX, _ARRAY, types.float64, _ARRAY))(_interpolate)
+_interpolate = _helper(_interpolate)
 
 
-crosses = _compile(types.boolean(types.float64, types.float64, types.float64))(_events.crosses)
-bracket_step = _compile(types.float64(*(types.float64,) * 5, types.int64))(_events.bracket_step)
+crosses = _helper(_events.crosses)
+bracket_step = _helper(_events.bracket_step)
 
 
 def dop853_rhs(

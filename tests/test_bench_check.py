@@ -106,7 +106,7 @@ def test_the_real_check_measures_every_target():
     """One real run (repeats 1): every target measured and finite, whatever it shows."""
     got = check.run_checks(repeats=1)
     names = [c.name.split(",")[0] for c in got]
-    assert names == ["free top", "heavy_top", "pendulum", "impact", "batch of 200 free bodies"]
+    assert names == ["free top", "heavy_top", "pendulum", "impact", "batch of 1000 free bodies"]
     for c in got:
         assert c.measured is not None, c
         assert math.isfinite(c.measured), c

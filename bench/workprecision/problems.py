@@ -107,11 +107,12 @@ def _our_options(method: str, period: float, p: float) -> dict:
 
 def _sweeps(quick: bool, n_quick: list, n_full: list) -> tuple[list, list, list]:
     """(rk4's steps per period, our rtols, scipy's rtols): the quick run's two points, or
-    the full sweep.  Ours reach 1e-15 (the compiled runs are cheap there); scipy's stop at
-    1e-13, near its floor of 100 eps (below it solve_ivp raises rtol to 2.2e-14)."""
+    the full sweep.  Ours reach 1e-16 (the compiled runs are cheap there, and the
+    pendulum near its separatrix needs it for 1e-9); scipy's stop at 1e-13, near its
+    floor of 100 eps (below it solve_ivp raises rtol to 2.2e-14)."""
     if quick:
         return n_quick, [1e-8, 1e-11], [1e-6, 1e-9]
-    return n_full, [1e-7, 1e-9, 1e-11, 1e-13, 1e-15], [1e-6, 1e-8, 1e-10, 1e-12, 1e-13]
+    return n_full, [1e-7, 1e-9, 1e-11, 1e-13, 1e-15, 1e-16], [1e-6, 1e-8, 1e-10, 1e-12, 1e-13]
 
 
 def _scipy_solve(rhs, y0, t1, method, rtol, **kw):

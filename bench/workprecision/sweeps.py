@@ -302,13 +302,16 @@ def batched(quick: bool, repeats: int, progress: _Progress) -> dict:
     return out
 
 
-def batched_vs_scipy(quick: bool, repeats: int, progress: _Progress) -> dict:
+def batched_vs_scipy(
+    quick: bool, repeats: int, progress: _Progress, bodies: int | None = None
+) -> dict:
     """:data:`BATCH_BODIES` free bodies (J = (1, 2, 3), random unit ω0, identity
     attitude) over one rotation at |ω| = 1: compiled ``"dop853"`` on the whole batch
     (``batch_ndim=1``, one common step) against scipy's DOP853 run body by body, both at
     rtol = atol = :data:`BATCH_RTOL`.  scipy runs the first :data:`BATCH_SCIPY_SAMPLE`
-    bodies; its time per body is scaled to the batch.  Errors against the exact top."""
-    n, k = BATCH_BODIES[quick], BATCH_SCIPY_SAMPLE[quick]
+    bodies; its time per body is scaled to the batch.  Errors against the exact top.
+    ``bodies`` replaces the batch's size (``bodycheck bench --check``)."""
+    n, k = BATCH_BODIES[quick] if bodies is None else bodies, BATCH_SCIPY_SAMPLE[quick]
     rng = np.random.default_rng(BATCH_SEED)
     d = rng.normal(size=(n, 3))
     w0 = d / np.linalg.norm(d, axis=-1, keepdims=True)
