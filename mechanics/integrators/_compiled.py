@@ -138,15 +138,17 @@ def _run_user_rhs(name: str, rhs: Rhs, y0: FloatArray, *args: Any) -> tuple[int,
         _warn_user_rhs(rhs, "the compiled steppers failed to load earlier in this process")
         return None
     kernels = _RHS_KERNELS
+    with_event = name == "dop853_rhs" and not any(a is NO_EVENT for a in args)
     args = tuple(kernels.no_event if a is NO_EVENT else a for a in args)
     try:
         done: tuple[int, ...] = getattr(kernels, name)(rhs, y0, *args)
         return done
     except Exception as exc:  # numba's typing or lowering errors are not one class
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        event = " (or its event as event(t, y) -> float64)" if with_event else ""
         _warn_user_rhs(
             rhs,
-            f"it does not compile as rhs(t: float64, y: float64[::1]) -> float64[::1] "
+            f"it does not compile as rhs(t: float64, y: float64[::1]) -> float64[::1]{event} "
             f"({type(exc).__name__}: {first})",
         )
         return None

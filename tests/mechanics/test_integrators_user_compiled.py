@@ -382,3 +382,26 @@ def test_kernels_that_fail_to_load_leave_the_reference_with_one_warning_naming_t
     np.testing.assert_array_equal(
         again.y, _reference(forced, y0, (0.0, 2.0), method="rk4", h=0.1).y
     )
+
+
+@needs_jit
+@pytest.mark.filterwarnings("default::mechanics.integrators.CompiledPathWarning")
+def test_an_event_numba_cannot_type_is_named_in_the_warning():
+    @njit
+    def text_event(t, y):
+        return "x"  # not a float64
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        with pytest.raises(ShapeError, match="event returned 'x'"):
+            integrate(
+                oscillator,
+                np.array([1.0, 0.0]),
+                (0.0, 1.0),
+                method="dop853",
+                rtol=1e-8,
+                event=text_event,
+            )
+    said = [str(w.message) for w in caught if issubclass(w.category, CompiledPathWarning)]
+    assert len(said) == 1, said
+    assert "(or its event as event(t, y) -> float64)" in said[0], said[0]
