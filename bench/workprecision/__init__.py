@@ -90,8 +90,8 @@ run (≥ 1e5); at each error 1e-4 … 1e-12 (:data:`DECADES`) our fastest run re
 against scipy's fastest (at least as fast; :func:`decades`), on the free top and (issue
 30, the last row) on each other problem, where a level neither side reaches compares
 nothing (the pendulum from 3 rad, near its separatrix: one ulp of θ0 moves φ at the end
-by 4.8e3 ulps, and our runs level off at 5.5e-10 however small rtol, 3e-17 measured;
-so 1e-10 … 1e-12 are below what a stepping method reaches in float64 there);
+by 4.8e3 ulps, 2.1e-12, and our best run, at rtol 1e-16, reaches 2.5e-10: 1e-10 …
+1e-12 ask the rounding of some 30000 steps to stay within 50 ulps of the start's);
 :func:`batched_vs_scipy` (≥ 50); and
 :func:`mujoco_peer` (MuJoCo's RK4 at dt 1e-3 against our fastest at its error; without
 ``mujoco`` the row names the extra).  Also the energy drift's growth and the batch
