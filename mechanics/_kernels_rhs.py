@@ -258,8 +258,8 @@ def dop853_rhs(
     towards t[-1], outputs inside a step from its 7th-order continuous extension.  A
     (16, 16), C (16,) the extended tableau, D (4, 16) the interpolant's matrix.  h0 > 0 the
     first step (the caller computes Hairer's).  ctrl = (safety, min factor, max factor,
-    exponent, β): β = 0
-    the reference's control, β > 0 Gustafsson's PI control as in Hairer's DOP853.
+    exponent, β): β = 0 the reference's control, β > 0 Gustafsson's PI control as in
+    Hairer's DOP853.
 
     With ``has_event``, the run stops where ``event(t, y)`` first crosses zero in
     ``direction`` (``_events.crosses``, checked at the end of each accepted step), located
@@ -286,6 +286,8 @@ def dop853_rhs(
     if not _all_finite(f0):
         return STATUS_NONFINITE, 0, evals, 0, 1
     g_old = event(tc, y) if has_event else 0.0
+    if not math.isfinite(g_old):  # the reference raises NonFiniteError, naming t
+        return STATUS_NONFINITE, 0, evals, 0, 1
     h_abs = h0
     steps = 0
     rejected = 0

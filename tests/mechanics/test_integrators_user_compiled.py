@@ -280,12 +280,20 @@ def test_a_bad_event_value_is_named_with_its_time(compiled):
     def nan(t, y):
         return math.nan if t > 0.5 else 1.0
 
+    def nan_at_start(t, y):
+        return math.nan
+
     with pytest.raises(ShapeError, match=r"event returned .* at t=0\.0; expected one real"):
         integrate(
             _oscillator, y0, (0, 1), method="dop853", rtol=1e-6, event=vector, compiled=compiled
         )
+    # NaN events: compiled, the kernel hands over and the reference names the time
+    rhs = oscillator if compiled else _oscillator
+    late, early = (njit(nan), njit(nan_at_start)) if compiled else (nan, nan_at_start)
     with pytest.raises(NonFiniteError, match=r"event returned nan at t=(0\.[5-9]|1\.0)"):
-        integrate(_oscillator, y0, (0, 1), method="dop853", rtol=1e-6, event=nan, compiled=compiled)
+        integrate(rhs, y0, (0, 1), method="dop853", rtol=1e-6, event=late, compiled=compiled)
+    with pytest.raises(NonFiniteError, match=r"event returned nan at t=0\.0"):
+        integrate(rhs, y0, (0, 1), method="dop853", rtol=1e-6, event=early, compiled=compiled)
 
 
 def test_a_rhs_of_the_wrong_length_is_named_with_its_time():
