@@ -324,9 +324,7 @@ def dop853_rhs(
             if err < 1.0:
                 if err == 0.0:
                     factor = max_factor
-                elif beta == 0.0:
-                    factor = min(max_factor, safety * err**exponent)
-                else:  # Gustafsson's PI: err^(−1/8 + 0.2 β) err_old^β (Hairer's DOP853)
+                else:  # Gustafsson's PI: err^(−1/8 + 0.2 β) err_old^β; β = 0: scipy's
                     factor = min(
                         max_factor, safety * err ** (exponent + 0.2 * beta) * err_old**beta
                     )
@@ -339,10 +337,7 @@ def dop853_rhs(
                 break
             rejected += 1
             was_rejected = True
-            if beta == 0.0:
-                h_abs = hh * max(min_factor, safety * err**exponent)
-            else:
-                h_abs = hh * max(min_factor, safety * err ** (exponent + 0.2 * beta))
+            h_abs = hh * max(min_factor, safety * err ** (exponent + 0.2 * beta))
             if h_abs < min_step:
                 return STATUS_STEP_TOO_SMALL, steps, evals, rejected, k
         steps += 1
@@ -353,7 +348,6 @@ def dop853_rhs(
             if not math.isfinite(g_new):
                 return STATUS_NONFINITE, steps, evals, rejected, k
             hit = crosses(g_old, g_new, direction)
-        t_stop = t_new  # the outputs up to here (the event's time, if it is in this step)
         j = k
         while j < nt and t[j] < t_new:
             j += 1
@@ -386,7 +380,6 @@ def dop853_rhs(
                         ga *= 0.5
                     side = 1
                 it += 1
-            t_stop = b
             ev[0] = b
             if b == t_new:
                 for i in range(n):
@@ -395,8 +388,8 @@ def dop853_rhs(
                 _interpolate(F, y, (b - tc) / hh, tmp)
                 for i in range(n):
                     ev[1 + i] = tmp[i]
-            j = k
-            while j < nt and t[j] < t_stop:
+            j = k  # the outputs before the event
+            while j < nt and t[j] < b:
                 j += 1
         if dense_ready:
             for m in range(k, j):

@@ -223,9 +223,7 @@ def _dop853_advance(
         if err < 1.0:
             if err == 0.0:
                 factor = DOP853_MAX_FACTOR
-            elif beta == 0.0:
-                factor = min(DOP853_MAX_FACTOR, DOP853_SAFETY * err**_DOP853_EXPONENT)
-            else:
+            else:  # (β = 0: err^(−1/8) · 1, scipy's factor to the bit)
                 factor = min(
                     DOP853_MAX_FACTOR,
                     DOP853_SAFETY * err ** (_DOP853_EXPONENT + 0.2 * beta) * err_old**beta,
@@ -243,12 +241,7 @@ def _dop853_advance(
             return t_new, y_new, f_new, hh, hh * factor, evals, rejected, z, err_next
         rejected += 1
         was_rejected = True
-        if beta == 0.0:
-            h_abs = hh * max(DOP853_MIN_FACTOR, DOP853_SAFETY * err**_DOP853_EXPONENT)
-        else:
-            h_abs = hh * max(
-                DOP853_MIN_FACTOR, DOP853_SAFETY * err ** (_DOP853_EXPONENT + 0.2 * beta)
-            )
+        h_abs = hh * max(DOP853_MIN_FACTOR, DOP853_SAFETY * err ** (_DOP853_EXPONENT + 0.2 * beta))
         if h_abs < min_step:
             raise StepSizeError(
                 f"dop853: the step fell to {h_abs!r}, below the rounding of t={tc!r}; "

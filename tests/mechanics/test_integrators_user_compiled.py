@@ -173,6 +173,16 @@ def test_the_pi_control_rejects_fewer_steps_near_the_separatrix():
     ref = _reference(pendulum, y0, (0.0, 400.0), method="dop853", rtol=1e-9, beta=0.08)
     assert (pi.steps, pi.rejected_steps) == (ref.steps, ref.rejected_steps)
     assert pi.rejected_steps * 4 < std.rejected_steps, (pi.rejected_steps, std.rejected_steps)
+    # the kernel itself, rejections and all (integrate runs the reference under mutation)
+    t = np.array([0.0, 400.0])
+    for beta in (0.0, 0.08):
+        (ys, steps, evals, rej), _ = _dop853_user(
+            pendulum, y0, t, None, 1e-9, 1e-9, 1, 10**7, beta, None, 0.0
+        )
+        ref = _reference(pendulum, y0, t, method="dop853", rtol=1e-9, beta=beta)
+        assert (steps, evals, rej) == (ref.steps, ref.rhs_evals, ref.rejected_steps), beta
+        assert rej > 0
+        assert np.abs(ys - ref.y).max() <= DOP853_RTOL_FRACTION * 1e-9 * np.abs(ref.y).max()
 
 
 @pytest.mark.parametrize("direction", [-1, 0, 1])
