@@ -351,13 +351,11 @@ def dop853_rhs(
         j = k
         while j < nt and t[j] < t_new:
             j += 1
-        dense_ready = False
         if j > k or hit:  # outputs inside the step or an event: its continuous extension
             status = _dense(rhs, tc, hh, y, y_new, K, A, C, D, ns, tmp, F)
             evals += n_ext - ns - 1
             if status != STATUS_OK:
                 return status, steps, evals, rejected, k
-            dense_ready = True
         if hit:
             a, ga, b, gb = tc, g_old, t_new, g_new
             tol = xtol * max(abs(t_new), hh)
@@ -369,7 +367,7 @@ def dop853_rhs(
                 gm = event(m, tmp)
                 if not math.isfinite(gm):
                     return STATUS_NONFINITE, steps, evals, rejected, k
-                if (gm > 0.0) == (g_old > 0.0) and gm != 0.0:  # still before the crossing
+                if gm > 0.0 if g_old > 0.0 else gm < 0.0:  # still before the crossing
                     a, ga = m, gm
                     if side == -1:
                         gb *= 0.5  # Illinois
@@ -391,11 +389,10 @@ def dop853_rhs(
             j = k  # the outputs before the event
             while j < nt and t[j] < b:
                 j += 1
-        if dense_ready:
-            for m in range(k, j):
-                _interpolate(F, y, (t[m] - tc) / hh, tmp)
-                for i in range(n):
-                    ys[m, i] = tmp[i]
+        for m in range(k, j):  # (outputs inside the step: its extension was built above)
+            _interpolate(F, y, (t[m] - tc) / hh, tmp)
+            for i in range(n):
+                ys[m, i] = tmp[i]
         if hit:
             return STATUS_OK, steps, evals, rejected, j
         if j < nt and t[j] == t_new:

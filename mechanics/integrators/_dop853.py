@@ -396,7 +396,7 @@ def _locate_event(
     while b - a > tol and gb != 0.0:
         m = bracket_step(a, ga, b, gb, tol, it)
         gm = _event_value(event, m, dense(m).reshape(shape))
-        if (gm > 0.0) == (g_old > 0.0) and gm != 0.0:  # still before the crossing
+        if gm > 0.0 if g_old > 0.0 else gm < 0.0:  # still before the crossing
             a, ga = m, gm
             if side == -1:
                 gb *= 0.5  # Illinois

@@ -185,10 +185,12 @@ def test_the_pi_control_rejects_fewer_steps_near_the_separatrix():
         assert np.abs(ys - ref.y).max() <= DOP853_RTOL_FRACTION * 1e-9 * np.abs(ref.y).max()
 
 
+@pytest.mark.parametrize("outputs", [41, 1001])
 @pytest.mark.parametrize("direction", [-1, 0, 1])
-def test_an_event_stops_the_run_at_the_crossing_on_both_paths(direction):
-    """y = cos t: y[0] falls through 0 at π/2, rises at 3π/2."""
-    t = np.linspace(0.0, 10.0, 41)
+def test_an_event_stops_the_run_at_the_crossing_on_both_paths(direction, outputs):
+    """y = cos t: y[0] falls through 0 at π/2, rises at 3π/2.  With 1001 outputs, some
+    lie inside the event's step, before the event (kept) and after it (dropped)."""
+    t = np.linspace(0.0, 10.0, outputs)
     y0 = np.array([1.0, 0.0])
     kw = {"method": "dop853", "rtol": 1e-13, "event": first, "event_direction": direction}
     run = integrate(oscillator, y0, t, **kw)
@@ -206,12 +208,17 @@ def test_an_event_stops_the_run_at_the_crossing_on_both_paths(direction):
     assert abs(run.t_event - ref.t_event) <= EVENT_EPS * EPS * run.t_event
     assert _eps_diff(run.y, ref.y) <= DOP853_EPS_PER_STEP * ref.steps
     assert _eps_diff(run.y_event, ref.y_event) <= DOP853_EPS_PER_STEP * ref.steps
-    (_, steps, *_), hit = _dop853_user(
+    # the kernel itself (integrate runs the reference under mutation): its outputs before
+    # the event, and the event's state on the step's extension
+    (ys, steps, *_), hit = _dop853_user(
         oscillator, y0, t, None, 1e-13, 1e-13, 1, 10**7, 0.0, first, float(direction)
     )
     assert hit is not None
     assert abs(hit[0] - ref.t_event) <= EVENT_EPS * EPS * ref.t_event
     assert steps == ref.steps
+    assert ys.shape == ref.y.shape
+    assert _eps_diff(ys, ref.y) <= DOP853_EPS_PER_STEP * ref.steps
+    assert _eps_diff(hit[1], ref.y_event) <= DOP853_EPS_PER_STEP * ref.steps
 
 
 def test_an_event_not_met_leaves_the_whole_grid():
