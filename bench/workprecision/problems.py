@@ -65,9 +65,9 @@ class Problem:
 
 def compiled(f):
     """``f`` compiled by numba (the ``[fast]`` extra), so that :func:`integrate` runs it on
-    its compiled path, or ``f`` itself without numba (the reference path then runs, with
-    one CompiledPathWarning saying why).  scipy gets the Python ``f``: it calls its
-    right-hand side from Python either way."""
+    its compiled path, or ``f`` itself without numba (integrate's pure-numpy reference path
+    then runs it, as any Python function: the study's "ours" are then that path's).  scipy
+    gets the Python ``f``: it calls its right-hand side from Python either way."""
     try:
         from numba import njit
     except ImportError:
