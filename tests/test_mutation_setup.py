@@ -450,3 +450,17 @@ def test_every_row_of_the_table_has_the_heads_number_of_cells():
     rows.append(run.table_row(empty, run.PlanRun(["mechanics/x.py"], None, None, (1, 2)), None))
     assert rows
     assert all(r.count("|") == heads for r in rows), [r for r in rows if r.count("|") != heads]
+
+
+def test_a_sample_and_a_full_run_of_one_module_have_copies_of_their_own(tmp_path, monkeypatch):
+    """A full run after a short sample (plan.toml) shared the sample's copy: its verdicts
+    would replace the sample's, and a later report would rewrite the registered sample's
+    row from them.  A sample's copy is named by its seed."""
+    run = _run_module()
+    monkeypatch.setattr(run, "WORK", tmp_path)
+    full, sample = run.workdir(["mechanics/a.py"]), run.workdir(["mechanics/a.py"], 3507)
+    assert full == tmp_path / "mechanics_a"
+    assert sample == tmp_path / "mechanics_a_sample3507"
+    assert run.workdir(["mechanics/a.py"], 3508) != sample
+    group = run.workdir(["mechanics/a.py", "mechanics/b.py"], 3501)
+    assert group == tmp_path / "group_a_b_sample3501"

@@ -2,9 +2,10 @@
 
 The module's mutants (mutmut 3, configured in pyproject's ``[tool.mutmut]``) run against
 the tests that cover it (``tools/mutation/modules.toml``) under ``CI=1``.  Each module gets
-its own copy of the project, ``build/mutation/<module>/``, with ``only_mutate`` and the
-test selection set for it, so that modules keep their results apart and a second run
-only re-checks what changed.
+its own copy of the project, ``build/mutation/<module>/`` (a sample's
+``<module>_sample<seed>/``), with ``only_mutate`` and the test selection set for it, so
+that modules keep their results apart, a full run after a sample leaves the sample's
+verdicts alone, and a second run only re-checks what changed.
 
 The score counts a surviving mutant as equivalent only if it is in the reviewed list
 ``tools/mutation/equivalent.toml`` (mutant name → one-line reason)::
@@ -156,11 +157,15 @@ def expand(names: list[str], modules: dict[str, list[str]]) -> list[str]:
     return out
 
 
-def workdir(modules: list[str]) -> Path:
-    """The copy of the project for one module or for a set of them."""
+def workdir(modules: list[str], seed: int | None = None) -> Path:
+    """The copy of the project for one module or for a set of them; a sample's (drawn by
+    ``seed``) apart from a full run's, so that a full run after a short sample (plan.toml)
+    leaves the sample's verdicts, and its row of the table, as they were."""
     if len(modules) == 1:
-        return WORK / modules[0].removesuffix(".py").replace("/", "_")
-    return WORK / ("group_" + "_".join(Path(m).stem.strip("_") for m in modules))[:120]
+        name = modules[0].removesuffix(".py").replace("/", "_")
+    else:
+        name = ("group_" + "_".join(Path(m).stem.strip("_") for m in modules))[:120]
+    return WORK / (name if seed is None else f"{name}_sample{seed}")
 
 
 def _verdict_key(pyproject: str) -> tuple:
@@ -173,12 +178,15 @@ def _verdict_key(pyproject: str) -> tuple:
     return (*(repr(mm.get(k)) for k in keys), repr(cfg.get("pytest", {})))
 
 
-def prepare(modules: list[str], tests: list[str], *, sync: bool = True) -> tuple[Path, bool]:
+def prepare(
+    modules: list[str], tests: list[str], *, sync: bool = True, seed: int | None = None
+) -> tuple[Path, bool]:
     """The copy of the project, its pyproject's mutmut table set for the modules; and
     whether a test file changed since the copy was last made (then mutmut's record of
     which tests call which function is deleted: it is recorded again).  ``sync=False``
-    (a report) leaves an existing copy as it is: a run may be going on in it."""
-    work = workdir(modules)
+    (a report) leaves an existing copy as it is: a run may be going on in it.  ``seed``:
+    a sample's copy (:func:`workdir`)."""
+    work = workdir(modules, seed)
     if not sync and (work / "mutants").exists():
         return work, False
     work.mkdir(parents=True, exist_ok=True)
@@ -418,7 +426,8 @@ def run_modules(
     without a verdict run."""
     rows = load_modules()
     tests = sorted({t for m in chosen for t in rows[m]})
-    work, tests_changed = prepare(chosen, tests, sync=not args.report)
+    seed = args.seed if args.sample else None
+    work, tests_changed = prepare(chosen, tests, sync=not args.report, seed=seed)
     env = environment(chosen)
     if args.restat:
         (work / "mutants" / "mutmut-stats.json").unlink(missing_ok=True)
@@ -604,7 +613,7 @@ def run_plan(args) -> int:
                 f"{PLAN.name}:{run.lines[0]}: the sample of {run.modules} is not registered: "
                 "commit the plan before running it"
             )
-        if args.report and not (workdir(chosen) / "mutants").exists():
+        if args.report and not (workdir(chosen, run.seed) / "mutants").exists():
             # no copy of this run here (a fresh checkout): the row the table had stays
             reg = f"`{commit[:9]}`" if commit else "uncommitted"
             for m in chosen:
