@@ -43,7 +43,7 @@ def integrate(
 
     Domain: finite y0, t strictly increasing with n ≥ 2 entries, method "rk4" (h > 0, at most
     max_steps steps: else StepSizeError before any work) or "dop853" (rtol > 0, atol > 0,
-    0 ≤ beta ≤ 0.2; StepSizeError beyond max_steps or below the rounding of t); rhs finite.
+    0 ≤ beta ≤ 0.08; StepSizeError beyond max_steps or below the rounding of t); rhs finite.
 
     Parameters
     ----------
@@ -76,7 +76,7 @@ def integrate(
         compiled path (the default; see the module Conventions); False forces the
         pure-numpy reference path.
     beta : float
-        ``"dop853"``'s step control: 0 (the default) is scipy's; β in (0, 0.2] is
+        ``"dop853"``'s step control: 0 (the default) is scipy's; β in (0, 0.08] is
         Gustafsson's PI control as in Hairer's DOP853 (fewer rejected steps).
     event : callable, optional
         ``"dop853"`` only, without a batch: ``event(t, y)`` → float.  The run stops at
@@ -99,7 +99,7 @@ def integrate(
     NonPositiveParameterError
         ``h``, ``rtol`` or ``atol`` ≤ 0, or a required one missing.
     OutOfDomainError
-        ``beta`` outside [0, 0.2], ``event_direction`` not −1, 0 or 1.
+        ``beta`` outside [0, 0.08] (``DOP853_MAX_BETA``), ``event_direction`` not −1, 0 or 1.
     NonFiniteError, ShapeError
         Bad ``y0``/``t``, or ``rhs`` returning NaN/inf or the wrong shape (naming t).
     ResultOverflowError, StepSizeError
