@@ -520,10 +520,10 @@ def test_a_missing_engine_names_the_extra_to_install(monkeypatch, module, cls, e
 def test_the_adapters_import_without_their_engines() -> None:
     code = (
         "import sys\n"
-        "for m in ('mujoco', 'pybullet', 'pydrake'): sys.modules[m] = None\n"
-        "from mechanics.conformance.adapters import drake, mujoco, pybullet\n"
+        "for m in ('mujoco', 'pybullet', 'pydrake', 'dartpy'): sys.modules[m] = None\n"
+        "from mechanics.conformance.adapters import dart, drake, mujoco, pybullet\n"
         "import bench.engines\n"
-        "for f in (mujoco.variants, pybullet.variants, drake.variants):\n"
+        "for f in (mujoco.variants, pybullet.variants, drake.variants, dart.variants):\n"
         "    try:\n"
         "        f()\n"
         "    except ImportError as exc:\n"
@@ -532,7 +532,7 @@ def test_the_adapters_import_without_their_engines() -> None:
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, check=True, timeout=60
     ).stdout
-    for extra in ("mujoco", "pybullet", "drake"):
+    for extra in ("mujoco", "pybullet", "drake", "dart"):
         assert f"pip install 'bodycheck[{extra}]'" in out
 
 

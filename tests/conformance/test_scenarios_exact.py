@@ -97,7 +97,7 @@ def _times(duration, dt):
 # --------------------------------------------------------------------------- the numbers
 
 
-def test_the_battery_has_its_eight_scenarios_in_the_report_order():
+def test_the_battery_has_its_fifteen_scenarios_in_the_report_order():
     assert list(SCENARIOS) == [
         "free_top_axis1",
         "free_top_axis3",
