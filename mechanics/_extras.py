@@ -10,8 +10,9 @@ extra      packages               what needs them
 proofs     sympy, mpmath          :mod:`identities`: the catalogue's proofs, ``bodycheck
                                   check``, ``explain``, ``catalogue``, ``site``
 plots      matplotlib             plots: ``--plot``, ``bodycheck bench``, ``demo``, ``site``
-fast       numba                  the compiled steppers (without it the pure-numpy
-                                  reference path runs, with one warning)
+fast       numba                  the compiled steppers and scene dynamics (without it
+                                  the pure-numpy reference path runs, with one warning;
+                                  a scene's run names it in its ``how``)
 all        the three above        ``make run`` and ``make test`` install it (the lock)
 ========== ====================== ==================================================
 

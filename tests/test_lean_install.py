@@ -90,6 +90,7 @@ def test_the_library_imports_nothing_beyond_the_core_but_the_compiled_kernels():
     assert outside == {
         "mechanics/_kernels.py": ["numba"],
         "mechanics/_kernels_rhs.py": ["numba"],
+        "mechanics/scenes/_kernels.py": ["numba"],
         "mechanics/conformance/adapters/_siconos_worker.py": ["siconos"],
     }
 

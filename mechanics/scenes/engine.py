@@ -6,7 +6,9 @@ The engine orchestrates its rooms, each one job:
 - :mod:`.model`: the scene compiled once (the bodies' layout in the state, the effects
   by what they contribute, the initial state) and its checks as a whole;
 - :mod:`.forward`: the state seen as bodies, the loads, the state's rate, the
-  accelerations and the joints' reactions;
+  accelerations and the joints' reactions; :mod:`.compiled` the same rate, reactions and
+  DOP853 steps compiled (numba, :mod:`._kernels`) for the models whose bodies and loads
+  all compile, the Python path their reference;
 - :mod:`.flows`: the exact flows, each provider saying when it applies;
 - :mod:`.collision`: each contact feature's gap along a step, the first contact;
 - :mod:`.impacts`: the impact law at a contact, the simultaneous ones after it;
@@ -142,7 +144,7 @@ class Engine:
         segs, events = integrate(
             self.model, self.forward, self.collision, self.modes, self.resolver, s.duration, start
         )
-        return self._finish(t, segs, events, HOW)
+        return self._finish(t, segs, events, f"{HOW}; {self.forward.path()}")
 
     def _finish(self, t, segs, events, how) -> Trajectory:
         return finish(self.model, self.forward, t, segs, events, how)

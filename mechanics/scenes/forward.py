@@ -6,7 +6,9 @@ state's rate, and the accelerations and reactions that follow.
   its attitude about the pivot, a guided body's from its joint's coordinates, a tank's
   fluid; :meth:`Forward.pack` writes one back.
 - :meth:`Forward.rhs` sums the listed effects' loads (nothing else: no default gravity,
-  no damping) and returns the state's rate (:meth:`~mechanics.scenes.state.Layout.derivative`).
+  no damping) and returns the state's rate (:meth:`~mechanics.scenes.state.Layout.derivative`):
+  compiled where the model compiles (:mod:`.compiled`), else :meth:`Forward.reference_rhs`,
+  the Python path and the reference.
 - :meth:`Forward.point_accelerations` gives a body point's acceleration,
   a_G + α × ρ + ω × (ω × ρ); :meth:`Forward.reactions` the joints' reactions
   F = m a_G − Σ F (4.4, 4.71) and a fixed axis's bearing moment.
@@ -23,11 +25,16 @@ from typing import Any
 
 import numpy as np
 
+from . import compiled
+from .compiled import CompiledRhs
 from .effects import Loads, Snapshot
 from .state import Hinge
 from .vectors import cross
 
 __all__ = ["Forward"]
+
+#: why the Python path runs after numba failed to compile the scene kernel
+FAILED = "numba failed to compile the scene kernel (see the CompiledPathWarning)"
 
 
 class Forward:
@@ -42,6 +49,9 @@ class Forward:
         #: forces follow the other loads; None: no impacts, nothing can rest (typed Any:
         #: support is a layer above this module, which cannot import it)
         self.support: Any = None
+        #: the compiled right-hand side (:mod:`.compiled`), built on the first call of
+        #: :meth:`rhs`; a string: why the Python path runs
+        self.compiled: CompiledRhs | str | None = None
 
     # ---------------------------------------------------------------- the state
     def masses(self, t) -> np.ndarray:
@@ -147,7 +157,55 @@ class Forward:
         return out
 
     def rhs(self, t, y) -> np.ndarray:
-        """The state's rate at (t, y)."""
+        """The state's rate at (t, y): compiled where the model compiles, except while a
+        body rests on a plane (its support force is the Python path's)."""
+        fast = self._compiled()
+        if fast is not None:
+            dy = fast(t, t if self.phase is None else self.phase, y)
+            if dy is not None:
+                return dy
+            self.compiled = FAILED
+        return self.reference_rhs(t, y)
+
+    def _compiled(self) -> CompiledRhs | None:
+        """The compiled right-hand side where it runs now (built on the first call);
+        None: the Python path (the model does not compile, or a body rests)."""
+        if self.compiled is None:
+            self.compiled = compiled.build(self.model)
+        if not isinstance(self.compiled, str) and self.compiled.broken:
+            self.compiled = FAILED
+        if isinstance(self.compiled, str) or (self.support is not None and self.support.rests):
+            return None
+        return self.compiled
+
+    def path(self) -> str:
+        """Which right-hand side ran: compiled, or Python and why (a run's ``how``)."""
+        if self.compiled is None:
+            self.compiled = compiled.build(self.model)
+        if isinstance(self.compiled, str):
+            return f"right-hand side in Python ({self.compiled})"
+        return "right-hand side compiled (numba: mechanics.scenes._kernels)"
+
+    def stepper(self, t, y, t_bound, rtol, atol):
+        """The DOP853 stepper of the segment from (t, y) to ``t_bound`` (the phase and
+        the resting contacts fixed for its life): its steps compiled where the model
+        compiles (:class:`.compiled.CompiledStepper`), else
+        :class:`mechanics.integrators.DOP853Stepper` on :meth:`rhs`."""
+        from mechanics.integrators import DOP853Stepper
+
+        def reference(t0, y0, first_step):
+            return DOP853Stepper(
+                self.rhs, t0, y0, t_bound, rtol=rtol, atol=atol, first_step=first_step
+            )
+
+        fast = self._compiled()
+        if fast is None:
+            return reference(t, y, None)
+        phase = t if self.phase is None else self.phase
+        return compiled.stepper(fast, phase, t, y, t_bound, rtol, atol, reference)
+
+    def reference_rhs(self, t, y) -> np.ndarray:
+        """The state's rate at (t, y), in Python: the reference of the compiled path."""
         s = self.snapshot(t, y, copy=False)
         if self.phase is not None:
             s.phase = self.phase
@@ -205,6 +263,14 @@ class Forward:
         rho2 = -(c1 * c1 + c * c2) / rho - c * c * c1 * c1 / rho**3
         return float(a_G @ n) + zc * c2 - a * rho2
 
+    def _compiled_accelerations(self, t, Y):
+        """The compiled (a_G, F) at the samples, or None where the Python path runs."""
+        fast = self._compiled()
+        got = None if fast is None else fast.accelerations(t, Y)
+        if fast is not None and got is None:
+            self.compiled = FAILED
+        return got
+
     def reactions(self, t, Y):
         """The joints' reactions at the samples (t, Y): the force of a pivot, of the
         bearings or of the surface a body rolls or slides on, F = m a_G − Σ F (4.4,
@@ -221,6 +287,15 @@ class Forward:
             out[i]["bearing_moment"] = np.empty((len(t), 3))
             size[i]["bearing_moment"] = 0.0
         if not out:
+            return out, size
+        fast = self._compiled_accelerations(t, Y) if not lay.guides else None
+        if fast is not None:  # only pins: their reactions from the kernel's a_G and F
+            A, F = fast
+            for i in out:
+                ma = md.m0[i] * A[:, i]
+                out[i]["reaction"] = ma - F[:, i]
+                terms = np.linalg.norm(ma, axis=-1) + np.linalg.norm(F[:, i], axis=-1)
+                size[i]["reaction"] = float(terms.max(initial=0.0))
             return out, size
         for k, (tt, y) in enumerate(zip(t, Y, strict=True)):
             s = self.snapshot(float(tt), y)

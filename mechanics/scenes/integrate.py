@@ -1,6 +1,8 @@
 """The integration loop: the project's adaptive Dormand–Prince 8(5,3) stepper
-(:class:`mechanics.integrators.DOP853Stepper`) at the scene's ``rtol``/``atol``, over
-the event detectors.
+(:class:`mechanics.integrators.DOP853Stepper`, or its compiled twin
+:class:`.compiled.CompiledStepper` where the model compiles:
+:meth:`.forward.Forward.stepper`) at the scene's ``rtol``/``atol``, over the event
+detectors.
 
 After every step each contact feature's gap (:meth:`.collision.Collision.first_contact`)
 each mode's switch function (:meth:`.modes.Modes.first_switch`) and each resting
@@ -33,7 +35,6 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
     ``[(t0, t1, state_at)]`` and the events (after ``events``, those at the start:
     the bodies resting there), in time order."""
     from mechanics.errors import StepSizeError
-    from mechanics.integrators import DOP853Stepper
 
     s = model.scene
     collision.reach.clear()  # a run starts with no sizes, releases or switches seen
@@ -59,7 +60,7 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
             if support is not None and support.rests:
                 y = support.switch(t, y, events)
         while t < stop:
-            solver = DOP853Stepper(forward.rhs, t, y, stop, rtol=s.rtol, atol=s.atol)
+            solver = forward.stepper(t, y, stop, s.rtol, s.atol)
             hit = None
             while solver.status == "running" and hit is None:
                 clock.step(solver.t)

@@ -15,6 +15,7 @@ from mechanics.scenes.effects.capabilities import (
     CAPABILITIES,
     AddsInertia,
     ChangesMass,
+    Compiles,
     GuidesBody,
     HasModes,
     HasPotential,
@@ -22,11 +23,18 @@ from mechanics.scenes.effects.capabilities import (
 
 #: what each effect contributes beyond loads, from its physics: a conservative force
 #: has a potential; stick and slip and an emptying tank have modes; thrust takes mass;
-#: mass flowing onto a body adds inertia; a joint that leaves coordinates guides
+#: mass flowing onto a body adds inertia; a joint that leaves coordinates guides; the
+#: loads of free, pinned and fixed bodies that the scene kernel computes compile
+#: (issue 30: gravity, Newtonian gravity, springs, dampers, drag, applied loads, a pivot)
 EXPECTED = {
-    "gravity": {HasPotential},
-    "newton_gravity": {HasPotential},
-    "spring": {HasPotential},
+    "gravity": {HasPotential, Compiles},
+    "newton_gravity": {HasPotential, Compiles},
+    "spring": {HasPotential, Compiles},
+    "damper": {Compiles},
+    "drag": {Compiles},
+    "force": {Compiles},
+    "torque": {Compiles},
+    "fixed_point": {Compiles},
     "torsion": {HasPotential},
     "buoyancy": {HasPotential},
     "coulomb_friction": {HasModes, GuidesBody},

@@ -666,6 +666,7 @@ def test_the_reactions_evaluate_the_loads_at_each_samples_own_time(monkeypatch) 
     F_C = m a_G − m g with a_G = α × (G − C), α = J_C⁻¹ (G − C) × m g."""
     top = {**_top(), "initial": {"theta": 0.5, "omega": [0.0, 0.0, 0.0]}}
     eng = Engine(_scene([top], [PIN, GRAVITY]))
+    eng.forward.compiled = "the Python path, whose calls of the loads this test watches"
     (grav,) = [e for e in eng.forces if e.type == "gravity"]
     seen, loads = [], grav.loads
     monkeypatch.setattr(grav, "loads", lambda t, s, out: (seen.append(t), loads(t, s, out)))
@@ -803,6 +804,7 @@ def test_pressing_evaluates_the_loads_at_the_time_asked(monkeypatch) -> None:
     imp = eng.impacts[0]
     (ft,) = imp.features
     assert ft.support is not None  # the rim circle, not a flat face
+    eng.forward.compiled = "the Python path, whose calls of the loads this test watches"
     (grav,) = [e for e in eng.forces if e.type == "gravity"]
     seen, loads = [], grav.loads
     monkeypatch.setattr(grav, "loads", lambda t, s, out: (seen.append(t), loads(t, s, out)))

@@ -180,8 +180,16 @@ class SceneEngineAdapter:
         self.name = f"bodycheck scene engine ({method})"
 
     def supports(self, scenario: Scenario) -> str | None:
+        """Why the engine cannot run ``scenario``, or None.  Loads its compiled kernels
+        first (:func:`mechanics.scenes.compiled.warm`: numba's import and its cache, once
+        per process), so that a timed run times the run, as for the other engines."""
+        from ...scenes.compiled import warm
+
         scene = scene_from_scenario(scenario, method=self.method)
-        return scene if isinstance(scene, str) else None
+        if isinstance(scene, str):
+            return scene
+        warm()
+        return None
 
     def run(self, scenario: Scenario, step: float | None) -> Trajectory:
         from ...rotation import nearest_rotation

@@ -15,7 +15,15 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["CAPABILITIES", "AddsInertia", "ChangesMass", "GuidesBody", "HasModes", "HasPotential"]
+__all__ = [
+    "CAPABILITIES",
+    "AddsInertia",
+    "ChangesMass",
+    "Compiles",
+    "GuidesBody",
+    "HasModes",
+    "HasPotential",
+]
 
 
 @runtime_checkable
@@ -68,5 +76,15 @@ class GuidesBody(Protocol):
         """The Guide of the joint ``spec`` in ``scene`` under the gravity ``g_vector``."""
 
 
+@runtime_checkable
+class Compiles(Protocol):
+    """An effect whose loads have a compiled kernel (:mod:`mechanics.scenes._kernels`,
+    chosen by the effect's type; :mod:`mechanics.scenes.compiled`)."""
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        """Its bodies i and j (−1: none), its numbers in the order its kernel reads
+        them, and the pairs of bodies it acts between (Newtonian gravity)."""
+
+
 #: every capability an effect may declare
-CAPABILITIES = (HasPotential, HasModes, ChangesMass, AddsInertia, GuidesBody)
+CAPABILITIES = (HasPotential, HasModes, ChangesMass, AddsInertia, GuidesBody, Compiles)

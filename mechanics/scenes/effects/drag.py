@@ -12,10 +12,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, register
+from .capabilities import Compiles
 
 
 @register
-class Drag(Effect):
+class Drag(Effect, Compiles):
     """Linear (N·s/m) and quadratic (N·s²/m²) drag, and their rotational counterparts."""
 
     type = "drag"
@@ -63,6 +64,9 @@ class Drag(Effect):
         if self.c1 or self.c2:
             w_O = s.to_space(self.i, s.omega[self.i])
             out.moment(self.i, -(self.c1 + self.c2 * np.sqrt(w_O @ w_O)) * w_O)
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        return self.i, -1, [self.b1, self.b2, self.c1, self.c2], []
 
     def exerts_moment(self, k: int) -> bool:
         return k == self.i and bool(self.c1 or self.c2)

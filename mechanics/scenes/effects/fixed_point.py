@@ -16,10 +16,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, check_joint_body, register
+from .capabilities import Compiles
 
 
 @register
-class FixedPoint(Effect):
+class FixedPoint(Effect, Compiles):
     """A fixed point C on the body's symmetry (z) axis at distance ℓ from G (5.2)."""
 
     type = "fixed_point"
@@ -52,6 +53,9 @@ class FixedPoint(Effect):
     def pin(self) -> tuple[np.ndarray, np.ndarray]:
         """(C, g_A): the pivot in space and G relative to it in body components."""
         return self.point, np.array([0.0, 0.0, self.ell])
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        return self.i, -1, [], []  # no load: the layout pins the body
 
     def keeps(self, quantity: str) -> bool:
         if quantity == "E":

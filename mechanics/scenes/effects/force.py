@@ -15,11 +15,15 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, keeps_for_force_along, register
+from .capabilities import Compiles
 
 FRAMES = ("space", "body")
 
 
-class _Applied(Effect):
+class _Applied(Effect, Compiles):
+    #: the force or couple (its subclass's field), and a force's point (None: G)
+    value: np.ndarray
+    at: np.ndarray | None = None
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "frame": ("frame", False),
@@ -58,6 +62,13 @@ class _Applied(Effect):
 
     def acts_until(self, events=(), quantity=None) -> float:
         return self.end
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        """start, end, the frame (1: body), the value (3), then a force's point."""
+        head = [self.start, self.end, float(self.body_frame), *self.value.tolist()]
+        if self.type == "force":
+            head += [0.0, 0.0, 0.0, 0.0] if self.at is None else [1.0, *self.at.tolist()]
+        return self.i, -1, head, []
 
 
 @register

@@ -12,11 +12,11 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, keeps_for_force_along, register, unit
-from .capabilities import HasPotential
+from .capabilities import Compiles, HasPotential
 
 
 @register
-class Gravity(Effect, HasPotential):
+class Gravity(Effect, HasPotential, Compiles):
     """Uniform gravity g·d acting on every body."""
 
     type = "gravity"
@@ -33,6 +33,9 @@ class Gravity(Effect, HasPotential):
     # free bodies
     def loads(self, t, s, out) -> None:
         out.F += s.m[:, None] * self.vector
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        return -1, -1, self.vector.tolist(), []
 
     def potential(self, s) -> np.ndarray:
         return -(s.m * (s.r @ self.vector)).sum(-1)

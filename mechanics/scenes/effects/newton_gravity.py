@@ -13,14 +13,14 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, register
-from .capabilities import HasPotential
+from .capabilities import Compiles, HasPotential
 
 #: CODATA 2018, m³ kg⁻¹ s⁻²
 G_NEWTON = 6.67430e-11
 
 
 @register
-class NewtonGravity(Effect, HasPotential):
+class NewtonGravity(Effect, HasPotential, Compiles):
     """Mutual attraction of the listed bodies (default: every body)."""
 
     type = "newton_gravity"
@@ -50,6 +50,9 @@ class NewtonGravity(Effect, HasPotential):
         f = -(self.G * s.m[i] * s.m[j] / dist**3)[:, None] * d
         np.add.at(out.F, i, f)
         np.add.at(out.F, j, -f)
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        return -1, -1, [self.G], [(int(a), int(b)) for a, b in self.pairs]
 
     def potential(self, s) -> np.ndarray:
         i, j = self.pairs[:, 0], self.pairs[:, 1]

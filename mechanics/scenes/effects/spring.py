@@ -18,11 +18,16 @@ from typing import ClassVar
 import numpy as np
 
 from .base import Effect, Schema, register
-from .capabilities import HasPotential
+from .capabilities import Compiles, HasPotential
 
 
-class _TwoPoint(Effect):
+class _TwoPoint(Effect, Compiles):
     """A line element between two points; the common geometry of springs and dampers."""
+
+    #: stiffness, rest length (none for a damper) and damping, set by each subclass
+    k: float = 0.0
+    ell_0: float = 0.0
+    c: float
 
     schema: ClassVar[Schema] = {
         "body": ("body", True),
@@ -67,6 +72,16 @@ class _TwoPoint(Effect):
         if self.j is None:
             return P, self.anchor, vP, np.zeros(3)
         return P, s.point(self.j, self.other_at), vP, s.point_velocity(self.j, self.other_at)
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        """stiffness, rest length, damping, P's point (has one, at), Q's (has one,
+        other_at), the anchor."""
+        numbers = [self.k, self.ell_0, self.c]
+        for at in (self.at, self.other_at):
+            numbers += [0.0, 0.0, 0.0, 0.0] if at is None else [1.0, *at.tolist()]
+        numbers += self.anchor.tolist()
+        j = -1 if self.j is None else self.j
+        return self.i, j, numbers, []
 
     def _apply(self, out, f) -> None:
         out.force(self.i, f, self.at)
