@@ -3,8 +3,7 @@ right-hand side in :mod:`mechanics.scenes._kernels`, the program written for the
 the loader.
 
 - A model compiles when every body is a point, a free rigid body, a pinned body or a
-  fixed one, no mass changes, it has no contacts (not yet: :func:`_why_not` says
-  why), and every listed load declares
+  fixed one, no mass changes, and every listed load declares
   :class:`~mechanics.scenes.effects.capabilities.Compiles` (gravity, applied forces and
   couples, springs, dampers, drag, Newtonian gravity, a fixed point).  Otherwise, and
   while bodies rest on a plane (:mod:`.support` adds their support forces), the Python
@@ -155,13 +154,6 @@ def _why_not(model, k: ModuleType) -> str | None:
             return f"the effect {e.type!r} ({e.where}) has no compiled loads"
     if model.losing or model.growing:  # (thrust and mass flow do not compile: belt and braces)
         return "a mass changes"
-    if model.impacts:
-        return (
-            "its contacts run the Python path: the contact thresholds' rounding scale is "
-            "the speeds at the contact, not those the earlier impulses left their rounding "
-            "in (a box landing flat keeps a spurious spin of 1e-14 rad/s from them, which "
-            "a path that rounds differently finds beyond the thresholds)"
-        )
     return None
 
 

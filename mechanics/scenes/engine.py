@@ -117,6 +117,7 @@ class Engine:
 
     def run(self) -> Trajectory:
         s = self.scene
+        self.model.carried[:] = 0.0  # no impulse yet (see Context.carried)
         t = np.linspace(0.0, s.duration, s.samples)
         self.modes.begin()
         if s.method == "splitting":

@@ -173,7 +173,11 @@ class Model:
         self.layout = Layout.of(scene.bodies, _pins(scene, index), _guides(scene, index))
         self.n = self.layout.n
         self.names = [b.name for b in scene.bodies]
-        ctx = Context(scene, index, self.layout.kinds, self.layout.pins, self.layout.guides)
+        #: the speeds each body's impulses have changed (see Context.carried)
+        self.carried = np.zeros(self.n)
+        ctx = Context(
+            scene, index, self.layout.kinds, self.layout.pins, self.layout.guides, self.carried
+        )
         #: every listed effect, in the file's order
         self.effects = build_effects(scene, ctx)
         #: the contacts (events, not loads)

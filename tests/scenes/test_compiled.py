@@ -20,12 +20,14 @@ from __future__ import annotations
 
 import math
 import warnings
+from pathlib import Path
 
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import mechanics.scenes
 from mechanics._floats import EPS
 from mechanics.integrators import CompiledPathWarning
 from mechanics.scenes import SceneError, run_scene
@@ -33,24 +35,32 @@ from mechanics.scenes import compiled as sc_compiled
 from mechanics.scenes.effects import Loads
 from mechanics.scenes.engine import Engine
 
-from .builders import body, box, cylinder, point, scene, scene_data
+from .builders import box, cylinder, point, scene, scene_data
+
+BUILTIN = Path(mechanics.scenes.__file__).parent / "builtin"
 
 #: The rates: each component is a sum of a few dozen terms (products of up to three
 #: factors) that the kernel adds in the reference's order except where numpy's einsum
 #: and matrix products choose theirs; each of the two roundings per term, relative to
 #: the largest term (:func:`_term_scale`): 2^6 eps.
 RATES_RTOL = 2**6 * EPS
-#: Two whole runs at rtol = atol = 1e-12: each step's local error is below 1e-12 of the
-#: state, and the two step sequences differ by rounding (an acceptance may flip), so over
-#: the ≲ 10³ steps of these short runs they part by at most ~2 × 10³ × 1e-12 relative
-#: to the scene's size (its largest |series| value): 2^22 eps ≈ 9e-10 (as
-#: tests/scenes/test_engine_properties.py derives, without its impacts' gain).
-RUN_RTOL = 2**22 * EPS
+#: Two whole runs: each step's local error is below atol + rtol |y|, and the two step
+#: sequences differ by rounding (an acceptance may flip), so over the ≲ 10³ steps of
+#: these short runs their states part by at most 2 × 10³ (atol + rtol × the scene's size,
+#: its largest state component): 2^11 of that (as tests/scenes/test_engine_properties.py
+#: derives, without its impacts' gain).  Compared on the state (r, v, L_A, R_A_O), not
+#: on derived series such as ω = L/J, which divide a component held at atol's level by
+#: a small moment.
+RUN_STEPS = 2**11
 
 #: Where a run into a singularity stalls: at the step that falls below 10 ulp(t), a
 #: little past the encounter, as the error of the separation grows with the collapsing
 #: steps (measured 2.7e-13 relative on both paths): 2^16 eps.
 STALL_RTOL = 2**16 * EPS
+
+#: examples per test: many under the explore profile, a smoke run otherwise (a run
+#: test's example runs two scenes)
+MANY = settings.default.max_examples >= 1000
 
 _u = st.floats
 
@@ -97,7 +107,7 @@ def _bodies(draw, pin: bool):
                 cylinder(
                     name,
                     mass=draw(_u(0.5, 2)),
-                    radius=draw(_u(0.05, 0.3)),
+                    radius=draw(_u(0.15, 0.3)),
                     height=draw(_u(0.1, 0.8)),
                     **angles,
                     omega=omega,
@@ -144,8 +154,11 @@ def compiled_scenes(draw, *, duration: float = 1.0, samples: int = 11, pin: bool
     if draw(st.booleans()):
         i = draw(st.sampled_from(names))
         e = {"type": "drag", "body": i, "linear": draw(_u(0.0, 1)), "quadratic": draw(_u(0.01, 1))}
+        # at most 0.05 N m s: 60 /s against the smallest moment (8.3e-4 kg m², a 0.1 m cube
+        # of 0.5 kg), inside DOP853's stability region at these runs' steps (on a stiffer
+        # mode the explicit steps hold it only at atol's level, and the attitude drifts)
         if i in solid:
-            e["angular_linear"], e["angular_quadratic"] = draw(_u(0.0, 0.5)), draw(_u(0.0, 0.5))
+            e["angular_linear"], e["angular_quadratic"] = draw(_u(0.0, 0.05)), draw(_u(0.0, 0.05))
         effects.append(e)
     for kind in draw(st.lists(st.sampled_from(["force", "torque"]), max_size=2)):
         pool = solid if kind == "torque" else names
@@ -164,11 +177,18 @@ def compiled_scenes(draw, *, duration: float = 1.0, samples: int = 11, pin: bool
         if kind == "force" and i in solid and draw(st.booleans()):
             e["at"] = draw(_vec(-0.3, 0.3))
         effects.append(e)
-    if len(names) > 1 and draw(st.booleans()):
+    if len(names) > 1 and pinned is None and _apart(bodies) and draw(st.booleans()):
         effects.append({"type": "newton_gravity", "G": draw(_u(0.01, 0.5))})
     return scene_data(
         bodies, effects, name="compiled", duration=duration, samples=samples, method="integrate"
     )
+
+
+def _apart(bodies) -> bool:
+    """Are the centres at least 0.5 m apart (Newtonian gravity is singular at 0)?"""
+    r = np.array([b["initial"]["position"] for b in bodies])
+    d = np.linalg.norm(r[:, None] - r[None], axis=-1) + np.eye(len(r))
+    return bool(d.min() >= 0.5)
 
 
 def _engine(data: dict) -> Engine:
@@ -201,7 +221,7 @@ def _term_scale(fwd, t: float, y: np.ndarray, phase: float) -> float:
     return max(terms)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=1000 if MANY else 60, deadline=None)
 @given(data=compiled_scenes(), draw=st.data())
 def test_the_kernel_gives_the_reference_rates_at_random_states(data, draw) -> None:
     eng = _engine(data)
@@ -217,7 +237,7 @@ def test_the_kernel_gives_the_reference_rates_at_random_states(data, draw) -> No
     np.testing.assert_allclose(got, want, rtol=0, atol=tol)
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=500 if MANY else 40, deadline=None)
 @given(data=compiled_scenes(pin=True), draw=st.data())
 def test_a_pinned_body_s_acceleration_and_loads_are_the_reference_s(data, draw) -> None:
     """The reactions' inputs at samples (each its own time): a_G and Σ F of every
@@ -249,7 +269,7 @@ def test_a_pinned_body_s_acceleration_and_loads_are_the_reference_s(data, draw) 
         np.testing.assert_allclose(F[j], loads.F, rtol=0, atol=tol * float(md.m0.max()))
 
 
-@settings(max_examples=15, deadline=None)
+@settings(max_examples=300 if MANY else 15, deadline=None)
 @given(data=compiled_scenes(duration=0.5, samples=6))
 def test_a_compiled_run_is_the_reference_run(data) -> None:
     a = run_scene(_engine(data).scene)
@@ -262,28 +282,28 @@ def test_a_compiled_run_is_the_reference_run(data) -> None:
     assert a.passed, a.summary()
     assert b.passed, b.summary()
     assert a.trajectory.series.keys() == b.trajectory.series.keys()
-    size = max(float(np.abs(v).max()) for v in b.trajectory.series.values())
-    for name, v in a.trajectory.series.items():
-        np.testing.assert_allclose(
-            v, b.trajectory.series[name], rtol=0, atol=RUN_RTOL * size, err_msg=name
-        )
+    sa, sb = a.trajectory.snapshot, b.trajectory.snapshot
+    parts = ("r", "v", "L_A", "R")
+    size = max(float(np.abs(getattr(sb, p)).max()) for p in parts)
+    sc = a.scene
+    tol = RUN_STEPS * (sc.rtol * size + sc.atol)
+    for p in parts:
+        np.testing.assert_allclose(getattr(sa, p), getattr(sb, p), rtol=0, atol=tol, err_msg=p)
 
 
 # ---------------------------------------------------------------- the Python path
 
 
-def _ball_on_floor():
-    return scene(
-        [body("ball", "solid_sphere", {"position": [0, 0, 1]}, mass=1.0, radius=0.1)],
-        [{"type": "gravity", "g": 9.81}, {"type": "impact", "body": "ball", "restitution": 0.5}],
-        duration=0.5,
-    )
+def _tank():
+    from mechanics.scenes import load_scene
+
+    return load_scene(BUILTIN / "tank_draining.toml")
 
 
 @pytest.mark.parametrize(
     ("make", "says"),
     [
-        (_ball_on_floor, "its contacts run the Python path"),
+        (_tank, "body 'tank' is tank"),
         (
             lambda: scene(
                 [box("rod", a=0.1, b=0.1, c=1.0)],
@@ -310,7 +330,7 @@ def _ball_on_floor():
             "the effect 'thrust' (effects[0]) has no compiled loads",
         ),
     ],
-    ids=["contacts", "guided", "thrust"],
+    ids=["tank", "guided", "thrust"],
 )
 def test_a_model_that_does_not_compile_says_why_and_runs_the_python_path(make, says) -> None:
     sc = make()

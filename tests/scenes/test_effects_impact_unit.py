@@ -302,6 +302,38 @@ def test_a_box_struck_at_a_corner_turns_with_the_impulse_of_its_effective_mass()
     assert abs(-e.approach(s, ft) - 0.25) <= IMPULSE_RTOL
 
 
+def test_an_impulse_adds_the_speeds_it_changed_to_the_contacts_rounding_scale():
+    """The box of the test above, struck at its corner: the impulse P changes v_G by P/3
+    and ω by P (−16/5, 32/17, 0), so the body's velocities now carry the rounding of
+    P/3 + P |(−16/5, 32/17, 0)| |ρ|, |ρ| = √21/8 (Context.carried); the contacts' speed
+    scale adds it to the speeds at the contact, and a run starts from none."""
+    (e,), eng = build(
+        [{**BOX, "initial": {"position": [0.0, 0.0, 0.125], "velocity": [0.0, 0.0, -1.0]}}],
+        [hit("b", restitution=0.25)],
+    )
+    s = eng.snapshot(0.0, eng.y0)
+    ft = e.features[0]
+    assert e.carried[0] == 0.0
+    P = float(Fraction(5, 4) / (Fraction(1, 3) + Fraction(4, 5) + Fraction(16, 17)))
+    e.apply(s, ft)
+    dw = P * np.hypot(16 / 5, 32 / 17)
+    carried = P / 3 + dw * np.sqrt(21) / 8
+    assert e.carried[0] == pytest.approx(carried, rel=IMPULSE_RTOL)
+    S, _ = e.contact(s, ft)
+    w_O = s.to_space(0, s.omega[0])
+    at_contact = np.linalg.norm(s.v[0]) + np.linalg.norm(np.cross(w_O, S - s.r[0]))
+    assert e.speed_scale(s, ft) == pytest.approx(at_contact + carried, rel=IMPULSE_RTOL)
+    eng.model.carried[:] = 5.0  # as if from an earlier run: a run starts from none
+    eng.run()
+    _, fresh = build(
+        [{**BOX, "initial": {"position": [0.0, 0.0, 0.125], "velocity": [0.0, 0.0, -1.0]}}],
+        [hit("b", restitution=0.25)],
+    )
+    fresh.run()
+    assert fresh.model.carried[0] > 0.0
+    assert eng.model.carried[0] == fresh.model.carried[0]
+
+
 def test_two_balls_meet_head_on_with_the_direct_impact_velocities():
     """m_a = 2 at 1, m_c = 1 at −1 along x, e = ½: centre-of-mass speed 1/3; v_a' = 0,
     v_c' = 1 (relative −1 = −e·2); loss ½ (2/3)(3/4)·4 = 1."""

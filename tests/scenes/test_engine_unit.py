@@ -512,7 +512,7 @@ def test_a_push_that_ends_breaks_the_momentum_only_until_then() -> None:
     tr = Engine(_scene([_point()], [push])).run()
     assert tr.method == (
         "integrated: DOP853 (mechanics.integrators), contacts located on each step's "
-        "dense polynomial"
+        "dense polynomial; right-hand side compiled (numba: mechanics.scenes._kernels)"
     )
     assert tr.conserved_from["p_x"] == 0.5
     assert {"p_x", "p_y", "p_z"} <= set(tr.conserved)

@@ -92,6 +92,10 @@ class Context:
     pins: dict = field(default_factory=dict)
     #: guided bodies (a fixed axis, rolling, sliding): index -> :class:`~..state.Guide`
     guides: dict = field(default_factory=dict)
+    #: per body, the speeds the impulses of the run so far have changed its points' by
+    #: (Σ |Δv_G| + |Δω| |arm|): its velocities carry their rounding (the contacts'
+    #: :meth:`~.impact.Impact.speed_scale`); zeroed when a run starts
+    carried: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
     def body(self, name: str):
         return self.scene.bodies[self.index[name]]

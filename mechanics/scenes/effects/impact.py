@@ -296,6 +296,7 @@ class Impact(Effect):
         self.fixed = ctx.fixed
         self.pins = ctx.pins  # pinned bodies: the pivot takes an impulse too
         self.guides = ctx.guides  # guided ones: the bearings or the track do
+        self.carried = ctx.carried  # (shared by every pair: a body's kicks from all)
         self.features = self._features(bodies)
 
     # ----------------------------------------------------------------- geometry
@@ -405,12 +406,18 @@ class Impact(Effect):
         return vel(self.i) - vel(self.j)
 
     def speed_scale(self, s, ft: Feature) -> float:
-        """Σ |v_S,k|: the size of the terms whose difference is the approach speed."""
+        """Σ |v_S,k| plus the speeds the run's impulses have changed the bodies' by (the
+        model's ``carried``): the size of the terms whose difference is the approach
+        speed, and of those the velocities were summed from (an impulse leaves one
+        rounding of itself in them: a box landing flat on four corners at once keeps a
+        spin of ~1e-14 rad/s from its impulses' rounding, which its later, slower
+        bounces must not read as sliding)."""
         S, _ = self.contact(s, ft)
         tot = 0.0
         for k in self.bodies():
             w_O = s.to_space(k, s.omega[k])
             tot += float(np.linalg.norm(s.v[k]) + np.linalg.norm(cross3(w_O, S - s.r[k])))
+            tot += float(self.carried[k]) if self.carried.size else 0.0
         return tot
 
     def gap_scale(self, s, ft: Feature) -> float:
@@ -558,7 +565,17 @@ class Impact(Effect):
         )
 
     def kick(self, s, k, P, S) -> None:
-        """Apply the impulse P (space components) at the point S to body k, in place."""
+        """Apply the impulse P (space components) at the point S to body k, in place;
+        add the speeds it changed to the model's ``carried`` (see :meth:`speed_scale`)."""
+        v0, w0 = np.array(s.v[k]), np.array(s.omega[k])
+        self._kick(s, k, P, S)
+        if self.carried.size:
+            arm = float(np.linalg.norm(S - s.r[k]))
+            self.carried[k] += float(
+                np.linalg.norm(s.v[k] - v0) + np.linalg.norm(s.omega[k] - w0) * arm
+            )
+
+    def _kick(self, s, k, P, S) -> None:
         gd = self.guides.get(k)
         if gd is not None:  # M_k Δq̇_k = u_k·P (a hinge: J_a Δφ̇ = a·((S − C) × P))
             q, qd = s.coords[k]
