@@ -38,6 +38,9 @@ PLOT_SUFFIXES = (".svg", ".png")
 BUILTIN = {"exact": "ExactAdapter", "engine": "SceneEngineAdapter"}
 #: the name that runs every adapter (references and engines) into one table
 ALL = "all"
+#: ``conform all`` times each engine's finest run of a scenario this many times and
+#: reports the least (:func:`mechanics.conformance.run_battery`'s ``repeats``)
+TIMING_REPEATS = 3
 
 
 def add_parser(sub) -> None:
@@ -380,7 +383,11 @@ def _conform_all(args, thresholds, config) -> int:
     from mechanics.conformance.compare import compare
 
     comparison = compare(
-        scenarios=args.scenarios, thresholds=thresholds, profile=args.profile, config=config
+        scenarios=args.scenarios,
+        thresholds=thresholds,
+        profile=args.profile,
+        config=config,
+        repeats=TIMING_REPEATS,
     )
     table = comparison.to_markdown()
     if args.json == "-":

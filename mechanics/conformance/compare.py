@@ -9,8 +9,8 @@ engine that is not installed is listed
 once with the extra that installs it.  :func:`compare` runs the battery on each and
 :meth:`Comparison.to_markdown` writes the table: per scenario and adapter its status,
 worst error, worst drift (each with the figure's name), order of convergence and the
-wall time of its finest run.  ``bodycheck conform all`` prints it (``--markdown``,
-``--plot`` and ``--json`` write it).
+wall time of its finest run (the least of ``repeats`` timings).  ``bodycheck conform
+all`` prints it, the least of 3 (``--markdown``, ``--plot`` and ``--json`` write it).
 """
 
 from __future__ import annotations
@@ -145,11 +145,11 @@ class Comparison:
 
 
 def compare(
-    adapters=None, *, scenarios=None, thresholds=None, profile=None, config=None
+    adapters=None, *, scenarios=None, thresholds=None, profile=None, config=None, repeats=1
 ) -> Comparison:
     """Run the battery on each of ``adapters`` ((family, adapter or reason) pairs;
     default :func:`engine_adapters`), each with the same ``scenarios``, ``thresholds``,
-    ``profile`` and ``config`` (:func:`~.battery.run_battery`)."""
+    ``profile``, ``config`` and ``repeats`` (:func:`~.battery.run_battery`)."""
     adapters = engine_adapters() if adapters is None else adapters
     reports, missing = [], []
     for family, adapter in adapters:
@@ -157,7 +157,12 @@ def compare(
             missing.append((family, adapter))
             continue
         report = run_battery(
-            adapter, scenarios=scenarios, thresholds=thresholds, profile=profile, config=config
+            adapter,
+            scenarios=scenarios,
+            thresholds=thresholds,
+            profile=profile,
+            config=config,
+            repeats=repeats,
         )
         reports.append((family, report))
     return Comparison(reports, missing)

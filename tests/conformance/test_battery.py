@@ -313,6 +313,36 @@ def test_crash_at_a_step_names_the_step(toy):
     assert r["parabola"].message == "run at step 0.015625 s raised ValueError: step too large"
 
 
+def test_repeats_time_the_finest_run_again_and_keep_the_least_time(toy, monkeypatch):
+    """The finest step's run is timed ``repeats`` times (its wall time the least, the
+    other steps once); a clock that advances 5, 3, 4 s over the three timings of it
+    gives 3."""
+    import mechanics.conformance.battery as battery
+
+    calls: list = []
+
+    class Counting(type(toy)):
+        def run(self, scenario, step):
+            calls.append(step)
+            return super().run(scenario, step)
+
+    steps = list(get_scenario("parabola").steps)
+    durations = [1.0] * (len(steps) - 1) + [5.0, 3.0, 4.0]  # each run's time on the clock
+    ends = np.cumsum(durations)
+    ticks = iter(x for end, d in zip(ends, durations, strict=True) for x in (end - d, end))
+    monkeypatch.setattr(battery.time, "perf_counter", lambda: next(ticks))
+    r = run_battery(Counting(), scenarios=["parabola"], repeats=3)
+    assert calls == [*steps, steps[-1], steps[-1]]
+    assert [run.wall_time for run in r["parabola"].runs] == [1.0] * (len(steps) - 1) + [3.0]
+    assert r["parabola"].wall_time == 3.0
+
+
+@pytest.mark.parametrize("bad", [0, -1, 1.5, True, "3", None])
+def test_repeats_that_are_not_a_count_are_refused_naming_them(toy, bad):
+    with pytest.raises(ConformanceError, match=f"repeats must be an int >= 1 .*; got {bad!r}"):
+        run_battery(toy, scenarios=["parabola"], repeats=bad)
+
+
 def test_missing_engine_names_the_extra_to_install():
     r = run_battery(NeedsMissingEngine(), scenarios=["parabola"])
     assert r["parabola"].status == "error"
