@@ -62,6 +62,8 @@ the mpmath oracles above with the same worst errors (both are tested).
 
 from __future__ import annotations
 
+import functools
+import itertools
 import math
 from dataclasses import dataclass
 from fractions import Fraction
@@ -173,6 +175,108 @@ def _mul3(A: list[list[float]], B: list[list[float]]) -> list[list[float]]:
     ]
 
 
+def _dyadic(xs: list[float]) -> tuple[list[int], int]:
+    """Integers n_i and one exponent e with x_i = n_i 2^e exactly (a float is a dyadic
+    rational): sums and products of such numbers are exact on the integers."""
+    pairs = [x.as_integer_ratio() for x in xs]  # denominators are powers of two
+    exps = [1 - d.bit_length() for _, d in pairs]
+    e = min(exps)
+    return [n << (ei - e) for (n, _), ei in zip(pairs, exps, strict=True)], e
+
+
+def _float_of(num: int, den: int, e: int = 0) -> float:
+    """num/den · 2^e rounded once, the float of ``Fraction(num, den) * 2**e``: Python's
+    division of integers is correctly rounded (and raises OverflowError beyond float64,
+    as ``float(Fraction)`` does)."""
+    if e >= 0:
+        return (num << e) / den
+    return num / (den << -e)
+
+
+def _sqrt_of(num: int, den: int, e: int = 0) -> float:
+    """:func:`_fsqrt` of num/den · 2^e ≥ 0: the quotient scaled by 4^-k into [1/4, 4),
+    rounded once, its root scaled back (the same float for any such k)."""
+    if num == 0:
+        return 0.0
+    k = (num.bit_length() - den.bit_length() + e) // 2
+    return math.ldexp(math.sqrt(_float_of(num, den, e - 2 * k)), k)
+
+
+def _floats3(x: object) -> list[float] | None:
+    """Three finite Python floats from a float64 array of shape (3,) or a list or tuple of
+    three floats; None for anything else (the caller validates it the long way)."""
+    if type(x) is np.ndarray:
+        if x.dtype != np.float64 or x.shape != (3,):
+            return None
+        xs: list[float] = x.tolist()
+    elif type(x) in (list, tuple) and len(x) == 3 and all(type(v) is float for v in x):  # type: ignore[arg-type]  # a list or tuple here
+        xs = list(x)  # type: ignore[call-overload]  # a list or tuple here
+    else:
+        return None
+    return xs if all(math.isfinite(v) for v in xs) else None
+
+
+def _vec3_list(x: npt.ArrayLike, name: str) -> list[float]:
+    """:func:`_vec3` as a list of Python floats (without numpy for three floats)."""
+    xs = _floats3(x)
+    return xs if xs is not None else _vec3(x, name).tolist()
+
+
+def _principal_moments_list(J: npt.ArrayLike, name: str) -> list[float]:
+    """:func:`check_principal_moments` as a list of Python floats.  Three positive floats
+    that pass the triangle inequality with room (J_i < fl(J_j + J_k)(1 − 2⁻⁵²), which
+    implies J_i < J_j + J_k exactly: fl's relative error is below 2⁻⁵³), or exactly on
+    the integers of :func:`_dyadic` (an equality J3 = J1 + J2), are taken as they are;
+    anything else goes the long way, which names what is wrong."""
+    xs = _floats3(J)
+    if xs is not None and all(v > 0 for v in xs):
+        a, b, c = xs
+        room = 1.0 - 2.0**-52
+        if a < (b + c) * room and b < (c + a) * room and c < (a + b) * room:
+            return xs
+        (ia, ib, ic), _ = _dyadic(xs)  # near equality (a flat body): exactly
+        if ia <= ib + ic and ib <= ic + ia and ic <= ia + ib:
+            return xs
+    return check_principal_moments(J, name=name).tolist()  # type: ignore[no-any-return]  # a float64 array's tolist
+
+
+@dataclass(frozen=True)
+class _Permutation:
+    """The proper signed permutation P taking the moments to ascending order (ω' = P ω)
+    and the products with it the free top needs, one per order of the moments."""
+
+    P: npt.NDArray[np.float64]
+    signs: tuple[float, float, float]  # (P ω)_i = signs_i ω_{order_i}
+
+
+def _permutation(order: tuple[int, ...]) -> _Permutation:
+    P = np.zeros((3, 3))
+    P[np.arange(3), order] = 1.0
+    if np.linalg.det(P) < 0:
+        P[1] *= -1.0
+    P.setflags(write=False)
+    return _Permutation(P, (1.0, float(P[1, order[1]]), 1.0))
+
+
+_PERMUTATIONS = {order: _permutation(order) for order in itertools.permutations(range(3))}
+
+
+@functools.lru_cache(maxsize=12)
+def _fronts(
+    order: tuple[int, ...], pole_first: bool
+) -> tuple[list[list[float]], npt.NDArray[np.intp], npt.NDArray[np.float64], list[list[float]]]:
+    """For P of ``order`` and the pole's axis: front = Pᵀ Qᵀ (a signed permutation) as a
+    list, its rows' columns and signs, and Q P as a list (Q: the pole frame's axes)."""
+    P = _PERMUTATIONS[order].P
+    Q = np.eye(3)[[1, 2, 0]] if pole_first else np.eye(3)
+    front = P.T @ Q.T
+    rows = np.abs(front).argmax(axis=1)
+    signs = front[np.arange(3), rows]
+    rows.setflags(write=False)
+    signs.setflags(write=False)
+    return front.tolist(), rows, signs, (Q @ P).tolist()
+
+
 #: below this, (nx, ny) are scaled by 2^600 before their direction is taken
 _TINY_POLE = 2.0**-900
 #: instants per chunk of :meth:`FreeAsymmetricTop.state` over many times: its ~30 temporaries
@@ -269,54 +373,67 @@ class FreeAsymmetricTop:
     def __init__(
         self, J: npt.ArrayLike, omega_0: npt.ArrayLike, R_A_O_0: npt.ArrayLike | None = None
     ) -> None:
-        J = check_principal_moments(J)
-        w0 = _vec3(omega_0, "omega_0")
-        R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
-        if R0.shape != (3, 3):
-            raise ShapeError(f"R_A_O_0 must have shape (3, 3); got {R0.shape}")
-        self.J = J.copy()
-        self.omega_0 = w0.copy()
-        self.R_A_O_0 = R0.copy()
+        Jl = _principal_moments_list(J, "J")
+        wl = _vec3_list(omega_0, "omega_0")
+        self.J = np.array(Jl)
+        self.omega_0 = np.array(wl)
+        if R_A_O_0 is None:
+            self.R_A_O_0 = np.eye(3)
+        else:
+            R0 = check_rotation(R_A_O_0, name="R_A_O_0")
+            if R0.shape != (3, 3):
+                raise ShapeError(f"R_A_O_0 must have shape (3, 3); got {R0.shape}")
+            self.R_A_O_0 = R0.copy()
+        self._setup(Jl, wl, R_A_O_0 is not None)
 
+    __init__ = finite_result(__init__)
+
+    def _setup(self, Jl: list[float], wl: list[float], rotated: bool) -> None:
+        """The constants of the motion from validated moments and rates (Python floats).
+
+        The quantities the branch and the elliptic parameter hang on (A, B, D, m, m1,
+        the amplitudes, λ, n, C) are exact rationals rounded once, as the module
+        docstring says; they are computed on integers (a float is an integer times a
+        power of two, :func:`_dyadic`), so that each is the same float that
+        ``fractions.Fraction`` arithmetic gives, bit for bit, at a twentieth of its cost."""
         # The motion depends on J only through its ratios: work with J / 2^k (exact, the
         # largest moment in [1/2, 1)) and scale E, |L| and L back by 2^k at the end, so
         # moments from 1e-300 to 1e300 give the same ω(t) and attitude (issue 16, part 4)
-        k = math.frexp(float(J.max()))[1]
+        k = math.frexp(max(Jl))[1]
         self._scale_exp = k
-        J = np.ldexp(J, -k)
-        Jf = [Fraction(float(x)) for x in J]
-        wf = [Fraction(float(x)) for x in w0]
-        E2 = sum(a * b * b for a, b in zip(Jf, wf, strict=True))
-        L2 = sum(a * a * b * b for a, b in zip(Jf, wf, strict=True))
-        self.energy = math.ldexp(float(E2 / 2), k)
-        self._Lm = _fsqrt(L2)  # |L| of the scaled moments
+        Jn = [math.ldexp(x, -k) for x in Jl]
+        # proper signed permutation P to sorted moments: ω' = P ω, J' sorted
+        order = tuple(sorted(range(3), key=Jn.__getitem__))
+        perm = _PERMUTATIONS[order]
+        self._P = perm.P
+        ws = [perm.signs[i] * wl[order[i]] for i in range(3)]
+        Jsl = [Jn[i] for i in order]
+        self._Js = np.array(Jsl)
+        (J1, J2, J3), eJ = _dyadic(Jsl)
+        (w1, w2, w3), ew = _dyadic(ws)
+        q1, q2, q3 = w1 * w1, w2 * w2, w3 * w3
+        e2 = 2 * eJ + 2 * ew  # the exponent of A, B, D and L²
+        E2 = J1 * q1 + J2 * q2 + J3 * q3
+        L2 = J1 * J1 * q1 + J2 * J2 * q2 + J3 * J3 * q3
+        self.energy = math.ldexp(_float_of(E2, 1, eJ + 2 * ew - 1), k)
+        self._Lm = _sqrt_of(L2, 1, e2)  # |L| of the scaled moments
         self.angular_momentum_norm = math.ldexp(self._Lm, k)
-        self.angular_momentum_space = np.ldexp(R0.T @ (J * w0), k)
+        Lv = np.array([a * b for a, b in zip(Jn, wl, strict=True)])
+        if rotated:
+            Lv = self.R_A_O_0.T @ Lv
+        self.angular_momentum_space = np.ldexp(Lv, k)
         if not np.isfinite(self.angular_momentum_space).all():
             raise ResultOverflowError(
                 f"the angular momentum J ω exceeds float64's range (|L| = "
                 f"{self.angular_momentum_norm!r}); rescale J or omega_0 (choose units)"
             )
-
-        # proper signed permutation P to sorted moments: ω' = P ω, J' sorted
-        order = np.argsort(J, kind="stable")
-        P = np.zeros((3, 3))
-        P[np.arange(3), order] = 1.0
-        if np.linalg.det(P) < 0:
-            P[1] *= -1.0
-        self._P = P
-        Js: npt.NDArray[np.float64] = J[order]
-        ws = P @ w0
-        self._Js = Js
-        J1, J2, J3 = (Fraction(float(x)) for x in Js)
-        w1, w2, w3 = (Fraction(float(x)) for x in ws)
-        A = J1 * (J3 - J1) * w1**2 + J2 * (J3 - J2) * w2**2  # 2EJ3 − L²
-        B = J2 * (J2 - J1) * w2**2 + J3 * (J3 - J1) * w3**2  # L² − 2EJ1
-        D = J3 * (J3 - J2) * w3**2 - J1 * (J2 - J1) * w1**2  # L² − 2EJ2
-        self._separatrix_scaled = float(D)  # L² − 2EJ2 of the scaled moments
+        A = J1 * (J3 - J1) * q1 + J2 * (J3 - J2) * q2  # 2EJ3 − L²
+        B = J2 * (J2 - J1) * q2 + J3 * (J3 - J1) * q3  # L² − 2EJ1
+        D = J3 * (J3 - J2) * q3 - J1 * (J2 - J1) * q1  # L² − 2EJ2
+        self._separatrix_scaled = _float_of(D, 1, e2)  # L² − 2EJ2 of the scaled moments
 
         nz = [i for i in range(3) if ws[i] != 0]
-        steady = all(Js[i] == Js[nz[0]] for i in nz) if nz else True
+        steady = all(Jsl[i] == Jsl[nz[0]] for i in nz) if nz else True
         self.m, self.m1 = 0.0, 1.0
         if not nz:
             self.regime = "rest"
@@ -333,78 +450,72 @@ class FreeAsymmetricTop:
             # is nearest uniform (n = 0 for a symmetric body: its symmetry axis, the
             # uniform precession).  The other one cancels: for J_mid a few ulps from J_max,
             # n3 ≈ −1e12 and L t/J1 and (C/λ) G agreed to 3e-9 of a turn (issue 16).
+            # Each rational is a pair (numerator, denominator) of integers, denominators
+            # positive; A, B, D carry 2^e2, the moments 2^eJ, so m, m1 and n are plain
+            # quotients, the squared amplitudes and λ² carry 2^(2 ew) and C 2^(−eJ)
             if D >= 0:
                 self.regime = "separatrix" if D == 0 else "axis3"
-                m = (J2 - J1) * A / ((J3 - J2) * B)
-                m1 = (J3 - J1) * D / ((J3 - J2) * B)
-                amp = (A / (J1 * (J3 - J1)), A / (J2 * (J3 - J2)), B / (J3 * (J3 - J1)))
-                lam2 = (J3 - J2) * B / (J1 * J2 * J3)
-                n1 = -J1 * A / (J3 * B)
-                n3 = -J3 * (J2 - J1) / (J1 * (J3 - J2))
+                m = ((J2 - J1) * A, (J3 - J2) * B)
+                m1 = ((J3 - J1) * D, (J3 - J2) * B)
+                amp = ((A, J1 * (J3 - J1)), (A, J2 * (J3 - J2)), (B, J3 * (J3 - J1)))
+                lam2 = ((J3 - J2) * B, J1 * J2 * J3)
+                n1 = (-J1 * A, J3 * B)
+                n3 = (-J3 * (J2 - J1), J1 * (J3 - J2))
                 s_circ = 1 if w3 > 0 else -1
                 sigma = (1 if w1 > 0 else -1) if D == 0 else 1
-                self._pole_first = abs(n1) <= abs(n3)
+                self._pole_first = abs(n1[0]) * n3[1] <= abs(n3[0]) * n1[1]
             else:
                 self.regime = "axis1"
-                m = (J3 - J2) * B / ((J2 - J1) * A)
-                m1 = (J3 - J1) * (-D) / ((J2 - J1) * A)
-                amp = (A / (J1 * (J3 - J1)), B / (J2 * (J2 - J1)), B / (J3 * (J3 - J1)))
-                lam2 = (J2 - J1) * A / (J1 * J2 * J3)
-                n1 = -J1 * (J3 - J2) / (J3 * (J2 - J1))
-                n3 = -J3 * B / (J1 * A)
+                m = ((J3 - J2) * B, (J2 - J1) * A)
+                m1 = ((J3 - J1) * (-D), (J2 - J1) * A)
+                amp = ((A, J1 * (J3 - J1)), (B, J2 * (J2 - J1)), (B, J3 * (J3 - J1)))
+                lam2 = ((J2 - J1) * A, J1 * J2 * J3)
+                n1 = (-J1 * (J3 - J2), J3 * (J2 - J1))
+                n3 = (-J3 * B, J1 * A)
                 s_circ = 1 if w1 > 0 else -1
                 sigma = 1
-                self._pole_first = abs(n1) < abs(n3)
-            C = (J3 - J1) / (J1 * J3)
+                self._pole_first = abs(n1[0]) * n3[1] < abs(n3[0]) * n1[1]
             n = n1 if self._pole_first else n3
-            self._uniform = n == 0
-            self._uniform_rate = float(Fraction(1) / (J3 if self._pole_first else J1))
-            self.m, self.m1 = float(m), float(m1)
-            if m1 > 0 and self.m1 < 2.0**-1022:
-                e2 = m1.numerator.bit_length() - m1.denominator.bit_length()
+            self._uniform = n[0] == 0
+            self._uniform_rate = 1.0 / (Jsl[2] if self._pole_first else Jsl[0])
+            self.m, self.m1 = _float_of(*m), _float_of(*m1)
+            if m1[0] > 0 and self.m1 < 2.0**-1022:
+                r = Fraction(*m1)
+                e2m = r.numerator.bit_length() - r.denominator.bit_length()
                 raise OutOfDomainError(
-                    f"the motion is within m1 ≈ 2^{e2} of the separatrix: the "
+                    f"the motion is within m1 ≈ 2^{e2m} of the separatrix: the "
                     "complementary parameter m1 underflows float64 "
                     "(the transverse components are below ~1e-150 of |ω|); set them to zero "
                     "for the steady rotation or scale them up"
                 )
-            self._amp = np.array([_fsqrt(a) for a in amp])
-            circ = self._amp[self._amp > 0]
-            if circ.min() < _NORMAL_MIN <= circ.max():  # (all subnormal: it barely turns)
+            amps = [_sqrt_of(a, b, 2 * ew) for a, b in amp]
+            self._amp = np.array(amps)
+            circ = [a for a in amps if a > 0]
+            if min(circ) < _NORMAL_MIN <= max(circ):  # (all subnormal: it barely turns)
                 raise OutOfDomainError(
                     "a component of ω circulates with an amplitude below float64's normal "
-                    f"range ({float(self._amp.min()):.3g} rad/s after scaling; subnormal "
+                    f"range ({min(amps):.3g} rad/s after scaling; subnormal "
                     "floats carry fewer than 53 bits, and the pole's azimuth with them: an "
                     "attitude 3e-11 off for 2e-313, 0.24 rad off for 5e-324); set it to zero "
                     "for the steady rotation, or choose units that scale ω up"
                 )
-            self._lam = _fsqrt(lam2)
-            self._n = 0.0 if self._uniform else float(n)
-            self._C = float(C) * self._Lm
+            self._lam = _sqrt_of(*lam2, 2 * ew)
+            self._n = 0.0 if self._uniform else _float_of(*n)
+            self._C = _float_of(J3 - J1, J1 * J3, -eJ) * self._Lm
             self._s, self._sigma = s_circ, sigma
-            a1, a2, a3 = self._amp
+            a1, a2, a3 = amps
             if self._branch3:
                 sn0, cn0, dn0 = s_circ * sigma * ws[1] / a2, sigma * ws[0] / a1, abs(ws[2]) / a3
             else:
                 sn0, cn0, dn0 = s_circ * ws[1] / a2, ws[2] / a3, abs(ws[0]) / a1
-            self._u0 = self._initial_argument(sn0, cn0, dn0)
             # constants of the top (issue 15): K, the AGM of p ≤ 1/2, Π − K
-            self._K = float(elliptic._quarter_period(np.float64(self.m1)))
+            self._K = float(sc.ellipkm1(self.m1))  # elliptic._quarter_period's; inf at m1 = 0
+            self._u0 = self._initial_argument(sn0, cn0, dn0)
             self._trig_agm = (
                 elliptic._agm_ratios_scalar(self.m, self.m1, False, 0.0) if self.m <= 0.5 else None
             )
-            self._full = float(elliptic._complete_tail(np.float64(self._n), np.float64(self.m1)))
-            self._G0 = 0.0 if self._uniform else float(self._excess(np.array([self._u0]))[0])
-        self._M0 = self._attitude_offset()
-        if self._M0 is not None:
-            front = self._P.T @ self._Q().T  # a signed permutation
-            self._front = front.tolist()
-            self._front_rows: npt.NDArray[np.intp] = np.abs(front).argmax(axis=1)
-            self._front_signs: npt.NDArray[np.float64] = front[np.arange(3), self._front_rows]
-            self._M0_list = self._M0.tolist()
-            self._P_list = self._P.tolist()
-
-    __init__ = finite_result(__init__)
+            self._full, self._G0 = self._third_kind_constants()
+        self._set_attitude_offset(ws, Jsl, order, rotated)
 
     # -- construction helpers
     def _initial_argument(self, sn0: float, cn0: float, dn0: float) -> float:
@@ -412,8 +523,7 @@ class FreeAsymmetricTop:
         f = sn0 * float(sc.elliprf(cn0 * cn0, dn0 * dn0, 1.0)) if sn0 != 0 else 0.0
         if cn0 >= 0:
             return f
-        K = float(elliptic.ellipk(self.m, m1=self.m1))
-        return math.copysign(2.0 * K, sn0 if sn0 != 0 else 1.0) - f
+        return math.copysign(2.0 * self._K, sn0 if sn0 != 0 else 1.0) - f
 
     def _excess(
         self,
@@ -473,15 +583,58 @@ class FreeAsymmetricTop:
         L = L / np.abs(L).max(axis=-1, keepdims=True)  # no underflow in the norm
         return L / np.linalg.norm(L, axis=-1, keepdims=True)  # type: ignore[no-any-return]  # numpy types norm(axis=) as Any
 
-    def _Q(self) -> npt.NDArray[np.float64]:
-        return np.eye(3)[[1, 2, 0]] if self._pole_first else np.eye(3)
+    def _third_kind_constants(self) -> tuple[float, float]:
+        """(Π − K of the top's n, G(u0)): :func:`mechanics.elliptic._complete_tail` and
+        :meth:`_excess` at u0 on Python floats, their two R_J in one call of scipy's."""
+        n, m, m1 = self._n, self.m, self.m1
+        if n == 0:
+            return 0.0, 0.0
+        if m1 <= 0:  # the separatrix: G in closed form; Π − K (infinite) is never used
+            a = math.sqrt(abs(n))
+            th = math.tanh(self._u0)
+            neg = a * math.atan(a * th) if n < 0 else -a * math.atanh(a * th)
+            return float(elliptic._complete_tail(n, m1)), (n * self._u0 + neg) / (1.0 - n)
+        j, s, snx, cnx, dnx = elliptic._reduced_scalar(self._u0, m, m1, self._K, self._trig_agm)
+        S = s * snx
+        x, y, p = cnx * cnx, dnx * dnx, 1.0 - n * (S * S)
+        if 0.0 < x < elliptic._RJ_TINY and 0.0 < y < elliptic._RJ_TINY:
+            rj_full = float(sc.elliprj(0.0, m1, 1.0, 1.0 - n))
+            rj = float(elliptic._rj_duplicated(x, y, 1.0, p))
+        else:
+            rj_full, rj = sc.elliprj([0.0, x], [m1, y], 1.0, [1.0 - n, p]).tolist()
+        full = (n / 3.0) * rj_full
+        tail = 0.0 if S == 0 else (n / 3.0) * (S * S) * S * rj
+        return full, (tail + 2.0 * j * full if j != 0 else tail + 0.0)
 
-    def _attitude_offset(self) -> npt.NDArray[np.float64] | None:
+    def _set_attitude_offset(
+        self, ws: list[float], Jsl: list[float], order: tuple[int, ...], rotated: bool
+    ) -> None:
+        """M0 = W0ᵀ Q P R0 (W0 the pole frame at t = 0) and the constant products of the
+        attitude; :meth:`_pole_vector` and :func:`_pole_frame`'s steps on Python floats."""
         if self.regime in ("rest", "steady"):
-            return None
-        nvec = self._pole_vector(self._P @ self.omega_0)
-        W0 = _pole_frame(*nvec)
-        return W0.T @ self._Q() @ self._P @ self.R_A_O_0
+            self._M0 = None
+            return
+        front, rows, signs, QP = _fronts(order, self._pole_first)
+        mx = max(abs(ws[0]), abs(ws[1]), abs(ws[2]))
+        L = [Jsl[i] * (ws[i] / mx) for i in range(3)]
+        if self._pole_first:
+            L = [L[1], L[2], L[0]]
+        mx = max(abs(L[0]), abs(L[1]), abs(L[2]))
+        L = [x / mx for x in L]
+        nrm = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
+        nx, ny, nz = (x / nrm for x in L)
+        sxy = float(np.hypot(nx, ny))
+        up = 2.0**600 if max(abs(nx), abs(ny)) < _TINY_POLE else 1.0
+        hs = float(np.hypot(nx * up, ny * up))
+        sphi, cphi = nx * up / hs, ny * up / hs
+        W0T = [[cphi, -sphi, 0.0], [sphi * nz, cphi * nz, -sxy], [sphi * sxy, cphi * sxy, nz]]
+        M0 = _mul3(W0T, QP)  # exact: Q P is a signed permutation
+        self._M0 = np.array(M0) @ self.R_A_O_0 if rotated else np.array(M0)
+        self._front = front
+        self._front_rows = rows
+        self._front_signs = signs
+        self._M0_list = self._M0.tolist()
+        self._P_list = self._P.tolist()
 
     # -- one instant in Python floats (issue 15): the array path's steps, without
     # numpy's per-call overhead; the same values within ONE_INSTANT_EPS
