@@ -314,6 +314,21 @@ def _pole_frame(
     )
 
 
+def _positive_float(x: object) -> bool:
+    """x is a Python float, finite and > 0 (the common case, checked without numpy)."""
+    return type(x) is float and 0.0 < x < math.inf
+
+
+def _pole_frame_list(nx: float, ny: float, nz: float) -> list[list[float]]:
+    """:func:`_pole_frame` of one unit vector, on Python floats (numpy's hypot, so that
+    the frame is the same float for float)."""
+    sxy = float(np.hypot(nx, ny))
+    up = 2.0**600 if max(abs(nx), abs(ny)) < _TINY_POLE else 1.0
+    hs = sxy if up == 1.0 else float(np.hypot(nx * up, ny * up))
+    sphi, cphi = nx * up / hs, ny * up / hs
+    return [[cphi, sphi * nz, sphi * sxy], [-sphi, cphi * nz, cphi * sxy], [0.0, -sxy, nz]]
+
+
 # --------------------------------------------------------------------------- free asymmetric top
 
 
@@ -418,11 +433,15 @@ class FreeAsymmetricTop:
         self.energy = math.ldexp(_float_of(E2, 1, eJ + 2 * ew - 1), k)
         self._Lm = _sqrt_of(L2, 1, e2)  # |L| of the scaled moments
         self.angular_momentum_norm = math.ldexp(self._Lm, k)
-        Lv = np.array([a * b for a, b in zip(Jn, wl, strict=True)])
+        Lv = [a * b for a, b in zip(Jn, wl, strict=True)]
         if rotated:
-            Lv = self.R_A_O_0.T @ Lv
-        self.angular_momentum_space = np.ldexp(Lv, k)
-        if not np.isfinite(self.angular_momentum_space).all():
+            Lv = (self.R_A_O_0.T @ Lv).tolist()
+        try:
+            Lv = [math.ldexp(x, k) for x in Lv]
+        except OverflowError:
+            Lv = [math.inf]
+        self.angular_momentum_space = np.array(Lv)
+        if not all(math.isfinite(x) for x in Lv):
             raise ResultOverflowError(
                 f"the angular momentum J ω exceeds float64's range (|L| = "
                 f"{self.angular_momentum_norm!r}); rescale J or omega_0 (choose units)"
@@ -623,11 +642,9 @@ class FreeAsymmetricTop:
         L = [x / mx for x in L]
         nrm = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
         nx, ny, nz = (x / nrm for x in L)
-        sxy = float(np.hypot(nx, ny))
-        up = 2.0**600 if max(abs(nx), abs(ny)) < _TINY_POLE else 1.0
-        hs = float(np.hypot(nx * up, ny * up))
-        sphi, cphi = nx * up / hs, ny * up / hs
-        W0T = [[cphi, -sphi, 0.0], [sphi * nz, cphi * nz, -sxy], [sphi * sxy, cphi * sxy, nz]]
+        W0 = _pole_frame_list(nx, ny, nz)
+        W0T = [[W0[0][0], W0[1][0], W0[2][0]], [W0[0][1], W0[1][1], W0[2][1]],
+               [W0[0][2], W0[1][2], W0[2][2]]]
         M0 = _mul3(W0T, QP)  # exact: Q P is a signed permutation
         self._M0 = np.array(M0) @ self.R_A_O_0 if rotated else np.array(M0)
         self._front = front
@@ -957,49 +974,67 @@ class FreeSymmetricTop:
         omega_0: npt.ArrayLike,
         R_A_O_0: npt.ArrayLike | None = None,
     ) -> None:
-        for x, name in ((J1, "J1"), (J3, "J3")):
-            a = as_float_array(x, name)
-            if a.shape != ():
-                raise ShapeError(f"{name} must be a scalar moment of inertia; got {x!r}")
-            if not a > 0:
-                raise NonPhysicalInertiaError(f"{name} must be positive: {name} = {float(a)!r} ≤ 0")
-        if float(J3) > 2.0 * float(J1):
-            raise NonPhysicalInertiaError(
-                f"J3 = {float(J3)!r} exceeds 2 J1 = {2.0 * float(J1)!r}: the moments of a "
-                "symmetric body obey the triangle inequality J3 ≤ J1 + J2 = 2 J1"
-            )
-        J = check_principal_moments([J1, J1, J3], name="J")  # the checks above passed
-        self.J1, self.J3 = float(J[0]), float(J[2])
-        w0 = _vec3(omega_0, "omega_0")
-        R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
-        self.omega_0, self.R_A_O_0 = w0.copy(), R0.copy()
+        if _positive_float(J1) and _positive_float(J3) and J3 <= 2.0 * J1:
+            self.J1, self.J3 = J1, J3  # two positive floats J3 ≤ 2 J1: J = (J1, J1, J3) is valid
+        else:
+            for x, name in ((J1, "J1"), (J3, "J3")):
+                a = as_float_array(x, name)
+                if a.shape != ():
+                    raise ShapeError(f"{name} must be a scalar moment of inertia; got {x!r}")
+                if not a > 0:
+                    raise NonPhysicalInertiaError(
+                        f"{name} must be positive: {name} = {float(a)!r} ≤ 0"
+                    )
+            if float(J3) > 2.0 * float(J1):
+                raise NonPhysicalInertiaError(
+                    f"J3 = {float(J3)!r} exceeds 2 J1 = {2.0 * float(J1)!r}: the moments of a "
+                    "symmetric body obey the triangle inequality J3 ≤ J1 + J2 = 2 J1"
+                )
+            J = check_principal_moments([J1, J1, J3], name="J")  # the checks above passed
+            self.J1, self.J3 = float(J[0]), float(J[2])
+        wl = _vec3_list(omega_0, "omega_0")
+        self.omega_0 = np.array(wl)
+        rotated = R_A_O_0 is not None
+        if rotated:
+            R0 = check_rotation(R_A_O_0, name="R_A_O_0")
+            self.R_A_O_0 = R0.copy()
+        else:
+            self.R_A_O_0 = np.eye(3)
         # the motion depends on J1, J3 and ω only through J3/J1 and ω: compute with the
         # moments scaled by 2^-k (exact) and scale |L|, L and E back (issue 16, part 4)
         k = math.frexp(max(self.J1, self.J3))[1]
         j1, j3 = math.ldexp(self.J1, -k), math.ldexp(self.J3, -k)
-        wmax = float(np.abs(w0).max())
+        wmax = max(abs(wl[0]), abs(wl[1]), abs(wl[2]))
         kw = math.frexp(wmax)[1] if wmax > 0 else 0
-        wn = np.ldexp(w0, -kw)  # ω scaled too for the directions (no under/overflow)
-        Ln = np.array([j1, j1, j3]) * wn
-        self.angular_momentum_norm = math.ldexp(math.hypot(*Ln.tolist()), k + kw)
-        self.angular_momentum_space = np.ldexp(R0.T @ Ln, k + kw)
+        wn = [math.ldexp(x, -kw) for x in wl]  # ω scaled too for the directions
+        Ln = [j1 * wn[0], j1 * wn[1], j3 * wn[2]]
+        Lh = math.hypot(*Ln)
+        self.angular_momentum_norm = math.ldexp(Lh, k + kw)
+        Ls = (self.R_A_O_0.T @ Ln).tolist() if rotated else Ln
+        try:
+            Ls = [math.ldexp(x, k + kw) for x in Ls]
+        except OverflowError:
+            Ls = [math.inf]
+        self.angular_momentum_space = np.array(Ls)
         self.energy = math.ldexp(
-            0.5 * math.fsum((np.array([j1, j1, j3]) * wn * wn).tolist()), k + 2 * kw
+            0.5 * math.fsum([j1 * wn[0] * wn[0], j1 * wn[1] * wn[1], j3 * wn[2] * wn[2]]),
+            k + 2 * kw,
         )
-        if not np.isfinite(self.angular_momentum_space).all():
+        if not all(math.isfinite(x) for x in Ls):
             raise ResultOverflowError(
                 f"the angular momentum J ω exceeds float64's range (|L| = "
                 f"{self.angular_momentum_norm!r}); rescale J1, J3 or omega_0 (choose units)"
             )
-        self.body_precession_rate = (j3 - j1) * float(w0[2]) / j1
+        self.body_precession_rate = (j3 - j1) * wl[2] / j1
         # |L|/J1 = |(ω1, ω2, (J3/J1) ω3)|, from the scaled vector
-        self.space_precession_rate = math.ldexp(math.hypot(*Ln.tolist()) / j1, kw)
+        self.space_precession_rate = math.ldexp(Lh / j1, kw)
         self.nutation_angle = math.atan2(j1 * math.hypot(wn[0], wn[1]), j3 * wn[2])
         self.spin_rate = self.space_precession_rate * math.cos(self.nutation_angle) * (j1 - j3) / j3
-        self._steady = w0[0] == 0 and w0[1] == 0
+        self._steady = wl[0] == 0 and wl[1] == 0
         if not self._steady:
-            self._W0 = _pole_frame(*(Ln / math.hypot(*Ln.tolist())))
-            self._M0 = self._W0.T @ R0
+            W0 = _pole_frame_list(Ln[0] / Lh, Ln[1] / Lh, Ln[2] / Lh)
+            self._W0 = np.array(W0)
+            self._M0 = self._W0.T @ R0 if rotated else self._W0.T.copy()
 
     __init__ = finite_result(__init__)
 
@@ -1184,15 +1219,15 @@ class HeavySymmetricTop:
         psi_dot: float = 0.0,
         phi_dot: float = 0.0,
     ) -> None:
-        self.J_1 = _positive(J_1, "J_1")
-        self.J_3 = _positive(J_3, "J_3")
+        self.J_1 = J_1 if _positive_float(J_1) else _positive(J_1, "J_1")
+        self.J_3 = J_3 if _positive_float(J_3) else _positive(J_3, "J_3")
         if self.J_3 > 2.0 * self.J_1:
             raise NonPhysicalInertiaError(
                 f"J_3 = {self.J_3!r} exceeds 2 J_1 = {2.0 * self.J_1!r}: the moments of a "
                 "symmetric body obey the triangle inequality J_3 ≤ J_1 + J_2 = 2 J_1 (about G, "
                 "and so about any point of the axis)"
             )
-        self.m_g_ell = _positive(m_g_ell, "m_g_ell")
+        self.m_g_ell = m_g_ell if _positive_float(m_g_ell) else _positive(m_g_ell, "m_g_ell")
         # The motion depends on J'1, J3 and m g ℓ only through their ratios: the
         # computation runs on them scaled by 2^-k (exact; the largest in [1/2, 1)), and
         # L3, Lz, E and the energies are scaled back by 2^k (issue 16, part 4: moments
@@ -1213,6 +1248,9 @@ class HeavySymmetricTop:
         for k, v in dict(
             theta=theta, psi=psi, phi=phi, theta_dot=theta_dot, psi_dot=psi_dot, phi_dot=phi_dot
         ).items():
+            if type(v) is float and math.isfinite(v):
+                vals[k] = v
+                continue
             a = as_float_array(v, k)
             if a.shape != ():
                 raise ShapeError(f"{k} must be a scalar; got shape {a.shape}")
