@@ -62,7 +62,6 @@ the mpmath oracles above with the same worst errors (both are tested).
 
 from __future__ import annotations
 
-import functools
 import itertools
 import math
 from dataclasses import dataclass
@@ -266,12 +265,20 @@ def _permutation(order: tuple[int, ...]) -> _Permutation:
 _PERMUTATIONS = {order: _permutation(order) for order in itertools.permutations(range(3))}
 
 
-@functools.lru_cache(maxsize=12)
-def _fronts(
-    order: tuple[int, ...], pole_first: bool
-) -> tuple[list[list[float]], npt.NDArray[np.intp], npt.NDArray[np.float64], list[list[float]]]:
-    """For P of ``order`` and the pole's axis: front = Pᵀ Qᵀ (a signed permutation) as a
-    list, its rows' columns and signs, and Q P as a list (Q: the pole frame's axes)."""
+@dataclass(frozen=True)
+class _Front:
+    """For P of an order of the moments and the pole's axis (Q: the pole frame's axes):
+    front = Pᵀ Qᵀ, a signed permutation, as a list and as its rows' columns and signs;
+    the columns of Q P as (source row, sign); P as a list."""
+
+    front: list[list[float]]
+    rows: npt.NDArray[np.intp]
+    signs: npt.NDArray[np.float64]
+    qp_columns: tuple[tuple[int, float], ...]
+    P_list: list[list[float]]
+
+
+def _front(order: tuple[int, ...], pole_first: bool) -> _Front:
     P = _PERMUTATIONS[order].P
     Q = np.eye(3)[[1, 2, 0]] if pole_first else np.eye(3)
     front = P.T @ Q.T
@@ -279,7 +286,13 @@ def _fronts(
     signs = front[np.arange(3), rows]
     rows.setflags(write=False)
     signs.setflags(write=False)
-    return front.tolist(), rows, signs, (Q @ P).tolist()
+    QP = Q @ P
+    src = np.abs(QP).argmax(axis=0)
+    qp_columns = tuple((int(k), float(QP[k, j])) for j, k in enumerate(src))
+    return _Front(front.tolist(), rows, signs, qp_columns, P.tolist())
+
+
+_FRONTS = {(o, f): _front(o, f) for o in _PERMUTATIONS for f in (False, True)}
 
 
 #: below this, (nx, ny) are scaled by 2^600 before their direction is taken
@@ -638,7 +651,7 @@ class FreeAsymmetricTop:
         if self.regime in ("rest", "steady"):
             self._M0 = None
             return
-        front, rows, signs, QP = _fronts(order, self._pole_first)
+        fr = _FRONTS[order, self._pole_first]
         mx = max(abs(ws[0]), abs(ws[1]), abs(ws[2]))
         L = [Jsl[i] * (ws[i] / mx) for i in range(3)]
         if self._pole_first:
@@ -648,18 +661,18 @@ class FreeAsymmetricTop:
         nrm = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
         nx, ny, nz = (x / nrm for x in L)
         W0 = _pole_frame_list(nx, ny, nz)
-        W0T = [
-            [W0[0][0], W0[1][0], W0[2][0]],
-            [W0[0][1], W0[1][1], W0[2][1]],
-            [W0[0][2], W0[1][2], W0[2][2]],
-        ]
-        M0 = _mul3(W0T, QP)  # exact: Q P is a signed permutation
-        self._M0 = np.array(M0) @ self.R_A_O_0 if rotated else np.array(M0)
-        self._front = front
-        self._front_rows = rows
-        self._front_signs = signs
-        self._M0_list = self._M0.tolist()
-        self._P_list = self._P.tolist()
+        # W0ᵀ Q P: Q P is a signed permutation, so each column is a column of W0ᵀ (a row
+        # of W0) times ±1, exactly
+        M0 = [[W0[k][i] * sign for k, sign in fr.qp_columns] for i in range(3)]
+        if rotated:
+            self._M0 = np.array(M0) @ self.R_A_O_0
+            self._M0_list = self._M0.tolist()
+        else:
+            self._M0, self._M0_list = np.array(M0), M0
+        self._front = fr.front
+        self._front_rows = fr.rows
+        self._front_signs = fr.signs
+        self._P_list = fr.P_list
 
     # -- one instant in Python floats (issue 15): the array path's steps, without
     # numpy's per-call overhead; the same values within ONE_INSTANT_EPS
