@@ -25,7 +25,8 @@ pick the side of the separatrix: D > 0, ω circulates about axis 3,
 ω = (s1 a1 dn, s1 a2 sn, a3 cn)(λt + u0); D = 0, the separatrix m = 1
 (sn = tanh, cn = dn = sech).  The quantities A = 2EJ3 − L², B = L² − 2EJ1, D
 and the parameter m and its complement m1 = (J3−J1)|D|/(…) are computed in
-exact rational arithmetic from the float inputs and rounded once, so that the
+exact rational arithmetic from the float inputs (on integers: a float is an integer
+times a power of two) and rounded once, so that the
 distance from the separatrix is never lost to cancellation.  The attitude:
 L is fixed in space; in a body frame whose third axis (the pole) is axis 1 or 3
 (L never reaches either: it circulates one and stays off the other), the unit vector
@@ -48,16 +49,23 @@ against mpmath's elliptic functions at the exact parameters with m1 down to
 1e-280 (hypothesis, 1000 examples): 1.39 eps.  The heavy top's roots u1, u2 are within 4.2 eps
 of mpmath's, the double root of steady precession included.
 Cost (``tests/benchmarks/test_bench_compiled.py`` and ``test_bench_tops.py``, a
-shared 2-core machine, issue 15): one instant given as a Python float takes the
+shared 2-core machine, issues 15 and 30): one instant given as a Python float takes the
 one-instant path (the array path's steps on floats with :mod:`math`; K, the AGM of
 p ≤ 1/2 and Π − K computed once per top): ``state(t)`` (ω and the attitude
 together) 14 µs, ``omega(t)`` 3.5 µs, where the array path takes 0.11 ms (0.32 ms
-before issue 15).  Over 10^6 times ``state`` costs 0.53–0.95 µs per time (by the
-machine's load), ``omega`` 0.16 µs: ω and the precession angle share one reduction
-of the elliptic argument, Π − K is not re-evaluated per time, and the attitude's
-products are one matrix product for all times; the R_J of the precession angle is
-about half of the rest.  The two paths agree within 32 eps (measured 5.9) and meet
-the mpmath oracles above with the same worst errors (both are tested).
+before issue 15).  Over 10^6 times ``state`` costs 0.76–1.2 µs per time (by the
+machine's load; 3.8 times less than one pass over all times, 2.8–4.7 µs), in chunks of
+2^14 times whose temporaries stay in the cache; ``omega`` 0.16 µs: ω and the precession
+angle share one reduction of the elliptic argument, Π − K is not re-evaluated per time,
+and the attitude's products are one matrix product per chunk; the R_J of the precession
+angle is about half of the rest.  The two paths agree within 32 eps (measured 5.9) and meet
+the mpmath oracles above with the same worst errors (both are tested).  Building a top
+(issue 30) takes the exact rationals on Python integers (:func:`_dyadic`: the floats
+Fraction arithmetic gives, at a tenth of its cost) and everything else on Python floats:
+85–135 µs for the free asymmetric top (1.3 ms before), 16–25 µs for the free symmetric
+top, 28–70 µs for the heavy top, under the same load.  :class:`FreeTopBatch` evaluates
+many tops at one instant each in one call, the array path's steps over the tops: 1.3–2.2
+µs per top for 10^4 tops, 39 times less than their one-instant calls one by one.
 """
 
 from __future__ import annotations
