@@ -187,12 +187,11 @@ def _mul3(A: list[list[float]], B: list[list[float]]) -> list[list[float]]:
 
 
 def _dyadic(xs: list[float]) -> tuple[list[int], int]:
-    """Integers n_i and one exponent e with x_i = n_i 2^e exactly (a float is a dyadic
-    rational): sums and products of such numbers are exact on the integers."""
-    pairs = [x.as_integer_ratio() for x in xs]  # denominators are powers of two
-    exps = [1 - d.bit_length() for _, d in pairs]
-    e = min(exps)
-    return [n << (ei - e) for (n, _), ei in zip(pairs, exps, strict=True)], e
+    """Integers n_i and one exponent e with x_i = n_i 2^e exactly for three floats (a float
+    is a dyadic rational): sums and products of such numbers are exact on the integers."""
+    (n0, d0), (n1, d1), (n2, d2) = (x.as_integer_ratio() for x in xs)
+    d = max(d0, d1, d2)  # denominators are powers of two: d is a multiple of each
+    return [n0 * (d // d0), n1 * (d // d1), n2 * (d // d2)], 1 - d.bit_length()
 
 
 def _float_of(num: int, den: int, e: int = 0) -> float:
@@ -647,7 +646,8 @@ class FreeAsymmetricTop:
             rj_full = float(sc.elliprj(0.0, m1, 1.0, 1.0 - n))
             rj = float(elliptic._rj_duplicated(x, y, 1.0, p))
         else:
-            rj_full, rj = sc.elliprj([0.0, x], [m1, y], 1.0, [1.0 - n, p]).tolist()
+            args = np.array([[0.0, x], [m1, y], [1.0 - n, p]])  # one array, not three
+            rj_full, rj = sc.elliprj(args[0], args[1], 1.0, args[2]).tolist()
         full = (n / 3.0) * rj_full
         tail = 0.0 if S == 0 else (n / 3.0) * (S * S) * S * rj
         return full, (tail + 2.0 * j * full if j != 0 else tail + 0.0)
