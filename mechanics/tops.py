@@ -164,15 +164,6 @@ def _vec3(x: npt.ArrayLike, name: str) -> npt.NDArray[np.float64]:
     return a
 
 
-def _fsqrt(x: Fraction | int) -> float:
-    """√x of a non-negative exact rational, rounded once-ish, without under/overflow."""
-    if x == 0:
-        return 0.0
-    k = (x.numerator.bit_length() - x.denominator.bit_length()) // 2
-    y = x / Fraction(2) ** (2 * k) if k >= 0 else x * Fraction(2) ** (-2 * k)
-    return math.ldexp(math.sqrt(float(y)), k)
-
-
 def _skew(w: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     return np.array([[0.0, -w[2], w[1]], [w[2], 0.0, -w[0]], [-w[1], w[0], 0.0]])
 
@@ -204,8 +195,9 @@ def _float_of(num: int, den: int, e: int = 0) -> float:
 
 
 def _sqrt_of(num: int, den: int, e: int = 0) -> float:
-    """:func:`_fsqrt` of num/den · 2^e ≥ 0: the quotient scaled by 4^-k into [1/4, 4),
-    rounded once, its root scaled back (the same float for any such k)."""
+    """√(num/den · 2^e) of a non-negative rational, without under- or overflow: the
+    quotient scaled by 4^-k into [1/4, 4), rounded once, its root scaled back by 2^k (the
+    same float for any such k: scaling by a power of two commutes with the roundings)."""
     if num == 0:
         return 0.0
     k = (num.bit_length() - den.bit_length() + e) // 2
@@ -436,7 +428,8 @@ class FreeAsymmetricTop:
         the amplitudes, λ, n, C) are exact rationals rounded once, as the module
         docstring says; they are computed on integers (a float is an integer times a
         power of two, :func:`_dyadic`), so that each is the same float that
-        ``fractions.Fraction`` arithmetic gives, bit for bit, at a twentieth of its cost."""
+        ``fractions.Fraction`` arithmetic gives, bit for bit (the constructor takes a tenth
+        of the time it took with Fraction)."""
         # The motion depends on J only through its ratios: work with J / 2^k (exact, the
         # largest moment in [1/2, 1)) and scale E, |L| and L back by 2^k at the end, so
         # moments from 1e-300 to 1e300 give the same ω(t) and attitude (issue 16, part 4)
