@@ -161,6 +161,14 @@ def test_state_over_many_instants_in_chunks_is_the_one_pass_path(case):
     scale = float(np.abs(w).max()) or 1.0
     assert np.abs(wc - top.omega(ts)).max() <= CHUNK_EPS * EPS * scale
     assert np.abs(Rc - top.attitude(ts)).max() <= CHUNK_EPS * EPS
+    # the invariants at every instant: E = ½ Σ J ω² and |L| = |J ω|
+    phase = 1.0 + getattr(top, "_lam", 0.0) * np.abs(ts)
+    Jv = np.array(J)
+    E = 0.5 * (Jv * wc * wc).sum(-1)
+    assert (np.abs(E - top.energy) <= CONSERVATION_RTOL * phase * top.energy).all()
+    L = np.linalg.norm(Jv * wc, axis=-1)
+    L0 = top.angular_momentum_norm
+    assert (np.abs(L - L0) <= CONSERVATION_RTOL * phase * L0).all()
 
 
 def _phase(top, t):
