@@ -1008,6 +1008,18 @@ _add(
         post=lambda top: (top.omega(1.3), top.attitude(1.3)),
     ),
 )
+_add(
+    _o3 + "FreeTopBatch",
+    Entry(
+        {"J": (JP, (1.0, 2.0, 2.5)), "omega_0": ((0.3, 1.0, 0.2), V), "R_A_O_0": (R, R_B)},
+        {"J": (3,), "omega_0": (3,), "R_A_O_0": (3, 3)},
+        bad={
+            "J": [((0.0, 3.0, 4.0), JP), ((-2.0, 3.0, 4.0), JP), ((1.0, 1.0, 3.0), JP)],
+            "R_A_O_0": [(R, _NOTROT[0])],
+        },
+        post=lambda batch: batch.state(1.3),
+    ),
+)
 _HEAVY = {
     "J_1": 2.0,
     "J_3": 1.0,

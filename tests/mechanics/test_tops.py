@@ -615,6 +615,9 @@ _CONDITIONS = {
         r"moments of a symmetric body obey the triangle inequality J3 ≤ J1 \+ J2 = 2 J1$"
     ),
     ("FreeSymmetricTop", "R_A_O_0"): _ROT,
+    # a bad top of a batch is named by its index first: "top (0,): J must be positive..."
+    ("FreeTopBatch", "J"): f"^top \\(0,\\): ({_POSITIVE_J}|{_TRIANGLE_J})",
+    ("FreeTopBatch", "R_A_O_0"): _ROT,
     ("HeavySymmetricTop", "J_1"): _POS,
     ("HeavySymmetricTop", "J_3"): (
         f"{_POS}|J_3 = 5\\.0 exceeds 2 J_1 = 4\\.0: the moments of a symmetric body obey the "
@@ -661,6 +664,12 @@ def _sym():
     return tops.FreeSymmetricTop(2.0, 3.0, [0.3, -0.2, 0.5])
 
 
+def _batch():
+    return tops.FreeTopBatch(
+        [[1.0, 2.0, 3.0], [2.0, 2.5, 4.0]], [[0.4, 0.2, 1.0], [1.0, -0.3, 0.1]]
+    )
+
+
 def _heavy():
     return tops.HeavySymmetricTop(
         J_1=2.0, J_3=1.0, m_g_ell=3.0, theta=0.5, psi=0.1, phi=0.2,
@@ -679,6 +688,8 @@ def _heavy():
         (_free, "omega_space", "t"),
         (_free, "poinsot_residuals", "t"),
         (_sym, "omega", "t"),
+        (_batch, "state", "t"),
+        (_batch, "omega", "t"),
         (_sym, "attitude", "t"),
         (_heavy, "f", "u"),
         (_heavy, "effective_potential", "theta"),
