@@ -72,7 +72,6 @@ from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -1397,27 +1396,6 @@ def steady_precession_rates(
     return (slow, fast) if abs(slow) <= abs(fast) else (fast, slow)
 
 
-def _brentq(g: Callable[[float], float], a: float, b: float) -> float:
-    """``scipy.optimize.brentq(g, a, b, xtol=1e-300, rtol=4 eps, maxiter=500)``: the same
-    C routine, called directly with the public wrapper's NaN check (its ValueError), so
-    that the wrapper's per-call cost (15 µs of the 1.2 µs root search, two thirds of a
-    heavy top's construction time; issue 30) is not paid.  The public function where
-    scipy's private one is not there."""
-    from scipy.optimize import _zeros, brentq  # here: keeps `import mechanics.tops` cheap
-
-    core = getattr(_zeros, "_brentq", None)
-    if core is None:  # pragma: no cover - a scipy without the private routine
-        return float(brentq(g, a, b, xtol=1e-300, rtol=4 * EPS, maxiter=500))
-
-    def checked(x: float) -> float:
-        fx = g(x)
-        if fx != fx:
-            raise ValueError(f"The function value at x={x} is NaN; solver cannot continue.")
-        return fx
-
-    return float(core(checked, a, b, 1e-300, 4 * EPS, 500, (), False, True))
-
-
 class HeavySymmetricTop:
     """The heavy symmetric top about a fixed point (5.2.2–5.2.5), exact motion.
 
@@ -1592,8 +1570,10 @@ class HeavySymmetricTop:
             hi = max(lo, 1.0)
             while sign * g(hi) <= 0:
                 hi *= 2.0
+            from scipy.optimize import brentq  # here: keeps `import mechanics.tops` cheap
+
             try:
-                y3 = _brentq(g, 0.0, hi)
+                y3 = brentq(g, 0.0, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
             except RuntimeError:  # no convergence: gravity negligible against the spin
                 raise OutOfDomainError(
                     f"the turning points of θ are not found (m_g_ell = {self.m_g_ell!r} against "
