@@ -18,6 +18,13 @@ cost).  The problems are the work-precision study's at its quick sizes
 - **batch** (issue 15): :data:`CHECK_BODIES` free bodies in one compiled DOP853 run
   against scipy body by body (:func:`bench.workprecision.sweeps.batched_vs_scipy`);
   target :data:`~bench.workprecision.settings.BATCH_GOAL` (50).
+- **scenes** (issue 30, item 1): each smooth scenario of the conformance battery
+  (:data:`SMOOTH_SCENARIOS`), MuJoCo's RK4 (tuned contact) against the scene engine at
+  equal or better battery error: the scene engine integrating (DOP853, compiled) at the
+  first of :data:`SCENE_RTOLS` that reaches MuJoCo's error, or else with its exact flow
+  (``method = "auto"``, what a scene file runs by default); each side's wall time the
+  least of ``repeats`` (:func:`mechanics.conformance.run_battery`); target 1.  Skipped,
+  saying so, where MuJoCo is not installed.
 
 Margins, measured on a 2-core machine with both cores busy (a mutation run and the full
 study), five runs of the whole check: the same ratio varied by up to 2.2× from run to run,
@@ -50,6 +57,17 @@ OUR_RTOLS = (1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13)
 #: the batch's size: the study's quick 200 bodies measured 78–162 (five runs under load),
 #: too near the target 50 for a fixed per-call cost; 1000 amortise it (ours ~30 ms)
 CHECK_BODIES = 1000
+#: the battery's scenarios with no contact, where MuJoCo's RK4 is fourth order
+SMOOTH_SCENARIOS = (
+    "free_top_axis1",
+    "free_top_axis3",
+    "free_top_near_separatrix",
+    "heavy_top",
+    "parabola",
+)
+#: the scene engine's tolerances, tried from the default: 3e-14 is near the floor the
+#: scene files allow (100 eps)
+SCENE_RTOLS = (1e-12, 1e-13, 3e-14)
 
 
 @dataclass(frozen=True)
@@ -115,8 +133,66 @@ def equal_error_ratio(
     )
 
 
+def _battery_run(adapter, name: str, repeats: int) -> tuple[float, float] | None:
+    """(wall time, error) of the adapter's finest run of the scenario, or None where it
+    does not pass it."""
+    from mechanics.conformance import run_battery
+
+    r = run_battery(adapter, scenarios=[name], repeats=repeats)[name]
+    if r.status != "pass" or not r.runs:
+        return None
+    return r.wall_time, r.runs[-1].error
+
+
+def scene_checks(repeats: int, mujoco=None, engine=None) -> list[Check] | str:
+    """The scenes' checks (see the module docstring), or why they are skipped.
+    ``mujoco`` and ``engine`` (a factory ``engine(method, rtol)``) replace the adapters
+    (the tests pass stand-ins)."""
+    from mechanics.conformance.adapters.reference import SceneEngineAdapter
+
+    if mujoco is None:
+        try:
+            from mechanics.conformance.adapters.mujoco import MuJoCoAdapter
+        except ImportError as exc:  # pragma: no cover (MuJoCo is in the lock)
+            return f"MuJoCo is not installed ({exc})"
+        mujoco = MuJoCoAdapter("RK4", "tuned")
+    if engine is None:
+
+        def engine(method, rtol):
+            return SceneEngineAdapter(method, rtol=rtol, atol=rtol)
+
+    checks = []
+    for name in SMOOTH_SCENARIOS:
+        theirs = _battery_run(mujoco, name, repeats)
+        if theirs is None:
+            checks.append(Check(f"{name}, MuJoCo RK4 / scene engine", None, 1.0, "MuJoCo fails it"))
+            continue
+        t_m, e_m = theirs
+        tried = [("integrate", r) for r in SCENE_RTOLS] + [("auto", None)]
+        ours = None
+        for method, rtol in tried:
+            got = _battery_run(engine(method, rtol), name, repeats)
+            if got is not None and got[1] <= e_m:
+                ours = (method, rtol, *got)
+                break
+        if ours is None:
+            detail = f"MuJoCo {e_m:.2e} in {t_m:.3g} s; the scene engine never reaches it"
+            checks.append(Check(f"{name}, MuJoCo RK4 / scene engine", None, 1.0, detail))
+            continue
+        method, rtol, t_o, e_o = ours
+        how = method if rtol is None else f"{method} rtol {rtol:g}"
+        detail = f"MuJoCo {e_m:.2e} in {t_m:.3g} s; ours ({how}) {e_o:.2e} in {t_o:.3g} s"
+        checks.append(Check(f"{name}, MuJoCo RK4 / scene engine", t_m / t_o, 1.0, detail))
+    return checks
+
+
 def run_checks(
-    problems: Sequence[Problem] | None = None, *, repeats: int = 3, batch: bool = True
+    problems: Sequence[Problem] | None = None,
+    *,
+    repeats: int = 3,
+    batch: bool = True,
+    scenes: bool = True,
+    out: Callable[[str], None] = print,
 ) -> list[Check]:
     """Every check of the module docstring, measured now (``problems`` replaces the
     study's quick problems: the tests pass broken ones)."""
@@ -143,6 +219,12 @@ def run_checks(
                 f"({b['scipy_bodies_run']} bodies run, scaled)",
             )
         )
+    if scenes:
+        got = scene_checks(repeats)
+        if isinstance(got, str):
+            out(f"     skipped: the scenes against MuJoCo — {got}")
+        else:
+            checks += got
     return checks
 
 
@@ -157,7 +239,7 @@ def main(argv: Sequence[str] | None = None, out: Callable[[str], None] = print) 
     except ValueError as exc:
         raise SystemExit(f"bodycheck bench --check: {exc}") from None
     t0 = time.perf_counter()
-    checks = run_checks(repeats=args.repeats)
+    checks = run_checks(repeats=args.repeats, out=out)
     for c in checks:
         out(c.line())
     below = [c for c in checks if not c.passed]
