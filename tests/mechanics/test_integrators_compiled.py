@@ -67,6 +67,7 @@ HANDS_OVER = {
     "test_both_paths_refuse_bad_input_with_the_same_error",
     "test_a_failed_jit_falls_back_to_the_reference_with_one_warning",
     "test_a_missing_numba_falls_back_to_the_reference_with_one_warning",
+    "test_compiled_dop853_refuses_one_step_beyond_max_steps_as_the_reference",
 }
 
 
@@ -352,3 +353,233 @@ def test_a_missing_numba_falls_back_to_the_reference_with_one_warning(monkeypatc
         J_TOP, J_TOP * W_TOP, np.eye(3), (0.0, 5.0), 0.1, compiled=False
     )
     np.testing.assert_array_equal(sol.y, ref.y)
+
+
+# ---------------------------------------------------------------- the kernels' corners
+# (issue 35: the survivors of the kernels' full mutation run; each test says which
+# behaviour of the reference the kernel must share there)
+
+
+def _dop853_both(y0, t, **kw):
+    """The compiled and the reference run of the free body of moments J_TOP."""
+    rhs = free_rigid_body_rhs(J_TOP)
+    fast = integrate(rhs, y0, t, method="dop853", **kw)
+    ref = integrate(rhs, y0, t, method="dop853", **kw, compiled=False)
+    return fast, ref
+
+
+def _same_work(fast, ref) -> None:
+    work = ("steps", "rhs_evals", "rejected_steps")
+    assert [getattr(fast, w) for w in work] == [getattr(ref, w) for w in work]
+
+
+def _steps_growing_tenfold(h0: float, span: float) -> int:
+    """Steps of h0, 10 h0, 100 h0, ... (DOP853's largest factor, taken on every step
+    whose error is 0) until they cover ``span``."""
+    steps, covered, h = 0, 0.0, h0
+    while covered < span:
+        covered += h
+        h *= 10.0
+        steps += 1
+    return steps
+
+
+# A body at rest (L = 0): every rate is 0, so the state stays y0 exactly and every
+# error estimate is 0.  Hairer's starting step is then max(1e-6, 1e-3 · 1e-6) = 1e-6
+# (the rates d1 = 0 and their change d2 = 0), each step is accepted with the largest factor, 10, and the run
+# takes the steps of the geometric series that covers the span.  From t0 = 2^30 s the
+# step is floored at 10 ulp(t0) = 10 · 2^-22 s first.  The spans sit between two sums
+# of the series (1.1111 < 1.1115 < 1.1122 s, 2.65 < 2.8 < 2.91 s), so that a starting
+# step 0.1 % or 10 % off would take one step fewer.
+@pytest.mark.parametrize(
+    ("t0", "span", "h0"),
+    [(0.0, 1.1115, 1e-6), (2.0**30, 2.8, 10 * 2.0**-22)],
+    ids=["t0=0", "t0=2^30"],
+)
+def test_compiled_dop853_on_a_body_at_rest_takes_the_steps_of_the_geometric_series(t0, span, h0):
+    y0 = rigid_body_state(np.zeros(3), np.eye(3))
+    fast, ref = _dop853_both(y0, (t0, t0 + span), rtol=1e-8)
+    _same_work(fast, ref)
+    assert fast.steps == _steps_growing_tenfold(h0, span)
+    assert fast.rejected_steps == 0
+    np.testing.assert_array_equal(fast.y, np.stack([y0, y0]))  # rates 0: y stays y0
+
+
+# A batch whose first member is at the origin (y = 0, a fixed point of the free body's
+# equations: no rate, no error) and whose second turns: the step is the batch's, set by
+# the largest error and the smallest state, so the member at rest must neither stop
+# the search for the largest error nor stand for the smallest state by its norm 0 alone
+# (Hairer's start: the smallest member's size d0 = 0 gives the 1e-6 start).
+@pytest.mark.parametrize("first", ["origin", "rest"])
+def test_compiled_dop853_batch_with_a_member_at_rest_takes_the_reference_steps(first):
+    still = np.zeros(12) if first == "origin" else rigid_body_state(np.zeros(3), np.eye(3))
+    y0 = np.stack([still, rigid_body_state(J_TOP * W_TOP, np.eye(3))])
+    fast, ref = _dop853_both(y0, (0.0, 3.0), rtol=1e-8, batch_ndim=1)
+    _same_work(fast, ref)
+    assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS
+    np.testing.assert_array_equal(fast.y[:, 0], np.stack([still, still]))
+
+
+# Hairer's starting step clipped to the span, from a start time other than 0: t = (-1, 1)
+# (a span of 2 s about t = 0) and a short span (0.05, 0.175] whose end is not
+# t0 + (t_end - t0) in float64 (that rounds one ulp, 2^-55, below), so that the first
+# step, clipped to the span, ends short of t_end by that ulp and a second step follows.
+@pytest.mark.parametrize("t", [(-1.0, 1.0), (0.05, 0.17500000000000002)], ids=["-1..1", "short"])
+def test_compiled_dop853_clips_the_starting_step_to_the_span_as_the_reference(t):
+    y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
+    fast, ref = _dop853_both(y0, t, rtol=1e-4)  # Hairer's start 0.195 s > 0.125 s
+    _same_work(fast, ref)
+    assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS
+
+
+# The step budget: a run that needs exactly max_steps steps finishes on the compiled
+# path; one step fewer allowed and both paths refuse it with the same StepSizeError.
+def test_compiled_dop853_finishes_in_exactly_max_steps():
+    y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
+    needed = _dop853_both(y0, (0.0, 5.0), rtol=1e-8)[1].steps
+    fast, ref = _dop853_both(y0, (0.0, 5.0), rtol=1e-8, max_steps=needed)
+    _same_work(fast, ref)
+    assert fast.steps == needed
+
+
+def test_compiled_dop853_refuses_one_step_beyond_max_steps_as_the_reference():
+    y0 = rigid_body_state(J_TOP * W_TOP, np.eye(3))
+    needed = _dop853_both(y0, (0.0, 5.0), rtol=1e-8)[1].steps
+    raised = []
+    for compiled in (True, False):
+        with pytest.raises(StepSizeError) as info:
+            integrate(
+                free_rigid_body_rhs(J_TOP),
+                y0,
+                (0.0, 5.0),
+                method="dop853",
+                rtol=1e-8,
+                max_steps=needed - 1,
+                compiled=compiled,
+            )
+        raised.append(str(info.value))
+    assert raised[0] == raised[1]
+
+
+# Loose tolerances (rtol = 1e-3, atol = 1): the error norm's 3rd-order term 0.01 |e3|^2
+# is then of the order of |e5|^2 (with tight ones it is 1e10 times larger), and the
+# absolute tolerance sets the scale of the state (|R| = 1), so that Hairer's start,
+# d0/d1 at most, takes the batch's smallest state d0 and largest rate d1 (a slow body
+# and a fast one, either first); for a body of middle speed the start is Hairer's
+# (0.01 / d2)^(1/8), d2 the change of the rates over a trial step forward (the change
+# over a step backward differs in its second-order term, 4e-4 of it here).
+@pytest.mark.parametrize("order", ["small first", "large first"])
+def test_compiled_dop853_at_loose_tolerances_takes_the_reference_steps(order):
+    small = rigid_body_state(1e-3 * J_TOP * W_TOP, np.eye(3))
+    large = rigid_body_state(20.0 * J_TOP * W_TOP, np.eye(3))
+    y0 = np.stack([small, large] if order == "small first" else [large, small])
+    rhs = free_rigid_body_rhs(J_TOP)
+    middle = rigid_body_state(5.0 * J_TOP * W_TOP, np.eye(3))  # start h1 = (0.01/d2)^(1/8)
+    for y, bn in ((y0, 1), (y0[1], 0), (middle, 0)):
+        kw = {"rtol": 1e-3, "atol": 1.0, "batch_ndim": bn}
+        fast, ref = _dop853_both(y, (0.0, 2.0), **kw)
+        _same_work(fast, ref)
+        # steps of ~1 rad amplify the kernels' roundings (measured 45771 eps between the
+        # paths for the batch, 13 steps, where one ulp of the start grows to 284133 eps):
+        # bounded as the motion amplifies one ulp of the start
+        amp = _amplification(
+            lambda z, kw=kw: integrate(rhs, z, (0.0, 2.0), method="dop853", **kw, compiled=False).y,
+            y,
+        )
+        assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS * max(1.0, amp)
+
+
+# The splitting's work: its flows are counted per run of at most PROJECT_EVERY steps
+# between projections, the opening half-flow of H1 once per run; runs of one step
+# (one step per output, or 65 = 64 + 1 steps) count it as well.
+@pytest.mark.parametrize("steps_per_output", [1, 65])
+@pytest.mark.parametrize("compensated", [False, True])
+def test_compiled_splitting_counts_the_reference_flows(steps_per_output, compensated):
+    assert splitting_module.PROJECT_EVERY == 64
+    t = np.linspace(0.0, 0.3, 4)
+    h = 0.1 / steps_per_output
+    kw = {"order": 4, "compensated": compensated}
+    fast = free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), t, h, **kw)
+    ref = free_rigid_body_splitting(J_TOP, J_TOP * W_TOP, np.eye(3), t, h, **kw, compiled=False)
+    assert (fast.steps, fast.rhs_evals) == (ref.steps, ref.rhs_evals)
+    assert fast.steps == 3 * steps_per_output
+    assert _rel_diff_eps(fast.y, ref.y) <= SPLITTING_EPS
+
+
+def _off_orthogonal_rotation(size: float) -> np.ndarray:
+    """A rotation moved off orthogonality by ``size`` in a symmetric direction with nine
+    different entries (max |R Rᵀ − 1| ≈ 2 size), within check_rotation's 256 eps."""
+    S = np.array([[3.0, 1.0, -2.0], [1.0, -1.5, 0.5], [-2.0, 0.5, 2.5]]) / 3.0
+    from mechanics.rotation import matrix_from_rotvec
+
+    return (np.eye(3) + size * S) @ matrix_from_rotvec(np.array([0.3, -0.2, 0.5]))
+
+
+# The projection (Hairer-Lubich-Wanner IV.4) at every output: |L| is the Casimir of the
+# free body, restored to |L0| (one product and one square root: a few eps), and one
+# Newton-Schulz step R - ½ (R Rᵀ - 1) R takes R Rᵀ - 1 from δ to O(δ²) plus roundings.
+# Measured on both paths: ||L| - |L0|| ≤ 0.7 eps |L0|, max |R Rᵀ - 1| ≤ 1 eps, from
+# R0 off by 100 eps and |L0| < 1 (the norm must be restored below 1 as above it:
+# unprojected, the 108 flows of a step of order 8 let |L| drift by 84 eps in 20 s).
+CASIMIR_EPS = 4
+ORTHOGONALITY_EPS = 8
+
+
+@pytest.mark.parametrize("compiled", [True, False])
+def test_splitting_restores_the_casimir_and_orthogonality_at_every_output(compiled):
+    R0 = _off_orthogonal_rotation(50 * EPS)
+    L0 = 0.25 * J_TOP * W_TOP  # |L0| = 0.77
+    t = np.linspace(0.0, 20.0, 5)
+    sol = free_rigid_body_splitting(J_TOP, L0, R0, t, 0.05, order=8, compiled=compiled)
+    L = sol.y[1:, :3]
+    R = sol.y[1:, 3:].reshape(-1, 3, 3)
+    norm0 = np.linalg.norm(L0)
+    assert np.abs(np.linalg.norm(L, axis=-1) - norm0).max() <= CASIMIR_EPS * EPS * norm0
+    off = np.abs(R @ np.swapaxes(R, -1, -2) - np.eye(3)).max()
+    assert off <= ORTHOGONALITY_EPS * EPS
+
+
+# The kernels' status protocol, on the kernel itself: a state that is not finite at an
+# output (here from a NaN momentum of the second body, which the public functions refuse
+# before any kernel runs) stops with status 1, whichever output and body it is: the
+# check reads the rows just written (of three outputs, the first is the caller's and
+# the other two are written by the kernel; ys starts as zeros, all finite).
+def test_the_splitting_kernel_reports_a_non_finite_state_with_status_1():
+    from mechanics import _kernels
+
+    sched = splitting_module._SCHEDULES[2]
+    axes = np.array([i for i, _ in sched[1:-1]], dtype=np.int64)
+    fracs = np.array([c for _, c in sched[1:-1]], dtype=np.float64)
+    J = np.ascontiguousarray(np.stack([J_TOP, J_TOP]))
+    L0 = np.array([J_TOP * W_TOP, [np.nan, 0.0, 0.0]])
+    R0 = np.stack([np.eye(3), np.eye(3)])
+    t = np.linspace(0.0, 1.0, 3)
+    for compensated in (False, True):
+        ys = np.zeros((t.size, 2, 12))
+        status, _ = _kernels.splitting_free_body(
+            J,
+            L0,
+            R0,
+            np.array([np.linalg.norm(L0[0]), np.nan]),
+            t,
+            np.array([10, 10], dtype=np.int64),
+            axes,
+            fracs,
+            float(sched[0][1]),
+            64,
+            compensated,
+            ys,
+        )
+        assert status == _kernels.STATUS_NONFINITE
+
+
+# Hairer's start where the rates vanish and their Jacobian does not: a spin of 1000 rad/s
+# about the axis of the smallest moment, 7e-27 of momentum off it, momentum only (R = 0,
+# a solution of the linear equations of R that stays 0).  The rates (L × ω, ~3e-24) scaled
+# by atol are d1 ~ 1e-16 ≤ 1e-15, but one trial step moves them by ω times as much,
+# d2 ~ 7e-14 > 1e-15: the start is (0.01 / d2)^(1/8), not the 1e-6 of a state at rest.
+def test_compiled_dop853_starts_a_spin_about_a_principal_axis_as_the_reference():
+    y0 = np.concatenate([[1000.0, 7e-27, 0.0], np.zeros(9)])
+    fast, ref = _dop853_both(y0, (0.0, 0.01), rtol=1e-8, atol=1e-8)
+    _same_work(fast, ref)
+    assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS
