@@ -353,7 +353,7 @@ def _project(
 ) -> None:  # pragma: no cover
     """|L| ← norm0 and one Newton–Schulz step R ← R − ½ (R Rᵀ − 1) R (the reference's
     ``_project_batch``, in its order of operations)."""
-    nrm = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
+    nrm = math.hypot(math.hypot(L[0], L[1]), L[2])  # (no overflow before |L| does)
     if nrm > 0.0:
         f = norm0 / nrm
         L[0] *= f

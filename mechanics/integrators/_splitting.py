@@ -83,7 +83,9 @@ PROJECT_EVERY = 64
 
 
 def _project_scalar(L: list[float], R: list[list[float]], norm0: float) -> None:
-    n = math.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
+    # |L| by hypot, as norm0: a sum of squares overflows from |L| ~ 1.3e154, and L would
+    # then be scaled to 0 (norm0 / inf), silently
+    n = float(np.hypot(np.hypot(L[0], L[1]), L[2]))
     if n > 0.0:
         f = norm0 / n
         L[:] = [L[0] * f, L[1] * f, L[2] * f]
@@ -93,7 +95,7 @@ def _project_scalar(L: list[float], R: list[list[float]], norm0: float) -> None:
 
 
 def _project_batch(L: list[FloatArray], R: list[FloatArray], norm0: FloatArray) -> None:
-    n = np.sqrt(L[0] * L[0] + L[1] * L[1] + L[2] * L[2])
+    n = np.hypot(np.hypot(L[0], L[1]), L[2])  # (see _project_scalar)
     f = np.where(n > 0.0, norm0 / np.where(n > 0.0, n, 1.0), 1.0)
     L[:] = [L[0] * f, L[1] * f, L[2] * f]
     M = np.stack(R, axis=-2)
