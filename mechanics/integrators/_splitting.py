@@ -400,12 +400,19 @@ def free_rigid_body_splitting(
             n = _substeps(float(tt[k]), float(tt[k + 1]), hf)
             hk = d / n
             seq_h = [(i, c * hk) for i, c in middle]
+            blown = False  # math.cos/sin of an infinite turn (one body's Python floats)
             for first in range(0, n, PROJECT_EVERY):
                 m = min(PROJECT_EVERY, n - first)
-                flows += run(Js, Ls, Rs, seq_h, head * hk, 2.0 * head * hk, m)
+                try:
+                    flows += run(Js, Ls, Rs, seq_h, head * hk, 2.0 * head * hk, m)
+                except ValueError:
+                    blown = True
+                    break
                 project(Ls, Rs, norm0)
             steps += n
-            if scalar:
+            if blown:
+                ys[k + 1] = np.inf
+            elif scalar:
                 ys[k + 1] = [*Ls, *Rs[0], *Rs[1], *Rs[2]]
             elif compensated:  # rows kept as lists of components
                 ys[k + 1, ..., :3] = np.stack(Ls, axis=-1)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import itertools
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -709,3 +710,18 @@ def test_the_splitting_keeps_an_angular_momentum_whose_squares_overflow(scale, c
     L1, R1_ = rigid_body_parts(want.y[-1])
     np.testing.assert_allclose(L / scale, L1, rtol=0, atol=SCALED_SPLITTING_RTOL)
     np.testing.assert_allclose(R, R1_, rtol=0, atol=SCALED_SPLITTING_RTOL)
+
+
+@pytest.mark.parametrize("compensated", [False, True])
+@pytest.mark.parametrize("compiled", [False, True])
+def test_a_splitting_turn_beyond_float64_is_the_librarys_overflow_error(compiled, compensated):
+    """ω = L/J ~ 1e310 makes each turn's angle infinite: math.cos raised its own bare
+    ValueError ("math domain error") on the one-body path; now the overflow is named
+    with its interval, on every path (the compiled one hands a non-finite run over)."""
+    J, L0 = [1e-300, 2e-300, 2.5e-300], [1e10, -1e10, 1e10]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", integrators.CompiledPathWarning)
+        with pytest.raises(ResultOverflowError, match=r"between t=0\.0 and t=1\.0"):
+            free_rigid_body_splitting(
+                J, L0, np.eye(3), (0.0, 1.0), 0.1, compiled=compiled, compensated=compensated
+            )
