@@ -176,8 +176,9 @@ def principal_moments(
                 return _triple(J2 * (1.0 - d), J2, J2 + draw(unit) * J2 * (1.0 - d))
             return _triple(J1, J2, J2 * (1.0 + d))  # J2 ≈ J3
         if regime == "flat":
-            J1 = J2 * draw(ratio)
-            return np.array([J1, J2, J1 + J2])
+            J3 = J2 * draw(ratio) + J2  # rounded: it may exceed the exact sum ...
+            J1 = J3 - J2  # ... so J1 is taken back from it, exactly (J2 ≤ J3 ≤ 2 J2)
+            return np.array([J1, J2, J3])
         if regime == "near-flat":
             J1 = J2 * draw(ratio)
             return _triple(J1, J2, (J1 + J2) * (1.0 - draw(delta)))
