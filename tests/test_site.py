@@ -22,11 +22,12 @@ What the browser tests compare:
 from __future__ import annotations
 
 import html
+import json
 import re
 import shutil
 import subprocess
 from pathlib import Path
-from urllib.parse import unquote, urlsplit
+from urllib.parse import quote, unquote, urlsplit
 
 import numpy as np
 import pytest
@@ -232,6 +233,7 @@ PAGES = (
     "named.html",
     "scenes.html",
     "workprecision.html",
+    "search.html",
 )
 
 
@@ -313,3 +315,90 @@ def test_errata_screenshot_shows_mathml_laid_out(site, tmp_path):
     assert _ink(rendered) > MIN_INK
     flat = _screenshot(tmp_path, _flattened(page), tmp_path / "flat.png")
     assert _changed(rendered, flat) > MIN_CHANGED, "the errata's MathML looks like plain text"
+
+
+# ---------------------------------------------------------------- the search box
+
+NODE = shutil.which("node")
+NO_NODE = "node not found (apt-get install -y nodejs): the search box's script runs under it"
+#: queries of every kind: a known name (its checks first), words of titles and of the
+#: book's headings, an accent dropped, an apostrophe, a section number, nothing found
+QUERIES = (
+    "parallel axis",
+    "Bernoulli",
+    "König",
+    "euler's equations",
+    "restitution",
+    "physical pendulum",
+    "4.3.1",
+    "rocket",
+    "no such topic zzz",
+    "",
+)
+#: a query run in the browser, and the check it must find first
+BROWSER_QUERIES = {"parallel axis": "eq4.38", "Bernoulli": "eq8.34"}
+
+
+def test_every_page_has_the_search_box_and_search_html_lists_every_check(site):
+    from identities.verify.catalogue import checks
+
+    for page in site.glob("*.html"):
+        text = page.read_text("utf-8")
+        assert "<form id='search' role='search' action='search.html'>" in text, page.name
+        assert "<script src='search.js' defer></script>" in text, page.name
+    listed = set(re.findall(r"<code>([^<]+)</code></a>", (site / "search.html").read_text()))
+    assert listed == {html.escape(c.id) for c in checks()}
+
+
+@pytest.mark.skipif(NODE is None, reason=NO_NODE)
+def test_the_search_box_finds_what_bodycheck_search_finds(site):
+    """The page's script (run by node on the site's own index) against the command's
+    search, query by query: the same checks in the same order."""
+    from identities.verify import topics
+
+    runner = (
+        "const vm = require('vm'), fs = require('fs');"
+        "const ctx = {window: {}}; vm.createContext(ctx);"
+        "for (const f of ['search-index.js', 'search.js'])"
+        "  vm.runInContext(fs.readFileSync(process.argv[1] + '/' + f, 'utf8'), ctx);"
+        "const q = JSON.parse(process.argv[2]);"
+        "console.log(JSON.stringify(q.map((x) =>"
+        "  ctx.bodycheckSearch(ctx.window.BODYCHECK_SEARCH, x).map((c) => c.id))));"
+    )
+    run = subprocess.run(
+        [NODE, "-e", runner, str(site), json.dumps(QUERIES)],
+        capture_output=True,
+        text=True,
+        timeout=BROWSER_TIMEOUT_S,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    got = json.loads(run.stdout)
+    for q, ids in zip(QUERIES, got, strict=True):
+        assert ids == [c.id for c in topics.search(q)], q
+    assert got[0][0] == "eq4.38"
+    assert got[-2] == []
+    assert got[-1] == []
+
+
+@needs_chromium
+@pytest.mark.parametrize(("query", "first"), BROWSER_QUERIES.items())
+def test_the_search_box_finds_in_the_browser(site, tmp_path, query, first):
+    """A page opened with ?q= runs its query on load (as the form's submission without
+    script lands): the results list in the rendered DOM, the expected check first."""
+    page = site / "ch1.html"
+    run = _chromium(
+        tmp_path,
+        "--enable-logging=stderr",
+        "--v=0",
+        "--dump-dom",
+        page.as_uri() + "?q=" + quote(query),
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    dom = run.stdout
+    results = re.search(r"<ol id=\"search-results\"[^>]*>(.*?)</ol>", dom, re.S)
+    assert results is not None, dom[:2000]
+    ids = re.findall(r"<a href=\"[^\"]+\">([^ <]+) ", results.group(1))
+    assert ids, dom[:2000]
+    assert ids[0] == first, ids
+    assert [line for line in run.stderr.splitlines() if "CONSOLE" in line] == []

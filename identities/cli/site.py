@@ -26,6 +26,7 @@ Conventions
 from __future__ import annotations
 
 import html
+import json
 import re
 import shutil
 import tokenize
@@ -48,6 +49,8 @@ MARKER = ".bodycheck-site"
 SCENES = ("bouncing_ball", "heavy_top", "free_top_flip")
 #: the work-precision plot of the committed study (``make bench`` rewrites it)
 _BENCH = Path(__file__).resolve().parents[2] / "docs" / "bench"
+#: the search box's script (identities/data/site_search.js)
+_SEARCH_JS = Path(__file__).resolve().parents[1] / "data" / "site_search.js"
 
 _GREEK = {
     "α": "alpha",
@@ -248,9 +251,67 @@ def _page(title: str, body: str, chapters: list[int]) -> str:
     return (
         "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
         f"<title>{html.escape(title)}</title>"
-        "<link rel='stylesheet' href='style.css'></head>\n"
-        f"<body><nav>{nav}</nav>\n<h1>{html.escape(title)}</h1>\n{body}\n</body></html>\n"
+        "<link rel='stylesheet' href='style.css'>"
+        "<script src='search-index.js' defer></script><script src='search.js' defer></script>"
+        "</head>\n"
+        f"<body><nav>{nav}</nav>\n{_SEARCH_BOX}\n<h1>{html.escape(title)}</h1>\n{body}\n"
+        "</body></html>\n"
     )
+
+
+#: the search box of every page: with JavaScript it lists the matches under it; without,
+#: the form opens search.html, which lists every check with its topic words
+_SEARCH_BOX = (
+    "<form id='search' role='search' action='search.html'>"
+    "<label for='search-query'>search the checks</label> "
+    "<input id='search-query' type='search' name='q' placeholder='parallel axis, Bernoulli'> "
+    "<button type='submit'>search</button> <span id='search-status' aria-live='polite'>"
+    "</span></form>\n<ol id='search-results'></ol>"
+)
+
+
+def _check_href(c) -> str:
+    """The page and anchor of a check's section."""
+    page = f"ch{c.chapter}.html" if c.chapter is not None else "named.html"
+    return f"{page}#{_check_anchor(c.id)}"
+
+
+def search_index(regs) -> dict:
+    """What the search box searches (``search-index.js``): each check's id, title, page
+    and topic words (:func:`identities.verify.topics.topic_text`, normalised as
+    ``bodycheck search`` does), and the well-known names with their checks."""
+    from identities.verify import topics
+
+    return {
+        "checks": [
+            {
+                "id": c.id,
+                "title": c.title,
+                "href": _check_href(c),
+                "words": " ".join(topics.topic_words(c)),
+            }
+            for c in regs
+        ],
+        "names": [[name, list(ids)] for name, ids in topics.NAMES.items()],
+    }
+
+
+def _search_page(index: dict) -> str:
+    """search.html: every check with its topic words (what the box searches; without
+    JavaScript, the page to search with the browser's find)."""
+    rows = [
+        "<p>Type in the box above; without JavaScript, find in this page: every check "
+        "with its topic words (its title and statement, the headings of the book's "
+        "sections it stands in, the names it is known by).</p>",
+        "<table><tr><th>check</th><th>topic words</th></tr>",
+    ]
+    for c in index["checks"]:
+        rows.append(
+            f"<tr><td><a href='{html.escape(c['href'])}'><code>{html.escape(c['id'])}</code>"
+            f"</a> {html.escape(c['title'])}</td><td>{html.escape(c['words'])}</td></tr>"
+        )
+    rows.append("</table>")
+    return "\n".join(rows)
 
 
 def _check_anchor(check_id: str) -> str:
@@ -425,6 +486,11 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
         "<li><a href='workprecision.html'>Work-precision</a></li></ul>",
     ]
     pages["index.html"] = ("bodycheck: the book, checked", "\n".join(index))
+    found = search_index(regs)
+    pages["search.html"] = ("Search", _search_page(found))
+    data = json.dumps(found, ensure_ascii=True, separators=(",", ":"))
+    (out / "search-index.js").write_text(f"window.BODYCHECK_SEARCH = {data};\n", "utf-8")
+    shutil.copyfile(_SEARCH_JS, out / "search.js")
     written = []
     for name, (title, body) in pages.items():
         path = out / name

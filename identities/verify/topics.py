@@ -28,7 +28,7 @@ from importlib import resources
 
 from .catalogue import Check, inventory, load_all
 
-__all__ = ["NAMES", "nearest", "search", "section_titles", "topic_text"]
+__all__ = ["NAMES", "nearest", "search", "section_titles", "topic_text", "topic_words"]
 
 #: well-known names of results -> the checks that carry them (read off their titles)
 NAMES: dict[str, tuple[str, ...]] = {
@@ -76,6 +76,12 @@ def topic_text(check: Check) -> str:
     return " ".join(parts)
 
 
+def topic_words(check: Check) -> list[str]:
+    """The topic words of a check, normalised as a query is (what :func:`search` matches;
+    the site's search box ships them)."""
+    return _words(topic_text(check))
+
+
 def _starts(query: list[str], words: list[str]) -> bool:
     return all(any(w.startswith(q) for w in words) for q in query)
 
@@ -90,7 +96,7 @@ def search(query: str) -> list[Check]:
     named = [cid for name, ids in NAMES.items() if _starts(q, _words(name)) for cid in ids]
     found = [reg[c] for c in dict.fromkeys(named) if c in reg]
     for c in reg.values():
-        if c not in found and _starts(q, _words(topic_text(c))):
+        if c not in found and _starts(q, topic_words(c)):
             found.append(c)
     return found
 
