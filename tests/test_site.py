@@ -402,3 +402,60 @@ def test_the_search_box_finds_in_the_browser(site, tmp_path, query, first):
     assert ids, dom[:2000]
     assert ids[0] == first, ids
     assert [line for line in run.stderr.splitlines() if "CONSOLE" in line] == []
+
+
+# ---------------------------------------------------------------- accessibility
+
+AXE = Path(__file__).resolve().parent / "data" / "vendor" / "axe-core" / "axe.min.js"
+#: tests/data/vendor/axe-core/SOURCE.md: the file as the npm registry ships it
+AXE_SHA256 = "29348999450cdf2849a8e70b7912fc2da85a849da39c0d0d5394f51d4a9ed95c"
+#: run after the page's own scripts: axe's violations, their impact and node count, into
+#: a <pre> that --dump-dom shows (--virtual-time-budget lets the promise settle)
+AXE_RUNNER = """<script src='axe.min.js'></script><script>
+axe.run(document, {resultTypes: ['violations']}).then(function (r) {
+  var pre = document.createElement('pre');
+  pre.id = 'axe-result';
+  pre.textContent = JSON.stringify(r.violations.map(function (v) {
+    return {id: v.id, impact: v.impact, nodes: v.nodes.length, help: v.help};
+  }));
+  document.body.appendChild(pre);
+});</script>"""
+
+
+def _axe(tmp_path: Path, page: Path) -> list[dict]:
+    """axe-core's violations on a copy of ``page`` (beside its files) with axe injected."""
+    import hashlib
+
+    assert hashlib.sha256(AXE.read_bytes()).hexdigest() == AXE_SHA256
+    here = tmp_path / "axe"
+    if not here.exists():
+        shutil.copytree(page.parent, here)
+        shutil.copyfile(AXE, here / "axe.min.js")
+    copy = here / ("axe-" + page.name)
+    copy.write_text(page.read_text("utf-8").replace("</body>", AXE_RUNNER + "</body>"), "utf-8")
+    run = _chromium(tmp_path, "--virtual-time-budget=20000", "--dump-dom", copy.as_uri())
+    assert run.returncode == 0, run.stderr[-2000:]
+    found = re.search(r'<pre id="axe-result">(.*?)</pre>', run.stdout, re.S)
+    assert found is not None, f"axe did not report on {page.name}: {run.stdout[-1000:]}"
+    return json.loads(html.unescape(found.group(1)))
+
+
+@needs_chromium
+@pytest.mark.parametrize("name", PAGES)
+def test_axe_finds_no_accessibility_violation_on_any_page(site, tmp_path, name):
+    assert _axe(tmp_path, site / name) == [], name
+
+
+@needs_chromium
+def test_axe_finds_an_image_without_text_and_an_unlabelled_field(tmp_path):
+    """The negative control: the same check on a page that breaks two serious rules."""
+    page = tmp_path / "page" / "bad.html"
+    page.parent.mkdir()
+    page.write_text(
+        "<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>x</title></head>"
+        "<body><main><h1>x</h1><img src='x.png'><input type='text'></main></body></html>",
+        encoding="utf-8",
+    )
+    found = {v["id"]: v["impact"] for v in _axe(tmp_path, page)}
+    assert found.get("image-alt") == "critical"
+    assert found.get("label") == "critical"

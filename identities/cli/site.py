@@ -254,8 +254,8 @@ def _page(title: str, body: str, chapters: list[int]) -> str:
         "<link rel='stylesheet' href='style.css'>"
         "<script src='search-index.js' defer></script><script src='search.js' defer></script>"
         "</head>\n"
-        f"<body><nav>{nav}</nav>\n{_SEARCH_BOX}\n<h1>{html.escape(title)}</h1>\n{body}\n"
-        "</body></html>\n"
+        f"<body><header><nav>{nav}</nav>\n{_SEARCH_BOX}</header>\n"
+        f"<main><h1>{html.escape(title)}</h1>\n{body}\n</main></body></html>\n"
     )
 
 
@@ -449,7 +449,7 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
     named = [c for c in regs if c.chapter is None]
     pages["named.html"] = (
         "Named results",
-        "\n".join(_check_block(c) for c in named) or "<p>none</p>",
+        "<h2>Checks</h2>\n" + ("\n".join(_check_block(c) for c in named) or "<p>none</p>"),
     )
     pages["errata.html"] = ("Errata", _errata_page(regs))
     if scenes:
