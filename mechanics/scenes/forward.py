@@ -246,7 +246,7 @@ class Forward:
         t: float,
         y: FloatArray,
         s: Snapshot,
-        points: Mapping[int | None, FloatArray],
+        points: Mapping[int, FloatArray],
         sizes: dict[int, float] | None = None,
     ) -> dict[int, FloatArray]:
         """Accelerations (space) of the body points ``{body: position}`` at (t, y):
