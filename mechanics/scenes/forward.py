@@ -38,6 +38,7 @@ if TYPE_CHECKING:  # for annotations only
     from mechanics.integrators import DOP853Stepper
 
     from .effects import Effect
+    from .effects.capabilities import HasModes
     from .effects.impact import Feature, Impact
     from .model import Model
     from .support import Support
@@ -161,7 +162,7 @@ class Forward:
             e.loads(t, s, out)
         return out
 
-    def loads_before(self, t: float, s: Snapshot, effect: Effect) -> Loads:
+    def loads_before(self, t: float, s: Snapshot, effect: Effect | HasModes) -> Loads:
         """The loads of the effects summed before ``effect`` (all the others, for one
         that comes after the loads)."""
         out = Loads(self.model.n, s)
