@@ -102,7 +102,7 @@ class Trajectory:
     #: max |R Rᵀ − 1| of the rigid bodies' attitudes (None: no rigid body)
     orthogonality: float | None = None
     #: (name, exact, measured) rows of the derived quantities (:mod:`.derived`)
-    derived: list[tuple[str, float, float]] = field(default_factory=list)
+    derived: list[tuple[str, float | None, float | None]] = field(default_factory=list)
     #: a splitting's order, step and the energy drift at half the step (None otherwise)
     splitting: dict[str, float] | None = None
 
