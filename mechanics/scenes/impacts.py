@@ -57,7 +57,7 @@ from . import contacts
 from .effects.impact import EnergyGainError, totals
 from .errors import SceneError
 from .trajectory import EPS, Event
-from .vectors import FloatArray
+from .vectors import FloatArray, Times
 
 if TYPE_CHECKING:  # for annotations only
     from .effects import Snapshot
@@ -326,7 +326,7 @@ class Resolver:
             if closing > detail["law_residual"]:
                 detail["law_residual"], detail["law_worst_contact"] = closing, f.label
 
-    def _slides(self, imp: Impact, labels: list[str], t: float, slide: float) -> SceneError:
+    def _slides(self, imp: Impact, labels: list[str], t: Times, slide: float) -> SceneError:
         return self.model.scene.error(
             f"{imp.where}.friction",
             f"{len(labels)} contacts of {imp.label} meet at once at t = {t:.6g} s while "

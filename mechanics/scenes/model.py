@@ -14,7 +14,7 @@ model: :mod:`.forward` (the loads' phase), :mod:`.collision`, :mod:`.modes`.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -193,7 +193,7 @@ class Model:
         self.impacts_of: dict[int, list[int]] = {}
         for a, imp in enumerate(self.impacts):
             for k in {imp.i, imp.j} - {None}:
-                self.impacts_of.setdefault(k, []).append(a)
+                self.impacts_of.setdefault(cast(int, k), []).append(a)  # (None taken out)
         #: the effects that add loads; one that reads the others' loads comes after
         #: them (a stable sort)
         self.forces = sorted(

@@ -12,7 +12,7 @@ every mode already beyond its limit (a push that starts makes a rolling body sli
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -57,7 +57,7 @@ class Modes:
         (``effect``: one of :attr:`~.model.Model.switching`, an effect with modes.)"""
         fwd = self.forward
         sn = fwd.snapshot(t, y)
-        sn.phase = fwd.phase
+        sn.phase = cast(float, fwd.phase)  # (set: inside an integration segment)
         events.append(effect.switch(t, sn, fwd.loads_before(t, sn, effect)))
         self.switched[effect] = t
         if len(events) > impacts.MAX_EVENTS:  # (read here: a test may lower it)
@@ -72,7 +72,7 @@ class Modes:
             g, size = self.value(e, t, y)
             if g < -SWITCH_ROUNDING * size:
                 sn = fwd.snapshot(t, y)
-                sn.phase = fwd.phase
+                sn.phase = cast(float, fwd.phase)  # (set: inside an integration segment)
                 events.append(e.switch(t, sn, fwd.loads_before(t, sn, e)))
                 self.switched[e] = t
                 y = fwd.pack(sn)

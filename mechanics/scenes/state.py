@@ -34,7 +34,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, TypeAlias, cast
+from typing import TYPE_CHECKING, Any, Protocol, TypeAlias, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -54,6 +54,19 @@ if TYPE_CHECKING:  # for annotations only: these are layers above
 CoordFlow: TypeAlias = Callable[[Times], tuple[FloatArray, FloatArray]]
 #: an exact flow of a guided body's coordinates: (how, f, events)
 ExactCoords: TypeAlias = tuple[str, CoordFlow, list[Event]]
+
+
+class BodyShape(Protocol):
+    """What a body's geometry is read from (:class:`mechanics.scenes.spec.Body` has it)."""
+
+    @property
+    def shape(self) -> str: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def dims(self) -> Mapping[str, Any]: ...
+
+
 #: a pinned body's (C, g_A, J_C, J_C⁻¹)
 Pin: TypeAlias = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
 #: :meth:`Layout._index`: the rows of r, v, L_A, R_A_O in the padded state, and its constants
@@ -294,7 +307,7 @@ def _carousel(flow: MassFlow, J0: float, phi0: float, w0: float) -> ExactCoords:
     return "exact: carousel under fire, solution of (7.39)", f, []
 
 
-def body_inertia(body: BodySpec) -> FloatArray:
+def body_inertia(body: BodyShape) -> FloatArray:
     """Principal moments about G, shape (3,), from the inertia catalogue."""
     from mechanics import inertia as I
 
@@ -318,7 +331,7 @@ def body_inertia(body: BodySpec) -> FloatArray:
     return np.diag(f()).astype(float)
 
 
-def body_radius(body: BodySpec) -> float | None:
+def body_radius(body: BodyShape) -> float | None:
     """Radius of a spherical body (0 for a point), None for any other shape."""
     if body.shape == "point":
         return 0.0
@@ -327,7 +340,7 @@ def body_radius(body: BodySpec) -> float | None:
     return None
 
 
-def body_vertices(body: BodySpec) -> FloatArray | None:
+def body_vertices(body: BodyShape) -> FloatArray | None:
     """The corners of a polyhedral body in body components about G, shape (k, 3): the 8
     corners of a box (edges a, b, c along e1, e2, e3), the 4 of a rectangular plate
     (a, b in the e1e2-plane), the 2 ends of a rod (along e3); None for other shapes."""
