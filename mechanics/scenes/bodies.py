@@ -17,11 +17,19 @@ body points and the contact search ask each body's object for what depends on it
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import TYPE_CHECKING, ClassVar, TypeAlias, cast
 
 import numpy as np
 
-from .vectors import cross
+from .vectors import FloatArray, IntArray, cross
+
+if TYPE_CHECKING:  # for annotations only: these are layers above
+    from .collision import Collision, StepFit
+    from .effects import Snapshot
+    from .state import Guide
+
+#: (origin, its acceleration, ω, α) of a body, space components
+Kinematics: TypeAlias = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
 
 __all__ = ["KINDS", "Body", "Fixed", "Guided", "Pinned", "Point", "Rigid", "Tank"]
 
@@ -44,25 +52,34 @@ class Body:
         """The numbers it carries in the flat state."""
         raise NotImplementedError
 
-    def slots(self, ir, iv, iL, iR, fixed_at) -> None:
+    def slots(
+        self, ir: IntArray, iv: IntArray, iL: IntArray, iR: IntArray, fixed_at: dict[int, int]
+    ) -> None:
         """Point its rows of the index arrays (r, v, L, R) at its slice of the state
         (rows left alone read the constants: zero, the identity)."""
 
-    def rate(self, s, F, M_A, rates, out) -> None:
+    def rate(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None,
+        out: FloatArray,
+    ) -> None:
         """Write its slice of dy/dt into ``out`` for the snapshot s, the force F (space,
         at G) and moment M_A (body components, about G) on it, and ``rates`` (a tank's)."""
 
-    def kinematics(self, s, dy, dv, dL):
+    def kinematics(self, s: Snapshot, dy: FloatArray, dv: FloatArray, dL: FloatArray) -> Kinematics:
         """(origin, its acceleration, ω, α), space components, at the snapshot s with
         state rates dy (dv, dL: its gathered rows)."""
         raise NotImplementedError
 
-    def point_coef(self, collision, fit, at):
+    def point_coef(self, collision: Collision, fit: StepFit, at: FloatArray | None) -> FloatArray:
         """Chebyshev coefficients (K, 3) of its point ``at`` (body components about G;
         None: G) along the step ``fit``."""
         raise NotImplementedError
 
-    def frame_coef(self, collision, fit):
+    def frame_coef(self, collision: Collision, fit: StepFit) -> tuple[FloatArray, FloatArray]:
         """Chebyshev coefficients of its centre (K, 3) and R_A_O (K, 3, 3) along the step."""
         raise NotImplementedError
 
@@ -71,17 +88,19 @@ class Fixed(Body):
     kind = "fixed"
     moves = False
 
-    def __init__(self, i: int, o: int, r: np.ndarray) -> None:
+    def __init__(self, i: int, o: int, r: FloatArray) -> None:
         super().__init__(i, o)
         self.r = r
 
     def size(self) -> int:
         return 0
 
-    def slots(self, ir, iv, iL, iR, fixed_at) -> None:
+    def slots(
+        self, ir: IntArray, iv: IntArray, iL: IntArray, iR: IntArray, fixed_at: dict[int, int]
+    ) -> None:
         ir[self.i] = fixed_at[self.i] + np.arange(3)
 
-    def point_coef(self, collision, fit, at):
+    def point_coef(self, collision: Collision, fit: StepFit, at: FloatArray | None) -> FloatArray:
         c = np.zeros((fit.coef.shape[0], 3))
         c[0] = self.r + (at if at is not None else 0.0)
         return c
@@ -96,7 +115,15 @@ class Tank(Body):
     def size(self) -> int:
         return self.SIZE
 
-    def rate(self, s, F, M_A, rates, out) -> None:
+    def rate(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None,
+        out: FloatArray,
+    ) -> None:
+        assert rates is not None, "a tank's state changes at the rates its loads give"
         out[self.o : self.o + self.SIZE] = rates[self.i]
 
 
@@ -107,19 +134,28 @@ class Point(Body):
     def size(self) -> int:
         return self.SIZE
 
-    def slots(self, ir, iv, iL, iR, fixed_at) -> None:
+    def slots(
+        self, ir: IntArray, iv: IntArray, iL: IntArray, iR: IntArray, fixed_at: dict[int, int]
+    ) -> None:
         ir[self.i] = self.o + np.arange(3)
         iv[self.i] = self.o + 3 + np.arange(3)
 
-    def rate(self, s, F, M_A, rates, out) -> None:
+    def rate(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None,
+        out: FloatArray,
+    ) -> None:
         o, i = self.o, self.i
         out[o : o + 3] = s.v[i]
         out[o + 3 : o + 6] = F[i] / s.m[i]
 
-    def kinematics(self, s, dy, dv, dL):
+    def kinematics(self, s: Snapshot, dy: FloatArray, dv: FloatArray, dL: FloatArray) -> Kinematics:
         return s.r[self.i], dv, ZERO, ZERO
 
-    def point_coef(self, collision, fit, at):
+    def point_coef(self, collision: Collision, fit: StepFit, at: FloatArray | None) -> FloatArray:
         return fit.coef[:, self.o : self.o + 3].copy()
 
 
@@ -128,12 +164,21 @@ class Rigid(Point):
     turns = True
     SIZE = 18
 
-    def slots(self, ir, iv, iL, iR, fixed_at) -> None:
+    def slots(
+        self, ir: IntArray, iv: IntArray, iL: IntArray, iR: IntArray, fixed_at: dict[int, int]
+    ) -> None:
         super().slots(ir, iv, iL, iR, fixed_at)
         iL[self.i] = self.o + 6 + np.arange(3)
         iR[self.i] = (self.o + 9 + np.arange(9)).reshape(3, 3)
 
-    def rate(self, s, F, M_A, rates, out) -> None:
+    def rate(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None,
+        out: FloatArray,
+    ) -> None:
         o, i = self.o, self.i
         out[o : o + 3] = s.v[i]
         out[o + 3 : o + 6] = F[i] / s.m[i]
@@ -148,20 +193,20 @@ class Rigid(Point):
         out[o + 12 : o + 15] = wi[0] * Ri[2] - wi[2] * Ri[0]
         out[o + 15 : o + 18] = wi[1] * Ri[0] - wi[0] * Ri[1]
 
-    def kinematics(self, s, dy, dv, dL):
+    def kinematics(self, s: Snapshot, dy: FloatArray, dv: FloatArray, dL: FloatArray) -> Kinematics:
         k = self.i
         safe = np.where(s.J[k] > 0, s.J[k], 1.0)
         wdot = np.where(s.J[k] > 0, dL / safe, 0.0)
         return s.r[k], dv, s.to_space(k, s.omega[k]), s.to_space(k, wdot)
 
-    def point_coef(self, collision, fit, at):
+    def point_coef(self, collision: Collision, fit: StepFit, at: FloatArray | None) -> FloatArray:
         c = super().point_coef(collision, fit, at)
         if at is not None:
             R = fit.coef[:, self.o + 9 : self.o + 18].reshape(-1, 3, 3)
             c += np.einsum("kic,i->kc", R, at)
         return c
 
-    def frame_coef(self, collision, fit):
+    def frame_coef(self, collision: Collision, fit: StepFit) -> tuple[FloatArray, FloatArray]:
         o = self.o
         return fit.coef[:, o : o + 3], fit.coef[:, o + 9 : o + 18].reshape(-1, 3, 3)
 
@@ -174,23 +219,34 @@ class Pinned(Body):
     turns = True
     SIZE = 12
 
-    def __init__(self, i: int, o: int, C, g, JC) -> None:
+    def __init__(self, i: int, o: int, C: FloatArray, g: FloatArray, JC: FloatArray) -> None:
         super().__init__(i, o)
-        self.C, self.g, self.JC, self.JCinv = C, g, JC, np.linalg.inv(JC)
+        self.C, self.g, self.JC = C, g, JC
+        #: J_C⁻¹ (numpy types inv's result as a float of any precision: float64 here)
+        self.JCinv = cast("FloatArray", np.linalg.inv(JC))
 
-    def pin(self) -> tuple:
+    def pin(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """(C, g_A, J_C, J_C⁻¹)."""
         return self.C, self.g, self.JC, self.JCinv
 
     def size(self) -> int:
         return self.SIZE
 
-    def slots(self, ir, iv, iL, iR, fixed_at) -> None:
+    def slots(
+        self, ir: IntArray, iv: IntArray, iL: IntArray, iR: IntArray, fixed_at: dict[int, int]
+    ) -> None:
         # r, v derived (zeros here); L_C and R stored
         iL[self.i] = self.o + np.arange(3)
         iR[self.i] = (self.o + 3 + np.arange(9)).reshape(3, 3)
 
-    def rate(self, s, F, M_A, rates, out) -> None:
+    def rate(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None,
+        out: FloatArray,
+    ) -> None:
         """(L̇_C, Ṙ): L̇_C = L_C × ω + M_C, the moment about the pivot M_C = M_G +
         g_A × (R F) (body components)."""
         i, o = self.i, self.o
@@ -202,18 +258,18 @@ class Pinned(Body):
         out[o + 6 : o + 9] = w[0] * Ri[2] - w[2] * Ri[0]
         out[o + 9 : o + 12] = w[1] * Ri[0] - w[0] * Ri[1]
 
-    def kinematics(self, s, dy, dv, dL):
+    def kinematics(self, s: Snapshot, dy: FloatArray, dv: FloatArray, dL: FloatArray) -> Kinematics:
         k = self.i
         wdot = self.JCinv @ dL
         return self.C, ZERO, s.to_space(k, s.omega[k]), s.to_space(k, wdot)
 
-    def point_coef(self, collision, fit, at):
+    def point_coef(self, collision: Collision, fit: StepFit, at: FloatArray | None) -> FloatArray:
         R = fit.coef[:, self.o + 3 : self.o + 12].reshape(-1, 3, 3)
-        c = np.einsum("kic,i->kc", R, self.g + (at if at is not None else 0.0))
+        c: FloatArray = np.einsum("kic,i->kc", R, self.g + (at if at is not None else 0.0))
         c[0] += self.C
         return c
 
-    def frame_coef(self, collision, fit):
+    def frame_coef(self, collision: Collision, fit: StepFit) -> tuple[FloatArray, FloatArray]:
         R = fit.coef[:, self.o + 3 : self.o + 12].reshape(-1, 3, 3)
         return self.point_coef(collision, fit, None), R
 
@@ -224,20 +280,27 @@ class Guided(Body):
     kind = "guided"
     turns = True
 
-    def __init__(self, i: int, o: int, gd) -> None:
+    def __init__(self, i: int, o: int, gd: Guide) -> None:
         super().__init__(i, o)
         self.gd = gd
 
     def size(self) -> int:
         return 2 * self.gd.nq
 
-    def rate(self, s, F, M_A, rates, out) -> None:
+    def rate(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None,
+        out: FloatArray,
+    ) -> None:
         i, o, gd = self.i, self.o, self.gd
         q, qd = s.coords[i]
         out[o : o + gd.nq] = qd
         out[o + gd.nq : o + 2 * gd.nq] = gd.rate(q, F[i], s.R[i].T @ M_A[i], s.inertia.get(i))
 
-    def kinematics(self, s, dy, dv, dL):
+    def kinematics(self, s: Snapshot, dy: FloatArray, dv: FloatArray, dL: FloatArray) -> Kinematics:
         """a_G = Σ E_k q̈_k + the bend; ω = Σ W_k q̇_k, α = Σ W_k q̈_k."""
         gd, o = self.gd, self.o
         q, qd = s.coords[self.i]
@@ -245,14 +308,14 @@ class Guided(Body):
         _, E, _ = gd.place(q)
         return s.r[self.i], qdd @ E + gd.bend(q, qd), qd @ gd.W, qdd @ gd.W
 
-    def point_coef(self, collision, fit, at):
+    def point_coef(self, collision: Collision, fit: StepFit, at: FloatArray | None) -> FloatArray:
         """Fitted at the step's Chebyshev nodes (a hinge's points are trigonometric in
         φ: for a turn of 0.3 rad per step the fit's error is ~(0.15)⁹/9! ≈ 1e-13 of the
         arm; the crossing is refined on the exact gap)."""
         k = self.i
         return collision.fit_snapshots(fit, lambda ss: ss.point(k, at))
 
-    def frame_coef(self, collision, fit):
+    def frame_coef(self, collision: Collision, fit: StepFit) -> tuple[FloatArray, FloatArray]:
         k = self.i
         c = collision.fit_snapshots(
             fit, lambda ss: np.concatenate([ss.r[:, k], ss.R[:, k].reshape(-1, 9)], axis=-1)

@@ -27,11 +27,15 @@ from __future__ import annotations
 
 import time
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from .errors import SceneError
+
+if TYPE_CHECKING:  # for annotations only: spec imports this module (a layer above it)
+    from .spec import Scene
 
 __all__ = [
     "COPIES",
@@ -86,17 +90,17 @@ def _bytes(n: float) -> str:
     return f"{n:.0f} bytes"
 
 
-def numbers_per_sample(scene) -> int:
+def numbers_per_sample(scene: Scene) -> int:
     return SERIES_PER_BODY * len(scene.bodies) + SERIES_PER_SCENE
 
 
-def memory_estimate(scene, samples: int | None = None) -> int:
+def memory_estimate(scene: Scene, samples: int | None = None) -> int:
     """Bytes of arrays a run of ``scene`` holds at its peak (an over-estimate)."""
     n = scene.samples if samples is None else samples
     return n * numbers_per_sample(scene) * 8 * COPIES
 
 
-def sample_limit(scene) -> int:
+def sample_limit(scene: Scene) -> int:
     """The samples the scene may have: its ``max_samples``, else what the memory budget
     holds."""
     if scene.max_samples is not None:
@@ -104,7 +108,7 @@ def sample_limit(scene) -> int:
     return DEFAULT_MAX_MEMORY // (numbers_per_sample(scene) * 8 * COPIES)
 
 
-def check_memory(scene) -> None:
+def check_memory(scene: Scene) -> None:
     """Refuse a scene whose samples exceed its limit, before anything is allocated."""
     limit = sample_limit(scene)
     if scene.samples <= limit:
@@ -126,7 +130,7 @@ def check_memory(scene) -> None:
     )
 
 
-def fastest_rate(scene, w0) -> float:
+def fastest_rate(scene: Scene, w0: npt.ArrayLike) -> float:
     """λ (1/s): the largest initial spin |ω| (``w0``, body components, shape (n, 3)) and
     spring frequency √(k/m) of the scene (the lighter body of a spring between two)."""
     rate = float(np.max(np.linalg.norm(np.asarray(w0, dtype=float), axis=-1), initial=0.0))
@@ -138,13 +142,13 @@ def fastest_rate(scene, w0) -> float:
     return rate
 
 
-def step_estimate(scene, w0) -> float:
+def step_estimate(scene: Scene, w0: npt.ArrayLike) -> float:
     """The steps an integrated run of ``scene`` takes at least (see the Conventions)."""
-    per = STEPS_PER_RADIAN * (CALIBRATION_RTOL / scene.rtol) ** 0.125
+    per: float = STEPS_PER_RADIAN * (CALIBRATION_RTOL / scene.rtol) ** 0.125
     return per * fastest_rate(scene, w0) * scene.duration
 
 
-def check_steps(scene, estimate: float, how: str) -> None:
+def check_steps(scene: Scene, estimate: float, how: str) -> None:
     """Refuse a run whose estimated steps exceed ``max_steps`` before it starts."""
     if estimate <= scene.max_steps:
         return
@@ -161,7 +165,7 @@ def check_steps(scene, estimate: float, how: str) -> None:
 class Clock:
     """The step count and wall time of a run, against its limits."""
 
-    scene: Any  # a spec.Scene (spec imports this module: a layer above it)
+    scene: Scene  # (spec imports this module: a layer above it)
     started: float = 0.0
     steps: int = 0
 

@@ -31,17 +31,31 @@ is at most what the run's own check of its resting contacts allows
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any, NoReturn, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 from numpy.polynomial import chebyshev as C
 
 from . import contacts
 from .effects.impact import centre_gaps
 from .impacts import GAP_ROUNDING, falls_in
-from .trajectory import CONSERVED_RTOL_INTEGRATED, EPS, tolerance_scale
+from .trajectory import CONSERVED_RTOL_INTEGRATED, EPS, Dense, tolerance_scale
+from .vectors import FloatArray
+
+if TYPE_CHECKING:  # for annotations only
+    from .effects import Snapshot
+    from .effects.impact import Feature, Impact
+    from .forward import Forward
+    from .impacts import Resolver
+    from .model import Model
+    from .spec import Scene
+
+#: a feature's gap polynomials along a step: (p, units, terms) each
+Polys: TypeAlias = list[tuple[FloatArray, float, float]]
 
 __all__ = ["Collision", "Hit", "StepFit", "check_initial_overlap"]
 
@@ -51,18 +65,18 @@ class StepFit:
     """One integration step [t_a, t_b] and its dense output ``dense`` (scipy's
     convention: (size,) at a time, (size, k) at k times)."""
 
-    dense: Any
+    dense: Dense
     t_a: float
     t_b: float
 
-    def time(self, xx):
+    def time(self, xx: float) -> float:
         """The time at the step's Chebyshev coordinate xx in [−1, 1]."""
         return 0.5 * (self.t_a + self.t_b) + 0.5 * (self.t_b - self.t_a) * xx
 
-    def state(self, t) -> np.ndarray:
+    def state(self, t: float) -> FloatArray:
         return np.asarray(self.dense(t), dtype=float)
 
-    def _get_coef(self) -> np.ndarray:
+    def _get_coef(self) -> FloatArray:
         """Chebyshev coefficients (K, size) of the whole state along the step (fitted
         once, when first read)."""
         return contacts.chebyshev_fit(lambda tt: np.asarray(self.dense(tt)).T, self.t_a, self.t_b)
@@ -76,13 +90,13 @@ class Hit:
     (``feature`` None) a switch of the effect's mode."""
 
     t: float
-    effect: Any
-    feature: Any = None
+    effect: Any  # an impact, or an effect with modes (.effects.capabilities.HasModes)
+    feature: Feature | None = None
     #: the feature touches with no approach speed and then falls in: it comes to rest
     rest: bool = False
 
 
-def check_initial_overlap(model, forward) -> None:
+def check_initial_overlap(model: Model, forward: Forward) -> None:
     """No two features overlap at t = 0 beyond the rounding of their positions (the
     centres of spheres and points all at once: :func:`.effects.impact.centre_gaps`)."""
     scene = model.scene
@@ -109,7 +123,7 @@ def check_initial_overlap(model, forward) -> None:
                 _overlap(scene, imp, ft, gap)
 
 
-def _overlap(scene, imp, ft, gap):
+def _overlap(scene: Scene, imp: Impact, ft: Feature, gap: float) -> NoReturn:
     raise scene.error(imp.where, f"{ft.label} overlap at t = 0 s (gap {gap:.3g} m < 0)")
 
 
@@ -122,7 +136,7 @@ BROAD_RTOL = 2**10 * EPS
 class Collision:
     """The contact search of a :class:`~mechanics.scenes.model.Model` on each step."""
 
-    def __init__(self, model, forward, resolver) -> None:
+    def __init__(self, model: Model, forward: Forward, resolver: Resolver) -> None:
         self.model = model
         self.forward = forward
         self.resolver = resolver
@@ -160,7 +174,7 @@ class Collision:
         self.other = [float(np.abs(imp.point).sum()) for imp in imps]
 
     # ----------------------------------------------------------- broad phase
-    def near(self, fit: StepFit) -> tuple[np.ndarray, dict[int, float]]:
+    def near(self, fit: StepFit) -> tuple[npt.NDArray[np.bool_], dict[int, float]]:
         """Which impacts may touch on the step (a bool per impact), and each body's
         Σ|centre's coefficients| (the size its positions round relative to).
 
@@ -205,7 +219,7 @@ class Collision:
                         near[a] = True
         return near, sums
 
-    def _keep_reach(self, fit: StepFit, a: int, imp, sums) -> None:
+    def _keep_reach(self, fit: StepFit, a: int, imp: Impact, sums: dict[int, float]) -> None:
         """The reach of the features of an impact the broad phase left out (the same
         sums :meth:`first_contact` takes of the positions it searches)."""
         support = self.resolver.support
@@ -228,7 +242,7 @@ class Collision:
             self.reach[a, b] = max(self.reach.get((a, b), 0.0), reach)
 
     # ------------------------------------------------------- the features' paths
-    def fit_snapshots(self, fit: StepFit, f):
+    def fit_snapshots(self, fit: StepFit, f: Callable[[Snapshot], npt.ArrayLike]) -> FloatArray:
         """Chebyshev coefficients along the step of ``f`` of the snapshots at the
         step's nodes (its ends included)."""
         return contacts.chebyshev_fit(
@@ -238,18 +252,20 @@ class Collision:
             ends=True,
         )
 
-    def frame_coef(self, fit: StepFit, k):
+    def frame_coef(self, fit: StepFit, k: int) -> tuple[FloatArray, FloatArray]:
         """Chebyshev coefficients of body k's centre (K, 3) and R_A_O (K, 3, 3) along
         the step (:meth:`.bodies.Body.frame_coef`: a guided body's fitted at the step's
         nodes)."""
         return self.model.layout.bodies[k].frame_coef(self, fit)
 
-    def rim_poly(self, fit: StepFit, imp, ft):
+    def rim_poly(
+        self, fit: StepFit, imp: Impact, ft: Feature
+    ) -> tuple[FloatArray, FloatArray, FloatArray]:
         """w² − a² (d₁² + d₂²) along the step, with the sign of the rim circle's gap
         w − a |(d₁, d₂)| where w ≥ 0 (see :mod:`.effects.impact`), w itself (the gap
         is negative where w is), and the centre's coefficients."""
         r, R = self.frame_coef(fit, ft.body)
-        a, zc = ft.support
+        a, zc = cast("tuple[float, float]", ft.support)  # (a rim circle: its support is set)
         n = imp.normal
         d = -np.einsum("kij,j->ki", R, n)  # R_A_O (−n): body components, linear in R
         w = r @ n - zc * d[:, 2]
@@ -257,14 +273,16 @@ class Collision:
         rho2 = C.chebadd(C.chebmul(d[:, 0], d[:, 0]), C.chebmul(d[:, 1], d[:, 1]))
         return C.chebsub(C.chebmul(w, w), a * a * rho2), w, r
 
-    def point_coef(self, fit: StepFit, k, at):
+    def point_coef(self, fit: StepFit, k: int, at: FloatArray | None) -> FloatArray:
         """Chebyshev coefficients (K, 3) of the body point ``at`` (body components about
         G; None: G) along the step (:meth:`.bodies.Body.point_coef`): r + R_A_Oᵀ at,
         linear in the state; for a pinned body C + R_A_Oᵀ (g_A + at); a guided body's
         points fitted at the step's Chebyshev nodes."""
         return self.model.layout.bodies[k].point_coef(self, fit, at)
 
-    def _polys(self, fit: StepFit, imp, ft):
+    def _polys(
+        self, fit: StepFit, imp: Impact, ft: Feature
+    ) -> tuple[Polys, FloatArray, float, float]:
         """The feature's gap polynomials along the step, each (p, units, terms), with its
         positions' coefficients x, their other size and the feature's size."""
         if ft.support is not None:  # a rim circle: w² − a² ρ², as a sphere pair
@@ -288,9 +306,13 @@ class Collision:
             x = self.point_coef(fit, ft.body, ft.at)
             centre = self.point_coef(fit, ft.sphere, None)
             rel = x - centre
-            p = C.chebadd(
-                C.chebadd(*(C.chebmul(rel[:, c], rel[:, c]) for c in (0, 1))),
-                C.chebmul(rel[:, 2], rel[:, 2]),
+            # (numpy types the series' coefficients as floats of any precision: float64)
+            p = cast(
+                "FloatArray",
+                C.chebadd(
+                    C.chebadd(*(C.chebmul(rel[:, c], rel[:, c]) for c in (0, 1))),
+                    C.chebmul(rel[:, 2], rel[:, 2]),
+                ),
             )
             size = ft.a + ft.a_s
             p[0] -= size * size
@@ -324,7 +346,7 @@ class Collision:
                 self.reach[a, b] = max(self.reach.get((a, b), 0.0), reach)
                 slack = self._released(fit, imp, ft, (a, b), (a, b) in held)
 
-                def gap_at(xx, imp=imp, ft=ft):
+                def gap_at(xx: float, imp: Impact = imp, ft: Feature = ft) -> float:
                     tt = fit.time(xx)
                     return float(imp.gap(fwd.snapshot(tt, np.asarray(fit.dense(tt))), ft))
 
@@ -363,7 +385,9 @@ class Collision:
                         best = self._falls_in(best, imp, ft, tc)
         return best
 
-    def _released(self, fit: StepFit, imp, ft, key, was_held: bool) -> float:
+    def _released(
+        self, fit: StepFit, imp: Impact, ft: Feature, key: tuple[int, int], was_held: bool
+    ) -> float:
         """The depth below zero allowed at this step's start to a feature its support
         has let go (see the module's docstring): the gap's at the first free step,
         kept until a step starts with the gap ≥ 0; 0 for any other feature."""
@@ -381,7 +405,7 @@ class Collision:
             self.released[key] = -gap
         return self.released[key]
 
-    def _falls_in(self, best, imp, ft, tc) -> Hit:
+    def _falls_in(self, best: Hit | None, imp: Impact, ft: Feature, tc: float) -> Hit:
         """A feature that touches and then falls in comes to rest there (a :class:`Hit`
         with ``rest``), where the pair can rest (:mod:`.support`); else the run stops."""
         support = self.resolver.support

@@ -25,11 +25,26 @@ from __future__ import annotations
 import contextlib
 import importlib
 import warnings
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from types import ModuleType
-from typing import Any, Literal, cast
+from typing import TYPE_CHECKING, Literal, NoReturn, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
+
+from .vectors import FloatArray, IntArray
+
+if TYPE_CHECKING:  # for annotations only
+    from mechanics.integrators import DOP853Stepper
+    from mechanics.integrators._dop853 import DenseStep
+
+    from .effects.capabilities import Compiles
+    from .model import Model
+
+#: the kernel's arrays (bi, bf, ops, fp, pairs), see :mod:`mechanics.scenes._kernels`
+Program: TypeAlias = tuple[IntArray, FloatArray, IntArray, FloatArray, IntArray]
+#: builds the reference stepper: ``reference(t, y, first_step)``
+Reference: TypeAlias = "Callable[[float, FloatArray, float | None], DOP853Stepper]"
 
 __all__ = [
     "CompiledRhs",
@@ -97,7 +112,7 @@ def _failed(exc: BaseException) -> None:
     )
 
 
-def program(model) -> tuple[np.ndarray, ...] | str:
+def program(model: Model) -> Program | str:
     """The kernel's arrays (bi, bf, ops, fp, pairs) for ``model`` (see
     :mod:`mechanics.scenes._kernels`), or why it has none."""
     if _REFERENCE_ONLY:
@@ -127,7 +142,8 @@ def program(model) -> tuple[np.ndarray, ...] | str:
     fp: list[float] = []
     pairs: list[tuple[int, int]] = []
     for e in model.forces:
-        i, j, numbers, its_pairs = e.kernel_args()
+        # (every force compiles: _why_not found none that does not)
+        i, j, numbers, its_pairs = cast("Compiles", e).kernel_args()
         if its_pairs:
             i, j = len(pairs), len(its_pairs)
             pairs.extend(its_pairs)
@@ -142,7 +158,7 @@ def program(model) -> tuple[np.ndarray, ...] | str:
     )
 
 
-def _why_not(model, k: ModuleType) -> str | None:
+def _why_not(model: Model, k: ModuleType) -> str | None:
     """Why ``model`` has no compiled right-hand side, or None."""
     from .effects.capabilities import Compiles
 
@@ -160,18 +176,18 @@ def _why_not(model, k: ModuleType) -> str | None:
 class CompiledRhs:
     """The compiled right-hand side of one model: ``rhs(t, phase, y)``."""
 
-    def __init__(self, kernels: ModuleType, arrays: tuple[np.ndarray, ...]) -> None:
+    def __init__(self, kernels: ModuleType, arrays: Program) -> None:
         self.kernel, self.arrays = kernels.scene_rhs, arrays
         self.kernels = kernels
         #: numba failed on one of its kernels (warned once): the Python path from then on
         self.broken = False
 
-    def __call__(self, t: float, phase: float, y) -> np.ndarray | None:
+    def __call__(self, t: float, phase: float, y: npt.ArrayLike) -> FloatArray | None:
         """dy/dt, or None after one warning if numba fails to compile the kernel (the
         caller runs the Python path)."""
         y = np.ascontiguousarray(y, dtype=float)
         try:
-            out: np.ndarray = self.kernel(float(t), float(phase), y, *self.arrays)
+            out: FloatArray = self.kernel(float(t), float(phase), y, *self.arrays)
         except Exception as exc:  # a failed JIT (numba's errors are not one class)
             self._fail(exc)
             return None
@@ -181,7 +197,9 @@ class CompiledRhs:
         self.broken = True
         _failed(exc)
 
-    def accelerations(self, t, Y) -> tuple[np.ndarray, np.ndarray] | None:
+    def accelerations(
+        self, t: npt.ArrayLike, Y: npt.ArrayLike
+    ) -> tuple[FloatArray, FloatArray] | None:
         """At the samples (t, Y), the loads on by each t: the acceleration of each
         body's G and the loads' force on it, shapes (k, n, 3); None after one warning
         if numba fails to compile the kernel."""
@@ -207,7 +225,18 @@ class CompiledStepper:
 
     ``reference`` builds that stepper: ``reference(t, y, first_step)``."""
 
-    def __init__(self, fast: CompiledRhs, phase: float, t0, y0, f0, t_bound, rtol, atol, reference):
+    def __init__(
+        self,
+        fast: CompiledRhs,
+        phase: float,
+        t0: float,
+        y0: npt.ArrayLike,
+        f0: FloatArray,
+        t_bound: float,
+        rtol: float,
+        atol: float,
+        reference: Reference,
+    ) -> None:
         from mechanics.integrators._dop853 import (
             _DOP853_EXPONENT,
             _KERNEL_TABLEAU,
@@ -227,11 +256,11 @@ class CompiledStepper:
         self._ctrl = np.array(
             [DOP853_SAFETY, DOP853_MIN_FACTOR, DOP853_MAX_FACTOR, _DOP853_EXPONENT]
         )
-        self._dense: Any = None
+        self._dense: DenseStep | None = None
         self._f0 = f0
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             self.h_abs = _dop853_initial_step(
-                lambda t, y: cast(np.ndarray, fast(t, self.phase, y)),  # (f0 ran: not None)
+                lambda t, y: cast(FloatArray, fast(t, self.phase, y)),  # (f0 ran: not None)
                 self.t,
                 self.y,
                 f0,
@@ -268,7 +297,7 @@ class CompiledStepper:
         if self.t >= self.t_bound:
             self.status = "finished"
 
-    def dense_output(self):
+    def dense_output(self) -> DenseStep:
         """The last step's continuous extension (a :class:`DenseStep`)."""
         if self._dense is None:
             from mechanics.errors import OutOfDomainError
@@ -277,7 +306,16 @@ class CompiledStepper:
         return self._dense
 
 
-def stepper(fast: CompiledRhs, phase: float, t0, y0, t_bound, rtol, atol, reference):
+def stepper(
+    fast: CompiledRhs,
+    phase: float,
+    t0: float,
+    y0: FloatArray,
+    t_bound: float,
+    rtol: float,
+    atol: float,
+    reference: Reference,
+) -> CompiledStepper | DOP853Stepper:
     """A :class:`CompiledStepper` from (t0, y0), or the reference stepper
     ``reference(t0, y0, None)`` where the compiled rates there are not finite (its
     start raises the error naming the time) or numba failed."""
@@ -287,7 +325,7 @@ def stepper(fast: CompiledRhs, phase: float, t0, y0, t_bound, rtol, atol, refere
     return CompiledStepper(fast, phase, t0, y0, f0, t_bound, rtol, atol, reference)
 
 
-def build(model) -> CompiledRhs | str:
+def build(model: Model) -> CompiledRhs | str:
     """The compiled right-hand side of ``model``, or why it has none."""
     arrays = program(model)
     if isinstance(arrays, str):
@@ -305,7 +343,7 @@ def warm() -> bool:
     k = _kernels()
     if k is None:
         return False
-    arrays: tuple[Any, ...] = (
+    arrays: Program = (
         np.array([[k.KINDS["point"], 0]], dtype=np.int64),
         np.ones((1, k.BF_SIZE)),
         np.array([[k.OPCODES["gravity"], -1, -1, 0]], dtype=np.int64),
@@ -316,7 +354,9 @@ def warm() -> bool:
     if fast.accelerations(np.zeros(1), np.zeros((1, 6))) is None:
         return False
 
-    def reference(t0, y0, first_step):  # pragma: no cover (the kernel runs)
+    def reference(  # pragma: no cover (the kernel runs)
+        t0: float, y0: FloatArray, first_step: float | None
+    ) -> NoReturn:
         raise AssertionError("the scene kernels failed on a falling point")
 
     stepper(fast, 0.0, 0.0, np.zeros(6), 1.0, 1e-9, 1e-12, reference).step()

@@ -27,11 +27,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 from numpy.polynomial import chebyshev as C
 
 from .._floats import EPS
+from .vectors import FloatArray
 
 __all__ = [
     "ContactError",
@@ -96,7 +99,7 @@ def plane_contact_time(gap: float, v_n: float, a_n: float) -> float:
     return float(plane_contact_times(np.array([gap]), np.array([v_n]), np.array([a_n]))[0])
 
 
-def plane_contact_times(gap, v_n, a_n) -> np.ndarray:
+def plane_contact_times(gap: npt.ArrayLike, v_n: npt.ArrayLike, a_n: npt.ArrayLike) -> FloatArray:
     """:func:`plane_contact_time` for arrays of pairs at once (the same arithmetic, per
     element): the roots of ½ a_n τ² + v_n τ + gap formed as in :func:`quadratic_roots`,
     the first τ ≥ 0 where the normal velocity v_n + a_n τ closes.
@@ -121,7 +124,7 @@ def plane_contact_times(gap, v_n, a_n) -> np.ndarray:
     return best
 
 
-def sphere_contact_time(d: np.ndarray, w: np.ndarray, size: float) -> float:
+def sphere_contact_time(d: npt.ArrayLike, w: npt.ArrayLike, size: float) -> float:
     """First τ ≥ 0 at which two spheres in uniform relative motion touch while closing.
 
     ``d`` is the line of centres r_i − r_j, ``w`` the relative velocity v_i − v_j (the
@@ -149,7 +152,7 @@ def sphere_contact_time(d: np.ndarray, w: np.ndarray, size: float) -> float:
     return float(sphere_contact_times(d[None], w[None], np.array([size]))[0])
 
 
-def sphere_contact_times(d, w, size) -> np.ndarray:
+def sphere_contact_times(d: npt.ArrayLike, w: npt.ArrayLike, size: npt.ArrayLike) -> FloatArray:
     """:func:`sphere_contact_time` for arrays of pairs at once: ``d`` and ``w`` of shape
     (k, 3), ``size`` (k,); the same arithmetic per pair.
 
@@ -176,8 +179,13 @@ def sphere_contact_times(d, w, size) -> np.ndarray:
 
 
 def chebyshev_fit(
-    fn, t_a: float, t_b: float, n: int = STEP_NODES, *, ends: bool = False
-) -> np.ndarray:
+    fn: Callable[[FloatArray], npt.ArrayLike],
+    t_a: float,
+    t_b: float,
+    n: int = STEP_NODES,
+    *,
+    ends: bool = False,
+) -> FloatArray:
     """Chebyshev coefficients on [t_a, t_b] (variable x ∈ [−1, 1]) interpolating
     ``fn(t)`` (``t`` of shape ``(n,)`` → shape ``(n, m)``); exact for degree < n.
 
@@ -201,7 +209,7 @@ def chebyshev_fit(
 
 
 def first_downward_crossing(
-    coef: np.ndarray,
+    coef: FloatArray,
     *,
     start_tol: float,
     refine: Callable[[float], float] | None = None,
@@ -274,21 +282,25 @@ def first_downward_crossing(
                 continue  # a graze: a dip below zero within rounding, rising again
             from scipy.optimize import brentq
 
-            f = lambda x: C.chebval(x, coef)  # noqa: E731
+            f: Callable[[float], float | np.floating[Any]] = lambda x: C.chebval(x, coef)  # noqa: E731
             if refine is not None and refine(xs[k]) >= 0 > refine(xs[k + 1]):
                 f = refine
             return float(brentq(f, xs[k], xs[k + 1], xtol=ROOT_RTOL, rtol=ROOT_RTOL))
     return None
 
 
-def _strict_root(coef, refine, lo: float, hi: float) -> float:
+def _strict_root(
+    coef: FloatArray, refine: Callable[[float], float] | None, lo: float, hi: float
+) -> float:
     """The first zero of the gap in (lo, hi] after a touch at lo, where the gap at hi is
     below zero beyond rounding: the gap first rises (a hop whose peak may lie closer to
     lo than any extremum the roots resolve), so a point of positive gap is sought at
     lo + (hi − lo) 2^−j; none means the gap never left zero: the contact is lo."""
     from scipy.optimize import brentq
 
-    f = refine if refine is not None else (lambda x: C.chebval(x, coef))
+    f: Callable[[float], float | np.floating[Any]] = (
+        refine if refine is not None else (lambda x: C.chebval(x, coef))
+    )
     if f(hi) >= 0:
         f = lambda x: C.chebval(x, coef)  # noqa: E731
     x_pos = lo if f(lo) > 0 else None

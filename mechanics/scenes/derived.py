@@ -24,39 +24,54 @@ Conventions
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
 from mechanics import kinematics as kin
 
+from .vectors import FloatArray
+
+if TYPE_CHECKING:  # for annotations only
+    from .effects.gravity import Gravity
+    from .effects.thrust import Thrust
+    from .engine import Engine
+    from .trajectory import Trajectory
+
 __all__ = ["derived_quantities"]
 
 
-def _crossings(t, x) -> np.ndarray:
+def _crossings(t: FloatArray, x: FloatArray) -> FloatArray:
     """Times where x changes sign, by linear interpolation between samples."""
     s = np.sign(x)
     i = np.nonzero(s[:-1] * s[1:] < 0)[0]
-    return t[i] - x[i] * (t[i + 1] - t[i]) / (x[i + 1] - x[i])
+    out: FloatArray = t[i] - x[i] * (t[i + 1] - t[i]) / (x[i + 1] - x[i])
+    return out
 
 
-def _vertex(t, x, k) -> float:
+def _vertex(t: FloatArray, x: FloatArray, k: int) -> float:
     """The time of the extremum near sample k: the vertex of the parabola through the
     samples k − 1, k, k + 1 (evenly spaced)."""
     den = x[k - 1] - 2.0 * x[k] + x[k + 1]
     return float(t[k] + 0.5 * (t[1] - t[0]) * (x[k - 1] - x[k + 1]) / den) if den else float(t[k])
 
 
-def _spacing(times) -> float | None:
+def _spacing(times: Sequence[float] | FloatArray) -> float | None:
     return float(np.mean(np.diff(times))) if len(times) >= 2 else None
 
 
-def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | None]]:
+def derived_quantities(
+    engine: Engine, traj: Trajectory
+) -> list[tuple[str, float | None, float | None]]:
     """(name, exact, measured) rows for the scene the engine ran."""
     from mechanics.tops import FreeAsymmetricTop, HeavySymmetricTop
 
     rows: list[tuple[str, float | None, float | None]] = []
     lay, t, series = engine.layout, traj.t, traj.series
-    pre = (lambda i: f"{engine.names[i]}.") if engine.n > 1 else (lambda i: "")
+    pre: Callable[[int], str] = (
+        (lambda i: f"{engine.names[i]}.") if engine.n > 1 else (lambda i: "")
+    )
     for i in lay.rigid_bodies:
         md = engine.model  # (an impact exerts a moment only on a body of its pair)
         struck = (md.impacts[a] for a in md.impacts_of.get(i, ()))
@@ -84,7 +99,7 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
     kinds = {e.type for e in engine.effects}
     for i, (_, g, JC, _) in lay.pins.items():
         Jc = np.diag(JC)
-        grav = [e for e in engine.effects if e.type == "gravity"]
+        grav = [cast("Gravity", e) for e in engine.effects if e.type == "gravity"]
         if not (
             engine.n == 1
             and kinds == {"fixed_point", "gravity"}
@@ -122,7 +137,7 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
             # period (5.2.5), so Δψ/T over one period is the rate over any whole number;
             # measured over the whole periods between the first and the last maximum
             rate = float(heavy.psi(exact) - heavy.psi(0.0)) / exact
-            measured = None
+            measured: float | None = None
             if len(peaks) >= 2:
                 psi = series[f"{pre(i)}psi"]
                 ends = np.interp([peaks[0], peaks[-1]], t, psi)
@@ -134,8 +149,11 @@ def derived_quantities(engine, traj) -> list[tuple[str, float | None, float | No
         rows.append(
             ("kinetic energy lost in impacts (6.41)", sum(d["energy_loss"] for d in impacts), lost)
         )
-    g_vec = sum((e.vector for e in engine.effects if e.type == "gravity"), np.zeros(3))
-    for e in engine.effects:
+    g_vec = sum(
+        (cast("Gravity", e).vector for e in engine.effects if e.type == "gravity"), np.zeros(3)
+    )
+    for eff in engine.effects:
+        e = cast("Thrust", eff)  # (its fields read where its type is "thrust")
         if e.type != "thrust" or e.body_frame or e.burn_out > engine.scene.duration:
             continue
         i, m0 = e.i, float(engine.m0[e.i])

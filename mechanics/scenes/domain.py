@@ -24,6 +24,7 @@ Conventions
 from __future__ import annotations
 
 import math
+from typing import Any
 
 from .errors import SceneError
 from .trajectory import EPS
@@ -90,7 +91,7 @@ def check_number(src: str, where: str, x: float, unit: str) -> float:
     return check_magnitude(src, where, x)
 
 
-def check_value(src: str, where: str, v, unit: str):
+def check_value(src: str, where: str, v: Any, unit: str) -> Any:
     """A number or a vector of numbers (already parsed as finite floats) in its domain."""
     if isinstance(v, list):
         return [check_value(src, f"{where}[{i}]", x, unit) for i, x in enumerate(v)]

@@ -46,8 +46,10 @@ Conventions
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+import numpy.typing as npt
 
 from . import budget, flows, model
 from .collision import Collision, check_initial_overlap
@@ -58,12 +60,16 @@ from .integrate import HOW, integrate
 from .modes import Modes
 from .report import finish
 from .support import Support
-from .trajectory import Trajectory
+from .trajectory import Event, Segment, Trajectory
+from .vectors import FloatArray, Times
+
+if TYPE_CHECKING:  # for annotations only: a layer above
+    from .spec import Scene
 
 __all__ = ["Engine", "validate"]
 
 
-def validate(scene) -> None:
+def validate(scene: Scene) -> None:
     """Check a scene as a whole (:func:`.model.check`) and, with impacts, that no two
     features overlap at t = 0."""
     model.check(scene)
@@ -75,7 +81,7 @@ def validate(scene) -> None:
 class Engine:
     """A scene, assembled from its listed effects: the model and the rooms that run it."""
 
-    def __init__(self, scene) -> None:
+    def __init__(self, scene: Scene) -> None:
         md = self.model = model.Model(scene)
         self.forward = Forward(md)
         self.support = Support(md, self.forward)
@@ -93,20 +99,20 @@ class Engine:
         self.m0, self.y0, self.w0, self.R0 = md.m0, md.y0, md.w0, md.R0
 
     # ------------------------------------------------- the forward dynamics
-    def masses(self, t) -> np.ndarray:
+    def masses(self, t: Times) -> FloatArray:
         return self.forward.masses(t)
 
-    def snapshot(self, t, y, *, copy: bool = True) -> Snapshot:
+    def snapshot(self, t: Times, y: npt.ArrayLike, *, copy: bool = True) -> Snapshot:
         """The bodies at time(s) t from state(s) y (:meth:`.forward.Forward.snapshot`)."""
         return self.forward.snapshot(t, y, copy=copy)
 
-    def pack(self, s: Snapshot) -> np.ndarray:
+    def pack(self, s: Snapshot) -> FloatArray:
         return self.forward.pack(s)
 
-    def loads(self, t, s) -> tuple[np.ndarray, np.ndarray]:
+    def loads(self, t: float, s: Snapshot) -> tuple[FloatArray, FloatArray]:
         return self.forward.loads(t, s)
 
-    def rhs(self, t, y) -> np.ndarray:
+    def rhs(self, t: float, y: FloatArray) -> FloatArray:
         return self.forward.rhs(t, y)
 
     # ------------------------------------------------------------------ run
@@ -147,10 +153,12 @@ class Engine:
         )
         return self._finish(t, segs, events, f"{HOW}; {self.forward.path()}")
 
-    def _finish(self, t, segs, events, how) -> Trajectory:
+    def _finish(
+        self, t: FloatArray, segs: list[Segment], events: list[Event], how: str
+    ) -> Trajectory:
         return finish(self.model, self.forward, t, segs, events, how)
 
-    def _split(self, t) -> Trajectory:
+    def _split(self, t: FloatArray) -> Trajectory:
         """The splitting (:mod:`.splitting`), run again at half the step: the energy's
         drift must shrink by the method's order."""
         from . import splitting

@@ -31,15 +31,33 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from mechanics import kinematics as kin
 from mechanics.errors import GimbalLockError, OutOfDomainError
 
 from . import contacts
 from .effects.capabilities import GuidesBody
-from .trajectory import Event, vectorized
+from .trajectory import Dense, Event, Segment, vectorized
+from .vectors import FloatArray, IntArray, Times
+
+if TYPE_CHECKING:  # for annotations only
+    from mechanics.tops import FreeAsymmetricTop
+
+    from .effects import Snapshot
+    from .effects.gravity import Gravity
+    from .effects.impact import Feature, Impact
+    from .effects.thrust import Thrust
+    from .forward import Forward
+    from .impacts import Resolver
+    from .model import Model
+    from .support import Support
+
+#: each spinning rigid body's (J, its torque-free top)
+Tops: TypeAlias = "dict[int, tuple[FloatArray, FreeAsymmetricTop]]"
 
 __all__ = [
     "PROVIDERS",
@@ -62,22 +80,22 @@ class Flow:
     ``[(t0, t1, state_at)]`` and events."""
 
     how: str
-    run: Callable[[], tuple[list, list]]
+    run: Callable[[], tuple[list[Segment], list[Event]]]
 
 
-def tank_flow(model, forward, resolver) -> Flow | None:
+def tank_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
     """A lone tank with gravity and its outflow only."""
     if not model.layout.tanks:
         return None
     if model.n != 1 or not model.kinds <= {"gravity", "tank_outflow"}:
         return None
     T = model.scene.duration
-    how, f, events = model.outflows[0].exact(T)
+    how, f, events = model.outflows[0].exact(T)  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
     segs = [(0.0, T, vectorized(f))]
     return Flow(how, lambda: (segs, list(events)))
 
 
-def guided_flow(model, forward, resolver) -> Flow | None:
+def guided_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
     """A lone guided body whose guide has an exact flow for the listed effects."""
     lay = model.layout
     if not lay.guides or model.n != 1:
@@ -92,7 +110,7 @@ def guided_flow(model, forward, resolver) -> Flow | None:
     how, f, events = found
 
     @vectorized
-    def at(t):
+    def at(t: Times) -> FloatArray:
         tt = np.asarray(t, dtype=float)
         y = np.zeros((*tt.shape, lay.size))
         q, qd = f(tt)
@@ -103,7 +121,7 @@ def guided_flow(model, forward, resolver) -> Flow | None:
     return Flow(how, lambda: ([(0.0, model.scene.duration, at)], list(events)))
 
 
-def pinned_flow(model, forward, resolver) -> Flow | None:
+def pinned_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
     """A lone top on its fixed point: torque-free (the elliptic flow about C), or the
     heavy symmetric top (J1 = J2 about C, gravity along −z, θ0 in (0, π))."""
     from mechanics.rotation import matrix_from_euler
@@ -122,7 +140,7 @@ def pinned_flow(model, forward, resolver) -> Flow | None:
             return None
         how = "exact: torque-free top about C, Jacobi elliptic functions (5.3)"
     else:
-        grav = [e for e in model.effects if e.type == "gravity"]
+        grav = [cast("Gravity", e) for e in model.effects if e.type == "gravity"]
         ini = model.scene.bodies[i].initial
         th, ph = float(ini.get("theta", 0.0)), float(ini.get("phi", 0.0))
         if not (
@@ -152,7 +170,7 @@ def pinned_flow(model, forward, resolver) -> Flow | None:
     o = lay.offsets[i]
 
     @vectorized
-    def at(t):  # flat states (L_C, R_A_O)
+    def at(t: Times) -> FloatArray:  # flat states (L_C, R_A_O)
         tt = np.asarray(t, dtype=float)
         if isinstance(top, FreeAsymmetricTop):
             R, w = top.attitude(tt), top.omega(tt)
@@ -169,12 +187,12 @@ def pinned_flow(model, forward, resolver) -> Flow | None:
     return Flow(how, lambda: ([(0.0, model.scene.duration, at)], []))
 
 
-def _free_bodies(model) -> bool:
+def _free_bodies(model: Model) -> bool:
     lay = model.layout
     return not (lay.tanks or lay.guides or lay.pins or lay.fixed_bodies)
 
 
-def _rotation(model):
+def _rotation(model: Model) -> Tops | None:
     """Per spinning rigid body, (J, its torque-free top); None where one cannot be
     followed exactly (a zero moment, within float64's reach of the separatrix, or a
     circulating amplitude below float64's normal range)."""
@@ -183,7 +201,7 @@ def _rotation(model):
     for i in model.rigid:  # torque-free rotation by elliptic functions needs J > 0
         if model.w0[i].any() and not np.all(model.layout.J[i] > 0):
             return None
-    out = {}
+    out: Tops = {}
     try:
         for i in model.spinning():
             J = model.layout.J[i]
@@ -193,11 +211,11 @@ def _rotation(model):
     return out
 
 
-def _spin_note(model) -> str:
+def _spin_note(model: Model) -> str:
     return "; torque-free rotation (Jacobi elliptic functions)" if model.spinning() else ""
 
 
-def _with_rotation(model, y_trans, t, tops) -> np.ndarray:
+def _with_rotation(model: Model, y_trans: npt.ArrayLike, t: Times, tops: Tops) -> FloatArray:
     """Flat states (..., size) whose translation comes from y_trans and rotation from
     the tops, at the time(s) t."""
     y = np.array(y_trans, dtype=float)
@@ -209,14 +227,14 @@ def _with_rotation(model, y_trans, t, tops) -> np.ndarray:
     return y
 
 
-def free_flight(model, t0, y0, g, tops):
+def free_flight(model: Model, t0: float, y0: FloatArray, g: FloatArray, tops: Tops) -> Dense:
     """The flat states at any times of free flight under the uniform gravity g from
     (t0, y0), each spinning body turned by its top."""
     lay = model.layout
     r0, v0, L0, R0 = lay.gather(y0)
 
     @vectorized
-    def at(t):
+    def at(t: Times) -> FloatArray:
         tau = (np.asarray(t, dtype=float) - t0)[..., None, None]
         r = r0 + v0 * tau + 0.5 * g * tau * tau
         v = v0 + g * tau
@@ -226,7 +244,7 @@ def free_flight(model, t0, y0, g, tops):
     return at
 
 
-def free_flight_flow(model, forward, resolver) -> Flow | None:
+def free_flight_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
     """Free bodies with only uniform gravity and smooth impacts of spheres and points
     (through the centres): free flight between impacts at closed-form instants."""
     kinds = model.kinds
@@ -247,13 +265,14 @@ def free_flight_flow(model, forward, resolver) -> Flow | None:
     T_end = model.scene.duration
     support = resolver.support
 
-    def run():
+    def run() -> tuple[list[Segment], list[Event]]:
         g0 = model.uniform_gravity()
-        segs, events = [], []
+        segs: list[Segment] = []
+        events: list[Event] = []
         t0, y = 0.0, model.y0.copy()
         cal = Calendar(model, resolver)
-        among = None  # the pairs whose next contact is to be computed (None: all)
-        rests = None
+        among: IntArray | None = None  # the pairs whose next contact is to be computed (None: all)
+        rests: set[Impact] | None = None
         while True:
             held = set(support.rests) if support is not None else set()
             g = _resting_gravity(model, support, g0)
@@ -297,7 +316,7 @@ class Calendar:
     others' times stand.  Per event that is O(n) pairs for n bodies, not O(n²); the
     earliest is found by one argmin over all of them."""
 
-    def __init__(self, model, resolver) -> None:
+    def __init__(self, model: Model, resolver: Resolver) -> None:
         self.model = model
         imps = model.impacts
         self.times = np.full(len(imps), math.inf)
@@ -319,7 +338,7 @@ class Calendar:
         self.is_pair[self.pair] = True
         self.position = {id(imp): a for a, imp in enumerate(imps)}
 
-    def uniform(self, g) -> None:
+    def uniform(self, g: FloatArray) -> None:
         """A pair's relative motion must be uniform (the same g on both): else, one of
         them resting on a plane while the other flies, it is not followed."""
         bad = np.any(g[self.q_i] != g[self.q_j], axis=-1)
@@ -330,12 +349,14 @@ class Calendar:
                 "(their relative motion is no longer uniform)"
             )
 
-    def pairs_of(self, bodies) -> np.ndarray:
+    def pairs_of(self, bodies: IntArray) -> IntArray:
         """The positions of the impacts of these bodies."""
         of = self.model.impacts_of
         return np.array(sorted({a for k in bodies for a in of.get(int(k), ())}), dtype=int)
 
-    def refresh(self, t0, s, g, among, held) -> None:
+    def refresh(
+        self, t0: float, s: Snapshot, g: FloatArray, among: IntArray | None, held: set[Impact]
+    ) -> None:
         """The next contact times, from the snapshot ``s`` at t0, of the impacts
         ``among`` (None: all); a resting pair (``held``) has none."""
         among = np.arange(len(self.times)) if among is None else among
@@ -369,7 +390,7 @@ class NotExact(Exception):
     engine integrates instead, where the scene's method allows)."""
 
 
-def _flight_scale(imp, ft, s, g, tau) -> float:
+def _flight_scale(imp: Impact, ft: Feature, s: Snapshot, g: FloatArray, tau: float) -> float:
     """The size the gap of ``ft`` is rounded relative to after a free flight of ``tau``
     from the snapshot s: its size at the start (:meth:`.effects.impact.Impact.gap_scale`)
     plus each body's terms v τ and ½ g τ² (a point reaching the floor z = 0 from z₀ has a
@@ -382,7 +403,7 @@ def _flight_scale(imp, ft, s, g, tau) -> float:
     return imp.gap_scale(s, ft) + moved
 
 
-def _resting_gravity(model, support, g0) -> np.ndarray:
+def _resting_gravity(model: Model, support: Support | None, g0: FloatArray) -> FloatArray:
     """Each body's acceleration (n, 3): g, or for a body resting on a smooth plane of
     normal n its part along the plane, g − (g·n) n (the support takes the rest)."""
     g = np.broadcast_to(g0, (model.n, 3)).copy()
@@ -395,14 +416,15 @@ def _resting_gravity(model, support, g0) -> np.ndarray:
     return g
 
 
-def rocket_flow(model, forward, resolver) -> Flow | None:
+def rocket_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
     """Free bodies with only gravity and space-fixed thrust: the rocket (7.30)."""
     from mechanics.open_systems import rocket_height, rocket_velocity
 
     kinds = model.kinds
     if not _free_bodies(model) or not kinds <= {"gravity", "thrust"}:
         return None
-    thrusts = {e.i: e for e in model.effects if e.type == "thrust"}
+    burns = cast("list[Thrust]", [e for e in model.effects if e.type == "thrust"])
+    thrusts = {th.i: th for th in burns}
     if any(th.body_frame for th in thrusts.values()):
         return None
     tops = _rotation(model)
@@ -410,12 +432,12 @@ def rocket_flow(model, forward, resolver) -> Flow | None:
         return None
     lay = model.layout
 
-    def run():
+    def run() -> tuple[list[Segment], list[Event]]:
         g = model.uniform_gravity()
         r0, v0, L0, R0 = lay.gather(model.y0)
 
         @vectorized
-        def at(t):
+        def at(t: Times) -> FloatArray:
             tt = np.asarray(t, dtype=float)
             tau = tt[..., None, None]
             r = r0 + v0 * tau + 0.5 * g * tau * tau
@@ -443,7 +465,7 @@ def rocket_flow(model, forward, resolver) -> Flow | None:
 PROVIDERS = (tank_flow, guided_flow, pinned_flow, free_flight_flow, rocket_flow)
 
 
-def find(model, forward, resolver) -> Flow | None:
+def find(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
     """The exact flow of the scene, or None where it has none here."""
     for provider in PROVIDERS:
         flow = provider(model, forward, resolver)

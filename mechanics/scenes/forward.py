@@ -21,15 +21,30 @@ there reads (see :class:`~mechanics.scenes.effects.base.Snapshot`).
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Mapping
+from typing import TYPE_CHECKING, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from . import compiled
-from .compiled import CompiledRhs
+from .bodies import Kinematics
+from .compiled import CompiledRhs, CompiledStepper
 from .effects import Loads, Snapshot
 from .state import Hinge
-from .vectors import cross
+from .vectors import FloatArray, Times, cross
+
+if TYPE_CHECKING:  # for annotations only
+    from mechanics.integrators import DOP853Stepper
+
+    from .effects import Effect
+    from .effects.capabilities import HasModes
+    from .effects.impact import Feature, Impact
+    from .model import Model
+    from .support import Support
+
+#: a joint's reactions at the samples (joint -> name -> (k, 3)), and their terms' sizes
+Reactions: TypeAlias = tuple[dict[int, dict[str, FloatArray]], dict[int, dict[str, float]]]
 
 __all__ = ["Forward"]
 
@@ -40,27 +55,27 @@ FAILED = "numba failed to compile the scene kernel (see the CompiledPathWarning)
 class Forward:
     """The forward dynamics of a :class:`~mechanics.scenes.model.Model`."""
 
-    def __init__(self, model) -> None:
+    def __init__(self, model: Model) -> None:
         self.model = model
         self.layout = model.layout
         #: the loads' phase (see the module's docstring); None outside an integration
         self.phase: float | None = None
         #: the resting contacts (:class:`~mechanics.scenes.support.Support`), whose
-        #: forces follow the other loads; None: no impacts, nothing can rest (typed Any:
-        #: support is a layer above this module, which cannot import it)
-        self.support: Any = None
+        #: forces follow the other loads; None: no impacts, nothing can rest (support is
+        #: a layer above this module, which imports it for annotations only)
+        self.support: Support | None = None
         #: the compiled right-hand side (:mod:`.compiled`), built on the first call of
         #: :meth:`rhs`; a string: why the Python path runs
         self.compiled: CompiledRhs | str | None = None
 
     # ---------------------------------------------------------------- the state
-    def masses(self, t) -> np.ndarray:
+    def masses(self, t: Times) -> FloatArray:
         m = np.broadcast_to(self.model.m0, (*np.shape(t), self.model.n)).copy()
         for e in self.model.losing:
             m -= e.mass_loss(t)
         return m
 
-    def snapshot(self, t, y, *, copy: bool = True) -> Snapshot:
+    def snapshot(self, t: Times, y: npt.ArrayLike, *, copy: bool = True) -> Snapshot:
         """The bodies at time(s) t from state(s) y (writable copies unless ``copy`` is
         False: the right-hand side only reads them)."""
         md, lay = self.model, self.layout
@@ -83,7 +98,8 @@ class Forward:
         w = lay.omega(L, J)
         angle = np.zeros(np.shape(m))
         y = np.asarray(y, dtype=float)
-        coords, inertia = {}, {}
+        coords: dict[int, tuple[FloatArray, FloatArray]] = {}
+        inertia: dict[int, FloatArray] = {}
         for i, gd in lay.guides.items():
             o, nq = lay.offsets[i], gd.nq
             q, qd = y[..., o : o + nq].copy(), y[..., o + nq : o + 2 * nq].copy()
@@ -113,7 +129,7 @@ class Forward:
             out.fluid[i] = y[..., o : o + 2].copy()
         return out
 
-    def pack(self, s: Snapshot) -> np.ndarray:
+    def pack(self, s: Snapshot) -> FloatArray:
         """The flat state of a snapshot (the inverse of :meth:`snapshot`)."""
         lay = self.layout
         L = s.L_A
@@ -131,7 +147,7 @@ class Forward:
         return y
 
     # ---------------------------------------------------------------- the loads
-    def loads(self, t, s) -> tuple[np.ndarray, np.ndarray]:
+    def loads(self, t: float, s: Snapshot) -> tuple[FloatArray, FloatArray]:
         """The listed effects' forces F (n, 3) at G and moments M_A (n, 3) about G (body
         components) on the snapshot s, the resting contacts' support included."""
         out = self.loads_without_support(t, s)
@@ -139,14 +155,14 @@ class Forward:
             self.support.add(t, s, out)
         return out.F, out.M_A
 
-    def loads_without_support(self, t, s) -> Loads:
+    def loads_without_support(self, t: float, s: Snapshot) -> Loads:
         """The listed effects' loads on the snapshot s (what the supports hold against)."""
         out = Loads(self.model.n, s)
         for e in self.model.forces:
             e.loads(t, s, out)
         return out
 
-    def loads_before(self, t, s, effect) -> Loads:
+    def loads_before(self, t: float, s: Snapshot, effect: Effect | HasModes) -> Loads:
         """The loads of the effects summed before ``effect`` (all the others, for one
         that comes after the loads)."""
         out = Loads(self.model.n, s)
@@ -156,7 +172,7 @@ class Forward:
             e.loads(t, s, out)
         return out
 
-    def rhs(self, t, y) -> np.ndarray:
+    def rhs(self, t: float, y: FloatArray) -> FloatArray:
         """The state's rate at (t, y): compiled where the model compiles, except while a
         body rests on a plane (its support force is the Python path's)."""
         fast = self._compiled()
@@ -186,14 +202,16 @@ class Forward:
             return f"right-hand side in Python ({self.compiled})"
         return "right-hand side compiled (numba: mechanics.scenes._kernels)"
 
-    def stepper(self, t, y, t_bound, rtol, atol):
+    def stepper(
+        self, t: float, y: FloatArray, t_bound: float, rtol: float, atol: float
+    ) -> CompiledStepper | DOP853Stepper:
         """The DOP853 stepper of the segment from (t, y) to ``t_bound`` (the phase and
         the resting contacts fixed for its life): its steps compiled where the model
         compiles (:class:`.compiled.CompiledStepper`), else
         :class:`mechanics.integrators.DOP853Stepper` on :meth:`rhs`."""
         from mechanics.integrators import DOP853Stepper
 
-        def reference(t0, y0, first_step):
+        def reference(t0: float, y0: FloatArray, first_step: float | None) -> DOP853Stepper:
             return DOP853Stepper(
                 self.rhs, t0, y0, t_bound, rtol=rtol, atol=atol, first_step=first_step
             )
@@ -204,7 +222,7 @@ class Forward:
         phase = t if self.phase is None else self.phase
         return compiled.stepper(fast, phase, t, y, t_bound, rtol, atol, reference)
 
-    def reference_rhs(self, t, y) -> np.ndarray:
+    def reference_rhs(self, t: float, y: FloatArray) -> FloatArray:
         """The state's rate at (t, y), in Python: the reference of the compiled path."""
         s = self.snapshot(t, y, copy=False)
         if self.phase is not None:
@@ -217,20 +235,27 @@ class Forward:
         return self.layout.derivative(s, out.F, out.M_A, out.rates)
 
     # ------------------------------------------------------------ accelerations
-    def kinematics(self, s, dy, k):
+    def kinematics(self, s: Snapshot, dy: FloatArray, k: int) -> Kinematics:
         """(origin, its acceleration, ω, α), space components, of body k at the snapshot
         s whose state rates are dy: the origin is G (a pinned body's pivot, which does
         not move); a point has no ω, α (:meth:`.bodies.Body.kinematics`)."""
         _, dv, dL, _ = self.layout.gather(dy)  # raw rates: v̇, and L̇_A (L̇_C if pinned)
         return self.layout.bodies[k].kinematics(s, dy, dv[k], dL[k])
 
-    def point_accelerations(self, t, y, s, points, sizes=None) -> dict[int, np.ndarray]:
+    def point_accelerations(
+        self,
+        t: float,
+        y: FloatArray,
+        s: Snapshot,
+        points: Mapping[int, FloatArray],
+        sizes: dict[int, float] | None = None,
+    ) -> dict[int, FloatArray]:
         """Accelerations (space) of the body points ``{body: position}`` at (t, y):
         a_G + α × ρ + ω × (ω × ρ), ρ from G (from the pivot of a pinned body, whose
         pivot does not move); with a dict ``sizes``, each one's terms' size
         |a_G| + |α| |ρ| + |ω|² |ρ| (what its rounding is relative to) goes there."""
         dy = self.rhs(t, y)
-        out = {}
+        out: dict[int, FloatArray] = {}
         for k, S in points.items():
             if k is None or not self.layout.bodies[k].moves:  # a fixed body
                 continue
@@ -242,14 +267,17 @@ class Forward:
                 sizes[k] = float(np.linalg.norm(base) + (np.linalg.norm(alpha) + w @ w) * arm)
         return out
 
-    def rim_gap_acceleration(self, t, y, s, imp, ft) -> float | None:
+    def rim_gap_acceleration(
+        self, t: float, y: FloatArray, s: Snapshot, imp: Impact, ft: Feature
+    ) -> float | None:
         """d²/dt² of a rim circle's gap w − a ρ (see :mod:`.effects.impact`) at (t, y),
         or None where the face is flat (ρ = 0).  With c = n·e3 (e3 the circle's axis in
         space, ė3 = ω × e3, ë3 = α × e3 + ω × (ω × e3)): w = (r_G − p)·n + z_c c and
         ρ = √(1 − c²), so w'' = a_G·n + z_c c̈ and ρ'' = −(ċ² + c c̈)/ρ − c² ċ²/ρ³.  The
         support point slides round the rim as the body turns, so this is not the
         acceleration of the material point there."""
-        k, (a, zc), n = ft.body, ft.support, imp.normal
+        # (a rim circle: its support is set)
+        k, (a, zc), n = ft.body, cast("tuple[float, float]", ft.support), imp.normal
         origin, base, w, alpha = self.kinematics(s, self.rhs(t, y), k)
         rho_G = s.r[k] - origin
         a_G = base + cross(alpha, rho_G) + cross(w, cross(w, rho_G))
@@ -263,7 +291,9 @@ class Forward:
         rho2 = -(c1 * c1 + c * c2) / rho - c * c * c1 * c1 / rho**3
         return float(a_G @ n) + zc * c2 - a * rho2
 
-    def _compiled_accelerations(self, t, Y):
+    def _compiled_accelerations(
+        self, t: FloatArray, Y: FloatArray
+    ) -> tuple[FloatArray, FloatArray] | None:
         """The compiled (a_G, F) at the samples, or None where the Python path runs."""
         fast = self._compiled()
         got = None if fast is None else fast.accelerations(t, Y)
@@ -271,7 +301,7 @@ class Forward:
             self.compiled = FAILED
         return got
 
-    def reactions(self, t, Y):
+    def reactions(self, t: FloatArray, Y: FloatArray) -> Reactions:
         """The joints' reactions at the samples (t, Y): the force of a pivot, of the
         bearings or of the surface a body rolls or slides on, F = m a_G − Σ F (4.4,
         4.71), and for a fixed axis the bearings' moment about C, M = J_a φ̈ a − M_C,

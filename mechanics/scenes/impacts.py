@@ -47,14 +47,25 @@
 from __future__ import annotations
 
 import math
-from typing import Any
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import numpy.typing as npt
 
 from . import contacts
 from .effects.impact import EnergyGainError, totals
 from .errors import SceneError
 from .trajectory import EPS, Event
+from .vectors import FloatArray, Times
+
+if TYPE_CHECKING:  # for annotations only
+    from .effects import Snapshot
+    from .effects.impact import Feature, Impact
+    from .forward import Forward
+    from .model import Model
+    from .spec import Scene
+    from .support import Support
 
 __all__ = [
     "CLOSING_ROUNDING",
@@ -98,18 +109,26 @@ class Resolver:
     """The impact law at the contacts of a :class:`~mechanics.scenes.model.Model`,
     through its :class:`~mechanics.scenes.forward.Forward` dynamics."""
 
-    def __init__(self, model, forward, support=None) -> None:
+    def __init__(self, model: Model, forward: Forward, support: Support | None = None) -> None:
         self.model = model
         self.forward = forward
         #: the resting contacts (:class:`~mechanics.scenes.support.Support`) a pair whose
         #: impacts accumulate passes to; None: such a pair stops the run (:func:`zeno`)
         self.support = support
 
-    def touch(self, imp, ft, s) -> bool:
+    def touch(self, imp: Impact, ft: Feature, s: Snapshot) -> bool:
         """Touching with an approach speed that is zero up to rounding: no impact."""
         return imp.approach(s, ft) <= CLOSING_ROUNDING * imp.speed_scale(s, ft)
 
-    def resolve(self, t, y, imp, ft, events, gap_scale=0.0) -> np.ndarray:
+    def resolve(
+        self,
+        t: float,
+        y: FloatArray,
+        imp: Impact,
+        ft: Feature,
+        events: list[Event],
+        gap_scale: float = 0.0,
+    ) -> FloatArray:
         """Resolve the impact found at t, then every simultaneous one (sequential
         impulses, see the module's docstring); record the events; return the new state.
         ``gap_scale``: the size the contact search's rounding was relative to (the gap
@@ -170,12 +189,14 @@ class Resolver:
             "effects", f"more than {MAX_SWEEPS} rounds of simultaneous impacts at t = {t:.6g} s"
         )
 
-    def touching(self, s, imp, ft) -> bool:
+    def touching(self, s: Snapshot, imp: Impact, ft: Feature) -> bool:
         """Is the feature's gap zero within the rounding of a contact just resolved?"""
-        scale = np.abs(imp.feature_point(s, ft)).sum() + imp.point @ imp.point + ft.a
+        scale: float = np.abs(imp.feature_point(s, ft)).sum() + imp.point @ imp.point + ft.a
         return abs(float(imp.gap(s, ft))) <= GAP_ROUNDING * 4 * max(scale, ft.a + ft.a_s)
 
-    def closing_now(self, s, floor=0.0, moved=None):
+    def closing_now(
+        self, s: Snapshot, floor: float = 0.0, moved: set[int] | None = None
+    ) -> tuple[Impact, Feature] | None:
         """The touching feature that closes fastest (sequential impulses), or None; an
         approach within rounding of the contact speeds (or of ``floor``, the speeds the
         instant started with) is no closing.  With ``moved`` (body indices), only the
@@ -183,8 +204,10 @@ class Resolver:
         and a pair of other bodies closing at this instant is a contact of its own, found
         as the next event at the same time (the contact search takes a gap within
         rounding that falls as a contact now)."""
+        best: tuple[Impact, Feature] | None
         best, speed = None, 0.0
         impacts = self.model.impacts
+        among: Sequence[int]
         if moved is None:
             among = range(len(impacts))
         else:
@@ -198,7 +221,9 @@ class Resolver:
                     best, speed = (imp, ft), v
         return best
 
-    def closing_with(self, s, imp, ft, floor=0.0) -> list:
+    def closing_with(
+        self, s: Snapshot, imp: Impact, ft: Feature, floor: float = 0.0
+    ) -> list[Feature]:
         """The contact ``ft`` of ``imp`` and every other feature of the same pair touching
         it at this instant, closing or not (an impulse at one may make another close):
         one impact problem; only ``ft`` where the pair's ``model`` is "sequential"."""
@@ -210,12 +235,12 @@ class Resolver:
             if f is not ft and (self.touching(s, imp, f) or self._held(imp, f))
         ]
 
-    def _held(self, imp, ft) -> bool:
+    def _held(self, imp: Impact, ft: Feature) -> bool:
         """Does ``ft`` rest (its gap held at zero by a support: in contact whatever the
         integration's drift of its gap)?"""
         return self.support is not None and self.support.active(imp, ft)
 
-    def together(self, s, imp, feats) -> dict:
+    def together(self, s: Snapshot, imp: Impact, feats: list[Feature]) -> dict[str, Any]:
         """Newton's law at the contacts ``feats`` of one pair at once (see the module's
         docstring): the impulses applied to the snapshot in place; the event's details,
         as :meth:`~mechanics.scenes.effects.impact.Impact.apply` gives for one."""
@@ -228,7 +253,7 @@ class Resolver:
         scale = max(imp.speed_scale(s, f) for f in feats)
         if imp.mu_f > 0 and slide > CLOSING_ROUNDING * scale:
             raise self._slides(imp, labels, s.t, slide)
-        before = totals(s, idx, points[0][0])
+        before = totals(s, idx, points[0][0])  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
         u0 = np.array([-imp.approach(s, f) for f in feats])  # < 0: approaching
         m = len(feats)
         W = np.empty((m, m))
@@ -249,7 +274,7 @@ class Resolver:
         for (S, n), p in zip(points, P, strict=True):
             for k in idx:
                 imp.kick(s, k, sign[k] * p * n, S)
-        after = totals(s, idx, points[0][0])
+        after = totals(s, idx, points[0][0])  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
         u1 = np.array([-imp.approach(s, f) for f in feats])  # > 0: separating
         if imp.mu_f > 0:
             slide = max(imp.tangential_speed(s, f) for f in feats)
@@ -284,7 +309,9 @@ class Resolver:
         detail["law_worst_contact"] = labels[worst]
         return detail
 
-    def _still_closing(self, s, imp, group, detail) -> None:
+    def _still_closing(
+        self, s: Snapshot, imp: Impact, group: list[Feature], detail: dict[str, Any]
+    ) -> None:
         """No other contact of the pair may still close after its impulses: a touching
         feature approaching beyond rounding counts against the law (``law_residual``;
         the contacts of one body were not resolved together).  Not where the scene
@@ -299,7 +326,7 @@ class Resolver:
             if closing > detail["law_residual"]:
                 detail["law_residual"], detail["law_worst_contact"] = closing, f.label
 
-    def _slides(self, imp, labels, t, slide) -> SceneError:
+    def _slides(self, imp: Impact, labels: list[str], t: Times, slide: float) -> SceneError:
         return self.model.scene.error(
             f"{imp.where}.friction",
             f"{len(labels)} contacts of {imp.label} meet at once at t = {t:.6g} s while "
@@ -308,7 +335,9 @@ class Resolver:
             "that its contacts come one at a time",
         )
 
-    def pressed(self, imp, ft, t, y, speed=0.0) -> float:
+    def pressed(
+        self, imp: Impact, ft: Feature, t: float, y: FloatArray, speed: float = 0.0
+    ) -> float:
         """How hard the loads push the pair together: minus the gap's second derivative
         (> 0 pressed, ≤ 0 not; within
         ``CLOSING_ROUNDING`` × the size of its terms, 0: the rounding of no push, as for
@@ -329,7 +358,7 @@ class Resolver:
         pts = {ft.body: X} if ft.sphere is None else {ft.body: X, ft.sphere: s.r[ft.sphere]}
         sizes: dict[int, float] = {}
         a = fwd.point_accelerations(t, y, s, pts, sizes)
-        push = -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))
+        push = -float(n @ (a.get(imp.i, 0.0) - a.get(imp.j, 0.0)))  # type: ignore[arg-type]  # j None (a plane): no entry, the default 0
         curve = 0.0
         if ft.sphere is not None:  # |d| curves: + |ḋ across d|² / |d| (it opens the gap)
             d = X - s.r[ft.sphere]
@@ -341,7 +370,9 @@ class Resolver:
         size = sum(sizes.values()) + spin * speed + curve
         return push if abs(push) > CLOSING_ROUNDING * size else 0.0
 
-    def stalls(self, imp, ft, t, y, detail) -> bool:
+    def stalls(
+        self, imp: Impact, ft: Feature, t: float, y: FloatArray, detail: dict[str, Any]
+    ) -> bool:
         """Do the impacts accumulate here?  Pressed together, the pair rebounds too slowly
         to be followed: slower than ``ZENO_SPEED`` (relative), or so slowly that its hop,
         v²/(2a), stays below the rounding of the gap (``GAP_ROUNDING`` × the positions'
@@ -349,12 +380,13 @@ class Resolver:
         a = self.pressed(imp, ft, t, y, abs(detail["normal_speed_before"]))
         if not a > 0:
             return False
-        v = detail["normal_speed_after"]
+        v: float = detail["normal_speed_after"]
         if v < ZENO_SPEED * (1.0 + abs(detail["normal_speed_before"])):
             return True
-        return v * v <= 2.0 * a * GAP_ROUNDING * 4 * detail["gap_scale"]
+        below: bool = v * v <= 2.0 * a * GAP_ROUNDING * 4 * detail["gap_scale"]
+        return below
 
-    def contact_time(self, imp, ft, s, g) -> float:
+    def contact_time(self, imp: Impact, ft: Feature, s: Snapshot, g: npt.ArrayLike) -> float:
         """Closed-form time to the next contact of a sphere or point (inf if none): under
         uniform gravity a plane gap is quadratic in τ, and the relative motion of two
         bodies is uniform (gravity cancels), so |d + w τ| = a_i + a_j is a quadratic."""
@@ -377,7 +409,7 @@ class Resolver:
         return tau
 
 
-def solve_lcp(W, q) -> np.ndarray | None:
+def solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray | None:
     """P ≥ 0 with w = W P + q ≥ 0 and P·w = 0, for a small symmetric positive
     semi-definite W (m ≤ 8 contacts), exactly: by its complementary bases, the supports S
     in order of size whose W_SS is invertible (condition below 1/(m RANK_RTOL)), P_S
@@ -410,7 +442,7 @@ def solve_lcp(W, q) -> np.ndarray | None:
     return None
 
 
-def falls_in(scene, imp, ft, t) -> SceneError:
+def falls_in(scene: Scene, imp: Impact, ft: Feature, t: float) -> SceneError:
     """The error of a pair that touches and then falls in (a resting contact) where
     the pair cannot rest (:meth:`.support.Support.can_rest`)."""
     return scene.error(
@@ -421,7 +453,7 @@ def falls_in(scene, imp, ft, t) -> SceneError:
     )
 
 
-def zeno(scene, t, who="the bodies") -> SceneError:
+def zeno(scene: Scene, t: float, who: str = "the bodies") -> SceneError:
     """The error of impacts that accumulate (or events beyond :data:`MAX_EVENTS`)."""
     return scene.error(
         "scene.duration",

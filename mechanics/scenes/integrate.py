@@ -17,12 +17,25 @@ limit switches at once.  The steps and the wall time are bounded (:mod:`.budget`
 from __future__ import annotations
 
 import itertools
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
 from . import budget
-from .collision import StepFit
-from .trajectory import Event, vectorized
+from .collision import Hit, StepFit
+from .trajectory import Dense, Event, Segment, vectorized
+from .vectors import FloatArray, Times
+
+if TYPE_CHECKING:  # for annotations only
+    from .collision import Collision
+    from .effects.impact import Impact
+    from .effects.thrust import Thrust
+    from .forward import Forward
+    from .impacts import Resolver
+    from .model import Model
+    from .modes import Modes
+    from .support import Support
 
 __all__ = ["HOW", "integrate", "rows"]
 
@@ -30,7 +43,15 @@ __all__ = ["HOW", "integrate", "rows"]
 HOW = "integrated: DOP853 (mechanics.integrators), contacts located on each step's dense polynomial"
 
 
-def integrate(model, forward, collision, modes, resolver, t_end, events=()):
+def integrate(
+    model: Model,
+    forward: Forward,
+    collision: Collision,
+    modes: Modes,
+    resolver: Resolver,
+    t_end: float,
+    events: Iterable[Event] = (),
+) -> tuple[list[Segment], list[Event]]:
     """Integrate the model from its initial state to ``t_end``: the segments
     ``[(t0, t1, state_at)]`` and the events (after ``events``, those at the start:
     the bodies resting there), in time order."""
@@ -43,6 +64,7 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
     modes.switched.clear()
     switches = sorted({x for e in model.forces for x in e.switch_times() if 0 < x < t_end})
     support = forward.support
+    segs: list[Segment]
     segs, events = [], list(events)
     t, y = 0.0, model.y0.copy()
     rate = budget.fastest_rate(s, model.w0)
@@ -61,7 +83,7 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
                 y = support.switch(t, y, events)
         while t < stop:
             solver = forward.stepper(t, y, stop, s.rtol, s.atol)
-            hit = None
+            hit: Hit | None = None
             while solver.status == "running" and hit is None:
                 clock.step(solver.t)
                 try:
@@ -72,7 +94,8 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
                         f"the integration stalled at t = {solver.t:.17g} s (a singular "
                         f"force, e.g. bodies meeting under newton_gravity?): {exc}",
                     ) from None
-                fit = StepFit(solver.dense_output(), solver.t_old, solver.t)
+                t_old = cast(float, solver.t_old)  # (set: a step was taken)
+                fit = StepFit(solver.dense_output(), t_old, solver.t)
                 hit = collision.first_contact(fit)
                 sw = modes.first_switch(fit)
                 if sw is not None and (hit is None or sw.t < hit.t):
@@ -80,7 +103,7 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
                 sp = support.first_switch(fit) if support is not None else None
                 if sp is not None and (hit is None or sp.t < hit.t):
                     hit = sp
-                segs.append((solver.t_old, solver.t if hit is None else hit.t, rows(fit.dense)))
+                segs.append((t_old, solver.t if hit is None else hit.t, rows(fit.dense)))
             if hit is None:
                 t, y = float(solver.t), np.array(solver.y, dtype=float)
                 break
@@ -95,7 +118,10 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
             if hit.rest:  # touching with no approach speed and falling in: it rests
                 press = resolver.pressed(hit.effect, hit.feature, t, y)
                 last = _last_impact(events, hit.effect)
-                y = support.rest(t, y, hit.effect, hit.feature, last, press, events)
+                # (a contact falls in to rest only where there is a support: Collision)
+                y = cast("Support", support).rest(
+                    t, y, hit.effect, hit.feature, last, press, events
+                )
                 continue
             # the search found it within its rounding, relative to the largest size the
             # features' positions have had (Collision.reach): the gap's scale is that
@@ -103,15 +129,16 @@ def integrate(model, forward, collision, modes, resolver, t_end, events=()):
             reach = max(v for (i, _), v in collision.reach.items() if i == a)
             y = resolver.resolve(t, y, hit.effect, hit.feature, events, reach)
         for e in model.forces:
-            if e.type == "thrust" and e.burn_out == stop and stop < t_end:
-                events.append(Event(stop, "burn_out", {"body": model.names[e.i]}))
+            burn = cast("Thrust", e)  # (its fields read where its type is "thrust")
+            if e.type == "thrust" and burn.burn_out == stop and stop < t_end:
+                events.append(Event(stop, "burn_out", {"body": model.names[burn.i]}))
     forward.phase = None
     # a rest is dated at its accumulation time, a little after the impact that began it
     events.sort(key=lambda ev: ev.t)
     return segs, events
 
 
-def _last_impact(events, imp) -> dict:
+def _last_impact(events: list[Event], imp: Impact) -> dict[str, float]:
     """The last impact of the pair ``imp`` (its time and rebound: where the bounces
     that accumulate began their last hop), or {} if none."""
     for ev in reversed(events):
@@ -120,12 +147,12 @@ def _last_impact(events, imp) -> dict:
     return {}
 
 
-def rows(dense):
+def rows(dense: Dense) -> Dense:
     """A step's dense output (scipy's convention: (size, k) for k times) as a vectorised
     function returning (k, size), (size,) for one time."""
 
     @vectorized
-    def at(t):
+    def at(t: Times) -> FloatArray:
         return np.asarray(dense(t)).T
 
     return at

@@ -13,7 +13,8 @@ model: :mod:`.forward` (the loads' phase), :mod:`.collision`, :mod:`.modes`.
 
 from __future__ import annotations
 
-from typing import Any
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -26,6 +27,10 @@ from .effects.gravity import Gravity
 from .effects.impact import Impact
 from .effects.tank_outflow import TankOutflow
 from .state import Guide, Layout, body_inertia
+from .vectors import FloatArray
+
+if TYPE_CHECKING:  # for annotations only: a layer above
+    from .spec import Scene
 
 __all__ = ["FREE_INITIAL", "JOINTS", "RATES", "Model", "check", "initial_attitude", "initial_omega"]
 
@@ -36,7 +41,7 @@ JOINTS = ("fixed_point", "fixed_axis", "rolling", "coulomb_friction")
 RATES = ("theta_dot", "psi_dot", "phi_dot")
 
 
-def initial_attitude(initial) -> np.ndarray:
+def initial_attitude(initial: Mapping[str, Any]) -> FloatArray:
     """^A R^O = R3(φ) R1(θ) R3(ψ) of a body's initial Euler angles (default 0: the
     identity)."""
     from mechanics.rotation import matrix_from_euler
@@ -45,7 +50,7 @@ def initial_attitude(initial) -> np.ndarray:
     return matrix_from_euler(*e) if any(e) else np.eye(3)
 
 
-def initial_omega(initial) -> np.ndarray:
+def initial_omega(initial: Mapping[str, Any]) -> FloatArray:
     """Initial body ω: ``omega``, or from the z-x-z Euler rates by Euler's kinematic
     equations (2.69) (:func:`mechanics.kinematics.angular_velocity_from_euler_rates`)."""
     if "omega" in initial:
@@ -55,7 +60,7 @@ def initial_omega(initial) -> np.ndarray:
     return kin.angular_velocity_from_euler_rates(0.0, th, ph, psd, thd, phd)
 
 
-def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
+def _pins(scene: Scene, index: Mapping[str, int]) -> dict[int, tuple[FloatArray, FloatArray]]:
     """The pinned bodies (a fixed_point joint) -> (C, g_A)."""
     from .effects.fixed_point import FixedPoint
 
@@ -65,18 +70,18 @@ def _pins(scene, index) -> dict[int, tuple[np.ndarray, np.ndarray]]:
     }
 
 
-def _guides(scene, index) -> dict[int, Guide]:
+def _guides(scene: Scene, index: Mapping[str, int]) -> dict[int, Guide]:
     """The guided bodies (a fixed axis, rolling, sliding on a plane) -> their Guide."""
     g = gravity_vector(scene)
-    out = {}
+    out: dict[int, Guide] = {}
     for spec in scene.effects:
         cls = REGISTRY[spec.type]
         if issubclass(cls, GuidesBody):
-            out[index[spec.fields["body"]]] = cls.make_guide(spec, scene, g)
+            out[index[spec.fields["body"]]] = cls.make_guide(spec, scene, g)  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
     return out
 
 
-def check(scene) -> None:
+def check(scene: Scene) -> None:
     """Check a scene as a whole (each field is checked by the parser): one joint per
     body, a tank acted on by its outflow only, each body's initial keys, no spin about a
     zero principal moment, and each effect's own check of its combination."""
@@ -144,11 +149,12 @@ def check(scene) -> None:
         REGISTRY[spec.type].check(spec, scene, index)
 
 
-def _check_pairs_once(scene, impacts) -> None:
+def _check_pairs_once(scene: Scene, impacts: Sequence[Impact]) -> None:
     """Each pair meets by one law: two impacts of the same two bodies, or of one body and
     the same plane (the same unit normal and offset n·p, as written), are refused with one
     line naming both (a group's pairs included); which law would act was undefined."""
-    seen: dict = {}
+    seen: dict[tuple[float, ...], Impact] = {}
+    key: tuple[float, ...]
     for imp in impacts:
         if imp.j is not None:
             key = (min(imp.i, imp.j), max(imp.i, imp.j))
@@ -167,7 +173,7 @@ class Model:
     """A scene compiled: the layout, the effects by what they contribute, the initial
     state.  Built once per run; nothing here changes during it."""
 
-    def __init__(self, scene) -> None:
+    def __init__(self, scene: Scene) -> None:
         self.scene = scene
         index = {b.name: i for i, b in enumerate(scene.bodies)}
         self.layout = Layout.of(scene.bodies, _pins(scene, index), _guides(scene, index))
@@ -187,7 +193,7 @@ class Model:
         self.impacts_of: dict[int, list[int]] = {}
         for a, imp in enumerate(self.impacts):
             for k in {imp.i, imp.j} - {None}:
-                self.impacts_of.setdefault(k, []).append(a)
+                self.impacts_of.setdefault(cast(int, k), []).append(a)  # (None taken out)
         #: the effects that add loads; one that reads the others' loads comes after
         #: them (a stable sort)
         self.forces = sorted(
@@ -228,7 +234,7 @@ class Model:
         """The rigid bodies with an initial spin."""
         return [i for i in self.rigid if self.w0[i].any()]
 
-    def uniform_gravity(self) -> np.ndarray:
+    def uniform_gravity(self) -> FloatArray:
         """The sum of the listed uniform gravity fields (zero without one)."""
         g = np.zeros(3)
         for e in self.effects:

@@ -12,11 +12,21 @@ every mode already beyond its limit (a push that starts makes a rolling body sli
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING, Any, cast
+
 import numpy as np
+import numpy.typing as npt
 
 from . import contacts, impacts
 from .collision import Hit, StepFit
-from .trajectory import EPS
+from .trajectory import EPS, Event
+from .vectors import FloatArray
+
+if TYPE_CHECKING:  # for annotations only
+    from .effects import Effect
+    from .effects.capabilities import HasModes
+    from .forward import Forward
+    from .model import Model
 
 __all__ = ["SWITCH_ROUNDING", "Modes"]
 
@@ -28,11 +38,11 @@ SWITCH_ROUNDING = 64 * EPS
 class Modes:
     """The switching effects of a :class:`~mechanics.scenes.model.Model`."""
 
-    def __init__(self, model, forward) -> None:
+    def __init__(self, model: Model, forward: Forward) -> None:
         self.model = model
         self.forward = forward
         #: effect -> the time of its last switch
-        self.switched: dict = {}
+        self.switched: dict[Effect, float] = {}
 
     def begin(self) -> None:
         """Let the effects with modes choose theirs from the initial state."""
@@ -42,18 +52,19 @@ class Modes:
             for e in md.switching:
                 e.begin(0.0, s, fwd.loads_before(0.0, s, e))
 
-    def switch(self, t, y, effect, events) -> np.ndarray:
-        """Switch ``effect``'s mode at (t, y); record the event; return the new state."""
+    def switch(self, t: float, y: FloatArray, effect: Any, events: list[Event]) -> FloatArray:
+        """Switch ``effect``'s mode at (t, y); record the event; return the new state.
+        (``effect``: one of :attr:`~.model.Model.switching`, an effect with modes.)"""
         fwd = self.forward
         sn = fwd.snapshot(t, y)
-        sn.phase = fwd.phase
+        sn.phase = cast(float, fwd.phase)  # (set: inside an integration segment)
         events.append(effect.switch(t, sn, fwd.loads_before(t, sn, effect)))
         self.switched[effect] = t
         if len(events) > impacts.MAX_EVENTS:  # (read here: a test may lower it)
             raise impacts.zeno(self.model.scene, t, effect.where)
         return fwd.pack(sn)
 
-    def switch_now(self, t, y, events) -> np.ndarray:
+    def switch_now(self, t: float, y: FloatArray, events: list[Event]) -> FloatArray:
         """At a switch time of the loads: switch every mode whose switch function is
         below zero beyond its rounding (a push that starts makes a rolling body slip)."""
         fwd = self.forward
@@ -61,13 +72,13 @@ class Modes:
             g, size = self.value(e, t, y)
             if g < -SWITCH_ROUNDING * size:
                 sn = fwd.snapshot(t, y)
-                sn.phase = fwd.phase
-                events.append(e.switch(t, sn, fwd.loads_before(t, sn, e)))
+                sn.phase = cast(float, fwd.phase)  # (set: inside an integration segment)
+                events.append(e.switch(t, sn, fwd.loads_before(t, sn, e)))  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
                 self.switched[e] = t
                 y = fwd.pack(sn)
         return y
 
-    def value(self, e, t, y) -> tuple[float, float]:
+    def value(self, e: HasModes, t: float, y: npt.ArrayLike) -> tuple[float, float]:
         """The switch function of ``e`` at (t, y), and the size of its terms."""
         fwd = self.forward
         s = fwd.snapshot(t, np.asarray(y, dtype=float))
@@ -79,16 +90,16 @@ class Modes:
         """The earliest switch of an effect's mode within one step (a :class:`Hit` with
         no feature), or None (see the module's docstring)."""
         t_a, t_b, dense = fit.t_a, fit.t_b, fit.dense
-        best = None
+        best: Hit | None = None
         for e in self.model.switching if t_b > t_a else ():
             sizes: list[float] = []
 
-            def g(tt, e=e, sizes=sizes):
+            def g(tt: FloatArray, e: HasModes = e, sizes: list[float] = sizes) -> FloatArray:
                 vals = [self.value(e, float(x), dense(float(x))) for x in tt]
                 sizes.extend(size for _, size in vals)
                 return np.array([[v] for v, _ in vals])
 
-            def refine(xx, e=e):
+            def refine(xx: float, e: HasModes = e) -> float:
                 tt = fit.time(xx)
                 return self.value(e, tt, dense(tt))[0]
 

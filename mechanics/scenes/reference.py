@@ -64,7 +64,7 @@ def _bullets(doc: str) -> list[str]:
     return out
 
 
-def _toml(value) -> str:
+def _toml(value: object) -> str:
     if isinstance(value, str):
         return f'"{value}"'
     if isinstance(value, list):

@@ -18,27 +18,50 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import TYPE_CHECKING, cast
+
 import numpy as np
 
 from .effects.base import CONSERVED
 from .effects.impact import centre_gaps
 from .state import body_vertices
-from .trajectory import Trajectory, dense_from_segments, energy_scale, sample_segments
-from .vectors import cross
+from .trajectory import (
+    Event,
+    Segment,
+    Trajectory,
+    dense_from_segments,
+    energy_scale,
+    sample_segments,
+)
+from .vectors import FloatArray, cross
+
+if TYPE_CHECKING:  # for annotations only
+    from .effects import Snapshot
+    from .forward import Forward
+    from .model import Model
+    from .support import Support
 
 __all__ = ["finish", "top_angles"]
 
 
-def finish(model, forward, t, segs, events, how) -> Trajectory:
+def finish(
+    model: Model,
+    forward: Forward,
+    t: FloatArray,
+    segs: list[Segment],
+    events: list[Event],
+    how: str,
+) -> Trajectory:
     """The run's result from its segments and events: the series at the sample times t,
     the conserved quantities with their scales, the derived state at any time."""
     dense = dense_from_segments(segs)
-    Y = sample_segments(segs, t)
+    Y = cast("FloatArray", sample_segments(segs, t))  # (not None: a scene has 2 samples or more)
     s = forward.snapshot(t, Y)
     n, lay = model.n, model.layout
     moving = list(lay.moving_bodies)
-    series: dict[str, np.ndarray] = {}
-    pre = (lambda i: f"{model.names[i]}.") if n > 1 else (lambda i: "")
+    series: dict[str, FloatArray] = {}
+    pre: Callable[[int], str] = (lambda i: f"{model.names[i]}.") if n > 1 else (lambda i: "")
     thrust = bool(model.losing)
     for i in moving:
         p = pre(i)
@@ -75,15 +98,17 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
         qd = s.coords[i][1]
         KE = KE + 0.5 * ((M - lay.guides[i].M) * qd * qd).sum(-1)
     E = KE.copy()
-    for e in model.potentials:
-        E = E + e.potential(s)
+    for pot in model.potentials:
+        E = E + pot.potential(s)
     if moving:
         series["E"] = E
     P = (m[..., None] * v).sum(-2)
     orb = cross(r, m[..., None] * v)
     spins = np.einsum("...ji,...j->...i", s.R, s.L_A)
     L_O = orb.sum(-2) + spins.sum(-2)
-    conserved, scales, across = {}, {"E": energy_scale(KE, E)}, set()
+    conserved: dict[str, FloatArray] = {}
+    scales: dict[str, float] = {"E": energy_scale(KE, E)}
+    across: set[str] = set()
     p_scale = float(np.max((m * np.linalg.norm(v, axis=-1)).sum(-1), initial=0.0))
     if how.startswith("integrated: DOP853"):
         # DOP853 holds each component to atol + rtol |y|: where the speeds are below
@@ -182,9 +207,9 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
             if not struck:
                 across.add(name)
 
-    def state_at(tt):
+    def state_at(tt: float) -> dict[str, float]:
         ss = forward.snapshot(tt, np.asarray(dense(tt), dtype=float))
-        out = {}
+        out: dict[str, float] = {}
         for i in moving:
             p = pre(i)
             for k, c in enumerate("xyz"):
@@ -200,8 +225,8 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
                 out[p + "cos_theta"] = float(R[2, 2])
                 out[p + "cos_theta_dot"] = float(w[1] * R[0, 2] - w[0] * R[1, 2])
             if i in lay.guides:
-                for k, x in lay.guides[i].series(*ss.coords[i]).items():
-                    out[p + k] = float(x)
+                for key, x in lay.guides[i].series(*ss.coords[i]).items():
+                    out[p + key] = float(x)
         for e in model.forces:
             out.update({k: float(x) for k, x in e.series(ss).items()})
         y = np.asarray(dense(tt), dtype=float)
@@ -251,15 +276,18 @@ def finish(model, forward, t, segs, events, how) -> Trajectory:
     return traj
 
 
-def _gaps(model, support, t, s):
+def _gaps(
+    model: Model, support: Support | None, t: FloatArray, s: Snapshot
+) -> tuple[dict[str, FloatArray], dict[str, float]]:
     """Each impact pair's smallest gap at the samples over its features that do not
     rest there (a resting contact's gap is held at zero, up to the integration's
     error), and the largest |gap| of its resting ones (None: it never rests)."""
-    gaps, resting = {}, {}
+    gaps: dict[str, FloatArray] = {}
+    resting: dict[str, float] = {}
     resting_pairs = {imp for _, _, rests in support.spans() for imp in rests} if support else set()
     imps = model.impacts
     rows, G_all = centre_gaps(imps, s)  # spheres' and points' centres: all at once
-    done = set()
+    done: set[int] = set()
     for c, a in enumerate(rows):
         if imps[a] not in resting_pairs:
             gaps[imps[a].label] = G_all[:, c]
@@ -283,7 +311,13 @@ def _gaps(model, support, t, s):
     return gaps, resting
 
 
-def _support_law(model, support, t, held, sizes) -> dict[str, float]:
+def _support_law(
+    model: Model,
+    support: Support | None,
+    t: FloatArray,
+    held: dict[int, FloatArray],
+    sizes: dict[int, float],
+) -> dict[str, float]:
     """Each resting pair's worst breach of the support's law at the samples where it
     rests, relative to the size of the forces' terms: the total support force presses
     (F·n ≥ 0) and lies in the friction cone (|F_t| ≤ μ F·n)."""
@@ -300,7 +334,7 @@ def _support_law(model, support, t, held, sizes) -> dict[str, float]:
     return out
 
 
-def top_angles(R, w) -> dict[str, np.ndarray]:
+def top_angles(R: FloatArray, w: FloatArray) -> dict[str, FloatArray]:
     """The series of a top (samples of R_A_O and body ω): the Euler angles z-x-z (row 3
     of ^A R^O is (sθ sψ, −sθ cψ, cθ), column 3 is (sφ sθ, cφ sθ, cθ)), the symmetry axis
     e3 in space components, cos θ and its rate d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R."""

@@ -34,14 +34,18 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass, field
+from typing import Any, TypeAlias
 
 import numpy as np
+import numpy.typing as npt
 
 from .impacts import LAW_RTOL
 from .simulate import simulate
 from .spec import Scene
 from .trajectory import CONSERVED_RTOL_INTEGRATED, EPS, Trajectory, tolerance_scale
+from .vectors import FloatArray
 
 __all__ = [
     "CONSERVED_RTOL",
@@ -83,6 +87,9 @@ ORTHOGONALITY_RTOL = 64 * EPS
 #: the spring-driven box at h = 0.025, 0.0125, orders 2 and 4)
 SPLITTING_ORDER_SLACK = 1.5
 
+#: the book's comparisons of a run: ``compare(scene, trajectory) -> [Comparison]``
+Compare: TypeAlias = "Callable[[Scene, Trajectory], Iterable[Comparison]]"
+
 
 @dataclass(frozen=True)
 class Comparison:
@@ -101,6 +108,7 @@ class Comparison:
     difference = property(_get_difference)
 
     def _get_relative_difference(self) -> float:
+        d: float
         d, cf = abs(self.difference), abs(float(self.closed_form))  # Python floats: no warning
         return d / cf if cf != 0 else d
 
@@ -112,7 +120,7 @@ class Comparison:
 
     ok = property(_get_ok)
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
             "book": self.book,
@@ -142,7 +150,7 @@ class ConservedReport:
 
     ok = property(_get_ok)
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
             "value": float(self.value),
@@ -168,7 +176,7 @@ class SelfCheck:
 
     ok = property(_get_ok)
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, Any]:
         return {
             "name": self.name,
             "violation": float(self.violation),
@@ -203,7 +211,7 @@ class SceneResult:
 
     method = property(_get_method)
 
-    def as_dict(self) -> dict:
+    def as_dict(self) -> dict[str, Any]:
         tr = self.trajectory
         return {
             "scene": self.scene.name,
@@ -281,7 +289,7 @@ class SceneResult:
         return "\n".join(lines)
 
 
-def _json_safe(x):
+def _json_safe(x: object) -> object:
     """``x`` with every non-finite float replaced by "nan", "inf" or "-inf"."""
     if isinstance(x, dict):
         return {k: _json_safe(v) for k, v in x.items()}
@@ -314,8 +322,8 @@ def _first_non_finite(tr: Trajectory) -> tuple[str, float] | None:
             if arr is not None and arr.dtype.kind in "fi" and not np.all(np.isfinite(arr)):
                 return f"the {e.kind} event's {k}", float(e.t)
     for n, x, m in tr.derived:
-        for v in (x, m):
-            if isinstance(v, float) and not math.isfinite(v):
+        for value in (x, m):
+            if isinstance(value, float) and not math.isfinite(value):
                 return f"the derived {n}", float("nan")
     return None
 
@@ -335,8 +343,8 @@ def _finite_check(tr: Trajectory) -> SelfCheck:
     return SelfCheck("every reported number finite", 1.0, 0.0, f"{name} is not finite{when}")
 
 
-def _plain(d: dict) -> dict:
-    out = {}
+def _plain(d: Mapping[str, Any]) -> dict[str, Any]:
+    out: dict[str, Any] = {}
     for k, v in d.items():
         if isinstance(v, np.generic):
             v = v.item()
@@ -344,7 +352,13 @@ def _plain(d: dict) -> dict:
     return out
 
 
-def _drift(values: np.ndarray, t: np.ndarray, segments, since: float, scale=0.0) -> float:
+def _drift(
+    values: npt.ArrayLike,
+    t: FloatArray,
+    segments: Iterable[tuple[float, float]],
+    since: float,
+    scale: float = 0.0,
+) -> float:
     worst = 0.0
     v = np.asarray(values, dtype=float)
     if not np.all(np.isfinite(v)):
@@ -358,7 +372,7 @@ def _drift(values: np.ndarray, t: np.ndarray, segments, since: float, scale=0.0)
     return worst
 
 
-def run_scene(scene: Scene, compare=None) -> SceneResult:
+def run_scene(scene: Scene, compare: Compare | None = None) -> SceneResult:
     """Simulate the scene and report its conserved quantities and self-checks; with
     ``compare`` (a function ``(scene, trajectory) -> list[Comparison]``), also the
     comparisons it makes (the book's: :func:`identities.book.scenes.compare.run_book_scene`)."""
@@ -367,7 +381,7 @@ def run_scene(scene: Scene, compare=None) -> SceneResult:
         return _report(scene, tr, compare)
 
 
-def _report(scene: Scene, tr: Trajectory, compare) -> SceneResult:
+def _report(scene: Scene, tr: Trajectory, compare: Compare | None) -> SceneResult:
     tol = conserved_tolerance(scene, tr)
     conserved = []
     scales = tr.scales

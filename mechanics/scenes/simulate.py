@@ -13,6 +13,8 @@ library function's refusal of a value the run reached (a
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
 
 from ..errors import MechanicsValueError, NonFiniteError, ResultOverflowError
@@ -21,15 +23,18 @@ from .derived import derived_quantities
 from .state import body_inertia, body_radius
 from .trajectory import EPS, Event, Trajectory
 
+if TYPE_CHECKING:  # for annotations only: a layer above
+    from .spec import Scene
+
 __all__ = ["EPS", "Event", "Trajectory", "body_inertia", "body_radius", "simulate", "validate"]
 
 
-def validate(scene) -> None:
+def validate(scene: Scene) -> None:
     """Check the combination of bodies and effects; raise a SceneError naming the field."""
     engine.validate(scene)
 
 
-def simulate(scene) -> Trajectory:
+def simulate(scene: Scene) -> Trajectory:
     """Run the scene with exactly the listed effects; the derived quantities its bodies
     and effects define go into ``derived`` (:mod:`.derived`)."""
     budget.check_memory(scene)

@@ -40,7 +40,9 @@ from __future__ import annotations
 import math
 import re
 import tomllib
+from collections.abc import Collection, Iterable
 from dataclasses import dataclass, field
+from os import PathLike
 from pathlib import Path
 from typing import Any
 
@@ -223,7 +225,7 @@ class Scene:
     title: str = ""
     book: str = ""
     compare: str = ""
-    raw: dict = field(default_factory=dict, compare=False, repr=False)
+    raw: dict[str, Any] = field(default_factory=dict, compare=False, repr=False)
     #: the splitting's step (None: the sample interval) and order
     step: float | None = None
     order: int = 4
@@ -352,13 +354,13 @@ def _integer(src: str, where: str, v: Any, least: int) -> int:
     return v
 
 
-def _table(src: str, where: str, v: Any) -> dict:
+def _table(src: str, where: str, v: Any) -> dict[str, Any]:
     if not isinstance(v, dict):
         raise SceneError(src, where, f"expected a table, got {_type_name(v)}")
     return v
 
 
-def _unknown(src: str, where: str, keys, allowed) -> None:
+def _unknown(src: str, where: str, keys: Iterable[str], allowed: Collection[str]) -> None:
     for k in keys:
         if k not in allowed:
             raise SceneError(
@@ -465,7 +467,7 @@ def _parse_effect(src: str, i: int, e: Any, bodies: set[str]) -> EffectSpec:
     return EffectSpec(kind, i, out)
 
 
-def parse_scene(data: dict, *, source: str = "<scene>") -> Scene:
+def parse_scene(data: dict[str, Any], *, source: str = "<scene>") -> Scene:
     """Validate a scene given as a dict (the parsed TOML); raise :class:`SceneError`.
 
     Examples
@@ -598,7 +600,7 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
     return scene
 
 
-def load_scene(path) -> Scene:
+def load_scene(path: str | PathLike[str]) -> Scene:
     """Read and validate a scene file (TOML); errors name the file, field and reason."""
     p = Path(path)
     try:

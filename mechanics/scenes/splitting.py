@@ -31,13 +31,19 @@ Conventions
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from mechanics.errors import OutOfDomainError
 
 from .effects.capabilities import HasPotential
-from .trajectory import vectorized
+from .trajectory import Dense, Segment, vectorized
+from .vectors import FloatArray, Times
+
+if TYPE_CHECKING:  # for annotations only: a layer above
+    from .engine import Engine
 
 __all__ = ["ORDERS", "check", "run"]
 
@@ -45,21 +51,23 @@ __all__ = ["ORDERS", "check", "run"]
 ORDERS = (2, 4, 6)
 
 
-def _schedule(order: int):
+def _schedule(order: int) -> list[tuple[str, float]]:
     """(part, fraction of the step) of one step: Strang's kick–drift–kick composed by
     the triple jump up to ``order``, adjacent kicks merged."""
     from mechanics.integrators._splitting import _merge, _triple_jump
 
-    def strang(tau):
+    def strang(tau: float) -> list[tuple[str, float]]:
         return [("kick", tau / 2), ("drift", tau), ("kick", tau / 2)]
 
-    step = strang
+    # (the integrators' helpers compose and merge any labels; they are typed for their
+    # axis numbers, these are the parts' names)
+    step: Callable[[float], Any] = strang
     for p in range(2, order, 2):
         step = _triple_jump(step, p)
-    return _merge(step(1.0))
+    return cast("list[tuple[str, float]]", _merge(step(1.0)))
 
 
-def check(engine) -> None:
+def check(engine: Engine) -> None:
     """Refuse, naming scene.method, what a fixed-step splitting cannot run."""
     scene, lay = engine.scene, engine.layout
     why = None
@@ -80,7 +88,7 @@ def check(engine) -> None:
         raise scene.error("scene.method", f"'splitting': {why}")
 
 
-def run(engine, order: int, step: float | None):
+def run(engine: Engine, order: int, step: float | None) -> tuple[list[Segment], float]:
     """(segments, step used): the states at the samples, each sample interval a segment
     whose dense function takes partial steps from its start."""
     scene, lay = engine.scene, engine.layout
@@ -92,7 +100,7 @@ def run(engine, order: int, step: float | None):
     rigid = list(lay.rigid_bodies)
     m = engine.m0[:, None]
 
-    def advance(y, tau):
+    def advance(y: FloatArray, tau: float) -> FloatArray:
         r, v, L, R = (np.array(a) for a in lay.gather(y))
         for part, c in sched:
             if part == "kick":
@@ -113,9 +121,9 @@ def run(engine, order: int, step: float | None):
             y = advance(y, h)
         ys.append(y)
 
-    def piece(t0, y0):
+    def piece(t0: float, y0: FloatArray) -> Dense:
         @vectorized
-        def at(tt):
+        def at(tt: Times) -> FloatArray:
             scalar = np.ndim(tt) == 0
             out = []
             for x in np.atleast_1d(np.asarray(tt, dtype=float)):
@@ -133,7 +141,9 @@ def run(engine, order: int, step: float | None):
     return segs, h
 
 
-def _turn(engine, J, L, R, tau):
+def _turn(
+    engine: Engine, J: FloatArray, L: FloatArray, R: FloatArray, tau: float
+) -> tuple[FloatArray, FloatArray]:
     """The exact torque-free flow of one rigid body over τ: (L_A, R_A_O)."""
     from mechanics.tops import FreeAsymmetricTop
 

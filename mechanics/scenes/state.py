@@ -32,11 +32,45 @@ Conventions
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Protocol, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 
-from .vectors import cross, cross3
+from .trajectory import Event
+from .vectors import FloatArray, IntArray, Times, cross, cross3
+
+if TYPE_CHECKING:  # for annotations only: these are layers above
+    from .bodies import Body
+    from .effects import Effect, Snapshot
+    from .effects.gravity import Gravity
+    from .effects.mass_flow import MassFlow
+    from .effects.torsion import Torsion
+    from .spec import Body as BodySpec
+
+#: t -> (q, q̇) of a guided body, shapes (..., nq)
+CoordFlow: TypeAlias = Callable[[Times], tuple[FloatArray, FloatArray]]
+#: an exact flow of a guided body's coordinates: (how, f, events)
+ExactCoords: TypeAlias = tuple[str, CoordFlow, list[Event]]
+
+
+class BodyShape(Protocol):
+    """What a body's geometry is read from (:class:`mechanics.scenes.spec.Body` has it)."""
+
+    @property
+    def shape(self) -> str: ...
+    @property
+    def mass(self) -> float: ...
+    @property
+    def dims(self) -> Mapping[str, Any]: ...
+
+
+#: a pinned body's (C, g_A, J_C, J_C⁻¹)
+Pin: TypeAlias = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
+#: :meth:`Layout._index`: the rows of r, v, L_A, R_A_O in the padded state, and its constants
+_Index: TypeAlias = tuple[IntArray, IntArray, IntArray, IntArray, FloatArray]
 
 __all__ = [
     "ROUND_SHAPES",
@@ -55,13 +89,15 @@ ROUND_SHAPES = ("ring", "disc", "cylinder", "cylindrical_shell", "solid_sphere",
 SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 
 
-def point_acceleration(base, alpha, w, r) -> np.ndarray:
+def point_acceleration(
+    base: FloatArray, alpha: FloatArray, w: FloatArray, r: FloatArray
+) -> FloatArray:
     """base + α × r + ω × (ω × r): the acceleration of a body point at r from the
     origin whose acceleration is ``base`` (3-vectors)."""
     return base + cross3(alpha, r) + cross3(w, cross3(w, r))
 
 
-def turned(a, u0, k, theta):
+def turned(a: FloatArray, u0: FloatArray, k: int, theta: Times) -> FloatArray:
     """The rows of R_A_O of a body turned by θ about the space axis a (any shape of θ):
     body axis k along a, axis j = (k + 1) % 3 along u0 at θ = 0 and axis l = (k + 2) % 3
     along u1 = a × u0; at θ, e_j = cos θ u0 + sin θ u1, e_l = cos θ u1 − sin θ u0."""
@@ -86,39 +122,48 @@ class Guide:
     about, for the series) and give :meth:`place` and :meth:`bend`."""
 
     nq = 1
-    W: np.ndarray
-    M: np.ndarray
+    W: FloatArray
+    M: FloatArray
     k: int
 
-    def place(self, q):
+    def place(self, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         """G (..., 3), E (..., nq, 3) and R_A_O (..., 3, 3) at the coordinates q (..., nq)."""
         raise NotImplementedError
 
-    def bend(self, q, qd):
+    def bend(self, q: FloatArray, qd: FloatArray) -> FloatArray:
         """The part of a_G that the rates make on a curved path, a_G − Σ E_k q̈_k (..., 3)."""
         return np.zeros((*np.shape(q)[:-1], 3))
 
-    def start(self, initial) -> tuple[np.ndarray, np.ndarray]:
+    def start(self, initial: Mapping[str, Any]) -> tuple[FloatArray, FloatArray]:
         """(q0, q̇0) from a body's ``initial`` table."""
         raise NotImplementedError
 
-    def exact(self, effects, m, q0, qd0, duration):
+    def exact(
+        self,
+        effects: Sequence[Effect],
+        m: float,
+        q0: FloatArray,
+        qd0: FloatArray,
+        duration: float,
+    ) -> ExactCoords | None:
         """For a lone guided body under ``effects`` (the other listed effects): (how,
         f, events) with f(t) -> (q, q̇) of shapes (..., nq) where the motion has an
         exact flow, else None."""
         return None
 
-    def series(self, q, qd) -> dict[str, np.ndarray]:
+    def series(self, q: FloatArray, qd: FloatArray) -> dict[str, FloatArray]:
         """The named series of the coordinates (samples q, q̇ of shape (k, nq))."""
         return {}
 
-    def rate(self, q, F, M_O, M=None) -> np.ndarray:
+    def rate(
+        self, q: FloatArray, F: FloatArray, M_O: FloatArray, M: FloatArray | None = None
+    ) -> FloatArray:
         """q̈ (nq,) from the force F at G and the moment M_O about G (space components);
         ``M`` replaces the inertias (a body whose inertia grows, 7.39)."""
         _, E, _ = self.place(q)
         return (E @ F + self.W @ M_O) / (self.M if M is None else M)
 
-    def point_rate(self, q, S) -> np.ndarray:
+    def point_rate(self, q: FloatArray, S: FloatArray) -> FloatArray:
         """u_k (nq, 3): the velocity of the body point at S per unit q̇_k, E_k + W_k × (S − G)."""
         G, E, _ = self.place(q)
         return E + cross(self.W, S - G)
@@ -130,53 +175,60 @@ class Hinge(Guide):
     φ = 0) and u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G
     from the axis and the moment of inertia J_a about it; q = (φ,)."""
 
-    C: np.ndarray
-    a: np.ndarray
-    u0: np.ndarray
-    u1: np.ndarray
+    C: FloatArray
+    a: FloatArray
+    u0: FloatArray
+    u1: FloatArray
     k: int
     j: int
     l: int
     h: float
     J_a: float
 
-    def _get_W(self):
+    def _get_W(self) -> FloatArray:
         return self.a[None, :]
 
     W = property(_get_W)
 
-    def _get_M(self):
+    def _get_M(self) -> FloatArray:
         return np.array([self.J_a])
 
     M = property(_get_M)
 
-    def frame(self, phi):
+    def frame(self, phi: Times) -> tuple[FloatArray, FloatArray, FloatArray]:
         """r̂, a × r̂ and the rows of R_A_O at the angle(s) φ: shapes (..., 3), (..., 3, 3)."""
         R = turned(self.a, self.u0, self.k, phi)
         return R[..., self.j, :], R[..., self.l, :], R
 
-    def place(self, q):
+    def place(self, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         rhat, tang, R = self.frame(q[..., 0])
         return self.C + self.h * rhat, (self.h * tang)[..., None, :], R
 
-    def bend(self, q, qd):
+    def bend(self, q: FloatArray, qd: FloatArray) -> FloatArray:
         rhat = self.frame(q[..., 0])[0]
         return -self.h * (qd[..., 0] ** 2)[..., None] * rhat
 
-    def start(self, initial):
+    def start(self, initial: Mapping[str, Any]) -> tuple[FloatArray, FloatArray]:
         return (
             np.array([float(initial.get("angle", 0.0))]),
             np.array([float(initial.get("angular_velocity", 0.0))]),
         )
 
-    def series(self, q, qd):
+    def series(self, q: FloatArray, qd: FloatArray) -> dict[str, FloatArray]:
         phi = q[..., 0]
         out = {"phi": phi, "phidot": qd[..., 0]}
         if self.h > 0:  # the book's picture: G at h (sin φ, −cos φ) in the plane ⟂ a
             out["x_G"], out["y_G"] = self.h * np.sin(phi), -self.h * np.cos(phi)
         return out
 
-    def exact(self, effects, m, q0, qd0, duration):
+    def exact(
+        self,
+        effects: Sequence[Effect],
+        m: float,
+        q0: FloatArray,
+        qd0: FloatArray,
+        duration: float,
+    ) -> ExactCoords | None:
         """Uniform rotation; the pendulum released from rest (gravity across the axis, G
         off it, |φ0| ≤ π: Jacobi elliptic functions, 4.50); the harmonic torsion
         pendulum (3.76); the carousel under fire (mass flowing in, 7.39)."""
@@ -185,34 +237,38 @@ class Hinge(Guide):
         if not kinds:
             return "exact: uniform rotation", lambda t: _col(phi0 + w0 * t, w0 + 0.0 * t), []
         if kinds == ["torsion"]:
-            om = math.sqrt(effects[0].tau_0 / self.J_a)
+            om = math.sqrt(cast("Torsion", effects[0]).tau_0 / self.J_a)
 
-            def f(t):
+            def f(t: Times) -> tuple[FloatArray, FloatArray]:
                 c, s = np.cos(om * t), np.sin(om * t)
                 return _col(phi0 * c + w0 / om * s, -phi0 * om * s + w0 * c)
 
             return "exact: harmonic torsion oscillation", f, []
         if kinds == ["mass_flow"]:
-            return _carousel(effects[0], self.J_a, phi0, w0)
+            return _carousel(cast("MassFlow", effects[0]), self.J_a, phi0, w0)
         if kinds == ["gravity"] and w0 == 0 and abs(phi0) <= math.pi:
-            gp = effects[0].axis_g_perp(self.a)
+            gp = cast("Gravity", effects[0]).axis_g_perp(self.a)
             if gp > 0 and self.h > 0:
-                f = pendulum_from_rest(self.J_a, m, gp, self.h, phi0)
-                return "exact: pendulum released from rest, Jacobi elliptic functions (4.50)", f, []
+                fall = pendulum_from_rest(self.J_a, m, gp, self.h, phi0)
+                return (
+                    "exact: pendulum released from rest, Jacobi elliptic functions (4.50)",
+                    fall,
+                    [],
+                )
         return None
 
-    def moment(self, R, r, F, M_A) -> np.ndarray:
+    def moment(self, R: FloatArray, r: FloatArray, F: FloatArray, M_A: FloatArray) -> FloatArray:
         """The loads' moment about C in space components: R_A_Oᵀ M_A + (r_G − C) × F, for a
         force F at G and a moment M_A about G in body components."""
         return R.T @ M_A + cross(r - self.C, F)
 
 
-def _col(q, qd):
+def _col(q: npt.ArrayLike, qd: npt.ArrayLike) -> tuple[FloatArray, FloatArray]:
     """(q, q̇) of a one-coordinate guide as shapes (..., 1)."""
     return np.asarray(q, dtype=float)[..., None], np.asarray(qd, dtype=float)[..., None]
 
 
-def pendulum_from_rest(J, m, g, h, q0):
+def pendulum_from_rest(J: float, m: float, g: float, h: float, q0: float) -> CoordFlow:
     """t -> (q, q̇) of J q̈ = −m g h sin q released from rest at |q0| ≤ π (4.50):
     :func:`mechanics.dynamics.pendulum_motion`, and q̇ = −2 k k' ω0 sd(ω0 t) with
     k = sin(|q0|/2), ω0 = √(m g h/J)."""
@@ -223,7 +279,7 @@ def pendulum_from_rest(J, m, g, h, q0):
     k, kp = math.sin(abs(q0) / 2), math.cos(abs(q0) / 2)
     sgn = 1.0 if q0 >= 0 else -1.0
 
-    def f(t):
+    def f(t: Times) -> tuple[FloatArray, FloatArray]:
         q = pendulum_motion(t, J, m, g, h, q0)
         sn, _, dn, _ = ellipj(om0 * np.asarray(t, float), k * k, m1=kp * kp)
         return _col(q, -sgn * 2.0 * k * kp * om0 * sn / dn)
@@ -231,7 +287,7 @@ def pendulum_from_rest(J, m, g, h, q0):
     return f
 
 
-def _carousel(flow, J0, phi0, w0):
+def _carousel(flow: MassFlow, J0: float, phi0: float, w0: float) -> ExactCoords:
     """The carousel under fire (7.39): J(t) = J0 + q R² t, d(J φ̇)/dt = −r q v, so
     φ̇ = (J0 φ̇0 − r q v t)/J(t) (:func:`mechanics.open_systems.carousel_angular_velocity`)
     and φ = φ0 − (b/c) t + (J0 φ̇0 + b J0/c)/c · ln(1 + c t/J0), c = q R², b = r q v."""
@@ -239,7 +295,7 @@ def _carousel(flow, J0, phi0, w0):
 
     c, b = flow.q * flow.R**2, flow.r * flow.q * flow.v
 
-    def f(t):
+    def f(t: Times) -> tuple[FloatArray, FloatArray]:
         t = np.asarray(t, float)
         kw = dict(J_0=J0, q=flow.q, v=flow.v, r=flow.r, R=flow.R, phidot_0=w0)
         w = carousel_angular_velocity(t, **kw)
@@ -251,7 +307,7 @@ def _carousel(flow, J0, phi0, w0):
     return "exact: carousel under fire, solution of (7.39)", f, []
 
 
-def body_inertia(body) -> np.ndarray:
+def body_inertia(body: BodyShape) -> FloatArray:
     """Principal moments about G, shape (3,), from the inertia catalogue."""
     from mechanics import inertia as I
 
@@ -260,7 +316,7 @@ def body_inertia(body) -> np.ndarray:
         return np.zeros(3)
     if s == "custom":
         return np.asarray(d["inertia"], dtype=float)
-    f = {
+    catalogue: dict[str, Callable[[], FloatArray]] = {
         "rod": lambda: I.rod(m, d["length"]),
         "ring": lambda: I.ring(m, d["radius"]),
         "disc": lambda: I.disc(m, d["radius"]),
@@ -270,11 +326,12 @@ def body_inertia(body) -> np.ndarray:
         "hollow_sphere": lambda: I.hollow_sphere(m, d["radius"]),
         "rectangular_plate": lambda: I.rectangular_plate(m, d["a"], d["b"]),
         "box": lambda: I.box(m, d["a"], d["b"], d["c"]),
-    }[s]
+    }
+    f = catalogue[s]
     return np.diag(f()).astype(float)
 
 
-def body_radius(body) -> float | None:
+def body_radius(body: BodyShape) -> float | None:
     """Radius of a spherical body (0 for a point), None for any other shape."""
     if body.shape == "point":
         return 0.0
@@ -283,7 +340,7 @@ def body_radius(body) -> float | None:
     return None
 
 
-def body_vertices(body) -> np.ndarray | None:
+def body_vertices(body: BodyShape) -> FloatArray | None:
     """The corners of a polyhedral body in body components about G, shape (k, 3): the 8
     corners of a box (edges a, b, c along e1, e2, e3), the 4 of a rectangular plate
     (a, b in the e1e2-plane), the 2 ends of a rod (along e3); None for other shapes."""
@@ -314,20 +371,25 @@ class Layout:
     """
 
     kinds: tuple[str, ...]
-    J: np.ndarray
-    r_fixed: np.ndarray
+    J: FloatArray
+    r_fixed: FloatArray
     size: int
     offsets: tuple[int, ...]
-    pins: dict = field(default_factory=dict)
-    guides: dict = field(default_factory=dict)
-    bodies: tuple = ()
+    pins: dict[int, Pin] = field(default_factory=dict)
+    guides: dict[int, Guide] = field(default_factory=dict)
+    bodies: tuple[Body, ...] = ()
 
     @classmethod
-    def of(cls, bodies, pins=None, guides=None) -> Layout:
+    def of(
+        cls,
+        bodies: Sequence[BodySpec],
+        pins: Mapping[int, tuple[npt.ArrayLike, npt.ArrayLike]] | None = None,
+        guides: Mapping[int, Guide] | None = None,
+    ) -> Layout:
         """The layout of ``bodies``; ``pins`` maps a body's index to (C, g_A): the space
         point it is pinned at and the vector from that point to G in body components;
         ``guides`` to the :class:`Guide` its joint makes of it (a fixed axis, rolling)."""
-        from .bodies import Body, Fixed, Guided, Pinned, Point, Rigid, Tank
+        from .bodies import Fixed, Guided, Pinned, Point, Rigid, Tank
 
         pins, guides = pins or {}, guides or {}
         objs, size = [], 0
@@ -370,9 +432,9 @@ class Layout:
 
     n = property(_get_n)
 
-    def _index(self):
+    def _index(self) -> _Index:
         """Index arrays into the padded state (state, then the constants block)."""
-        cached = self.__dict__.get("_idx")
+        cached = cast("_Index | None", self.__dict__.get("_idx"))
         if cached is not None:
             return cached
         n, N = self.n, self.size
@@ -412,7 +474,7 @@ class Layout:
 
     tanks = property(_get_tanks)
 
-    def gather(self, y):
+    def gather(self, y: npt.ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """(r, v, L_A, R_A_O) of every body from states of shape (..., size): shapes
         (..., n, 3), (..., n, 3), (..., n, 3), (..., n, 3, 3); fixed bodies and points
         get their constants (rest, zero spin, identity attitude)."""
@@ -421,7 +483,9 @@ class Layout:
         yp = np.concatenate([y, np.broadcast_to(consts, (*y.shape[:-1], consts.size))], -1)
         return yp[..., ir], yp[..., iv], yp[..., iL], yp[..., iR]
 
-    def pack(self, r, v, L_A, R_A_O) -> np.ndarray:
+    def pack(
+        self, r: npt.ArrayLike, v: npt.ArrayLike, L_A: npt.ArrayLike, R_A_O: npt.ArrayLike
+    ) -> FloatArray:
         """The flat state(s) (..., size) from per-body arrays (..., n, 3) and (..., n, 3, 3)
         (the inverse of :meth:`gather` on the moving bodies; a pinned body's row of
         ``L_A`` must hold its L_C)."""
@@ -440,12 +504,18 @@ class Layout:
             y[..., iR[rig].ravel()] = R_A_O[..., rig, :, :].reshape(*lead, -1)
         return y
 
-    def omega(self, L_A, J) -> np.ndarray:
+    def omega(self, L_A: FloatArray, J: FloatArray) -> FloatArray:
         """Body components ω_A = L_A / J (0 on a zero moment), any leading shape."""
         safe = np.where(J > 0, J, 1.0)
         return np.where(J > 0, L_A / safe, 0.0)
 
-    def derivative(self, s, F, M_A, rates=None) -> np.ndarray:
+    def derivative(
+        self,
+        s: Snapshot,
+        F: FloatArray,
+        M_A: FloatArray,
+        rates: dict[int, FloatArray] | None = None,
+    ) -> FloatArray:
         """dy/dt for one snapshot ``s`` (its v, L_A, R_A_O, ω_A, masses), forces F (n, 3)
         in O at G and moments M_A (n, 3) about G in body components (see the
         Conventions), each body's slice by its kind (:mod:`.bodies`); a tank's state

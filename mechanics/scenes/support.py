@@ -58,19 +58,28 @@ hold them there, and when they let go.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from itertools import combinations
-from typing import Any
+from typing import TYPE_CHECKING, Any, TypeAlias, cast
 
 import numpy as np
+import numpy.typing as npt
 
 from . import contacts
-from .bodies import Point
+from .bodies import Kinematics, Point
 from .collision import Hit, StepFit
 from .impacts import CLOSING_ROUNDING, GAP_ROUNDING
 from .state import point_acceleration
 from .trajectory import EPS, Event, tolerance_scale
-from .vectors import cross3
+from .vectors import FloatArray, cross3
+
+if TYPE_CHECKING:  # for annotations only
+    from .effects import Loads, Snapshot
+    from .effects.impact import Feature, Impact
+    from .errors import SceneError
+    from .forward import Forward
+    from .model import Model
 
 __all__ = ["FORCE_ROUNDING", "Rest", "Support"]
 
@@ -106,57 +115,72 @@ class Rest:
     slipping, each contact's slip direction when the slip began (``ref``: what its switch
     watches; the friction follows the slip's current direction)."""
 
-    imp: Any
+    imp: Impact
     active: tuple[int, ...]
     friction: str
-    ref: tuple = field(default=(), compare=False)
+    ref: tuple[FloatArray, ...] = field(default=(), compare=False)
     #: slipping: the size of the contacts' speeds when the slip began (what a slip that
     #: has come to its end is zero relative to)
     speed: float = field(default=0.0, compare=False)
+
+
+#: the resting pairs: impact -> its :class:`Rest`
+Rests: TypeAlias = dict["Impact", Rest]
+#: a support force: (rest, feature index, f), f in space components on the body at its
+#: contact point
+SupportForce: TypeAlias = tuple[Rest, int, FloatArray]
+#: the support's equations A x = b with their blocks (rest, feature, B, c0, c1): the
+#: force f = B x[c0:c1]
+Equations: TypeAlias = tuple[FloatArray, FloatArray, list[tuple[Rest, int, FloatArray, int, int]]]
+#: one contact of the equations: (rest, feature, body, X, S, n, stick?, force direction
+#: d, round?)
+_Contact: TypeAlias = tuple[
+    Rest, int, int, FloatArray, FloatArray, FloatArray, bool, FloatArray, bool
+]
 
 
 class Support:
     """The resting contacts of a :class:`~mechanics.scenes.model.Model` (see the module's
     docstring)."""
 
-    def __init__(self, model, forward) -> None:
+    def __init__(self, model: Model, forward: Forward) -> None:
         self.model = model
         self.forward = forward
         #: impact -> its :class:`Rest` (the resting pairs now)
-        self.rests: dict[Any, Rest] = {}
+        self.rests: Rests = {}
         #: [(t, rests from t on)]: the modes over the run, for the report
-        self.timeline: list[tuple[float, dict]] = []
+        self.timeline: list[tuple[float, Rests]] = []
         #: the time of the last switch (a mode just chosen starts at its limit)
         self.switched: float | None = None
         #: (time, switches at it): a choice that never holds is stopped
-        self._same: tuple = (None, 0)
+        self._same: tuple[float | None, int] = (None, 0)
 
     # -------------------------------------------------------------- the record
     def clear(self) -> None:
         self.rests, self.timeline, self.switched = {}, [], None
         self._same = (None, 0)
 
-    def _set(self, t, rests) -> None:
+    def _set(self, t: float, rests: Mapping[Impact, Rest]) -> None:
         self.rests = dict(rests)
         self.timeline.append((float(t), dict(self.rests)))
         self.switched = float(t)
 
-    def at(self, t) -> dict:
+    def at(self, t: float) -> Rests:
         """The resting pairs at time t (the last record at or before t)."""
-        out: dict = {}
+        out: Rests = {}
         for t0, rests in self.timeline:
             if t0 <= t:
                 out = rests
         return out
 
-    def active(self, imp, ft) -> bool:
+    def active(self, imp: Impact, ft: Feature) -> bool:
         """Does the feature ``ft`` of ``imp`` carry a support now (its gap is held at zero,
         not searched for a contact)?"""
         rest = self.rests.get(imp)
         return rest is not None and any(imp.features[b] is ft for b in rest.active)
 
     # ------------------------------------------------------------- the forces
-    def add(self, t, s, out) -> None:
+    def add(self, t: float, s: Snapshot, out: Loads) -> None:
         """Add the support forces of the resting pairs to the loads ``out`` (the other
         loads already summed)."""
         for rest, b, f in self.forces(t, s, out)[0]:
@@ -165,7 +189,7 @@ class Support:
             S, _ = imp.contact(s, ft)
             out.force(imp.i, f, s.to_body(imp.i, S - s.r[imp.i]))
 
-    def forces(self, t, s, out):
+    def forces(self, t: float, s: Snapshot, out: Loads) -> tuple[list[SupportForce], float]:
         """The support forces ``[(rest, feature index, f)]`` (space components, on the
         body at its contact point) from the loads ``out``, and the size of their terms."""
         rows, scale = self._equations(t, s, out, self.rests)
@@ -182,11 +206,13 @@ class Support:
         forces = [(rest, k, B @ x[c0:c1]) for rest, k, B, c0, c1 in blocks]
         return forces, float(np.abs(A).max() * np.abs(x).max() + np.abs(b).max())
 
-    def _equations(self, t, s, out, rests):
+    def _equations(
+        self, t: float, s: Snapshot, out: Loads, rests: Mapping[Impact, Rest]
+    ) -> tuple[Equations | None, float]:
         """The linear equations A x = b of the support forces (see the module's docstring),
         with the blocks ``(rest, feature, B, c0, c1)``: the force f = B x[c0:c1]."""
         fwd = self.forward
-        cons = []  # (rest, feature, body, X, S, n, stick?, force direction d, round?)
+        cons: list[_Contact] = []  # (rest, feature, body, X, S, n, stick?, direction d, round?)
         for rest in rests.values():
             imp = rest.imp
             for b in rest.active:
@@ -202,7 +228,8 @@ class Support:
                     u = u - (u @ n) * n
                     # (a slip within its end's rounding has no direction of its own)
                     moving = u @ ref > 0 and np.linalg.norm(u) > self._slip_end(rest.speed)
-                    shat = _unit(u) if moving else ref
+                    # (moving: |u| > 0, so it has a direction)
+                    shat = cast("FloatArray", _unit(u)) if moving else ref
                     d = n - imp.mu_f * shat
                 else:
                     d = n
@@ -210,8 +237,10 @@ class Support:
         if not cons:
             return None, 0.0
         dy = fwd.layout.derivative(s, out.F, out.M_A, out.rates)
-        kin = {}
-        rows_b, row_of, col_of = [], [], []
+        kin: dict[int, Kinematics] = {}
+        rows_b: list[FloatArray] = []
+        row_of: list[tuple[int, int]] = []
+        col_of: list[tuple[int, int, FloatArray]] = []
         nrow = ncol = 0
         for _, _, k, X, S, n, stick, d, round_ in cons:
             if k not in kin:
@@ -250,13 +279,13 @@ class Support:
                     A[r0:r1, c0:c1] = M @ B
                 else:
                     A[r0:r1, c0:c1] = na @ imp.inverse_mass(s, ka, Xa, Sc) @ B
-        b = np.concatenate(rows_b)
+        rhs = np.concatenate(rows_b)
         blocks = [
             (c[0], c[1], col_of[i][2], col_of[i][0], col_of[i][1]) for i, c in enumerate(cons)
         ]
         # the size of the forces' terms: each body's mass × its free acceleration
         scale = float(sum(s.m[k] * np.abs(kin[k][1]).sum() for k in kin))
-        return (A, b, blocks), scale
+        return (A, rhs, blocks), scale
 
     # ---------------------------------------------------------- begin and rest
     def begin(self) -> list[Event]:
@@ -265,7 +294,7 @@ class Support:
         self.clear()
         md, fwd = self.model, self.forward
         s = fwd.snapshot(0.0, md.y0)
-        found = {}
+        found: dict[Impact, tuple[int, ...]] = {}
         for imp in md.impacts:
             if imp.j is not None or not self._free(imp.i):
                 continue
@@ -280,7 +309,7 @@ class Support:
                 found[imp] = touching
         if not found:
             return []
-        rests: dict[Any, Rest] = {}
+        rests: Rests = {}
         for imp, feats in found.items():
             press = self._press(0.0, s, imp)
             rest = self._choose(0.0, s, imp, feats, dict(rests), self._speed(s, imp, feats, press))
@@ -290,12 +319,12 @@ class Support:
             self._set(0.0, rests)
         return [self._event(0.0, r, "rest") for r in rests.values()]
 
-    def _press(self, t, s, imp) -> float:
+    def _press(self, t: float, s: Snapshot, imp: Impact) -> float:
         """How hard the loads alone press the body along −n (its G's acceleration)."""
         out = self.forward.loads_without_support(t, s)
         return max(-float(out.F[imp.i] @ imp.normal) / float(s.m[imp.i]), 0.0)
 
-    def _speed(self, s, imp, feats, press) -> float:
+    def _speed(self, s: Snapshot, imp: Impact, feats: Sequence[int], press: float) -> float:
         """The speed a resting body's slip is zero relative to: the speed the press
         gives over the body's size, √(a L) (its velocities were formed on that scale: a
         slip of their rounding is none), or the contacts' own speeds if larger."""
@@ -304,15 +333,15 @@ class Support:
             math.sqrt(max(press, 0.0) * L), *(imp.speed_scale(s, imp.features[b]) for b in feats)
         )
 
-    def _free(self, k) -> bool:
+    def _free(self, k: int) -> bool:
         """A free body: a point or a rigid body (not pinned, guided, fixed or a tank)."""
         return isinstance(self.model.layout.bodies[k], Point)
 
-    def _touching(self, s, imp, ft) -> bool:
+    def _touching(self, s: Snapshot, imp: Impact, ft: Feature) -> bool:
         scale = imp.gap_scale(s, ft)
         return abs(float(imp.gap(s, ft))) <= GAP_ROUNDING * 4 * scale
 
-    def can_rest(self, imp, ft) -> str | None:
+    def can_rest(self, imp: Impact, ft: Feature) -> str | None:
         """Why the pair cannot rest in this model (None: it can)."""
         if imp.j is not None:
             return "two bodies resting on each other are not modelled"
@@ -322,7 +351,16 @@ class Support:
             return "a rim (disc, ring, cylinder) resting on a plane is not modelled"
         return None
 
-    def rest(self, t, y, imp, ft, detail, press, events) -> np.ndarray:
+    def rest(
+        self,
+        t: float,
+        y: FloatArray,
+        imp: Impact,
+        ft: Feature,
+        detail: Mapping[str, Any],
+        press: float,
+        events: list[Event],
+    ) -> FloatArray:
         """The impacts of ``imp`` accumulate at t (``detail``: the last impact's, ``press``
         the loads' push there): the touching contacts rest from now on (see the module's
         docstring); the ``rest`` event; the new state."""
@@ -374,7 +412,9 @@ class Support:
         events.append(ev)
         return y
 
-    def after_impact(self, t, y, imp, events, floor=0.0) -> np.ndarray:
+    def after_impact(
+        self, t: float, y: FloatArray, imp: Impact, events: list[Event], floor: float = 0.0
+    ) -> FloatArray:
         """After an impulse on a resting pair (another of its contacts struck, the
         resting ones in its problem): the contacts that now separate (beyond the
         rounding of the contact speeds, or of ``floor``, those the instant began with)
@@ -398,7 +438,16 @@ class Support:
         return y
 
     # ----------------------------------------------------------------- choice
-    def _choose(self, t, s, imp, feats, others, floor=0.0, leaving=False) -> Rest | None:
+    def _choose(
+        self,
+        t: float,
+        s: Snapshot,
+        imp: Impact,
+        feats: tuple[int, ...],
+        others: Rests,
+        floor: float = 0.0,
+        leaving: bool = False,
+    ) -> Rest | None:
         """The largest set of ``feats`` that presses (λ ≥ 0) while the others' gaps do
         not fall, with its friction mode (``floor``, ``leaving``: see :meth:`_mode`);
         None if no contact presses."""
@@ -411,7 +460,16 @@ class Support:
                     return rest
         return None
 
-    def _mode(self, t, s, imp, sub, others, floor=0.0, leaving=False) -> Rest | None:
+    def _mode(
+        self,
+        t: float,
+        s: Snapshot,
+        imp: Impact,
+        sub: tuple[int, ...],
+        others: Rests,
+        floor: float = 0.0,
+        leaving: bool = False,
+    ) -> Rest | None:
         """The friction mode of the contacts ``sub`` (see the module's docstring); a slip
         within rounding of the contact speeds (or of ``floor``, those of a slip just
         ended) is none.  ``leaving``: the contacts stuck until this switch, so a stick at
@@ -429,7 +487,9 @@ class Support:
         moving = [float(np.linalg.norm(u)) > zero for u, _ in slips]
         if all(moving):
             speed = max(size for _, size in slips)
-            return Rest(imp, sub, "slip", tuple(_unit(u) for u, _ in slips), speed)
+            # (each moving: |u| > zero > 0, so each has a direction)
+            dirs = tuple(cast("FloatArray", _unit(u)) for u, _ in slips)
+            return Rest(imp, sub, "slip", dirs, speed)
         if any(moving):
             raise self._unresolved(
                 t, imp, "some of its contacts stick while others slip (not modelled)"
@@ -438,7 +498,7 @@ class Support:
         forces = self._trial(t, s, {**others, imp: stick})
         if forces is None:
             return None
-        driven = []
+        pushed: list[FloatArray | None] = []
         excess = -math.inf  # the friction needed beyond the cone, relative to the force
         for rest, b, f in forces:
             if rest is not stick:
@@ -448,11 +508,12 @@ class Support:
             ft_ = f - lam * n
             over = float(np.linalg.norm(ft_)) - imp.mu_f * lam
             excess = max(excess, over / max(float(np.linalg.norm(f)), 1e-300))
-            driven.append(_unit(-ft_))
+            pushed.append(_unit(-ft_))
         if excess <= (-FORCE_ROUNDING if leaving else FORCE_ROUNDING):
             return stick
-        if any(d is None for d in driven):  # pragma: no cover - a cone broken with no push
+        if any(d is None for d in pushed):  # pragma: no cover - a cone broken with no push
             return None
+        driven = cast("list[FloatArray]", pushed)  # (none is None)
         speed = max(floor, max(s_ for _, s_ in slips))
         if leaving and excess <= CONE_ROUNDING:
             return Rest(imp, sub, "slip", tuple(driven), speed)
@@ -472,7 +533,9 @@ class Support:
             "several contacts are not modelled)",
         )
 
-    def _slip_rates(self, t, s, imp, rest, others):
+    def _slip_rates(
+        self, t: float, s: Snapshot, imp: Impact, rest: Rest, others: Rests
+    ) -> list[tuple[FloatArray, float]] | None:
         """The rate of each of ``rest``'s contacts' slip (its tangential acceleration,
         space components) with the support forces ``rest`` would have, with the size of
         its terms; None where those forces have no solution or one lets go."""
@@ -489,7 +552,7 @@ class Support:
         dy = fwd.layout.derivative(s, out.F, out.M_A, out.rates)
         origin, base, w, alpha = fwd.kinematics(s, dy, imp.i)
         n = imp.normal
-        rates = []
+        rates: list[tuple[FloatArray, float]] = []
         for b in rest.active:
             ft = imp.features[b]
             rs = imp.contact(s, ft)[0] - origin
@@ -500,7 +563,16 @@ class Support:
             rates.append((a - (a @ n) * n, size + 1e-300))
         return rates
 
-    def _onset(self, t, s, imp, sub, others, driven, speed) -> Rest:
+    def _onset(
+        self,
+        t: float,
+        s: Snapshot,
+        imp: Impact,
+        sub: tuple[int, ...],
+        others: Rests,
+        driven: FloatArray,
+        speed: float,
+    ) -> Rest:
         """A contact that cannot stick begins to slip in a direction ŝ its own slip's
         rate points along (ȧ_slip = k ŝ, k > 0, with the friction −μ λ ŝ): with an
         inverse mass that is not isotropic, not the direction of the force sticking
@@ -514,7 +586,7 @@ class Support:
         e1 = e1 / np.linalg.norm(e1)
         e2 = cross3(n, e1)
 
-        def at(th):
+        def at(th: float) -> tuple[float, float] | None:
             shat = math.cos(th) * e1 + math.sin(th) * e2
             rates = self._slip_rates(t, s, imp, Rest(imp, sub, "slip", (shat,), speed), others)
             if rates is None:
@@ -522,7 +594,7 @@ class Support:
             a, size = rates[0]
             return float(n @ cross3(shat, a)) / size, float(shat @ a) / size
 
-        def turn(th):
+        def turn(th: float) -> float:
             v = at(th)
             if v is None:
                 raise _NoSlip
@@ -530,7 +602,7 @@ class Support:
 
         grid = np.linspace(-math.pi, math.pi, ONSET_ANGLES + 1)
         vals = [at(th) for th in grid]
-        found = []
+        found: list[float] = []
         for k in range(ONSET_ANGLES):
             va, vb = vals[k], vals[k + 1]
             if va is None or vb is None or (va[0] > 0) == (vb[0] > 0):
@@ -556,7 +628,9 @@ class Support:
         shat = math.cos(found[0]) * e1 + math.sin(found[0]) * e2
         return Rest(imp, sub, "slip", (shat,), speed)
 
-    def _trial(self, t, s, rests):
+    def _trial(
+        self, t: float, s: Snapshot, rests: Mapping[Impact, Rest]
+    ) -> list[SupportForce] | None:
         """The support forces that ``rests`` would have at (t, s) (as :meth:`forces`), or
         None where their equations have no solution."""
         out = self.forward.loads_without_support(t, s)
@@ -569,7 +643,15 @@ class Support:
             return None
         return [(rest, k, B @ x[c0:c1]) for rest, k, B, c0, c1 in blocks]
 
-    def _holds(self, t, s, imp, rest, feats, others) -> bool:
+    def _holds(
+        self,
+        t: float,
+        s: Snapshot,
+        imp: Impact,
+        rest: Rest,
+        feats: tuple[int, ...],
+        others: Rests,
+    ) -> bool:
         """Do ``rest``'s forces press (λ ≥ 0 within rounding), and do the touching
         contacts outside it not fall in?  A slipping contact with n·K (n − μ ŝ) ≤ 0 is
         Painlevé's paradox: refused."""
@@ -612,19 +694,19 @@ class Support:
                 return False
         return True
 
-    def _slip_end(self, speed) -> float:
+    def _slip_end(self, speed: float) -> float:
         """The size of a slip that has come to its end, from ``speed`` (see
         :data:`SLIP_END_RTOL`)."""
         return SLIP_END_RTOL * speed * tolerance_scale(self.model.scene)
 
-    def _slip(self, s, imp, ft):
+    def _slip(self, s: Snapshot, imp: Impact, ft: Feature) -> tuple[FloatArray, float]:
         """The contact's slip velocity (across the normal) and the size of its terms."""
         S, n = imp.contact(s, ft)
         u = imp._relative_velocity(s, S)
         return u - (u @ n) * n, imp.speed_scale(s, ft) + 1e-300
 
     # -------------------------------------------------------------- switches
-    def values(self, t, y):
+    def values(self, t: float, y: npt.ArrayLike) -> FloatArray:
         """The switch functions of the resting pairs at (t, y) (see the module's
         docstring), each divided by the size of its terms."""
         fwd = self.forward
@@ -634,7 +716,7 @@ class Support:
         out = fwd.loads_without_support(t, s)
         forces, size = self.forces(t, s, out)
         size = max(size, sum(float(np.linalg.norm(f)) for _, _, f in forces), 1e-300)
-        vals = []
+        vals: list[float] = []
         for rest, b, f in forces:
             imp = rest.imp
             ft = imp.features[b]
@@ -655,15 +737,15 @@ class Support:
             return None
         dense = fit.dense
 
-        def g(tt):
+        def g(tt: FloatArray) -> FloatArray:
             return np.array([self.values(float(x), dense(float(x))) for x in tt])
 
         coef = contacts.chebyshev_fit(g, fit.t_a, fit.t_b, ends=True)
-        best = None
+        best: float | None = None
         after = -1.0 if self.switched == fit.t_a else None
         for c in range(coef.shape[1]):
 
-            def refine(xx, c=c):
+            def refine(xx: float, c: int = c) -> float:
                 tt = fit.time(xx)
                 return float(self.values(tt, dense(tt))[c])
 
@@ -682,7 +764,7 @@ class Support:
                     best = tc
         return None if best is None else Hit(best, self)
 
-    def switch(self, t, y, events) -> np.ndarray:
+    def switch(self, t: float, y: FloatArray, events: list[Event]) -> FloatArray:
         """Choose the resting pairs' contacts and modes again at a switch found at t;
         record the events (``lift_off``, ``stick``, ``slip``); the new state."""
         fwd = self.forward
@@ -699,7 +781,7 @@ class Support:
                 "this instant (no choice holds: a configuration the resting contact cannot "
                 "treat)",
             )
-        rests: dict[Any, Rest] = {}
+        rests: Rests = {}
         for imp, old in self.rests.items():
             feats = tuple(old.active)
             if old.friction == "slip":  # the slip ends: its contacts stop sliding
@@ -716,7 +798,7 @@ class Support:
         self._set(t, rests)
         return fwd.pack(s)
 
-    def _stop_slip(self, s, imp, feats, speed) -> None:
+    def _stop_slip(self, s: Snapshot, imp: Impact, feats: tuple[int, ...], speed: float) -> None:
         """At the end of a slip the slip is zero up to the location's rounding (relative
         to ``speed``, the contact speeds when it began): make it zero (the least change
         of the kinetic energy), where every contact's is that small."""
@@ -739,7 +821,7 @@ class Support:
             imp.kick(s, imp.i, T @ P[3 * c : 3 * c + 3], S)
 
     # ------------------------------------------------------------------ report
-    def _event(self, t, rest, kind) -> Event:
+    def _event(self, t: float, rest: Rest, kind: str) -> Event:
         imp = rest.imp
         return Event(
             float(t),
@@ -752,7 +834,7 @@ class Support:
             },
         )
 
-    def acts_until(self, events=(), quantity=None) -> float:
+    def acts_until(self, events: Sequence[Event] = (), quantity: str | None = None) -> float:
         """Until when the supports may change ``quantity`` (0: never; inf: to the end):
         a smooth support keeps the energy and what a force along its normal keeps; a
         rough one, the energy while it sticks."""
@@ -774,16 +856,18 @@ class Support:
                     until = max(until, t1)
         return until
 
-    def spans(self):
+    def spans(self) -> list[tuple[float, float, Rests]]:
         """[(t0, t1, rests)] over the run where some body rests (t1 = inf for the last)."""
-        out = []
+        out: list[tuple[float, float, Rests]] = []
         for k, (t0, rests) in enumerate(self.timeline):
             t1 = self.timeline[k + 1][0] if k + 1 < len(self.timeline) else math.inf
             if rests:
                 out.append((t0, t1, rests))
         return out
 
-    def series(self, t, Y) -> tuple[dict, dict]:
+    def series(
+        self, t: FloatArray, Y: FloatArray
+    ) -> tuple[dict[int, FloatArray], dict[int, float]]:
         """Each resting body's total support force at the samples (t, Y) (zero while it
         does not rest), by body index, and the size of its terms."""
         bodies = sorted({r.imp.i for _, rests in self.timeline for r in rests.values()})
@@ -808,7 +892,7 @@ class Support:
             self.rests = saved
         return F, size
 
-    def _unresolved(self, t, imp, why):
+    def _unresolved(self, t: float, imp: Impact, why: str) -> SceneError:
         return self.model.scene.error(
             imp.where, f"{imp.label} come to rest at t = {float(t):.6g} s: {why}"
         )
@@ -818,14 +902,15 @@ class _NoSlip(Exception):
     """A trial slip direction whose support forces have no solution or let go."""
 
 
-def _least_norm(A, b) -> np.ndarray:
+def _least_norm(A: FloatArray, b: FloatArray) -> FloatArray:
     """The least-norm least-squares solution of A x = b (singular values below
     RANK_RTOL × the largest × the size are a dependency)."""
     rcond = RANK_RTOL * max(A.shape)
-    return np.linalg.lstsq(A, b, rcond=rcond)[0]
+    # (numpy types lstsq's solution as floats of any precision: float64 here)
+    return cast("FloatArray", np.linalg.lstsq(A, b, rcond=rcond)[0])
 
 
-def _solve(A, b) -> np.ndarray | None:
+def _solve(A: FloatArray, b: FloatArray) -> FloatArray | None:
     """The least-norm solution of the support's equations, or None where it leaves a
     residual beyond the rounding of its terms (FORCE_ROUNDING × their size × the number
     of equations): no forces satisfy them."""
@@ -836,10 +921,10 @@ def _solve(A, b) -> np.ndarray | None:
     return x
 
 
-def _unit(x):
+def _unit(x: FloatArray) -> FloatArray | None:
     n = float(np.linalg.norm(x))
     return None if n == 0.0 else x / n
 
 
-def _kinetic(s, k) -> float:
+def _kinetic(s: Snapshot, k: int) -> float:
     return 0.5 * float(s.m[k]) * float(s.v[k] @ s.v[k]) + 0.5 * float(s.L_A[k] @ s.omega[k])

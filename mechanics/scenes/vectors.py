@@ -10,12 +10,22 @@ a product, a difference: no fused operations), so the results are the same bits 
 
 from __future__ import annotations
 
+from typing import TypeAlias
+
 import numpy as np
+import numpy.typing as npt
 
-__all__ = ["cross", "cross3"]
+__all__ = ["FloatArray", "IntArray", "Times", "cross", "cross3"]
+
+#: A float64 array (a vector, a state, samples): the scene engine's arrays.
+FloatArray: TypeAlias = npt.NDArray[np.float64]
+#: An int64 array (indices into a state).
+IntArray: TypeAlias = npt.NDArray[np.int64]
+#: Time(s): one, or an array of them.
+Times: TypeAlias = FloatArray | float
 
 
-def cross3(a, b) -> np.ndarray:
+def cross3(a: FloatArray, b: FloatArray) -> FloatArray:
     """a × b of two 3-vectors (1-D), written out: the engine's per-contact products,
     where ``np.cross`` costs ~15 µs of axis handling for 3 products (measured: a
     support switch search spent a third of its time there)."""
@@ -24,7 +34,7 @@ def cross3(a, b) -> np.ndarray:
     return np.array([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0])
 
 
-def cross(a, b) -> np.ndarray:
+def cross(a: npt.ArrayLike, b: npt.ArrayLike) -> FloatArray:
     """a × b over the last axis (length 3) of two float arrays that broadcast, as
     ``np.cross(a, b)``: the same shape and the same bits.
 

@@ -55,9 +55,20 @@ def _module_of(path: Path) -> str:
     )
 
 
+def _type_checking(test: ast.expr) -> bool:
+    """Is this the test of an ``if TYPE_CHECKING:`` (or ``typing.TYPE_CHECKING``)?"""
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
 def _scene_imports(path: Path) -> set[str]:
-    """The sibling modules of mechanics/scenes that a file imports (at any depth)."""
+    """The sibling modules of mechanics/scenes that a file imports at run time (at any
+    depth; an import under ``if TYPE_CHECKING:``, for annotations only, is not one)."""
     tree = ast.parse(path.read_text(encoding="utf-8"))
+    for node in list(ast.walk(tree)):
+        if isinstance(node, ast.If) and _type_checking(node.test):
+            node.body = []
     inside_effects = path.parent.name == "effects"
     out = set()
     for node in ast.walk(tree):
@@ -102,6 +113,17 @@ def test_the_layer_check_sees_an_upward_import(tmp_path) -> None:
     p.parent.mkdir()
     p.write_text("from ..engine import Engine\nfrom .base import Effect\n")
     assert _scene_imports(p) == {"engine", "effects"}
+
+
+def test_the_layer_check_passes_an_import_for_annotations_only(tmp_path) -> None:
+    """An import under ``if TYPE_CHECKING:`` never runs: annotations may name any layer
+    (and one outside the block is still seen)."""
+    p = tmp_path / "bad.py"
+    p.write_text(
+        "from typing import TYPE_CHECKING\nfrom .vectors import cross\n"
+        "if TYPE_CHECKING:\n    from .engine import Engine\n"
+    )
+    assert _scene_imports(p) == {"vectors"}
 
 
 def test_mechanics_never_imports_identities() -> None:
