@@ -90,7 +90,7 @@ def tank_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None
     if model.n != 1 or not model.kinds <= {"gravity", "tank_outflow"}:
         return None
     T = model.scene.duration
-    how, f, events = model.outflows[0].exact(T)  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
+    how, f, events = model.outflows[0].exact(T)
     segs = [(0.0, T, vectorized(f))]
     return Flow(how, lambda: (segs, list(events)))
 

@@ -253,7 +253,7 @@ class Resolver:
         scale = max(imp.speed_scale(s, f) for f in feats)
         if imp.mu_f > 0 and slide > CLOSING_ROUNDING * scale:
             raise self._slides(imp, labels, s.t, slide)
-        before = totals(s, idx, points[0][0])  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
+        before = totals(s, idx, points[0][0])
         u0 = np.array([-imp.approach(s, f) for f in feats])  # < 0: approaching
         m = len(feats)
         W = np.empty((m, m))
@@ -274,7 +274,7 @@ class Resolver:
         for (S, n), p in zip(points, P, strict=True):
             for k in idx:
                 imp.kick(s, k, sign[k] * p * n, S)
-        after = totals(s, idx, points[0][0])  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
+        after = totals(s, idx, points[0][0])
         u1 = np.array([-imp.approach(s, f) for f in feats])  # > 0: separating
         if imp.mu_f > 0:
             slide = max(imp.tangential_speed(s, f) for f in feats)

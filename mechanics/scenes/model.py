@@ -77,7 +77,7 @@ def _guides(scene: Scene, index: Mapping[str, int]) -> dict[int, Guide]:
     for spec in scene.effects:
         cls = REGISTRY[spec.type]
         if issubclass(cls, GuidesBody):
-            out[index[spec.fields["body"]]] = cls.make_guide(spec, scene, g)  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
+            out[index[spec.fields["body"]]] = cls.make_guide(spec, scene, g)
     return out
 
 

@@ -73,7 +73,7 @@ class Modes:
             if g < -SWITCH_ROUNDING * size:
                 sn = fwd.snapshot(t, y)
                 sn.phase = cast(float, fwd.phase)  # (set: inside an integration segment)
-                events.append(e.switch(t, sn, fwd.loads_before(t, sn, e)))  # type: ignore[no-untyped-call]  # effects/ is not annotated yet
+                events.append(e.switch(t, sn, fwd.loads_before(t, sn, e)))
                 self.switched[e] = t
                 y = fwd.pack(sn)
         return y

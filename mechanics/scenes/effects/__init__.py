@@ -31,7 +31,7 @@ from . import (  # noqa: F401  (each import registers its effect)
     thrust,
     torsion,
 )
-from .base import CONSERVED, REGISTRY, Context, Effect, Loads, Snapshot, register
+from .base import CONSERVED, REGISTRY, Context, Effect, Loads, SceneLike, Snapshot, register
 from .coulomb_friction import CoulombFriction
 from .drag import Drag
 from .fixed_axis import FixedAxis
@@ -79,7 +79,7 @@ __all__ = [
 ]
 
 
-def build_effects(scene, ctx: Context) -> list[Effect]:
+def build_effects(scene: SceneLike, ctx: Context) -> list[Effect]:
     """One effect object per listed effect, in file order (a group of impacts: one per
     pair it names, :meth:`.impact.Impact.expand`); nothing else."""
     return [

@@ -19,12 +19,24 @@ Conventions
 from __future__ import annotations
 
 import math
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
 from ..state import SPHERICAL_SHAPES
-from .base import Effect, Schema, gravity_vector, keeps_for_force_along, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    gravity_vector,
+    keeps_for_force_along,
+    register,
+)
 from .capabilities import HasPotential
 
 __all__ = ["Buoyancy"]
@@ -41,10 +53,10 @@ class Buoyancy(Effect, HasPotential):
         "level": ("number", False),
     }
     units: ClassVar[dict[str, str]] = {"body": "", "density": "kg/m³", "level": "m"}
-    example: ClassVar[dict] = {"type": "buoyancy", "body": "ball", "density": 1000.0}
+    example: ClassVar[dict[str, Any]] = {"type": "buoyancy", "body": "ball", "density": 1000.0}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         b = scene.body(spec.fields["body"])
         if b.shape not in SPHERICAL_SHAPES or b.shape == "point":
             raise scene.error(
@@ -62,7 +74,7 @@ class Buoyancy(Effect, HasPotential):
                 f"listed gravity is {g.tolist()}",
             )
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.rho = float(self.fields["density"])
         self.level = float(self.fields.get("level", 0.0))
@@ -72,25 +84,28 @@ class Buoyancy(Effect, HasPotential):
         self.a = float(ctx.scene.bodies[self.i].dims["radius"])
         self.g = -float(gravity_vector(ctx.scene)[2])
 
-    def _depth(self, z):
-        return np.clip(self.level - (z - self.a), 0.0, None)
+    def _depth(self, z: float | FloatArray) -> FloatArray:
+        out: FloatArray = np.clip(self.level - (z - self.a), 0.0, None)
+        return out
 
-    def volume(self, d) -> np.ndarray:
+    def volume(self, d: float | FloatArray) -> FloatArray:
         """The displaced volume at the immersion depth d: the cap, or the whole ball."""
         a, d = self.a, np.minimum(d, 2.0 * self.a)
-        return math.pi * d * d * (3.0 * a - d) / 3.0
+        out: FloatArray = math.pi * d * d * (3.0 * a - d) / 3.0
+        return out
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         d = self._depth(float(s.r[self.i, 2]))
         out.F[self.i, 2] += self.rho * self.g * float(self.volume(d))
 
-    def potential(self, s) -> np.ndarray:
+    def potential(self, s: Snapshot) -> FloatArray:
         a = self.a
         d = self._depth(s.r[..., self.i, 2])
         cap = np.minimum(d, 2.0 * a)
         W = math.pi * (a * cap**3 / 3.0 - cap**4 / 12.0)
         W = W + (4.0 * math.pi * a**3 / 3.0) * np.maximum(d - 2.0 * a, 0.0)
-        return self.rho * self.g * W
+        out: FloatArray = self.rho * self.g * W
+        return out
 
     def keeps(self, quantity: str) -> bool:
         return quantity == "E" or keeps_for_force_along([0.0, 0.0, 1.0], quantity)

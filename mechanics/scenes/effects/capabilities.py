@@ -11,9 +11,12 @@ one that declares it defines them.
 
 from __future__ import annotations
 
-from typing import Protocol, runtime_checkable
+from typing import TYPE_CHECKING, Protocol, runtime_checkable
 
-import numpy as np
+if TYPE_CHECKING:
+    from ..state import Guide
+    from ..trajectory import Event
+    from .base import FloatArray, Loads, SceneLike, Snapshot, SpecLike, Times
 
 __all__ = [
     "CAPABILITIES",
@@ -31,7 +34,7 @@ class HasPotential(Protocol):
     """A conservative effect: its potential energy at the snapshots s (shape of s's
     samples), added to the kinetic energy in E."""
 
-    def potential(self, s) -> np.ndarray: ...
+    def potential(self, s: Snapshot) -> FloatArray: ...
 
 
 @runtime_checkable
@@ -40,13 +43,13 @@ class HasModes(Protocol):
     loads of the effects summed before it; its next switch is where the switch function
     g falls through zero (located by :mod:`mechanics.scenes.modes`)."""
 
-    def begin(self, t, s, loads) -> None:
+    def begin(self, t: float, s: Snapshot, loads: Loads) -> None:
         """Choose the mode from the initial state."""
 
-    def switch_function(self, t, s, loads) -> tuple[float, float]:
+    def switch_function(self, t: float, s: Snapshot, loads: Loads) -> tuple[float, float]:
         """(g, the size of its terms) at (t, s)."""
 
-    def switch(self, t, s, loads):
+    def switch(self, t: float, s: Snapshot, loads: Loads) -> Event:
         """Switch the mode at (t, s) (the snapshot may be changed); return the Event."""
 
 
@@ -54,7 +57,7 @@ class HasModes(Protocol):
 class ChangesMass(Protocol):
     """An effect that takes mass from a body (thrust)."""
 
-    def mass_loss(self, t) -> np.ndarray:
+    def mass_loss(self, t: Times) -> FloatArray:
         """The mass lost by each body by time(s) t, shape (..., n)."""
 
 
@@ -62,7 +65,7 @@ class ChangesMass(Protocol):
 class AddsInertia(Protocol):
     """An effect that adds inertia to a guided body (mass flowing onto it)."""
 
-    def inertia_added(self, t, i) -> np.ndarray | float:
+    def inertia_added(self, t: Times, i: int) -> FloatArray | float:
         """The inertia added to body i's coordinates by time t."""
 
 
@@ -72,7 +75,7 @@ class GuidesBody(Protocol):
     :class:`~mechanics.scenes.state.Guide`'s (q, q̇) (a fixed axis, rolling, sliding)."""
 
     @classmethod
-    def make_guide(cls, spec, scene, g_vector):
+    def make_guide(cls, spec: SpecLike, scene: SceneLike, g_vector: FloatArray) -> Guide:
         """The Guide of the joint ``spec`` in ``scene`` under the gravity ``g_vector``."""
 
 

@@ -32,16 +32,33 @@ Conventions
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
 from ..state import Guide, body_inertia, turned
 from ..trajectory import Event
-from .base import Effect, Schema, check_joint_body, register
+from .base import (
+    Context,
+    Effect,
+    ExactCoords,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    Times,
+    check_joint_body,
+    register,
+)
 from .capabilities import GuidesBody, HasModes
 from .rolling import check_round_on_slope, slope_frame
+
+if TYPE_CHECKING:
+    from .gravity import Gravity
 
 __all__ = ["CoulombFriction", "Slide"]
 
@@ -50,65 +67,74 @@ __all__ = ["CoulombFriction", "Slide"]
 class Slide(Guide):
     """A round body of radius r on the incline (n, t̂, a) with friction μ: q = (s, θ)."""
 
-    n: np.ndarray
-    t: np.ndarray
-    a: np.ndarray
+    n: FloatArray
+    t: FloatArray
+    a: FloatArray
     r: float
     m: float
     k: int
-    M: np.ndarray  # (m, J)
+    M: FloatArray  # (m, J)
     mu: float
     nq = 2
 
-    def _get_W(self):
+    def _get_W(self) -> FloatArray:
         return np.stack([np.zeros(3), self.a])
 
     W = property(_get_W)
 
-    def place(self, q):
+    def place(self, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         s, th = q[..., 0], q[..., 1]
         G = self.r * self.n + s[..., None] * self.t
         E = np.zeros((*s.shape, 2, 3))
         E[..., 0, :] = self.t
         return G, E, turned(self.a, self.n, self.k, th)
 
-    def start(self, initial):
+    def start(self, initial: Mapping[str, Any]) -> tuple[FloatArray, FloatArray]:
         return (
             np.array([float(initial.get("distance", 0.0)), 0.0]),
             np.array([float(initial.get("speed", 0.0)), float(initial.get("spin", 0.0))]),
         )
 
-    def series(self, q, qd):
+    def series(self, q: FloatArray, qd: FloatArray) -> dict[str, FloatArray]:
         v, w = qd[..., 0], qd[..., 1]
         return {"s": q[..., 0], "v": v, "omega": w, "slip": v - w * self.r}
 
-    def stick_force(self, Q_s, Q_th):
+    def stick_force(self, Q_s: float, Q_th: float) -> float:
         """The friction that keeps the slip zero against the generalised forces Q_s, Q_θ."""
         m, J = self.M
-        return (m * self.r * Q_th - J * Q_s) / (J + m * self.r * self.r)
+        F: float = (m * self.r * Q_th - J * Q_s) / (J + m * self.r * self.r)
+        return F
 
-    def exact(self, effects, m, q0, qd0, duration):
+    def exact(
+        self,
+        effects: Sequence[Effect],
+        m: float,
+        q0: FloatArray,
+        qd0: FloatArray,
+        duration: float,
+    ) -> ExactCoords | None:
         """Under uniform gravity alone the loads are constant: each phase has constant
         accelerations, and the slip, linear in t, vanishes at a time solved exactly."""
         if not effects or any(e.type != "gravity" for e in effects):
             return None
-        g = sum(e.vector for e in effects)
+        g = cast("FloatArray", sum(cast("Gravity", e).vector for e in effects))
         N, D = -m * float(g @ self.n), m * float(g @ self.t)
         if not N > 0:
             return None  # the engine's run reports the lift-off
         mJ = self.M
         F_stick = self.stick_force(D, 0.0)
 
-        def acc(mode):  # (s̈, θ̈) with friction F: Q_s = D + F, Q_θ = −r F
+        def acc(mode: float) -> FloatArray:  # (s̈, θ̈) with friction F: Q_s = D + F, Q_θ = −r F
             F = F_stick if mode == 0 else -self.mu * N * mode
             return np.array([(D + F) / mJ[0], -self.r * F / mJ[1]])
 
-        def decide():  # at zero slip: roll, or slip the way the loads drive
+        def decide() -> float:  # at zero slip: roll, or slip the way the loads drive
             return 0 if abs(F_stick) <= self.mu * N else -math.copysign(1.0, F_stick)
 
         slip0 = float(qd0[0] - self.r * qd0[1])
         mode = decide() if slip0 == 0 else math.copysign(1.0, slip0)
-        phases, events = [(0.0, np.array(q0, float), np.array(qd0, float), acc(mode))], []
+        phases = [(0.0, np.array(q0, float), np.array(qd0, float), acc(mode))]
+        events: list[Event] = []
         if mode != 0:
             a = acc(mode)
             rate = a[0] - self.r * a[1]
@@ -126,7 +152,7 @@ class Slide(Guide):
                 phases.append((ts, q1, qd1, acc(mode)))
         starts = np.array([p[0] for p in phases])
 
-        def f(t):
+        def f(t: Times) -> tuple[FloatArray, FloatArray]:
             t = np.asarray(t, dtype=float)
             k = np.maximum(np.searchsorted(starts, t, side="right") - 1, 0)
             t0 = starts[k][..., None]
@@ -137,7 +163,7 @@ class Slide(Guide):
         return "exact: constant accelerations in each phase, the switch solved exactly", f, events
 
 
-def _event(t, mode, speed) -> Event:
+def _event(t: float, mode: float, speed: float) -> Event:
     kind = "rolling" if mode == 0 else "slip_zero"
     return Event(t, kind, {"speed": speed})
 
@@ -159,10 +185,10 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         "body_axis": ("axis_name", False),
     }
     units: ClassVar[dict[str, str]] = {"body": "", "mu": "1", "angle": "rad", "body_axis": ""}
-    example: ClassVar[dict] = {"type": "coulomb_friction", "body": "ball", "mu": 0.2}
+    example: ClassVar[dict[str, Any]] = {"type": "coulomb_friction", "body": "ball", "mu": 0.2}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         check_round_on_slope(spec, scene)
         if not scene.effects_of("gravity"):
             raise scene.error(
@@ -175,19 +201,20 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         )
 
     @classmethod
-    def make_guide(cls, spec, scene, g_vector):
+    def make_guide(cls, spec: SpecLike, scene: SceneLike, g_vector: FloatArray) -> Slide:
         f, b = spec.fields, scene.body(spec.fields["body"])
         k = "xyz".index(f.get("body_axis", "z"))
         n, t, a = slope_frame(float(f.get("angle", 0.0)))
         M = np.array([float(b.mass), float(body_inertia(b)[k])])
         return Slide(n, t, a, float(b.dims["radius"]), float(b.mass), k, M, float(f["mu"]))
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.mu = float(self.fields["mu"])
         self.alpha = float(self.fields.get("angle", 0.0))
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
-        self.guide = ctx.guides.get(self.i) if ctx is not None else None
+        #: the body's guide: a Slide (:meth:`make_guide` made it)
+        self.guide = cast("Slide | None", ctx.guides.get(self.i) if ctx is not None else None)
         #: 0 rolling, ±1 slipping that way; set by :meth:`begin` and :meth:`switch`
         self.mode = 0.0
         self.mode0 = 0.0
@@ -202,16 +229,16 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         return gd
 
     # ------------------------------------------------------------------ the forces
-    def _parts(self, s, out):
+    def _parts(self, s: Snapshot, out: Loads) -> tuple[float, float, float]:
         """(N, F_stick, Q scale) from the other loads already in ``out``."""
-        i, gd = self.i, self.guide
+        i, gd = self.i, self._slide()
         F_o = out.F[i]
         N = -float(F_o @ gd.n)
         Q_s = float(F_o @ gd.t)
         Q_th = float(gd.a @ s.to_space(i, out.M_A[i]))
         return N, gd.stick_force(Q_s, Q_th), abs(Q_s) + abs(Q_th) / gd.r
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         N, F_stick, _ = self._parts(s, out)
         if not N > 0:
             ctx = self.ctx  # (set: _parts read the slide, which only a ctx brings)
@@ -227,21 +254,21 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         out.force(self.i, F * gd.t, at)
 
     # ------------------------------------------------------------------ the switches
-    def _slip(self, s):
-        qd = s.coords[self.i][1]
-        return float(qd[0] - self.guide.r * qd[1]), abs(float(qd[0])) + abs(self.guide.r * qd[1])
+    def _slip(self, s: Snapshot) -> tuple[float, float]:
+        qd, r = s.coords[self.i][1], self._slide().r
+        return float(qd[0] - r * qd[1]), abs(float(qd[0])) + abs(r * qd[1])
 
-    def _decide(self, t, s, out) -> float:
+    def _decide(self, t: float, s: Snapshot, out: Loads) -> float:
         N, F_stick, _ = self._parts(s, out)
         return 0.0 if abs(F_stick) <= self.mu * N else -math.copysign(1.0, F_stick)
 
-    def begin(self, t, s, out) -> None:
+    def begin(self, t: float, s: Snapshot, out: Loads) -> None:
         """The mode at the start: the sign of the slip, or at zero slip the rule."""
         slip, _ = self._slip(s)
         self.mode = self._decide(t, s, out) if slip == 0 else math.copysign(1.0, slip)
         self.mode0 = self.mode
 
-    def switch_function(self, t, s, out) -> tuple[float, float]:
+    def switch_function(self, t: float, s: Snapshot, out: Loads) -> tuple[float, float]:
         """(g, size): g falls through zero at the next switch; size is its terms'."""
         if self.mode != 0:
             slip, size = self._slip(s)
@@ -249,7 +276,7 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         N, F_stick, Q = self._parts(s, out)
         return self.mu * N - abs(F_stick), self.mu * abs(N) + Q
 
-    def switch(self, t, s, out) -> Event:
+    def switch(self, t: float, s: Snapshot, out: Loads) -> Event:
         """Change the mode at a switch found at t; project onto zero slip on rolling."""
         if self.mode != 0:
             q, qd = s.coords[self.i]
@@ -263,7 +290,7 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
         return Event(t, "slip", {"speed": float(s.coords[self.i][1][0])})
 
     # ------------------------------------------------------------------ invariants
-    def acts_until(self, events=(), quantity=None) -> float:
+    def acts_until(self, events: Iterable[Event] = (), quantity: str | None = None) -> float:
         """Friction pushes to the end; it does work (changes E) until the last switch to
         rolling, if it rolls from then on."""
         if quantity != "E":
@@ -276,7 +303,7 @@ class CoulombFriction(Effect, HasModes, GuidesBody):
             return 0.0 if self.mode0 == 0 else math.inf
         return last.t if last.kind == "rolling" else math.inf
 
-    def conserved(self, s) -> dict[str, tuple[np.ndarray, float]]:
+    def conserved(self, s: Snapshot) -> dict[str, tuple[FloatArray, float]]:
         """On a level plane under gravity alone: m r v + J ω about the contact line."""
         if not self._flat:
             return {}

@@ -7,11 +7,11 @@ nothing.
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register
+from .base import Context, Effect, Loads, SceneLike, Schema, Snapshot, SpecLike, register
 from .capabilities import Compiles
 
 
@@ -35,10 +35,10 @@ class Drag(Effect, Compiles):
         "angular_linear": "N m s",
         "angular_quadratic": "N m s²",
     }
-    example: ClassVar[dict] = {"type": "drag", "body": "ball", "quadratic": 0.01}
+    example: ClassVar[dict[str, Any]] = {"type": "drag", "body": "ball", "quadratic": 0.01}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         f = spec.fields
         keys = ("linear", "quadratic", "angular_linear", "angular_quadratic")
         if not any(f.get(k, 0.0) for k in keys):
@@ -50,7 +50,7 @@ class Drag(Effect, Compiles):
                     f"{spec.where}.{k}", f"body {body.name!r} is a point: it has no rotation"
                 )
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         f = self.fields
         self.i = ctx.index[f["body"]]
@@ -58,7 +58,7 @@ class Drag(Effect, Compiles):
         self.c1 = float(f.get("angular_linear", 0.0))
         self.c2 = float(f.get("angular_quadratic", 0.0))
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         v = s.v[self.i]
         out.force(self.i, -(self.b1 + self.b2 * np.sqrt(v @ v)) * v)
         if self.c1 or self.c2:

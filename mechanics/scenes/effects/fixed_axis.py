@@ -14,13 +14,27 @@ makes its moment of inertia grow (:mod:`.mass_flow`).
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
+import numpy.typing as npt
 
 from ..vectors import cross
-from .base import Effect, Schema, check_joint_body, register, unit
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    SceneLike,
+    Schema,
+    SpecLike,
+    check_joint_body,
+    register,
+    unit,
+)
 from .capabilities import GuidesBody
+
+if TYPE_CHECKING:
+    from ..state import Hinge
 
 
 @register
@@ -43,7 +57,7 @@ class FixedAxis(Effect, GuidesBody):
         "body_axis": "",
         "point": "m",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "fixed_axis",
         "body": "rod",
         "axis": [0.0, 1.0, 0.0],
@@ -52,7 +66,7 @@ class FixedAxis(Effect, GuidesBody):
     }
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         from ..state import body_inertia
 
         check_joint_body(
@@ -65,7 +79,7 @@ class FixedAxis(Effect, GuidesBody):
                 f"the moment of inertia about this axis is zero for a {b.shape}",
             )
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.axis = unit(self.fields.get("axis", [0.0, 0.0, 1.0]))
         self.h = float(self.fields.get("distance", 0.0))
@@ -74,7 +88,7 @@ class FixedAxis(Effect, GuidesBody):
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
 
     @classmethod
-    def make_guide(cls, spec, scene, g_vector):
+    def make_guide(cls, spec: SpecLike, scene: SceneLike, g_vector: FloatArray) -> Hinge:
         """The :class:`~mechanics.scenes.state.Hinge` of the body on this axis."""
         from ..state import Hinge, body_inertia
 
@@ -87,11 +101,11 @@ class FixedAxis(Effect, GuidesBody):
             ax.point, ax.axis, u0, cross(ax.axis, u0), k, (k + 1) % 3, (k + 2) % 3, ax.h, J_a
         )
 
-    def moment_of_inertia(self, m, J_G) -> float:
+    def moment_of_inertia(self, m: float, J_G: FloatArray) -> float:
         """J_z = J_G + m h² (parallel axes, 4.54)."""
         return float(J_G[self.body_axis, self.body_axis]) + m * self.h**2
 
-    def reference(self, g_vector) -> np.ndarray:
+    def reference(self, g_vector: npt.ArrayLike) -> FloatArray:
         """u0: the unit direction across the axis where φ = 0, gravity's component
         across it (4.3), else the axis' first perpendicular among e_x, e_y."""
         a = self.axis

@@ -11,11 +11,20 @@ angular momentum about the origin when C is the origin; never the momentum.
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, check_joint_body, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    SceneLike,
+    Schema,
+    SpecLike,
+    check_joint_body,
+    register,
+)
 from .capabilities import Compiles
 
 
@@ -31,10 +40,10 @@ class FixedPoint(Effect, Compiles):
         "point": ("vector", False),
     }
     units: ClassVar[dict[str, str]] = {"body": "", "distance": "m", "point": "m"}
-    example: ClassVar[dict] = {"type": "fixed_point", "body": "top", "distance": 0.1}
+    example: ClassVar[dict[str, Any]] = {"type": "fixed_point", "body": "top", "distance": 0.1}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         check_joint_body(spec, scene, index, what="it cannot be pinned", keys=None)
         b = scene.body(spec.fields["body"])
         for k in ("position", "velocity"):
@@ -44,13 +53,13 @@ class FixedPoint(Effect, Compiles):
                     "a pinned body's centre follows from its attitude: give psi, theta, phi",
                 )
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.ell = float(self.fields["distance"])
         self.point = np.asarray(self.fields.get("point", [0.0, 0.0, 0.0]), dtype=float)
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
 
-    def pin(self) -> tuple[np.ndarray, np.ndarray]:
+    def pin(self) -> tuple[FloatArray, FloatArray]:
         """(C, g_A): the pivot in space and G relative to it in body components."""
         return self.point, np.array([0.0, 0.0, self.ell])
 

@@ -10,20 +10,36 @@ space-fixed force and nothing else.
 from __future__ import annotations
 
 import math
-from typing import ClassVar
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, keeps_for_force_along, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    Times,
+    keeps_for_force_along,
+    register,
+)
 from .capabilities import Compiles
+
+if TYPE_CHECKING:
+    from ..trajectory import Event
 
 FRAMES = ("space", "body")
 
 
 class _Applied(Effect, Compiles):
     #: the force or couple (its subclass's field), and a force's point (None: G)
-    value: np.ndarray
-    at: np.ndarray | None = None
+    value: FloatArray
+    at: FloatArray | None = None
     schema: ClassVar[Schema] = {
         "body": ("body", True),
         "frame": ("frame", False),
@@ -32,7 +48,7 @@ class _Applied(Effect, Compiles):
     }
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         f = spec.fields
         if f.get("end", math.inf) <= f.get("start", 0.0):
             raise scene.error(
@@ -46,21 +62,22 @@ class _Applied(Effect, Compiles):
                 f"body {body.name!r} is a point: it has no rotation (no points off G, no couple)",
             )
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         f = self.fields
         self.i = ctx.index[f["body"]]
         self.body_frame = f.get("frame", "space") == "body"
         self.start, self.end = float(f.get("start", 0.0)), float(f.get("end", math.inf))
 
-    def active(self, t: float) -> bool:
-        return self.start <= t < self.end
+    def active(self, t: Times) -> bool:
+        """Is the load on at the (one) time t?"""
+        return bool(self.start <= t < self.end)
 
     def switch_times(self) -> list[float]:
         """The instants where the load switches on or off: step boundaries."""
         return [x for x in (self.start, self.end) if 0 < x < math.inf]
 
-    def acts_until(self, events=(), quantity=None) -> float:
+    def acts_until(self, events: Iterable[Event] = (), quantity: str | None = None) -> float:
         return self.end
 
     def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
@@ -89,20 +106,20 @@ class Force(_Applied):
         "force": "N",
         "at": "m",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "force",
         "body": "ball",
         "force": [1.0, 0.0, 0.0],
         "end": 0.1,
     }
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         self.value = np.asarray(self.fields["force"], dtype=float)
         at = self.fields.get("at")
         self.at = np.asarray(at, float) if at is not None and any(at) else None
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         if self.active(s.phase):
             F = s.to_space(self.i, self.value) if self.body_frame else self.value
             out.force(self.i, F, self.at)
@@ -131,18 +148,18 @@ class Torque(_Applied):
         "end": "s",
         "torque": "N m",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "torque",
         "body": "rod",
         "torque": [0.0, 0.0, 0.1],
         "frame": "body",
     }
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         self.value = np.asarray(self.fields["torque"], dtype=float)
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         if self.active(s.phase):
             if self.body_frame:
                 out.moment_body(self.i, self.value)

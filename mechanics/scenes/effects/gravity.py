@@ -7,11 +7,22 @@ On a guided body (a hinge, rolling) it enters through its generalised force.
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, keeps_for_force_along, register, unit
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    Schema,
+    Snapshot,
+    SpecLike,
+    keeps_for_force_along,
+    register,
+    unit,
+)
 from .capabilities import Compiles, HasPotential
 
 
@@ -22,23 +33,24 @@ class Gravity(Effect, HasPotential, Compiles):
     type = "gravity"
     schema: ClassVar[Schema] = {"g": ("positive", True), "direction": ("vector", False)}
     units: ClassVar[dict[str, str]] = {"g": "m/s²", "direction": "1"}
-    example: ClassVar[dict] = {"type": "gravity", "g": 9.81}
+    example: ClassVar[dict[str, Any]] = {"type": "gravity", "g": 9.81}
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.g = float(self.fields["g"])
         self.direction = unit(self.fields.get("direction", [0.0, 0.0, -1.0]))
         self.vector = self.g * self.direction
 
     # free bodies
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         out.F += s.m[:, None] * self.vector
 
     def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
         return -1, -1, self.vector.tolist(), []
 
-    def potential(self, s) -> np.ndarray:
-        return -(s.m * (s.r @ self.vector)).sum(-1)
+    def potential(self, s: Snapshot) -> FloatArray:
+        out: FloatArray = -(s.m * (s.r @ self.vector)).sum(-1)
+        return out
 
     def keeps(self, quantity: str) -> bool:
         return quantity == "E" or keeps_for_force_along(self.direction, quantity)
@@ -47,6 +59,6 @@ class Gravity(Effect, HasPotential, Compiles):
         return False
 
     # a fixed axis: the pendulum's exact flow reads g⊥, gravity across the axis
-    def axis_g_perp(self, axis) -> float:
+    def axis_g_perp(self, axis: FloatArray) -> float:
         gp = self.vector - (self.vector @ axis) * axis
         return float(np.linalg.norm(gp))

@@ -50,16 +50,29 @@ Conventions
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, ClassVar
+from typing import Any, ClassVar, TypeAlias, cast
 
 import numpy as np
 
 from ..._floats import EPS
 from ..state import SPHERICAL_SHAPES, body_radius, body_vertices
 from ..vectors import cross, cross3
-from .base import Effect, Schema, keeps_for_force_along, register, unit
+from .base import (
+    BodyLike,
+    Context,
+    Effect,
+    FloatArray,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    keeps_for_force_along,
+    register,
+    unit,
+)
 
 POLYHEDRA = ("box", "rectangular_plate", "rod")
 #: round bodies that touch a plane with a point of their rim (support point)
@@ -67,6 +80,9 @@ RIMS = ("disc", "ring", "cylinder", "cylindrical_shell")
 #: an impulse may lose this fraction of the kinetic energy's rounding below zero (the
 #: loss is the work of the impulse, a sum of a dozen products)
 GAIN_RTOL = 64 * EPS
+#: :func:`totals`: the kinetic energy, momentum, Σ m|v|, the angular momentum about the
+#: contact point, the size of its terms, and each body's record
+Totals: TypeAlias = tuple[float, list[float], float, list[float], float, list[dict[str, Any]]]
 
 
 _ORIGIN = np.zeros(3)
@@ -87,7 +103,7 @@ class Feature:
     the feature belongs to ``other`` (the normal into ``body`` is then reversed)."""
 
     body: int
-    at: np.ndarray | None
+    at: FloatArray | None
     a: float
     sphere: int | None
     a_s: float
@@ -131,10 +147,10 @@ class Impact(Effect):
         "group": "",
         "planes": "",
     }
-    example: ClassVar[dict] = {"type": "impact", "body": "ball", "restitution": 0.8}
+    example: ClassVar[dict[str, Any]] = {"type": "impact", "body": "ball", "restitution": 0.8}
 
     @classmethod
-    def expand(cls, spec, scene) -> list:
+    def expand(cls, spec: SpecLike, scene: SceneLike) -> list[SpecLike]:
         """The pairs a ``group`` names, each as a one-pair spec (same index and law):
         every two bodies of the group, then each body with each plane, in the group's
         order; a pair that never meets (two fixed bodies, a fixed body and a plane, two
@@ -142,11 +158,13 @@ class Impact(Effect):
         f = spec.fields
         if "group" not in f:
             return [spec]
-        law = {k: f[k] for k in ("restitution", "friction", "model") if k in f}
+        law: dict[str, Any] = {k: f[k] for k in ("restitution", "friction", "model") if k in f}
         fixed = {b.name for b in scene.bodies if b.fixed}
         points = {b.name for b in scene.bodies if b.shape == "point"}
         names = f["group"]
-        one = type(spec)  # (dataclasses.replace costs 5 µs a pair: too much for 500 000)
+        # the spec's class, EffectSpec(type, index, fields) (dataclasses.replace costs 5 µs
+        # a pair: too much for 500 000)
+        one = cast("Callable[[str, int, dict[str, Any]], SpecLike]", type(spec))
         out = [
             one(spec.type, spec.index, {"body": a, "other": b, **law})
             for k, a in enumerate(names)
@@ -172,7 +190,7 @@ class Impact(Effect):
         return out
 
     @classmethod
-    def _check_group(cls, spec, scene) -> None:
+    def _check_group(cls, spec: SpecLike, scene: SceneLike) -> None:
         f, where = spec.fields, spec.where
         for key in ("body", "other", "plane_point", "plane_normal"):
             if key in f:
@@ -221,7 +239,7 @@ class Impact(Effect):
             )
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         f = spec.fields
         if "group" in f:
             cls._check_group(spec, scene)
@@ -277,7 +295,7 @@ class Impact(Effect):
         elif all(scene.body(f[k]).fixed for k in ("body", "other")):
             raise scene.error(f"{spec.where}.other", "two fixed bodies never meet")
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         f = self.fields
         self.i = ctx.index[f["body"]]
@@ -300,18 +318,17 @@ class Impact(Effect):
         self.features = self._features(bodies)
 
     # ----------------------------------------------------------------- geometry
-    def _features(self, bodies) -> list[Feature]:
+    def _features(self, bodies: Sequence[BodyLike]) -> list[Feature]:
         label = self.label
 
-        def feats(k):
+        def feats(k: int) -> list[tuple[FloatArray | None, float, str]]:
             a = body_radius(bodies[k])
             if a is not None:
                 return [(None, a, label)]
             name = bodies[k].name
-            return [
-                (v, 0.0, f"{label} (corner {c} of {name!r})")
-                for c, v in enumerate(body_vertices(bodies[k]))
-            ]
+            corners = body_vertices(bodies[k])
+            assert corners is not None, "a body with no radius is a polyhedron: it has corners"
+            return [(v, 0.0, f"{label} (corner {c} of {name!r})") for c, v in enumerate(corners)]
 
         b = bodies[self.i]
         if b.shape in RIMS:  # against a plane (the check refuses a rim against a body)
@@ -356,7 +373,7 @@ class Impact(Effect):
         ks = [self.i] if self.j is None else [self.i, self.j]
         return [k for k in ks if k not in self.fixed]
 
-    def feature_point(self, s, ft: Feature) -> np.ndarray:
+    def feature_point(self, s: Snapshot, ft: Feature) -> FloatArray:
         """World position of the feature's centre, corner or support point (any leading
         shape)."""
         if ft.support is None:
@@ -375,14 +392,16 @@ class Impact(Effect):
         at = np.concatenate([a * u / safe[..., None], np.full((*np.shape(across), 1), zc)], axis=-1)
         return s.point(ft.body, at)
 
-    def gap(self, s, ft: Feature) -> np.ndarray:
+    def gap(self, s: Snapshot, ft: Feature) -> FloatArray:
         x = self.feature_point(s, ft)
         if ft.sphere is None:
-            return (x - self.point) @ self.normal - ft.a
+            g: FloatArray = (x - self.point) @ self.normal - ft.a
+            return g
         d = x - s.r[..., ft.sphere, :]
-        return np.sqrt((d * d).sum(-1)) - ft.a - ft.a_s
+        g = np.sqrt((d * d).sum(-1)) - ft.a - ft.a_s
+        return g
 
-    def contact(self, s, ft: Feature) -> tuple[np.ndarray, np.ndarray]:
+    def contact(self, s: Snapshot, ft: Feature) -> tuple[FloatArray, FloatArray]:
         """The contact point S and the unit normal n into ``body``, at one time."""
         x = self.feature_point(s, ft)
         if ft.sphere is None:
@@ -391,21 +410,22 @@ class Impact(Effect):
         S = s.r[ft.sphere] + ft.a_s * u
         return S, (-u if ft.flip else u)
 
-    def approach(self, s, ft: Feature) -> float:
+    def approach(self, s: Snapshot, ft: Feature) -> float:
         """Normal speed of approach at the contact (> 0 closing)."""
         S, n = self.contact(s, ft)
         return -float(n @ self._relative_velocity(s, S))
 
-    def _relative_velocity(self, s, S) -> np.ndarray:
-        def vel(k):
+    def _relative_velocity(self, s: Snapshot, S: FloatArray) -> FloatArray:
+        def vel(k: int | None) -> FloatArray:
             if k is None or k in self.fixed:
                 return np.zeros(3)
             w_O = s.to_space(k, s.omega[k])
-            return s.v[k] + cross3(w_O, S - s.r[k])
+            v_S: FloatArray = s.v[k] + cross3(w_O, S - s.r[k])
+            return v_S
 
         return vel(self.i) - vel(self.j)
 
-    def speed_scale(self, s, ft: Feature) -> float:
+    def speed_scale(self, s: Snapshot, ft: Feature) -> float:
         """Σ |v_S,k| plus the speeds the run's impulses have changed the bodies' by (the
         model's ``carried``): the size of the terms whose difference is the approach
         speed, and of those the velocities were summed from (an impulse leaves one
@@ -420,7 +440,7 @@ class Impact(Effect):
             tot += float(self.carried[k]) if self.carried.size else 0.0
         return tot
 
-    def gap_scale(self, s, ft: Feature) -> float:
+    def gap_scale(self, s: Snapshot, ft: Feature) -> float:
         """The size the feature's gap is rounded relative to at one time: its point, its
         body's centre and arm (a corner's or a rim's position is G plus an arm: it rounds
         relative to both), the plane's point and the radii."""
@@ -438,14 +458,14 @@ class Impact(Effect):
             + ft.a_s
         )
 
-    def tangential_speed(self, s, ft: Feature) -> float:
+    def tangential_speed(self, s: Snapshot, ft: Feature) -> float:
         """|the relative velocity of the contact points across the normal| (sliding)."""
         S, n = self.contact(s, ft)
         u = self._relative_velocity(s, S)
         return float(np.linalg.norm(u - (u @ n) * n))
 
     # ------------------------------------------------------------------ impulse
-    def apply(self, s, ft: Feature) -> dict:
+    def apply(self, s: Snapshot, ft: Feature) -> dict[str, Any]:
         """Resolve the impact at this feature: new v and L_A written into the snapshot's
         arrays (in place); returns the event's details, with the kinetic energy, momentum
         and angular momentum (about the contact point) of the bodies involved before and
@@ -483,18 +503,18 @@ class Impact(Effect):
         detail.update(self.outcome(s, before, after, self._loss))
         return detail
 
-    def who(self) -> dict:
+    def who(self) -> dict[str, Any]:
         """The event's ``body`` (against the plane) or ``bodies`` (a pair)."""
         if self.j is None:
             return {"body": self.fields["body"]}
         return {"bodies": [self.fields["body"], self.fields["other"]]}
 
-    def outcome(self, s, before, after, loss) -> dict:
+    def outcome(self, s: Snapshot, before: Totals, after: Totals, loss: float) -> dict[str, Any]:
         """The event's record of an impact's effect on the bodies (:func:`totals` before
         and after, read off the velocities) beside the law's energy ``loss``: what the
         run's self-checks compare."""
         idx = self.bodies()
-        out = {"bodies_before": before[5], "bodies_after": after[5]}
+        out: dict[str, Any] = {"bodies_before": before[5], "bodies_after": after[5]}
         # the impulse and the energies use the attitudes: an integrated R_A_O is
         # orthonormal only to the integration's tolerance
         out["attitude_defect"] = max(
@@ -515,7 +535,7 @@ class Impact(Effect):
         out["angular_momentum_scale"] = max(before[4], after[4])
         return out
 
-    def _apply(self, s, S, n, v_n) -> None:
+    def _apply(self, s: Snapshot, S: FloatArray, n: FloatArray, v_n: float) -> None:
         """The impulse (see the Conventions); sets ``self._loss``."""
         if self.mu_f > 0:
             self._apply_with_friction(s, S, n, v_n)
@@ -543,7 +563,9 @@ class Impact(Effect):
                 self.kick(s, k, sign[k] * P, S)
         self._loss = 0.5 * mu * (1.0 - e) * (1.0 + e) * v_n * v_n
 
-    def inverse_mass(self, s, k, S, S2=None) -> np.ndarray:
+    def inverse_mass(
+        self, s: Snapshot, k: int, S: FloatArray, S2: FloatArray | None = None
+    ) -> FloatArray:
         """Body k's part of the contact's inverse mass matrix (space components): the
         change of the velocity of the point S per unit impulse at the point S2 (default
         S), 1/m − [ρ]× J⁻¹ [ρ₂]× with ρ, ρ₂ from G; for a pinned body from the pivot,
@@ -553,18 +575,20 @@ class Impact(Effect):
         if gd is not None:  # only along the guide: Δv_S = Σ u_k(S) (u_k(S2)·P)/M_k
             q = s.coords[k][0]
             u, u2 = gd.point_rate(q, S), gd.point_rate(q, S2)
-            return (u.T / s.inertia.get(k, gd.M)) @ u2
+            Kk: FloatArray = (u.T / s.inertia.get(k, gd.M)) @ u2
+            return Kk
         pin = self.pins.get(k)
         if pin is None:
             origin, inv_m = s.r[k], 1.0 / s.m[k]
             Jinv = np.diag(np.where(s.J[k] > 0, 1.0 / np.where(s.J[k] > 0, s.J[k], 1.0), 0.0))
         else:
             origin, inv_m, Jinv = pin[0], 0.0, pin[3]
-        return inv_m * np.eye(3) - _cross(S - origin) @ (s.R[k].T @ Jinv @ s.R[k]) @ _cross(
+        Kk = inv_m * np.eye(3) - _cross(S - origin) @ (s.R[k].T @ Jinv @ s.R[k]) @ _cross(
             S2 - origin
         )
+        return Kk
 
-    def kick(self, s, k, P, S) -> None:
+    def kick(self, s: Snapshot, k: int, P: FloatArray, S: FloatArray) -> None:
         """Apply the impulse P (space components) at the point S to body k, in place;
         add the speeds it changed to the model's ``carried`` (see :meth:`speed_scale`)."""
         v0, w0 = np.array(s.v[k]), np.array(s.omega[k])
@@ -575,7 +599,7 @@ class Impact(Effect):
                 np.linalg.norm(s.v[k] - v0) + np.linalg.norm(s.omega[k] - w0) * arm
             )
 
-    def _kick(self, s, k, P, S) -> None:
+    def _kick(self, s: Snapshot, k: int, P: FloatArray, S: FloatArray) -> None:
         gd = self.guides.get(k)
         if gd is not None:  # M_k Δq̇_k = u_k·P (a hinge: J_a Δφ̇ = a·((S − C) × P))
             q, qd = s.coords[k]
@@ -598,13 +622,15 @@ class Impact(Effect):
         s.L_A[k] = s.J[k] * s.omega[k]
         s.v[k] = cross(s.to_space(k, s.omega[k]), s.r[k] - C)
 
-    def _apply_with_friction(self, s, S, n, v_n) -> None:
+    def _apply_with_friction(self, s: Snapshot, S: FloatArray, n: FloatArray, v_n: float) -> None:
         """Stick or slip (see the Conventions); sets ``self._loss`` and ``self._mode``."""
         e, mu, moving = self.e, self.mu_f, self.bodies()
         sign = {self.i: 1.0, self.j: -1.0}
-        K = sum(self.inverse_mass(s, k, S) for k in moving)
+        # (a sum of arrays: ``moving`` is never empty, two fixed bodies never meet)
+        K = cast("FloatArray", sum(self.inverse_mass(s, k, S) for k in moving))
         u = self._relative_velocity(s, S)
-        P = np.linalg.solve(K, -e * v_n * n - u)  # stick
+        # stick (numpy types a solve as floating[Any]: it is float64, as K and the right side)
+        P = cast("FloatArray", np.linalg.solve(K, -e * v_n * n - u))
         P_n = float(P @ n)
         P_t = P - P_n * n
         self._mode = "stick"
@@ -641,7 +667,7 @@ class Impact(Effect):
         )
 
 
-def centre_gaps(impacts, s) -> tuple[list[int], np.ndarray]:
+def centre_gaps(impacts: Sequence[Impact], s: Snapshot) -> tuple[list[int], FloatArray]:
     """The gaps of the impacts whose one contact feature is a sphere's or a point's
     centre, all at once (a group's pairs are many): their positions in ``impacts`` and
     the gaps (..., k) at the snapshot(s) ``s``, as :meth:`Impact.gap` gives them one by
@@ -672,12 +698,12 @@ def centre_gaps(impacts, s) -> tuple[list[int], np.ndarray]:
     return rows, out
 
 
-def _cross(rho) -> np.ndarray:
+def _cross(rho: FloatArray) -> FloatArray:
     """[ρ]×: the matrix of x ↦ ρ × x."""
     return np.array([[0.0, -rho[2], rho[1]], [rho[2], 0.0, -rho[0]], [-rho[1], rho[0], 0.0]])
 
 
-def _direction(x) -> np.ndarray | None:
+def _direction(x: FloatArray) -> FloatArray | None:
     """x/|x|, formed on x scaled by its largest component (|x| of a subnormal vector
     underflows to 0); None for the zero vector."""
     big = float(np.abs(x).max())
@@ -687,7 +713,7 @@ def _direction(x) -> np.ndarray | None:
     return y / np.linalg.norm(y)
 
 
-def totals(s, idx, S):
+def totals(s: Snapshot, idx: Iterable[int], S: FloatArray) -> Totals:
     """Kinetic energy ½ m v² + ½ L_A·ω_A, momentum Σ m v, Σ m|v|, the angular momentum
     about the point S, Σ (ρ × m v) + Rᵀ L_A, the size of its terms, and each body's
     mass, centre, inertia tensor about G in space components (Rᵀ J R), v and ω (space)."""

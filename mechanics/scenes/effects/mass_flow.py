@@ -12,12 +12,27 @@ reported.  With no other moment about the axis, L_a + r q v t = J φ̇ + r q v t
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
-from .base import Effect, Schema, check_on_fixed_axis, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    Times,
+    check_on_fixed_axis,
+    register,
+)
 from .capabilities import AddsInertia
+
+if TYPE_CHECKING:
+    from ..state import Hinge
 
 
 @register
@@ -40,7 +55,7 @@ class MassFlow(Effect, AddsInertia):
         "offset": "m",
         "radius": "m",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "mass_flow",
         "body": "rod",
         "rate": 0.1,
@@ -50,7 +65,7 @@ class MassFlow(Effect, AddsInertia):
     }
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         check_on_fixed_axis(spec, scene, what="mass flows onto a body turning on a fixed axis")
         r, R = spec.fields["offset"], spec.fields["radius"]
         if not abs(r) <= R:
@@ -60,30 +75,34 @@ class MassFlow(Effect, AddsInertia):
                 f"radius {R!r}",
             )
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         self.q = float(self.fields["rate"])
         self.v = float(self.fields["speed"])
         self.r = float(self.fields["offset"])
         self.R = float(self.fields["radius"])
         self.i = ctx.index[self.fields["body"]]
-        self.hinge = ctx.guides.get(self.i)
+        #: the body's guide: a Hinge (the check requires a fixed_axis for the body)
+        self.hinge = cast("Hinge | None", ctx.guides.get(self.i))
         self._alone = {e.type for e in ctx.scene.effects} <= {"fixed_axis", self.type}
 
-    def inertia_added(self, t, i) -> np.ndarray | float:
+    def inertia_added(self, t: Times, i: int) -> FloatArray | float:
         """q R² t, shape (..., 1), added to the axis inertia of body i (0 for the others)."""
         if i != self.i:
             return 0.0
-        return self.q * self.R**2 * np.asarray(t, dtype=float)[..., None]
+        out: FloatArray = self.q * self.R**2 * np.asarray(t, dtype=float)[..., None]
+        return out
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
+        hinge = self.hinge
+        assert hinge is not None, "mass_flow's loads need the body's hinge (its fixed_axis)"
         phidot = float(s.coords[self.i][1][0])
-        out.moment(self.i, (-self.r * self.q * self.v - self.q * self.R**2 * phidot) * self.hinge.a)
+        out.moment(self.i, (-self.r * self.q * self.v - self.q * self.R**2 * phidot) * hinge.a)
 
     def exerts_moment(self, k: int) -> bool:
         return k == self.i
 
-    def conserved(self, s) -> dict:
+    def conserved(self, s: Snapshot) -> dict[str, tuple[FloatArray, float]]:
         """J(t) φ̇ + r q v t, with no other moment about the axis (7.39 integrated)."""
         if not self._alone:
             return {}

@@ -8,11 +8,21 @@ potential −Σ_{i<j} G m_i m_j/|r_i − r_j|.
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    register,
+)
 from .capabilities import Compiles, HasPotential
 
 #: CODATA 2018, m³ kg⁻¹ s⁻²
@@ -26,24 +36,24 @@ class NewtonGravity(Effect, HasPotential, Compiles):
     type = "newton_gravity"
     schema: ClassVar[Schema] = {"G": ("positive", False), "bodies": ("bodies", False)}
     units: ClassVar[dict[str, str]] = {"G": "m³/(kg s²)", "bodies": ""}
-    example: ClassVar[dict] = {"type": "newton_gravity", "G": 1.0}
+    example: ClassVar[dict[str, Any]] = {"type": "newton_gravity", "G": 1.0}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         names = spec.fields.get("bodies", [b.name for b in scene.bodies])
         if len(set(names)) < 2:
             raise scene.error(f"{spec.where}.bodies", f"needs at least two bodies; got {names}")
         if len(set(names)) != len(names):
             raise scene.error(f"{spec.where}.bodies", f"a body is listed twice: {names}")
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         self.G = float(self.fields.get("G", G_NEWTON))
         names = self.fields.get("bodies", [b.name for b in ctx.scene.bodies])
         idx = [ctx.index[n] for n in names]
         self.pairs = np.array([(a, b) for k, a in enumerate(idx) for b in idx[k + 1 :]])
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         i, j = self.pairs[:, 0], self.pairs[:, 1]
         d = s.r[i] - s.r[j]
         dist = np.sqrt((d * d).sum(-1))
@@ -54,11 +64,12 @@ class NewtonGravity(Effect, HasPotential, Compiles):
     def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
         return -1, -1, [self.G], [(int(a), int(b)) for a, b in self.pairs]
 
-    def potential(self, s) -> np.ndarray:
+    def potential(self, s: Snapshot) -> FloatArray:
         i, j = self.pairs[:, 0], self.pairs[:, 1]
         d = s.r[..., i, :] - s.r[..., j, :]
         dist = np.sqrt((d * d).sum(-1))
-        return -(self.G * s.m[..., i] * s.m[..., j] / dist).sum(-1)
+        out: FloatArray = -(self.G * s.m[..., i] * s.m[..., j] / dist).sum(-1)
+        return out
 
     def keeps(self, quantity: str) -> bool:
         return True

@@ -28,22 +28,38 @@ Conventions
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
 import numpy as np
 
 from ..state import ROUND_SHAPES, Guide, body_inertia, pendulum_from_rest, turned
 from ..vectors import cross
-from .base import Effect, Schema, check_joint_body, register
+from .base import (
+    Context,
+    CoordFlow,
+    Effect,
+    ExactCoords,
+    FloatArray,
+    SceneLike,
+    Schema,
+    SpecLike,
+    Times,
+    check_joint_body,
+    register,
+)
 from .capabilities import GuidesBody
+
+if TYPE_CHECKING:
+    from .gravity import Gravity
 
 __all__ = ["Incline", "Rolling", "Track", "check_round_on_slope", "slope_frame"]
 
 E_Y = np.array([0.0, 1.0, 0.0])
 
 
-def slope_frame(alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def slope_frame(alpha: float) -> tuple[FloatArray, FloatArray, FloatArray]:
     """(n, t̂, a) of the incline of slope α: outward normal, down-slope direction and the
     horizontal a = n × t̂ = e_y."""
     n = np.array([math.sin(alpha), 0.0, math.cos(alpha)])
@@ -51,7 +67,7 @@ def slope_frame(alpha: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return n, t, E_Y.copy()
 
 
-def check_round_on_slope(spec, scene, *, slope: bool = True) -> None:
+def check_round_on_slope(spec: SpecLike, scene: SceneLike, *, slope: bool = True) -> None:
     """A rolling or sliding body must be round; an incline's ``angle`` lies in [0, π/2)."""
     b = scene.body(spec.fields["body"])
     if b.shape not in ROUND_SHAPES:
@@ -64,15 +80,15 @@ def check_round_on_slope(spec, scene, *, slope: bool = True) -> None:
         raise scene.error(f"{spec.where}.angle", f"must lie in [0, π/2); got {a!r}")
 
 
-def _uniform(q0, qd0, acc):
-    def f(t):
+def _uniform(q0: FloatArray, qd0: FloatArray, acc: float | FloatArray) -> CoordFlow:
+    def f(t: Times) -> tuple[FloatArray, FloatArray]:
         t = np.asarray(t, dtype=float)[..., None]
         return q0 + qd0 * t + 0.5 * acc * t * t, qd0 + acc * t
 
     return f
 
 
-def _gravity_only(effects) -> bool:
+def _gravity_only(effects: Sequence[Effect]) -> bool:
     return bool(effects) and all(e.type == "gravity" for e in effects)
 
 
@@ -80,41 +96,48 @@ def _gravity_only(effects) -> bool:
 class Incline(Guide):
     """A round body of radius r rolling on the incline (n, t̂, a); q = (s,)."""
 
-    n: np.ndarray
-    t: np.ndarray
-    a: np.ndarray
+    n: FloatArray
+    t: FloatArray
+    a: FloatArray
     r: float
     m: float
     k: int
-    M: np.ndarray
+    M: FloatArray
     alpha: float
 
-    def _get_W(self):
+    def _get_W(self) -> FloatArray:
         return (self.a / self.r)[None, :]
 
     W = property(_get_W)
 
-    def place(self, q):
+    def place(self, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         s = q[..., 0]
         G = self.r * self.n + s[..., None] * self.t
         E = np.broadcast_to(self.t, (*s.shape, 1, 3))
         return G, E, turned(self.a, self.n, self.k, s / self.r)
 
-    def start(self, initial):
+    def start(self, initial: Mapping[str, Any]) -> tuple[FloatArray, FloatArray]:
         return (
             np.array([float(initial.get("distance", 0.0))]),
             np.array([float(initial.get("speed", 0.0))]),
         )
 
-    def series(self, q, qd):
+    def series(self, q: FloatArray, qd: FloatArray) -> dict[str, FloatArray]:
         s, v = q[..., 0], qd[..., 0]
         return {"s": s, "v": v, "omega": v / self.r, "drop": s * math.sin(self.alpha)}
 
-    def exact(self, effects, m, q0, qd0, duration):
+    def exact(
+        self,
+        effects: Sequence[Effect],
+        m: float,
+        q0: FloatArray,
+        qd0: FloatArray,
+        duration: float,
+    ) -> ExactCoords | None:
         if not effects:
             return "exact: uniform rolling", _uniform(q0, qd0, 0.0), []
         if _gravity_only(effects):
-            acc = sum(m * float(e.vector @ self.t) for e in effects) / self.M
+            acc = sum(m * float(cast("Gravity", e).vector @ self.t) for e in effects) / self.M
             return "exact: uniform acceleration down the incline (3.80)", _uniform(q0, qd0, acc), []
         return None
 
@@ -124,42 +147,42 @@ class Track(Guide):
     """A round body of radius r rolling inside a track of radius R about the axis a
     through the origin, ψ from u0 (u1 = a × u0); q = (ψ,)."""
 
-    a: np.ndarray
-    u0: np.ndarray
-    u1: np.ndarray
+    a: FloatArray
+    u0: FloatArray
+    u1: FloatArray
     r: float
     R: float
     m: float
     k: int
-    M: np.ndarray
+    M: FloatArray
     M_eff: float
 
-    def _get_W(self):
+    def _get_W(self) -> FloatArray:
         return (-(self.R - self.r) / self.r * self.a)[None, :]
 
     W = property(_get_W)
 
-    def _rho(self, psi):
+    def _rho(self, psi: FloatArray) -> tuple[FloatArray, FloatArray]:
         c, s = np.cos(psi)[..., None], np.sin(psi)[..., None]
         return c * self.u0 + s * self.u1, c * self.u1 - s * self.u0
 
-    def place(self, q):
+    def place(self, q: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
         psi = q[..., 0]
         rho, tau = self._rho(psi)
         d = self.R - self.r
         return d * rho, (d * tau)[..., None, :], turned(self.a, self.u0, self.k, -d / self.r * psi)
 
-    def bend(self, q, qd):
+    def bend(self, q: FloatArray, qd: FloatArray) -> FloatArray:
         rho, _ = self._rho(q[..., 0])
         return -(self.R - self.r) * (qd[..., 0] ** 2)[..., None] * rho
 
-    def start(self, initial):
+    def start(self, initial: Mapping[str, Any]) -> tuple[FloatArray, FloatArray]:
         return (
             np.array([float(initial.get("angle", 0.0))]),
             np.array([float(initial.get("angular_velocity", 0.0))]),
         )
 
-    def series(self, q, qd):
+    def series(self, q: FloatArray, qd: FloatArray) -> dict[str, FloatArray]:
         psi, d = q[..., 0], self.R - self.r
         return {
             "psi": psi,
@@ -169,12 +192,19 @@ class Track(Guide):
             "z_G": -d * np.cos(psi),
         }
 
-    def exact(self, effects, m, q0, qd0, duration):
+    def exact(
+        self,
+        effects: Sequence[Effect],
+        m: float,
+        q0: FloatArray,
+        qd0: FloatArray,
+        duration: float,
+    ) -> ExactCoords | None:
         psi0, w0 = float(q0[0]), float(qd0[0])
         if not effects:
             return "exact: uniform rolling round the track", _uniform(q0, qd0, 0.0), []
         if len(effects) == 1 and _gravity_only(effects) and w0 == 0 and abs(psi0) <= math.pi:
-            g = effects[0].vector
+            g = cast("Gravity", effects[0]).vector
             gp = float(np.linalg.norm(g - (g @ self.a) * self.a))
             if gp > 0 and float(g @ self.u0) > 0:
                 f = pendulum_from_rest(
@@ -206,7 +236,7 @@ class Rolling(Effect, GuidesBody):
         "track_radius": "m",
         "body_axis": "",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "rolling",
         "body": "ball",
         "surface": "incline",
@@ -214,7 +244,7 @@ class Rolling(Effect, GuidesBody):
     }
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         f, b = spec.fields, scene.body(spec.fields["body"])
         surf = f["surface"]
         check_round_on_slope(spec, scene, slope=surf == "incline")
@@ -239,7 +269,7 @@ class Rolling(Effect, GuidesBody):
         check_joint_body(spec, scene, index, what="it cannot roll", keys=keys)
 
     @classmethod
-    def make_guide(cls, spec, scene, g_vector):
+    def make_guide(cls, spec: SpecLike, scene: SceneLike, g_vector: FloatArray) -> Guide:
         f, b = spec.fields, scene.body(spec.fields["body"])
         k = "xyz".index(f.get("body_axis", "z"))
         r, m = float(b.dims["radius"]), float(b.mass)
@@ -255,11 +285,11 @@ class Rolling(Effect, GuidesBody):
         R = float(f["track_radius"])
         return Track(a, u0, cross(a, u0), r, R, m, k, np.array([M_eff * (R - r) ** 2]), M_eff)
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.body_axis = "xyz".index(self.fields.get("body_axis", "z"))
 
-    def effective_mass(self, m, J_G, r) -> float:
+    def effective_mass(self, m: float, J_G: FloatArray, r: float) -> float:
         """m + J/r²: the kinetic energy is ½ (m + J/r²) v² when v = ω r (3.79)."""
         return m + float(J_G[self.body_axis, self.body_axis]) / r**2
 

@@ -13,11 +13,21 @@ spring keeps the energy, with the potential ½ k (|PQ| − ℓ0)².
 from __future__ import annotations
 
 import math
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    register,
+)
 from .capabilities import Compiles, HasPotential
 
 
@@ -38,7 +48,7 @@ class _TwoPoint(Effect, Compiles):
     }
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         f = spec.fields
         if "other" in f and "anchor" in f:
             raise scene.error(
@@ -55,7 +65,7 @@ class _TwoPoint(Effect, Compiles):
                     f"body {f[who]!r} is a point: it has no points off its centre; got {f[key]}",
                 )
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         f = self.fields
         self.i = ctx.index[f["body"]]
@@ -66,7 +76,7 @@ class _TwoPoint(Effect, Compiles):
         )
         self.anchor = np.asarray(f.get("anchor", [0.0, 0.0, 0.0]), dtype=float)
 
-    def ends(self, s):
+    def ends(self, s: Snapshot) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
         """P, Q and their velocities (any leading shape)."""
         P, vP = s.point(self.i, self.at), s.point_velocity(self.i, self.at)
         if self.j is None:
@@ -83,7 +93,7 @@ class _TwoPoint(Effect, Compiles):
         j = -1 if self.j is None else self.j
         return self.i, j, numbers, []
 
-    def _apply(self, out, f) -> None:
+    def _apply(self, out: Loads, f: FloatArray) -> None:
         out.force(self.i, f, self.at)
         if self.j is not None:
             out.force(self.j, -f, self.other_at)
@@ -118,7 +128,7 @@ class Spring(_TwoPoint, HasPotential):
         "rest_length": "m",
         "damping": "N s/m",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "spring",
         "body": "ball",
         "anchor": [0.0, 0.0, 2.0],
@@ -126,13 +136,13 @@ class Spring(_TwoPoint, HasPotential):
         "rest_length": 0.5,
     }
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         self.k = float(self.fields["stiffness"])
         self.ell_0 = float(self.fields.get("rest_length", 0.0))
         self.c = float(self.fields.get("damping", 0.0))
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         P, Q, vP, vQ = self.ends(s)
         d = P - Q
         L = math.sqrt(d @ d)
@@ -143,10 +153,11 @@ class Spring(_TwoPoint, HasPotential):
             f = -self.k * d - self.c * (vP - vQ)
         self._apply(out, f)
 
-    def potential(self, s) -> np.ndarray:
+    def potential(self, s: Snapshot) -> FloatArray:
         P, Q, _, _ = self.ends(s)
         L = np.linalg.norm(P - Q, axis=-1)
-        return 0.5 * self.k * (L - self.ell_0) ** 2
+        out: FloatArray = 0.5 * self.k * (L - self.ell_0) ** 2
+        return out
 
     def keeps(self, quantity: str) -> bool:
         if quantity == "E":
@@ -168,18 +179,18 @@ class Damper(_TwoPoint):
         "anchor": "m",
         "damping": "N s/m",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "damper",
         "body": "ball",
         "anchor": [0.0, 0.0, 1.0],
         "damping": 0.5,
     }
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         self.c = float(self.fields["damping"])
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         P, Q, vP, vQ = self.ends(s)
         d = P - Q
         L = math.sqrt(d @ d)

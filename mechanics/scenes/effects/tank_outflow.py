@@ -19,12 +19,25 @@ Conventions
 from __future__ import annotations
 
 import math
-from typing import ClassVar
+from collections.abc import Callable
+from typing import Any, ClassVar
 
 import numpy as np
 
 from ..trajectory import Event
-from .base import Effect, Schema, gravity_vector, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    Times,
+    gravity_vector,
+    register,
+)
 from .capabilities import HasModes
 
 __all__ = ["TankOutflow"]
@@ -38,10 +51,10 @@ class TankOutflow(Effect, HasModes):
     type = "tank_outflow"
     schema: ClassVar[Schema] = {"body": ("body", True), "hole_area": ("positive", True)}
     units: ClassVar[dict[str, str]] = {"body": "", "hole_area": "m²"}
-    example: ClassVar[dict] = {"type": "tank_outflow", "body": "tank", "hole_area": 0.01}
+    example: ClassVar[dict[str, Any]] = {"type": "tank_outflow", "body": "tank", "hole_area": 0.01}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         b = scene.body(spec.fields["body"])
         where = f"bodies[{index[b.name]}]"
         if b.shape != "tank":
@@ -71,7 +84,7 @@ class TankOutflow(Effect, HasModes):
                 f"{spec.where}.body", f"tank {b.name!r} has one hole: list one outflow"
             )
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.a = float(self.fields["hole_area"])
         if ctx is None:
@@ -83,23 +96,24 @@ class TankOutflow(Effect, HasModes):
         self.g = -float(gravity_vector(ctx.scene)[2])
         self.empty = False
 
-    def outflow_speed(self, h, g, A) -> np.ndarray:
+    def outflow_speed(self, h: float | FloatArray, g: float, A: float) -> FloatArray:
         """u = √(2gh/(1 − (a/A)²)) (8.37 with the surface speed kept)."""
         ratio = self.a / A
-        return np.sqrt(2.0 * g * np.maximum(h, 0.0) / ((1.0 - ratio) * (1.0 + ratio)))
+        out: FloatArray = np.sqrt(2.0 * g * np.maximum(h, 0.0) / ((1.0 - ratio) * (1.0 + ratio)))
+        return out
 
-    def sqrt_level_rate(self, g, A) -> float:
+    def sqrt_level_rate(self, g: float, A: float) -> float:
         """d√h/dt = ḣ/(2√h) = −(a/A)√(g/(2(1 − (a/A)²))): regular at h = 0, where
         ḣ ∝ √h is not Lipschitz (an integrator in h cannot locate the emptying)."""
         ratio = self.a / A
         return -ratio * math.sqrt(g / (2.0 * (1.0 - ratio) * (1.0 + ratio)))
 
-    def start(self) -> np.ndarray:
+    def start(self) -> FloatArray:
         """The tank's initial state (√h0, 0)."""
         return np.array([math.sqrt(self.h0), 0.0])
 
     # ------------------------------------------------------------------ the flow
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         if self.empty:
             out.rates[self.i] = np.zeros(2)
             return
@@ -107,20 +121,20 @@ class TankOutflow(Effect, HasModes):
         u = float(self.outflow_speed(w * w, self.g, self.A))
         out.rates[self.i] = np.array([self.sqrt_level_rate(self.g, self.A), self.a * u])
 
-    def begin(self, t, s, out) -> None:
+    def begin(self, t: float, s: Snapshot, out: Loads) -> None:
         self.empty = float(s.fluid[self.i][0]) <= 0.0
 
-    def switch_function(self, t, s, out) -> tuple[float, float]:
+    def switch_function(self, t: float, s: Snapshot, out: Loads) -> tuple[float, float]:
         if self.empty:
             return 1.0, 1.0
         return float(s.fluid[self.i][0]), math.sqrt(self.h0)
 
-    def switch(self, t, s, out) -> Event:
+    def switch(self, t: float, s: Snapshot, out: Loads) -> Event:
         self.empty = True
         s.fluid[self.i][0] = 0.0
         return Event(float(t), "empty", {"body": self.fields["body"]})
 
-    def exact(self, duration):
+    def exact(self, duration: float) -> tuple[str, Callable[[Times], FloatArray], list[Event]]:
         """(how, f, events): √h = max(√h0 − c t, 0) and the volume out
         a k c (T t − t²/2) = a k t (√h0 − c t/2) up to T, k = √(2g/(1 − (a/A)²)) (8.37
         integrated)."""
@@ -131,7 +145,7 @@ class TankOutflow(Effect, HasModes):
         c = math.sqrt(self.h0) / T
         k = math.sqrt(2 * self.g / ((1 - ratio) * (1 + ratio)))
 
-        def f(t):
+        def f(t: Times) -> FloatArray:
             t = np.asarray(t, dtype=float)
             tc = np.minimum(t, T)
             w = np.maximum(math.sqrt(self.h0) - c * tc, 0.0)
@@ -144,7 +158,7 @@ class TankOutflow(Effect, HasModes):
         return "exact: Torricelli outflow, level (√h0 − c t)² (8.37)", f, events
 
     # ------------------------------------------------------------------ results
-    def series(self, s) -> dict[str, np.ndarray]:
+    def series(self, s: Snapshot) -> dict[str, FloatArray]:
         w = s.fluid[self.i][..., 0]
         h = w * w
         vout = s.fluid[self.i][..., 1]
@@ -155,7 +169,7 @@ class TankOutflow(Effect, HasModes):
             "volume_total": self.A * h + vout,
         }
 
-    def conserved(self, s) -> dict:
+    def conserved(self, s: Snapshot) -> dict[str, tuple[FloatArray, float]]:
         x = self.series(s)
         size = float(self.A * np.max(x["h"]) + np.max(np.abs(x["volume_out"])))
         return {"volume_total": (x["volume_total"], size)}

@@ -8,12 +8,28 @@ gas carries momentum and energy away (7.24).
 
 from __future__ import annotations
 
-from typing import ClassVar
+from collections.abc import Iterable
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
-from .base import Effect, Schema, register, unit
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    Times,
+    register,
+    unit,
+)
 from .capabilities import ChangesMass
+
+if TYPE_CHECKING:
+    from ..trajectory import Event
 
 
 @register
@@ -37,7 +53,7 @@ class Thrust(Effect, ChangesMass):
         "direction": "1",
         "frame": "",
     }
-    example: ClassVar[dict] = {
+    example: ClassVar[dict[str, Any]] = {
         "type": "thrust",
         "body": "ball",
         "mass_flow": 0.01,
@@ -46,7 +62,7 @@ class Thrust(Effect, ChangesMass):
     }
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         f = spec.fields
         b = scene.body(f["body"])
         others = [e for e in scene.effects_of("thrust") if e.fields["body"] == b.name]
@@ -63,7 +79,7 @@ class Thrust(Effect, ChangesMass):
                 f"{spec.where}.frame", f"body {b.name!r} is a point: it has no body frame"
             )
 
-    def __init__(self, spec, ctx) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context) -> None:
         super().__init__(spec, ctx)
         f = self.fields
         self.i = ctx.index[f["body"]]
@@ -75,7 +91,7 @@ class Thrust(Effect, ChangesMass):
         self.body_frame = f.get("frame", "space") == "body"
         self.burn_out = self.m_f / self.q
 
-    def mass_loss(self, t) -> np.ndarray:
+    def mass_loss(self, t: Times) -> FloatArray:
         out = np.zeros((*np.shape(t), self.n))
         out[..., self.i] = self.q * np.minimum(t, self.burn_out)
         return out
@@ -83,10 +99,10 @@ class Thrust(Effect, ChangesMass):
     def switch_times(self) -> list[float]:
         return [self.burn_out]
 
-    def acts_until(self, events=(), quantity=None) -> float:
+    def acts_until(self, events: Iterable[Event] = (), quantity: str | None = None) -> float:
         return self.burn_out
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         if s.phase < self.burn_out:
             d = s.to_space(self.i, self.direction) if self.body_frame else self.direction
             out.force(self.i, self.q * self.u * d)

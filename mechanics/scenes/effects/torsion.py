@@ -3,12 +3,24 @@ body (its angle φ from the engine's hinge), with the potential ½ τ0 φ²."""
 
 from __future__ import annotations
 
-from typing import ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar, cast
 
-import numpy as np
-
-from .base import Effect, Schema, check_on_fixed_axis, register
+from .base import (
+    Context,
+    Effect,
+    FloatArray,
+    Loads,
+    SceneLike,
+    Schema,
+    Snapshot,
+    SpecLike,
+    check_on_fixed_axis,
+    register,
+)
 from .capabilities import HasPotential
+
+if TYPE_CHECKING:
+    from ..state import Hinge
 
 
 @register
@@ -18,24 +30,25 @@ class Torsion(Effect, HasPotential):
     type = "torsion"
     schema: ClassVar[Schema] = {"body": ("body", True), "stiffness": ("positive", True)}
     units: ClassVar[dict[str, str]] = {"body": "", "stiffness": "N m/rad"}
-    example: ClassVar[dict] = {"type": "torsion", "body": "rod", "stiffness": 2.0}
+    example: ClassVar[dict[str, Any]] = {"type": "torsion", "body": "rod", "stiffness": 2.0}
 
     @classmethod
-    def check(cls, spec, scene, index) -> None:
+    def check(cls, spec: SpecLike, scene: SceneLike, index: dict[str, int]) -> None:
         check_on_fixed_axis(spec, scene, what="a torsion spring twists a body about its axis")
 
-    def __init__(self, spec, ctx=None) -> None:
+    def __init__(self, spec: SpecLike, ctx: Context | None = None) -> None:
         super().__init__(spec, ctx)
         self.tau_0 = float(self.fields["stiffness"])
         self.i = ctx.index[self.fields["body"]] if ctx is not None else 0
-        self.hinge = ctx.guides.get(self.i) if ctx is not None else None
+        #: the body's guide: a Hinge (the check requires a fixed_axis for the body)
+        self.hinge = cast("Hinge | None", ctx.guides.get(self.i) if ctx is not None else None)
 
-    def loads(self, t, s, out) -> None:
+    def loads(self, t: float, s: Snapshot, out: Loads) -> None:
         hinge = self.hinge
         assert hinge is not None, "a torsion spring's loads need its hinge (built with a ctx)"
         out.moment(self.i, -self.tau_0 * s.angle[self.i] * hinge.a)
 
-    def potential(self, s) -> np.ndarray:
+    def potential(self, s: Snapshot) -> FloatArray:
         return 0.5 * self.tau_0 * s.angle[..., self.i] ** 2
 
     def keeps(self, quantity: str) -> bool:
