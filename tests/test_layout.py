@@ -133,13 +133,22 @@ def test_import_mechanics_loads_neither_sympy_nor_matplotlib() -> None:
 
 
 def import_graph(sources: dict[str, tuple[str, bool]]) -> dict[str, set[str]]:
-    """module -> the modules of ``sources`` it imports (``from P import m`` names the module
-    P.m where that is one, else P), from {module: (source, is_package)}."""
+    """module -> the modules of ``sources`` it imports at run time (``from P import m``
+    names the module P.m where that is one, else P; an import under ``if
+    TYPE_CHECKING:``, for annotations only, never runs), from {module: (source,
+    is_package)}."""
     graph = {}
     for module, (source, is_package) in sources.items():
         package = module if is_package else module.rpartition(".")[0]
         out = set()
-        for node in ast.walk(ast.parse(source)):
+        tree = ast.parse(source)
+        for node in list(ast.walk(tree)):
+            if isinstance(node, ast.If) and (
+                (isinstance(node.test, ast.Name) and node.test.id == "TYPE_CHECKING")
+                or (isinstance(node.test, ast.Attribute) and node.test.attr == "TYPE_CHECKING")
+            ):
+                node.body = []
+        for node in ast.walk(tree):
             if isinstance(node, ast.Import):
                 out |= {a.name for a in node.names if a.name in sources}
             elif isinstance(node, ast.ImportFrom):
@@ -200,6 +209,9 @@ def test_a_circle_of_imports_is_caught() -> None:
         "a": ("import b\n", False),
         "b": ("from c import x\n", False),
         "c": ("def g():\n    from a import x\n", False),
+        # for annotations only: never imported at run time, no circle
+        "d": ("from typing import TYPE_CHECKING\nif TYPE_CHECKING:\n    import e\n", False),
+        "e": ("import d\n", False),
     }
     assert circles(import_graph(sources)) == [
         ["a", "b", "c"],

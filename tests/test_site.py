@@ -459,3 +459,89 @@ def test_axe_finds_an_image_without_text_and_an_unlabelled_field(tmp_path):
     found = {v["id"]: v["impact"] for v in _axe(tmp_path, page)}
     assert found.get("image-alt") == "critical"
     assert found.get("label") == "critical"
+
+
+# ---------------------------------------------------------------- scenes that play
+
+
+def test_the_scenes_page_has_a_player_for_every_built_in_scene(site):
+    from mechanics.scenes import builtin_scenes
+
+    text = (site / "scenes.html").read_text("utf-8")
+    for name in builtin_scenes():
+        assert f"<section class='scene' id='{name}'>" in text, name
+    assert text.count("class='scene-data'") == len(builtin_scenes())
+    assert (site / "scene-player.js").is_file()
+
+
+def test_a_scene_whose_run_fails_is_shown_with_its_failure(tmp_path, monkeypatch):
+    import identities.book.scenes.compare as compare
+    from mechanics.scenes import SceneError
+
+    real = compare.run_book_scene
+
+    def run(scene):
+        if scene.name.startswith("Box dropped") or scene.source.endswith("box_drop.toml"):
+            raise SceneError(scene.source, "scene.duration", "a failure for the test")
+        return real(scene)
+
+    monkeypatch.setattr(compare, "run_book_scene", run)
+    build_site(tmp_path / "out")
+    text = (tmp_path / "out" / "scenes.html").read_text("utf-8")
+    failed = re.search(r"<section id='box_drop'>.*?</section>", text, re.S)
+    assert failed is not None
+    assert "the run failed" in failed.group(0)
+    assert "a failure for the test" in failed.group(0)
+
+
+def _bodies_at(tmp_path: Path, page: Path, frame: int) -> dict[str, str]:
+    """Each player's frame and drawn bodies (its <g class="bodies">) in the DOM of
+    ``page`` opened at ?frame=N."""
+    run = _chromium(tmp_path, "--dump-dom", page.as_uri() + f"?frame={frame}")
+    assert run.returncode == 0, run.stderr[-2000:]
+    out = {}
+    for m in re.finditer(
+        r'<section class="scene" id="([^"]+)"[^>]*data-frame="(\d+)".*?<g class="bodies">(.*?)</g>',
+        run.stdout,
+        re.S,
+    ):
+        out[m.group(1)] = (int(m.group(2)), m.group(3))
+    return out
+
+
+@needs_chromium
+def test_every_player_draws_its_bodies_and_a_moving_scene_changes_between_two_frames(
+    site, tmp_path
+):
+    from mechanics.scenes import builtin_scenes
+
+    first = _bodies_at(tmp_path, site / "scenes.html", 0)
+    later = _bodies_at(tmp_path, site / "scenes.html", 40)
+    assert set(first) == set(builtin_scenes())
+    for name, (frame, drawn) in first.items():
+        assert frame == 0, name
+        assert later[name][0] == 40, name
+        assert "<circle" in drawn or "<polyline" in drawn, name
+    for name in ("bouncing_ball", "box_drop", "heavy_top", "newtons_cradle"):
+        assert first[name][1] != later[name][1], name
+
+
+@needs_chromium
+def test_a_players_picture_changes_between_two_slider_positions(tmp_path):
+    """The standalone page of ``bodycheck demo box_drop --html``: the screenshots at the
+    first frame and at frame 60 differ (the box has fallen), and neither is blank."""
+    page = tmp_path / "box.html"
+    assert main(["demo", "box_drop", "--html", str(page)]) == 0
+    shots = []
+    for frame in (0, 60):
+        png = tmp_path / f"box{frame}.png"
+        run = _chromium(
+            tmp_path,
+            f"--screenshot={png}",
+            "--window-size=1100,700",
+            page.as_uri() + f"?frame={frame}",
+        )
+        assert run.returncode == 0, run.stderr[-2000:]
+        assert _ink(png) > MIN_INK
+        shots.append(_rgb(png))
+    assert (shots[0] != shots[1]).any(axis=-1).mean() > MIN_INK / 10

@@ -4,9 +4,9 @@
     bodycheck explain ID|TOPIC [--json] [--latex]
     bodycheck search TOPIC [--json]
     bodycheck catalogue [--write PATH]
-    bodycheck scene FILE.toml [--plot OUT.png] [--json] [--method M]
+    bodycheck scene FILE.toml [--plot OUT.png] [--html OUT.html] [--json] [--method M]
     bodycheck scene --schema
-    bodycheck demo NAME [--plot OUT.png] [--json] [--method M]
+    bodycheck demo NAME [--plot OUT.png] [--html OUT.html] [--json] [--method M]
     bodycheck demo --list
     bodycheck bench [--quick] [--out DIR] [--repeats N]
     bodycheck site OUT
@@ -126,6 +126,11 @@ def _parser() -> argparse.ArgumentParser:
     dm.add_argument("--list", action="store_true", help="list the built-in scenes")
     for q in (sc, dm):
         q.add_argument("--plot", metavar="OUT.png", help="write a plot of the run")
+        q.add_argument(
+            "--html",
+            metavar="OUT.html",
+            help="write a page that plays the run (the bodies, play, pause, a time slider)",
+        )
         q.add_argument(
             "--max-samples",
             type=_at_least(2, int),
@@ -557,12 +562,21 @@ def _run_scene_file(path, args) -> int:
             plot_result(result, args.plot)
         except (OSError, ValueError) as exc:  # a folder that is missing, a format unknown
             raise UsageError(f"--plot {args.plot}: cannot write the plot: {exc}") from None
+    if args.html:
+        from identities.cli.scene_player import player_page
+
+        try:
+            Path(args.html).write_text(player_page(result), encoding="utf-8")
+        except OSError as exc:  # a folder that is missing, a file that cannot be written
+            raise UsageError(f"--html {args.html}: cannot write the page: {exc}") from None
     if args.json:
         print(result.to_json())
     else:
         print(result.summary())
         if args.plot:
             print(f"plot: {args.plot}")
+        if args.html:
+            print(f"page: {args.html}")
     return 0 if result.passed else 1
 
 

@@ -51,6 +51,8 @@ SCENES = ("bouncing_ball", "heavy_top", "free_top_flip")
 _BENCH = Path(__file__).resolve().parents[2] / "docs" / "bench"
 #: the search box's script (identities/data/site_search.js)
 _SEARCH_JS = Path(__file__).resolve().parents[1] / "data" / "site_search.js"
+#: the scene players' script (identities/data/scene_player.js)
+_PLAYER_JS = Path(__file__).resolve().parents[1] / "data" / "scene_player.js"
 
 _GREEK = {
     "α": "alpha",
@@ -253,6 +255,7 @@ def _page(title: str, body: str, chapters: list[int]) -> str:
         f"<title>{html.escape(title)}</title>"
         "<link rel='stylesheet' href='style.css'>"
         "<script src='search-index.js' defer></script><script src='search.js' defer></script>"
+        "<script src='scene-player.js' defer></script>"
         "</head>\n"
         f"<body><header><nav>{nav}</nav>\n{_SEARCH_BOX}</header>\n"
         f"<main><h1>{html.escape(title)}</h1>\n{body}\n</main></body></html>\n"
@@ -392,25 +395,39 @@ def _errata_page(regs: list) -> str:
 
 
 def _scenes_page(out: Path) -> str:
+    """Every built-in scene, run while the site is built: its player (the bodies moving,
+    play, pause, a time slider, the events on the timeline, the invariants and derived
+    quantities beside it), and for :data:`SCENES` its plots; a scene whose run fails is
+    shown with its failure."""
     from identities.book.scenes.compare import load_book_scene, run_book_scene
+    from identities.cli.scene_player import player_section
     from identities.cli.scene_plots import plot_result
-    from mechanics.scenes import builtin_scenes
+    from mechanics.scenes import SceneError, builtin_scenes
 
     known = builtin_scenes()
     lines = [
-        "<p>Built-in scenes, simulated while the site was built and compared with the "
-        "book (<code>bodycheck demo NAME --plot OUT.png</code> runs one).</p>"
+        "<p>Every built-in scene, simulated while the site was built and compared with "
+        "the book: press play or move the slider (<code>bodycheck demo NAME --html "
+        "OUT.html</code> writes one such page, <code>bodycheck scene FILE --html "
+        "OUT.html</code> one of your own scene).</p>",
+        "<ul>" + "".join(f"<li><a href='#{n}'>{n}</a></li>" for n in known) + "</ul>",
     ]
-    for name in SCENES:
-        result = run_book_scene(load_book_scene(known[name]))
-        plot_result(result, out / f"scene-{name}.svg")
-        verdict = "PASSED" if result.passed else "FAILED"
-        lines.append(
-            f"<section id='{name}'><h2>{html.escape(result.scene.title or name)}</h2>"
-            f"<p><code>bodycheck demo {name}</code>: {verdict}</p>"
-            f"<img src='scene-{name}.svg' alt='plots of the scene {name}'>"
-            f"<pre>{html.escape(result.summary())}</pre></section>"
-        )
+    for name, path in known.items():
+        try:
+            result = run_book_scene(load_book_scene(path))
+        except SceneError as exc:
+            lines.append(
+                f"<section id='{name}'><h2>{html.escape(name)}</h2>"
+                f"<p class='erratum'>the run failed: {html.escape(str(exc))}</p></section>"
+            )
+            continue
+        lines.append(player_section(result, name))
+        if name in SCENES:
+            plot_result(result, out / f"scene-{name}.svg")
+            lines.append(
+                f"<p><img src='scene-{name}.svg' alt='plots of the scene {name}'></p>"
+                f"<pre>{html.escape(result.summary())}</pre>"
+            )
     return "\n".join(lines)
 
 
@@ -491,11 +508,14 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
     data = json.dumps(found, ensure_ascii=True, separators=(",", ":"))
     (out / "search-index.js").write_text(f"window.BODYCHECK_SEARCH = {data};\n", "utf-8")
     shutil.copyfile(_SEARCH_JS, out / "search.js")
+    shutil.copyfile(_PLAYER_JS, out / "scene-player.js")
     written = []
     for name, (title, body) in pages.items():
         path = out / name
         path.write_text(_page(title, body, chapters), encoding="utf-8")
         written.append(path)
-    (out / "style.css").write_text(_CSS.lstrip(), encoding="utf-8")
+    from identities.cli.scene_player import PLAYER_CSS
+
+    (out / "style.css").write_text(_CSS.lstrip() + PLAYER_CSS, encoding="utf-8")
     (out / MARKER).write_text("written by bodycheck site\n", encoding="utf-8")
     return written

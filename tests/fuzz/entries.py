@@ -1143,6 +1143,10 @@ for _name in (
     "scenes.effects.capabilities.AddsInertia",
     "scenes.effects.capabilities.ChangesMass",
     "scenes.effects.capabilities.Compiles",
+    # protocols of what the effects read of a scene, a spec and a body (types, not called)
+    "scenes.effects.base.BodyLike",
+    "scenes.effects.base.SceneLike",
+    "scenes.effects.base.SpecLike",
     "scenes.effects.capabilities.GuidesBody",
     "scenes.effects.capabilities.HasModes",
     "scenes.effects.capabilities.HasPotential",
