@@ -1570,6 +1570,13 @@ class HeavySymmetricTop:
             hi = max(lo, 1.0)
             while sign * g(hi) <= 0:
                 hi *= 2.0
+            if math.isnan(g(hi)):  # the bracket's end overflows to inf − inf: no search
+                raise OutOfDomainError(
+                    f"the turning points of θ are beyond float64: the search for the "
+                    f"largest root overflows at 1 − u = {hi!r} (psi_dot = {self.psi_dot0!r}, "
+                    f"phi_dot = {self.phi_dot0!r}, m_g_ell = {self.m_g_ell!r}); rescale "
+                    "(choose units) so that the rates' squares stay within float64"
+                )
             from scipy.optimize import brentq  # here: keeps `import mechanics.tops` cheap
 
             try:

@@ -1301,3 +1301,16 @@ def test_heavy_top_effective_potential_at_the_poles_is_refused_without_a_warning
         "exceeds float64's range (~1.8e308); rescale the inputs (choose units)"
     )
     assert not [w for w in recwarn if issubclass(w.category, RuntimeWarning)]
+
+
+@pytest.mark.parametrize("rate", ["psi_dot", "phi_dot"])
+def test_a_heavy_top_whose_turning_point_search_overflows_is_refused_by_name(rate):
+    """Rates whose squares leave float64 (found by the public-surface fuzz at
+    psi_dot = 2.6e77): the bracket of the largest root doubles until its function is
+    inf − inf, and scipy's brentq raised its own ValueError ("the function value ... is
+    NaN"); now the library's OutOfDomainError names the rates.  1e70 still runs."""
+    kw = dict(theta=0.5, psi=0.1, phi=0.2, theta_dot=0.1, psi_dot=1.0, phi_dot=8.0)
+    with pytest.raises(OutOfDomainError, match=r"turning points of θ are beyond float64.*psi_dot"):
+        tops.HeavySymmetricTop(2.0, 1.0, 3.0, **{**kw, rate: 1e100})
+    top = tops.HeavySymmetricTop(2.0, 1.0, 3.0, **{**kw, rate: 1e70})
+    assert np.isfinite(top.theta(np.array([0.0, 1e-70]))).all()
