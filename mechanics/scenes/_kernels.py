@@ -11,13 +11,15 @@ the tests hold this one to.
 Conventions
 -----------
 - **The state** is :mod:`mechanics.scenes.state`'s flat vector; the kinds of body here
-  are a point (r, v), a free rigid body (r, v, L_A, rows of R_A_O) and a pinned one
-  (L_C, rows of R_A_O), and a fixed body (nothing).  Guided bodies, tanks and masses
-  that change run on the Python path.
+  are a point (r, v), a free rigid body (r, v, L_A, rows of R_A_O), a pinned one
+  (L_C, rows of R_A_O), one on a fixed axis (φ, φ̇: the guide a ``Hinge``) and a fixed
+  body (nothing).  Rolling and sliding bodies, tanks and masses that change run on the
+  Python path.
 - **The program.**  ``bi`` (n, 2) int: each body's kind (:data:`KINDS`) and offset in
-  the state; ``bf`` (n, 31) float: its mass, principal moments J (3), the fixed
+  the state; ``bf`` (n, 45) float: its mass, principal moments J (3), the fixed
   position (3), a pinned body's pivot C (3), G from the pivot g_A (3), J_C (9, row by
-  row) and J_C⁻¹ (9); ``ops`` (k, 4) int: each effect's opcode (:data:`OPCODES`), its
+  row) and J_C⁻¹ (9), a hinged body's axis a, u0, u1 (3 each), its body axes k, j, l,
+  h and J_a (its point C in the pivot's columns); ``ops`` (k, 4) int: each effect's opcode (:data:`OPCODES`), its
   bodies i and j (−1: none) and the start p of its numbers in ``fp`` (float); ``pairs``
   (P, 2) int: the pairs of a ``newton_gravity`` (its ``i`` the first row, ``j`` their
   count).  The numbers of each effect are listed by its kernel below.
@@ -47,8 +49,8 @@ from .._kernels import (
 
 #: the kinds of body with a kernel, by the name :class:`~mechanics.scenes.state.Layout`
 #: gives them
-KINDS = {"point": 0, "rigid": 1, "pinned": 2, "fixed": 3}
-_POINT, _RIGID, _PINNED, _FIXED = 0, 1, 2, 3
+KINDS = {"point": 0, "rigid": 1, "pinned": 2, "fixed": 3, "guided": 4}
+_POINT, _RIGID, _PINNED, _FIXED, _GUIDED = 0, 1, 2, 3, 4
 
 #: the effects with a kernel, by type (``fixed_point`` makes its body pinned and adds no
 #: load)
@@ -61,11 +63,17 @@ OPCODES = {
     "damper": 5,
     "drag": 6,
     "newton_gravity": 7,
+    "fixed_axis": 0,
+    "torsion": 8,
 }
 _NOOP, _GRAVITY, _FORCE, _TORQUE, _SPRING, _DAMPER, _DRAG, _NEWTON = 0, 1, 2, 3, 4, 5, 6, 7
+_TORSION = 8
 
 #: the columns of ``bf``
-BF_M, BF_J, BF_RFIX, BF_C, BF_G, BF_JC, BF_JCINV, BF_SIZE = 0, 1, 4, 7, 10, 13, 22, 31
+BF_M, BF_J, BF_RFIX, BF_C, BF_G, BF_JC, BF_JCINV = 0, 1, 4, 7, 10, 13, 22
+#: a hinged body's (a guided one on a fixed axis, its C in BF_C): the axis a, u0, u1,
+#: its body axes k, j, l (as floats), the distance h of G from the axis and J_a
+BF_A, BF_U0, BF_U1, BF_HK, BF_H, BF_JA, BF_SIZE = 31, 34, 37, 40, 43, 44, 45
 
 _compile = njit(cache=True, error_model="numpy")
 
@@ -85,6 +93,9 @@ def _snapshot(y: F64, bi: I64, bf: F64, r: F64, v: F64, L: F64, R: F64, w: F64) 
         if kind == _FIXED:
             for c in range(3):
                 r[b, c] = bf[b, BF_RFIX + c]
+            continue
+        if kind == _GUIDED:
+            _hinged(y[o], y[o + 1], bf, b, r, v, L, R, w)
             continue
         if kind in (_POINT, _RIGID):
             for c in range(3):
@@ -123,6 +134,33 @@ def _snapshot(y: F64, bi: I64, bf: F64, r: F64, v: F64, L: F64, R: F64, w: F64) 
 
 
 _snapshot = _compile(_snapshot)
+
+
+def _hinged(
+    phi: float, phid: float, bf: F64, b: int, r: F64, v: F64, L: F64, R: F64, w: F64
+) -> None:
+    """A body on a fixed axis at the angle φ turning at φ̇ (:class:`Hinge`): R_A_O's
+    rows e_k = a, e_j = cos φ u0 + sin φ u1, e_l = cos φ u1 − sin φ u0; G = C + h e_j,
+    v = φ̇ h e_l; ω_A = R (φ̇ a), L_A = J ω_A."""
+    k, j, l = int(bf[b, BF_HK]), int(bf[b, BF_HK + 1]), int(bf[b, BF_HK + 2])
+    co, si = math.cos(phi), math.sin(phi)
+    h = bf[b, BF_H]
+    wO = np.empty(3)
+    for c in range(3):
+        a, u0, u1 = bf[b, BF_A + c], bf[b, BF_U0 + c], bf[b, BF_U1 + c]
+        R[b, k, c] = a
+        R[b, j, c] = co * u0 + si * u1
+        R[b, l, c] = co * u1 - si * u0
+        wO[c] = phid * a
+    for c in range(3):
+        r[b, c] = bf[b, BF_C + c] + h * R[b, j, c]
+        v[b, c] = phid * (h * R[b, l, c])
+    for c in range(3):
+        w[b, c] = R[b, c, 0] * wO[0] + R[b, c, 1] * wO[1] + R[b, c, 2] * wO[2]
+        L[b, c] = bf[b, BF_J + c] * w[b, c]
+
+
+_hinged = _compile(_hinged)
 
 
 def _to_space(R: F64, b: int, x: F64, out: F64) -> None:
@@ -313,14 +351,41 @@ def _newton(first: int, count: int, G: float, pairs: I64, bf: F64, r: F64, F: F6
 _newton = _compile(_newton)
 
 
+def _torsion(i: int, fp: F64, p: int, phi: float, R: F64, M: F64) -> None:
+    """``torsion``: fp[p:p+4] = τ0, the axis a (3); the couple −τ0 φ a (space) on the
+    hinged body i at its angle φ."""
+    s = -fp[p] * phi
+    MO = np.empty(3)
+    for c in range(3):
+        MO[c] = s * fp[p + 1 + c]
+    m = np.empty(3)
+    _to_body(R, i, MO, m)
+    for c in range(3):
+        M[i, c] += m[c]
+
+
+_torsion = _compile(_torsion)
+
+
 def _rates(y: F64, bi: I64, bf: F64, v: F64, L: F64, R: F64, w: F64, F: F64, M: F64) -> F64:
     """dy/dt (:meth:`Layout.derivative`): ṙ = v, v̇ = F/m; L̇_A = L_A × ω_A + M_A, Ṙ =
     −[ω_A]× R for a free body; L̇_C = (J_C ω) × ω + M_A + g_A × (R F), Ṙ alike for a
-    pinned one."""
+    pinned one; φ̈ = (E·F + a·M_O)/J_a for a hinged one (E = h e_l, M_O = R_A_Oᵀ M_A)."""
     out = np.empty(y.size)
     for b in range(bi.shape[0]):
         kind, o = bi[b, 0], bi[b, 1]
         if kind == _FIXED:
+            continue
+        if kind == _GUIDED:
+            lrow = int(bf[b, BF_HK + 2])
+            EF = 0.0
+            aM = 0.0
+            for c in range(3):
+                MO = R[b, 0, c] * M[b, 0] + R[b, 1, c] * M[b, 1] + R[b, 2, c] * M[b, 2]
+                EF += (bf[b, BF_H] * R[b, lrow, c]) * F[b, c]
+                aM += bf[b, BF_A + c] * MO
+            out[o] = y[o + 1]
+            out[o + 1] = (EF + aM) / bf[b, BF_JA]
             continue
         wb = w[b]
         if kind in (_POINT, _RIGID):
@@ -374,9 +439,11 @@ def _loads(
     w: F64,
     F: F64,
     M: F64,
+    y: F64,
+    bi: I64,
 ) -> None:
-    """Add every effect's loads at the snapshot (r, v, R, ω) to F and M_A, in the
-    model's order; ``phase`` decides which applied loads are on."""
+    """Add every effect's loads at the snapshot (r, v, R, ω) of the state y to F and
+    M_A, in the model's order; ``phase`` decides which applied loads are on."""
     for e in range(ops.shape[0]):
         op, i, j, p = ops[e, 0], ops[e, 1], ops[e, 2], ops[e, 3]
         if op == _GRAVITY:
@@ -389,6 +456,8 @@ def _loads(
             _drag(i, fp, p, v, R, w, F, M)
         elif op == _NEWTON:
             _newton(i, j, fp[p], pairs, bf, r, F)
+        elif op == _TORSION:
+            _torsion(i, fp, p, y[bi[i, 1]], R, M)
 
 
 _loads = _compile(_loads)
@@ -408,7 +477,7 @@ def scene_rhs(
     _snapshot(y, bi, bf, r, v, L, R, w)
     F = np.zeros((n, 3))
     M = np.zeros((n, 3))
-    _loads(phase, ops, fp, pairs, bf, r, v, R, w, F, M)
+    _loads(phase, ops, fp, pairs, bf, r, v, R, w, F, M, y, bi)
     return _rates(y, bi, bf, v, L, R, w, F, M)
 
 
@@ -447,7 +516,7 @@ def scene_accelerations(
         F[:] = 0.0
         M[:] = 0.0
         _snapshot(y, bi, bf, r, v, L, R, w)
-        _loads(T[s], ops, fp, pairs, bf, r, v, R, w, F, M)
+        _loads(T[s], ops, fp, pairs, bf, r, v, R, w, F, M, y, bi)
         dy = _rates(y, bi, bf, v, L, R, w, F, M)
         for b in range(n):
             kind, o = bi[b, 0], bi[b, 1]

@@ -2,8 +2,8 @@
 right-hand side in :mod:`mechanics.scenes._kernels`, the program written for them, and
 the loader.
 
-- A model compiles when every body is a point, a free rigid body, a pinned body or a
-  fixed one, no mass changes, and every listed load declares
+- A model compiles when every body is a point, a free rigid body, a pinned body, a body
+  on a fixed axis or a fixed one, no mass changes, and every listed load declares
   :class:`~mechanics.scenes.effects.capabilities.Compiles` (gravity, applied forces and
   couples, springs, dampers, drag, Newtonian gravity, a fixed point).  Otherwise, and
   while bodies rest on a plane (:mod:`.support` adds their support forces), the Python
@@ -40,6 +40,7 @@ if TYPE_CHECKING:  # for annotations only
 
     from .effects.capabilities import Compiles
     from .model import Model
+    from .state import Hinge
 
 #: the kernel's arrays (bi, bf, ops, fp, pairs), see :mod:`mechanics.scenes._kernels`
 Program: TypeAlias = tuple[IntArray, FloatArray, IntArray, FloatArray, IntArray]
@@ -138,6 +139,14 @@ def program(model: Model) -> Program | str:
             bf[b, k.BF_G : k.BF_G + 3] = g
             bf[b, k.BF_JC : k.BF_JC + 9] = np.ravel(JC)
             bf[b, k.BF_JCINV : k.BF_JCINV + 9] = np.ravel(JCinv)
+        hinge = cast("Hinge | None", lay.guides.get(b))  # (_why_not found no other guide)
+        if hinge is not None:
+            bf[b, k.BF_C : k.BF_C + 3] = hinge.C
+            bf[b, k.BF_A : k.BF_A + 3] = hinge.a
+            bf[b, k.BF_U0 : k.BF_U0 + 3] = hinge.u0
+            bf[b, k.BF_U1 : k.BF_U1 + 3] = hinge.u1
+            bf[b, k.BF_HK : k.BF_HK + 3] = hinge.k, hinge.j, hinge.l
+            bf[b, k.BF_H], bf[b, k.BF_JA] = hinge.h, hinge.J_a
     ops: list[tuple[int, int, int, int]] = []
     fp: list[float] = []
     pairs: list[tuple[int, int]] = []
@@ -161,10 +170,16 @@ def program(model: Model) -> Program | str:
 def _why_not(model: Model, k: ModuleType) -> str | None:
     """Why ``model`` has no compiled right-hand side, or None."""
     from .effects.capabilities import Compiles
+    from .state import Hinge
 
-    for name, kind in zip(model.names, model.layout.kinds, strict=True):
+    for b, (name, kind) in enumerate(zip(model.names, model.layout.kinds, strict=True)):
         if kind not in k.KINDS:
-            return f"body {name!r} is {kind}: only points, free, pinned and fixed bodies compile"
+            return (
+                f"body {name!r} is {kind}: only points, free, pinned, fixed and hinged bodies "
+                "compile"
+            )
+        if kind == "guided" and not isinstance(model.layout.guides[b], Hinge):
+            return f"body {name!r} rolls or slides: only a fixed axis of the joints compiles"
     for e in model.forces:
         if e.type not in k.OPCODES or not isinstance(e, Compiles):
             return f"the effect {e.type!r} ({e.where}) has no compiled loads"

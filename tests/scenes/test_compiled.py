@@ -75,14 +75,30 @@ def _direction():
 
 @st.composite
 def _bodies(draw, pin: bool):
-    """One to three bodies: points, boxes, and at most one top on a fixed point (the
-    first, with ``pin``)."""
+    """One to three bodies: points, boxes, boxes on a fixed axis (``hinged``, the
+    table of each joint), and at most one top on a fixed point (the first, with
+    ``pin``)."""
     n = draw(st.integers(1, 3))
-    out, pinned = [], None
+    out, pinned, hinged = [], None, []
     for k in range(n):
-        kinds = ["point", "box", "pinned"] if pinned is None else ["point", "box"]
+        kinds = ["point", "box", "hinged"] + (["pinned"] if pinned is None else [])
         kind = "pinned" if pin and k == 0 else draw(st.sampled_from(kinds))
         name = f"b{k}"
+        if kind == "hinged":
+            dims = {d: draw(_u(0.1, 1.0)) for d in "abc"}
+            init = {"angle": draw(_u(-3, 3)), "angular_velocity": draw(_u(-3, 3))}
+            out.append(box(name, mass=draw(_u(0.5, 2)), **dims, **init))
+            hinged.append(
+                {
+                    "type": "fixed_axis",
+                    "body": name,
+                    "axis": draw(_direction()),
+                    "distance": draw(_u(0.0, 0.5)),
+                    "body_axis": draw(st.sampled_from("xyz")),
+                    "point": draw(_vec(-1, 1)),
+                }
+            )
+            continue
         if kind == "point":
             out.append(point(name, draw(_vec(-2, 2)), draw(_vec(-1, 1)), mass=draw(_u(0.5, 2))))
             continue
@@ -113,7 +129,7 @@ def _bodies(draw, pin: bool):
                     omega=omega,
                 )
             )
-    return out, pinned
+    return out, pinned, hinged
 
 
 @st.composite
@@ -122,13 +138,19 @@ def compiled_scenes(draw, *, duration: float = 1.0, samples: int = 11, pin: bool
     dampers (between bodies, or to an anchor; at points off G), drag (linear, quadratic,
     rotational), applied forces and couples (space or body frame, in a window),
     Newtonian gravity, a fixed point (always, with ``pin``)."""
-    bodies, pinned = draw(_bodies(pin))
+    bodies, pinned, hinged = draw(_bodies(pin))
     names = [b["name"] for b in bodies]
     solid = [b["name"] for b in bodies if b["shape"] != "point"]
     effects: list[dict] = []
     if pinned is not None:
         name, dist, at = pinned
         effects.append({"type": "fixed_point", "body": name, "distance": dist, "point": at})
+    effects += hinged
+    for joint in hinged:
+        if draw(st.booleans()):
+            effects.append(
+                {"type": "torsion", "body": joint["body"], "stiffness": draw(_u(0.1, 5.0))}
+            )
     if draw(st.booleans()):
         effects.append({"type": "gravity", "g": draw(_u(1, 20)), "direction": draw(_direction())})
     for _ in range(draw(st.integers(0, 2))):
@@ -177,7 +199,8 @@ def compiled_scenes(draw, *, duration: float = 1.0, samples: int = 11, pin: bool
         if kind == "force" and i in solid and draw(st.booleans()):
             e["at"] = draw(_vec(-0.3, 0.3))
         effects.append(e)
-    if len(names) > 1 and pinned is None and _apart(bodies) and draw(st.booleans()):
+    free = pinned is None and not hinged  # (their centres follow from the joints)
+    if len(names) > 1 and free and _apart(bodies) and draw(st.booleans()):
         effects.append({"type": "newton_gravity", "G": draw(_u(0.01, 0.5))})
     return scene_data(
         bodies, effects, name="compiled", duration=duration, samples=samples, method="integrate"
@@ -199,8 +222,9 @@ def _engine(data: dict) -> Engine:
 
 def _term_scale(fwd, t: float, y: np.ndarray, phase: float) -> float:
     """The largest term the rates sum: speeds, each effect's force per unit mass and
-    moment (a pinned body's moment of its force about the pivot included), the
-    products L ω and ω R of Euler's equations and the attitude's rate."""
+    moment (a pinned body's moment of its force about the pivot included; a hinged
+    body's generalised force over its moment, (h |F| + |M|)/J_a), the products L ω and
+    ω R of Euler's equations and the attitude's rate."""
     s = fwd.snapshot(t, y)
     s.phase = phase
     md = fwd.model
@@ -211,7 +235,11 @@ def _term_scale(fwd, t: float, y: np.ndarray, phase: float) -> float:
         e.loads(t, s, out)
         for b in range(md.n):
             F = float(np.abs(out.F[b]).sum())
-            terms += [F / md.m0[b], float(np.abs(out.M_A[b]).sum()) + arm * F]
+            M = float(np.abs(out.M_A[b]).sum())
+            terms += [F / md.m0[b], M + arm * F]
+            hinge = md.layout.guides.get(b)
+            if hinge is not None:
+                terms.append((hinge.h * F + M) / hinge.J_a)
     for b in range(md.n):
         L, w = float(np.abs(s.L_A[b]).sum()), float(np.abs(s.omega[b]).sum())
         JC = md.layout.pins[b][2] if b in md.layout.pins else None
@@ -300,18 +328,17 @@ def _tank():
     return load_scene(BUILTIN / "tank_draining.toml")
 
 
+def _rolling():
+    from mechanics.scenes import load_scene
+
+    return load_scene(BUILTIN / "rolling_incline.toml")
+
+
 @pytest.mark.parametrize(
     ("make", "says"),
     [
         (_tank, "body 'tank' is tank"),
-        (
-            lambda: scene(
-                [box("rod", a=0.1, b=0.1, c=1.0)],
-                [{"type": "fixed_axis", "body": "rod", "axis": [1, 0, 0], "distance": 0.3}],
-                duration=1.0,
-            ),
-            "body 'rod' is guided",
-        ),
+        (_rolling, "body 'cylinder' rolls or slides"),
         (
             lambda: scene(
                 [point("rocket", mass=2.0)],
@@ -330,7 +357,7 @@ def _tank():
             "the effect 'thrust' (effects[0]) has no compiled loads",
         ),
     ],
-    ids=["tank", "guided", "thrust"],
+    ids=["tank", "rolling", "thrust"],
 )
 def test_a_model_that_does_not_compile_says_why_and_runs_the_python_path(make, says) -> None:
     sc = make()

@@ -35,13 +35,13 @@ EXPECTED = {
     "force": {Compiles},
     "torque": {Compiles},
     "fixed_point": {Compiles},
-    "torsion": {HasPotential},
+    "torsion": {HasPotential, Compiles},
     "buoyancy": {HasPotential},
     "coulomb_friction": {HasModes, GuidesBody},
     "tank_outflow": {HasModes},
     "thrust": {ChangesMass},
     "mass_flow": {AddsInertia},
-    "fixed_axis": {GuidesBody},
+    "fixed_axis": {GuidesBody, Compiles},
     "rolling": {GuidesBody},
 }
 

@@ -31,14 +31,14 @@ from .base import (
     register,
     unit,
 )
-from .capabilities import GuidesBody
+from .capabilities import Compiles, GuidesBody
 
 if TYPE_CHECKING:
     from ..state import Hinge
 
 
 @register
-class FixedAxis(Effect, GuidesBody):
+class FixedAxis(Effect, GuidesBody, Compiles):
     """A fixed axis (a hinge) through the body: one degree of freedom φ (4.3)."""
 
     type = "fixed_axis"
@@ -115,6 +115,9 @@ class FixedAxis(Effect, GuidesBody):
             if n > 1e-8 * max(float(np.linalg.norm(d)), 1e-300):  # not along the axis
                 return across / n
         raise AssertionError("no direction across the axis")  # pragma: no cover
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        return self.i, -1, [], []  # no load: the layout guides the body
 
     def keeps(self, quantity: str) -> bool:
         if quantity == "E":

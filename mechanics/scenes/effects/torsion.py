@@ -17,14 +17,14 @@ from .base import (
     check_on_fixed_axis,
     register,
 )
-from .capabilities import HasPotential
+from .capabilities import Compiles, HasPotential
 
 if TYPE_CHECKING:
     from ..state import Hinge
 
 
 @register
-class Torsion(Effect, HasPotential):
+class Torsion(Effect, HasPotential, Compiles):
     """A torsion spring on a fixed axis: moment −τ0 φ (3.1, the torsion pendulum)."""
 
     type = "torsion"
@@ -47,6 +47,11 @@ class Torsion(Effect, HasPotential):
         hinge = self.hinge
         assert hinge is not None, "a torsion spring's loads need its hinge (built with a ctx)"
         out.moment(self.i, -self.tau_0 * s.angle[self.i] * hinge.a)
+
+    def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
+        hinge = self.hinge
+        assert hinge is not None, "a torsion spring's kernel needs its hinge (built with a ctx)"
+        return self.i, -1, [self.tau_0, *hinge.a.tolist()], []
 
     def potential(self, s: Snapshot) -> FloatArray:
         return 0.5 * self.tau_0 * s.angle[..., self.i] ** 2
