@@ -19,10 +19,11 @@ Conventions
   the state; ``bf`` (n, 45) float: its mass, principal moments J (3), the fixed
   position (3), a pinned body's pivot C (3), G from the pivot g_A (3), J_C (9, row by
   row) and J_C⁻¹ (9), a hinged body's axis a, u0, u1 (3 each), its body axes k, j, l,
-  h and J_a (its point C in the pivot's columns); ``ops`` (k, 4) int: each effect's opcode (:data:`OPCODES`), its
-  bodies i and j (−1: none) and the start p of its numbers in ``fp`` (float); ``pairs``
-  (P, 2) int: the pairs of a ``newton_gravity`` (its ``i`` the first row, ``j`` their
-  count).  The numbers of each effect are listed by its kernel below.
+  h and J_a (its point C in the pivot's columns); ``ops`` (k, 4) int: each effect's
+  opcode (:data:`OPCODES`), its bodies i and j (−1: none) and the start p of its
+  numbers in ``fp`` (float); ``pairs`` (P, 2) int: the pairs of a ``newton_gravity``
+  (its ``i`` the first row, ``j`` their count).  The numbers of each effect are listed
+  by its kernel below.
 - **The same arithmetic as the reference**, in the reference's order (the effects in
   the model's order, each adding to the forces F at G in space components and the
   moments M_A about G in body components): the tests allow the rounding of the sums.
