@@ -58,15 +58,13 @@ def test_every_module_of_mechanics_has_a_row_of_tests_that_exist():
 
 
 def _stub(node) -> bool:
-    """A body of nothing but ``...`` (and a docstring): a protocol's member, typed only,
+    """A body of nothing but ``...`` (after a docstring): a protocol's member, typed only,
     with nothing mutmut could change."""
-    body = [
-        s
-        for s in node.body
-        if not (isinstance(s, ast.Expr) and isinstance(s.value, ast.Constant))
-        or s.value.value is Ellipsis
-    ]
-    return all(isinstance(s, ast.Expr) and s.value.value is Ellipsis for s in body)
+    body = node.body[1:] if ast.get_docstring(node) is not None else node.body
+    return all(
+        isinstance(s, ast.Expr) and isinstance(s.value, ast.Constant) and s.value.value is Ellipsis
+        for s in body
+    )
 
 
 def _decorated(path: Path, root: Path = ROOT):

@@ -65,8 +65,8 @@ def test_a_box_is_drawn_as_its_twelve_edges_and_a_floor_it_strikes():
 
 
 def test_a_run_that_does_not_fit_in_the_frames_is_shown_evenly():
-    tr = _run("free_top_flip").trajectory
-    data = player_data(_run("free_top_flip"))
+    result = _run("free_top_flip")
+    tr, data = result.trajectory, player_data(result)
     assert len(tr.t) > MAX_FRAMES
     assert len(data["t"]) == MAX_FRAMES
     gaps = np.diff(data["t"])

@@ -190,9 +190,11 @@ def _chromium(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
     )
 
 
-def _dump(tmp_path: Path, page: Path) -> tuple[str, list[str]]:
-    """The rendered DOM of ``page`` and Chromium's console messages."""
-    run = _chromium(tmp_path, "--enable-logging=stderr", "--v=0", "--dump-dom", page.as_uri())
+def _dump(tmp_path: Path, page: Path, query: str = "") -> tuple[str, list[str]]:
+    """The rendered DOM of ``page`` (opened with ``query``, e.g. ``?q=x``) and Chromium's
+    console messages."""
+    uri = page.as_uri() + query
+    run = _chromium(tmp_path, "--enable-logging=stderr", "--v=0", "--dump-dom", uri)
     assert run.returncode == 0, run.stderr[-2000:]
     return run.stdout, [line for line in run.stderr.splitlines() if "CONSOLE" in line]
 
@@ -211,8 +213,9 @@ def _ink(png: Path) -> float:
     return float((_rgb(png).min(axis=-1) < 0.9 * 255).mean())
 
 
-def _screenshot(tmp_path: Path, page: Path, png: Path) -> Path:
-    run = _chromium(tmp_path, f"--screenshot={png}", "--window-size=1200,900", page.as_uri())
+def _screenshot(tmp_path: Path, page: Path, png: Path, query: str = "") -> Path:
+    uri = page.as_uri() + query
+    run = _chromium(tmp_path, f"--screenshot={png}", "--window-size=1200,900", uri)
     assert run.returncode == 0, run.stderr[-2000:]
     assert png.is_file(), run.stderr[-2000:]
     return png
@@ -386,22 +389,13 @@ def test_the_search_box_finds_what_bodycheck_search_finds(site):
 def test_the_search_box_finds_in_the_browser(site, tmp_path, query, first):
     """A page opened with ?q= runs its query on load (as the form's submission without
     script lands): the results list in the rendered DOM, the expected check first."""
-    page = site / "ch1.html"
-    run = _chromium(
-        tmp_path,
-        "--enable-logging=stderr",
-        "--v=0",
-        "--dump-dom",
-        page.as_uri() + "?q=" + quote(query),
-    )
-    assert run.returncode == 0, run.stderr[-2000:]
-    dom = run.stdout
+    dom, console = _dump(tmp_path, site / "ch1.html", "?q=" + quote(query))
     results = re.search(r"<ol id=\"search-results\"[^>]*>(.*?)</ol>", dom, re.S)
     assert results is not None, dom[:2000]
     ids = re.findall(r"<a href=\"[^\"]+\">([^ <]+) ", results.group(1))
     assert ids, dom[:2000]
     assert ids[0] == first, ids
-    assert [line for line in run.stderr.splitlines() if "CONSOLE" in line] == []
+    assert console == []
 
 
 # ---------------------------------------------------------------- accessibility
@@ -497,12 +491,11 @@ def test_a_scene_whose_run_fails_is_shown_with_its_failure(tmp_path, monkeypatch
 def _bodies_at(tmp_path: Path, page: Path, frame: int) -> dict[str, str]:
     """Each player's frame and drawn bodies (its <g class="bodies">) in the DOM of
     ``page`` opened at ?frame=N."""
-    run = _chromium(tmp_path, "--dump-dom", page.as_uri() + f"?frame={frame}")
-    assert run.returncode == 0, run.stderr[-2000:]
+    dom, _ = _dump(tmp_path, page, f"?frame={frame}")
     out = {}
     for m in re.finditer(
         r'<section class="scene" id="([^"]+)"[^>]*data-frame="(\d+)".*?<g class="bodies">(.*?)</g>',
-        run.stdout,
+        dom,
         re.S,
     ):
         out[m.group(1)] = (int(m.group(2)), m.group(3))
@@ -534,14 +527,7 @@ def test_a_players_picture_changes_between_two_slider_positions(tmp_path):
     assert main(["demo", "box_drop", "--html", str(page)]) == 0
     shots = []
     for frame in (0, 60):
-        png = tmp_path / f"box{frame}.png"
-        run = _chromium(
-            tmp_path,
-            f"--screenshot={png}",
-            "--window-size=1100,700",
-            page.as_uri() + f"?frame={frame}",
-        )
-        assert run.returncode == 0, run.stderr[-2000:]
+        png = _screenshot(tmp_path, page, tmp_path / f"box{frame}.png", f"?frame={frame}")
         assert _ink(png) > MIN_INK
         shots.append(_rgb(png))
     assert (shots[0] != shots[1]).any(axis=-1).mean() > MIN_INK / 10

@@ -275,7 +275,7 @@ _SEARCH_BOX = (
 
 def _check_href(c) -> str:
     """The page and anchor of a check's section."""
-    page = f"ch{c.chapter}.html" if c.chapter is not None else "named.html"
+    page = f"ch{c.chapter}.html" if c.chapter else "named.html"
     return f"{page}#{_check_anchor(c.id)}"
 
 
@@ -322,7 +322,6 @@ def _check_anchor(check_id: str) -> str:
 
 
 def _chapter_page(ch: int, rows: list, regs: list) -> str:
-    home = {c.id: c.chapter for c in regs}
     lines = [
         "<p>Every numbered equation (eq), worked example (E) and problem (P) of the "
         "chapter, its verdict and the check behind it. Verdicts as in CHECKS.md: "
@@ -335,10 +334,8 @@ def _chapter_page(ch: int, rows: list, regs: list) -> str:
     for r in rows:
         cells = []
         for c in r.checks:
-            target = home.get(c.id)
-            page = f"ch{target}.html" if target else "named.html"
             cells.append(
-                f"<a href='{page}#{_check_anchor(c.id)}'><code>{html.escape(c.id)}</code></a> "
+                f"<a href='{_check_href(c)}'><code>{html.escape(c.id)}</code></a> "
                 f"{html.escape(c.title)}"
             )
         lines.append(
@@ -382,11 +379,10 @@ def _errata_page(regs: list) -> str:
     for c in regs:
         if not c.errata:
             continue
-        page = f"ch{c.chapter}.html" if c.chapter else "named.html"
         lines.append(
             f"<section id='{_check_anchor(c.id)}'><h2>{html.escape(', '.join(c.errata))}: "
             f"{html.escape(c.title)}</h2>"
-            f"<p>check <a href='{page}#{_check_anchor(c.id)}'><code>{html.escape(c.id)}</code></a>"
+            f"<p>check <a href='{_check_href(c)}'><code>{html.escape(c.id)}</code></a>"
             f", kind {c.kind}</p>"
             f"<p class='erratum'>printed (false): {_rich(c.printed)}</p>"
             f"<p>corrected: {_rich(c.corrected)}</p></section>"

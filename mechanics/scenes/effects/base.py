@@ -28,7 +28,7 @@ Conventions
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, field
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, ClassVar, Protocol, TypeAlias, TypeVar
@@ -36,6 +36,11 @@ from typing import TYPE_CHECKING, Any, ClassVar, Protocol, TypeAlias, TypeVar
 import numpy as np
 import numpy.typing as npt
 
+from ..state import CoordFlow as CoordFlow
+from ..state import ExactCoords as ExactCoords
+from ..state import Pin as Pin
+from ..vectors import FloatArray as FloatArray
+from ..vectors import Times as Times
 from ..vectors import cross
 
 if TYPE_CHECKING:
@@ -72,16 +77,6 @@ CONSERVED = ("p_x", "p_y", "p_z", "L_x", "L_y", "L_z", "E")
 REGISTRY: dict[str, type[Effect]] = {}
 #: an effect's fields: name -> (kind, required)
 Schema: TypeAlias = dict[str, tuple[str, bool]]
-FloatArray: TypeAlias = npt.NDArray[np.float64]
-#: a time, or times (leading axes)
-Times: TypeAlias = float | FloatArray
-#: a pinned body's (C, g_A, J_C, J_C⁻¹), see :class:`~..state.Layout`
-Pin: TypeAlias = tuple[FloatArray, FloatArray, FloatArray, FloatArray]
-#: t -> (q, q̇) of a guided body, shapes (..., nq)
-CoordFlow: TypeAlias = Callable[[Times], tuple[FloatArray, FloatArray]]
-#: an exact flow of a guided body's coordinates (:meth:`~..state.Guide.exact`): (how, f,
-#: events)
-ExactCoords: TypeAlias = "tuple[str, CoordFlow, list[Event]]"
 
 _E = TypeVar("_E", bound="type[Effect]")
 
