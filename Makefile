@@ -47,9 +47,11 @@ test: $(STAMP)
 test-slow: $(STAMP)
 	$(BIN)/python -m pytest -n auto -m slow
 
-## make checks: regenerate CHECKS.md from the registry and docs/scene-files.md from the schema
+## make checks: regenerate CHECKS.md from the registry, docs/scene-files.md from the schema
+## and the checks' stored steps for the site (identities/data/derivations: runs every check)
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
+	$(BIN)/bodycheck catalogue --derivations
 	$(BIN)/bodycheck scene --schema > docs/scene-files.md
 
 ## make lock: re-resolve every dependency to the newest allowed versions and rewrite the lock

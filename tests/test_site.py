@@ -228,8 +228,9 @@ def _visible_text(dom: str) -> str:
 needs_chromium = pytest.mark.skipif(not CHROMIUM.exists(), reason=NO_CHROMIUM)
 
 
-#: every page of the site, each loaded by its own test (a browser run is ~1 s)
-PAGES = (
+#: every page of the site but the checks' own pages, each loaded by its own test (a
+#: browser run is ~1 s)
+TOP_PAGES = (
     "index.html",
     *(f"ch{n}.html" for n in range(1, 9)),
     "errata.html",
@@ -237,11 +238,31 @@ PAGES = (
     "scenes.html",
     "workprecision.html",
     "search.html",
+    "as-text.html",
 )
+#: the checks' pages (one per check, 211) loaded one by one in `make test`: the largest
+#: (eq2.74, 0.6 MB of MathML), an erratum, a property, a problem, a proof by witness and
+#: a named result; every check page is loaded, and checked by axe, in one browser run
+#: of the slow tier (below: axe takes ~1.5 s a page, 5 min for all of them)
+CHECK_SAMPLE = (
+    "check-eq2-74.html",
+    "check-eq5-96.html",
+    "check-thm-impact-momentum.html",
+    "check-P5-4.html",
+    "check-eq2-38.html",
+    "check-thm-small-angle-stability.html",
+)
+PAGES = TOP_PAGES + CHECK_SAMPLE
 
 
 def test_the_browser_tests_cover_every_page(site):
-    assert {p.name for p in site.glob("*.html")} == set(PAGES)
+    from identities.verify.catalogue import checks
+
+    names = {p.name for p in site.glob("*.html")}
+    own = {f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html" for c in checks()}
+    assert names - own == set(TOP_PAGES)
+    assert own <= names
+    assert set(CHECK_SAMPLE) <= own
 
 
 @needs_chromium
@@ -531,3 +552,217 @@ def test_a_players_picture_changes_between_two_slider_positions(tmp_path):
         assert _ink(png) > MIN_INK
         shots.append(_rgb(png))
     assert (shots[0] != shots[1]).any(axis=-1).mean() > MIN_INK / 10
+
+
+# ------------------------------------------------------- the checks' steps (algebra)
+
+
+def _section(site: Path, c) -> str:
+    """The section of a check on its own page (``check-ID.html``)."""
+    anchor = "check-" + re.sub(r"[^A-Za-z0-9-]", "-", c.id)
+    page = (site / f"{anchor}.html").read_text("utf-8")
+    m = re.search(f"<section id='{re.escape(anchor)}'>(.*?)</section>", page, re.S)
+    assert m, f"{c.id}: no section"
+    return m.group(1)
+
+
+def test_every_checks_section_shows_its_stored_steps(site):
+    """What ``bodycheck explain`` prints is on the page: one list item per recorded step,
+    with its text, and the step's rendered algebra as the MathML the record holds."""
+    from identities.verify import record
+    from identities.verify.catalogue import checks
+
+    for c in checks():
+        section = _section(site, c)
+        chapter = (site / (f"ch{c.chapter}.html" if c.chapter else "named.html")).read_text()
+        assert f"<a href='check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html'>the derivation" in (
+            chapter
+        )
+        rec, _ = record.load(c.id, c.chapter)
+        items = re.findall(r"<li class='step (\w+)'>", section)
+        assert items == [s["kind"] for s in rec["steps"]], c.id
+        for step in rec["steps"]:
+            assert html.escape(step["text"]) in section, (c.id, step["text"])
+            for _, piece in record._pieces(step):
+                if "mathml" in piece:
+                    assert piece["mathml"] in section, c.id
+
+
+def test_a_proofs_section_shows_both_sides_the_rule_and_the_rejected_point(site):
+    from identities.verify.catalogue import load_all
+
+    section = _section(site, load_all()["eq4.38"])
+    assert re.search(r"</math><p>(equals, by|reduces to 0 by) <code>\w+</code>", section)
+    assert "is not (<code>" in section or "is not 0" in section
+    assert "false at the exact point <math" in section
+
+
+def test_the_errata_page_shows_the_derived_and_printed_forms_side_by_side(site):
+    from identities.verify.catalogue import checks
+
+    text = (site / "errata.html").read_text("utf-8")
+    n = sum(bool(c.errata) for c in checks())
+    tables = re.findall(
+        r"<table class='forms'><tr><th>derived</th><th>printed \(false\)</th></tr>"
+        r"<tr><td><math.*?</math></td><td><math.*?</math></td></tr></table>",
+        text,
+        re.S,
+    )
+    assert len(tables) >= n
+
+
+def test_pieces_shown_as_text_are_listed_by_the_build(tmp_path, monkeypatch, capsys):
+    """A piece sympy could not print is shown as its text and named on as-text.html and
+    by the command; a check with no stored record is named too."""
+    from identities.verify import record
+
+    real = record.load
+
+    def load(check_id, chapter):
+        rec, versions = real(check_id, chapter)
+        if check_id == "eq4.38":
+            steps = [dict(rec["steps"][0], lhs={"text": "J(x)", "why": "printer failed"})]
+            return dict(rec, steps=steps + rec["steps"][1:]), versions
+        if check_id == "eq4.47":
+            return None, versions
+        return rec, versions
+
+    monkeypatch.setattr(record, "load", load)
+    out = tmp_path / "site"
+    listed: list[str] = []
+    build_site(out, scenes=False, listed=listed)
+    assert "eq4.38 step 1 lhs: printer failed" in listed
+    assert "eq4.47: no stored record" in listed
+    import identities.cli.site as site_module
+
+    real_build = site_module.build_site  # the command, without its scenes (not the subject)
+    monkeypatch.setattr(
+        site_module, "build_site", lambda o, **kw: real_build(o, scenes=False, **kw)
+    )
+    capsys.readouterr()
+    assert main(["site", str(out)]) == 0
+    said = capsys.readouterr().out
+    assert f"{len(listed)} pieces of algebra shown as text" in said
+    page = (out / "as-text.html").read_text("utf-8")
+    assert "eq4.38 step 1 lhs: printer failed" in page
+    assert "eq4.47: no stored record" in page
+    steps = (out / "check-eq4-38.html").read_text("utf-8")
+    assert "<pre class='as-text' title='printer failed'>J(x)</pre>" in steps
+    assert "its steps are not stored" in (out / "check-eq4-47.html").read_text("utf-8")
+
+
+# ------------------------------------------- every check's page, in one browser run
+
+#: the one browser run over every check page: each page opened in turn in an iframe of a
+#: harness page (file:// pages may read each other with --allow-file-access-from-files),
+#: what is asked of it written into a <pre> that --dump-dom shows
+HARNESS = """<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>every page</title>
+</head><body><main><h1>every page</h1></main><script>
+var pages = PAGES, axe_too = AXE, out = {};
+function done(i, f, what) { out[pages[i]] = what; f.remove(); next(i + 1); }
+function next(i) {
+  if (i >= pages.length) {
+    var pre = document.createElement('pre'); pre.id = 'result';
+    pre.textContent = JSON.stringify(out); document.body.appendChild(pre); return;
+  }
+  var f = document.createElement('iframe'); f.src = pages[i];
+  f.style.width = '1200px'; f.style.height = '900px';
+  f.onload = function () {
+    var d = f.contentDocument;
+    var seen = {title: d.title, math: d.getElementsByTagName('math').length,
+                steps: d.querySelectorAll('li.step').length};
+    if (!axe_too) { done(i, f, seen); return; }
+    var s = d.createElement('script'); s.src = 'axe.min.js';
+    s.onload = function () {
+      f.contentWindow.axe.run(d, {resultTypes: ['violations']}).then(function (r) {
+        seen.violations = r.violations.map(function (v) {
+          return {id: v.id, impact: v.impact, nodes: v.nodes.length}; });
+        done(i, f, seen);
+      }, function (e) { seen.error = String(e); done(i, f, seen); });
+    };
+    d.body.appendChild(s);
+  };
+  document.body.appendChild(f);
+}
+next(0);
+</script></body></html>"""
+#: the harness's run over every page with axe (5 min measured beside other work)
+ALL_PAGES_TIMEOUT_S = 1200
+
+
+def _every_check_page(site: Path, tmp_path: Path, *, axe: bool) -> tuple[dict, list[str]]:
+    from identities.verify.catalogue import checks
+
+    here = tmp_path / "all"
+    shutil.copytree(site, here)
+    shutil.copyfile(AXE, here / "axe.min.js")
+    pages = [f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html" for c in checks()]
+    harness = here / "every-page.html"
+    harness.write_text(
+        HARNESS.replace("PAGES", json.dumps(pages)).replace("AXE", json.dumps(axe)), "utf-8"
+    )
+    profile = tmp_path / "profile"
+    run = subprocess.run(
+        [str(CHROMIUM), "--headless", "--no-sandbox", "--disable-gpu", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         f"--user-data-dir={profile}", "--allow-file-access-from-files",
+         "--enable-logging=stderr", "--v=0", "--virtual-time-budget=60000",
+         "--dump-dom", harness.as_uri()],
+        capture_output=True, text=True, timeout=ALL_PAGES_TIMEOUT_S, check=False,
+    )  # fmt: skip
+    assert run.returncode == 0, run.stderr[-2000:]
+    found = re.search(r'<pre id="result">(.*?)</pre>', run.stdout, re.S)
+    assert found is not None, run.stdout[-1000:]
+    seen = json.loads(html.unescape(found.group(1)))
+    assert list(seen) == pages
+    return seen, [line for line in run.stderr.splitlines() if "CONSOLE" in line]
+
+
+@pytest.mark.slow
+@needs_chromium
+def test_every_check_page_loads_with_its_steps_and_axe_finds_no_violation(site, tmp_path):
+    """Slow tier (~5 min: axe over 211 pages of MathML, ~1.5 s a page): every check's
+    page loads without a console message, with its title, one list item per recorded
+    step and MathML wherever its record holds some, and axe-core finds no violation."""
+    from identities.verify import record
+    from identities.verify.catalogue import checks
+
+    seen, console = _every_check_page(site, tmp_path, axe=True)
+    assert console == []
+    for c in checks():
+        page = seen[f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html"]
+        rec, _ = record.load(c.id, c.chapter)
+        assert page["title"] == f"{c.id}: {c.title}"
+        assert page["steps"] == len(rec["steps"]), c.id
+        if record.mathml_count(rec):
+            assert page["math"] > 0, c.id
+        assert page.get("violations") == [], (c.id, page)
+
+
+@needs_chromium
+def test_the_every_page_run_sees_a_page_without_steps_and_a_violation(site, tmp_path):
+    """The negative control of the slow tier's run (and its harness in make test): a
+    check page with its steps cut and one with an unlabelled field are both seen."""
+    copy = tmp_path / "site"
+    shutil.copytree(site, copy)
+    page = copy / "check-P5-4.html"
+    text = page.read_text("utf-8")
+    page.write_text(re.sub(r"<ol class='steps'>.*?</ol>", "", text, flags=re.S), "utf-8")
+    page = copy / "check-eq2-38.html"
+    text = page.read_text("utf-8")
+    page.write_text(text.replace("</main>", "<input type='text'></main>"), "utf-8")
+    from identities.verify.catalogue import checks
+
+    only = {"P5.4", "eq2.38", "E5.1"}
+    for c in checks():
+        if c.id not in only:
+            (copy / f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html").write_text(
+                "<!DOCTYPE html><html lang='en'><head><title>x</title></head>"
+                "<body><main><h1>x</h1></main></body></html>",
+                "utf-8",
+            )
+    seen, _ = _every_check_page(copy, tmp_path, axe=True)
+    assert seen["check-P5-4.html"]["steps"] == 0
+    assert seen["check-E5-1.html"]["steps"] > 0
+    assert {v["id"] for v in seen["check-eq2-38.html"]["violations"]} >= {"label"}
+    assert seen["check-E5-1.html"]["violations"] == []

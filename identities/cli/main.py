@@ -114,6 +114,20 @@ def _parser() -> argparse.ArgumentParser:
     f.add_argument("--json", action="store_true", help="print [{id, kind, title}, ...]")
     g = sub.add_parser("catalogue", help="render CHECKS.md from the registry")
     g.add_argument("--write", metavar="PATH", help="write to PATH instead of stdout")
+    g.add_argument(
+        "--derivations",
+        action="store_true",
+        help="run every check and store its steps, rendered as MathML, for the site "
+        "(identities/data/derivations/; make checks does this)",
+    )
+    g.add_argument(
+        "-j",
+        "--jobs",
+        type=int,
+        default=0,
+        metavar="N",
+        help="with --derivations: run N checks in parallel (default: the cores)",
+    )
     sc = sub.add_parser("scene", help="run a scene file (TOML) and compare it with the book")
     sc.add_argument("file", metavar="FILE.toml", nargs="?")
     sc.add_argument(
@@ -335,56 +349,24 @@ def _timings_table(outcomes: list[Outcome], n: int) -> str:
     return "\n".join(lines)
 
 
-#: a side larger than this (sympy's operation count) is summarised, not printed: a
-#: 3 × 3 tensor of a few terms each prints in a screen, a full expansion does not
-SHOW_OPS = 400
-
-
-def _too_large(expr) -> str | None:
-    import sympy as sp
-
-    try:
-        ops = int(sp.count_ops(expr))
-    except (TypeError, AttributeError, ValueError):
-        return None
-    return f"(an expression of {ops} operations, not shown)" if ops > SHOW_OPS else None
-
-
 def _pretty(expr) -> str:
     import sympy as sp
 
-    return _too_large(expr) or sp.pretty(expr, use_unicode=True, wrap_line=False)
+    from identities.verify.record import too_large
+
+    return too_large(expr) or sp.pretty(expr, use_unicode=True, wrap_line=False)
 
 
 def _latex(expr) -> str:
     import sympy as sp
 
-    return _too_large(expr) or sp.latex(expr)
+    from identities.verify.record import too_large
 
-
-def _is_zero_literal(x) -> bool:
-    import sympy as sp
-
-    if isinstance(x, sp.MatrixBase):
-        return x.is_zero_matrix is True
-    return x == 0
+    return too_large(expr) or sp.latex(expr)
 
 
 def _indent(text: str, n: int) -> str:
     return "\n".join(" " * n + line for line in text.splitlines())
-
-
-def _simplified(expr):
-    """``derived − printed`` as simplify gives it (entrywise), for reading: the step's
-    own record keeps the difference as it was formed."""
-    import sympy as sp
-
-    if isinstance(expr, sp.MatrixBase):
-        return expr.applyfunc(sp.simplify)
-    try:
-        return sp.simplify(expr)
-    except (TypeError, AttributeError):
-        return expr
 
 
 def _topic_matches(query: str) -> list:
@@ -500,20 +482,22 @@ def _explain(args) -> int:
     if c.errata:
         print(f"printed (false): {c.printed}\ncorrected: {c.corrected}")
     print()
+    from identities.verify.record import is_zero_literal, simplified
+
     show = _latex if args.latex else _pretty
     for n, step in enumerate(d.steps, 1):
         print(f"{n:>2}. {step.text}")
         if step.sides is not None:  # the claim's algebra: both sides, and the rule
             lhs, rhs = step.sides
             print(_indent(show(lhs), 5))
-            if _is_zero_literal(rhs):  # prove_zero: one side
+            if is_zero_literal(rhs):  # prove_zero: one side
                 verb = f"reduces to 0 by {step.rule}" if step.kind == "proved" else "is not 0"
                 print(f"     {verb}")
             else:
                 print(f"     equals, by {step.rule}:" if step.kind == "proved" else "     is not:")
                 print(_indent(show(rhs), 5))
         elif step.expr is not None:
-            expr = _simplified(step.expr) if step.kind == "refuted" else step.expr
+            expr = simplified(step.expr) if step.kind == "refuted" else step.expr
             print(_indent(show(expr), 5))
     print()
     print("PASSED" if outcome.passed else f"FAILED: {outcome.message}")
@@ -527,12 +511,41 @@ def _covering(item_id: str) -> list[str]:
 def _cmd_catalogue(args) -> int:
     from identities.verify.render import render_checks_md
 
+    if args.derivations:
+        return _write_derivations(args.jobs or os.cpu_count() or 1)
     text = render_checks_md()
     if args.write:
         Path(args.write).write_text(text, encoding="utf-8")
         print(f"wrote {args.write} ({text.count(chr(10))} lines)", file=sys.stderr)
     else:
         sys.stdout.write(text)
+    return 0
+
+
+def _write_derivations(jobs: int) -> int:
+    """``catalogue --derivations``: every check's record (identities.verify.record)."""
+    from identities.verify import record
+
+    if jobs < 1:
+        raise UsageError(f"--jobs must be at least 1, got {jobs}")
+    t0 = time.perf_counter()
+    regs = catalogue.checks()
+    records = record.record_all([c.id for c in regs], jobs)
+    failed = [cid for cid, r in records.items() if not r["passed"]]
+    if failed:
+        print(
+            f"bodycheck: error: checks failed, nothing written: {', '.join(failed)}",
+            file=sys.stderr,
+        )
+        return 1
+    files = record.write_records(records, {c.id: c.chapter for c in regs})
+    shown = sum(record.mathml_count(r) for r in records.values())
+    text = [f for r in records.values() for f in record.fallbacks(r)]
+    print(
+        f"wrote {len(records)} records to {len(files)} files in {record.DATA} in "
+        f"{time.perf_counter() - t0:.0f} s: {shown} MathML pieces, {len(text)} shown as text",
+        file=sys.stderr,
+    )
     return 0
 
 
@@ -653,14 +666,21 @@ def _cmd_site(args) -> int:
     from identities.cli.site import SiteError, build_site
 
     t0 = time.perf_counter()
+    listed: list[str] = []
     try:
-        pages = build_site(args.out)
+        pages = build_site(args.out, listed=listed)
     except SiteError as exc:
         raise UsageError(str(exc)) from None
     print(
         f"wrote {len(pages)} pages to {args.out} in {time.perf_counter() - t0:.1f} s; "
         f"open {Path(args.out) / 'index.html'}"
     )
+    if listed:
+        print(f"{len(listed)} pieces of algebra shown as text ({Path(args.out) / 'as-text.html'}):")
+        for line in listed[:5]:
+            print(f"  {line}")
+        if len(listed) > 5:
+            print(f"  ... and {len(listed) - 5} more")
     return 0
 
 

@@ -25,6 +25,7 @@ Conventions
 
 from __future__ import annotations
 
+import functools
 import html
 import json
 import re
@@ -37,6 +38,7 @@ __all__ = [
     "MARKER",
     "SCENES",
     "SiteError",
+    "as_text",
     "build_site",
     "leaves_of_mathml",
     "leaves_of_text",
@@ -207,6 +209,7 @@ def _equation(text: str) -> str | None:
     return " = ".join(html.escape(s) if m is None else m for s, m in zip(sides, shown, strict=True))
 
 
+@functools.cache
 def _rich(text: str) -> str:
     """``text`` as HTML: its equation pieces (between ``,``, ``;`` and ``:``) as MathML
     where :func:`math_from_text` renders them, the rest escaped."""
@@ -235,6 +238,11 @@ th, td { border-bottom: 1px solid #ccc; padding: 0.25em 0.5em; text-align: left;
 .verified { color: #176117; } .erratum { color: #a01010; font-weight: bold; }
 .definition { color: #444; } .pending { color: #a06000; }
 math { font-size: 1.1em; }
+ol.steps > li { margin-bottom: 0.6em; }
+.algebra { margin-left: 1.5em; overflow-x: auto; }
+.algebra p, .point { margin: 0.2em 0; color: #333; }
+pre.as-text { white-space: pre-wrap; font-size: 0.85em; background: #f4f4f4; }
+table.forms { width: auto; }
 code { font-size: 0.9em; }
 img { max-width: 100%; }
 """
@@ -349,10 +357,27 @@ def _chapter_page(ch: int, rows: list, regs: list) -> str:
     return "\n".join(lines)
 
 
-def _check_block(c) -> str:
+def _check_page_name(check_id: str) -> str:
+    """The page of a check's derivation, step by step (one page per check: a chapter's
+    algebra on one page is megabytes of MathML)."""
+    return _check_anchor(check_id) + ".html"
+
+
+def _check_page(c) -> str:
+    """A check's own page: its section with every step, and the way back."""
+    back = f"ch{c.chapter}.html" if c.chapter else "named.html"
+    where = f"chapter {c.chapter}" if c.chapter else "the named results"
+    return f"<p>Back to <a href='{back}#{_check_anchor(c.id)}'>{where}</a>.</p>\n" + _check_block(
+        c, steps=True, level=2
+    )
+
+
+def _check_block(c, *, steps: bool = False, level: int = 3) -> str:
+    """A check's section (its heading at ``level``): what it covers, its statement (and
+    an erratum's forms), and its steps (``steps``) or a link to its page of steps."""
     parts = [
-        f"<section id='{_check_anchor(c.id)}'><h3><code>{html.escape(c.id)}</code> "
-        f"{html.escape(c.title)}</h3>",
+        f"<section id='{_check_anchor(c.id)}'><h{level}><code>{html.escape(c.id)}</code> "
+        f"{html.escape(c.title)}</h{level}>",
         f"<p>kind: {c.kind}; verdict: <span class='{c.status}'>{c.status}</span>; "
         f"covers: {html.escape(', '.join(c.covers) or '-')}"
         + (f"; uses definitions {html.escape(', '.join(c.defines))}" if c.defines else "")
@@ -367,8 +392,108 @@ def _check_block(c) -> str:
             f"<p class='erratum'>printed (false): {_rich(c.printed)}</p>"
             f"<p>corrected: {_rich(c.corrected)}</p>"
         )
+    parts.append(_derivation(c, level + 1) if steps else _steps_link(c))
     parts.append("</section>")
     return "\n".join(parts)
+
+
+def _piece(piece: dict) -> str:
+    """A rendered piece of a record: its MathML, or its text (and why) in a box."""
+    if "mathml" in piece:
+        if "ops" in piece:  # larger than explain prints: folded, open on a click
+            return (
+                f"<details><summary>an expression of {piece['ops']} operations</summary>"
+                f"{piece['mathml']}</details>"
+            )
+        return piece["mathml"]
+    return (
+        f"<pre class='as-text' title='{html.escape(piece['why'])}'>"
+        f"{html.escape(piece['text'])}</pre>"
+    )
+
+
+def _point(step: dict) -> str:
+    if "point" not in step:
+        return ""
+    inline = ", ".join(
+        p["mathml"] if "mathml" in p else html.escape(p["text"]) for p in step["point"]
+    )
+    where = "they differ at" if step["kind"] == "witness" else "false at the exact point"
+    return f"<p class='point'>{where} {inline}</p>"
+
+
+def _step_html(step: dict) -> str:
+    """One step as ``bodycheck explain`` prints it: its text, then its algebra (both
+    sides and the rule; the rejected variant and the point where it is false; an
+    erratum's forms side by side; a quantity; a property's examples)."""
+    kind = step["kind"]
+    out = [f"<li class='step {kind}'><p>{html.escape(step['text'])}</p>"]
+    if "lhs" in step:
+        if step.get("zero"):
+            verb = (
+                f"reduces to 0 by <code>{html.escape(step['rule'])}</code>"
+                if kind == "proved"
+                else "is not 0"
+            )
+            out.append(
+                f"<div class='algebra' tabindex='0'>{_piece(step['lhs'])}<p>{verb}</p></div>"
+            )
+        else:
+            verb = (
+                f"equals, by <code>{html.escape(step['rule'])}</code>:"
+                if kind == "proved"
+                else f"is not (<code>{html.escape(step['rule'])}</code> does not reduce "
+                "the difference to 0):"
+            )
+            out.append(
+                f"<div class='algebra' tabindex='0'>{_piece(step['lhs'])}<p>{verb}</p>"
+                f"{_piece(step['rhs'])}</div>"
+            )
+    if "derived" in step:
+        out.append(
+            "<table class='forms'><tr><th>derived</th><th>printed (false)</th></tr>"
+            f"<tr><td>{_piece(step['derived'])}</td><td>{_piece(step['printed'])}</td></tr>"
+            "</table><p>derived − printed, simplified:</p>"
+        )
+    if "expr" in step:
+        out.append(f"<div class='algebra' tabindex='0'>{_piece(step['expr'])}</div>")
+    out.append(_point(step))
+    if "examples" in step:
+        out.append(
+            "<p>the first examples drawn:</p><ul class='examples'>"
+            + "".join(f"<li><code>{html.escape(e)}</code></li>" for e in step["examples"])
+            + "</ul>"
+        )
+    out.append("</li>")
+    return "".join(out)
+
+
+def _steps_link(c) -> str:
+    from identities.verify import record
+
+    rec, _ = record.load(c.id, c.chapter)
+    count = f"{len(rec['steps'])} steps" if rec else "its steps"
+    return f"<p><a href='{_check_page_name(c.id)}'>the derivation, {count}</a></p>"
+
+
+def _derivation(c, level: int) -> str:
+    """The check's steps from its stored record (identities/data/derivations), as
+    ``bodycheck explain`` shows them, under a heading at ``level``; a note when there is
+    no record."""
+    from identities.verify import record
+
+    rec, _ = record.load(c.id, c.chapter)
+    if rec is None:
+        return (
+            "<p class='pending'>its steps are not stored (run <code>make checks</code>); "
+            f"<code>bodycheck explain {html.escape(c.id)}</code> prints them</p>"
+        )
+    label = html.escape(rec["label"] or "-")
+    return (
+        f"<h{level}>Steps (label {label}; <code>bodycheck explain {html.escape(c.id)}</code>)"
+        f"</h{level}>"
+        "<ol class='steps'>" + "".join(_step_html(s) for s in rec["steps"]) + "</ol>"
+    )
 
 
 def _errata_page(regs: list) -> str:
@@ -385,9 +510,19 @@ def _errata_page(regs: list) -> str:
             f"<p>check <a href='{_check_href(c)}'><code>{html.escape(c.id)}</code></a>"
             f", kind {c.kind}</p>"
             f"<p class='erratum'>printed (false): {_rich(c.printed)}</p>"
-            f"<p>corrected: {_rich(c.corrected)}</p></section>"
+            f"<p>corrected: {_rich(c.corrected)}</p>{_refutations(c)}</section>"
         )
     return "\n".join(lines)
+
+
+def _refutations(c) -> str:
+    """An erratum's refuting steps from its stored record: the derived and the printed
+    forms side by side, their difference and the point where the printed one fails."""
+    from identities.verify import record
+
+    rec, _ = record.load(c.id, c.chapter)
+    steps = [s for s in rec["steps"] if s["kind"] == "refuted"] if rec else []
+    return "<ol class='steps'>" + "".join(map(_step_html, steps)) + "</ol>" if steps else ""
 
 
 def _scenes_page(out: Path) -> str:
@@ -441,8 +576,34 @@ def _prepare(out: Path) -> None:
     out.mkdir(parents=True)
 
 
-def build_site(out, *, scenes: bool = True) -> list[Path]:
-    """Write the site into the folder ``out``; return the pages written.
+def as_text(regs) -> list[str]:
+    """What the pages show as text instead of MathML: each piece of a stored record that
+    sympy could not print or that is too large (check, step, role, why), and each check
+    with no stored record."""
+    from identities.verify import record
+
+    out = []
+    for c in regs:
+        rec, _ = record.load(c.id, c.chapter)
+        out += [f"{c.id}: no stored record"] if rec is None else record.fallbacks(rec)
+    return out
+
+
+def _as_text_page(listed: list[str]) -> str:
+    lines = [
+        "<p>The checks' algebra is MathML printed by sympy from the expressions each check "
+        "built (<code>bodycheck catalogue --derivations</code>, <code>make checks</code>). "
+        f"These {len(listed)} pieces are shown as text instead: sympy could not print "
+        "them, or they are larger than <code>bodycheck explain</code> shows.</p><ul>"
+    ]
+    lines += [f"<li>{html.escape(x)}</li>" for x in listed]
+    lines.append("</ul>")
+    return "\n".join(lines)
+
+
+def build_site(out, *, scenes: bool = True, listed: list[str] | None = None) -> list[Path]:
+    """Write the site into the folder ``out``; return the pages written. When ``listed``
+    is a list, what is shown as text instead of MathML (:func:`as_text`) is appended.
 
     Raises :class:`SiteError` when ``out`` exists, is not empty and holds no
     :data:`MARKER` (it is not a previous site).
@@ -465,6 +626,12 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
         "<h2>Checks</h2>\n" + ("\n".join(_check_block(c) for c in named) or "<p>none</p>"),
     )
     pages["errata.html"] = ("Errata", _errata_page(regs))
+    for c in regs:
+        pages[_check_page_name(c.id)] = (f"{c.id}: {c.title}", _check_page(c))
+    text = as_text(regs)
+    if listed is not None:
+        listed += text
+    pages["as-text.html"] = ("Shown as text", _as_text_page(text))
     if scenes:
         pages["scenes.html"] = ("Scenes", _scenes_page(out))
     else:
@@ -496,6 +663,7 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
         f"<li><a href='named.html'>Named results</a>: {len(named)} checks</li>",
         f"<li><a href='errata.html'>Errata</a>: {sum(bool(c.errata) for c in regs)} checks</li>",
         "<li><a href='scenes.html'>Scenes</a></li>",
+        f"<li><a href='as-text.html'>Shown as text</a>: {len(text)} pieces of algebra</li>",
         "<li><a href='workprecision.html'>Work-precision</a></li></ul>",
     ]
     pages["index.html"] = ("bodycheck: the book, checked", "\n".join(index))

@@ -99,6 +99,14 @@ class Step:
     sides: tuple | None = None
     #: the rule (strategy) that reduced, or failed to reduce, their difference
     rule: str = ""
+    #: a negative control's or a refutation's exact point where the two sides differ
+    #: ({symbol, f(t) or derivative: rational value}, over the differing entry's symbols)
+    point: dict | None = None
+    #: an erratum's two forms (derived, printed), shown side by side beside ``expr``
+    #: (derived − printed)
+    forms: tuple | None = None
+    #: a property's first drawn examples (their reprs), as hypothesis drew them
+    examples: tuple[str, ...] = ()
 
 
 def _entries(expr) -> list:
@@ -195,25 +203,42 @@ def _rational_point(symbols, rng: random.Random) -> dict:
     return point
 
 
-def _functions_to_symbols(expr):
-    """Replace applied undefined functions f(t) and their derivatives by plain symbols."""
-    derivs = sorted(expr.atoms(sp.Derivative), key=lambda d: -sp.count_ops(d))
+def _replaced_functions(expr) -> tuple[Any, dict]:
+    """``expr`` with its applied undefined functions f(t) and their derivatives replaced
+    by plain symbols, and the map back (each new symbol to what it stands for)."""
+    # numbered in an order that does not depend on the hash seed (the sets' order
+    # does), so that the exact point a negative control records is the same in every run
+    derivs = sorted(
+        expr.atoms(sp.Derivative), key=lambda d: (-sp.count_ops(d), sp.default_sort_key(d))
+    )
     reps = {d: sp.Symbol(f"_d{i}", real=True) for i, d in enumerate(derivs)}
     expr = expr.xreplace(reps)
-    funcs = [
-        f for f in expr.atoms(sp.Function) if isinstance(f.func, sp.core.function.UndefinedFunction)
-    ]
+    funcs = sorted(
+        (
+            f
+            for f in expr.atoms(sp.Function)
+            if isinstance(f.func, sp.core.function.UndefinedFunction)
+        ),
+        key=sp.default_sort_key,
+    )
     reps2 = {f: sp.Symbol(f"_f{i}", real=True) for i, f in enumerate(funcs)}
-    return expr.xreplace(reps2)
+    back = {v: k for k, v in (reps | reps2).items()}
+    return expr.xreplace(reps2), back
+
+
+def _functions_to_symbols(expr):
+    """Replace applied undefined functions f(t) and their derivatives by plain symbols."""
+    return _replaced_functions(expr)[0]
 
 
 def _evaluate_nonzero(diff, rng: random.Random, tries: int = 8) -> dict | None:
-    """An exact point where some entry of ``diff`` is non-zero, or None."""
-    entries = [_functions_to_symbols(e) for e in _entries(diff)]
-    symbols = sorted(set().union(*(e.free_symbols for e in entries)), key=str)
+    """An exact point where some entry of ``diff`` is non-zero, or None: the values of
+    that entry's symbols (and of its f(t) and derivatives, by what they stand for)."""
+    replaced = [_replaced_functions(e) for e in _entries(diff)]
+    symbols = sorted(set().union(*(e.free_symbols for e, _ in replaced)), key=str)
     for _ in range(tries):
         point = _rational_point(symbols, rng)
-        for e in entries:
+        for e, back in replaced:
             try:
                 val = e.xreplace(point)
                 val = sp.nsimplify(val) if val.has(sp.Float) else val
@@ -221,7 +246,8 @@ def _evaluate_nonzero(diff, rng: random.Random, tries: int = 8) -> dict | None:
             except (ZeroDivisionError, ValueError):
                 continue
             if val.is_number and val.is_finite is not False and abs(val) > sp.Rational(1, 10**30):
-                return point
+                own = sorted(e.free_symbols, key=str)
+                return {back.get(s, s): point[s] for s in own}
     return None
 
 
@@ -304,6 +330,7 @@ class Derivation:
                 "rejected",
                 sides=(lhs, rhs),
                 rule=strategy,
+                point=point,
             )
         )
         self.n_rejected += 1
@@ -315,7 +342,13 @@ class Derivation:
         if point is None:
             raise CheckFailure(f"printed statement not refuted: {claim}")
         self.steps.append(
-            Step(f"printed form is false: {claim}; derived − printed =", diff, "refuted")
+            Step(
+                f"printed form is false: {claim}; derived − printed =",
+                diff,
+                "refuted",
+                point=point,
+                forms=(lhs, rhs),
+            )
         )
         self.n_refuted += 1
 
@@ -325,7 +358,9 @@ class Derivation:
         vals = [sp.nsimplify(sp.simplify(e.subs(subs))) for e in _entries(diff)]
         if all(v == 0 for v in vals):
             raise CheckFailure(f"no witness at {subs}: {claim}")
-        self.steps.append(Step(f"proved by witness {subs}: {claim}", diff.subs(subs), "witness"))
+        self.steps.append(
+            Step(f"proved by witness {subs}: {claim}", diff.subs(subs), "witness", point=subs)
+        )
         self.labels.add("proved")
         self.n_proved += 1
 
@@ -386,7 +421,10 @@ class Derivation:
         from identities.verify.properties import search_counterexample
 
         t0 = time.perf_counter()
-        found = search_counterexample(prop, strategy, examples=examples, seed=self.seed)
+        drawn: list[tuple] = []
+        found = search_counterexample(
+            prop, strategy, examples=examples, seed=self.seed, drawn=drawn
+        )
         dt = time.perf_counter() - t0
         if found is not None:
             raise CheckFailure(f"{claim}: fails for {found.arguments!r}: {found.message}")
@@ -397,6 +435,7 @@ class Derivation:
                 "numeric",
                 dt,
                 rule="property",
+                examples=tuple(_short(repr(a)) for a in drawn),
             )
         )
         self.labels.add("numeric")

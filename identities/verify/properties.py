@@ -42,7 +42,14 @@ def _failure(prop: Callable[..., Any], args: tuple) -> str | None:
 
 
 def search_counterexample(
-    prop: Callable[..., Any], strategy, *, examples: int, seed: int, shrink: bool = True
+    prop: Callable[..., Any],
+    strategy,
+    *,
+    examples: int,
+    seed: int,
+    shrink: bool = True,
+    drawn: list[tuple] | None = None,
+    keep: int = 3,
 ) -> Counterexample | None:
     """Draw ``examples`` argument tuples from ``strategy`` (a hypothesis strategy of
     tuples) with ``seed``; the failing arguments of ``prop`` (shrunk to the simplest
@@ -51,6 +58,8 @@ def search_counterexample(
 
     Deterministic: the same seed and examples give the same draws on every run, and no
     example database is read or written (hypothesis' ``find`` with ``database=None``).
+    When ``drawn`` is a list, the first ``keep`` argument tuples drawn are appended to it
+    (what a reader sees as the property's examples).
     """
     import warnings
 
@@ -70,9 +79,15 @@ def search_counterexample(
         # property is turned into an error so that it fails like it does under pytest
         warnings.simplefilter("error", RuntimeWarning)
         try:
+
+            def fails(a: tuple) -> bool:
+                if drawn is not None and len(drawn) < keep:
+                    drawn.append(a)
+                return _failure(prop, a) is not None
+
             args = find(
                 strategy,
-                lambda a: _failure(prop, a) is not None,
+                fails,
                 settings=config,
                 random=random.Random(seed),
             )
