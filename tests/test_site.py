@@ -333,6 +333,17 @@ def test_chapter_page_shows_equations_laid_out(site, tmp_path):
 
 
 @needs_chromium
+def test_a_derivations_page_shows_its_algebra_laid_out(site, tmp_path):
+    """A check's page of steps (P5.4: 36 pieces of MathML), against the same page with
+    its MathML flattened to text."""
+    page = site / "check-P5-4.html"
+    rendered = _screenshot(tmp_path, page, tmp_path / "p54.png")
+    assert _ink(rendered) > MIN_INK
+    flat = _screenshot(tmp_path, _flattened(page), tmp_path / "flat.png")
+    assert _changed(rendered, flat) > MIN_CHANGED, "the steps' MathML looks like plain text"
+
+
+@needs_chromium
 def test_errata_screenshot_shows_mathml_laid_out(site, tmp_path):
     page = site / "errata.html"
     rendered = _screenshot(tmp_path, page, tmp_path / "errata.png")
@@ -766,3 +777,24 @@ def test_the_every_page_run_sees_a_page_without_steps_and_a_violation(site, tmp_
     assert seen["check-E5-1.html"]["steps"] > 0
     assert {v["id"] for v in seen["check-eq2-38.html"]["violations"]} >= {"label"}
     assert seen["check-E5-1.html"]["violations"] == []
+
+
+def test_scenes_run_in_worker_processes_give_the_same_sections(site, tmp_path, monkeypatch):
+    """``bodycheck site`` runs the scenes in worker processes (``jobs``): three of them,
+    built so, are the sections the one-process build (the ``site`` fixture) wrote."""
+    import mechanics.scenes
+
+    real = mechanics.scenes.builtin_scenes()
+    three = {n: real[n] for n in ("rocket", "bouncing_ball", "tank_draining")}
+    monkeypatch.setattr(mechanics.scenes, "builtin_scenes", lambda: three)
+    build_site(tmp_path / "out", jobs=2)
+
+    def sections(page: Path) -> dict[str, str]:
+        text = page.read_text("utf-8")
+        return {
+            n: re.search(f"<section class='scene' id='{n}'.*?</section>", text, re.S).group(0)
+            for n in three
+        }
+
+    assert sections(tmp_path / "out" / "scenes.html") == sections(site / "scenes.html")
+    assert (tmp_path / "out" / "scene-bouncing_ball.svg").is_file()

@@ -668,7 +668,7 @@ def _cmd_site(args) -> int:
     t0 = time.perf_counter()
     listed: list[str] = []
     try:
-        pages = build_site(args.out, listed=listed)
+        pages = build_site(args.out, listed=listed, jobs=min(2, os.cpu_count() or 1))
     except SiteError as exc:
         raise UsageError(str(exc)) from None
     print(

@@ -28,10 +28,12 @@ from __future__ import annotations
 import functools
 import html
 import json
+import multiprocessing
 import re
 import shutil
 import tokenize
 from collections import defaultdict
+from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
 __all__ = [
@@ -525,40 +527,44 @@ def _refutations(c) -> str:
     return "<ol class='steps'>" + "".join(map(_step_html, steps)) + "</ol>" if steps else ""
 
 
-def _scenes_page(out: Path) -> str:
-    """Every built-in scene, run while the site is built: its player (the bodies moving,
-    play, pause, a time slider, the events on the timeline, the invariants and derived
-    quantities beside it), and for :data:`SCENES` its plots; a scene whose run fails is
-    shown with its failure."""
+def _scene_section(name: str, path: str, out: str) -> str:
+    """One built-in scene's section of scenes.html (run in a worker process): its player,
+    and for :data:`SCENES` its plots; a scene whose run fails, shown with its failure."""
     from identities.book.scenes.compare import load_book_scene, run_book_scene
     from identities.cli.scene_player import player_section
     from identities.cli.scene_plots import plot_result
-    from mechanics.scenes import SceneError, builtin_scenes
+    from mechanics.scenes import SceneError
 
-    known = builtin_scenes()
+    try:
+        result = run_book_scene(load_book_scene(path))
+    except SceneError as exc:
+        return (
+            f"<section id='{name}'><h2>{html.escape(name)}</h2>"
+            f"<p class='erratum'>the run failed: {html.escape(str(exc))}</p></section>"
+        )
+    lines = [player_section(result, name)]
+    if name in SCENES:
+        plot_result(result, Path(out) / f"scene-{name}.svg")
+        lines.append(
+            f"<p><img src='scene-{name}.svg' alt='plots of the scene {name}'></p>"
+            f"<pre>{html.escape(result.summary())}</pre>"
+        )
+    return "\n".join(lines)
+
+
+def _scenes_page(sections: dict[str, str]) -> str:
+    """Every built-in scene, run while the site is built (``sections``: name → its
+    section, :func:`_scene_section`): its player (the bodies moving, play, pause, a time
+    slider, the events on the timeline, the invariants and derived quantities beside it),
+    and for :data:`SCENES` its plots."""
     lines = [
         "<p>Every built-in scene, simulated while the site was built and compared with "
         "the book: press play or move the slider (<code>bodycheck demo NAME --html "
         "OUT.html</code> writes one such page, <code>bodycheck scene FILE --html "
         "OUT.html</code> one of your own scene).</p>",
-        "<ul>" + "".join(f"<li><a href='#{n}'>{n}</a></li>" for n in known) + "</ul>",
+        "<ul>" + "".join(f"<li><a href='#{n}'>{n}</a></li>" for n in sections) + "</ul>",
     ]
-    for name, path in known.items():
-        try:
-            result = run_book_scene(load_book_scene(path))
-        except SceneError as exc:
-            lines.append(
-                f"<section id='{name}'><h2>{html.escape(name)}</h2>"
-                f"<p class='erratum'>the run failed: {html.escape(str(exc))}</p></section>"
-            )
-            continue
-        lines.append(player_section(result, name))
-        if name in SCENES:
-            plot_result(result, out / f"scene-{name}.svg")
-            lines.append(
-                f"<p><img src='scene-{name}.svg' alt='plots of the scene {name}'></p>"
-                f"<pre>{html.escape(result.summary())}</pre>"
-            )
+    lines += sections.values()
     return "\n".join(lines)
 
 
@@ -601,17 +607,56 @@ def _as_text_page(listed: list[str]) -> str:
     return "\n".join(lines)
 
 
-def build_site(out, *, scenes: bool = True, listed: list[str] | None = None) -> list[Path]:
+def build_site(
+    out, *, scenes: bool = True, listed: list[str] | None = None, jobs: int = 1
+) -> list[Path]:
     """Write the site into the folder ``out``; return the pages written. When ``listed``
     is a list, what is shown as text instead of MathML (:func:`as_text`) is appended.
+    With ``jobs`` > 1 the built-in scenes run in that many worker processes while the
+    other pages are written (``bodycheck site`` uses the machine's cores).
 
     Raises :class:`SiteError` when ``out`` exists, is not empty and holds no
     :data:`MARKER` (it is not a previous site).
     """
-    from identities.verify.catalogue import checks, item_rows
+    from mechanics.scenes import builtin_scenes
 
     out = Path(out)
     _prepare(out)
+    known = builtin_scenes() if scenes else {}
+    if jobs > 1:
+        # the built-in scenes run in worker processes while the pages of the checks are
+        # written (18 scenes take ~10 s in one process, the check pages ~3 s); the
+        # workers are started by a fork server, never forked from this process, which
+        # may hold threads (pytest-xdist's; os.fork warns there from Python 3.12)
+        context = multiprocessing.get_context("forkserver")
+        with ProcessPoolExecutor(max_workers=jobs, mp_context=context) as pool:
+            running = {
+                n: pool.submit(_scene_section, n, str(p), str(out)) for n, p in known.items()
+            }
+            pages = _pages(out, listed)
+            sections = {n: job.result() for n, job in running.items()}
+    else:
+        pages = _pages(out, listed)
+        sections = {n: _scene_section(n, str(p), str(out)) for n, p in known.items()}
+    if scenes:
+        pages["scenes.html"] = ("Scenes", _scenes_page(sections))
+    chapters = sorted({int(name[2:-5]) for name in pages if re.fullmatch(r"ch\d+\.html", name)})
+    written = []
+    for name, (title, body) in pages.items():
+        path = out / name
+        path.write_text(_page(title, body, chapters), encoding="utf-8")
+        written.append(path)
+    from identities.cli.scene_player import PLAYER_CSS
+
+    (out / "style.css").write_text(_CSS.lstrip() + PLAYER_CSS, encoding="utf-8")
+    (out / MARKER).write_text("written by bodycheck site\n", encoding="utf-8")
+    return written
+
+
+def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
+    """Every page but scenes.html (title, body), and the search box's files."""
+    from identities.verify.catalogue import checks, item_rows
+
     rows, regs = item_rows(), checks()
     by_ch: dict[int, list] = defaultdict(list)
     for r in rows:
@@ -632,10 +677,7 @@ def build_site(out, *, scenes: bool = True, listed: list[str] | None = None) -> 
     if listed is not None:
         listed += text
     pages["as-text.html"] = ("Shown as text", _as_text_page(text))
-    if scenes:
-        pages["scenes.html"] = ("Scenes", _scenes_page(out))
-    else:
-        pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
+    pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
     png = _BENCH / "workprecision.png"
     if png.is_file():
         shutil.copyfile(png, out / "workprecision.png")
@@ -673,13 +715,4 @@ def build_site(out, *, scenes: bool = True, listed: list[str] | None = None) -> 
     (out / "search-index.js").write_text(f"window.BODYCHECK_SEARCH = {data};\n", "utf-8")
     shutil.copyfile(_SEARCH_JS, out / "search.js")
     shutil.copyfile(_PLAYER_JS, out / "scene-player.js")
-    written = []
-    for name, (title, body) in pages.items():
-        path = out / name
-        path.write_text(_page(title, body, chapters), encoding="utf-8")
-        written.append(path)
-    from identities.cli.scene_player import PLAYER_CSS
-
-    (out / "style.css").write_text(_CSS.lstrip() + PLAYER_CSS, encoding="utf-8")
-    (out / MARKER).write_text("written by bodycheck site\n", encoding="utf-8")
-    return written
+    return pages
