@@ -14,7 +14,7 @@ unexport PYTHONDONTWRITEBYTECODE
 # to `make test-slow`, which .ci/run runs after `make test`.
 PYTEST_ARGS := -n auto -m 'not slow'
 
-.PHONY: run test test-slow checks bench bench-check lock test-latest test-oldest test-matrix clean mutate mutate-plan
+.PHONY: run test test-slow checks bench bench-check lock lock-keep test-latest test-oldest test-matrix clean mutate mutate-plan
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -57,6 +57,12 @@ checks: $(STAMP)
 lock:
 	$(BOOTSTRAP_UV)
 	$(PYTHON) tools/lock.py write $(BIN)/uv
+
+## make lock-keep: rewrite the lock for changed inputs (a new extra, a new bound) keeping every
+## pin of the current lock that still satisfies them; only the new requirements are resolved
+lock-keep:
+	$(BOOTSTRAP_UV)
+	$(PYTHON) tools/lock.py write $(BIN)/uv --keep
 
 ## make test-latest: the suite on the newest versions pyproject allows (no lock), in .venv-latest
 test-latest: $(STAMP)
