@@ -47,10 +47,12 @@ test: $(STAMP)
 test-slow: $(STAMP)
 	$(BIN)/python -m pytest -n auto -m slow
 
-## make checks: regenerate CHECKS.md from the registry and docs/scene-files.md from the schema
+## make checks: regenerate CHECKS.md from the registry, docs/scene-files.md from the schema and
+## notebooks/ from the lecture demos (a notebook is executed only when its cells changed)
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
 	$(BIN)/bodycheck scene --schema > docs/scene-files.md
+	$(BIN)/bodycheck notebooks --write notebooks
 
 ## make lock: re-resolve every dependency to the newest allowed versions and rewrite the lock
 ## (it works on a stale lock: only the lock's uv pin is read, to bootstrap uv)
