@@ -235,6 +235,7 @@ PAGES = (
     "errata.html",
     "named.html",
     "scenes.html",
+    "demos.html",
     "workprecision.html",
     "search.html",
 )

@@ -1,7 +1,8 @@
 """The book as pages: ``bodycheck site OUT/`` writes a static site (no server, no
 network, no JavaScript): an index, one page per chapter with every book item, its
 verdict and its check, the errata on one page, a few built-in scenes with their
-plots, and the work-precision plot.
+plots, the lecture demos' notebooks with the outputs they stored
+(:mod:`identities.cli.notebooks`; none is executed here), and the work-precision plot.
 
 Conventions
 -----------
@@ -247,6 +248,7 @@ def _page(title: str, body: str, chapters: list[int]) -> str:
         + [
             '<a href="errata.html">errata</a>',
             '<a href="scenes.html">scenes</a>',
+            '<a href="demos.html">lecture demos</a>',
             '<a href="workprecision.html">work-precision</a>',
         ]
     )
@@ -469,6 +471,13 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
         pages["scenes.html"] = ("Scenes", _scenes_page(out))
     else:
         pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
+    from identities.cli.notebooks import demos_page  # the notebooks' stored outputs: no run
+
+    by_id = {c.id: c for c in regs}
+    pages["demos.html"] = (
+        "Lecture demos",
+        demos_page(out, check_href=lambda i: _check_href(by_id[i])),
+    )
     png = _BENCH / "workprecision.png"
     if png.is_file():
         shutil.copyfile(png, out / "workprecision.png")
@@ -496,6 +505,7 @@ def build_site(out, *, scenes: bool = True) -> list[Path]:
         f"<li><a href='named.html'>Named results</a>: {len(named)} checks</li>",
         f"<li><a href='errata.html'>Errata</a>: {sum(bool(c.errata) for c in regs)} checks</li>",
         "<li><a href='scenes.html'>Scenes</a></li>",
+        "<li><a href='demos.html'>Lecture demos</a>: the notebooks</li>",
         "<li><a href='workprecision.html'>Work-precision</a></li></ul>",
     ]
     pages["index.html"] = ("bodycheck: the book, checked", "\n".join(index))
