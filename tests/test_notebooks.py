@@ -109,9 +109,12 @@ def test_the_cells_import_the_library_and_name_their_demo_and_check():
 def test_each_notebook_runs_in_a_fresh_kernel_and_shows_its_plot_and_its_checks_pass(
     kernel, tmp_path, name
 ):
-    """One kernel per notebook: its start (~1 s), the imports (~1 s), the scene and its
-    plot (~0.5 s) and the check, which runs the scene twice (exact flow and integrated;
-    free_top_flip's, the slowest, ~2 s): 3-5 s on an idle 2-core machine."""
+    """One fresh kernel per notebook (the point of the test: nothing shared between
+    notebooks), so each pays a kernel's start, the imports (matplotlib; sympy, which the
+    check machinery needs) and the scene run three times (once for the plot, twice in the
+    check: exact flow and integrated).  Measured 6-10 s per notebook on the shared 2-core
+    machine at a load average of 6 to 12 (about 3.5 runnable processes per core), so
+    about 2-3 s on an idle one; xdist spreads the six over its workers."""
     (demo,) = [d for d in LECTURE_DEMOS if d.name == name]
     nb = execute_notebook(notebook_of(demo), tmp_path, name=name)
     scene = _outputs(nb, "scene")
@@ -234,7 +237,8 @@ def test_the_command_checks_the_folder_and_leaves_current_notebooks_as_they_are(
 
 
 def test_write_executes_a_stale_notebook_and_removes_one_of_no_demo(kernel, tmp_path):
-    """One kernel (the rocket's notebook, ~3 s): the other five are current and kept."""
+    """One kernel (the rocket's notebook: 10 s at a load average of 12, see above); the
+    other five are current and kept as they are."""
     folder = tmp_path / "nb"
     shutil.copytree(NOTEBOOKS, folder)
     (folder / "rocket.ipynb").write_text(notebook_text(notebook_of(LECTURE_DEMOS[4])), "utf-8")

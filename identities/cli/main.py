@@ -688,6 +688,8 @@ def _cmd_notebooks(args) -> int:
     if args.check:
         if args.execute:
             raise UsageError("--execute goes with --write, not --check")
+        if not Path(args.check).is_dir():
+            raise UsageError(f"--check {args.check}: not a folder")
         problems = stale_notebooks(args.check)
         for p in problems:
             print(p)

@@ -153,9 +153,14 @@ def _cells_of(nb: dict) -> list[tuple[str, str, str]]:
     """What :func:`notebook_of` decides about a notebook: each cell's kind, id and source."""
 
     def text(source) -> str:
-        return source if isinstance(source, str) else "".join(source)
+        return source if isinstance(source, str) else "".join(map(str, source))
 
-    return [(c["cell_type"], c.get("id", ""), text(c["source"])) for c in nb["cells"]]
+    return [
+        (str(c.get("cell_type")), str(c.get("id", "")), text(c.get("source", "")))
+        if isinstance(c, dict)
+        else ("?", "", repr(c))
+        for c in nb["cells"]
+    ]
 
 
 def _same_cells(nb: dict, demo: Demo) -> bool:
