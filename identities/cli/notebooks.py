@@ -263,7 +263,9 @@ def execute_notebook(
             # jupyter/nbclient#316); they are collected here, before the folder goes
             warnings.simplefilter("ignore", ResourceWarning)
             try:
-                client.execute()
+                # IPython's profile (history, startup files) in the private folder too: no
+                # user configuration runs in the kernel, and nothing is written to ~/.ipython
+                client.execute(env={**os.environ, "IPYTHONDIR": str(Path(plumbing) / "ipython")})
             except nbclient.exceptions.CellExecutionError as exc:
                 failure = _failed_cell(node) or f"a cell failed: {str(exc)[-500:]}"
             except nbclient.exceptions.CellTimeoutError as exc:
