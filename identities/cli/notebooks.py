@@ -20,9 +20,12 @@ Conventions
   or it has no outputs (``--execute``: every one), so writing again leaves an unchanged
   notebook byte for byte.  The stored outputs are a picture, not the evidence: the
   tests execute every notebook afresh (``tests/test_notebooks.py``).
-- **Executing** needs the ``notebooks`` extra (nbclient, nbformat, ipykernel, whose
-  ``python3`` kernelspec runs the venv's own Python); writing the cells and reading the
-  stored outputs need only the standard library.
+- **Executing** needs the ``notebooks`` extra (nbclient, nbformat, ipykernel).  Each
+  notebook gets a fresh kernel: ipykernel's own ``python3``, started with this Python
+  (no kernelspec folder is searched), talking over IPC sockets in a private temporary
+  folder that also holds its connection file and IPython profile, so nothing is written
+  to the user's jupyter or IPython folders and no user startup file runs.  Writing the
+  cells and reading the stored outputs need only the standard library.
 """
 
 from __future__ import annotations
@@ -235,6 +238,7 @@ def execute_notebook(
     import gc
     import warnings
 
+    from jupyter_client.kernelspec import KernelSpecManager
     from jupyter_client.manager import KernelManager
 
     node = nbformat.reads(notebook_text(nb), as_version=4)
@@ -244,6 +248,10 @@ def execute_notebook(
         # the kernel's connection file and sockets: files in a private folder (IPC), not
         # TCP ports any local user may reach, nor the user's jupyter runtime folder
         km = KernelManager(
+            # no kernelspec folders: the python3 kernel is ipykernel's own, running this
+            # Python (a user's python3 kernelspec elsewhere is not used, and finding none
+            # creates no ~/.ipython)
+            kernel_spec_manager=KernelSpecManager(kernel_dirs=[]),
             kernel_name="python3",
             transport="ipc",
             ip=str(Path(plumbing) / "k"),
