@@ -36,6 +36,9 @@ from identities.cli.notebooks import (
 #: the first bytes of every PNG file
 PNG_MAGIC = b"\x89PNG\r\n\x1a\n"
 NAMES = [d.name for d in LECTURE_DEMOS]
+#: a notebook written for a demo that is gone (its metadata names it), and one that is not ours
+_OLD_DEMO = json.dumps({"cells": [], "metadata": {"bodycheck": {"demo": "old_demo"}}})
+_SOMEONE_ELSES = json.dumps({"cells": [], "metadata": {}, "nbformat": 4, "nbformat_minor": 5})
 
 
 @pytest.fixture
@@ -80,7 +83,8 @@ def test_a_notebook_that_differs_from_its_demo_is_named_stale(tmp_path):
             cell["outputs"] = []
     tank.write_text(json.dumps(nb), "utf-8")
     (tmp_path / "heavy_top.ipynb").unlink()
-    (tmp_path / "old_demo.ipynb").write_text("{}", "utf-8")
+    (tmp_path / "old_demo.ipynb").write_text(_OLD_DEMO, "utf-8")
+    (tmp_path / "someone_elses.ipynb").write_text(_SOMEONE_ELSES, "utf-8")  # not ours: ignored
     (tmp_path / "rod_struck.ipynb").write_text("not json", "utf-8")
     assert stale_notebooks(tmp_path) == [
         f"{tmp_path / 'heavy_top.ipynb'}: missing",
@@ -242,6 +246,9 @@ def test_write_executes_a_stale_notebook_and_removes_one_of_no_demo(kernel, tmp_
     folder = tmp_path / "nb"
     shutil.copytree(NOTEBOOKS, folder)
     (folder / "rocket.ipynb").write_text(notebook_text(notebook_of(LECTURE_DEMOS[4])), "utf-8")
-    (folder / "old_demo.ipynb").write_text("{}", "utf-8")
+    (folder / "old_demo.ipynb").write_text(_OLD_DEMO, "utf-8")
+    (folder / "someone_elses.ipynb").write_text(_SOMEONE_ELSES, "utf-8")
     assert [p.name for p in write_notebooks(folder)] == ["rocket.ipynb"]
     assert stale_notebooks(folder) == []
+    assert not (folder / "old_demo.ipynb").exists()
+    assert (folder / "someone_elses.ipynb").read_text("utf-8") == _SOMEONE_ELSES

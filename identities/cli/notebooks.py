@@ -69,7 +69,7 @@ CELL_TIMEOUT_S = 300
 #: the ids of the three cells, stable so that a regenerated notebook diffs cleanly
 _CELL_IDS = ("about", "scene", "check")
 #: the line the check cell prints last when the check passed
-PASSED = "PASSED"
+_PASSED = "PASSED"
 
 
 class NotebookError(RuntimeError):
@@ -174,6 +174,13 @@ def _same_cells(nb: dict, demo: Demo) -> bool:
     )
 
 
+def _ours(path: Path) -> bool:
+    """Whether ``path`` is a notebook this module wrote (its metadata names a demo): only
+    such a notebook of no current demo is stale or removed, never someone else's."""
+    nb = _read(path)
+    return nb is not None and isinstance(nb.get("metadata"), dict) and "bodycheck" in nb["metadata"]
+
+
 def _read(path: Path) -> dict | None:
     try:
         nb = json.loads(path.read_text(encoding="utf-8"))
@@ -185,7 +192,8 @@ def _read(path: Path) -> dict | None:
 def stale_notebooks(folder: str | os.PathLike[str] = NOTEBOOKS) -> list[str]:
     """Why the notebooks in ``folder`` are not what :func:`write_notebooks` writes: one
     line per notebook that is missing, unreadable, has other cells than its demo's, or
-    has no stored plot or passed check; one per ``.ipynb`` file of no demo.  Empty when
+    has no stored plot or passed check; one per notebook written for a demo that is no
+    longer one (other ``.ipynb`` files are not ours and are left alone).  Empty when
     current."""
     folder = Path(folder)
     problems = []
@@ -209,7 +217,7 @@ def stale_notebooks(folder: str | os.PathLike[str] = NOTEBOOKS) -> list[str]:
     if folder.is_dir():
         problems += [
             f"{p}: a notebook of no lecture demo" for p in sorted(folder.glob("*.ipynb"))
-            if p.name not in known
+            if p.name not in known and _ours(p)
         ]  # fmt: skip
     return problems
 
@@ -309,7 +317,7 @@ class StoredOutput:
     @property
     def passed(self) -> bool:
         """Whether the stored report ends with the check's pass."""
-        return self.report is not None and self.report.rstrip().endswith(PASSED)
+        return self.report is not None and self.report.rstrip().endswith(_PASSED)
 
 
 def stored_output(nb: dict) -> StoredOutput:
@@ -342,8 +350,8 @@ def write_notebooks(
 ) -> list[Path]:
     """Write every lecture demo's notebook into ``folder``, executed, with its outputs;
     return the notebooks written.  A notebook whose cells are current and which stores
-    a plot and a passed check is left as it is unless ``execute``; a ``.ipynb`` file of
-    no demo is removed.
+    a plot and a passed check is left as it is unless ``execute``; a notebook written
+    for a demo that is no longer one is removed (any other ``.ipynb`` file is left).
 
     Raises :class:`NotebookError` when a notebook fails (nothing of it is written).
     """
@@ -366,7 +374,7 @@ def write_notebooks(
         written.append(path)
     known = {f"{d.name}.ipynb" for d in LECTURE_DEMOS}
     for p in folder.glob("*.ipynb"):
-        if p.name not in known:
+        if p.name not in known and _ours(p):
             p.unlink()
     return written
 
@@ -421,7 +429,7 @@ def check_report(outcome, derivation) -> str:
     ``FAILED: why``); no timings, so that the same run reads the same."""
     lines = [f"{outcome.id} (label {outcome.label or '-'}, status {outcome.status})"]
     lines += [f"{n:>2}. {step.text}" for n, step in enumerate(derivation.steps, 1)]
-    lines.append(PASSED if outcome.passed else f"FAILED: {outcome.message}")
+    lines.append(_PASSED if outcome.passed else f"FAILED: {outcome.message}")
     return "\n".join(lines)
 
 
