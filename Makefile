@@ -14,7 +14,7 @@ unexport PYTHONDONTWRITEBYTECODE
 # to `make test-slow`, which .ci/run runs after `make test`.
 PYTEST_ARGS := -n auto -m 'not slow'
 
-.PHONY: run test test-slow checks bench bench-check lock test-latest test-oldest test-matrix clean mutate mutate-plan
+.PHONY: run test test-slow checks bench bench-check lock lock-keep test-latest test-oldest test-matrix clean mutate mutate-plan
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -47,18 +47,26 @@ test: $(STAMP)
 test-slow: $(STAMP)
 	$(BIN)/python -m pytest -n auto -m slow
 
-## make checks: regenerate CHECKS.md from the registry, docs/scene-files.md from the schema
-## and the checks' stored steps for the site (identities/data/derivations: runs every check)
+## make checks: regenerate CHECKS.md from the registry, docs/scene-files.md from the schema,
+## the checks' stored steps for the site (identities/data/derivations: runs every check) and
+## notebooks/ from the lecture demos (a notebook is executed only when its cells changed)
 checks: $(STAMP)
 	$(BIN)/bodycheck catalogue --write CHECKS.md
 	$(BIN)/bodycheck catalogue --derivations
 	$(BIN)/bodycheck scene --schema > docs/scene-files.md
+	$(BIN)/bodycheck notebooks --write notebooks
 
 ## make lock: re-resolve every dependency to the newest allowed versions and rewrite the lock
 ## (it works on a stale lock: only the lock's uv pin is read, to bootstrap uv)
 lock:
 	$(BOOTSTRAP_UV)
 	$(PYTHON) tools/lock.py write $(BIN)/uv
+
+## make lock-keep: rewrite the lock for changed inputs (a new extra, a new bound) keeping every
+## pin of the current lock that still satisfies them; only the new requirements are resolved
+lock-keep:
+	$(BOOTSTRAP_UV)
+	$(PYTHON) tools/lock.py write $(BIN)/uv --keep
 
 ## make test-latest: the suite on the newest versions pyproject allows (no lock), in .venv-latest
 test-latest: $(STAMP)

@@ -17,7 +17,9 @@ all        the three above        ``make run`` and ``make test`` install it (the
 ========== ====================== ==================================================
 
 The engines under test have their own extras (``mujoco``, ``pybullet``, ``drake``;
-:func:`mechanics.conformance.adapters.require`).
+:func:`mechanics.conformance.adapters.require`).  So does executing the lecture
+notebooks (``notebooks``: nbclient, nbformat, ipykernel; ``bodycheck notebooks --write``
+and ``tests/test_notebooks.py`` name it when it is missing); it is not part of ``all``.
 """
 
 from __future__ import annotations

@@ -100,3 +100,42 @@ def test_pin_gives_the_pin_and_its_hashes() -> None:
     assert block[0].startswith("uv==")
     assert len(block) > 1
     assert all("--hash=sha256:" in ln for ln in block[1:])
+
+
+FAKE_UV = '''#!{python}
+"""A stand-in for uv: records what it was given (its arguments and the output file's
+contents at the call) and writes the committed lock's pins as its resolution."""
+import json, sys
+argv = sys.argv[1:]
+out = argv[argv.index("--output-file") + 1]
+try:
+    with open(out, encoding="utf-8") as f:
+        given = f.read()
+except FileNotFoundError:
+    given = None
+with open({record!r}, "w", encoding="utf-8") as f:
+    json.dump({{"argv": argv, "given": given}}, f)
+with open(out, "w", encoding="utf-8") as f:
+    f.write({body!r})
+'''
+
+
+@pytest.mark.parametrize("keep", [False, True], ids=["newest", "keep"])
+def test_write_hands_uv_the_current_lock_only_to_keep_its_pins(tmp_path, keep) -> None:
+    """``write`` (make lock) asks uv for the newest versions (--upgrade, no output file
+    to prefer); ``write --keep`` (make lock-keep) gives uv a copy of the current lock to prefer
+    and no --upgrade; either way the lock is uv's output under the digest line."""
+    import json
+
+    committed = (ROOT / "requirements/lock.txt").read_text(encoding="utf-8")
+    body = "".join(committed.splitlines(keepends=True)[3:])  # after the 3 header lines
+    record, uv = tmp_path / "record.json", tmp_path / "uv"
+    uv.write_text(FAKE_UV.format(python=sys.executable, record=str(record), body=body), "utf-8")
+    uv.chmod(0o755)
+    target = tmp_path / "lock.txt"
+    target.write_text(committed, encoding="utf-8")
+    lock.write(str(uv), target, keep=keep)
+    seen = json.loads(record.read_text(encoding="utf-8"))
+    assert ("--upgrade" in seen["argv"]) is not keep, seen["argv"]
+    assert seen["given"] == (committed if keep else None), str(seen["given"])[:200]
+    assert target.read_text(encoding="utf-8") == committed

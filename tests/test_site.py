@@ -236,6 +236,7 @@ TOP_PAGES = (
     "errata.html",
     "named.html",
     "scenes.html",
+    "demos.html",
     "workprecision.html",
     "search.html",
     "as-text.html",

@@ -1,7 +1,7 @@
 """The dependency lock: write it (``make lock``), check it before every install.
 
 ``requirements/lock.txt`` pins every direct and transitive dependency of bodycheck's
-``test``, ``engines`` and ``mutation`` extras, the build backend and the installer
+``test``, ``engines``, ``mutation`` and ``notebooks`` extras, the build backend and the installer
 (``requirements/tools.in``), each with its hashes, as ``uv pip compile`` writes them for
 Python 3.11.  Its first line records a digest of what it was compiled from (pyproject's
 requirements and tools.in), so that a lock older than its inputs is refused with a
@@ -10,7 +10,11 @@ message saying how to refresh it, rather than installed.
 Usage (standard library only; run with the machine's Python before any venv exists)::
 
     python tools/lock.py check             # exit 1 with one line if stale or corrupted
-    python tools/lock.py write UV          # compile with the uv binary UV, add the digest
+    python tools/lock.py write UV          # compile with the uv binary UV, add the digest:
+                                           # every pin the newest allowed (make lock)
+    python tools/lock.py write UV --keep   # the same, keeping every pin of the current lock
+                                           # that still satisfies the inputs (only new or
+                                           # changed requirements are resolved afresh)
     python tools/lock.py pin NAME          # the lock's lines for NAME (pin and hashes)
 """
 
@@ -19,8 +23,10 @@ from __future__ import annotations
 import hashlib
 import json
 import re
+import shutil
 import subprocess
 import sys
+import tempfile
 import tomllib
 from pathlib import Path
 
@@ -29,7 +35,7 @@ LOCK = ROOT / "requirements" / "lock.txt"
 TOOLS = ROOT / "requirements" / "tools.in"
 PYPROJECT = ROOT / "pyproject.toml"
 PYTHON_VERSION = "3.11"
-EXTRAS = ("test", "engines", "mutation")
+EXTRAS = ("test", "engines", "mutation", "notebooks")
 
 DIGEST_PREFIX = "# inputs-sha256: "
 _PIN = re.compile(
@@ -142,15 +148,28 @@ def check(lock: Path = LOCK, pyproject: Path = PYPROJECT, tools: Path = TOOLS) -
     return pins
 
 
-def write(uv: str, lock: Path = LOCK) -> None:
-    """Compile the lock with uv (hashes, Python 3.11) and put the digest line first."""
+def write(uv: str, lock: Path = LOCK, *, keep: bool = False) -> None:
+    """Compile the lock with uv (hashes, Python 3.11) and put the digest line first.
+
+    By default every pin is the newest version the inputs allow (``uv pip compile
+    --upgrade``).  With ``keep``, uv is given the current lock as its output file, whose
+    pins it prefers (uv's documented behaviour for an existing ``--output-file``): a pin
+    that still satisfies the inputs stays, and only what is new or no longer satisfied is
+    resolved, so adding an extra leaves every existing pin as it was.
+    """
     extras = [a for e in EXTRAS for a in ("--extra", e)]
-    out = subprocess.run(
-        [uv, "pip", "compile", str(PYPROJECT.relative_to(ROOT)), str(TOOLS.relative_to(ROOT)),
-         *extras, "--python-version", PYTHON_VERSION, "--generate-hashes", "--quiet",
-         "--no-header"],
-        cwd=ROOT, check=True, capture_output=True, text=True,
-    )  # fmt: skip
+    with tempfile.TemporaryDirectory() as tmp:
+        # uv writes the file it is given: a copy of the lock, never the lock itself
+        out_file = Path(tmp) / "lock.txt"
+        if keep and lock.is_file():
+            shutil.copyfile(lock, out_file)
+        subprocess.run(
+            [uv, "pip", "compile", str(PYPROJECT.relative_to(ROOT)), str(TOOLS.relative_to(ROOT)),
+             *extras, "--python-version", PYTHON_VERSION, "--generate-hashes", "--quiet",
+             "--no-header", "--output-file", str(out_file), *([] if keep else ["--upgrade"])],
+            cwd=ROOT, check=True, capture_output=True, text=True,
+        )  # fmt: skip
+        body = out_file.read_text(encoding="utf-8")
     header = (
         f"{DIGEST_PREFIX}{inputs_digest()}\n"
         "# Written by `make lock` (tools/lock.py: uv pip compile pyproject.toml\n"
@@ -158,7 +177,7 @@ def write(uv: str, lock: Path = LOCK) -> None:
         f" --python-version {PYTHON_VERSION}"
         " --generate-hashes); do not edit.\n"
     )
-    lock.write_text(header + out.stdout, encoding="utf-8")
+    lock.write_text(header + body, encoding="utf-8")
     check(lock)
 
 
@@ -181,10 +200,12 @@ def main(argv: list[str]) -> int:
             check()
         elif argv[:1] == ["write"] and len(argv) == 2:
             write(argv[1])
+        elif argv[:1] == ["write"] and len(argv) == 3 and argv[2] == "--keep":
+            write(argv[1], keep=True)
         elif argv[:1] == ["pin"] and len(argv) == 2:
             sys.stdout.write(pin(argv[1]))
         else:
-            print("usage: lock.py check | write UV | pin NAME", file=sys.stderr)
+            print("usage: lock.py check | write UV [--keep] | pin NAME", file=sys.stderr)
             return 2
     except LockError as exc:
         print(f"lock: {exc}", file=sys.stderr)

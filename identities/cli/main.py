@@ -10,6 +10,7 @@
     bodycheck demo --list
     bodycheck bench [--quick] [--out DIR] [--repeats N]
     bodycheck site OUT
+    bodycheck notebooks --write DIR [--execute] | --check DIR
     bodycheck conform MODULE:ADAPTER|exact|engine [--scenario NAME ...] [--json FILE] [--plot FILE]
 
 Exit codes: 0 success, 1 a check failed (or CHECKS.md is stale, or a scene missed the
@@ -189,6 +190,23 @@ def _parser() -> argparse.ArgumentParser:
     )
     si = sub.add_parser("site", help="write the book as a static site (pages, MathML, plots)")
     si.add_argument("out", metavar="OUT", help="output folder (new, empty or a previous site)")
+    nb = sub.add_parser(
+        "notebooks", help="write the lecture demos as Jupyter notebooks, executed (make checks)"
+    )
+    todo = nb.add_mutually_exclusive_group(required=True)
+    todo.add_argument(
+        "--write",
+        metavar="DIR",
+        help="write every demo's notebook into DIR, executing those whose cells changed",
+    )
+    todo.add_argument(
+        "--check",
+        metavar="DIR",
+        help="exit 1 naming each notebook in DIR that --write would change",
+    )
+    nb.add_argument(
+        "--execute", action="store_true", help="with --write: execute every notebook again"
+    )
     conform.add_parser(sub)
     return p
 
@@ -684,6 +702,36 @@ def _cmd_site(args) -> int:
     return 0
 
 
+def _cmd_notebooks(args) -> int:
+    from identities.cli.notebooks import NotebookError, stale_notebooks, write_notebooks
+
+    if args.check:
+        if args.execute:
+            raise UsageError("--execute goes with --write, not --check")
+        if not Path(args.check).is_dir():
+            raise UsageError(f"--check {args.check}: not a folder")
+        problems = stale_notebooks(args.check)
+        for p in problems:
+            print(p)
+        if problems:
+            print(f"run `bodycheck notebooks --write {args.check}` (make checks)", file=sys.stderr)
+        return 1 if problems else 0
+    try:
+        written = write_notebooks(args.write, execute=args.execute)
+    except NotebookError as exc:
+        print(f"bodycheck: notebook failed: {exc}", file=sys.stderr)
+        return 1
+    except ModuleNotFoundError as exc:
+        if exc.name in {"nbclient", "nbformat", "ipykernel"}:
+            raise UsageError(str(exc)) from None
+        raise
+    print(
+        f"wrote {len(written)} notebooks to {args.write}"
+        + (f": {', '.join(p.name for p in written)}" if written else " (all current)")
+    )
+    return 0
+
+
 def main(argv: list[str] | None = None) -> int:
     """Entry point of the ``bodycheck`` console script."""
     command = "?"
@@ -699,6 +747,7 @@ def main(argv: list[str] | None = None) -> int:
             "demo": _cmd_demo,
             "bench": _cmd_bench,
             "site": _cmd_site,
+            "notebooks": _cmd_notebooks,
             "conform": conform.cmd_conform,
         }[args.command]
         return handler(args)

@@ -1,7 +1,8 @@
 """The book as pages: ``bodycheck site OUT/`` writes a static site (no server, no
 network, no JavaScript): an index, one page per chapter with every book item, its
 verdict and its check, the errata on one page, a few built-in scenes with their
-plots, and the work-precision plot.
+plots, the lecture demos' notebooks with the outputs they stored
+(:mod:`identities.cli.notebooks`; none is executed here), and the work-precision plot.
 
 Conventions
 -----------
@@ -257,6 +258,7 @@ def _page(title: str, body: str, chapters: list[int]) -> str:
         + [
             '<a href="errata.html">errata</a>',
             '<a href="scenes.html">scenes</a>',
+            '<a href="demos.html">lecture demos</a>',
             '<a href="workprecision.html">work-precision</a>',
         ]
     )
@@ -678,6 +680,13 @@ def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
         listed += text
     pages["as-text.html"] = ("Shown as text", _as_text_page(text))
     pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
+    from identities.cli.notebooks import demos_page  # the notebooks' stored outputs: no run
+
+    by_id = {c.id: c for c in regs}
+    pages["demos.html"] = (
+        "Lecture demos",
+        demos_page(out, check_href=lambda i: _check_href(by_id[i])),
+    )
     png = _BENCH / "workprecision.png"
     if png.is_file():
         shutil.copyfile(png, out / "workprecision.png")
@@ -705,6 +714,7 @@ def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
         f"<li><a href='named.html'>Named results</a>: {len(named)} checks</li>",
         f"<li><a href='errata.html'>Errata</a>: {sum(bool(c.errata) for c in regs)} checks</li>",
         "<li><a href='scenes.html'>Scenes</a></li>",
+        "<li><a href='demos.html'>Lecture demos</a>: the notebooks</li>",
         f"<li><a href='as-text.html'>Shown as text</a>: {len(text)} pieces of algebra</li>",
         "<li><a href='workprecision.html'>Work-precision</a></li></ul>",
     ]

@@ -101,6 +101,16 @@ BAD_ARGV: dict[str, list[list[str]]] = {
         ["site", "{file}"],
         ["site", "{in_file}"],
     ],
+    "notebooks": [
+        ["notebooks"],
+        ["notebooks", "--write", "{file}"],
+        ["notebooks", "--write", "{in_file}"],
+        ["notebooks", "--check", "{file}"],
+        ["notebooks", "--check", "{missing}"],
+        ["notebooks", "--check", "{dir}", "--execute"],
+        ["notebooks", "--check", "{dir}", "--write", "{dir}"],
+        ["notebooks", "--execute"],
+    ],
 }
 
 
