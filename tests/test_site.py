@@ -783,11 +783,12 @@ def test_the_every_page_run_sees_a_page_without_steps_and_a_violation(site, tmp_
 def test_scenes_run_in_worker_processes_give_the_same_sections(site, tmp_path, monkeypatch):
     """``bodycheck site`` runs the scenes in worker processes (``jobs``): three of them,
     built so, are the sections the one-process build (the ``site`` fixture) wrote."""
-    import mechanics.scenes
+    import identities.cli.site as site_module
+    from mechanics.scenes import builtin_scenes
 
-    real = mechanics.scenes.builtin_scenes()
+    real = builtin_scenes()
     three = {n: real[n] for n in ("rocket", "bouncing_ball", "tank_draining")}
-    monkeypatch.setattr(mechanics.scenes, "builtin_scenes", lambda: three)
+    monkeypatch.setattr(site_module, "_built_in_scenes", lambda: three)
     build_site(tmp_path / "out", jobs=2)
 
     def sections(page: Path) -> dict[str, str]:

@@ -529,6 +529,13 @@ def _refutations(c) -> str:
     return "<ol class='steps'>" + "".join(map(_step_html, steps)) + "</ol>" if steps else ""
 
 
+def _built_in_scenes() -> dict[str, Path]:
+    """The scenes scenes.html shows: every built-in one (name → its file)."""
+    from mechanics.scenes import builtin_scenes
+
+    return builtin_scenes()
+
+
 def _scene_section(name: str, path: str, out: str) -> str:
     """One built-in scene's section of scenes.html (run in a worker process): its player,
     and for :data:`SCENES` its plots; a scene whose run fails, shown with its failure."""
@@ -620,11 +627,10 @@ def build_site(
     Raises :class:`SiteError` when ``out`` exists, is not empty and holds no
     :data:`MARKER` (it is not a previous site).
     """
-    from mechanics.scenes import builtin_scenes
 
     out = Path(out)
     _prepare(out)
-    known = builtin_scenes() if scenes else {}
+    known = _built_in_scenes() if scenes else {}
     if jobs > 1:
         # the built-in scenes run in worker processes while the pages of the checks are
         # written (18 scenes take ~10 s in one process, the check pages ~3 s); the
