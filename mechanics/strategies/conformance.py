@@ -47,7 +47,7 @@ from ..conformance.scenarios import (
 )
 from ..conformance.scenarios import _vec3 as _vec
 from ..rotation import matrix_from_euler
-from ._common import check_positive, check_regimes
+from ._common import check_positive, check_regimes, memoised
 
 __all__ = ["SCENARIO_KINDS", "body_states", "scenarios"]
 
@@ -124,6 +124,7 @@ def _draw_moments(
 _moments = st.composite(_draw_moments)
 
 
+@memoised
 def body_states(*, max_spin: float = 4.0, max_speed: float = 10.0) -> st.SearchStrategy[Body]:
     """A rigid body's state an engine can step (a :class:`~mechanics.conformance.Body`):
     principal moments 0.1 … 10 kg m² (J₁/J₂ ≥ 0.2, the triangle inequality kept), mass
@@ -341,6 +342,7 @@ _DRAW = {
 }
 
 
+@memoised
 def scenarios(kinds: Iterable[str] | None = None) -> st.SearchStrategy[Scenario]:
     """Random variants of the battery's scenarios, each inside its valid range (see the
     module's docstring); ``kinds`` restricts them to some of :data:`SCENARIO_KINDS`.

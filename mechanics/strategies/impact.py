@@ -54,7 +54,7 @@ from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
 from ..impact import RigidBody
-from ._common import check_real, check_regimes, log_uniform
+from ._common import check_real, check_regimes, log_uniform, memoised
 from .rotation import rotation_matrices, unit_vectors
 
 _Array: TypeAlias = npt.NDArray[np.float64]
@@ -166,6 +166,7 @@ class HingedBody(NamedTuple):
 # ------------------------------------------------------------------ scalars
 
 
+@memoised
 def impact_masses(
     *, min_value: float = 1e-15, max_value: float = 1e15, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[float]:
@@ -204,6 +205,7 @@ def impact_masses(
     return draw_mass()
 
 
+@memoised
 def mass_pairs(
     *, max_ratio: float = 1e15, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float]]:
@@ -237,6 +239,7 @@ def mass_pairs(
     return draw_pair()
 
 
+@memoised
 def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[float]:
     """Coefficients of restitution e ∈ [0, 1] (:data:`RESTITUTION_REGIMES`).
 
@@ -261,12 +264,14 @@ def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.Sear
     return draw_e()
 
 
+@memoised
 def contact_normals() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit contact contact_normals ``(3,)``: :func:`mechanics.strategies.unit_vectors`
     (regimes axis, general, near-axis)."""
     return unit_vectors()
 
 
+@memoised
 def direct_velocities(
     *, max_speed: float = 1e6, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float]]:
@@ -361,6 +366,7 @@ def _turned(moments: tuple[float, float, float], R: _Array) -> _Array:
     return 0.5 * (J + J.T)
 
 
+@memoised
 def impact_inertia_tensors(
     *,
     regimes: Iterable[str] | None = None,
@@ -387,6 +393,7 @@ def impact_inertia_tensors(
     return draw_tensor()
 
 
+@memoised
 def impact_bodies(
     *,
     masses_: st.SearchStrategy[float] | None = None,
@@ -426,6 +433,7 @@ def _approaching(
     return b1._replace(v_G=b1.v_G - (v_n + speed) * n)
 
 
+@memoised
 def contacts(
     *, regimes: Iterable[str] | None = None, restitution: st.SearchStrategy[float] | None = None
 ) -> st.SearchStrategy[Contact]:
@@ -493,6 +501,7 @@ def contacts(
     return draw_contact()
 
 
+@memoised
 def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[HingedBody]:
     """Bodies on a fixed axis, :class:`HingedBody` records (:data:`HINGED_REGIMES`).
 

@@ -41,7 +41,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import inertia as _inertia
-from ._common import check_positive, check_regimes, log_uniform
+from ._common import check_positive, check_regimes, log_uniform, memoised
 from .rotation import rotation_matrices
 
 _Array: TypeAlias = npt.NDArray[np.float64]
@@ -124,6 +124,7 @@ def _triple(J1: float, J2: float, J3: float) -> _Array:
     return np.array([J1, J2, min(J3, J1 + J2)])
 
 
+@memoised
 def principal_moments(
     *,
     min_scale: float = 1e-100,
@@ -189,6 +190,7 @@ def principal_moments(
     return draw_moments()
 
 
+@memoised
 def inertia_tensors(
     *,
     moments: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
@@ -209,6 +211,7 @@ def inertia_tensors(
     return st.tuples(moments, rotations).map(lambda t: _inertia.rotate_inertia(np.diag(t[0]), t[1]))
 
 
+@memoised
 def rigid_bodies(
     *,
     min_mass: float = 1e-3,

@@ -38,7 +38,7 @@ from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from ._common import check_int, check_real, check_regimes, log_uniform
+from ._common import check_int, check_real, check_regimes, log_uniform, memoised
 
 _Array: TypeAlias = npt.NDArray[np.float64]
 _T = TypeVar("_T")
@@ -172,6 +172,7 @@ def _mass_array(
     return m
 
 
+@memoised
 def masses(
     *,
     min_particles: int = 1,
@@ -214,6 +215,7 @@ def masses(
 # ------------------------------------------------------------ particle systems
 
 
+@memoised
 def particle_systems(
     *,
     min_particles: int = 1,
@@ -272,6 +274,7 @@ def particle_systems(
 # ------------------------------------------------------------------ pair forces
 
 
+@memoised
 def pair_forces(
     r: npt.ArrayLike, *, max_magnitude: float = 1e3, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[npt.NDArray[np.float64]]:

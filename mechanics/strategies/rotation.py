@@ -49,7 +49,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
-from ._common import check_real, check_regimes, log_uniform
+from ._common import check_real, check_regimes, log_uniform, memoised
 
 _Array: TypeAlias = npt.NDArray[np.float64]
 
@@ -160,6 +160,7 @@ MATRIX_REGIMES = (
 # --------------------------------------------------------------------- vectors
 
 
+@memoised
 def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit vectors, shape ``(3,)``, in all directions.
 
@@ -198,6 +199,7 @@ def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
 # ---------------------------------------------------------------------- angles
 
 
+@memoised
 def rotation_angles(
     *, min_value: float = 0.0, max_value: float = math.pi, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[float]:
@@ -252,6 +254,7 @@ def rotation_angles(
     return draw_angle()
 
 
+@memoised
 def rotvecs(
     *,
     axes: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
@@ -307,6 +310,7 @@ def rotvecs(
     return draw_rotvec()
 
 
+@memoised
 def euler_angles(
     *, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float, float]]:
@@ -352,6 +356,7 @@ def euler_angles(
 # ---------------------------------------------------------- quaternions, matrices
 
 
+@memoised
 def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit quaternions (w, x, y, z), scalar first, shape ``(4,)``.
 
@@ -381,6 +386,7 @@ def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     return draw_quaternion()
 
 
+@memoised
 def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """The book's passive rotation matrices ^A R^O, shape ``(3, 3)``.
 
