@@ -124,7 +124,6 @@ def _draw_moments(
 _moments = st.composite(_draw_moments)
 
 
-@memoised
 def body_states(*, max_spin: float = 4.0, max_speed: float = 10.0) -> st.SearchStrategy[Body]:
     """A rigid body's state an engine can step (a :class:`~mechanics.conformance.Body`):
     principal moments 0.1 … 10 kg m² (J₁/J₂ ≥ 0.2, the triangle inequality kept), mass
@@ -146,6 +145,9 @@ def body_states(*, max_spin: float = 4.0, max_speed: float = 10.0) -> st.SearchS
         )
 
     return draw_body()
+
+
+body_states = memoised(body_states)  # one strategy per arguments (_common.memoised)
 
 
 def _free_top(draw: st.DrawFn, near_separatrix: bool) -> Scenario:
@@ -342,7 +344,6 @@ _DRAW = {
 }
 
 
-@memoised
 def scenarios(kinds: Iterable[str] | None = None) -> st.SearchStrategy[Scenario]:
     """Random variants of the battery's scenarios, each inside its valid range (see the
     module's docstring); ``kinds`` restricts them to some of :data:`SCENARIO_KINDS`.
@@ -359,3 +360,6 @@ def scenarios(kinds: Iterable[str] | None = None) -> st.SearchStrategy[Scenario]
         return s
 
     return draw_scenario()
+
+
+scenarios = memoised(scenarios)  # one strategy per arguments (_common.memoised)

@@ -166,7 +166,6 @@ class HingedBody(NamedTuple):
 # ------------------------------------------------------------------ scalars
 
 
-@memoised
 def impact_masses(
     *, min_value: float = 1e-15, max_value: float = 1e15, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[float]:
@@ -205,7 +204,9 @@ def impact_masses(
     return draw_mass()
 
 
-@memoised
+impact_masses = memoised(impact_masses)  # one strategy per arguments (_common.memoised)
+
+
 def mass_pairs(
     *, max_ratio: float = 1e15, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float]]:
@@ -239,7 +240,9 @@ def mass_pairs(
     return draw_pair()
 
 
-@memoised
+mass_pairs = memoised(mass_pairs)  # one strategy per arguments (_common.memoised)
+
+
 def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[float]:
     """Coefficients of restitution e ∈ [0, 1] (:data:`RESTITUTION_REGIMES`).
 
@@ -264,14 +267,20 @@ def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.Sear
     return draw_e()
 
 
-@memoised
+restitution_coefficients = memoised(
+    restitution_coefficients
+)  # one strategy per arguments (_common.memoised)
+
+
 def contact_normals() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit contact contact_normals ``(3,)``: :func:`mechanics.strategies.unit_vectors`
     (regimes axis, general, near-axis)."""
     return unit_vectors()
 
 
-@memoised
+contact_normals = memoised(contact_normals)  # one strategy per arguments (_common.memoised)
+
+
 def direct_velocities(
     *, max_speed: float = 1e6, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float]]:
@@ -317,6 +326,9 @@ def direct_velocities(
         return (v2 + s, v2)
 
     return draw_pair()
+
+
+direct_velocities = memoised(direct_velocities)  # one strategy per arguments (_common.memoised)
 
 
 # ------------------------------------------------------------ rigid bodies
@@ -366,7 +378,6 @@ def _turned(moments: tuple[float, float, float], R: _Array) -> _Array:
     return 0.5 * (J + J.T)
 
 
-@memoised
 def impact_inertia_tensors(
     *,
     regimes: Iterable[str] | None = None,
@@ -393,7 +404,11 @@ def impact_inertia_tensors(
     return draw_tensor()
 
 
-@memoised
+impact_inertia_tensors = memoised(
+    impact_inertia_tensors
+)  # one strategy per arguments (_common.memoised)
+
+
 def impact_bodies(
     *,
     masses_: st.SearchStrategy[float] | None = None,
@@ -422,6 +437,9 @@ def impact_bodies(
     )
 
 
+impact_bodies = memoised(impact_bodies)  # one strategy per arguments (_common.memoised)
+
+
 def _approaching(
     b1: RigidBody, b2: RigidBody | None, r_S: _Array, n: _Array, speed: float
 ) -> RigidBody:
@@ -433,7 +451,6 @@ def _approaching(
     return b1._replace(v_G=b1.v_G - (v_n + speed) * n)
 
 
-@memoised
 def contacts(
     *, regimes: Iterable[str] | None = None, restitution: st.SearchStrategy[float] | None = None
 ) -> st.SearchStrategy[Contact]:
@@ -501,7 +518,9 @@ def contacts(
     return draw_contact()
 
 
-@memoised
+contacts = memoised(contacts)  # one strategy per arguments (_common.memoised)
+
+
 def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[HingedBody]:
     """Bodies on a fixed axis, :class:`HingedBody` records (:data:`HINGED_REGIMES`).
 
@@ -544,3 +563,6 @@ def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[
         return HingedBody(m, 0.5 * (J_A + J_A.T), A + d, A, axis, J_G)
 
     return draw_hinged()
+
+
+hinged_bodies = memoised(hinged_bodies)  # one strategy per arguments (_common.memoised)

@@ -124,7 +124,6 @@ def _triple(J1: float, J2: float, J3: float) -> _Array:
     return np.array([J1, J2, min(J3, J1 + J2)])
 
 
-@memoised
 def principal_moments(
     *,
     min_scale: float = 1e-100,
@@ -190,7 +189,9 @@ def principal_moments(
     return draw_moments()
 
 
-@memoised
+principal_moments = memoised(principal_moments)  # one strategy per arguments (_common.memoised)
+
+
 def inertia_tensors(
     *,
     moments: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
@@ -211,7 +212,9 @@ def inertia_tensors(
     return st.tuples(moments, rotations).map(lambda t: _inertia.rotate_inertia(np.diag(t[0]), t[1]))
 
 
-@memoised
+inertia_tensors = memoised(inertia_tensors)  # one strategy per arguments (_common.memoised)
+
+
 def rigid_bodies(
     *,
     min_mass: float = 1e-3,
@@ -253,3 +256,6 @@ def rigid_bodies(
         return RigidBody(m, J, dist * np.array([rho * math.cos(az), rho * math.sin(az), z]))
 
     return draw_body()
+
+
+rigid_bodies = memoised(rigid_bodies)  # one strategy per arguments (_common.memoised)

@@ -172,7 +172,6 @@ def _mass_array(
     return m
 
 
-@memoised
 def masses(
     *,
     min_particles: int = 1,
@@ -212,10 +211,12 @@ def masses(
     return draw_masses()
 
 
+masses = memoised(masses)  # one strategy per arguments (_common.memoised)
+
+
 # ------------------------------------------------------------ particle systems
 
 
-@memoised
 def particle_systems(
     *,
     min_particles: int = 1,
@@ -271,10 +272,12 @@ def particle_systems(
     return draw_system()
 
 
+particle_systems = memoised(particle_systems)  # one strategy per arguments (_common.memoised)
+
+
 # ------------------------------------------------------------------ pair forces
 
 
-@memoised
 def pair_forces(
     r: npt.ArrayLike, *, max_magnitude: float = 1e3, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[npt.NDArray[np.float64]]:
@@ -333,3 +336,6 @@ def pair_forces(
         return f - np.swapaxes(f, 0, 1)
 
     return draw_forces()
+
+
+pair_forces = memoised(pair_forces)  # one strategy per arguments (_common.memoised)

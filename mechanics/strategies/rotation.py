@@ -160,7 +160,6 @@ MATRIX_REGIMES = (
 # --------------------------------------------------------------------- vectors
 
 
-@memoised
 def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit vectors, shape ``(3,)``, in all directions.
 
@@ -196,10 +195,12 @@ def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     return draw_unit_vector()
 
 
+unit_vectors = memoised(unit_vectors)  # one strategy per arguments (_common.memoised)
+
+
 # ---------------------------------------------------------------------- angles
 
 
-@memoised
 def rotation_angles(
     *, min_value: float = 0.0, max_value: float = math.pi, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[float]:
@@ -254,7 +255,9 @@ def rotation_angles(
     return draw_angle()
 
 
-@memoised
+rotation_angles = memoised(rotation_angles)  # one strategy per arguments (_common.memoised)
+
+
 def rotvecs(
     *,
     axes: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
@@ -310,7 +313,9 @@ def rotvecs(
     return draw_rotvec()
 
 
-@memoised
+rotvecs = memoised(rotvecs)  # one strategy per arguments (_common.memoised)
+
+
 def euler_angles(
     *, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float, float]]:
@@ -353,10 +358,12 @@ def euler_angles(
     return draw_euler()
 
 
+euler_angles = memoised(euler_angles)  # one strategy per arguments (_common.memoised)
+
+
 # ---------------------------------------------------------- quaternions, matrices
 
 
-@memoised
 def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit quaternions (w, x, y, z), scalar first, shape ``(4,)``.
 
@@ -386,7 +393,9 @@ def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     return draw_quaternion()
 
 
-@memoised
+quaternions = memoised(quaternions)  # one strategy per arguments (_common.memoised)
+
+
 def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """The book's passive rotation matrices ^A R^O, shape ``(3, 3)``.
 
@@ -434,3 +443,6 @@ def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
         return _rot.matrix_from_quat(draw(quats))
 
     return draw_matrix()
+
+
+rotation_matrices = memoised(rotation_matrices)  # one strategy per arguments (_common.memoised)
