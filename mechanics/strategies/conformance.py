@@ -47,7 +47,7 @@ from ..conformance.scenarios import (
 )
 from ..conformance.scenarios import _vec3 as _vec
 from ..rotation import matrix_from_euler
-from ._common import check_positive, check_regimes
+from ._common import check_positive, check_regimes, memoised
 
 __all__ = ["SCENARIO_KINDS", "body_states", "scenarios"]
 
@@ -145,6 +145,9 @@ def body_states(*, max_spin: float = 4.0, max_speed: float = 10.0) -> st.SearchS
         )
 
     return draw_body()
+
+
+body_states = memoised(body_states)  # one strategy per arguments (_common.memoised)
 
 
 def _free_top(draw: st.DrawFn, near_separatrix: bool) -> Scenario:
@@ -357,3 +360,6 @@ def scenarios(kinds: Iterable[str] | None = None) -> st.SearchStrategy[Scenario]
         return s
 
     return draw_scenario()
+
+
+scenarios = memoised(scenarios)  # one strategy per arguments (_common.memoised)

@@ -54,7 +54,7 @@ from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
 from ..impact import RigidBody
-from ._common import check_real, check_regimes, log_uniform
+from ._common import check_real, check_regimes, log_uniform, memoised
 from .rotation import rotation_matrices, unit_vectors
 
 _Array: TypeAlias = npt.NDArray[np.float64]
@@ -204,6 +204,9 @@ def impact_masses(
     return draw_mass()
 
 
+impact_masses = memoised(impact_masses)  # one strategy per arguments (_common.memoised)
+
+
 def mass_pairs(
     *, max_ratio: float = 1e15, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float]]:
@@ -237,6 +240,9 @@ def mass_pairs(
     return draw_pair()
 
 
+mass_pairs = memoised(mass_pairs)  # one strategy per arguments (_common.memoised)
+
+
 def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[float]:
     """Coefficients of restitution e ∈ [0, 1] (:data:`RESTITUTION_REGIMES`).
 
@@ -261,10 +267,18 @@ def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.Sear
     return draw_e()
 
 
+restitution_coefficients = memoised(
+    restitution_coefficients
+)  # one strategy per arguments (_common.memoised)
+
+
 def contact_normals() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     """Unit contact contact_normals ``(3,)``: :func:`mechanics.strategies.unit_vectors`
     (regimes axis, general, near-axis)."""
     return unit_vectors()
+
+
+contact_normals = memoised(contact_normals)  # one strategy per arguments (_common.memoised)
 
 
 def direct_velocities(
@@ -312,6 +326,9 @@ def direct_velocities(
         return (v2 + s, v2)
 
     return draw_pair()
+
+
+direct_velocities = memoised(direct_velocities)  # one strategy per arguments (_common.memoised)
 
 
 # ------------------------------------------------------------ rigid bodies
@@ -387,6 +404,11 @@ def impact_inertia_tensors(
     return draw_tensor()
 
 
+impact_inertia_tensors = memoised(
+    impact_inertia_tensors
+)  # one strategy per arguments (_common.memoised)
+
+
 def impact_bodies(
     *,
     masses_: st.SearchStrategy[float] | None = None,
@@ -413,6 +435,9 @@ def impact_bodies(
         _vectors(spd),
         _vectors(spd),
     )
+
+
+impact_bodies = memoised(impact_bodies)  # one strategy per arguments (_common.memoised)
 
 
 def _approaching(
@@ -493,6 +518,9 @@ def contacts(
     return draw_contact()
 
 
+contacts = memoised(contacts)  # one strategy per arguments (_common.memoised)
+
+
 def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[HingedBody]:
     """Bodies on a fixed axis, :class:`HingedBody` records (:data:`HINGED_REGIMES`).
 
@@ -535,3 +563,6 @@ def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[
         return HingedBody(m, 0.5 * (J_A + J_A.T), A + d, A, axis, J_G)
 
     return draw_hinged()
+
+
+hinged_bodies = memoised(hinged_bodies)  # one strategy per arguments (_common.memoised)

@@ -41,7 +41,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import inertia as _inertia
-from ._common import check_positive, check_regimes, log_uniform
+from ._common import check_positive, check_regimes, log_uniform, memoised
 from .rotation import rotation_matrices
 
 _Array: TypeAlias = npt.NDArray[np.float64]
@@ -189,6 +189,9 @@ def principal_moments(
     return draw_moments()
 
 
+principal_moments = memoised(principal_moments)  # one strategy per arguments (_common.memoised)
+
+
 def inertia_tensors(
     *,
     moments: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
@@ -207,6 +210,9 @@ def inertia_tensors(
         if not isinstance(s, st.SearchStrategy):
             raise InvalidArgument(f"{name}={s!r} must be a hypothesis strategy")
     return st.tuples(moments, rotations).map(lambda t: _inertia.rotate_inertia(np.diag(t[0]), t[1]))
+
+
+inertia_tensors = memoised(inertia_tensors)  # one strategy per arguments (_common.memoised)
 
 
 def rigid_bodies(
@@ -250,3 +256,6 @@ def rigid_bodies(
         return RigidBody(m, J, dist * np.array([rho * math.cos(az), rho * math.sin(az), z]))
 
     return draw_body()
+
+
+rigid_bodies = memoised(rigid_bodies)  # one strategy per arguments (_common.memoised)

@@ -38,7 +38,7 @@ from hypothesis import event
 from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
-from ._common import check_int, check_real, check_regimes, log_uniform
+from ._common import check_int, check_real, check_regimes, log_uniform, memoised
 
 _Array: TypeAlias = npt.NDArray[np.float64]
 _T = TypeVar("_T")
@@ -211,6 +211,9 @@ def masses(
     return draw_masses()
 
 
+masses = memoised(masses)  # one strategy per arguments (_common.memoised)
+
+
 # ------------------------------------------------------------ particle systems
 
 
@@ -267,6 +270,9 @@ def particle_systems(
         return ParticleSystem(m, draw(vectors(n, 10.0)), draw(vectors(n, 10.0)))
 
     return draw_system()
+
+
+particle_systems = memoised(particle_systems)  # one strategy per arguments (_common.memoised)
 
 
 # ------------------------------------------------------------------ pair forces
@@ -330,3 +336,6 @@ def pair_forces(
         return f - np.swapaxes(f, 0, 1)
 
     return draw_forces()
+
+
+pair_forces = memoised(pair_forces)  # one strategy per arguments (_common.memoised)

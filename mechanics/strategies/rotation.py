@@ -49,7 +49,7 @@ from hypothesis import strategies as st
 from hypothesis.errors import InvalidArgument
 
 from .. import rotation as _rot
-from ._common import check_real, check_regimes, log_uniform
+from ._common import check_real, check_regimes, log_uniform, memoised
 
 _Array: TypeAlias = npt.NDArray[np.float64]
 
@@ -195,6 +195,9 @@ def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     return draw_unit_vector()
 
 
+unit_vectors = memoised(unit_vectors)  # one strategy per arguments (_common.memoised)
+
+
 # ---------------------------------------------------------------------- angles
 
 
@@ -252,6 +255,9 @@ def rotation_angles(
     return draw_angle()
 
 
+rotation_angles = memoised(rotation_angles)  # one strategy per arguments (_common.memoised)
+
+
 def rotvecs(
     *,
     axes: st.SearchStrategy[npt.NDArray[np.float64]] | None = None,
@@ -307,6 +313,9 @@ def rotvecs(
     return draw_rotvec()
 
 
+rotvecs = memoised(rotvecs)  # one strategy per arguments (_common.memoised)
+
+
 def euler_angles(
     *, regimes: Iterable[str] | None = None
 ) -> st.SearchStrategy[tuple[float, float, float]]:
@@ -349,6 +358,9 @@ def euler_angles(
     return draw_euler()
 
 
+euler_angles = memoised(euler_angles)  # one strategy per arguments (_common.memoised)
+
+
 # ---------------------------------------------------------- quaternions, matrices
 
 
@@ -379,6 +391,9 @@ def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
         return draw(signs) * q
 
     return draw_quaternion()
+
+
+quaternions = memoised(quaternions)  # one strategy per arguments (_common.memoised)
 
 
 def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
@@ -428,3 +443,6 @@ def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
         return _rot.matrix_from_quat(draw(quats))
 
     return draw_matrix()
+
+
+rotation_matrices = memoised(rotation_matrices)  # one strategy per arguments (_common.memoised)

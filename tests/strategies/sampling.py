@@ -32,7 +32,10 @@ sample used to repeat the first: 1000 draws of ``particle_systems()`` held 387 d
 values).  Under ``dev`` each run is seeded too, from one random number drawn per
 process (``secrets``: pytest-randomly reseeds ``random`` for every test, and an unseeded
 ``find`` then repeated its draws run after run as well).  A sample lives as long as
-its strategy object, which a test builds for itself or takes from :func:`shared`:
+its strategy object, which a test builds for itself or takes from :func:`shared` (the
+factories of :mod:`mechanics.strategies` keep one object per plain arguments,
+``_common.memoised``, so a test's own ``ms.masses(...)`` may be the object another test
+drew from first: the same draws either way, for the reason just given):
 nothing but draws is shared, read and never changed, and since the same strategy
 draws the same sample whichever test grows it first, tests stay independent of each
 other and of their order.

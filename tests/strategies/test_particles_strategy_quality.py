@@ -272,7 +272,9 @@ def test_log_uniform_masses_at_the_extreme_unit_draws_are_exactly_the_bounds(mon
     assert 10.0 ** math.log10(lo) < lo
     for u, expected in ((-1.0, hi), (0.0, lo)):
         monkeypatch.setattr(ms.particles, "_signed_units", lambda k, u=u: st.just(np.full(k, u)))
-        strategy = ms.masses(min_value=lo, max_value=hi, regimes=["log-uniform"])
+        # built afresh (``__wrapped__``: the factory itself, not its memoised objects),
+        # so that the patched _signed_units is the one its first draw builds from
+        strategy = ms.masses.__wrapped__(min_value=lo, max_value=hi, regimes=["log-uniform"])
         m = find(strategy, lambda m: True, settings=SHRINK_SETTINGS)
         assert m.tolist() == [expected] * len(m)
 

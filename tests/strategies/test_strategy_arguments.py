@@ -504,3 +504,23 @@ def test_log_uniform_shrinks_to_the_end_it_is_told(shrink_to, end):
 def test_the_smallest_allowed_bound_is_accepted_and_kept(name, kwargs, holds):
     strategy = _factory(name)(**kwargs)
     _never(strategy, lambda x: not holds(x))
+
+
+def test_a_factory_keeps_one_strategy_per_distinct_plain_arguments():
+    """``_common.memoised``: the same plain arguments give the same object (building one
+    parses each composite's source, milliseconds); arguments a factory could tell apart
+    never share one: -0.0 and 0.0, 1 and 1.0, a list and a tuple; a strategy or an array
+    as an argument builds afresh; a refused call is refused again."""
+    assert ms.rotation_matrices() is ms.rotation_matrices()
+    assert ms.masses(min_value=1e-3, max_value=2.0) is ms.masses(min_value=1e-3, max_value=2.0)
+    assert ms.rotvecs(regimes=["huge"]) is ms.rotvecs(regimes=["huge"])
+    assert ms.rotvecs(regimes=["huge"]) is not ms.rotvecs(regimes=("huge",))
+    assert ms.rotation_angles(min_value=-0.0) is not ms.rotation_angles(min_value=0.0)
+    assert ms.masses(max_value=2) is not ms.masses(max_value=2.0)
+    e = st.just(0.5)
+    assert ms.contacts(restitution=e) is not ms.contacts(restitution=e)
+    r = np.zeros((2, 3))
+    assert ms.pair_forces(r) is not ms.pair_forces(r)
+    for _ in range(2):
+        with pytest.raises(InvalidArgument, match=re.escape("min_value=-1.0")):
+            ms.masses(min_value=-1.0)
