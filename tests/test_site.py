@@ -702,13 +702,22 @@ next(0);
 ALL_PAGES_TIMEOUT_S = 1200
 
 
-def _every_check_page(site: Path, tmp_path: Path, *, axe: bool) -> tuple[dict, list[str]]:
+#: the slow tier's run is split in this many parts, one browser each, which pytest-xdist
+#: spreads over the cores
+PARTS = 2
+
+
+def _every_check_page(
+    site: Path, tmp_path: Path, *, axe: bool, part: int = 0, parts: int = 1
+) -> tuple[dict, list[str]]:
+    """What the harness saw of every ``parts``-th check page from the ``part``-th one."""
     from identities.verify.catalogue import checks
 
     here = tmp_path / "all"
     shutil.copytree(site, here)
     shutil.copyfile(AXE, here / "axe.min.js")
     pages = [f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html" for c in checks()]
+    pages = pages[part::parts]
     harness = here / "every-page.html"
     harness.write_text(
         HARNESS.replace("PAGES", json.dumps(pages)).replace("AXE", json.dumps(axe)), "utf-8"
@@ -732,16 +741,18 @@ def _every_check_page(site: Path, tmp_path: Path, *, axe: bool) -> tuple[dict, l
 
 @pytest.mark.slow
 @needs_chromium
-def test_every_check_page_loads_with_its_steps_and_axe_finds_no_violation(site, tmp_path):
-    """Slow tier (~5 min: axe over 211 pages of MathML, ~1.5 s a page): every check's
-    page loads without a console message, with its title, one list item per recorded
-    step and MathML wherever its record holds some, and axe-core finds no violation."""
+@pytest.mark.parametrize("part", range(PARTS))
+def test_every_check_page_loads_with_its_steps_and_axe_finds_no_violation(site, tmp_path, part):
+    """Slow tier (~5 min of one core: axe over 211 pages of MathML, ~1.5 s a page, in
+    :data:`PARTS` parts): every check's page loads without a console message, with its
+    title, one list item per recorded step and MathML wherever its record holds some, and
+    axe-core finds no violation."""
     from identities.verify import record
     from identities.verify.catalogue import checks
 
-    seen, console = _every_check_page(site, tmp_path, axe=True)
+    seen, console = _every_check_page(site, tmp_path, axe=True, part=part, parts=PARTS)
     assert console == []
-    for c in checks():
+    for c in checks()[part::PARTS]:
         page = seen[f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html"]
         rec, _ = record.load(c.id, c.chapter)
         assert page["title"] == f"{c.id}: {c.title}"

@@ -549,7 +549,7 @@ def _scene_section(name: str, path: str, out: str) -> str:
         # the Python right-hand side (the reference; the compiled one is tested equal to
         # it): the 18 short runs take the same time either way, and the compiled path's
         # first use in a fresh checkout compiles its kernels (measured: the first build
-        # 29.5 s with them, 7.8 s without; each run's method line says which side ran)
+        # 29.5 s with them, 8.2 s without; each run's method line says which side ran)
         with reference_path():
             result = run_book_scene(load_book_scene(path))
     except SceneError as exc:
