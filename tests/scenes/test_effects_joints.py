@@ -341,6 +341,22 @@ def test_a_fixed_axis_measures_phi_from_gravity_across_it_else_from_e_x_then_e_y
     np.testing.assert_allclose(e.reference(g), u0, rtol=0, atol=2 * EPS)
 
 
+@pytest.mark.parametrize("tilt", [2e-8, 1.5e-8, 3e-8, 1e-7, 1e-6])
+@pytest.mark.parametrize("g", [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0]])
+def test_a_fixed_axis_reference_is_across_it_to_rounding_when_e_x_or_gravity_nearly_lie_along_it(
+    tilt, g
+):
+    """The axis tilted from e_x by ``tilt`` rad, gravity absent or along e_x: u0 is e_x's
+    (or gravity's) small part across the axis, a unit vector at right angles to the axis
+    within a few eps. One projection left 2.2e-9 of it along the axis at 2e-8 rad (the
+    hinge's attitude then drifted from orthogonal by as much: found by hypothesis)."""
+    a = np.array([1.0, 0.0, tilt]) / math.hypot(1.0, tilt)
+    u0 = own(hinge(axis=[0.5, 0.0, 0.5 * tilt]), [BOX]).reference(g)
+    assert abs(u0 @ a) <= 4 * EPS
+    assert abs(float(np.linalg.norm(u0)) - 1.0) <= 4 * EPS
+    assert u0[2] < -0.99  # e_x's part across the axis points down the tilt
+
+
 def test_a_fixed_axis_makes_a_hinge_with_its_point_axis_reference_body_axes_and_inertia():
     """Box 3 kg, a = 1, b = 1/2, c = 1/4: J_y = m (a² + c²)/12 = 17/64; + m h² = 3/4."""
     sc = scene_of(
