@@ -99,7 +99,7 @@ class Step:
     sides: tuple | None = None
     #: the rule (strategy) that reduced, or failed to reduce, their difference
     rule: str = ""
-    #: a negative control's or a refutation's exact point where the two sides differ
+    #: the exact point where a negative control's, a refutation's or a witness' two sides differ
     #: ({symbol, f(t) or derivative: rational value}, over the differing entry's symbols)
     point: dict | None = None
     #: an erratum's two forms (derived, printed), shown side by side beside ``expr``

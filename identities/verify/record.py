@@ -200,6 +200,10 @@ def record(check_id: str, outcome, derivation) -> dict[str, Any]:
     }
 
 
+#: the stored files read so far (path → their JSON)
+_LOADED: dict[Path, dict] = {}
+
+
 def _file(chapter: int | None) -> Path:
     return DATA / (f"ch{chapter}.json" if chapter else "named.json")
 
@@ -211,6 +215,7 @@ def write_records(records: dict[str, dict], chapters: dict[str, int | None]) -> 
     for cid, rec in records.items():
         by_file.setdefault(_file(chapters[cid]), {})[cid] = rec
     DATA.mkdir(parents=True, exist_ok=True)
+    _LOADED.clear()  # what load() read before is replaced now
     for old in DATA.glob("*.json"):
         if old not in by_file:
             old.unlink()
@@ -220,9 +225,6 @@ def write_records(records: dict[str, dict], chapters: dict[str, int | None]) -> 
             json.dumps(payload, ensure_ascii=False, indent=0, sort_keys=False) + "\n", "utf-8"
         )
     return sorted(by_file)
-
-
-_LOADED: dict[Path, dict] = {}
 
 
 def load(check_id: str, chapter: int | None) -> tuple[dict | None, dict[str, str]]:
