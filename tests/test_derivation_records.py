@@ -118,13 +118,13 @@ def test_a_piece_too_large_or_unprintable_is_text_with_the_reason(monkeypatch) -
 @given(
     a=st.integers(-5, 5).filter(bool),
     b=st.integers(-5, 5),
-    wrong=st.sampled_from(["x**2", "2*x*y", "sin(x)", "f(t)", "Derivative(f(t), t)"]),
+    wrong=st.sampled_from([x**2, 2 * x * y, sp.sin(x), f(t), sp.Derivative(f(t), t)]),
 )
-def test_a_rejected_variants_point_makes_it_false(a: int, b: int, wrong: str) -> None:
+def test_a_rejected_variants_point_makes_it_false(a: int, b: int, wrong) -> None:
     """The point a negative control records is where its two sides differ: substituted
     (the f(t) and derivatives by what they stand for), the difference is not 0."""
     lhs = a * x + b * y
-    rhs = lhs + sp.sympify(wrong, locals={"f": f})
+    rhs = lhs + wrong
     d = Derivation()
     d.reject(lhs, rhs, claim="a wrong variant")
     point = d.steps[-1].point
@@ -206,9 +206,7 @@ def test_under_other_versions_compare_reads_kinds_and_rules_only() -> None:
     assert record.compare(redrawn, rec, older) == []
     other_rule = dict(rec, steps=list(rec["steps"]))
     other_rule["steps"][proved] = dict(rec["steps"][proved], rule="simplify")
-    assert record.compare(other_rule, rec, older) == [
-        f"P5.4: step {proved + 1} differs in kind/rule"
-    ]
+    assert record.compare(other_rule, rec, older) == [f"P5.4: step {proved + 1} differs in rule"]
 
 
 def test_fallbacks_name_the_check_step_role_and_reason() -> None:

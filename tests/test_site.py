@@ -256,11 +256,16 @@ CHECK_SAMPLE = (
 PAGES = TOP_PAGES + CHECK_SAMPLE
 
 
+def _check_page(check_id: str) -> str:
+    """The file of a check's page of steps: check-ID.html, the id's dots as dashes."""
+    return "check-" + re.sub(r"[^A-Za-z0-9-]", "-", check_id) + ".html"
+
+
 def test_the_browser_tests_cover_every_page(site):
     from identities.verify.catalogue import checks
 
     names = {p.name for p in site.glob("*.html")}
-    own = {f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html" for c in checks()}
+    own = {_check_page(c.id) for c in checks()}
     assert names - own == set(TOP_PAGES)
     assert own <= names
     assert set(CHECK_SAMPLE) <= own
@@ -571,8 +576,8 @@ def test_a_players_picture_changes_between_two_slider_positions(tmp_path):
 
 def _section(site: Path, c) -> str:
     """The section of a check on its own page (``check-ID.html``)."""
-    anchor = "check-" + re.sub(r"[^A-Za-z0-9-]", "-", c.id)
-    page = (site / f"{anchor}.html").read_text("utf-8")
+    page = (site / _check_page(c.id)).read_text("utf-8")
+    anchor = _check_page(c.id).removesuffix(".html")
     m = re.search(f"<section id='{re.escape(anchor)}'>(.*?)</section>", page, re.S)
     assert m, f"{c.id}: no section"
     return m.group(1)
@@ -587,9 +592,7 @@ def test_every_checks_section_shows_its_stored_steps(site):
     for c in checks():
         section = _section(site, c)
         chapter = (site / (f"ch{c.chapter}.html" if c.chapter else "named.html")).read_text()
-        assert f"<a href='check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html'>the derivation" in (
-            chapter
-        )
+        assert f"<a href='{_check_page(c.id)}'>the derivation" in chapter
         rec, _ = record.load(c.id, c.chapter)
         items = re.findall(r"<li class='step (\w+)'>", section)
         assert items == [s["kind"] for s in rec["steps"]], c.id
@@ -716,7 +719,7 @@ def _every_check_page(
     here = tmp_path / "all"
     shutil.copytree(site, here)
     shutil.copyfile(AXE, here / "axe.min.js")
-    pages = [f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html" for c in checks()]
+    pages = [_check_page(c.id) for c in checks()]
     pages = pages[part::parts]
     harness = here / "every-page.html"
     harness.write_text(
@@ -753,7 +756,7 @@ def test_every_check_page_loads_with_its_steps_and_axe_finds_no_violation(site, 
     seen, console = _every_check_page(site, tmp_path, axe=True, part=part, parts=PARTS)
     assert console == []
     for c in checks()[part::PARTS]:
-        page = seen[f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html"]
+        page = seen[_check_page(c.id)]
         rec, _ = record.load(c.id, c.chapter)
         assert page["title"] == f"{c.id}: {c.title}"
         assert page["steps"] == len(rec["steps"]), c.id
@@ -779,7 +782,7 @@ def test_the_every_page_run_sees_a_page_without_steps_and_a_violation(site, tmp_
     only = {"P5.4", "eq2.38", "E5.1"}
     for c in checks():
         if c.id not in only:
-            (copy / f"check-{re.sub(r'[^A-Za-z0-9-]', '-', c.id)}.html").write_text(
+            (copy / _check_page(c.id)).write_text(
                 "<!DOCTYPE html><html lang='en'><head><title>x</title></head>"
                 "<body><main><h1>x</h1></main></body></html>",
                 "utf-8",

@@ -694,11 +694,7 @@ def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
     pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
     from identities.cli.notebooks import demos_page  # the notebooks' stored outputs: no run
 
-    by_id = {c.id: c for c in regs}
-    pages["demos.html"] = (
-        "Lecture demos",
-        demos_page(out, check_href=lambda i: _check_href(by_id[i])),
-    )
+    pages["demos.html"] = ("Lecture demos", demos_page(out, check_href=_check_page_name))
     png = _BENCH / "workprecision.png"
     if png.is_file():
         shutil.copyfile(png, out / "workprecision.png")

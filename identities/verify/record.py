@@ -258,10 +258,13 @@ def compare(now: dict, stored: dict | None, stored_versions: dict[str, str]) -> 
     if stored is None:
         return [f"{now['id']}: no stored record"]
     same = stored_versions == versions()
-    a, b = (_masked(now), _masked(stored)) if same else (now, stored)
-    if not same:
-        a = {"steps": [(s["kind"], s["rule"]) for s in now["steps"]]}
-        b = {"steps": [(s["kind"], s["rule"]) for s in stored["steps"]]}
+
+    def view(rec: dict) -> dict:
+        if same:
+            return _masked(rec)
+        return {"steps": [{"kind": s["kind"], "rule": s["rule"]} for s in rec["steps"]]}
+
+    a, b = view(now), view(stored)
     if a == b:
         return []
     problems = []
@@ -269,14 +272,10 @@ def compare(now: dict, stored: dict | None, stored_versions: dict[str, str]) -> 
         problems.append(f"{now['id']}: {len(a['steps'])} steps, stored {len(b['steps'])}")
     for n, (x, y) in enumerate(zip(a["steps"], b["steps"], strict=False), 1):
         if x != y:
-            where = (
-                [k for k in sorted(set(x) | set(y)) if x.get(k) != y.get(k)]
-                if isinstance(x, dict)
-                else ["kind/rule"]
-            )
+            where = [k for k in sorted(set(x) | set(y)) if x.get(k) != y.get(k)]
             problems.append(f"{now['id']}: step {n} differs in {', '.join(where)}")
     for k in ("label", "passed"):
-        if same and a.get(k) != b.get(k):
+        if a.get(k) != b.get(k):
             problems.append(f"{now['id']}: {k} {a.get(k)!r}, stored {b.get(k)!r}")
     return problems
 
