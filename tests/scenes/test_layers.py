@@ -5,6 +5,7 @@ cycle; mechanics never imports the book layer (identities)."""
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 import pytest
@@ -89,7 +90,10 @@ def _scene_imports(path: Path) -> set[str]:
     return out
 
 
+@functools.cache
 def _graph() -> dict[str, set[str]]:
+    """Each module's run-time imports of its siblings (parsed once per worker: read, never
+    changed, by the tests below)."""
     g: dict[str, set[str]] = {}
     for p in SCENES.rglob("*.py"):
         m = _module_of(p)
