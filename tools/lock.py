@@ -1,7 +1,7 @@
 """The dependency lock: write it (``make lock``), check it before every install.
 
 ``requirements/lock.txt`` pins every direct and transitive dependency of bodycheck's
-``test``, ``engines``, ``mutation`` and ``notebooks`` extras, the build backend and the installer
+``test``, ``engines``, ``mutation``, ``notebooks`` and ``docs`` extras, the build backend and the installer
 (``requirements/tools.in``), each with its hashes, as ``uv pip compile`` writes them for
 Python 3.11.  Its first line records a digest of what it was compiled from (pyproject's
 requirements and tools.in), so that a lock older than its inputs is refused with a
@@ -35,7 +35,7 @@ LOCK = ROOT / "requirements" / "lock.txt"
 TOOLS = ROOT / "requirements" / "tools.in"
 PYPROJECT = ROOT / "pyproject.toml"
 PYTHON_VERSION = "3.11"
-EXTRAS = ("test", "engines", "mutation", "notebooks")
+EXTRAS = ("test", "engines", "mutation", "notebooks", "docs")
 
 DIGEST_PREFIX = "# inputs-sha256: "
 _PIN = re.compile(
