@@ -129,7 +129,10 @@ def own_errors(key: str, obj) -> list[tuple[str, str]]:
         if _takes_arguments(obj):
             out.append(("BC01", "no Raises section (a callable that takes arguments)"))
         raises = ""
-    named = re.findall(r"^(\w[\w.]*)\s*$", raises, re.M)
+    # each unindented line names one or more exceptions ("ShapeError, NonFiniteError")
+    named = [
+        n.strip() for line in re.findall(r"^\S.*$", raises, re.M) for n in line.split(",")
+    ]
     home = importlib.import_module(getattr(obj, "__module__", None) or key.rpartition(".")[0])
     for name in named:
         if not _exception(name, home):
@@ -236,13 +239,24 @@ def _bad(m, r):
     ------
     NotAnError
         Never.
+    ShapeError, AlsoNotAnError
+        Two on one line, the second not an exception.
     """
     return m
 
 
 def test_a_docstring_that_breaks_each_rule_is_named_with_each_check():
-    bad = {c for c, _ in _errors_of("tests.test_docstrings._bad", _bad)}
-    assert bad >= {"SS06", "PR01", "PR02", "RT01", "EX01", "BC02", "BC03", "BC04"}, bad
+    bad = _errors_of("tests.test_docstrings._bad", _bad)
+    codes = {c for c, _ in bad}
+    assert codes >= {"SS06", "PR01", "PR02", "RT01", "EX01", "BC02", "BC03", "BC04"}, bad
+    assert {m for c, m in bad if c == "BC02"} == {
+        "Raises names NotAnError, which is not an exception class",
+        "Raises names AlsoNotAnError, which is not an exception class",
+    }
+    # ShapeError is read from the line that names two: only NegativeMassError is missing
+    assert {m for c, m in bad if c == "BC03"} == {
+        "the Domain paragraph names NegativeMassError, the Raises section does not"
+    }
     assert {c for c, _ in _errors_of("tests.test_docstrings._good", _good)} == set()
 
 
