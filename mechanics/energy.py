@@ -94,17 +94,33 @@ def kinetic_energy_rigid(
     Parameters
     ----------
     m : array_like, shape (...)
-        Mass, ≥ 0.
+        Mass, kg, ≥ 0.
     v_G : array_like, shape (..., 3)
-        Velocity of the centre of mass.
+        Velocity of the centre of mass, m/s.
     omega : array_like, shape (..., 3)
-        Angular velocity, in the basis of ``J_G``.
+        Angular velocity, rad/s, in the basis of ``J_G``.
     J_G : array_like, shape (..., 3, 3)
-        Inertia tensor about G (3.23): symmetric, positive semi-definite.
+        Inertia tensor about G (3.23), kg m²: symmetric, positive semi-definite.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        T, J.
 
     Raises
     ------
-    NegativeMassError, NonPhysicalInertiaError
+    ShapeError
+        Where ``v_G`` or ``omega`` is not (..., 3), ``J_G`` not (..., 3, 3), the leading
+        axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where ``m`` is negative.
+    NonPhysicalInertiaError
+        Where ``J_G`` is not symmetric, not positive semi-definite or breaks J1 + J2 ≥ J3
+        (:func:`~mechanics.inertia.check_inertia` with ``allow_singular=True``).
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -139,10 +155,27 @@ def kinetic_energy_fixed_axis(
 
     Parameters
     ----------
-    J_axis : array_like
-        Moment of inertia about the axis (J^G_z or J^C_z), ≥ 0.
-    omega : array_like
-        Angular velocity φ̇ about the axis.
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis (J^G_z or J^C_z), kg m², ≥ 0.
+    omega : array_like, shape (...)
+        Angular velocity φ̇ about the axis, rad/s; broadcasts against ``J_axis``.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        T, J.
+
+    Raises
+    ------
+    ShapeError
+        Where ``J_axis`` and ``omega`` do not broadcast, or an input is not a real numeric
+        array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NonPhysicalInertiaError
+        Where ``J_axis`` is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -191,6 +224,17 @@ def power(F: npt.ArrayLike, v: npt.ArrayLike) -> npt.NDArray[np.float64]:
     Returns
     -------
     ndarray, shape (...)
+        P, W.
+
+    Raises
+    ------
+    ShapeError
+        Where ``F`` or ``v`` is not (..., N, 3) (a single force is ``(1, 3)``, not ``(3,)``),
+        the leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -219,9 +263,26 @@ def work_from_power(P: npt.ArrayLike, t: npt.ArrayLike) -> npt.NDArray[np.float6
     Parameters
     ----------
     P : array_like, shape (..., K)
-        Power at the sample times (the last axis).
+        Power at the sample times (the last axis), W.
     t : array_like, shape (K,)
-        Strictly increasing times, K ≥ 2.
+        Strictly increasing times, s, K ≥ 2.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        W_12, J.
+
+    Raises
+    ------
+    ShapeError
+        Where ``t`` is not (K,) with K ≥ 2, ``P`` not (..., K), or an input is not a real
+        numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NonPositiveParameterError
+        Where ``t`` is not strictly increasing.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Notes
     -----
@@ -259,12 +320,22 @@ def work_along_path(F: npt.ArrayLike, r: npt.ArrayLike) -> npt.NDArray[np.float6
     Parameters
     ----------
     F, r : array_like, shape (..., K, 3)
-        The force at the K path samples and the samples r_0, …, r_{K−1}.
+        The force at the K path samples (N) and the samples r_0, …, r_{K−1} (m).
 
     Returns
     -------
     ndarray, shape (...)
-        Σ_i ½ (F_i + F_{i+1}) · (r_{i+1} − r_i).
+        Σ_i ½ (F_i + F_{i+1}) · (r_{i+1} − r_i), J.
+
+    Raises
+    ------
+    ShapeError
+        Where ``F`` or ``r`` is not (..., K, 3) with K ≥ 2 samples, the leading axes do not
+        broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Notes
     -----
@@ -306,6 +377,28 @@ def work_of_couple(M: npt.ArrayLike, dphi: npt.ArrayLike) -> npt.NDArray[np.floa
     couple is independent of the base point, because a couple has zero
     resultant (3.65 with F = 0).
 
+    Parameters
+    ----------
+    M : array_like, shape (..., 3)
+        The moment of the couple, N m.
+    dphi : array_like, shape (..., 3)
+        The rotation vector δφ = Δφ e, rad.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        W, J.
+
+    Raises
+    ------
+    ShapeError
+        Where an input is not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     >>> float(work_of_couple([0.0, 1.0, 2.0], [0.0, 0.0, 0.5 * np.pi]) / np.pi)
@@ -328,6 +421,32 @@ def rigid_body_power(
 
     F is the resultant, M_A the moment about the body point A moving with v_A;
     the result does not depend on which body point is chosen.
+
+    Parameters
+    ----------
+    F : array_like, shape (..., 3)
+        The resultant force, N.
+    M_A : array_like, shape (..., 3)
+        The moment of the forces about the body point A, N m.
+    v_A : array_like, shape (..., 3)
+        The velocity of A, m/s.
+    omega : array_like, shape (..., 3)
+        The angular velocity of the body, rad/s.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        P, W.
+
+    Raises
+    ------
+    ShapeError
+        Where an input is not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -361,9 +480,29 @@ def gravity_potential(
     Parameters
     ----------
     m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
     r : array_like, shape (..., N, 3)
+        Positions, m.
     g : array_like, shape (..., 3)
-        The gravity vector (required; e.g. ``[0, 0, -9.81]`` with z up).
+        The gravity vector, m/s² (required; e.g. ``[0, 0, -9.81]`` with z up).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Φ^e, J (zero at the origin).
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r`` not (..., N, 3) with the same N, ``g``
+        not (..., 3), the leading axes do not broadcast, or an input is not a real numeric
+        array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -423,6 +562,34 @@ def spring_potential(
     With ``tension_only=True`` the rubber band of Example 3.3 (3.57): Φ = 0
     while slack, |r_1 − r_2| ≤ ℓ_0.
 
+    Parameters
+    ----------
+    k : array_like, shape (...)
+        The spring constant, N/m, ≥ 0.
+    ell_0 : array_like, shape (...)
+        The natural length ℓ_0, m, ≥ 0.
+    r_1, r_2 : array_like, shape (..., 3)
+        The two end points, m.
+    tension_only : bool, optional
+        A rubber band (3.57): no energy while slack.  Default False.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Φ, J.
+
+    Raises
+    ------
+    ShapeError
+        Where ``r_1`` or ``r_2`` is not (..., 3), the leading axes do not broadcast, or an
+        input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    OutOfDomainError
+        Where ``k`` or ``ell_0`` is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     >>> float(spring_potential(4.0, 1.0, [0, 0, 0], [3.0, 4.0, 0.0])), 0.5 * 4.0 * (5.0 - 1.0) ** 2
@@ -455,10 +622,35 @@ def spring_force(
 
     The force on point 2 is its negative (Newton's third law, central).
 
+    Parameters
+    ----------
+    k : array_like, shape (...)
+        The spring constant, N/m, ≥ 0.
+    ell_0 : array_like, shape (...)
+        The natural length ℓ_0, m, ≥ 0.
+    r_1, r_2 : array_like, shape (..., 3)
+        The two end points, m, distinct.
+    tension_only : bool, optional
+        A rubber band (3.57): no force while slack.  Default False.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The force on point 1, N.
+
     Raises
     ------
+    ShapeError
+        Where ``r_1`` or ``r_2`` is not (..., 3), the leading axes do not broadcast, or an
+        input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    OutOfDomainError
+        Where ``k`` or ``ell_0`` is negative.
     NonPositiveParameterError
-        For coincident points with ℓ_0 > 0 (the direction is undefined).
+        For coincident points, |r_1 − r_2| = 0, whatever ℓ_0 (the direction is undefined).
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -493,6 +685,30 @@ def torsion_potential(tau_0: npt.ArrayLike, phi: npt.ArrayLike) -> npt.NDArray[n
     Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
     ResultOverflowError.
 
+    Parameters
+    ----------
+    tau_0 : array_like, shape (...)
+        The torsion constant τ_0, N m/rad, ≥ 0.
+    phi : array_like, shape (...)
+        The twist angle φ from the unstrained position, rad.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        Φ, J.
+
+    Raises
+    ------
+    ShapeError
+        Where ``tau_0`` and ``phi`` do not broadcast, or an input is not a real numeric
+        array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    OutOfDomainError
+        Where ``tau_0`` is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     Φ(φ) = −∫₀^φ M dφ' (3.71), by the trapezoid rule (exact for a linear M):
@@ -516,6 +732,39 @@ def torsion_moment(tau_0: npt.ArrayLike, phi: npt.ArrayLike) -> npt.NDArray[np.f
 
     Domain: τ_0 ≥ 0 (else OutOfDomainError), any finite φ; a result beyond float64 raises
     ResultOverflowError.
+
+    Parameters
+    ----------
+    tau_0 : array_like, shape (...)
+        The torsion constant τ_0, N m/rad, ≥ 0.
+    phi : array_like, shape (...)
+        The twist angle φ from the unstrained position, rad.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        M, N m.
+
+    Raises
+    ------
+    ShapeError
+        Where ``tau_0`` and ``phi`` do not broadcast, or an input is not a real numeric
+        array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    OutOfDomainError
+        Where ``tau_0`` is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
+    Examples
+    --------
+    M = −dΦ/dφ (3.71); a central difference is exact for the quadratic Φ:
+
+    >>> h = 0.5
+    >>> dPhi = torsion_potential(2.0, 1.5 + h) - torsion_potential(2.0, 1.5 - h)
+    >>> float(torsion_moment(2.0, 1.5)), float(-dPhi / (2 * h))
+    (-3.0, -3.0)
     """
     tt = as_float_array(tau_0, "tau_0")
     if (tt < 0).any():
@@ -537,6 +786,30 @@ def contact_point_velocity(
 
     Domain: finite v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
     ResultOverflowError.
+
+    Parameters
+    ----------
+    v_G : array_like, shape (..., 3)
+        Velocity of the centre of mass, m/s.
+    omega : array_like, shape (..., 3)
+        Angular velocity of the body, rad/s.
+    r_GC : array_like, shape (..., 3)
+        The vector GC from G to the contact point C, m.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        v_C, m/s.
+
+    Raises
+    ------
+    ShapeError
+        Where an input is not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -560,6 +833,32 @@ def contact_power(
 
     Domain: finite F_contact, v_G, omega, r_GC of shape (..., 3); a result beyond float64 raises
     ResultOverflowError.
+
+    Parameters
+    ----------
+    F_contact : array_like, shape (..., 3)
+        The contact force on the body, N.
+    v_G : array_like, shape (..., 3)
+        Velocity of the centre of mass, m/s.
+    omega : array_like, shape (..., 3)
+        Angular velocity of the body, rad/s.
+    r_GC : array_like, shape (..., 3)
+        The vector GC from G to the contact point C, m.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        P, W.
+
+    Raises
+    ------
+    ShapeError
+        Where an input is not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -589,6 +888,32 @@ def rolling_contact_power(
     This function computes F · v_C (like :func:`contact_power`) and is the
     book's statement when the motion rolls; it does not assume it.
 
+    Parameters
+    ----------
+    F_contact : array_like, shape (..., 3)
+        The contact force on the body (normal force plus friction), N.
+    v_G : array_like, shape (..., 3)
+        Velocity of the centre of mass, m/s.
+    omega : array_like, shape (..., 3)
+        Angular velocity of the body, rad/s.
+    r_GC : array_like, shape (..., 3)
+        The vector GC from G to the contact point C, m.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        P, W: zero when the body rolls without slipping.
+
+    Raises
+    ------
+    ShapeError
+        Where an input is not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     Example 3.6, a cylinder (r = 0.5) rolling down an incline: the friction
@@ -613,6 +938,28 @@ def pair_power(N: npt.ArrayLike, v_1: npt.ArrayLike, v_2: npt.ArrayLike) -> npt.
     Zero when the contact points have the same velocity component along N
     (a normal force between moving bodies), or the same velocity (static
     friction), 3.2.2.
+
+    Parameters
+    ----------
+    N : array_like, shape (..., 3)
+        The force on body 1, N (its reaction −N acts on body 2).
+    v_1, v_2 : array_like, shape (..., 3)
+        The velocities of the points of application on body 1 and on body 2, m/s.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        P, W.
+
+    Raises
+    ------
+    ShapeError
+        Where an input is not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------

@@ -247,10 +247,23 @@ def check_masses(m: npt.ArrayLike, name: str = "m") -> np.ndarray:
 
     Domain: any finite m ≥ 0 of shape (..., N), N ≥ 1 (else NegativeMassError or ShapeError).
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg: finite, ≥ 0 (a zero mass is allowed).
+    name : str, optional
+        The name the error messages give the masses (default ``"m"``).
+
+    Returns
+    -------
+    ndarray, shape (..., N)
+        The masses as float64, unchanged (``m`` itself when it is a float64 array).
+
     Raises
     ------
     ShapeError
-        For a scalar (a system needs a particle axis) or N = 0.
+        For a scalar (a system needs a particle axis), N = 0, or an input that is not a
+        real numeric array.
     NonFiniteError
         For NaN or an infinity, naming the first.
     NegativeMassError
@@ -341,10 +354,23 @@ def total_mass(m: npt.ArrayLike) -> np.ndarray:
     Parameters
     ----------
     m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
 
     Returns
     -------
     ndarray, shape (...)
+        The total mass, kg.
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, or not a real numeric array.
+    NonFiniteError
+        Where a mass is NaN or infinite.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the sum is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -377,16 +403,24 @@ def centre_of_mass(m: npt.ArrayLike, r: npt.ArrayLike) -> np.ndarray:
     Parameters
     ----------
     m : array_like, shape (..., N)
-        Masses, ≥ 0, not all zero.
+        Masses, kg, ≥ 0, not all zero.
     r : array_like, shape (..., N, 3)
-        Positions in the fixed frame.
+        Positions in the fixed frame, m.
 
     Returns
     -------
     ndarray, shape (..., 3)
+        The centre of mass r_G, m; each component between the particles' least and greatest.
 
     Raises
     ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r`` not (..., N, 3) with the same N, the
+        leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
     ZeroTotalMassError
         Where all masses are 0.
 
@@ -431,6 +465,30 @@ def centre_of_mass_velocity(m: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
     ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
     (else ShapeError); a total mass > 0 (else ZeroTotalMassError).
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0, not all zero.
+    v : array_like, shape (..., N, 3)
+        Velocities in the fixed frame, m/s.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The velocity v_G of the centre of mass, m/s.
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``v`` not (..., N, 3) with the same N, the
+        leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ZeroTotalMassError
+        Where all masses are 0 (the centre of mass is undefined).
+
     Examples
     --------
     p = m v_G (1.7), with both sides computed independently:
@@ -452,6 +510,30 @@ def momentum(m: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
     Domain: masses m ≥ 0 of shape (..., N), N ≥ 1 (``check_masses``: else NegativeMassError or
     ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
     (else ShapeError); a result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
+    v : array_like, shape (..., N, 3)
+        Velocities in the fixed frame, m/s.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The momentum p, kg m/s.
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``v`` not (..., N, 3) with the same N, the
+        leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -495,10 +577,11 @@ def angular_momentum(
     Parameters
     ----------
     m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
     r, v : array_like, shape (..., N, 3)
-        Positions and (absolute) velocities in the fixed frame.
+        Positions (m) and (absolute) velocities (m/s) in the fixed frame.
     about : array_like, shape (..., 3)
-        The base point A (required: there is no default origin).
+        The base point A, m (required: there is no default origin).
     about_velocity : array_like, shape (..., 3), optional
         Omitted (the book's definition): the absolute velocities v_j are used,
         for a fixed or a moving A alike; this L_A obeys the connection formula
@@ -511,6 +594,20 @@ def angular_momentum(
     Returns
     -------
     ndarray, shape (..., 3)
+        L_A, kg m²/s.
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r`` or ``v`` not (..., N, 3) with the same N,
+        ``about`` or ``about_velocity`` not (..., 3), the leading axes do not broadcast, or an
+        input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Notes
     -----
@@ -557,6 +654,15 @@ def angular_momentum_decomposition(
     (else ShapeError); finite about (..., 3); a total mass > 0 (else ZeroTotalMassError); a result
     beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0, not all zero.
+    r, v : array_like, shape (..., N, 3)
+        Positions (m) and velocities (m/s) in the fixed frame.
+    about : array_like, shape (..., 3)
+        The base point A, m (required: there is no default origin).
+
     Returns
     -------
     L_G : ndarray, shape (..., 3)
@@ -564,6 +670,21 @@ def angular_momentum_decomposition(
         v'_j = v_j − v_G: the book's L'_G, equal to L_G by (1.13)–(1.15).
     L_ext : ndarray, shape (..., 3)
         The external part AG × p, p = m v_G (1.7).
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r`` or ``v`` not (..., N, 3) with the same N,
+        ``about`` not (..., 3), the leading axes do not broadcast, or an input is not a real
+        numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ZeroTotalMassError
+        Where all masses are 0 (the centre of mass is undefined).
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Notes
     -----
@@ -614,6 +735,33 @@ def moving_base_point_term(
     (absolute velocities, :func:`angular_momentum` without ``about_velocity``).
     It vanishes when p = 0 or v_B ∥ v_G, in particular for B = G (1.51).
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
+    v : array_like, shape (..., N, 3)
+        Velocities of the particles in the fixed frame, m/s.
+    about_velocity : array_like, shape (..., 3)
+        The velocity v_B of the base point B, m/s.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        v_B × p, kg m²/s² (N m).
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``v`` not (..., N, 3) with the same N,
+        ``about_velocity`` not (..., 3), the leading axes do not broadcast, or an input is not a
+        real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     >>> m, v = [1.0, 1.0], [[1.0, 0.0, 0.0], [1.0, 2.0, 0.0]]
@@ -651,10 +799,32 @@ def angular_momentum_rate(
 
     Parameters
     ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
+    r, v : array_like, shape (..., N, 3)
+        Positions (m) and velocities (m/s) of the particles in the fixed frame.
     a : array_like, shape (..., N, 3)
-        Accelerations of the particles.
+        Accelerations of the particles, m/s².
     about, about_velocity : array_like, shape (..., 3)
-        Position and velocity of B at this instant.
+        Position (m) and velocity (m/s) of B at this instant.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        dL_B/dt, kg m²/s² (N m).
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r``, ``v`` or ``a`` not (..., N, 3) with the
+        same N, ``about`` or ``about_velocity`` not (..., 3), the leading axes do not broadcast,
+        or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -700,7 +870,24 @@ def moment_of_forces(r: npt.ArrayLike, F: npt.ArrayLike, *, about: npt.ArrayLike
     Parameters
     ----------
     r, F : array_like, shape (..., N, 3)
+        The points of application (m) and the forces (N), the same N.
     about : array_like, shape (..., 3)
+        The base point A, m (required: there is no default origin).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        M_A, N m.
+
+    Raises
+    ------
+    ShapeError
+        Where ``r`` and ``F`` are not both (..., N, 3) with the same N, ``about`` is not
+        (..., 3), the leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -755,6 +942,16 @@ def internal_forces(f: npt.ArrayLike) -> np.ndarray:
     Returns
     -------
     ndarray, shape (..., N, 3)
+        F^i_k, the resultant internal force on each particle k, N.
+
+    Raises
+    ------
+    ShapeError
+        Where ``f`` is not (..., N, N, 3), or not a real numeric array.
+    NonFiniteError
+        Where ``f`` holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -783,7 +980,24 @@ def internal_moment(r: npt.ArrayLike, f: npt.ArrayLike) -> np.ndarray:
     Parameters
     ----------
     r : array_like, shape (..., N, 3)
+        Positions of the particles, m.
     f : array_like, shape (..., N, N, 3)
+        Pair forces, N: f[..., k, j, :] is the force on k from j.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        M^i, N m.
+
+    Raises
+    ------
+    ShapeError
+        Where ``r`` is not (..., N, 3) or ``f`` not (..., N, N, 3) with the same N, the
+        leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -823,6 +1037,30 @@ def kinetic_energy(m: npt.ArrayLike, v: npt.ArrayLike) -> np.ndarray:
     ShapeError), finite vectors of shape (..., N, 3) with the same N, leading axes broadcasting
     (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
+    v : array_like, shape (..., N, 3)
+        Velocities in the fixed (inertial) frame, m/s.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        T, J.
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``v`` not (..., N, 3) with the same N, the
+        leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     Koenig's theorem (3.7): T = T' + ½ m v_G².
@@ -855,6 +1093,13 @@ def kinetic_energy_decomposition(
     (else ShapeError); a total mass > 0 (else ZeroTotalMassError); a result beyond float64 raises
     ResultOverflowError.
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0, not all zero.
+    v : array_like, shape (..., N, 3)
+        Velocities in the fixed (inertial) frame, m/s.
+
     Returns
     -------
     T_G : ndarray, shape (...)
@@ -863,6 +1108,20 @@ def kinetic_energy_decomposition(
         1e8 with internal speeds of 1).
     T_cm : ndarray, shape (...)
         ½ m v_G², the translation of the centre of mass.
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``v`` not (..., N, 3) with the same N, the
+        leading axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ZeroTotalMassError
+        Where all masses are 0 (the centre of mass is undefined).
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -904,6 +1163,30 @@ def axial_component(x: npt.ArrayLike, *, axis: npt.ArrayLike) -> np.ndarray:
 
     ``axis`` need not be unit: it is normalised.
 
+    Parameters
+    ----------
+    x : array_like, shape (..., 3)
+        The vector (any unit).
+    axis : array_like, shape (..., 3)
+        The direction e, nonzero, any length.
+
+    Returns
+    -------
+    ndarray, shape (...)
+        x · e/|e|, in the unit of ``x``.
+
+    Raises
+    ------
+    ShapeError
+        Where ``x`` or ``axis`` is not (..., 3), their leading axes do not broadcast, or an
+        input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ZeroAxisError
+        Where ``axis`` is the zero vector.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     >>> float(axial_component([1.0, 2.0, 3.0], axis=[0.0, 0.0, 5.0]))
@@ -919,7 +1202,31 @@ axial_component = finite_result(axial_component)
 
 
 class Cylindrical(NamedTuple):
-    """Cylindrical coordinates and their rates (ρ, ϕ, z, ρ̇, ϕ̇, ż) of (1.68)."""
+    """Cylindrical coordinates and their rates (ρ, ϕ, z, ρ̇, ϕ̇, ż) of (1.68).
+
+    The result of :func:`cylindrical_components`, a named tuple: it unpacks as
+    ``rho, phi, z, rhodot, phidot, zdot = c``.  The constructor checks nothing.
+
+    Parameters
+    ----------
+    rho : ndarray, shape (...)
+        Distance ρ from the axis, m.
+    phi : ndarray, shape (...)
+        Azimuth ϕ about the axis, rad, in [−π, π].
+    z : ndarray, shape (...)
+        Coordinate along the axis, from the base point, m.
+    rhodot, phidot, zdot : ndarray, shape (...)
+        The rates ρ̇ (m/s), ϕ̇ (rad/s) and ż (m/s).
+
+    Examples
+    --------
+    The speed from the rates, v² = ρ̇² + ρ² ϕ̇² + ż²:
+
+    >>> v = [-1.0, 7.0, 1.0]
+    >>> c = cylindrical_components([3.0, 4.0, 0.0], v, about=[0, 0, 0], axis=[0, 0, 1])
+    >>> float(c.rhodot**2 + c.rho**2 * c.phidot**2 + c.zdot**2), float(np.dot(v, v))
+    (51.0, 51.0)
+    """
 
     rho: np.ndarray
     phi: np.ndarray
@@ -952,11 +1259,11 @@ def cylindrical_components(
     Parameters
     ----------
     r, v : array_like, shape (..., 3)
-        Positions and velocities.
+        Positions (m) and velocities (m/s).
     about : array_like, shape (..., 3)
-        A point A on the axis (the book puts the origin there).
+        A point A on the axis, m (the book puts the origin there).
     axis : array_like, shape (..., 3)
-        The fixed direction e_z (normalised here).
+        The fixed direction e_z, nonzero (normalised here).
 
     Returns
     -------
@@ -967,8 +1274,17 @@ def cylindrical_components(
 
     Raises
     ------
+    ShapeError
+        Where ``r``, ``v``, ``about`` or ``axis`` is not (..., 3), their leading axes do not
+        broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ZeroAxisError
+        Where ``axis`` is the zero vector.
     OutOfDomainError
         For a point on the axis (ρ = 0), where ϕ and ϕ̇ are undefined.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -1020,6 +1336,37 @@ def moment_of_inertia_about_axis(
     (else ShapeError); finite about (..., 3), a nonzero axis (else ZeroAxisError); a result beyond
     float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0.
+    r : array_like, shape (..., N, 3)
+        Positions, m.
+    about : array_like, shape (..., 3)
+        A point A on the axis, m.
+    axis : array_like, shape (..., 3)
+        The direction e of the axis, nonzero (normalised here).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        J_z, kg m².
+
+    Raises
+    ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r`` not (..., N, 3) with the same N, ``about``
+        or ``axis`` not (..., 3), the leading axes do not broadcast, or an input is not a real
+        numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ZeroAxisError
+        Where ``axis`` is the zero vector.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     >>> float(moment_of_inertia_about_axis([2.0, 1.0], [[1.0, 0.0, 5.0], [0.0, 3.0, 0.0]],
@@ -1054,10 +1401,38 @@ def average_angular_velocity(
     (else ShapeError); finite about, a nonzero axis; J_z > 0 (not all mass on the axis: else
     OutOfDomainError); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    m : array_like, shape (..., N)
+        Masses, kg, ≥ 0, not all on the axis.
+    r, v : array_like, shape (..., N, 3)
+        Positions (m) and velocities (m/s) in the fixed frame.
+    about : array_like, shape (..., 3)
+        A point A on the axis, m.
+    axis : array_like, shape (..., 3)
+        The direction e_z of the fixed axis, nonzero (normalised here).
+
+    Returns
+    -------
+    ndarray, shape (...)
+        ω_av, rad/s, positive by the right-hand rule about ``axis``.
+
     Raises
     ------
+    ShapeError
+        Where ``m`` is not (..., N) with N ≥ 1, ``r`` or ``v`` not (..., N, 3) with the same N,
+        ``about`` or ``axis`` not (..., 3), the leading axes do not broadcast, or an input is
+        not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        Where a mass is negative.
+    ZeroAxisError
+        Where ``axis`` is the zero vector.
     OutOfDomainError
-        Where J_z = 0 (all mass on the axis).
+        Where J_z = 0: all mass on the axis, or J_z below float64's range (ρ_j ≲ 1e-162).
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -1100,12 +1475,31 @@ def masses_from_density(rho: npt.ArrayLike, *, cell_volume: npt.ArrayLike) -> np
     O(h²) in the cell size h; they are exact for the centre of mass of a
     density that is constant on the cells (a uniform body made of cells).
 
+    Parameters
+    ----------
+    rho : array_like, shape (..., N)
+        Density at the cell centres, ≥ 0: kg/m³ (kg/m², kg/m for areas and lines).
+    cell_volume : float
+        The volume dV of each cell, > 0: m³ (m², m).
+
+    Returns
+    -------
+    ndarray, shape (..., N)
+        The masses m_j = ρ_j dV, kg.
+
     Raises
     ------
+    ShapeError
+        Where ``rho`` is not (..., N) with N ≥ 1, ``cell_volume`` is not a scalar, or an
+        input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
     NegativeMassError
         For a negative density sample.
     NonPositiveParameterError
         For ``cell_volume`` ≤ 0.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -1133,6 +1527,37 @@ def continuous_centre_of_mass(
 
     Domain: rho and cell_volume as :func:`masses_from_density`, finite points (..., N, 3); rho not
     zero everywhere (else ZeroTotalMassError).
+
+    Parameters
+    ----------
+    rho : array_like, shape (..., N)
+        Density at the cell centres, ≥ 0, not zero everywhere (as :func:`masses_from_density`).
+    points : array_like, shape (..., N, 3)
+        The cell centres, m.
+    cell_volume : float
+        The volume dV of each cell, > 0 (as :func:`masses_from_density`).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        r_G, m.
+
+    Raises
+    ------
+    ShapeError
+        Where ``rho`` is not (..., N) with N ≥ 1, ``points`` not (..., N, 3) with the same N,
+        ``cell_volume`` not a scalar, the leading axes do not broadcast, or an input is not a
+        real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        For a negative density sample.
+    NonPositiveParameterError
+        For ``cell_volume`` ≤ 0.
+    ZeroTotalMassError
+        Where ``rho`` is zero everywhere.
+    ResultOverflowError
+        Where a mass ρ_j dV is beyond float64 (~1.8e308).
 
     Examples
     --------
@@ -1167,6 +1592,35 @@ def continuous_momentum(
     Domain: rho and cell_volume as :func:`masses_from_density`, finite velocity (..., N, 3); a
     result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    rho : array_like, shape (..., N)
+        Density at the cell centres, ≥ 0 (as :func:`masses_from_density`).
+    velocity : array_like, shape (..., N, 3)
+        The velocity at the cell centres, m/s.
+    cell_volume : float
+        The volume dV of each cell, > 0 (as :func:`masses_from_density`).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        p, kg m/s.
+
+    Raises
+    ------
+    ShapeError
+        Where ``rho`` is not (..., N) with N ≥ 1, ``velocity`` not (..., N, 3) with the same
+        N, ``cell_volume`` not a scalar, the leading axes do not broadcast, or an input is not
+        a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        For a negative density sample.
+    NonPositiveParameterError
+        For ``cell_volume`` ≤ 0.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
+
     Examples
     --------
     A uniform disc of mass 1 turning rigidly about its centre has p = 0:
@@ -1198,6 +1652,37 @@ def continuous_angular_momentum(
 
     Domain: rho and cell_volume as :func:`masses_from_density`, finite points and velocity (..., N,
     3), finite about (..., 3); a result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    rho : array_like, shape (..., N)
+        Density at the cell centres, ≥ 0 (as :func:`masses_from_density`).
+    points, velocity : array_like, shape (..., N, 3)
+        The cell centres (m) and the velocity there (m/s).
+    cell_volume : float
+        The volume dV of each cell, > 0 (as :func:`masses_from_density`).
+    about : array_like, shape (..., 3)
+        The base point A, m (required: there is no default origin).
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        L_A, kg m²/s.
+
+    Raises
+    ------
+    ShapeError
+        Where ``rho`` is not (..., N) with N ≥ 1, ``points`` or ``velocity`` not (..., N, 3)
+        with the same N, ``cell_volume`` not a scalar, ``about`` not (..., 3), the leading
+        axes do not broadcast, or an input is not a real numeric array.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    NegativeMassError
+        For a negative density sample.
+    NonPositiveParameterError
+        For ``cell_volume`` ≤ 0.
+    ResultOverflowError
+        Where the result, or an intermediate, is beyond float64 (~1.8e308).
 
     Examples
     --------
