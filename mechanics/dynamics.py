@@ -138,14 +138,33 @@ def angular_momentum_rigid(
     Parameters
     ----------
     J : array_like, shape (..., 3, 3)
-        Inertia tensor about G or a fixed point C (validated by
+        Inertia tensor about G or a fixed point C (kg m²; validated by
         :func:`~mechanics.inertia.check_inertia`; a thin rod is accepted).
     omega : array_like, shape (..., 3)
-        Angular velocity, components in the basis of ``J``.
+        Angular velocity (rad/s), components in the basis of ``J``.
+    allow_singular : bool
+        Accept a tensor with a zero smallest moment (a line mass or a point; default
+        True); False refuses it with NonPhysicalInertiaError.
 
     Returns
     -------
-    ndarray, shape (..., 3)
+    L : ndarray, shape (..., 3)
+        The angular momentum J ω (kg m²/s) about the point ``J`` refers to, in the basis
+        of ``J``.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        ``J`` refused by :func:`~mechanics.inertia.check_inertia` (not symmetric, not
+        positive semidefinite, J1 + J2 < J3; a zero moment with ``allow_singular=False``).
+    NonFiniteError
+        A NaN or infinite entry of ``J`` or ``omega``.
+    ShapeError
+        ``J`` not ending in (3, 3), ``omega`` not ending in 3, batch axes that do not
+        broadcast (the message lists each argument's shape), or an input that is not an
+        array of real numbers.
+    ResultOverflowError
+        A component of L beyond float64.
 
     Examples
     --------
@@ -178,12 +197,43 @@ def rotational_kinetic_energy(
     ResultOverflowError; moments up to float64's limit are checked without overflow; batches that
     do not broadcast (2 against 3) raise ShapeError listing each argument's shape.
 
+    Parameters
+    ----------
+    J : array_like, shape (..., 3, 3)
+        Inertia tensor about G or a fixed point (kg m²; validated by
+        :func:`~mechanics.inertia.check_inertia`; a thin rod is accepted).
+    omega : array_like, shape (..., 3)
+        Angular velocity (rad/s), components in the basis of ``J``.
+    allow_singular : bool
+        Accept a tensor with a zero smallest moment (default True); False refuses it
+        with NonPhysicalInertiaError.
+
+    Returns
+    -------
+    T : ndarray, shape (...)
+        The rotational kinetic energy ½ ωᵀ J ω (J), ≥ 0.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        ``J`` refused by :func:`~mechanics.inertia.check_inertia` (not symmetric, not
+        positive semidefinite, J1 + J2 < J3; a zero moment with ``allow_singular=False``).
+    NonFiniteError
+        A NaN or infinite entry of ``J`` or ``omega``.
+    ShapeError
+        ``J`` not ending in (3, 3), ``omega`` not ending in 3, batch axes that do not
+        broadcast (the message lists each argument's shape), or an input that is not an
+        array of real numbers.
+    ResultOverflowError
+        A T beyond float64.
+
     Examples
     --------
-    In the principal basis T = ½ (J1 ω1² + J2 ω2² + J3 ω3²) (4.32):
+    In the principal basis T = ½ (J1 ω1² + J2 ω2² + J3 ω3²) (4.32), and T = ½ ω·L:
 
-    >>> float(rotational_kinetic_energy(np.diag([1.0, 2.0, 3.0]), [1.0, 1.0, 2.0]))
-    7.5
+    >>> J, w = np.diag([1.0, 2.0, 3.0]), [1.0, 1.0, 2.0]
+    >>> float(rotational_kinetic_energy(J, w)), float(0.5 * np.dot(w, angular_momentum_rigid(J, w)))
+    (7.5, 7.5)
     """
     Jc = check_inertia(J, allow_singular=allow_singular, about_centre_of_mass=False)
     w = as_float_array(omega, "omega", (3,))
@@ -209,14 +259,31 @@ def euler_equations_rhs(
     Parameters
     ----------
     J_principal : array_like, shape (..., 3)
-        Principal moments (J1, J2, J3) about G or a fixed point, each > 0 and
+        Principal moments (J1, J2, J3) about G or a fixed point (kg m²), each > 0 and
         obeying the triangle inequality.
-    omega, M : array_like, shape (..., 3)
-        Body components of ω and of the moment M about the same point.
+    omega : array_like, shape (..., 3)
+        Body components of the angular velocity ω (rad/s).
+    M : array_like, shape (..., 3)
+        Body components of the moment M (N m) about the same point.
 
     Returns
     -------
-    ndarray, shape (..., 3)
+    omega_dot : ndarray, shape (..., 3)
+        Body components of dω/dt (rad/s²).
+
+    Raises
+    ------
+    NonPositiveParameterError
+        A principal moment ≤ 0.
+    NonPhysicalInertiaError
+        ``J_principal`` breaks J_j + J_k ≥ J_i by more than 64 eps of the largest moment.
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        An input not ending in 3, batch axes that do not broadcast (the message lists each
+        argument's shape), or an input that is not an array of real numbers.
+    ResultOverflowError
+        A component of dω/dt beyond float64.
 
     Examples
     --------
@@ -259,8 +326,39 @@ def fixed_axis_angular_acceleration(
     together (else ShapeError listing each argument's shape).  A quotient beyond float64
     (1e300/1e-300) raises ResultOverflowError.
 
+    Parameters
+    ----------
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, J_z (kg m²), > 0.
+    M_axis : array_like, shape (...)
+        Moment about the axis, M_z (N m), finite.
+
+    Returns
+    -------
+    phiddot : ndarray, shape (...)
+        The angular acceleration φ̈ (rad/s²), over the broadcast shape of the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``J_axis`` has an entry ≤ 0.
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        A quotient beyond float64.
+
     Examples
     --------
+    The z-component of Euler's equations (4.47) for a rotation about a principal axis:
+
+    >>> float(fixed_axis_angular_acceleration(2.0, -3.0))
+    -1.5
+    >>> float(euler_equations_rhs([1.0, 1.0, 2.0], [0.0, 0.0, 5.0], [0.0, 0.0, -3.0])[2])
+    -1.5
+
     The physical pendulum (4.48), M_z = −m g h sin φ:
 
     >>> float(fixed_axis_angular_acceleration(2.0, -1.0 * 9.81 * 0.5 * np.sin(0.3)))
@@ -331,6 +429,33 @@ def reduced_length(
     are carried apart, so m h cannot overflow or underflow on the way; an ℓ beyond float64
     (1e300/(1e-300 · 1)) raises ResultOverflowError.
 
+    Parameters
+    ----------
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, the book's J_z (kg m²), > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G, the book's h (m), > 0.
+
+    Returns
+    -------
+    ell : ndarray, shape (...)
+        The reduced length ℓ (m), the length of the simple pendulum with the same small
+        period, over the broadcast shape of the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``J_axis``, ``m`` or ``h`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An ℓ beyond float64.
+
     Examples
     --------
     A rod of length l about its end (Example 4.3): ℓ = (m l²/3)/(m l/2) = 2l/3:
@@ -370,6 +495,34 @@ def pendulum_small_period(
     subnormals is 0, its rounded value).
 
     ``h`` is the distance from the axis to G (the book's h).
+
+    Parameters
+    ----------
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, the book's J_z (kg m²), > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    g : array_like, shape (...)
+        Gravitational acceleration (m/s²), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G, the book's h (m), > 0.
+
+    Returns
+    -------
+    T_p : ndarray, shape (...)
+        The small-oscillation period (s), over the broadcast shape of the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``J_axis``, ``m``, ``g`` or ``h`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        A period beyond float64.
 
     Examples
     --------
@@ -432,10 +585,36 @@ def pendulum_period(
 
     Parameters
     ----------
-    J_axis, m, g, h : array_like
-        Moment of inertia about the axis, mass, gravity, distance axis–G; > 0.
-    theta_0 : array_like
-        Amplitude in [−π, π] (radians); |θ0| = fl(π) is allowed and finite.
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, the book's J_z (kg m²), > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    g : array_like, shape (...)
+        Gravitational acceleration (m/s²), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G, the book's h (m), > 0.
+    theta_0 : array_like, shape (...)
+        Amplitude θ0, the angle of release from rest (rad), in [−π, π]; |θ0| = fl(π) is
+        allowed and gives a finite period.
+
+    Returns
+    -------
+    T : ndarray, shape (...)
+        The period (s), over the broadcast shape of the inputs; finite for |θ0| ≤ fl(π).
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``J_axis``, ``m``, ``g`` or ``h`` has an entry ≤ 0 (the message names it).
+    OutOfDomainError
+        |θ0| > π (``theta_0`` beyond π: no oscillation from rest).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        A period beyond float64.
 
     Examples
     --------
@@ -481,17 +660,42 @@ def pendulum_motion(
 
     Parameters
     ----------
-    t : array_like
-        Times (any sign), broadcast against the parameters.
-    J_axis, m, g, h, theta_0 : array_like
-        As :func:`pendulum_period`.
+    t : array_like, shape (...)
+        Times since the release (s), any sign, finite, broadcast against the parameters.
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, the book's J_z (kg m²), > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    g : array_like, shape (...)
+        Gravitational acceleration (m/s²), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G, the book's h (m), > 0.
+    theta_0 : array_like, shape (...)
+        Amplitude θ0, the angle of release from rest (rad), in [−π, π] (|θ0| = fl(π)
+        allowed).
 
     Returns
     -------
-    ndarray
-        φ(t) in [−|θ0|, |θ0|].  The error is that of cn (see
-        :mod:`mechanics.elliptic`): relative to the change of φ when ω0 t is
-        rounded, so it grows like eps·|ω0 t|·|φ̇| at long times.
+    phi : ndarray, shape (...)
+        φ(t) (rad) in [−|θ0|, |θ0|], over the broadcast shape of the inputs.  The error
+        is that of cn (see :mod:`mechanics.elliptic`): relative to the change of φ when
+        ω0 t is rounded, so it grows like eps·|ω0 t|·|φ̇| at long times.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``J_axis``, ``m``, ``g`` or ``h`` has an entry ≤ 0 (the message names it).
+    OutOfDomainError
+        |θ0| > π (``theta_0`` beyond π: no oscillation from rest).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape;
+        where ``theta_0`` alone fails to broadcast against the others, the error comes from
+        :func:`mechanics.elliptic.ellipj` and lists its arguments u, m, m1 instead), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        The phase ω0 t beyond float64.
 
     Examples
     --------
@@ -546,10 +750,40 @@ def pendulum_angular_velocity_at(
     cancellation.  The sign of φ̇ is not determined by the energy; the
     magnitude is returned.
 
+    Parameters
+    ----------
+    theta : array_like, shape (...)
+        The angle φ (rad) where |φ̇| is wanted, finite, |φ| ≤ |θ0|.
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, the book's J_z (kg m²), > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    g : array_like, shape (...)
+        Gravitational acceleration (m/s²), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G, the book's h (m), > 0.
+    theta_0 : array_like, shape (...)
+        Amplitude θ0, the angle of release from rest (rad), in [−π, π] (|θ0| = fl(π)
+        allowed).
+
+    Returns
+    -------
+    phidot : ndarray, shape (...)
+        |φ̇| (rad/s), ≥ 0, over the broadcast shape of the inputs.
+
     Raises
     ------
+    NonPositiveParameterError
+        ``J_axis``, ``m``, ``g`` or ``h`` has an entry ≤ 0 (the message names it).
     OutOfDomainError
-        If |φ| > |θ0| (the pendulum never gets there).
+        If |φ| > |θ0| (the pendulum never gets there), or |θ0| > π.
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        A |φ̇| beyond float64.
 
     Examples
     --------
@@ -605,17 +839,36 @@ def axis_reaction(
 
     Parameters
     ----------
-    m, h : array_like
-        Mass (> 0) and distance axis–G (>= 0).
-    phidot, phiddot : array_like
-        φ̇ and φ̈.
-    F_a_rho, F_a_phi : array_like
-        Polar components of the applied force (e_ρ from the axis toward G).
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G (m), >= 0.
+    phidot : array_like, shape (...)
+        Angular velocity φ̇ (rad/s), finite.
+    phiddot : array_like, shape (...)
+        Angular acceleration φ̈ (rad/s²), finite.
+    F_a_rho : array_like, shape (...)
+        Radial component F^a_ρ of the applied force (N), e_ρ from the axis toward G.
+    F_a_phi : array_like, shape (...)
+        Azimuthal component F^a_φ of the applied force (N).
 
     Returns
     -------
     ndarray, shape (..., 2)
-        (R_ρ, R_φ).
+        (R_ρ, R_φ) (N), the force of the axis on the body; the leading shape is the
+        broadcast shape of the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``m`` has an entry ≤ 0, or ``h`` an entry < 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        A component beyond float64 (m h φ̇² with ``phidot`` near 1e300).
 
     Examples
     --------
@@ -660,10 +913,41 @@ def pendulum_axis_reaction(
     R_φ = (1 − m h²/J_z) m g sin φ, with E of (4.74).  No small-amplitude
     approximation.
 
+    Parameters
+    ----------
+    phi : array_like, shape (...)
+        The angle φ from the downward vertical (rad), finite.
+    J_axis : array_like, shape (...)
+        Moment of inertia about the axis, the book's J_z (kg m²), > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
+    g : array_like, shape (...)
+        Gravitational acceleration (m/s²), > 0.
+    h : array_like, shape (...)
+        Distance from the axis to G, the book's h (m), > 0.
+    E : array_like, shape (...)
+        The energy (4.74) (J), zero at rest at the bottom, ≥ m g h (1 − cos φ).
+
+    Returns
+    -------
+    ndarray, shape (..., 2)
+        (R_ρ, R_φ) (N), the force of the axis on the body, e_ρ from the axis toward G;
+        the leading shape is the broadcast shape of the inputs.
+
     Raises
     ------
+    NonPositiveParameterError
+        ``J_axis``, ``m``, ``g`` or ``h`` has an entry ≤ 0 (the message names it).
     OutOfDomainError
-        If E < m g h (1 − cos φ): the pendulum cannot reach φ with that energy.
+        If E < m g h (1 − cos φ) (to 8 eps): the pendulum cannot reach φ with that energy.
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        A product beyond float64 on the way (parameters near 1e300, or 1e300 and 1e-300
+        mixed), even where the exact reaction would be representable.
 
     Examples
     --------
@@ -671,6 +955,17 @@ def pendulum_axis_reaction(
 
     >>> pendulum_axis_reaction(0.0, 1.0, 2.0, 9.81, 0.5, E=0.0).tolist()
     [-19.62, 0.0]
+
+    The same reaction from :func:`axis_reaction`, with φ̇² from the energy (4.74), φ̈ from
+    (4.48) and gravity's polar components (m g cos φ, −m g sin φ):
+
+    >>> J, m, g, h, phi, E = 2.0, 1.0, 10.0, 0.5, 0.5, 10.0
+    >>> R = pendulum_axis_reaction(phi, J, m, g, h, E=E)
+    >>> w = np.sqrt(2.0 * (E - m * g * h * (1.0 - np.cos(phi))) / J)
+    >>> R_b = axis_reaction(m, h, w, -m * g * h * np.sin(phi) / J,
+    ...                     F_a_rho=m * g * np.cos(phi), F_a_phi=-m * g * np.sin(phi))
+    >>> bool(np.allclose(R, R_b, rtol=1e-15, atol=0))
+    True
     """
     J, mm, gg, hh = _pendulum(J_axis, m, g, h)
     p = as_float_array(phi, "phi")
@@ -726,24 +1021,44 @@ def bearing_reactions(
     ----------
     J_O : array_like, shape (..., 3, 3)
         Inertia tensor about O in body axes.
-    m : array_like
-        Mass, > 0.
+    m : array_like, shape (...)
+        Mass (kg), > 0.
     r_G : array_like, shape (..., 3)
-        Centre of mass in body axes.
-    phidot, phiddot : array_like
-        φ̇ and φ̈ (φ̈ = M_z/J_z is not imposed: give the actual one).
-    z_A : array_like
-        Position of bearing A on the axis; non-zero.
+        Centre of mass in body axes (m).
+    phidot : array_like, shape (...)
+        Angular velocity φ̇ (rad/s).
+    phiddot : array_like, shape (...)
+        Angular acceleration φ̈ (rad/s²); φ̈ = M_z/J_z is not imposed: give the actual one.
+    z_A : array_like, shape (...)
+        Position of bearing A on the axis (m); non-zero, either sign.
     F_a : array_like, shape (..., 3)
-        Applied force (body axes).
+        Applied force (N, body axes).
     M_a : array_like, shape (..., 3)
-        Applied moment about O (body axes); only its x, y components enter.
+        Applied moment about O (N m, body axes); only its x, y components enter.
     axial_at : {"O", "A"}
+        The bearing that takes the axial force −F^a_z (default "O").
 
     Returns
     -------
     R1, R2 : ndarray, shape (..., 3)
-        The forces on the body from bearings A and O.
+        The forces on the body from bearings A and O (N, body axes).
+
+    Raises
+    ------
+    UnknownOptionError
+        ``axial_at`` is not 'O' or 'A'.
+    NonPhysicalInertiaError
+        ``J_O`` refused by :func:`~mechanics.inertia.check_inertia` (singular allowed).
+    NonPositiveParameterError
+        ``m`` has an entry ≤ 0, or ``z_A`` an entry 0 (the bearings coincide).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        ``J_O`` not ending in (3, 3), ``r_G``, ``F_a`` or ``M_a`` not ending in 3, batch axes
+        that do not broadcast (the message lists each argument's shape), or an input that is
+        not an array of real numbers.
+    ResultOverflowError
+        A component beyond float64 (φ̇² terms with ``phidot`` near 1e300).
 
     Examples
     --------

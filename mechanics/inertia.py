@@ -384,8 +384,10 @@ def check_inertia(
         Not symmetric, not positive (semi)definite, or J1 + J2 < J3 beyond
         :data:`INERTIA_ATOL` of the largest moment; the message names the
         condition, the amount and the index.
-    NonFiniteError, ShapeError
-        NaN or infinite entries; a shape not ending in (3, 3).
+    NonFiniteError
+        NaN or infinite entries.
+    ShapeError
+        A shape not ending in (3, 3), or not an array of real numbers.
 
     Examples
     --------
@@ -414,10 +416,37 @@ def is_physical_inertia(J: npt.ArrayLike, *, allow_singular: bool = False) -> np
     False, never an error, for a tensor :func:`check_inertia` refuses; any magnitudes (checked on
     ``J`` scaled by a power of two, as there).
 
+    Parameters
+    ----------
+    J : array_like, shape (..., 3, 3)
+        Inertia tensors (kg m², any basis, about any point), finite.
+    allow_singular : bool
+        Accept a zero smallest moment (an ideal line mass or a point), as in
+        :func:`check_inertia`.  Default: positive definite is required.
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+        True where the tensor is symmetric, positive definite (semidefinite with
+        ``allow_singular``) and obeys J1 + J2 ≥ J3, each to :data:`INERTIA_ATOL` of
+        its largest moment; False where :func:`check_inertia` would raise.
+
+    Raises
+    ------
+    NonFiniteError
+        ``J`` has a NaN or infinite entry.
+    ShapeError
+        ``J`` has a shape not ending in (3, 3), or is not an array of real numbers.
+
     Examples
     --------
+    The answer is :func:`check_inertia`'s, tensor by tensor (J1 + J2 < J3 for the second);
+    a thin rod's singular tensor passes only with ``allow_singular``:
+
     >>> is_physical_inertia([np.eye(3), np.diag([1.0, 1.0, 2.5])]).tolist()
     [True, False]
+    >>> [bool(is_physical_inertia(rod(12.0, 1.0), allow_singular=s)) for s in (False, True)]
+    [False, True]
     """
     a, _ = _unit_scaled(as_float_array(J, "J", (3, 3)))
     m = np.linalg.eigvalsh(_sym(a))
@@ -449,21 +478,32 @@ def inertia_tensor(m: npt.ArrayLike, r: npt.ArrayLike, *, about: npt.ArrayLike) 
     Parameters
     ----------
     m : array_like, shape (..., N)
-        Masses, >= 0, with a positive total.
+        Masses (kg), >= 0, with a positive total.
     r : array_like, shape (..., N, 3)
-        Positions.
+        Positions (m), finite.
     about : array_like, shape (..., 3)
-        The point C (same coordinates as ``r``).  Required: there is no silent
+        The point C (m, same coordinates as ``r``).  Required: there is no silent
         origin.
 
     Returns
     -------
     ndarray, shape (..., 3, 3)
-        J_C in the basis of ``r``; exactly symmetric.
+        J_C (kg m²) in the basis of ``r``; exactly symmetric.
 
     Raises
     ------
-    NegativeMassError, ZeroTotalMassError, ShapeError, NonFiniteError
+    NegativeMassError
+        A mass is negative.
+    ZeroTotalMassError
+        The total mass is 0, or there are no particles (N = 0).
+    ShapeError
+        ``r`` not (..., N, 3) with the N and batch shape of ``m``, ``about`` not ending in 3,
+        batches of the systems and of ``about`` that do not broadcast, or an input that is not
+        an array of real numbers.
+    NonFiniteError
+        A NaN or infinite mass, position or ``about``.
+    ResultOverflowError
+        An entry of J_C beyond float64 (positions near 1e300, whose squares overflow).
 
     Examples
     --------
@@ -529,12 +569,12 @@ def parallel_axis(
     Parameters
     ----------
     J_G : array_like, shape (..., 3, 3)
-        Inertia tensor about the centre of mass G (validated by
+        Inertia tensor about the centre of mass G (kg m²; validated by
         :func:`check_inertia`).
     m : array_like, shape (...)
-        Total mass, >= 0.
+        Total mass (kg), >= 0.
     d : array_like, shape (..., 3)
-        The vector GC from G to the new point C (the book's R), same basis as J_G.
+        The vector GC from G to the new point C (m; the book's R), same basis as J_G.
     allow_singular : bool
         Passed to :func:`check_inertia` for ``J_G`` (a thin rod is singular).
 
@@ -550,8 +590,19 @@ def parallel_axis(
 
     Raises
     ------
-    NonPhysicalInertiaError, NegativeMassError, NonFiniteError, ShapeError,
+    NonPhysicalInertiaError
+        ``J_G`` is refused by :func:`check_inertia` (not symmetric, not positive definite
+        (semidefinite with ``allow_singular``), or J1 + J2 < J3).
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonFiniteError
+        A NaN or infinite entry in any input.
+    ShapeError
+        ``J_G`` not ending in (3, 3), ``d`` not ending in 3, batch axes that do not
+        broadcast (the message lists each argument's shape), or an input that is not an
+        array of real numbers.
     ResultOverflowError
+        An entry of J_C beyond float64.
 
     Examples
     --------
@@ -622,6 +673,32 @@ def rotate_inertia(J_A: npt.ArrayLike, R_A_O: npt.ArrayLike) -> np.ndarray:
     transpose (which changes nothing beyond rounding).  The inverse, J^A from
     J^O, is :func:`inertia_A_from_O`.
 
+    Parameters
+    ----------
+    J_A : array_like, shape (..., 3, 3)
+        The tensor's components in the basis A (kg m²), symmetric.
+    R_A_O : array_like, shape (..., 3, 3)
+        The rotation ^A R^O (rows: the e^A_i in O components), proper and orthonormal.
+
+    Returns
+    -------
+    J_O : ndarray, shape (..., 3, 3)
+        The components J^O = R_A_Oᵀ J_A R_A_O (kg m²) in the basis O, exactly symmetric.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        ``J_A`` not symmetric to :data:`INERTIA_ATOL` of its largest entry.
+    NotARotationError
+        ``R_A_O`` not a proper rotation (:func:`~mechanics.rotation.check_rotation`).
+    NonFiniteError
+        A NaN or infinite entry in ``J_A`` or ``R_A_O``.
+    ShapeError
+        ``J_A`` or ``R_A_O`` not ending in (3, 3), batch axes that do not broadcast (the
+        message lists each argument's shape), or an input that is not an array of real numbers.
+    ResultOverflowError
+        An entry of the result beyond float64.
+
     Examples
     --------
     Example 4.2: turning the principal basis by ψ about e3 gives the product of
@@ -650,8 +727,36 @@ def inertia_A_from_O(J_O: npt.ArrayLike, R_A_O: npt.ArrayLike) -> np.ndarray:
     rotation (else NotARotationError), a result beyond float64 raising ResultOverflowError;
     batches that do not broadcast raise ShapeError listing each argument's shape.
 
+    Parameters
+    ----------
+    J_O : array_like, shape (..., 3, 3)
+        The tensor's components in the basis O (kg m²), symmetric.
+    R_A_O : array_like, shape (..., 3, 3)
+        The rotation ^A R^O (rows: the e^A_i in O components), proper and orthonormal.
+
+    Returns
+    -------
+    J_A : ndarray, shape (..., 3, 3)
+        The components J^A = R_A_O J_O R_A_Oᵀ (kg m²) in the basis A, exactly symmetric.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        ``J_O`` not symmetric to :data:`INERTIA_ATOL` of its largest entry.
+    NotARotationError
+        ``R_A_O`` not a proper rotation (:func:`~mechanics.rotation.check_rotation`).
+    NonFiniteError
+        A NaN or infinite entry in ``J_O`` or ``R_A_O``.
+    ShapeError
+        ``J_O`` or ``R_A_O`` not ending in (3, 3), batch axes that do not broadcast (the
+        message lists each argument's shape), or an input that is not an array of real numbers.
+    ResultOverflowError
+        An entry of the result beyond float64.
+
     Examples
     --------
+    The inverse of :func:`rotate_inertia` (4.11):
+
     >>> from mechanics.rotation import matrix_from_rotvec
     >>> R = matrix_from_rotvec([0.3, -0.2, 1.0])
     >>> J = np.diag([1.0, 2.0, 2.5])
@@ -684,15 +789,15 @@ def principal_axes(
     Parameters
     ----------
     J : array_like, shape (..., 3, 3)
-        A physical inertia tensor (validated as by :func:`check_inertia`; a thin
+        A physical inertia tensor (kg m²; validated as by :func:`check_inertia`; a thin
         rod's singular tensor is accepted by default).
     allow_singular : bool
-        Accept a zero smallest moment.
+        Accept a zero smallest moment (default True).
 
     Returns
     -------
     moments : ndarray, shape (..., 3)
-        J1 ≤ J2 ≤ J3.
+        The principal moments J1 ≤ J2 ≤ J3 (kg m²).
     R_A_O : ndarray, shape (..., 3, 3)
         A proper rotation whose rows are the principal axes e^A_i in the
         components of ``J``, so J = R_A_Oᵀ diag(moments) R_A_O.  Signs are
@@ -700,6 +805,18 @@ def principal_axes(
         moments coincide only the eigen-subspace is defined and the rows
         spanning it are one arbitrary orthonormal basis of it: compare
         :func:`principal_subspaces`, not rows.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        ``J`` refused as by :func:`check_inertia`: not symmetric, not positive
+        semidefinite (definite with ``allow_singular=False``), or J1 + J2 < J3.
+    NonFiniteError
+        A NaN or infinite entry.
+    ShapeError
+        A shape not ending in (3, 3), or not an array of real numbers.
+    ResultOverflowError
+        A moment beyond float64 (entries at float64's limit whose eigenvalue exceeds it).
 
     Notes
     -----
@@ -741,14 +858,39 @@ def principal_subspaces(
     one).  Unlike the axes, the projectors are unique, so two computations of
     the principal axes of one tensor can be compared through them.
 
+    Parameters
+    ----------
+    J : array_like, shape (..., 3, 3)
+        A physical inertia tensor (kg m²), validated as by :func:`principal_axes`
+        (singular allowed).
+    rtol : float
+        Gap below which two moments count as one, relative to the largest moment;
+        finite, ≥ 0 (default :data:`SUBSPACE_RTOL` = 2**-26).
+
     Returns
     -------
     moments : ndarray, shape (..., 3)
-        Ascending.
+        The principal moments (kg m²), ascending.
     P : ndarray, shape (..., 3, 3, 3)
         ``P[..., i, :, :]`` projects onto the subspace of moment i: Σ e_j e_jᵀ over
         the axes j coincident with i.  A simple moment's projector has rank 1;
         a spherical top's is the identity.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``rtol`` negative or NaN or infinite.
+    NonPhysicalInertiaError
+        ``J`` refused as by :func:`principal_axes`.
+    NonFiniteError
+        A NaN or infinite entry of ``J``.
+    ShapeError
+        ``J`` not ending in (3, 3), or not an array of real numbers.
+    ResultOverflowError
+        A moment beyond float64 (as :func:`principal_axes`).
+    TypeError
+        ``rtol`` not a real number (a list or array of several entries: ``float(rtol)``
+        fails).
 
     Examples
     --------
@@ -799,22 +941,40 @@ def four_particle_realisation(m: npt.ArrayLike, J: npt.ArrayLike) -> tuple[np.nd
     Parameters
     ----------
     m : array_like, shape (...)
-        Total mass, > 0.
+        Total mass (kg), > 0.
     J : array_like, shape (..., 3, 3)
-        A physical inertia tensor about G (:func:`check_inertia`, singular
+        A physical inertia tensor about G (kg m²; :func:`check_inertia`, singular
         allowed: a line mass is realised with b = 0 and c = 0).
 
     Returns
     -------
     masses : ndarray, shape (..., 4)
-        m/4 each.
+        m/4 each (kg).
     r : ndarray, shape (..., 4, 3)
-        Positions relative to G, in the basis of ``J``; their centre of mass is G.
+        Positions relative to G (m), in the basis of ``J``; their centre of mass is G.
         A rounding-level negative a², b², c² (allowed by the tolerance of
         :func:`check_inertia`) is taken as 0.
 
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``m`` has a zero entry.
+    NonPhysicalInertiaError
+        ``J`` refused by :func:`check_inertia` (singular allowed).
+    NonFiniteError
+        A NaN or infinite entry of ``m`` or ``J``.
+    ShapeError
+        ``J`` not ending in (3, 3), batch axes of ``m`` and ``J`` that do not broadcast (the
+        message lists each argument's shape), or an input that is not an array of real numbers.
+    ResultOverflowError
+        A distance beyond float64 (the result is not finite for finite inputs).
+
     Examples
     --------
+    The particles have the tensor they were built from (4.34):
+
     >>> J = np.diag([1.0, 2.0, 2.5])
     >>> masses, r = four_particle_realisation(4.0, J)
     >>> bool(np.allclose(inertia_tensor(masses, r, about=[0.0, 0.0, 0.0]), J, rtol=0, atol=1e-15))
@@ -882,10 +1042,40 @@ def rod(m: npt.ArrayLike, ell: npt.ArrayLike) -> np.ndarray:
     The tensor is singular (an ideal line mass): validate it with
     ``check_inertia(J, allow_singular=True)``.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    ell : array_like, shape (...)
+        Length ℓ (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(mℓ²/12, mℓ²/12, 0) (kg m²), about G, broadcast over the inputs' shape.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``ell`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
+
     Examples
     --------
-    >>> float(rod(12.0, 1.0)[0, 0])
-    1.0
+    m ℓ²/12, and the thin limit of a :func:`cylinder`:
+
+    >>> float(rod(12.0, 1.0)[0, 0]), 12.0 * 1.0**2 / 12
+    (1.0, 1.0)
+    >>> bool(np.allclose(cylinder(1.0, 1e-9, 1.0), rod(1.0, 1.0), rtol=1e-16, atol=1e-17))
+    True
     """
     return _diag(m, [("ell", ell)], *(lambda m, l: m * l * l / 12.0,) * 2, lambda m, l: 0.0 * m)
 
@@ -899,6 +1089,32 @@ def ring(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     Domain: ``m`` ≥ 0 (else NegativeMassError) and ``R`` > 0 (else NonPositiveParameterError),
     finite, broadcast together; m R² beyond float64 raises ResultOverflowError; batches that do not
     broadcast raise ShapeError listing each argument's shape.
+
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Radius (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(mR²/2, mR²/2, mR²) (kg m²), about G, broadcast over the inputs' shape.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
 
     Examples
     --------
@@ -921,6 +1137,32 @@ def disc(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     result beyond float64 raising ResultOverflowError; batches that do not broadcast raise
     ShapeError listing each argument's shape.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Radius (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(mR²/4, mR²/4, mR²/2) (kg m²), about G, broadcast over the inputs' shape.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
+
     Examples
     --------
     >>> J = disc(4.0, 1.0)
@@ -941,6 +1183,34 @@ def cylinder(m: npt.ArrayLike, R: npt.ArrayLike, h: npt.ArrayLike) -> np.ndarray
     batches that do not broadcast raise ShapeError listing each argument's shape.
 
     diag(m(3R² + h²)/12, m(3R² + h²)/12, mR²/2).
+
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Radius (m), > 0.
+    h : array_like, shape (...)
+        Height along e3 (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(m(3R² + h²)/12, m(3R² + h²)/12, mR²/2) (kg m²), about G.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` or ``h`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
 
     Examples
     --------
@@ -969,6 +1239,34 @@ def cylindrical_shell(m: npt.ArrayLike, R: npt.ArrayLike, h: npt.ArrayLike) -> n
 
     diag(m(6R² + h²)/12, m(6R² + h²)/12, mR²); Problem 3.3's hollow wheels.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Radius (m), > 0.
+    h : array_like, shape (...)
+        Height along e3 (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(m(6R² + h²)/12, m(6R² + h²)/12, mR²) (kg m²), about G.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` or ``h`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
+
     Examples
     --------
     A very short shell is a ring:
@@ -994,10 +1292,40 @@ def solid_sphere(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     result beyond float64 raising ResultOverflowError; batches that do not broadcast raise
     ShapeError listing each argument's shape.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Radius (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        (2/5) m R² 1 (kg m²), about the centre.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
+
     Examples
     --------
+    tr J = 2 J_S (4.35) with J_S = Σ m |r|² = (3/5) m R² for a ball:
+
     >>> float(solid_sphere(5.0, 1.0)[1, 1])
     2.0
+    >>> float(np.trace(solid_sphere(5.0, 1.0))), 2 * 3.0 * 5.0 / 5
+    (6.0, 6.0)
     """
     f = lambda m, r: 0.4 * m * r * r  # noqa: E731
     return _diag(m, [("R", R)], f, f, f)
@@ -1013,10 +1341,40 @@ def hollow_sphere(m: npt.ArrayLike, R: npt.ArrayLike) -> np.ndarray:
     result beyond float64 raising ResultOverflowError; batches that do not broadcast raise
     ShapeError listing each argument's shape.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Radius (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        (2/3) m R² 1 (kg m²), about the centre.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
+
     Examples
     --------
+    tr J = 2 J_S (4.35) with J_S = m R²: all the mass is at distance R:
+
     >>> float(hollow_sphere(3.0, 1.0)[2, 2])
     2.0
+    >>> float(np.trace(hollow_sphere(3.0, 1.0))), 2 * 3.0 * 1.0**2
+    (6.0, 6.0)
     """
     f = lambda m, r: 2.0 * m * r * r / 3.0  # noqa: E731
     return _diag(m, [("R", R)], f, f, f)
@@ -1033,6 +1391,34 @@ def rectangular_plate(m: npt.ArrayLike, a: npt.ArrayLike, b: npt.ArrayLike) -> n
     batches that do not broadcast raise ShapeError listing each argument's shape.
 
     diag(m b²/12, m a²/12, m(a² + b²)/12).
+
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    a : array_like, shape (...)
+        Side along e1 (m), > 0.
+    b : array_like, shape (...)
+        Side along e2 (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(m b²/12, m a²/12, m(a² + b²)/12) (kg m²), about G.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``a`` or ``b`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
 
     Examples
     --------
@@ -1064,6 +1450,36 @@ def box(m: npt.ArrayLike, a: npt.ArrayLike, b: npt.ArrayLike, c: npt.ArrayLike) 
     diag(m(b² + c²)/12, m(a² + c²)/12, m(a² + b²)/12).  A cube of side 2a
     (Problem 4.4) has (2/3) m a² 1.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    a : array_like, shape (...)
+        Side along e1 (m), > 0.
+    b : array_like, shape (...)
+        Side along e2 (m), > 0.
+    c : array_like, shape (...)
+        Side along e3 (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(m(b² + c²)/12, m(a² + c²)/12, m(a² + b²)/12) (kg m²), about G.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``a``, ``b`` or ``c`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
+
     Examples
     --------
     >>> float(box(3.0, 2.0, 2.0, 2.0)[0, 0]), 2.0 / 3.0 * 3.0 * 1.0**2
@@ -1090,6 +1506,34 @@ def solid_cone(m: npt.ArrayLike, R: npt.ArrayLike, h: npt.ArrayLike) -> np.ndarr
 
     G lies on the axis at h/4 above the base.  diag(3m(4R² + h²)/80,
     3m(4R² + h²)/80, 3mR²/10).
+
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass (kg), ≥ 0 (a zero mass gives the zero tensor).
+    R : array_like, shape (...)
+        Base radius (m), > 0.
+    h : array_like, shape (...)
+        Height along e3 (m), > 0.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        diag(3m(4R² + h²)/80, 3m(4R² + h²)/80, 3mR²/10) (kg m²), about G.
+
+    Raises
+    ------
+    NegativeMassError
+        ``m`` has a negative entry.
+    NonPositiveParameterError
+        ``R`` or ``h`` has an entry ≤ 0 (the message names it).
+    NonFiniteError
+        A NaN or infinite input.
+    ShapeError
+        Inputs whose shapes do not broadcast (the message lists each argument's shape), or an
+        input that is not an array of real numbers.
+    ResultOverflowError
+        An entry beyond float64 (m times a squared length near 1e308).
 
     Examples
     --------
