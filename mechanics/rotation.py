@@ -1072,7 +1072,8 @@ def quat_multiply(p: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.float64]
     Returns
     -------
     ndarray, shape (..., 4)
-        p ⊗ q = (p_w q_w − p⃗ · q⃗, p_w q⃗ + q_w p⃗ + p⃗ × q⃗).
+        p ⊗ q = (p_w q_w − p_v · q_v, p_w q_v + q_w p_v + p_v × q_v), p_v and q_v the vector
+        parts.
 
     Raises
     ------
