@@ -60,6 +60,31 @@ def omega_matrix_from_vector(w_A: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """The angular-velocity matrix (2.52) of the body components ``w_A``.
 
     Domain: any finite w_A of shape (..., 3); exact (entries are ±w_i).
+
+    Parameters
+    ----------
+    w_A : array_like, shape (..., 3)
+        Components of ω in the body basis A, rad/s; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        Ω = [[0, ω3, −ω2], [−ω3, 0, ω1], [ω2, −ω1, 0]], antisymmetric (2.51), rad/s.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``w_A`` holds NaN or an infinity.
+    ShapeError
+        If ``w_A`` is not of shape (..., 3), or is complex or not numeric.
+
+    Examples
+    --------
+    The book's sign: Ω r = r × ω, minus the usual "hat" matrix:
+
+    >>> w, r = [1.0, 2.0, 3.0], [4.0, 5.0, 6.0]
+    >>> (omega_matrix_from_vector(w) @ r).tolist(), np.cross(r, w).tolist()
+    ([3.0, -6.0, 3.0], [3.0, -6.0, 3.0])
     """
     w = as_float_array(w_A, "w_A", (3,))
     w1, w2, w3 = np.moveaxis(w, -1, 0)
@@ -75,10 +100,39 @@ omega_matrix_from_vector = finite_result(omega_matrix_from_vector)
 def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Body components of ω from the angular-velocity matrix (2.52).
 
-    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.
+    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.  A difference
+    Ω_ij − Ω_ji beyond float64 (entries near 1e308 of opposite signs) raises ResultOverflowError,
+    even where its half would fit.
 
     Reads the antisymmetric part, (Ω − Ωᵀ)/2, so that a rounding-level symmetric
     part is ignored rather than folded into ω.
+
+    Parameters
+    ----------
+    Omega : array_like, shape (..., 3, 3)
+        The angular-velocity matrix ^O Ω^A, rad/s; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The components (ω1, ω2, ω3) of ω in the body basis A, rad/s.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``Omega`` holds NaN or an infinity.
+    ShapeError
+        If ``Omega`` is not of shape (..., 3, 3), or is complex or not numeric.
+    ResultOverflowError
+        Where a difference Ω_ij − Ω_ji is beyond float64.
+
+    Examples
+    --------
+    The inverse of :func:`omega_matrix_from_vector`, blind to a symmetric part:
+
+    >>> Omega = omega_matrix_from_vector([1.0, -2.0, 3.0]) + np.ones((3, 3))
+    >>> vector_from_omega_matrix(Omega).tolist()
+    [1.0, -2.0, 3.0]
     """
     M = as_float_array(Omega, "Omega", (3, 3))
     return 0.5 * np.stack(
@@ -97,16 +151,39 @@ def angular_velocity_from_matrix_rate(
 
     Domain: R_A_O a rotation (``check_rotation``'s tolerance, else NotARotationError), any finite
     Rdot_A_O (only the part Rdot R^T antisymmetric is read); basis "A" or "O" (else
-    UnknownOptionError); a product beyond float64 raises ResultOverflowError.
+    UnknownOptionError); a product beyond float64 raises ResultOverflowError, but an entry of
+    Rdot R^T itself beyond float64 raises NonFiniteError naming ``Omega``.
 
     Parameters
     ----------
     R_A_O : array_like, shape (..., 3, 3)
         The book's rotation matrix ^A R^O.
     Rdot_A_O : array_like, shape (..., 3, 3)
-        Its time derivative as seen from O.
-    basis : {"A", "O"}
-        Return components in the body basis A (as the book's (2.52)) or in O.
+        Its time derivative as seen from O, 1/s.
+    basis : {"A", "O"}, optional
+        Return components in the body basis A (as the book's (2.52)) or in O; default "A".
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The components of ω in the basis ``basis``, rad/s.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within
+        :data:`~mechanics.rotation.ROTATION_ATOL`.
+    UnknownOptionError
+        If ``basis`` is neither "A" nor "O".
+    NonFiniteError
+        Where ``R_A_O`` or ``Rdot_A_O`` holds NaN or an infinity; also, naming ``Omega``,
+        where an entry of Rdot R^T is beyond float64.
+    ShapeError
+        If an input is not of shape (..., 3, 3), is complex or not numeric, or the leading axes do
+        not broadcast.
+    ResultOverflowError
+        Where a difference of entries of Rdot R^T (see :func:`vector_from_omega_matrix`), or
+        a component of ω, is beyond float64.
 
     Examples
     --------
@@ -146,6 +223,28 @@ def angular_velocity_from_euler_rates(
     Domain: all six finite and broadcasting; no singularity in this direction (gimbal lock only
     hides the rates); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    psi, theta, phi : array_like, shape (...)
+        The z-x-z Euler angles ψ, θ, φ, rad; finite.
+    psidot, thetadot, phidot : array_like, shape (...)
+        Their rates ψ̇, θ̇, φ̇, rad/s; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        ω in the body basis A: (ψ̇ sin θ sin φ + θ̇ cos φ, ψ̇ sin θ cos φ − θ̇ sin φ,
+        ψ̇ cos θ + φ̇), rad/s, with the broadcast shape of the six inputs.
+
+    Raises
+    ------
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If an input is complex or not numeric, or their leading axes do not broadcast.
+    ResultOverflowError
+        Where a component of ω is beyond float64.
+
     Examples
     --------
     A pure spin φ̇ about the body axis e^A_3:
@@ -176,9 +275,41 @@ def euler_rates_from_angular_velocity(
     Domain: finite θ, φ, w_A with |sin θ| > ``GIMBAL_LOCK_ATOL`` (else GimbalLockError: at θ = 0 or
     π only ψ̇ ± φ̇ is determined); a rate beyond float64 raises ResultOverflowError.
 
-    Raises :class:`~mechanics.errors.GimbalLockError` where sin θ = 0, where the
-    rates are not determined (only ψ̇ + φ̇ or ψ̇ − φ̇ is).  Close to it the rates
-    grow like 1/sin θ; :func:`mechanics.rotation.euler_near_gimbal_lock` tells.
+    Close to gimbal lock the rates grow like 1/sin θ;
+    :func:`mechanics.rotation.euler_near_gimbal_lock` tells.
+
+    Parameters
+    ----------
+    theta, phi : array_like, shape (...)
+        The Euler angles θ and φ, rad; finite, |sin θ| > ``GIMBAL_LOCK_ATOL`` (4 eps).
+    w_A : array_like, shape (..., 3)
+        Components of ω in the body basis A, rad/s; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The rates (ψ̇, θ̇, φ̇), rad/s.
+
+    Raises
+    ------
+    GimbalLockError
+        Where |sin θ| ≤ ``GIMBAL_LOCK_ATOL``, where the rates are not determined (only
+        ψ̇ + φ̇ or ψ̇ − φ̇ is).
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If ``w_A`` is not of shape (..., 3), an input is complex or not numeric, or the leading
+        axes do not broadcast.
+    ResultOverflowError
+        Where a rate is beyond float64.
+
+    Examples
+    --------
+    The inverse of :func:`angular_velocity_from_euler_rates`:
+
+    >>> w_A = angular_velocity_from_euler_rates(0.1, 0.7, 0.3, 1.0, -2.0, 0.5)
+    >>> euler_rates_from_angular_velocity(0.7, 0.3, w_A).round(12).tolist()
+    [1.0, -2.0, 0.5]
     """
     th = as_float_array(theta, "theta")
     ph = as_float_array(phi, "phi")
@@ -209,6 +340,30 @@ def point_velocity(
 
     Domain: any finite v_A, omega, r_AB of shape (..., 3) that broadcast; a result beyond float64
     raises ResultOverflowError.
+
+    Parameters
+    ----------
+    v_A : array_like, shape (..., 3)
+        Velocity of the body point A, m/s; finite.
+    omega : array_like, shape (..., 3)
+        The body's angular velocity ω, rad/s, in the same basis; finite.
+    r_AB : array_like, shape (..., 3)
+        The vector AB from A to B, m; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The velocity v_B of the body point B, m/s.
+
+    Raises
+    ------
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If an input is not of shape (..., 3), is complex or not numeric, or the leading axes do
+        not broadcast.
+    ResultOverflowError
+        Where a component of v_B is beyond float64.
 
     Examples
     --------
@@ -243,6 +398,13 @@ def instantaneous_axis(
     point beyond float64 (|ω| tiny against |v|), or an axial velocity v_C beyond it (|v_A|
     near float64's limit), raises ResultOverflowError naming which.
 
+    Parameters
+    ----------
+    v_A : array_like, shape (..., 3)
+        Velocity of a body point A, m/s; finite.
+    omega : array_like, shape (..., 3)
+        The body's angular velocity ω, rad/s; finite and non-zero.
+
     Returns
     -------
     r_AC : ndarray, shape (..., 3)
@@ -256,6 +418,11 @@ def instantaneous_axis(
         Where every component of ω is 0 (a translation has no axis).
     ResultOverflowError
         Where |AC| = |v_A⊥|/|ω| is beyond float64 (a finite but extremely slow spin).
+    NonFiniteError
+        Where ``v_A`` or ``omega`` holds NaN or an infinity.
+    ShapeError
+        If an input is not of shape (..., 3), is complex or not numeric, or the leading axes do
+        not broadcast.
 
     Notes
     -----
@@ -264,6 +431,15 @@ def instantaneous_axis(
     cannot overflow or underflow, as ω² does for |ω| beyond 1e154 or below 1e-154,
     and AC = (u × s)/(u·u) 2**(j−k), v_C = ((s·u)/(u·u)) u 2**j round as (2.77)
     and (2.80) would in the normal range, at any scale.
+
+    Examples
+    --------
+    The point C moves with v_C, along the axis (2.73):
+
+    >>> v_A, omega = [1.0, 2.0, 3.0], [0.0, 0.0, 2.0]
+    >>> r_AC, v_C = instantaneous_axis(v_A, omega)
+    >>> r_AC.tolist(), v_C.tolist(), point_velocity(v_A, omega, r_AC).tolist()
+    ([-1.0, 0.5, 0.0], [0.0, 0.0, 3.0], [0.0, 0.0, 3.0])
     """
     v = as_float_array(v_A, "v_A", (3,))
     w = as_float_array(omega, "omega", (3,))
@@ -334,9 +510,14 @@ def instantaneous_centre_plane(
     Parameters
     ----------
     r_A, v_A : array_like, shape (..., 2)
-        Position and velocity of a body point A in the plane.
+        Position (m) and velocity (m/s) of a body point A in the plane.
     omega_z : array_like, shape (...)
-        The angular velocity about e_z; must be non-zero.
+        The angular velocity about e_z, rad/s; must be non-zero.
+
+    Returns
+    -------
+    ndarray, shape (..., 2)
+        The position (x_C, y_C) of the instantaneous centre C, m.
 
     Raises
     ------
@@ -345,6 +526,20 @@ def instantaneous_centre_plane(
     ResultOverflowError
         Where a coordinate of C is beyond float64; the quotients v/ω are formed
         so that they do not overflow on their own where x_A cancels them.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If ``r_A`` or ``v_A`` is not of shape (..., 2), an input is complex or not numeric, or the
+        leading axes do not broadcast.
+
+    Examples
+    --------
+    C is at rest: v_A + ω × AC = 0 (2.73):
+
+    >>> r_C = instantaneous_centre_plane([1.0, 2.0], [2.0, 4.0], 2.0)
+    >>> AC = np.append(r_C - [1.0, 2.0], 0.0)
+    >>> r_C.tolist(), point_velocity([2.0, 4.0, 0.0], [0.0, 0.0, 2.0], AC).tolist()
+    ([-1.0, 3.0], [0.0, 0.0, 0.0])
     """
     r = as_float_array(r_A, "r_A", (2,))
     v = as_float_array(v_A, "v_A", (2,))

@@ -148,6 +148,23 @@ def R1(alpha: npt.ArrayLike) -> npt.NDArray[np.float64]:
     NonFiniteError, a complex or non-numeric ``alpha`` ShapeError.  Huge angles are accepted, but
     a rounding of the input then moves the angle by up to ulp(alpha).
 
+    Parameters
+    ----------
+    alpha : array_like, shape (...)
+        The angle of the turn of the basis about e^O_1, rad; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O = [[1, 0, 0], [0, cos α, sin α], [0, −sin α, cos α]], a positive turn of the basis.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``alpha`` holds NaN or an infinity.
+    ShapeError
+        If ``alpha`` is complex or not numeric.
+
     Examples
     --------
     >>> import numpy as np
@@ -163,6 +180,30 @@ def R2(alpha: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Basis rotation by ``alpha`` about the second axis, (2.30).
 
     Domain: as :func:`R1`: any finite ``alpha`` (...), else NonFiniteError or ShapeError.
+
+    Parameters
+    ----------
+    alpha : array_like, shape (...)
+        The angle of the turn of the basis about e^O_2, rad; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O = [[cos α, 0, −sin α], [0, 1, 0], [sin α, 0, cos α]], a positive turn of the basis.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``alpha`` holds NaN or an infinity.
+    ShapeError
+        If ``alpha`` is complex or not numeric.
+
+    Examples
+    --------
+    Two turns about the same axis add their angles (2.34):
+
+    >>> bool(np.allclose(R2(0.3) @ R2(0.4), R2(0.7), atol=4 * EPS, rtol=0))
+    True
     """
     c, s = _trig(alpha, "alpha")
     o, z = np.ones_like(c), np.zeros_like(c)
@@ -173,6 +214,23 @@ def R3(alpha: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Basis rotation by ``alpha`` about the third axis, (2.11) and (2.30).
 
     Domain: as :func:`R1`: any finite ``alpha`` (...), else NonFiniteError or ShapeError.
+
+    Parameters
+    ----------
+    alpha : array_like, shape (...)
+        The angle of the turn of the basis about e^O_3, rad; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O = [[cos α, sin α, 0], [−sin α, cos α, 0], [0, 0, 1]], a positive turn of the basis.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``alpha`` holds NaN or an infinity.
+    ShapeError
+        If ``alpha`` is complex or not numeric.
 
     Examples
     --------
@@ -192,6 +250,34 @@ def active_from_passive(R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     Domain: a rotation matrix (..., 3, 3), orthogonal with det +1 within :data:`ROTATION_ATOL`
     (:func:`check_rotation`: else NotARotationError naming the deviation; NonFiniteError,
     ShapeError).
+
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's basis matrix ^A R^O, a rotation.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        (^A R^O)ᵀ, the matrix that turns a column of O components with the basis.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where ``R_A_O`` holds NaN or an infinity.
+    ShapeError
+        If ``R_A_O`` is not of shape (..., 3, 3), or is complex or not numeric.
+
+    Examples
+    --------
+    The operator carries e^O_1 to e^A_1, whose O components are the first row of ^A R^O
+    (2.10):
+
+    >>> R = matrix_from_euler(0.3, 1.1, -2.0)
+    >>> (active_from_passive(R) @ [1.0, 0.0, 0.0]).tolist() == R[0].tolist()
+    True
     """
     return np.swapaxes(check_rotation(R_A_O), -1, -2)
 
@@ -201,6 +287,33 @@ def passive_from_active(R_active: npt.ArrayLike) -> npt.NDArray[np.float64]:
 
     Domain: a rotation matrix (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
     ``R_active``; NonFiniteError, ShapeError).
+
+    Parameters
+    ----------
+    R_active : array_like, shape (..., 3, 3)
+        The matrix R_{O→A} (2.21) of the active operator in O components, a rotation.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O = R_activeᵀ.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_active`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where ``R_active`` holds NaN or an infinity.
+    ShapeError
+        If ``R_active`` is not of shape (..., 3, 3), or is complex or not numeric.
+
+    Examples
+    --------
+    The inverse of :func:`active_from_passive`:
+
+    >>> R = matrix_from_euler(0.3, 1.1, -2.0)
+    >>> bool((passive_from_active(active_from_passive(R)) == R).all())
+    True
     """
     return np.swapaxes(check_rotation(R_active, name="R_active"), -1, -2)
 
@@ -212,6 +325,30 @@ def rotate_vector(R_A_O: npt.ArrayLike, r_O: npt.ArrayLike) -> npt.NDArray[np.fl
     finite (..., 3); the leading axes broadcast, and batches that do not (2 against 3) raise
     ShapeError listing each argument's shape.  A component beyond float64 (``r_O`` near 1e308
     turned by 45°) raises ResultOverflowError.
+
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's basis matrix ^A R^O, a rotation.
+    r_O : array_like, shape (..., 3)
+        The vector's components in O, finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The turned vector r' = (^A R^O)ᵀ r in O components.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If a trailing shape is wrong, an input is complex or not numeric, or the leading axes do
+        not broadcast.
+    ResultOverflowError
+        Where a component of r' is beyond float64.
 
     Examples
     --------
@@ -235,6 +372,38 @@ def components_A_from_O(R_A_O: npt.ArrayLike, r_O: npt.ArrayLike) -> npt.NDArray
     Domain: as :func:`rotate_vector`: a rotation ``R_A_O`` (else NotARotationError) and any finite
     ``r_O`` (..., 3); batches that do not broadcast raise ShapeError listing each argument's shape.
     A component beyond float64 raises ResultOverflowError, as in :func:`rotate_vector`.
+
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's basis matrix ^A R^O, a rotation.
+    r_O : array_like, shape (..., 3)
+        The vector's components in O, finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The same vector's components r^A in the basis A.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If a trailing shape is wrong, an input is complex or not numeric, or the leading axes do
+        not broadcast.
+    ResultOverflowError
+        Where a component of r^A is beyond float64.
+
+    Examples
+    --------
+    A vector turned with the basis (:func:`rotate_vector`) has in A the components it had in O:
+
+    >>> R, r = matrix_from_euler(0.3, 1.1, -2.0), [1.0, 2.0, 3.0]
+    >>> bool(np.allclose(components_A_from_O(R, rotate_vector(R, r)), r, atol=1e-14, rtol=0))
+    True
     """
     R = check_rotation(R_A_O)
     r = as_float_array(r_O, "r_O", (3,))
@@ -251,6 +420,35 @@ def compose(R_B_A: npt.ArrayLike, R_A_O: npt.ArrayLike) -> npt.NDArray[np.float6
     Domain: two rotations (..., 3, 3) as :func:`check_rotation` (else NotARotationError naming
     ``R_B_A`` or ``R_A_O``); the leading axes broadcast, and batches that do not raise ShapeError
     listing each argument's shape.
+
+    Parameters
+    ----------
+    R_B_A : array_like, shape (..., 3, 3)
+        The second basis change ^B R^A, a rotation.
+    R_A_O : array_like, shape (..., 3, 3)
+        The first basis change ^A R^O, a rotation.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        The product ^B R^O = ^B R^A ^A R^O.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_B_A`` or ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If an input is not of shape (..., 3, 3), is complex or not numeric, or the leading axes do
+        not broadcast.
+
+    Examples
+    --------
+    Two turns about the same axis add their angles:
+
+    >>> bool(np.allclose(compose(R3(0.4), R3(0.3)), R3(0.7), atol=4 * EPS, rtol=0))
+    True
     """
     out: npt.NDArray[np.float64] = check_rotation(R_B_A, name="R_B_A") @ check_rotation(
         R_A_O, name="R_A_O"
@@ -365,8 +563,33 @@ def check_rotation(
     number ≥ 0 (NaN, inf, a non-number: NonFiniteError or ShapeError; a negative one
     NonPositiveParameterError, each naming ``atol``).
 
-    Raises :class:`~mechanics.errors.NotARotationError` naming the measured
-    deviation when max |R Rᵀ − 1| or |det R − 1| exceeds ``atol``.
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+        The matrix to check, finite.
+    atol : float, optional
+        The accepted max |R Rᵀ − 1| and |det R − 1|, finite and ≥ 0; default
+        :data:`ROTATION_ATOL` (256 eps).
+    name : str, optional
+        The argument's name in error messages; default ``"R_A_O"``.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ``R`` as float64, unchanged (``R`` itself when it already is a float64 array).
+
+    Raises
+    ------
+    NotARotationError
+        Naming the measured deviation, when max |R Rᵀ − 1| or |det R − 1| exceeds ``atol``
+        for some matrix of the batch.
+    NonFiniteError
+        Where ``R`` or ``atol`` holds NaN or an infinity.
+    ShapeError
+        If ``R`` is not of shape (..., 3, 3), ``atol`` is not a scalar, or either is complex or not
+        numeric.
+    NonPositiveParameterError
+        If ``atol`` < 0.
 
     Examples
     --------
@@ -402,6 +625,36 @@ def is_rotation(R: npt.ArrayLike, *, atol: float = ROTATION_ATOL) -> npt.NDArray
     array (...), is False and never an error for a matrix that is not a rotation, entries beyond
     1e154 included.  ``atol`` as in :func:`check_rotation`: a finite number ≥ 0, else an error
     naming it.
+
+    Parameters
+    ----------
+    R : array_like, shape (..., 3, 3)
+        The matrices to test, finite.
+    atol : float, optional
+        The accepted max |R Rᵀ − 1| and |det R − 1|, finite and ≥ 0; default
+        :data:`ROTATION_ATOL` (256 eps).
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+        True where both deviations are within ``atol``.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``R`` or ``atol`` holds NaN or an infinity.
+    ShapeError
+        If ``R`` is not of shape (..., 3, 3), ``atol`` is not a scalar, or either is complex or not
+        numeric.
+    NonPositiveParameterError
+        If ``atol`` < 0.
+
+    Examples
+    --------
+    A product of rotations is one (2.34); a rotation's negative is a reflection (det −1):
+
+    >>> is_rotation(np.stack([compose(R1(0.3), R3(1.2)), -R3(1.2)])).tolist()
+    [True, False]
     """
     atol = _atol(atol)
     a = as_float_array(R, "R", (3, 3))
@@ -423,12 +676,40 @@ def nearest_rotation(M: npt.ArrayLike) -> npt.NDArray[np.float64]:
     determinant is negative (with s2 > s3) has the rotation that flips the direction of the
     smallest singular value as its unique nearest rotation.
 
+    Parameters
+    ----------
+    M : array_like, shape (..., 3, 3)
+        Any finite matrices.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        The nearest rotation Q = U Vᵀ (det +1), orthogonal to about 2 eps.
+
+    Raises
+    ------
+    OutOfDomainError
+        Where the nearest rotation is not unique: s2 = 0, or det M < 0 and s2 = s3 (to 8 eps of
+        s1).
+    NonFiniteError
+        Where ``M`` holds NaN or an infinity.
+    ShapeError
+        If ``M`` is not of shape (..., 3, 3), or is complex or not numeric.
+
     Notes
     -----
     U Vᵀ from the SVD is orthogonal only to the accuracy of LAPACK's factors
     (measured: max |Q Qᵀ − 1| up to 13 eps); one Newton–Schulz step
     Q ← Q − ½ (Q Qᵀ − 1) Q, which converges quadratically to the polar factor,
     brings it to 2 eps (``tests/stability``) and moves Q by a few eps only.
+
+    Examples
+    --------
+    A rotation scaled by 2 has that rotation as its polar factor:
+
+    >>> R = matrix_from_euler(0.3, 1.1, -2.0)
+    >>> bool(np.allclose(nearest_rotation(2.0 * R), R, atol=4 * EPS, rtol=0))
+    True
     """
     a = as_float_array(M, "M", (3, 3))
     U, s, Vt = np.linalg.svd(a)
@@ -556,6 +837,23 @@ def matrix_from_euler(
     batches that do not broadcast raise ShapeError listing each argument's shape); ``theta`` need
     not lie in [0, π].
 
+    Parameters
+    ----------
+    psi, theta, phi : array_like, shape (...)
+        The z-x-z Euler angles ψ (precession), θ (nutation) and φ (spin), rad; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O of (2.36), with the broadcast shape of the three angles.
+
+    Raises
+    ------
+    NonFiniteError
+        Where an angle holds NaN or an infinity.
+    ShapeError
+        If an angle is complex or not numeric, or their leading axes do not broadcast.
+
     Examples
     --------
     The explicit form equals the product of (2.35):
@@ -589,7 +887,28 @@ def euler_from_matrix(
     Domain: a rotation (..., 3, 3) as :func:`check_rotation` (else NotARotationError); gimbal lock
     (θ = 0 or π) included.
 
-    Returns ψ, φ in (−π, π] and θ in [0, π].
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's basis matrix ^A R^O, a rotation.
+
+    Returns
+    -------
+    psi : ndarray, shape (...)
+        ψ in (−π, π], rad.
+    theta : ndarray, shape (...)
+        θ in [0, π], rad.
+    phi : ndarray, shape (...)
+        φ in (−π, π], rad.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where ``R_A_O`` holds NaN or an infinity.
+    ShapeError
+        If ``R_A_O`` is not of shape (..., 3, 3), or is complex or not numeric.
 
     Notes
     -----
@@ -661,12 +980,40 @@ def _unit_scale_where(mask: npt.NDArray[np.bool_], a: _Array, b: _Array) -> tupl
 
 
 def euler_near_gimbal_lock(theta: npt.ArrayLike, *, atol: float = 1e-6) -> npt.NDArray[np.bool_]:
-    """True where sin θ < ``atol``: Euler-angle rates are ill-conditioned there.
+    """True where |sin θ| < ``atol``: Euler-angle rates are ill-conditioned there.
 
     Domain: any finite ``theta`` (...) (else NonFiniteError); ``atol`` a finite number ≥ 0 (else
     NonFiniteError, ShapeError or NonPositiveParameterError naming ``atol``).
 
     The default 1e-6 is where (2.69) inverted amplifies a rate error by 1e6.
+
+    Parameters
+    ----------
+    theta : array_like, shape (...)
+        The middle (nutation) Euler angle θ, rad; finite.
+    atol : float, optional
+        The threshold on |sin θ|, finite and ≥ 0; default 1e-6.
+
+    Returns
+    -------
+    ndarray of bool, shape (...)
+        True where |sin θ| < ``atol``.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``theta`` or ``atol`` holds NaN or an infinity.
+    ShapeError
+        If ``atol`` is not a scalar, or an input is complex or not numeric.
+    NonPositiveParameterError
+        If ``atol`` < 0.
+
+    Examples
+    --------
+    θ near 0 and near π alike (sin(fl(π)) = 1.2e-16):
+
+    >>> euler_near_gimbal_lock([0.0, 1e-7, 0.5, np.pi - 1e-7, np.pi]).tolist()
+    [True, True, False, True, True]
     """
     atol = _atol(atol)
     t = as_float_array(theta, "theta")
@@ -716,6 +1063,35 @@ def quat_multiply(p: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.float64]
     axes broadcast (batches that do not raise ShapeError listing each argument's shape).  Products
     beyond float64 on the way (components near 1e300, or 1e200 times 1e200) raise
     ResultOverflowError.
+
+    Parameters
+    ----------
+    p, q : array_like, shape (..., 4)
+        Quaternions (w, x, y, z), finite, of any length.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        p ⊗ q = (p_w q_w − p_v · q_v, p_w q_v + q_w p_v + p_v × q_v), p_v and q_v the vector
+        parts.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``p`` or ``q`` holds NaN or an infinity.
+    ShapeError
+        If ``p`` or ``q`` is not of shape (..., 4), is complex or not numeric, or their leading axes
+        do not broadcast.
+    ResultOverflowError
+        Where a component of the product is beyond float64 on the way.
+
+    Examples
+    --------
+    The length of a product is the product of the lengths (|p|² = 30, |q|² = 6):
+
+    >>> pq = quat_multiply([1.0, 2.0, 3.0, 4.0], [2.0, 0.0, 1.0, -1.0])
+    >>> float(pq @ pq), 30.0 * 6.0
+    (180.0, 180.0)
     """
     p = as_float_array(p, "p", (4,))
     q = as_float_array(q, "q", (4,))
@@ -744,6 +1120,39 @@ def compose_quat(q_B_A: npt.ArrayLike, q_A_O: npt.ArrayLike) -> npt.NDArray[np.f
 
     The active operators compose in the opposite order to the basis matrices:
     R_{O→B} = R_{O→A} R_{A→B}, so q_B_O = q_A_O ⊗ q_B_A; returned with w ≥ 0.
+
+    Parameters
+    ----------
+    q_B_A : array_like, shape (..., 4)
+        Unit quaternion (w, x, y, z) of ^B R^A.
+    q_A_O : array_like, shape (..., 4)
+        Unit quaternion (w, x, y, z) of ^A R^O.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        The unit quaternion q_B_O of ^B R^O, with w ≥ 0.
+
+    Raises
+    ------
+    NotARotationError
+        Where |q| − 1 of ``q_B_A`` or ``q_A_O`` exceeds 64 eps.
+    ZeroAxisError
+        Where ``q_B_A`` or ``q_A_O`` has zero length.
+    NonFiniteError
+        Where an input holds NaN or an infinity.
+    ShapeError
+        If an input is not of shape (..., 4), is complex or not numeric, or the leading axes do not
+        broadcast.
+
+    Examples
+    --------
+    The quaternions compose as the matrices do (2.34):
+
+    >>> RB, RA = R1(0.3), R3(1.2)
+    >>> q = compose_quat(quat_from_matrix(RB), quat_from_matrix(RA))
+    >>> bool(np.allclose(matrix_from_quat(q), compose(RB, RA), atol=4 * EPS, rtol=0))
+    True
     """
     a, b = _check_quat(q_A_O, "q_A_O"), _check_quat(q_B_A, "q_B_A")
     np.broadcast_shapes(a.shape, b.shape)  # a ShapeError naming q_A_O and q_B_A, not p and q
@@ -829,6 +1238,27 @@ def matrix_from_quat(q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     Domain: a unit quaternion (..., 4), |q| − 1 within 64 eps (else NotARotationError; a zero
     quaternion ZeroAxisError); its length is divided out.
 
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Unit quaternion (w, x, y, z), scalar first; q and −q give the same matrix.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        The book's basis matrix ^A R^O (rows e^A_i in O components).
+
+    Raises
+    ------
+    NotARotationError
+        Where |q| − 1 exceeds 64 eps.
+    ZeroAxisError
+        Where ``q`` has zero length.
+    NonFiniteError
+        Where ``q`` holds NaN or an infinity.
+    ShapeError
+        If ``q`` is not of shape (..., 4), or is complex or not numeric.
+
     Notes
     -----
     The diagonal is (w² + x² − y² − z²)/|q|² and its like, rather than
@@ -839,6 +1269,14 @@ def matrix_from_quat(q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     over 2e5 rotation vectors), so a product of n different rotations drifts
     from orthogonality like 0.1 n eps instead of like sqrt(n).  Measured forward
     error at most 1.2 eps (``tests/stability``).
+
+    Examples
+    --------
+    (cos φ/2, sin φ/2 e3) is the turn R3(φ):
+
+    >>> q = [np.cos(0.35), 0.0, 0.0, np.sin(0.35)]
+    >>> bool(np.allclose(matrix_from_quat(q), R3(0.7), atol=2 * EPS, rtol=0))
+    True
     """
     a = _check_quat_raw(q)
 
@@ -910,6 +1348,33 @@ def quat_from_matrix(R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
 
     The Shepperd row is divided by its double-double length (:func:`_norm_dd`;
     r ≥ 1 there, the pivot entry), each part with about one rounding.
+
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's basis matrix ^A R^O, a rotation.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        The unit quaternion (w, x, y, z) of the active operator, w ≥ 0.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where ``R_A_O`` holds NaN or an infinity.
+    ShapeError
+        If ``R_A_O`` is not of shape (..., 3, 3), or is complex or not numeric.
+
+    Examples
+    --------
+    The turn R3(φ) has the quaternion (cos φ/2, 0, 0, sin φ/2):
+
+    >>> q = [np.cos(0.35), 0.0, 0.0, np.sin(0.35)]
+    >>> bool(np.allclose(quat_from_matrix(R3(0.7)), q, atol=2 * EPS, rtol=0))
+    True
     """
     R = check_rotation(R_A_O)
 
@@ -1017,6 +1482,32 @@ def quat_from_rotvec(rotvec: npt.ArrayLike) -> npt.NDArray[np.float64]:
     Returned as computed (w may be negative for φ > π; q ≡ −q).  The angle
     φ = |φ e_a| is formed in double-double, so it adds no rounding of its own,
     and tiny angles (down to subnormal) keep full relative accuracy.
+
+    Parameters
+    ----------
+    rotvec : array_like, shape (..., 3)
+        The rotation vector φ e_a, rad; finite, of any length.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        The unit quaternion (w, x, y, z) = (cos φ/2, sin φ/2 e_a).
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``rotvec`` holds NaN or an infinity.
+    ShapeError
+        If ``rotvec`` is not of shape (..., 3), or is complex or not numeric.
+
+    Examples
+    --------
+    φ = 0.5 about e_a = (0.6, 0, 0.8):
+
+    >>> s = np.sin(0.25)
+    >>> q = quat_from_rotvec([0.3, 0.0, 0.4])
+    >>> bool(np.allclose(q, [np.cos(0.25), 0.6 * s, 0.0, 0.8 * s], atol=2 * EPS, rtol=0))
+    True
     """
     v = as_float_array(rotvec, "rotvec", (3,))
     return _by_blocks(_quat_columns_from_rotvec, v, 4)
@@ -1058,6 +1549,34 @@ def rotvec_from_quat(q: npt.ArrayLike) -> npt.NDArray[np.float64]:
 
     Domain: a unit quaternion (..., 4), |q| − 1 within 64 eps (else NotARotationError; a zero
     quaternion ZeroAxisError).
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 4)
+        Unit quaternion (w, x, y, z), scalar first; q and −q give the same vector.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The rotation vector φ e_a, φ in [0, π], rad.
+
+    Raises
+    ------
+    NotARotationError
+        Where |q| − 1 exceeds 64 eps.
+    ZeroAxisError
+        Where ``q`` has zero length.
+    NonFiniteError
+        Where ``q`` holds NaN or an infinity.
+    ShapeError
+        If ``q`` is not of shape (..., 4), or is complex or not numeric.
+
+    Examples
+    --------
+    A turn by 4 rad about e3 comes back as the same turn by 4 − 2π:
+
+    >>> round(float(rotvec_from_quat(quat_from_rotvec([0.0, 0.0, 4.0]))[2] + 2 * np.pi), 12)
+    4.0
     """
     a = _canonical(_check_quat_raw(q))
     return _by_blocks(_rotvec_columns_from_quat, a, 3)
@@ -1076,6 +1595,23 @@ def matrix_from_rotvec(rotvec: npt.ArrayLike) -> npt.NDArray[np.float64]:
     2 eps and tiny angles (down to subnormal) keep full relative accuracy in the
     off-diagonal entries; the angle survives the round trip through
     :func:`rotvec_from_matrix` within a few ulps.
+
+    Parameters
+    ----------
+    rotvec : array_like, shape (..., 3)
+        The rotation vector φ e_a, rad; finite, of any length.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        The book's basis matrix ^A R^O(φ): a turn of the basis by φ about e_a.
+
+    Raises
+    ------
+    NonFiniteError
+        Where ``rotvec`` holds NaN or an infinity.
+    ShapeError
+        If ``rotvec`` is not of shape (..., 3), or is complex or not numeric.
 
     Examples
     --------
@@ -1101,6 +1637,33 @@ def rotvec_from_matrix(R_A_O: npt.ArrayLike) -> npt.NDArray[np.float64]:
     At φ = π both ±π e_a describe the rotation; either may be returned.
     Read off the unnormalised Shepperd quaternion: for φ < π/2 that is
     (1 + tr, a_32 − a_23, ...), so φ = 2 atan2(|s|, 1 + tr) with no square root.
+
+    Parameters
+    ----------
+    R_A_O : array_like, shape (..., 3, 3)
+        The book's basis matrix ^A R^O, a rotation.
+
+    Returns
+    -------
+    ndarray, shape (..., 3)
+        The rotation vector φ e_a, φ in [0, π], rad.
+
+    Raises
+    ------
+    NotARotationError
+        Where ``R_A_O`` is not orthogonal with det +1 within :data:`ROTATION_ATOL`.
+    NonFiniteError
+        Where ``R_A_O`` holds NaN or an infinity.
+    ShapeError
+        If ``R_A_O`` is not of shape (..., 3, 3), or is complex or not numeric.
+
+    Examples
+    --------
+    The inverse of :func:`matrix_from_rotvec`:
+
+    >>> v = [0.3, -0.2, 0.4]
+    >>> bool(np.allclose(rotvec_from_matrix(matrix_from_rotvec(v)), v, atol=4 * EPS, rtol=0))
+    True
     """
     R = check_rotation(R_A_O)
 
@@ -1119,6 +1682,36 @@ def matrix_from_axis_angle(axis: npt.ArrayLike, angle: npt.ArrayLike) -> npt.NDA
 
     ``axis`` is a direction: its length is divided out; a zero axis raises
     :class:`~mechanics.errors.ZeroAxisError`.
+
+    Parameters
+    ----------
+    axis : array_like, shape (..., 3)
+        The direction e_a of the axis, finite and non-zero, of any length.
+    angle : array_like, shape (...)
+        The angle φ of the turn of the basis, rad; finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O of the rotation vector φ e_a, as :func:`matrix_from_rotvec`.
+
+    Raises
+    ------
+    ZeroAxisError
+        Where ``axis`` has zero length.
+    NonFiniteError
+        Where ``axis`` or ``angle`` holds NaN or an infinity.
+    ShapeError
+        If ``axis`` is not of shape (..., 3), an input is complex or not numeric, or the leading
+        axes do not broadcast.
+
+    Examples
+    --------
+    The axis' length does not matter: a turn about 5 e3 is R3:
+
+    >>> R = matrix_from_axis_angle([0.0, 0.0, 5.0], 0.7)
+    >>> bool(np.allclose(R, R3(0.7), atol=2 * EPS, rtol=0))
+    True
     """
     a = as_float_array(axis, "axis", (3,))
     n = _norm3(a)
