@@ -48,25 +48,22 @@ NUMPYDOC = {
 }
 
 #: (callable, check) → why it is exempt
-EXEMPT: dict[tuple[str, str], str] = {}
+EXEMPT: dict[tuple[str, str], str] = {
+    ("mechanics.particles.Cylindrical", "BC01"): "a NamedTuple of the coordinates: its "
+    "constructor checks nothing and raises nothing of its own",
+}
 
 #: modules whose docstrings are still being filled (issue 34, item 2): their callables
 #: are left out below, and test_pending_modules_still_fail holds each to still failing,
 #: so that a module leaves this list as soon as it passes
 PENDING = {
     "mechanics.conformance",
-    "mechanics.dynamics",
     "mechanics.elliptic",
-    "mechanics.energy",
     "mechanics.fluids",
     "mechanics.impact",
-    "mechanics.inertia",
     "mechanics.integrators",
-    "mechanics.kinematics",
     "mechanics.open_systems",
-    "mechanics.particles",
     "mechanics.pytest_plugin",
-    "mechanics.rotation",
     "mechanics.scenes",
     "mechanics.strategies",
     "mechanics.testing",
