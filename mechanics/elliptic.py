@@ -664,7 +664,9 @@ def ellippi(
         domain, or ``m1`` disagrees with ``1 − m``.
     ResultOverflowError
         If m < 1 and the integral exceeds float64 (|φ| near 1.8e308; the message
-        names ``ellipf``).
+        names ``ellipf``); also, wrongly, for m ≪ −1 (m1 ≳ 1e200) beyond |φ| = π/2,
+        where scipy's R_J of the complete tail is NaN (a known defect, xfailed in
+        ``tests/mechanics/test_elliptic.py``).
     NonFiniteError
         If an input is NaN or infinite.
     ShapeError
