@@ -270,17 +270,17 @@ def ellipj(
 
     Parameters
     ----------
-    u : array_like
-        Argument.
-    m : array_like
-        Parameter m = k², any real number (broadcast against ``u``).
-    m1 : array_like, optional
+    u : array_like, shape (...)
+        Argument, finite.
+    m : array_like, shape (...)
+        Parameter m = k², any finite real number (broadcast against ``u``).
+    m1 : array_like, shape (...), optional
         Complementary parameter 1 − m, given exactly (authoritative near m = 1).
 
     Returns
     -------
-    sn, cn, dn, am : ndarray
-        Broadcast shape of ``u`` and ``m``.
+    sn, cn, dn, am : ndarray, shape (...)
+        The broadcast shape of ``u``, ``m`` (and ``m1``); ``am`` in rad.
 
     Raises
     ------
@@ -289,6 +289,8 @@ def ellipj(
     OutOfDomainError
         If ``m1`` disagrees with ``1 − m``, or |u|·√|m| (m > 1) or |u|·√(1 − m)
         (m < 0) overflows.
+    ShapeError
+        If an input is not a real numeric array, or the shapes do not broadcast.
 
     Notes
     -----
@@ -361,22 +363,29 @@ def ellipk(m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None) -> npt.NDArray[
 
     Parameters
     ----------
-    m : array_like
+    m : array_like, shape (...)
         Parameter, m ≤ 1.
-    m1 : array_like, optional
+    m1 : array_like, shape (...), optional
         1 − m given exactly (use it near m = 1: K ≈ ln(4/√m1)).
 
     Returns
     -------
-    K : ndarray
+    K : ndarray, shape (...)
+        K(m), the broadcast shape of ``m`` (and ``m1``); inf where m = 1.
 
     Raises
     ------
     OutOfDomainError
-        If m > 1 (K is not real there).
+        If m > 1 (K is not real there), or ``m1`` disagrees with ``1 − m``.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or ``m`` and ``m1`` do not broadcast.
 
     Examples
     --------
+    K(0) = π/2, and near m = 1 the complement gives K ≈ ln(4/√m1):
+
     >>> bool(abs(ellipk(0.0) - np.pi / 2) < 1e-15)
     True
     >>> round(float(ellipk(1.0, m1=1e-300)), 6)  # ln(4e150) = 346.774058...
@@ -398,10 +407,38 @@ def ellipe(m: npt.ArrayLike, *, m1: npt.ArrayLike | None = None) -> npt.NDArray[
 
     Computed as 2 R_G(0, m1, 1) (Carlson, DLMF 19.25.1) from the exact m1.
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Parameter, m ≤ 1.
+    m1 : array_like, shape (...), optional
+        1 − m given exactly (authoritative near m = 1).
+
+    Returns
+    -------
+    E : ndarray, shape (...)
+        E(m), the broadcast shape of ``m`` (and ``m1``); E(1) = 1.
+
+    Raises
+    ------
+    OutOfDomainError
+        If m > 1, or ``m1`` disagrees with ``1 − m``.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or ``m`` and ``m1`` do not broadcast.
+
     Examples
     --------
     >>> bool(abs(ellipe(1.0) - 1.0) < 1e-15), bool(abs(ellipe(0.0) - np.pi / 2) < 1e-15)
     (True, True)
+
+    Legendre's relation E K' + E' K − K K' = π/2 (DLMF 19.7.1), at m = 1/2 where
+    K' = K and E' = E:
+
+    >>> K, E = ellipk(0.5), ellipe(0.5)
+    >>> round(float(2 * E * K - K * K), 12), round(np.pi / 2, 12)
+    (1.570796326795, 1.570796326795)
     """
     m, m1 = _params(m, m1)
     if np.any(m > 1):
@@ -451,6 +488,33 @@ def ellipf(
     |φ| ≤ asin(1/√m) (else OutOfDomainError); m down to −1.8e308.
 
     F(φ|m) = sin φ R_F(cos²φ, Δ², 1) on |φ| ≤ π/2, F(φ + jπ) = F(φ) + 2jK.
+
+    Parameters
+    ----------
+    phi : array_like, shape (...)
+        Amplitude φ, rad, finite.
+    m : array_like, shape (...)
+        Parameter m = k², finite (broadcast against ``phi``).
+    m1 : array_like, shape (...), optional
+        1 − m given exactly (authoritative near m = 1).
+
+    Returns
+    -------
+    F : ndarray, shape (...)
+        F(φ|m), the broadcast shape of ``phi``, ``m`` (and ``m1``); ±inf only at
+        m = 1 beyond |φ| = π/2 (the logarithmic singularity).
+
+    Raises
+    ------
+    OutOfDomainError
+        If m > 1 and |φ| > asin(1/√m) (m sin²φ > 1: a complex integrand), or ``m1``
+        disagrees with ``1 − m``.
+    ResultOverflowError
+        If m < 1 and the integral exceeds float64 (|φ| near 1.8e308).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the shapes do not broadcast.
 
     Examples
     --------
@@ -576,6 +640,38 @@ def ellippi(
     Π(n; φ|m) = F(φ|m) + (n/3) sin³φ R_J(cos²φ, Δ², 1, 1 − n sin²φ) on
     |φ| ≤ π/2 (DLMF 19.25.14), continued by Π(n; φ + jπ) = Π(n; φ) + 2jΠ(n|m).
 
+    Parameters
+    ----------
+    n : array_like, shape (...)
+        Characteristic, finite, n sin²φ < 1 (n < 1 beyond |φ| = π/2).
+    phi : array_like, shape (...)
+        Amplitude φ, rad, finite.
+    m : array_like, shape (...)
+        Parameter m = k², finite, as for :func:`ellipf`.
+    m1 : array_like, shape (...), optional
+        1 − m given exactly (authoritative near m = 1).
+
+    Returns
+    -------
+    Pi : ndarray, shape (...)
+        Π(n; φ|m), the broadcast shape of the inputs; ±inf only at m = 1 beyond
+        |φ| = π/2, as F.
+
+    Raises
+    ------
+    OutOfDomainError
+        If n sin²φ ≥ 1, or n ≥ 1 beyond |φ| = π/2, or φ and m outside :func:`ellipf`'s
+        domain, or ``m1`` disagrees with ``1 − m``.
+    ResultOverflowError
+        If m < 1 and the integral exceeds float64 (|φ| near 1.8e308; the message
+        names ``ellipf``); also, wrongly, for m ≪ −1 (m1 ≳ 1e200) beyond |φ| = π/2,
+        where scipy's R_J of the complete tail is NaN (a known defect, xfailed in
+        ``tests/mechanics/test_elliptic.py``).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the shapes do not broadcast.
+
     Examples
     --------
     At n = 0 it is F:
@@ -617,6 +713,33 @@ def ellippi_jacobi(
     sn, cn, dn of :func:`ellipj` (so Δ = dn keeps its relative accuracy near m = 1), u + (n/3) sn³
     R_J(cn², dn², 1, 1 − n sn²) on the reduced argument plus 2j (Π(n|m) − K); at m = 1 in closed
     form, u + [n u + √−n atan(√−n tanh u)]/(1 − n) − u for n < 0 (and the atanh form for 0 < n < 1).
+
+    Parameters
+    ----------
+    u : array_like, shape (...)
+        Argument, finite.
+    n : array_like, shape (...)
+        Characteristic, n < 1.
+    m : array_like, shape (...)
+        Parameter m = k², 0 ≤ m ≤ 1.
+    m1 : array_like, shape (...), optional
+        1 − m given exactly (authoritative near m = 1).
+
+    Returns
+    -------
+    Pi : ndarray, shape (...)
+        ∫₀^u dv / (1 − n sn²(v|m)), the broadcast shape of the inputs.
+
+    Raises
+    ------
+    OutOfDomainError
+        If m < 0, m > 1 or n ≥ 1, or ``m1`` disagrees with ``1 − m``.
+    ResultOverflowError
+        If the integral exceeds float64 (0 < n < 1 and |u| near 1.8e308).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the shapes do not broadcast.
 
     Examples
     --------

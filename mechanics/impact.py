@@ -143,13 +143,43 @@ class RigidBody(_RigidBodyFields):
     ShapeError listing each field's shape.  The fields are kept as float64 arrays, otherwise as
     given (``J_G`` is not symmetrised).
 
-    ``m`` (...), ``J_G`` (..., 3, 3) the inertia tensor about the centre of mass
-    G, ``r_G`` (..., 3) the position of G, ``v_G`` (..., 3) its velocity,
-    ``omega`` (..., 3) the angular velocity.  A named tuple: it unpacks as
-    ``m, J_G, r_G, v_G, omega``.
+    A named tuple: it unpacks as ``m, J_G, r_G, v_G, omega``.
+
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass, kg, > 0.
+    J_G : array_like, shape (..., 3, 3)
+        Inertia tensor about the centre of mass G, kg m², positive definite.
+    r_G : array_like, shape (..., 3)
+        Position of G, m.
+    v_G : array_like, shape (..., 3)
+        Velocity of G, m/s.
+    omega : array_like, shape (..., 3)
+        Angular velocity, rad/s.
+
+    Raises
+    ------
+    NegativeMassError
+        If ``m`` < 0.
+    NonPositiveParameterError
+        If ``m`` = 0 (a rigid body has a mass).
+    NonPhysicalInertiaError
+        If ``J_G`` is not symmetric, not positive definite or breaks the triangle
+        inequality (:func:`~mechanics.inertia.check_inertia`).
+    NonFiniteError
+        If a field holds NaN or an infinity.
+    ShapeError
+        If a field is not a real numeric array, has the wrong trailing shape, or the
+        fields' batch axes do not broadcast.
 
     Examples
     --------
+    The momentum m v_G of the unpacked fields, and the validation of every field:
+
+    >>> m, J_G, r_G, v_G, omega = RigidBody(2.0, np.eye(3), [0, 0, 0], [1, 0, 0], [0, 0, 0])
+    >>> (m * v_G).tolist()
+    [2.0, 0.0, 0.0]
     >>> RigidBody(-1.0, np.eye(3), [0, 0, 0], [0, 0, 0], [0, 0, 0])
     Traceback (most recent call last):
     ...
@@ -217,10 +247,34 @@ def _trusted_body(
 class RigidImpact(NamedTuple):
     """Result of :func:`rigid_impact`.
 
-    ``S`` (...) the impulse magnitude (S n on body 1, −S n on body 2), ``mu``
-    the effective mass of the contact, ``v_n`` the normal relative velocity
-    before, ``Q`` the kinetic energy lost ½ μ (1 − e²) v_n², ``body_1`` and
-    ``body_2`` the states after (``body_2`` is ``None`` for a fixed body 2).
+    A named tuple of the fields below, as :func:`rigid_impact` returns them; it
+    validates nothing.
+
+    Parameters
+    ----------
+    S : ndarray, shape (...)
+        The impulse magnitude, N s, ≥ 0 (S n on body 1, −S n on body 2).
+    mu : ndarray, shape (...)
+        The effective mass of the contact, kg (:func:`effective_mass`).
+    v_n : ndarray, shape (...)
+        The normal relative velocity before, m/s.
+    Q : ndarray, shape (...)
+        The kinetic energy lost ½ μ (1 − e²) v_n², J.
+    body_1 : RigidBody
+        The state of body 1 after.
+    body_2 : RigidBody or None
+        The state of body 2 after; ``None`` for a fixed body 2.
+
+    Examples
+    --------
+    The impulse is S = −(1 + e) μ v_n, and the loss ½ μ (1 − e²) v_n²:
+
+    >>> ball = RigidBody(2.0, 0.8 * np.eye(3), [0, 0, 1], [0, 0, -3], [0, 0, 0])
+    >>> out = rigid_impact(ball, r_S=[0, 0, 0], n=[0, 0, 1], e=0.5)
+    >>> float(out.S), float(-(1 + 0.5) * out.mu * out.v_n)
+    (9.0, 9.0)
+    >>> float(out.Q), float(0.5 * out.mu * (1 - 0.5**2) * out.v_n**2)
+    (6.75, 6.75)
     """
 
     S: np.ndarray
@@ -234,13 +288,33 @@ class RigidImpact(NamedTuple):
 class HingedImpact(NamedTuple):
     """Result of :func:`hinged_impact`.
 
-    ``omega`` (...) the angular velocity about the axis after the blow
-    (component along the unit axis), ``S_axis`` (..., 3) the total reaction
-    impulse of the axis on the body, ``M_axis`` (..., 3) the reaction impulsive
-    moment about the axis point (perpendicular to the axis: the bearings are
-    frictionless), ``S_bearings`` (..., 2, 3) the reaction impulses at the two
-    bearings when asked for (their axial parts are statically indeterminate:
-    the total axial impulse is given to the first bearing), else ``None``.
+    A named tuple of the fields below, as :func:`hinged_impact` returns them; it
+    validates nothing.
+
+    Parameters
+    ----------
+    omega : ndarray, shape (...)
+        The angular velocity about the axis after the blow (component along the
+        unit axis), rad/s.
+    S_axis : ndarray, shape (..., 3)
+        The total reaction impulse of the axis on the body, N s.
+    M_axis : ndarray, shape (..., 3)
+        The reaction impulsive moment about the axis point, N m s (perpendicular
+        to the axis: the bearings are frictionless).
+    S_bearings : ndarray, shape (..., 2, 3), or None
+        The reaction impulses at the two bearings when asked for, N s (their axial
+        parts are statically indeterminate: the total axial impulse is given to
+        the first bearing), else ``None``.
+
+    Examples
+    --------
+    The two bearings' impulses add up to the axis's:
+
+    >>> out = hinged_impact(3.0, np.diag([1e-6, 4.0, 4.0]), [1, 0, 0], axis_point=[0, 0, 0],
+    ...                     axis=[0, 0, 1], omega=0.0, r_P=[1.5, 0, 0], S_P=[0, 1.0, 0],
+    ...                     bearings=(-1.0, 1.0))
+    >>> out.S_bearings.sum(axis=0).round(12).tolist(), out.S_axis.round(12).tolist()
+    ([0.0, 0.125, 0.0], [0.0, 0.125, 0.0])
     """
 
     omega: np.ndarray
@@ -250,8 +324,28 @@ class HingedImpact(NamedTuple):
 
 
 class CentreOfPercussion(NamedTuple):
-    """Result of :func:`centre_of_percussion`: the ``point`` (..., 3) and the
-    unit ``direction`` (..., 3) of a blow that loads the axis with no impulse."""
+    """Result of :func:`centre_of_percussion`: where and along what to strike.
+
+    A named tuple of the fields below, as :func:`centre_of_percussion` returns
+    them; it validates nothing.
+
+    Parameters
+    ----------
+    point : ndarray, shape (..., 3)
+        The point of a blow that loads the axis with no impulse, m.
+    direction : ndarray, shape (..., 3)
+        The unit direction of that blow.
+
+    Examples
+    --------
+    A rod of length 3 hinged at one end: the point 2ℓ/3 = 2 from the hinge, struck
+    across the rod:
+
+    >>> P, b = centre_of_percussion(2.0, np.diag([1e-6, 6.0, 6.0]), [1.5, 0, 0],
+    ...                             axis_point=[0, 0, 0], axis=[0, 0, 1])
+    >>> P.round(12).tolist(), b.tolist(), float(np.dot(b, b))
+    ([2.0, 0.0, 0.0], [0.0, 1.0, 0.0], 1.0)
+    """
 
     point: np.ndarray
     direction: np.ndarray
@@ -448,9 +542,9 @@ def direct_impact(
     Parameters
     ----------
     m_1, m_2 : array_like, shape (...)
-        Masses, >= 0, not both 0.
+        Masses, kg, ≥ 0, not both 0.
     v_1, v_2 : array_like, shape (...)
-        Velocities ẋ_1, ẋ_2 along the X axis before; body 1 is behind body 2,
+        Velocities ẋ_1, ẋ_2 along the X axis before, m/s; body 1 is behind body 2,
         so they approach when ẋ_1 > ẋ_2.
     e : array_like, shape (...)
         Coefficient of restitution in [0, 1].
@@ -460,7 +554,26 @@ def direct_impact(
     Returns
     -------
     v_1f, v_2f : ndarray, shape (...)
-        Velocities after, within :data:`DIRECT_ULPS` ulps of the exact ones.
+        Velocities after, m/s, within :data:`DIRECT_ULPS` ulps of the exact ones.
+
+    Raises
+    ------
+    NegativeMassError
+        If a mass is negative.
+    ZeroTotalMassError
+        Where both masses are 0.
+    RestitutionRangeError
+        If ``e`` lies outside [0, 1].
+    SeparatingContactError
+        Where ẋ_2 > ẋ_1 (the bodies separate), with ``separating="raise"``.
+    UnknownOptionError
+        If ``separating`` is neither "raise" nor "ignore".
+    ResultOverflowError
+        If a velocity after exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the arguments do not broadcast.
 
     Notes
     -----
@@ -518,10 +631,46 @@ def impulse_direct(
     ResultOverflowError; batches that do not broadcast raise ShapeError listing each argument's
     shape.
 
-    Returns the x-component (≤ 0 for an impact: body 1 is behind and is
-    pushed back); body 2 receives −S_12 (6.46).  S_12 = (1 + e) μ Δẋ with
-    μ = m_1 m_2/(m_1 + m_2), Δẋ = ẋ_2 − ẋ_1, within :data:`DIRECT_ULPS` ulps.
-    Arguments as :func:`direct_impact`.
+    S_12 = (1 + e) μ Δẋ with μ = m_1 m_2/(m_1 + m_2), Δẋ = ẋ_2 − ẋ_1; body 2
+    receives −S_12 (6.46).
+
+    Parameters
+    ----------
+    m_1, m_2 : array_like, shape (...)
+        Masses, kg, ≥ 0, not both 0.
+    v_1, v_2 : array_like, shape (...)
+        Velocities ẋ_1, ẋ_2 along the X axis before, m/s; body 1 is behind body 2,
+        so they approach when ẋ_1 > ẋ_2.
+    e : array_like, shape (...)
+        Coefficient of restitution in [0, 1].
+    separating : {"raise", "ignore"}
+        What to do where ẋ_2 > ẋ_1 (see the module Conventions).
+
+    Returns
+    -------
+    S_12 : ndarray, shape (...)
+        The x-component of the impulse on body 1, N s (≤ 0 for an impact: body 1 is
+        behind and is pushed back; 0 for an ignored separating contact), within
+        :data:`DIRECT_ULPS` ulps.
+
+    Raises
+    ------
+    NegativeMassError
+        If a mass is negative.
+    ZeroTotalMassError
+        Where both masses are 0.
+    RestitutionRangeError
+        If ``e`` lies outside [0, 1].
+    SeparatingContactError
+        Where ẋ_2 > ẋ_1 (the bodies separate), with ``separating="raise"``.
+    UnknownOptionError
+        If ``separating`` is neither "raise" nor "ignore".
+    ResultOverflowError
+        If the impulse exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the arguments do not broadcast.
 
     References
     ----------
@@ -567,9 +716,44 @@ def energy_loss_direct(
     factor positive and exact or carried in double-double on operands scaled by
     powers of two: no difference of kinetic energies, no overflow of m_1 m_2 or
     Δẋ² where Q itself is representable, within :data:`DIRECT_ULPS` ulps for
-    any mass ratio and e (1 − e is exact for e ≥ ½).  Arguments as
-    :func:`direct_impact`; a separating contact loses nothing under
-    ``separating="ignore"``.
+    any mass ratio and e (1 − e is exact for e ≥ ½).
+
+    Parameters
+    ----------
+    m_1, m_2 : array_like, shape (...)
+        Masses, kg, ≥ 0, not both 0.
+    v_1, v_2 : array_like, shape (...)
+        Velocities ẋ_1, ẋ_2 along the X axis before, m/s; body 1 is behind body 2,
+        so they approach when ẋ_1 > ẋ_2.
+    e : array_like, shape (...)
+        Coefficient of restitution in [0, 1].
+    separating : {"raise", "ignore"}
+        What to do where ẋ_2 > ẋ_1 (see the module Conventions).
+
+    Returns
+    -------
+    Q : ndarray, shape (...)
+        The kinetic energy lost, J, ≥ 0, within :data:`DIRECT_ULPS` ulps; a
+        separating contact loses nothing under ``separating="ignore"``.
+
+    Raises
+    ------
+    NegativeMassError
+        If a mass is negative.
+    ZeroTotalMassError
+        Where both masses are 0.
+    RestitutionRangeError
+        If ``e`` lies outside [0, 1].
+    SeparatingContactError
+        Where ẋ_2 > ẋ_1 (the bodies separate), with ``separating="raise"``.
+    UnknownOptionError
+        If ``separating`` is neither "raise" nor "ignore".
+    ResultOverflowError
+        If Q exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the arguments do not broadcast.
 
     References
     ----------
@@ -617,14 +801,44 @@ def compression_restitution_impulses(
     of mass, so S_1 = m_1 (ẋ_G − ẋ_1i) = μ Δẋ; during restitution
     S_2 = m_1 (ẋ_1f − ẋ_G) = e μ Δẋ, so S_2/S_1 = e (6.42).  Both are
     x-components of the impulse from body 2 on body 1 (body 2 receives their
-    negatives, (6.46)); S_1 + S_2 is :func:`impulse_direct`.  Arguments as
-    :func:`direct_impact`.
+    negatives, (6.46)); S_1 + S_2 is :func:`impulse_direct`.
+
+    Parameters
+    ----------
+    m_1, m_2 : array_like, shape (...)
+        Masses, kg, ≥ 0, not both 0.
+    v_1, v_2 : array_like, shape (...)
+        Velocities ẋ_1, ẋ_2 along the X axis before, m/s; body 1 is behind body 2,
+        so they approach when ẋ_1 > ẋ_2.
+    e : array_like, shape (...)
+        Coefficient of restitution in [0, 1].
+    separating : {"raise", "ignore"}
+        What to do where ẋ_2 > ẋ_1 (see the module Conventions).
 
     Returns
     -------
     S_1, S_2 : ndarray, shape (...)
-        Compression and restitution impulses, each within :data:`DIRECT_ULPS`
+        Compression and restitution impulses, N s, each within :data:`DIRECT_ULPS`
         ulps (S_2 rounds the exact e μ Δẋ once).
+
+    Raises
+    ------
+    NegativeMassError
+        If a mass is negative.
+    ZeroTotalMassError
+        Where both masses are 0.
+    RestitutionRangeError
+        If ``e`` lies outside [0, 1].
+    SeparatingContactError
+        Where ẋ_2 > ẋ_1 (the bodies separate), with ``separating="raise"``.
+    UnknownOptionError
+        If ``separating`` is neither "raise" nor "ignore".
+    ResultOverflowError
+        If an impulse exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, or the arguments do not broadcast.
 
     References
     ----------
@@ -727,12 +941,49 @@ def effective_mass(
     Parameters
     ----------
     m_1 : array_like, shape (...)
+        Mass of body 1, kg, > 0.
     J_1 : array_like, shape (..., 3, 3)
+        Inertia tensor of body 1 about its centre of mass G_1, kg m².
     r_1 : array_like, shape (..., 3)
+        Arm from G_1 to the contact point, m.
     n : array_like, shape (..., 3)
-        Normal (normalised here).
-    m_2, J_2, r_2 : optional
-        Body 2; all three or none.
+        Normal, non-zero (normalised here).
+    m_2 : array_like, shape (...), optional
+        Mass of body 2, kg, > 0; all three of ``m_2``, ``J_2``, ``r_2`` or none
+        (a fixed body 2).
+    J_2 : array_like, shape (..., 3, 3), optional
+        Inertia tensor of body 2 about G_2, kg m².
+    r_2 : array_like, shape (..., 3), optional
+        Arm from G_2 to the contact point, m.
+
+    Returns
+    -------
+    mu : ndarray, shape (...)
+        The effective mass, kg, > 0; 0 where the exact μ lies below about 1e-308
+        (arms beyond about 1e154 radii of gyration, or subnormal masses, whose
+        reciprocals overflow to inf).
+
+    Raises
+    ------
+    NegativeMassError
+        If a mass is negative.
+    NonPositiveParameterError
+        If a mass is 0.
+    NonPhysicalInertiaError
+        If a tensor is not symmetric, not positive definite or breaks the triangle
+        inequality (:func:`~mechanics.inertia.check_inertia`).
+    OutOfDomainError
+        If only some of ``m_2``, ``J_2``, ``r_2`` are given.
+    ZeroNormalError
+        If ``n`` is the zero vector.
+    ResultOverflowError
+        If μ exceeds float64 (a mass within rounding of float64's largest, 1.8e308,
+        whose subnormal reciprocal inverts beyond it).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, has the wrong trailing shape, or the
+        arguments do not broadcast.
 
     Examples
     --------
@@ -786,14 +1037,53 @@ def normal_relative_velocity(
     r_S: npt.ArrayLike,
     n: npt.ArrayLike,
 ) -> np.ndarray:
-    """v_n = n · (v_S1 − v_S2): the normal velocity of the contact point of body 1
-    relative to body 2 (``None``: fixed) at the position ``r_S``; < 0 approaching.
+    """Normal relative velocity v_n = n · (v_S1 − v_S2) of two bodies at a contact point.
+
+    The normal velocity of the contact point of body 1 relative to body 2 (``None``:
+    fixed) at the position ``r_S``; < 0 approaching.
 
     Domain: bodies given as :class:`RigidBody` or 5-tuples (else OutOfDomainError), validated: ``m``
     > 0, ``J_G`` positive definite (NonPhysicalInertiaError), finite (..., 3) vectors; ``r_S``
     finite (..., 3), ``n`` non-zero (else ZeroNormalError).  A v_n beyond float64 (ω × (r_S − r_G)
     with both near 1e300) raises ResultOverflowError; batches that do not broadcast raise ShapeError
     listing each argument's batch shape (a body's: that of its fields together).
+
+    Parameters
+    ----------
+    body_1 : RigidBody or tuple
+        The body the normal points into: a :class:`RigidBody` or its five fields
+        ``(m, J_G, r_G, v_G, omega)``, validated as a RigidBody's.
+    body_2 : RigidBody, tuple or None, optional
+        The other body, likewise; ``None`` (default) is a fixed body.
+    r_S : array_like, shape (..., 3)
+        Position of the contact point S, m.
+    n : array_like, shape (..., 3)
+        Impact normal e_n, into body 1, non-zero (normalised here).
+
+    Returns
+    -------
+    v_n : ndarray, shape (...)
+        The normal relative velocity, m/s: < 0 approaching, > 0 separating.
+
+    Raises
+    ------
+    OutOfDomainError
+        If a body is neither a :class:`RigidBody` nor a sequence of five fields.
+    NegativeMassError
+        If the mass of a body given as a 5-tuple is negative.
+    NonPositiveParameterError
+        If the mass of a body given as a 5-tuple is 0.
+    NonPhysicalInertiaError
+        If the ``J_G`` of a body given as a 5-tuple is not a physical inertia tensor.
+    ZeroNormalError
+        If ``n`` is the zero vector.
+    ResultOverflowError
+        If v_n exceeds float64's range (ω × (r_S − r_G) with both near 1e300).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input has the wrong trailing shape or is not numeric, or the batches do
+        not broadcast.
 
     Examples
     --------
@@ -848,14 +1138,16 @@ def rigid_impact(
 
     Parameters
     ----------
-    body_1 : RigidBody
-        The body the normal points into.
-    body_2 : RigidBody or None
-        The other body; ``None`` is a fixed, immovable body (the ground).
+    body_1 : RigidBody or tuple
+        The body the normal points into: a :class:`RigidBody` or its five fields
+        ``(m, J_G, r_G, v_G, omega)``, validated as a RigidBody's.
+    body_2 : RigidBody, tuple or None, optional
+        The other body, likewise; ``None`` (default) is a fixed, immovable body (the
+        ground).
     r_S : array_like, shape (..., 3)
-        Position of the point of impact S.
+        Position of the point of impact S, m.
     n : array_like, shape (..., 3)
-        Impact normal e_n, into body 1 (normalised here).
+        Impact normal e_n, into body 1, non-zero (normalised here).
     e : array_like, shape (...)
         Coefficient of restitution in [0, 1].
     separating : {"raise", "ignore"}
@@ -864,8 +1156,34 @@ def rigid_impact(
     Returns
     -------
     RigidImpact
-        ``S``, ``mu``, ``v_n`` (before), ``Q`` = ½ μ (1 − e)(1 + e) v_n² and the
-        bodies after (positions unchanged).
+        ``S`` (N s), ``mu`` (kg), ``v_n`` (before, m/s), ``Q`` = ½ μ (1 − e)(1 + e) v_n²
+        (J) and the bodies after (positions unchanged).
+
+    Raises
+    ------
+    OutOfDomainError
+        If a body is neither a :class:`RigidBody` nor a sequence of five fields.
+    NegativeMassError
+        If the mass of a body given as a 5-tuple is negative.
+    NonPositiveParameterError
+        If the mass of a body given as a 5-tuple is 0.
+    NonPhysicalInertiaError
+        If the ``J_G`` of a body given as a 5-tuple is not a physical inertia tensor.
+    ZeroNormalError
+        If ``n`` is the zero vector.
+    RestitutionRangeError
+        If ``e`` lies outside [0, 1].
+    SeparatingContactError
+        Where v_n > 0 (the bodies separate), with ``separating="raise"``.
+    UnknownOptionError
+        If ``separating`` is neither "raise" nor "ignore".
+    ResultOverflowError
+        If v_n or a result exceeds float64's range on the way.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input has the wrong trailing shape or is not numeric, or the batches do
+        not broadcast.
 
     References
     ----------
@@ -967,6 +1285,42 @@ def hinged_effective_mass(
     J_a = aᵀ J_A a the moment of inertia about the axis, evaluated as
     (J_a/arm)/arm so that arm² cannot overflow where μ is representable.
 
+    Parameters
+    ----------
+    J_A : array_like, shape (..., 3, 3)
+        Inertia tensor about ``axis_point`` A, kg m², positive definite.
+    r_P : array_like, shape (..., 3)
+        The point P struck, m.
+    n : array_like, shape (..., 3)
+        Direction of the blow, non-zero (normalised here).
+    axis_point : array_like, shape (..., 3)
+        A point A of the fixed axis, m.
+    axis : array_like, shape (..., 3)
+        Direction a of the axis, non-zero (normalised here).
+
+    Returns
+    -------
+    mu : ndarray, shape (...)
+        The effective mass at P along n, kg: J_a/(a·(AP × n))²; 0 where it lies
+        below the smallest subnormal.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        If ``J_A`` is not symmetric, not positive definite or breaks the triangle
+        inequality (:func:`~mechanics.inertia.check_inertia`).
+    ZeroNormalError
+        If ``axis`` or ``n`` is the zero vector.
+    OutOfDomainError
+        If the blow has no lever arm about the axis, a·(AP × n) = 0 (an infinite μ).
+    ResultOverflowError
+        If μ exceeds float64's range (a lever arm near 1e-300).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, has the wrong trailing shape, or the
+        arguments' batches do not broadcast.
+
     Examples
     --------
     A rod hinged at its end (J_a = mℓ²/3) hit at x: μ = J_a/x².
@@ -1027,19 +1381,20 @@ def hinged_impact(
     Parameters
     ----------
     m : array_like, shape (...)
-        Mass, > 0.
+        Mass, kg, > 0.
     J_A : array_like, shape (..., 3, 3)
-        Inertia tensor about ``axis_point`` A (the fixed basis O).
+        Inertia tensor about ``axis_point`` A (the fixed basis O), kg m².
     r_G : array_like, shape (..., 3)
-        Position of the centre of mass G.
+        Position of the centre of mass G, m.
     axis_point, axis : array_like, shape (..., 3)
-        A point A of the fixed axis and its direction a (normalised here).
+        A point A of the fixed axis (m) and its direction a (non-zero, normalised
+        here).
     omega : array_like, shape (...)
-        Angular velocity about a before the blow.
+        Angular velocity about a before the blow, rad/s.
     r_P, S_P : array_like, shape (..., 3)
-        Where the blow strikes, and its impulse on the body.
+        Where the blow strikes (m), and its impulse on the body (N s).
     bearings : tuple of two array_like, shape (...), optional
-        Axial positions s_1 ≠ s_2 of two bearings, B_k = A + s_k a.  Their
+        Axial positions s_1 ≠ s_2 of two bearings, B_k = A + s_k a, m.  Their
         reaction impulses (perpendicular to a) carry S_axis and M_axis:
         S_B1 + S_B2 = S_axis, s_1 a × S_B1 + s_2 a × S_B2 = M_axis; the axial
         part of S_axis (statically indeterminate) goes to the first bearing.
@@ -1047,6 +1402,30 @@ def hinged_impact(
     Returns
     -------
     HingedImpact
+        ``omega`` after (rad/s), the axis's reaction impulse ``S_axis`` (N s) and
+        impulsive moment ``M_axis`` (N m s), and ``S_bearings`` (N s) when
+        ``bearings`` are given.
+
+    Raises
+    ------
+    NegativeMassError
+        If ``m`` < 0.
+    NonPositiveParameterError
+        If ``m`` = 0.
+    NonPhysicalInertiaError
+        If ``J_A`` is not symmetric, not positive definite or breaks the triangle
+        inequality (:func:`~mechanics.inertia.check_inertia`).
+    ZeroNormalError
+        If ``axis`` is the zero vector.
+    OutOfDomainError
+        If ``bearings`` is not two positions, or the two are equal.
+    ResultOverflowError
+        If a result exceeds float64's range on the way.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, has the wrong trailing shape, or the
+        arguments' batches do not broadcast.
 
     References
     ----------
@@ -1138,10 +1517,44 @@ def centre_of_percussion(
     of the book).  In the plane: the point at J_A/(m h) from the axis on the
     line through G (Example 6.2: ℓ/3 from the end of a rod, 2ℓ/3 from the hand).
 
+    Parameters
+    ----------
+    m : array_like, shape (...)
+        Mass, kg, > 0.
+    J_A : array_like, shape (..., 3, 3)
+        Inertia tensor about ``axis_point`` A, kg m², positive definite.
+    r_G : array_like, shape (..., 3)
+        Position of the centre of mass G, m.
+    axis_point : array_like, shape (..., 3)
+        A point A of the fixed axis, m.
+    axis : array_like, shape (..., 3)
+        Direction a of the axis, non-zero (normalised here).
+
+    Returns
+    -------
+    CentreOfPercussion
+        The ``point`` P (m) and the unit ``direction`` b of the blow.
+
     Raises
     ------
     OutOfDomainError
-        When G lies on the axis (h = 0): every blow loads the axis.
+        When G lies on the axis (h ≤ 4 eps |AG|): every blow loads the axis.
+    NegativeMassError
+        If ``m`` < 0.
+    NonPositiveParameterError
+        If ``m`` = 0.
+    NonPhysicalInertiaError
+        If ``J_A`` is not symmetric, not positive definite or breaks the triangle
+        inequality (:func:`~mechanics.inertia.check_inertia`).
+    ZeroNormalError
+        If ``axis`` is the zero vector.
+    ResultOverflowError
+        If the point exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real numeric array, has the wrong trailing shape, or the
+        arguments' batches do not broadcast.
 
     Examples
     --------

@@ -118,15 +118,35 @@ def check_principal_moments(J: npt.ArrayLike, *, name: str = "J") -> npt.NDArray
     Domain: any finite positive moments (1e-300 … 1e300 and beyond: the check compares moments, it
     does not square them).
 
-    Returns a float64 array of shape (3,).
+    The triangle inequality is checked exactly (on the rationals of the floats).
+
+    Parameters
+    ----------
+    J : array_like, shape (3,)
+        Principal moments (J1, J2, J3), kg m², in any order.
+    name : str
+        The name used in error messages.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        The moments as float64, unchanged.
 
     Raises
     ------
     NonPhysicalInertiaError
         Naming the violated condition and by how much.
+    NonFiniteError
+        If a moment is NaN or infinite.
+    ShapeError
+        If ``J`` is not a real numeric array of shape (3,).
 
     Examples
     --------
+    A flat body, J1 + J2 = J3 exactly, passes; one beyond it does not:
+
+    >>> check_principal_moments([1.0, 2.0, 3.0]).tolist()
+    [1.0, 2.0, 3.0]
     >>> check_principal_moments([1.0, 2.0, 4.0])  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
@@ -363,9 +383,10 @@ class FreeAsymmetricTop:
     Parameters
     ----------
     J : array_like, shape (3,)
-        Principal moments about the centre of mass (any order, equalities allowed).
+        Principal moments about the centre of mass, kg m² (any order, equalities
+        allowed).
     omega_0 : array_like, shape (3,)
-        Initial angular velocity, body components.
+        Initial angular velocity, body components, rad/s.
     R_A_O_0 : array_like, shape (3, 3), optional
         Initial attitude ^A R^O (default identity).
 
@@ -382,6 +403,22 @@ class FreeAsymmetricTop:
     regime : str
         ``"rest"``, ``"steady"``, ``"axis3"`` (L² > 2EJ2: ω circulates the axis of
         largest moment), ``"axis1"`` (L² < 2EJ2) or ``"separatrix"``.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        If a moment is ≤ 0 or the moments break the triangle inequality.
+    OutOfDomainError
+        Within ~1e-150 |ω| of the separatrix (m1 underflows), or where a circulating
+        amplitude is subnormal beside a normal one.
+    ResultOverflowError
+        If |L| or E exceeds float64's range.
+    NotARotationError
+        If ``R_A_O_0`` is not a proper rotation matrix.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If ``J`` or ``omega_0`` is not of shape (3,), or ``R_A_O_0`` not of shape (3, 3).
 
     Notes
     -----
@@ -942,6 +979,22 @@ class FreeTopBatch:
     energy, angular_momentum_norm : ndarray, shape (...)
     angular_momentum_space : ndarray, shape (..., 3)
 
+    Raises
+    ------
+    ShapeError
+        If an input has the wrong trailing shape or is not numeric, or the batch
+        shapes do not broadcast.
+    NonPhysicalInertiaError
+        If a top's moments are not physical (the message names the top).
+    OutOfDomainError
+        If a top lies outside :class:`FreeAsymmetricTop`'s domain (named likewise).
+    ResultOverflowError
+        If a top's |L| or E exceeds float64's range.
+    NotARotationError
+        If ``R_A_O_0`` is not a proper rotation matrix.
+    NonFiniteError
+        If an input is NaN or infinite.
+
     Examples
     --------
     Three tops at one instant, each as it moves alone:
@@ -1125,7 +1178,27 @@ class FreeTopBatch:
 
 @dataclass(frozen=True)
 class StabilityResult:
-    """Linear stability of steady rotation about a principal axis (5.102)."""
+    """Linear stability of steady rotation about a principal axis (5.102).
+
+    The frozen record :func:`principal_axis_stability` returns; it validates nothing.
+
+    Parameters
+    ----------
+    kind : str
+        ``"stable"``, ``"unstable"`` or ``"neutral"``.
+    rate : float
+        Oscillation angular frequency or growth rate, rad/s (1/time).
+    CiCk : float
+        C_i C_k ω0², 1/s²: its sign decides.
+
+    Examples
+    --------
+    The rate is the square root of |C_i C_k ω0²|:
+
+    >>> r = principal_axis_stability([1.0, 2.0, 3.0], 3, omega=2.0)
+    >>> r.kind, r.rate, float(r.CiCk), bool(r.rate**2 == -r.CiCk)
+    ('stable', 2.0, -4.0, True)
+    """
 
     kind: str
     """``"stable"`` (oscillation), ``"unstable"`` (exponential growth) or ``"neutral"``."""
@@ -1143,6 +1216,33 @@ def principal_axis_stability(J: npt.ArrayLike, axis: int, *, omega: float = 1.0)
 
     δω̈_i = C_i C_k ω0² δω_i with C_i = (J_j − J_k)/J_i cyclic (Euler's equations
     5.91 written as ω̇_i = C_i ω_j ω_k).
+
+    Parameters
+    ----------
+    J : array_like, shape (3,)
+        Principal moments (J1, J2, J3), kg m².
+    axis : int
+        The principal axis of the rotation: 1, 2 or 3.
+    omega : float
+        The rate of the steady rotation ω0, rad/s, finite.
+
+    Returns
+    -------
+    StabilityResult
+        ``kind``, ``rate`` (rad/s) and ``CiCk`` = C_i C_k ω0².
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        If ``J`` is not physical (:func:`check_principal_moments`).
+    UnknownOptionError
+        If ``axis`` is not the integer 1, 2 or 3.
+    ResultOverflowError
+        If C_i C_k ω0² exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If ``J`` is not of shape (3,) or ``omega`` is not a scalar.
 
     Examples
     --------
@@ -1188,12 +1288,26 @@ class FreeSymmetricTop:
     Parameters
     ----------
     J1 : float
-        The two equal moments.
+        The two equal moments, kg m², > 0.
     J3 : float
-        The moment about the symmetry axis (body axis 3).
+        The moment about the symmetry axis (body axis 3), kg m², 0 < J3 ≤ 2 J1.
     omega_0 : array_like, shape (3,)
-        Initial ω_A.
+        Initial ω_A, rad/s.
     R_A_O_0 : array_like, shape (3, 3), optional
+        Initial attitude ^A R^O (default identity).
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        If J1 or J3 is ≤ 0, or J3 > 2 J1.
+    ResultOverflowError
+        If |L| or E exceeds float64's range.
+    NotARotationError
+        If ``R_A_O_0`` is not a proper rotation matrix.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If J1 or J3 is not a scalar, or ``omega_0`` not of shape (3,).
 
     Notes
     -----
@@ -1311,8 +1425,33 @@ def sleeping_top_is_stable(J_1: float, L_3: float, m_g_ell: float) -> bool:
     Domain: J'1, m g ℓ > 0, any finite L3: the criterion is homogeneous and evaluated on the three
     scaled by a power of two, so no square over- or underflows.
 
+    Parameters
+    ----------
+    J_1 : float
+        Transverse moment about the fixed point, J'1, kg m², > 0.
+    L_3 : float
+        Angular momentum about the symmetry axis, kg m²/s.
+    m_g_ell : float
+        m g ℓ, N m, > 0.
+
+    Returns
+    -------
+    bool
+        Whether L3² > 4 J'1 m g ℓ.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If ``J_1`` or ``m_g_ell`` is ≤ 0.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real scalar.
+
     Examples
     --------
+    On either side of the threshold L3 = 2 √(J'1 m g ℓ) = 2:
+
     >>> sleeping_top_is_stable(1.0, 2.1, 1.0), sleeping_top_is_stable(1.0, 1.9, 1.0)
     (True, False)
     """
@@ -1352,16 +1491,46 @@ def steady_precession_rates(
     Roots of J'1 cos θ Ω² − L3 Ω + m g ℓ = 0, the slow one as 2mgℓ/(L3 + √disc) (no
     cancellation).  At cos θ = 0 the fast one is inf (one finite root mgℓ/L3).
 
+    Parameters
+    ----------
+    J_1 : float
+        Transverse moment about the fixed point, J'1, kg m², > 0.
+    L_3 : float
+        Angular momentum about the symmetry axis, kg m²/s.
+    m_g_ell : float
+        m g ℓ, N m, > 0.
+    theta : float
+        Nutation angle θ, rad.
+
+    Returns
+    -------
+    slow, fast : float
+        The two rates Ω, rad/s, the smaller in magnitude first.  For L3 = 0 they
+        are ∓√(mgℓ/(−J'1 cos θ)), returned as ∓inf where that overflows.
+
     Raises
     ------
     OutOfDomainError
-        If L3² < 4 J'1 m g ℓ cos θ: no steady precession at that angle.
+        If L3² < 4 J'1 m g ℓ cos θ: no steady precession at that angle; or if J'1 or
+        m g ℓ is below 1e-308 of the largest of J'1, |L3|, m g ℓ.
+    ResultOverflowError
+        If L3 ≠ 0 and the fast rate L3/(J'1 cos θ) exceeds float64's range.
+    NonPositiveParameterError
+        If ``J_1`` or ``m_g_ell`` is ≤ 0.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real scalar.
 
     Examples
     --------
+    Both rates are roots of the quadratic, and their product is mgℓ/(J'1 cos θ):
+
     >>> slow, fast = steady_precession_rates(1.0, 10.0, 1.0, 0.5)
     >>> J1, L3, mgl, c = 1.0, 10.0, 1.0, np.cos(0.5)
     >>> bool(abs(J1 * c * slow**2 - L3 * slow + mgl) < 1e-14)
+    True
+    >>> bool(abs(slow * fast - mgl / (J1 * c)) < 1e-14)
     True
     """
     given = {
@@ -1408,11 +1577,11 @@ class HeavySymmetricTop:
     Parameters
     ----------
     J_1 : float
-        Transverse moment about the fixed point C (the book's J'1, (5.46)).
+        Transverse moment about the fixed point C (the book's J'1, (5.46)), kg m², > 0.
     J_3 : float
-        Moment about the symmetry axis.
+        Moment about the symmetry axis, kg m², 0 < J_3 ≤ 2 J_1.
     m_g_ell : float
-        m g ℓ > 0.
+        m g ℓ > 0, N m.
     theta, psi, phi : float
         Initial Euler angles (z-x-z; ψ precession, θ nutation, φ spin), 0 < θ < π.
     theta_dot, psi_dot, phi_dot : float
@@ -1424,6 +1593,28 @@ class HeavySymmetricTop:
         The conserved quantities (5.55), (5.53), (5.66).
     roots : tuple of float
         u1 ≤ u2 ≤ u3 of f(u) = u̇² (nutation between u1 and u2, u = cos θ).
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If ``J_1``, ``J_3`` or ``m_g_ell`` is ≤ 0.
+    NonPhysicalInertiaError
+        If J_3 > 2 J_1.
+    OutOfDomainError
+        If one of J_1, J_3, m_g_ell is below 1e-308 of the largest, θ lies outside
+        [0, π], or the turning points of θ are not found in float64 (rates whose
+        squares overflow, or gravity negligible against the spin).
+    GimbalLockError
+        If θ = 0 or π with θ̇ ≠ 0 (the Euler angles are singular).
+    ResultOverflowError
+        If a conserved quantity or an intermediate exceeds float64's range.
+    ValueError
+        Instead of ResultOverflowError where θ̇0² J'1/mgℓ exceeds float64 (scipy's
+        root bracket meets NaN; a known defect, xfailed in ``tests/mechanics/test_tops.py``).
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If an input is not a real scalar.
 
     Notes
     -----
@@ -1818,6 +2009,45 @@ def spherical_top_on_incline(
     X down the incline, Z the plane's normal.  Returns ``(x, y, omega)`` with
     x(t) = x0 + R ω_y(0) t + ½ R α t², α = R m g sin β/(J + mR²) (5.15), (5.22),
     y(t) = y0 − R ω_x(0) t (5.23), ω = (ω_x(0), ω_y(0) + αt, ω_z(0)) (5.16)–(5.18).
+
+    Parameters
+    ----------
+    t : array_like, shape (...)
+        Times, s.
+    m : float
+        Mass, kg, > 0.
+    R : float
+        Radius, m, > 0.
+    J : float
+        Moment of inertia about a diameter, kg m², > 0.
+    beta : float
+        Inclination β of the plane, rad, in [0, π/2].
+    g : float
+        Gravitational acceleration, m/s², > 0.
+    x0, y0 : float
+        Initial position of the contact point in the plane, m.
+    omega_0 : array_like, shape (3,)
+        Initial angular velocity (X, Y, Z components), rad/s.
+
+    Returns
+    -------
+    x, y : ndarray, shape (...)
+        Position in the plane at the times ``t``, m.
+    omega : ndarray, shape (..., 3)
+        Angular velocity at the times ``t``, rad/s.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If ``m``, ``R``, ``J`` or ``g`` is ≤ 0.
+    OutOfDomainError
+        If β lies outside [0, π/2].
+    ResultOverflowError
+        If a result exceeds float64's range.
+    NonFiniteError
+        If an input is NaN or infinite.
+    ShapeError
+        If a scalar parameter is not a real scalar, or ``omega_0`` not of shape (3,).
 
     Examples
     --------
