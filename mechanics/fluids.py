@@ -148,17 +148,32 @@ def velocity_gradient(
     Parameters
     ----------
     v : callable
-        Velocity field ``v(r, t) -> (..., 3)``.
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
     r : array_like, shape (..., 3)
-        Points.
-    t : float
-        Time.
-    h : float or array_like, optional
-        Finite-difference step (default ``H_REL (1 + |r|∞)``).
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
 
     Returns
     -------
-    ndarray, shape (..., 3, 3)
+    G : ndarray, shape (..., 3, 3)
+        G[..., i, j] = ∂v_i/∂x_j, 1/s (fourth-order central differences).
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -185,6 +200,36 @@ def divergence(
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
+
+    Returns
+    -------
+    div : ndarray, shape (...)
+        ∇·v = tr G, 1/s: the relative rate of change of volume of a fluid element.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
     Examples
     --------
     A rigid motion (8.7) does not change volumes: its divergence vanishes.
@@ -209,6 +254,36 @@ def curl(
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
+
+    Returns
+    -------
+    curl : ndarray, shape (..., 3)
+        ∇×v, the axial vector of G − Gᵀ, 1/s (the vorticity).
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -239,6 +314,36 @@ def gradient(
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    f : callable
+        Scalar field ``f(r, t) -> (...)`` (a pressure, a density, a temperature).
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
+
+    Returns
+    -------
+    grad : ndarray, shape (..., 3)
+        ∂f/∂x_j, in the units of f per m.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or f returns another shape than (...).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or f returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
     Examples
     --------
     >>> import numpy as np
@@ -257,8 +362,39 @@ def partial_time_derivative(
 ) -> npt.NDArray[np.float64]:
     """∂f/∂t at fixed points ``r`` (8.9), for a scalar or a vector field.
 
-    Domain: finite r (..., 3), scalar t, time step h > 0; f finite at t ± h, t ± 2h; a result beyond
-    float64 raises ResultOverflowError.
+    Domain: finite r (..., 3), scalar t, time step h > 0 (else ShapeError, NonFiniteError or
+    NonPositiveParameterError); f finite at t ± h, t ± 2h; a result beyond float64 raises
+    ResultOverflowError.
+
+    Parameters
+    ----------
+    f : callable
+        Field ``f(r, t)`` returning ``(...)`` (scalar) or ``(..., 3)`` (vector).
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float, optional
+        Time step of the fourth-order central difference, s (> 0; default
+        ``H_REL (1 + |t|)``).
+
+    Returns
+    -------
+    df_dt : ndarray, shape (...) or (..., 3)
+        ∂f/∂t, in the units of f per s, the shape of f's values.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t or h is not a scalar, an input is not real numeric, or f
+        returns another shape than ``(...)`` or ``(..., 3)``.
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or f returns a non-finite value at a stencil
+        time.
+    NonPositiveParameterError
+        If h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -294,6 +430,40 @@ def material_derivative(
     ``f`` may be a scalar field (result ``(...)``) or a vector field (result
     ``(..., 3)``; with ``f = v`` this is the acceleration of a fluid particle, 8.20).
 
+    Parameters
+    ----------
+    f : callable
+        Field ``f(r, t)`` returning ``(...)`` (scalar) or ``(..., 3)`` (vector).
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``); ∂f/∂t always takes the default time step of
+        :func:`partial_time_derivative`.
+
+    Returns
+    -------
+    df_dt : ndarray, shape (...) or (..., 3)
+        df/dt following the fluid, in the units of f per s, the shape of f's values.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3), or f another
+        than (...) or (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or f or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
     Examples
     --------
     Following a particle of the rigid rotation v = ω e_z × r, the field f = x
@@ -324,6 +494,27 @@ def rigid_velocity_field(v_0: npt.ArrayLike, omega: npt.ArrayLike) -> Field:
     Domain: finite v_0 and omega of shape (3,) (else ShapeError); the field takes any finite points
     (..., 3).
 
+    Parameters
+    ----------
+    v_0 : array_like, shape (3,)
+        Velocity at the origin, m/s.
+    omega : array_like, shape (3,)
+        Angular velocity, rad/s.
+
+    Returns
+    -------
+    field : callable
+        ``field(r, t=0.0) -> ndarray, shape (..., 3)``, m/s, for points r of shape
+        ``(..., 3)``; t is ignored (the motion is steady).  The field does not validate its
+        points: non-finite points, or products beyond float64, give non-finite values.
+
+    Raises
+    ------
+    ShapeError
+        If v_0 or omega is not of shape (3,) or not real numeric.
+    NonFiniteError
+        If v_0 or omega holds NaN or an infinity.
+
     Examples
     --------
     >>> v = rigid_velocity_field([1.0, 0.0, 0.0], [0.0, 0.0, 1.0])
@@ -352,6 +543,51 @@ def continuity_residual(
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    rho : callable
+        Density field ``rho(r, t) -> (...)``, kg/m³.
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``); ∂ρ/∂t takes the default time step of
+        :func:`partial_time_derivative`.
+
+    Returns
+    -------
+    residual : ndarray, shape (...)
+        ∂ρ/∂t + ∇·(ρ v), kg/(m³ s).
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or rho returns another shape than (...), or v another
+        than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or rho or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
+    Examples
+    --------
+    A uniform expansion v = (x, 0, 0) (div v = 1) thins a uniform density as ρ = e^{−t}:
+    ∂ρ/∂t = −ρ and ∇·(ρ v) = ρ div v = ρ cancel.
+
+    >>> import numpy as np
+    >>> res = continuity_residual(lambda r, t: np.exp(-t) + 0 * r[..., 0],
+    ...                           lambda r, t: r * [1.0, 0.0, 0.0], [0.5, 1.0, -2.0], 0.3)
+    >>> bool(abs(res) < 1e-11)
+    True
     """
     r = _points(r)
 
