@@ -324,6 +324,12 @@ def mass_rate(
     --------
     >>> float(mass_rate(q_out=[1.0, 0.5], q_in=2.0))
     0.5
+
+    A rocket burning q = 4 kg/s loses 4 kg in its first second (7.27):
+
+    >>> m1 = rocket_mass(1.0, m_0=1000.0, q=4.0, m_f=600.0)
+    >>> float(mass_rate(q_out=4.0)), float(m1 - 1000.0)
+    (-4.0, -4.0)
     """
     total: np.float64 | np.ndarray = np.float64(0.0)
     for q, name, sign in ((q_in, "q_in", 1.0), (q_out, "q_out", -1.0)):
@@ -542,6 +548,12 @@ def burn_out_time(*, m_f: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.flo
     --------
     >>> float(burn_out_time(m_f=600.0, q=4.0))
     150.0
+
+    At T the rocket has lost its fuel, m(T) = m_0 − m_f:
+
+    >>> T = burn_out_time(m_f=600.0, q=4.0)
+    >>> float(rocket_mass(T, m_0=1000.0, q=4.0, m_f=600.0)), 1000.0 - 600.0
+    (400.0, 400.0)
     """
     T: npt.NDArray[np.float64] = _nonnegative(m_f, "m_f") / _positive(q, "q")
     return T
@@ -1106,7 +1118,12 @@ def falling_chain_table_force(
 
     Examples
     --------
-    >>> float(falling_chain_table_force(0.5, lam=2.0, h=0.25, g=10.0, ell=1.0))
+    The weight of the landed part plus the momentum flux λ v², v² = 2 g (h + x):
+
+    >>> lam, g, x, h = 2.0, 10.0, 0.5, 0.25
+    >>> float(falling_chain_table_force(x, lam=lam, h=h, g=g, ell=1.0))
+    40.0
+    >>> lam * g * x + lam * 2 * g * (h + x)
     40.0
     """
     xa = as_float_array(x, "x")
