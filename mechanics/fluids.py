@@ -148,17 +148,32 @@ def velocity_gradient(
     Parameters
     ----------
     v : callable
-        Velocity field ``v(r, t) -> (..., 3)``.
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
     r : array_like, shape (..., 3)
-        Points.
-    t : float
-        Time.
-    h : float or array_like, optional
-        Finite-difference step (default ``H_REL (1 + |r|∞)``).
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
 
     Returns
     -------
-    ndarray, shape (..., 3, 3)
+    G : ndarray, shape (..., 3, 3)
+        G[..., i, j] = ∂v_i/∂x_j, 1/s (fourth-order central differences).
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -185,6 +200,36 @@ def divergence(
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
+
+    Returns
+    -------
+    div : ndarray, shape (...)
+        ∇·v = tr G, 1/s: the relative rate of change of volume of a fluid element.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
     Examples
     --------
     A rigid motion (8.7) does not change volumes: its divergence vanishes.
@@ -209,6 +254,36 @@ def curl(
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
+
+    Returns
+    -------
+    curl : ndarray, shape (..., 3)
+        ∇×v, the axial vector of G − Gᵀ, 1/s (the vorticity).
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -239,6 +314,36 @@ def gradient(
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
 
+    Parameters
+    ----------
+    f : callable
+        Scalar field ``f(r, t) -> (...)`` (a pressure, a density, a temperature).
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``).
+
+    Returns
+    -------
+    grad : ndarray, shape (..., 3)
+        ∂f/∂x_j, in the units of f per m.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or f returns another shape than (...).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or f returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
     Examples
     --------
     >>> import numpy as np
@@ -257,8 +362,39 @@ def partial_time_derivative(
 ) -> npt.NDArray[np.float64]:
     """∂f/∂t at fixed points ``r`` (8.9), for a scalar or a vector field.
 
-    Domain: finite r (..., 3), scalar t, time step h > 0; f finite at t ± h, t ± 2h; a result beyond
-    float64 raises ResultOverflowError.
+    Domain: finite r (..., 3), scalar t, time step h > 0 (else ShapeError, NonFiniteError or
+    NonPositiveParameterError); f finite at t ± h, t ± 2h; a result beyond float64 raises
+    ResultOverflowError.
+
+    Parameters
+    ----------
+    f : callable
+        Field ``f(r, t)`` returning ``(...)`` (scalar) or ``(..., 3)`` (vector).
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float, optional
+        Time step of the fourth-order central difference, s (> 0; default
+        ``H_REL (1 + |t|)``).
+
+    Returns
+    -------
+    df_dt : ndarray, shape (...) or (..., 3)
+        ∂f/∂t, in the units of f per s, the shape of f's values.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t or h is not a scalar, an input is not real numeric, or f
+        returns another shape than ``(...)`` or ``(..., 3)``.
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or f returns a non-finite value at a stencil
+        time.
+    NonPositiveParameterError
+        If h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -294,6 +430,40 @@ def material_derivative(
     ``f`` may be a scalar field (result ``(...)``) or a vector field (result
     ``(..., 3)``; with ``f = v`` this is the acceleration of a fluid particle, 8.20).
 
+    Parameters
+    ----------
+    f : callable
+        Field ``f(r, t)`` returning ``(...)`` (scalar) or ``(..., 3)`` (vector).
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``); ∂f/∂t always takes the default time step of
+        :func:`partial_time_derivative`.
+
+    Returns
+    -------
+    df_dt : ndarray, shape (...) or (..., 3)
+        df/dt following the fluid, in the units of f per s, the shape of f's values.
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or v returns another shape than (..., 3), or f another
+        than (...) or (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or f or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
     Examples
     --------
     Following a particle of the rigid rotation v = ω e_z × r, the field f = x
@@ -324,6 +494,27 @@ def rigid_velocity_field(v_0: npt.ArrayLike, omega: npt.ArrayLike) -> Field:
     Domain: finite v_0 and omega of shape (3,) (else ShapeError); the field takes any finite points
     (..., 3).
 
+    Parameters
+    ----------
+    v_0 : array_like, shape (3,)
+        Velocity at the origin, m/s.
+    omega : array_like, shape (3,)
+        Angular velocity, rad/s.
+
+    Returns
+    -------
+    field : callable
+        ``field(r, t=0.0) -> ndarray, shape (..., 3)``, m/s, for points r of shape
+        ``(..., 3)``; t is ignored (the motion is steady).  The field does not validate its
+        points: non-finite points, or products beyond float64, give non-finite values.
+
+    Raises
+    ------
+    ShapeError
+        If v_0 or omega is not of shape (3,) or not real numeric.
+    NonFiniteError
+        If v_0 or omega holds NaN or an infinity.
+
     Examples
     --------
     >>> v = rigid_velocity_field([1.0, 0.0, 0.0], [0.0, 0.0, 1.0])
@@ -352,6 +543,51 @@ def continuity_residual(
     Domain: finite points r (..., 3), a scalar time t, a step h > 0 (default H_REL·(1 + |r|∞)); the
     field must return finite values of its shape at the stencil points r ± h, r ± 2h (else
     NonFiniteError or ShapeError naming it); a result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    rho : callable
+        Density field ``rho(r, t) -> (...)``, kg/m³.
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``); ∂ρ/∂t takes the default time step of
+        :func:`partial_time_derivative`.
+
+    Returns
+    -------
+    residual : ndarray, shape (...)
+        ∂ρ/∂t + ∇·(ρ v), kg/(m³ s).
+
+    Raises
+    ------
+    ShapeError
+        If r does not end in 3, t is not a scalar, h does not broadcast over the points, an
+        input is not real numeric, or rho returns another shape than (...), or v another
+        than (..., 3).
+    NonFiniteError
+        If r, t or h holds NaN or an infinity, or rho or v returns a non-finite value at a
+        stencil point.
+    NonPositiveParameterError
+        If a step h is ≤ 0.
+    ResultOverflowError
+        If the result exceeds float64's range.
+
+    Examples
+    --------
+    A uniform expansion v = (x, 0, 0) (div v = 1) thins a uniform density as ρ = e^{−t}:
+    ∂ρ/∂t = −ρ and ∇·(ρ v) = ρ div v = ρ cancel.
+
+    >>> import numpy as np
+    >>> res = continuity_residual(lambda r, t: np.exp(-t) + 0 * r[..., 0],
+    ...                           lambda r, t: r * [1.0, 0.0, 0.0], [0.5, 1.0, -2.0], 0.3)
+    >>> bool(abs(res) < 1e-11)
+    True
     """
     r = _points(r)
 
@@ -382,13 +618,53 @@ def euler_residual(
     g: float,
     h: npt.ArrayLike | None = None,
 ) -> npt.NDArray[np.float64]:
-    """∂v/∂t + (v·∇)v − g_vec + ∇p/ρ at the points ``r``: zero for a flow of an ideal
-    fluid of constant density ``rho`` under gravity g_vec = −g e_z (8.27).
+    """Residual of Euler's equation (8.27) at the points ``r``: ∂v/∂t + (v·∇)v − g_vec + ∇p/ρ.
+
+    Zero for a flow of an ideal fluid of constant density ``rho`` under gravity
+    g_vec = −g e_z (8.27).
 
     Domain: rho > 0, g > 0 (scalars), finite points r (..., 3), a scalar time t, a step h > 0
     (default H_REL·(1 + |r|∞)); the fields must return finite values of their shape at the stencil
     points (else NonFiniteError or ShapeError naming them); a result beyond float64 raises
     ResultOverflowError.
+
+    Parameters
+    ----------
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s.
+    p : callable
+        Pressure field ``p(r, t) -> (...)``, Pa.
+    r : array_like, shape (..., 3)
+        Points, m (finite).
+    t : float, optional
+        Time, s (a scalar; default 0).
+    rho : float
+        Constant density, kg/m³ (> 0).
+    g : float
+        Magnitude of gravity, m/s² (> 0).
+    h : float or array_like, shape (...), optional
+        Spatial finite-difference step, m (> 0), broadcasting over the leading axes of r
+        (default ``H_REL (1 + |r|∞)``); ∂v/∂t takes the default time step of
+        :func:`partial_time_derivative`.
+
+    Returns
+    -------
+    residual : ndarray, shape (..., 3)
+        The acceleration of the fluid minus the force per mass, m/s².
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If rho, g or a step h is ≤ 0.
+    ShapeError
+        If r does not end in 3, t, rho or g is not a scalar, h does not broadcast over the
+        points, an input is not real numeric, or v returns another shape than (..., 3), or p
+        another than (...).
+    NonFiniteError
+        If r, t, rho, g or h holds NaN or an infinity, or v or p returns a non-finite value
+        at a stencil point.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -420,20 +696,38 @@ euler_residual = finite_result(euler_residual)
 def bernoulli_constant(
     v: npt.ArrayLike, p: npt.ArrayLike, z: npt.ArrayLike, *, rho_0: float, g: float
 ) -> npt.NDArray[np.float64]:
-    """½ ρ0 v² + ρ0 g z + p (8.34): constant along a streamline of a steady
-    incompressible ideal flow.
+    """Bernoulli's constant ½ ρ0 v² + ρ0 g z + p (8.34) at given velocities, pressures, heights.
 
-    Domain: rho_0 > 0, g > 0, finite v (..., 3), p and z; a result beyond float64 raises
-    ResultOverflowError.
+    It is constant along a streamline of a steady incompressible ideal flow.
+
+    Domain: rho_0 > 0, g > 0 (else NonPositiveParameterError), finite v (..., 3), p and z; a result
+    beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
     v : array_like, shape (..., 3)
-        Velocities.
+        Velocities, m/s.
     p, z : array_like, shape (...)
-        Pressures and heights (z upward).
+        Pressures (Pa) and heights (m, z upward).
     rho_0, g : float
-        Density and gravitational acceleration, both > 0.
+        Density (kg/m³) and gravitational acceleration (m/s²), both > 0.
+
+    Returns
+    -------
+    B : ndarray, shape (...)
+        ½ ρ0 |v|² + ρ0 g z + p, Pa (J/m³), broadcast over the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If rho_0 or g is ≤ 0.
+    ShapeError
+        If v does not end in 3, rho_0 or g is not a scalar, an input is not real numeric, or
+        the leading axes of v, p and z do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -472,15 +766,52 @@ STREAMLINE_MAX_EVALS = 12 * 10**4
 def streamline(
     v: Field, r_0: npt.ArrayLike, s: npt.ArrayLike, *, t: float = 0.0, rtol: float = 1e-12
 ) -> npt.NDArray[np.float64]:
-    """Points of the streamline dr/ds = v(r, t) through ``r_0`` (8.31), at the
-    parameter values ``s`` (time frozen at ``t``; for a steady flow s is time).
+    """Points of the streamline dr/ds = v(r, t) through ``r_0`` (8.31) at parameter values ``s``.
 
-    Domain: r_0 of shape (3,), s 1-D strictly increasing (else OutOfDomainError), a scalar t, rtol >
-    0; the field finite along the way (else NonFiniteError); at most ``STREAMLINE_MAX_EVALS`` field
-    evaluations (else StepSizeError: bounded time).
+    Time is frozen at ``t``; for a steady flow s is time.
+
+    Domain: r_0 of shape (3,), s 1-D and non-empty, a scalar t (else ShapeError), s strictly
+    increasing (else OutOfDomainError), rtol in [STREAMLINE_MIN_RTOL, 1) (else OutOfDomainError);
+    the field finite along the way (else NonFiniteError); at most ``STREAMLINE_MAX_EVALS`` field
+    evaluations (else StepSizeError: bounded time); a streamline that escapes to infinity before
+    s[-1] raises OutOfDomainError (the integration fails) or ResultOverflowError.
 
     Integrated with scipy's DOP853 at relative tolerance ``rtol``; returns
     ``(len(s), 3)``.
+
+    Parameters
+    ----------
+    v : callable
+        Velocity field ``v(r, t) -> (..., 3)``, m/s (called with r of shape (3,)).
+    r_0 : array_like, shape (3,)
+        Starting point, m, at s = s[0].
+    s : array_like, shape (n,)
+        Parameter values, strictly increasing, n ≥ 1 (s for a steady flow).
+    t : float, optional
+        The frozen time, s (a scalar; default 0).
+    rtol : float, optional
+        Relative tolerance of the integration, in [``STREAMLINE_MIN_RTOL``, 1) (default
+        1e-12); the absolute tolerance is rtol (1 + |r_0|∞).
+
+    Returns
+    -------
+    points : ndarray, shape (n, 3)
+        r(s_i), m; the first is r_0.
+
+    Raises
+    ------
+    ShapeError
+        If r_0 is not of shape (3,), s is not 1-D with at least one value, t or rtol is not
+        a scalar, an input is not real numeric, or v returns another shape than (3,).
+    OutOfDomainError
+        If s is not strictly increasing, rtol lies outside [STREAMLINE_MIN_RTOL, 1), or the
+        integration fails (scipy's message; e.g. a streamline that escapes to infinity).
+    NonFiniteError
+        If an input holds NaN or an infinity, or v returns a non-finite value.
+    StepSizeError
+        If the integration needs more than ``STREAMLINE_MAX_EVALS`` evaluations of v.
+    ResultOverflowError
+        If a point exceeds float64's range.
 
     Examples
     --------
@@ -556,12 +887,40 @@ def torricelli_speed(
 ) -> npt.NDArray[np.float64]:
     """Outflow speed u from a small hole at depth ``h`` (Example 8.1, 8.37).
 
-    Domain: h ≥ 0, g > 0, a scalar area_ratio in [0, 1) (else OutOfDomainError); a result beyond
-    float64 raises ResultOverflowError.
+    Domain: h ≥ 0, a scalar area_ratio in [0, 1) (else OutOfDomainError), g > 0 (else
+    NonPositiveParameterError); a result beyond float64 raises ResultOverflowError.
 
     u = √(2 g h) with the book's assumption of a still surface (``area_ratio = 0``);
     u = √(2 g h / (1 − a²)) when the surface sinks with speed a u (continuity),
     a = ``area_ratio``.
+
+    Parameters
+    ----------
+    h : array_like, shape (...)
+        Depth of the hole below the free surface, m (≥ 0).
+    g : float
+        Magnitude of gravity, m/s² (> 0).
+    area_ratio : float, optional
+        a = (hole area)/(surface area), in [0, 1) (default 0: the book's still surface).
+
+    Returns
+    -------
+    u : ndarray, shape (...)
+        Outflow speed, m/s.
+
+    Raises
+    ------
+    OutOfDomainError
+        If h < 0 or area_ratio lies outside [0, 1).
+    NonPositiveParameterError
+        If g is ≤ 0.
+    ShapeError
+        If g or area_ratio is not a scalar, an input is not real numeric, or the inputs do
+        not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -580,11 +939,41 @@ torricelli_speed = finite_result(torricelli_speed)
 
 
 def drain_time(h_0: npt.ArrayLike, *, g: float, area_ratio: float) -> npt.NDArray[np.float64]:
-    """Time for a prismatic tank to empty through a small hole in its bottom
-    (quasi-steady Torricelli outflow): T = √(2 h0 (1 − a²)/g) / a.
+    """Time for a prismatic tank to empty through a small hole in its bottom.
 
-    Domain: h_0 ≥ 0, g > 0, a scalar area_ratio in (0, 1) (0: the tank never drains; else
-    OutOfDomainError); a result beyond float64 raises ResultOverflowError.
+    Quasi-steady Torricelli outflow: T = √(2 h0 (1 − a²)/g) / a.
+
+    Domain: h_0 ≥ 0, a scalar area_ratio in (0, 1) (0: the tank never drains; else
+    OutOfDomainError), g > 0 (else NonPositiveParameterError); a result beyond float64 raises
+    ResultOverflowError.
+
+    Parameters
+    ----------
+    h_0 : array_like, shape (...)
+        Initial level above the hole, m (≥ 0).
+    g : float
+        Magnitude of gravity, m/s² (> 0).
+    area_ratio : float
+        a = (hole area)/(tank cross-section), in (0, 1).
+
+    Returns
+    -------
+    T : ndarray, shape (...)
+        Drain time, s.
+
+    Raises
+    ------
+    OutOfDomainError
+        If h_0 < 0 or area_ratio lies outside (0, 1).
+    NonPositiveParameterError
+        If g is ≤ 0.
+    ShapeError
+        If g or area_ratio is not a scalar, an input is not real numeric, or the inputs do
+        not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -612,13 +1001,44 @@ def tank_level(
 ) -> npt.NDArray[np.float64]:
     """Liquid level above a small hole in the bottom of a prismatic tank at times ``t``.
 
-    Domain: t ≥ 0, h_0 ≥ 0, g > 0, a scalar area_ratio in (0, 1) (else OutOfDomainError); after the
-    drain time the level stays 0; a result beyond float64 raises ResultOverflowError.
+    Domain: t ≥ 0, h_0 ≥ 0, a scalar area_ratio in (0, 1) (else OutOfDomainError), g > 0 (else
+    NonPositiveParameterError); after the drain time the level stays 0; a result beyond float64
+    raises ResultOverflowError.
 
     With Torricelli's outflow u(h) (:func:`torricelli_speed`) and continuity
     A dh/dt = −a u, the level falls as h(t) = (√h0 − c t)², c = a √(g/(2(1 − a²))),
     written as c² (T − t)² with the drain time T; the empty tank stays empty
     (h = 0 for t ≥ T).  Times must be ≥ 0.
+
+    Parameters
+    ----------
+    t : array_like, shape (...)
+        Times since the hole was opened, s (≥ 0).
+    h_0 : array_like, shape (...)
+        Initial level above the hole, m (≥ 0).
+    g : float
+        Magnitude of gravity, m/s² (> 0).
+    area_ratio : float
+        a = (hole area)/(tank cross-section), in (0, 1).
+
+    Returns
+    -------
+    h : ndarray, shape (...)
+        Level at t, m, broadcast over t and h_0 (0 once the tank is empty).
+
+    Raises
+    ------
+    OutOfDomainError
+        If t < 0, h_0 < 0 or area_ratio lies outside (0, 1).
+    NonPositiveParameterError
+        If g is ≤ 0.
+    ShapeError
+        If g or area_ratio is not a scalar, an input is not real numeric, or the inputs do
+        not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------

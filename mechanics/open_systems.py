@@ -185,14 +185,26 @@ def thrust(q: npt.ArrayLike, u_rel: npt.ArrayLike) -> npt.NDArray[np.float64]:
     Parameters
     ----------
     q : array_like, shape (...)
-        Mass flow leaving the system (≥ 0).
+        Mass flow leaving the system, kg/s (≥ 0).
     u_rel : array_like, shape (..., 3)
-        Velocity of the leaving matter relative to the system.
+        Velocity of the leaving matter relative to the system, m/s.
 
     Returns
     -------
-    ndarray, shape (..., 3)
-        −q u_rel, the outflow term of (7.25).
+    F : ndarray, shape (..., 3)
+        −q u_rel, the outflow term of (7.25), N.
+
+    Raises
+    ------
+    NegativeMassError
+        If a flow q is negative.
+    ShapeError
+        If u_rel does not end in 3, an input is not real numeric, or the leading axes of
+        q and u_rel do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the product exceeds float64's range.
 
     Examples
     --------
@@ -220,19 +232,39 @@ def momentum_rate(
 ) -> npt.NDArray[np.float64]:
     """dp_o/dt of an open system, the momentum principle (7.19).
 
-    Domain: finite F_e (..., 3); each flow q ≥ 0 of shape (..., n) given together with its
-    velocities (..., n, 3) (else ShapeError); a result beyond float64 raises ResultOverflowError.
+    Domain: finite F_e (..., 3); each flow q ≥ 0 (else NegativeMassError) of shape (..., n) given
+    together with its velocities (..., n, 3) (else ShapeError); a result beyond float64 raises
+    ResultOverflowError.
 
     dp_o/dt = F_e − Σ_a q⁻_a v⁻_a + Σ_b q⁺_b v⁺_b, velocities absolute (inertial).
 
     Parameters
     ----------
     F_e : array_like, shape (..., 3)
-        Total external force.
+        Total external force, N.
     q_out, v_out : array_like, shapes (..., n) and (..., n, 3), optional
-        Outflows and their absolute velocities (omit both for none).
+        Outflows (kg/s, ≥ 0) and their absolute velocities (m/s); omit both for none.
+        One flow may be a scalar q with a (3,) velocity.
     q_in, v_in : array_like, shapes (..., k) and (..., k, 3), optional
-        Inflows and their absolute velocities.
+        Inflows (kg/s, ≥ 0) and their absolute velocities (m/s); omit both for none.
+
+    Returns
+    -------
+    dp_dt : ndarray, shape (..., 3)
+        The rate of change dp_o/dt of the open system's momentum, N.
+
+    Raises
+    ------
+    NegativeMassError
+        If a flow q_out or q_in is negative.
+    ShapeError
+        If a flow is given without its velocities (or they without it), a vector does not
+        end in 3, the numbers of flows n (k) of q and its velocities differ, or the leading
+        axes do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -256,15 +288,48 @@ momentum_rate = finite_result(momentum_rate)
 def mass_rate(
     *, q_out: npt.ArrayLike | None = None, q_in: npt.ArrayLike | None = None
 ) -> npt.NDArray[np.float64]:
-    """dm/dt = Σ q⁺ − Σ q⁻ (7.21).  ``q_out``, ``q_in`` of shape (..., n); None for none.
+    """Rate of change of the mass of an open system, dm/dt = Σ q⁺ − Σ q⁻ (7.21).
 
     Domain: flows q ≥ 0 (else NegativeMassError), the last axis listing the flows; a result beyond
     float64 raises ResultOverflowError.
+
+    ``q_out``, ``q_in`` of shape (..., n); None for none.
+
+    Parameters
+    ----------
+    q_out : array_like, shape (..., n) or (), optional
+        Outflows q⁻, kg/s (≥ 0); the last axis lists the flows, a scalar is one flow.
+        None (the default) for none.
+    q_in : array_like, shape (..., k) or (), optional
+        Inflows q⁺, kg/s (≥ 0), as ``q_out``.
+
+    Returns
+    -------
+    dm_dt : ndarray, shape (...)
+        Σ q_in − Σ q_out, kg/s (0 when no flow is given).
+
+    Raises
+    ------
+    NegativeMassError
+        If a flow is negative.
+    ShapeError
+        If a flow is not a real numeric array, or the leading axes of the two sums do not
+        broadcast.
+    NonFiniteError
+        If a flow holds NaN or an infinity.
+    ResultOverflowError
+        If a sum exceeds float64's range.
 
     Examples
     --------
     >>> float(mass_rate(q_out=[1.0, 0.5], q_in=2.0))
     0.5
+
+    A rocket burning q = 4 kg/s loses 4 kg in its first second (7.27):
+
+    >>> m1 = rocket_mass(1.0, m_0=1000.0, q=4.0, m_f=600.0)
+    >>> float(mass_rate(q_out=4.0)), float(m1 - 1000.0)
+    (-4.0, -4.0)
     """
     total: np.float64 | np.ndarray = np.float64(0.0)
     for q, name, sign in ((q_in, "q_in", 1.0), (q_out, "q_out", -1.0)):
@@ -288,17 +353,40 @@ def open_system_acceleration(
 ) -> npt.NDArray[np.float64]:
     """a_o = (F_e − Σ q⁻ u⁻ + Σ q⁺ u⁺)/m, (7.25), velocities relative to the system.
 
-    Domain: m > 0, finite F_e (..., 3), flows as :func:`momentum_rate`; a result beyond float64
-    raises ResultOverflowError.
+    Domain: m > 0 (else NonPositiveParameterError), finite F_e (..., 3), flows as
+    :func:`momentum_rate`; a result beyond float64 raises ResultOverflowError.
 
     Parameters
     ----------
     m : array_like, shape (...)
-        Current mass of the open system (> 0).
+        Current mass of the open system, kg (> 0).
     F_e : array_like, shape (..., 3)
-        Total external force.
-    q_out, u_out, q_in, u_in : array_like, optional
-        Flows (≥ 0) and velocities relative to the system, u = v − v_o.
+        Total external force, N.
+    q_out, u_out : array_like, shapes (..., n) and (..., n, 3), optional
+        Outflows (kg/s, ≥ 0) and their velocities relative to the system, u = v − v_o
+        (m/s); omit both for none.  One flow may be a scalar q with a (3,) velocity.
+    q_in, u_in : array_like, shapes (..., k) and (..., k, 3), optional
+        Inflows (kg/s, ≥ 0) and their velocities relative to the system (m/s).
+
+    Returns
+    -------
+    a : ndarray, shape (..., 3)
+        Acceleration a_o of the open system, m/s².
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If a mass m is ≤ 0.
+    NegativeMassError
+        If a flow q_out or q_in is negative.
+    ShapeError
+        If a flow is given without its velocities (or they without it), a vector does not
+        end in 3, the numbers of flows of q and its velocities differ, or the leading axes
+        do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -332,21 +420,41 @@ def angular_momentum_rate(
 ) -> npt.NDArray[np.float64]:
     """dL_o/dt about a fixed point A of an open system, (7.35).
 
-    Domain: finite M_e and about (..., 3); each flow q ≥ 0 given with its points and velocities
-    (else ShapeError); a result beyond float64 raises ResultOverflowError.
+    Domain: finite M_e and about (..., 3); each flow q ≥ 0 (else NegativeMassError) given with its
+    points and velocities (else ShapeError); a result beyond float64 raises ResultOverflowError.
 
     dL_o/dt = M_e − Σ_a (r⁻_a − A) × q⁻_a v⁻_a + Σ_b (r⁺_b − A) × q⁺_b v⁺_b.
 
     Parameters
     ----------
     M_e : array_like, shape (..., 3)
-        Total moment of the external forces about ``about``.
+        Total moment of the external forces about ``about``, N m.
     about : array_like, shape (..., 3)
-        The fixed point A (required; the book uses the origin).
+        The fixed point A, m (required; the book uses the origin).
     q_out, r_out, v_out : array_like, shapes (..., n), (..., n, 3), (..., n, 3), optional
-        Outflows, the positions where they cross the boundary, their absolute velocities.
-    q_in, r_in, v_in : array_like, optional
+        Outflows (kg/s, ≥ 0), the positions where they cross the boundary (m), their
+        absolute velocities (m/s); give all three or none.  One flow may be a scalar q
+        with (3,) vectors.
+    q_in, r_in, v_in : array_like, shapes (..., k), (..., k, 3), (..., k, 3), optional
         The same for inflows.
+
+    Returns
+    -------
+    dL_dt : ndarray, shape (..., 3)
+        The rate of change dL_o/dt of the angular momentum about A, N m.
+
+    Raises
+    ------
+    NegativeMassError
+        If a flow q_out or q_in is negative.
+    ShapeError
+        If a flow is given without its positions and velocities (all three or none), a
+        vector does not end in 3, the numbers of flows differ, or the leading axes do not
+        broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -408,12 +516,44 @@ def _phi(x: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
 def burn_out_time(*, m_f: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """T = m_f/q, the time at which the fuel m_f = q T is gone (Example 7.2).
 
-    Domain: m_f ≥ 0, q > 0; a result beyond float64 raises ResultOverflowError.
+    Domain: m_f ≥ 0 (else NegativeMassError), q > 0 (else NonPositiveParameterError); a result
+    beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    m_f : array_like, shape (...)
+        Fuel mass, kg (≥ 0).
+    q : array_like, shape (...)
+        Constant burn rate, kg/s (> 0).
+
+    Returns
+    -------
+    T : ndarray, shape (...)
+        Burn-out time, s, broadcast over the inputs.
+
+    Raises
+    ------
+    NegativeMassError
+        If m_f is negative.
+    NonPositiveParameterError
+        If q is ≤ 0.
+    ShapeError
+        If an input is not a real numeric array, or m_f and q do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If m_f/q exceeds float64's range.
 
     Examples
     --------
     >>> float(burn_out_time(m_f=600.0, q=4.0))
     150.0
+
+    At T the rocket has lost its fuel, m(T) = m_0 − m_f:
+
+    >>> T = burn_out_time(m_f=600.0, q=4.0)
+    >>> float(rocket_mass(T, m_0=1000.0, q=4.0, m_f=600.0)), 1000.0 - 600.0
+    (400.0, 400.0)
     """
     T: npt.NDArray[np.float64] = _nonnegative(m_f, "m_f") / _positive(q, "q")
     return T
@@ -501,7 +641,42 @@ def rocket_mass(
     """m(t) = m_0 − q t (7.27) up to burn-out, m_0 − m_f after (with ``"coast"``).
 
     Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0; t beyond burn-out only with after_burn_out='coast'
-    (else OutOfDomainError).
+    (else OutOfDomainError; a nonpositive m_0 or q raises NonPositiveParameterError, a negative
+    m_f NegativeMassError, any other option UnknownOptionError).
+
+    Parameters
+    ----------
+    t : array_like, shape (...)
+        Time since ignition, s (≥ 0).
+    m_0 : array_like, shape (...)
+        Initial mass, kg (> 0).
+    q : array_like, shape (...)
+        Constant burn rate, kg/s (> 0).
+    m_f : array_like, shape (...)
+        Fuel mass, kg, 0 ≤ m_f < m_0; burn-out at T = m_f/q.
+    after_burn_out : {"raise", "coast"}, optional
+        t > T raises :class:`~mechanics.errors.OutOfDomainError` (``"raise"``, the
+        default), or gives the constant mass m_0 − m_f (``"coast"``).
+
+    Returns
+    -------
+    m : ndarray, shape (...)
+        Mass of the rocket at t, kg, broadcast over the inputs.
+
+    Raises
+    ------
+    UnknownOptionError
+        If ``after_burn_out`` is not ``"raise"`` or ``"coast"``.
+    NonPositiveParameterError
+        If m_0 or q is ≤ 0.
+    NegativeMassError
+        If m_f is negative.
+    OutOfDomainError
+        If m_f ≥ m_0, t < 0, or t > T = m_f/q with ``after_burn_out="raise"``.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
 
     Examples
     --------
@@ -555,7 +730,8 @@ def rocket_velocity(
     """Vertical velocity of the rocket of Example 7.2, (7.30).
 
     Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
-    OutOfDomainError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
+    OutOfDomainError; but a nonpositive m_0, q or u raises NonPositiveParameterError, a negative
+    m_f NegativeMassError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
     OutOfDomainError; any other option: UnknownOptionError); a result beyond float64 raises
     ResultOverflowError.
 
@@ -563,22 +739,41 @@ def rocket_velocity(
 
     Parameters
     ----------
-    t : array_like
-        Time since ignition, ≥ 0.
-    m_0, q, u : array_like
-        Initial mass, burn rate, exhaust speed relative to the rocket (all > 0).
-    m_f : array_like
-        Fuel mass, 0 ≤ m_f < m_0; burn-out at T = m_f/q.
-    g : array_like
-        Magnitude of gravity, ≥ 0 (0 in free space).  Required: q u ≥ m_0 g.
-    after_burn_out : {"raise", "coast"}
-        t > T raises :class:`OutOfDomainError`, or continues as free flight
-        v(T) − g (t − T).
+    t : array_like, shape (...)
+        Time since ignition, s (≥ 0).
+    m_0, q, u : array_like, shape (...)
+        Initial mass (kg), burn rate (kg/s), exhaust speed relative to the rocket (m/s),
+        all > 0.
+    m_f : array_like, shape (...)
+        Fuel mass, kg, 0 ≤ m_f < m_0; burn-out at T = m_f/q.
+    g : array_like, shape (...)
+        Magnitude of gravity, m/s², ≥ 0 (0 in free space).  Required: q u ≥ m_0 g.
+    after_burn_out : {"raise", "coast"}, optional
+        t > T raises :class:`~mechanics.errors.OutOfDomainError` (``"raise"``, the
+        default), or continues as free flight v(T) − g (t − T) (``"coast"``).
 
     Returns
     -------
-    ndarray
-        v(t), broadcast over the inputs.
+    v : ndarray, shape (...)
+        v(t) along +e_z, m/s, broadcast over the inputs.
+
+    Raises
+    ------
+    UnknownOptionError
+        If ``after_burn_out`` is not ``"raise"`` or ``"coast"``.
+    NonPositiveParameterError
+        If m_0, q or u is ≤ 0.
+    NegativeMassError
+        If m_f is negative.
+    OutOfDomainError
+        If m_f ≥ m_0, t < 0, g < 0, q u < m_0 g (no lift-off), or t > T = m_f/q with
+        ``after_burn_out="raise"``.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Notes
     -----
@@ -629,7 +824,8 @@ def rocket_height(
     """Height z(t) of the rocket of Example 7.2: the integral of (7.30), z(0) = 0.
 
     Domain: t ≥ 0, m_0 > 0, q > 0, 0 ≤ m_f < m_0, u > 0 and g ≥ 0 with lift-off q u ≥ m_0 g (else
-    OutOfDomainError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
+    OutOfDomainError; but a nonpositive m_0, q or u raises NonPositiveParameterError, a negative
+    m_f NegativeMassError); t beyond burn-out T = m_f/q only with after_burn_out='coast' (else
     OutOfDomainError; any other option: UnknownOptionError); a result beyond float64 raises
     ResultOverflowError.
 
@@ -638,7 +834,41 @@ def rocket_height(
 
     Parameters
     ----------
-    As :func:`rocket_velocity`.
+    t : array_like, shape (...)
+        Time since ignition, s (≥ 0).
+    m_0, q, u : array_like, shape (...)
+        Initial mass (kg), burn rate (kg/s), exhaust speed relative to the rocket (m/s),
+        all > 0.
+    m_f : array_like, shape (...)
+        Fuel mass, kg, 0 ≤ m_f < m_0; burn-out at T = m_f/q.
+    g : array_like, shape (...)
+        Magnitude of gravity, m/s², ≥ 0 (0 in free space).  Required: q u ≥ m_0 g.
+    after_burn_out : {"raise", "coast"}, optional
+        t > T raises :class:`~mechanics.errors.OutOfDomainError` (``"raise"``, the
+        default), or continues as free flight (``"coast"``, see Notes).
+
+    Returns
+    -------
+    z : ndarray, shape (...)
+        Height z(t) above the launch point, m, broadcast over the inputs.
+
+    Raises
+    ------
+    UnknownOptionError
+        If ``after_burn_out`` is not ``"raise"`` or ``"coast"``.
+    NonPositiveParameterError
+        If m_0, q or u is ≤ 0.
+    NegativeMassError
+        If m_f is negative.
+    OutOfDomainError
+        If m_f ≥ m_0, t < 0, g < 0, q u < m_0 g (no lift-off), or t > T = m_f/q with
+        ``after_burn_out="raise"``.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Notes
     -----
@@ -682,8 +912,8 @@ def jet_velocity(
 ) -> npt.NDArray[np.float64]:
     """Speed of a jet plane taking in still air at q and expelling it at w relative.
 
-    Domain: t ≥ 0, m > 0, q > 0, w > 0, finite v_0; a result beyond float64 raises
-    ResultOverflowError.
+    Domain: t ≥ 0 (else OutOfDomainError), m > 0, q > 0, w > 0 (else NonPositiveParameterError),
+    finite v_0; a result beyond float64 raises ResultOverflowError.
 
     From (7.19) with inflow velocity 0 and outflow velocity v − w (Problem 7.1):
     m dv/dt = q (w − v), so v(t) = w + (v_0 − w) e^{−q t/m}, evaluated as
@@ -691,14 +921,32 @@ def jet_velocity(
 
     Parameters
     ----------
-    t : array_like
-        Time, ≥ 0.
-    m, q : array_like
-        Mass of the plane and air flow through the engine (> 0).
-    w : array_like
-        Exhaust speed relative to the engine (> 0).
-    v_0 : array_like
-        Speed at t = 0.
+    t : array_like, shape (...)
+        Time, s (≥ 0).
+    m, q : array_like, shape (...)
+        Mass of the plane (kg) and air flow through the engine (kg/s), both > 0.
+    w : array_like, shape (...)
+        Exhaust speed relative to the engine, m/s (> 0).
+    v_0 : array_like, shape (...)
+        Speed at t = 0, m/s.
+
+    Returns
+    -------
+    v : ndarray, shape (...)
+        Speed v(t), m/s, broadcast over the inputs; it tends to w as t grows.
+
+    Raises
+    ------
+    OutOfDomainError
+        If t < 0.
+    NonPositiveParameterError
+        If m, q or w is ≤ 0.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -722,23 +970,35 @@ def pipe_bend_force(
 ) -> npt.NDArray[np.float64]:
     """Force that holds a pipe bend at rest: F = q (v_out − v_in), from (7.19).
 
-    Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
+    Domain: q ≥ 0 (else NegativeMassError), finite v and angle; a result beyond float64 raises
+    ResultOverflowError.
 
     Parameters
     ----------
-    q : array_like
-        Mass flow through the pipe (≥ 0).
-    v : array_like
-        Flow speed (constant cross-section: the same in and out).
-    angle : array_like
-        Turning angle α of the flow (radians, positive to the left).
+    q : array_like, shape (...)
+        Mass flow through the pipe, kg/s (≥ 0).
+    v : array_like, shape (...)
+        Flow speed, m/s (constant cross-section: the same in and out).
+    angle : array_like, shape (...)
+        Turning angle α of the flow, rad (positive to the left).
 
     Returns
     -------
-    ndarray, shape (..., 3)
-        Components in the inflow frame: e_1 along the incoming flow, e_2 to its left
-        (the side the flow turns to for α > 0), e_3 = e_1 × e_2:
+    F : ndarray, shape (..., 3)
+        The holding force, N.  Components in the inflow frame: e_1 along the incoming
+        flow, e_2 to its left (the side the flow turns to for α > 0), e_3 = e_1 × e_2:
         F = q v (cos α − 1, sin α, 0), with cos α − 1 computed as −2 sin²(α/2).
+
+    Raises
+    ------
+    NegativeMassError
+        If q is negative.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Notes
     -----
@@ -771,7 +1031,33 @@ def pipe_bend_force_magnitude(
 ) -> npt.NDArray[np.float64]:
     """|F| = 2 q |v| |sin(α/2)| for the pipe bend of :func:`pipe_bend_force`.
 
-    Domain: q ≥ 0, finite v and angle; a result beyond float64 raises ResultOverflowError.
+    Domain: q ≥ 0 (else NegativeMassError), finite v and angle; a result beyond float64 raises
+    ResultOverflowError.
+
+    Parameters
+    ----------
+    q : array_like, shape (...)
+        Mass flow through the pipe, kg/s (≥ 0).
+    v : array_like, shape (...)
+        Flow speed, m/s.
+    angle : array_like, shape (...)
+        Turning angle α of the flow, rad.
+
+    Returns
+    -------
+    F : ndarray, shape (...)
+        Magnitude of the holding force, N, broadcast over the inputs.
+
+    Raises
+    ------
+    NegativeMassError
+        If q is negative.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -793,8 +1079,8 @@ def falling_chain_table_force(
 ) -> npt.NDArray[np.float64]:
     """Force from a falling chain on a table when a length x has landed (Problem 7.4).
 
-    Domain: lam > 0, g > 0, ell > 0, 0 ≤ x ≤ ell, h ≥ 0 (else OutOfDomainError); a result beyond
-    float64 raises ResultOverflowError.
+    Domain: lam > 0, g > 0, ell > 0 (else NonPositiveParameterError), 0 ≤ x ≤ ell, h ≥ 0 (else
+    OutOfDomainError); a result beyond float64 raises ResultOverflowError.
 
     A uniform chain (λ per length, length ℓ) hangs with its lower end at height h
     and is released from rest.  The hanging part falls freely; when x has landed
@@ -804,16 +1090,40 @@ def falling_chain_table_force(
 
     Parameters
     ----------
-    x : array_like
-        Landed length, 0 ≤ x ≤ ℓ.
-    lam, g, ell : array_like
-        Mass per length, gravity, chain length (> 0).
-    h : array_like
-        Initial height of the lower end (≥ 0).
+    x : array_like, shape (...)
+        Landed length, m, 0 ≤ x ≤ ℓ.
+    lam, g, ell : array_like, shape (...)
+        Mass per length (kg/m), gravity (m/s²), chain length ℓ (m), all > 0.
+    h : array_like, shape (...)
+        Initial height of the lower end, m (≥ 0).
+
+    Returns
+    -------
+    F : ndarray, shape (...)
+        Magnitude of the force between the table and the chain, N, λ g (3 x + 2 h),
+        broadcast over the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If lam, g or ell is ≤ 0.
+    OutOfDomainError
+        If x lies outside [0, ell] or h < 0.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
-    >>> float(falling_chain_table_force(0.5, lam=2.0, h=0.25, g=10.0, ell=1.0))
+    The weight of the landed part plus the momentum flux λ v², v² = 2 g (h + x):
+
+    >>> lam, g, x, h = 2.0, 10.0, 0.5, 0.25
+    >>> float(falling_chain_table_force(x, lam=lam, h=h, g=g, ell=1.0))
+    40.0
+    >>> lam * g * x + lam * 2 * g * (h + x)
     40.0
     """
     xa = as_float_array(x, "x")
@@ -877,24 +1187,46 @@ def carousel_angular_velocity(
 ) -> npt.NDArray[np.float64]:
     """φ̇(t) of the carousel under fire, Example 7.3: the solution of (7.39).
 
-    Domain: t ≥ 0, J_0 > 0, q ≥ 0, R > 0, |r| ≤ R (else OutOfDomainError), finite v and phidot_0; a
-    result beyond float64 raises ResultOverflowError.
+    Domain: t ≥ 0, |r| ≤ R (else OutOfDomainError), J_0 > 0, R > 0 (else
+    NonPositiveParameterError), q ≥ 0 (else NegativeMassError), finite v and phidot_0; a result
+    beyond float64 raises ResultOverflowError.
 
     d/dt (J φ̇) = −r q v with J(t) = J_0 + q R² t (7.36)–(7.38) integrates to
     φ̇(t) = (J_0 φ̇_0 − r q v t)/(J_0 + q R² t) → −r v/R² (7.40) as t → ∞.
 
     Parameters
     ----------
-    t : array_like
-        Time since the shooting started, ≥ 0.
-    J_0 : array_like
-        Moment of inertia about the axis at t = 0 (> 0).
-    q, v : array_like
-        Mass flow (≥ 0) and speed of the bullets.
-    r, R : array_like
-        Signed perpendicular distance of the bullet line (|r| ≤ R), carousel radius.
-    phidot_0 : array_like
-        φ̇(0) (default 0, as in the book).
+    t : array_like, shape (...)
+        Time since the shooting started, s (≥ 0).
+    J_0 : array_like, shape (...)
+        Moment of inertia about the axis at t = 0, kg m² (> 0).
+    q, v : array_like, shape (...)
+        Mass flow (kg/s, ≥ 0) and speed (m/s) of the bullets.
+    r, R : array_like, shape (...)
+        Signed perpendicular distance of the bullet line (m, |r| ≤ R), carousel radius
+        (m, > 0).
+    phidot_0 : array_like, shape (...), optional
+        φ̇(0), rad/s (default 0, as in the book).
+
+    Returns
+    -------
+    phidot : ndarray, shape (...)
+        Angular velocity φ̇(t) about e_z, rad/s, broadcast over the inputs.
+
+    Raises
+    ------
+    OutOfDomainError
+        If t < 0 or |r| > R (the bullets miss).
+    NonPositiveParameterError
+        If J_0 or R is ≤ 0.
+    NegativeMassError
+        If q is negative.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -928,7 +1260,41 @@ def carousel_angular_acceleration(
     Domain: as :func:`carousel_angular_velocity`; a result beyond float64 raises
     ResultOverflowError.
 
-    Equals −q (r v + R² φ̇_0) J_0/J(t)²; negative at t = 0 for φ̇_0 = 0.
+    Equals −q (r v + R² φ̇_0) J_0/J(t)²; negative at t = 0 for φ̇_0 = 0 (and r v > 0).
+
+    Parameters
+    ----------
+    t : array_like, shape (...)
+        Time since the shooting started, s (≥ 0).
+    J_0 : array_like, shape (...)
+        Moment of inertia about the axis at t = 0, kg m² (> 0).
+    q, v : array_like, shape (...)
+        Mass flow (kg/s, ≥ 0) and speed (m/s) of the bullets.
+    r, R : array_like, shape (...)
+        Signed perpendicular distance of the bullet line (m, |r| ≤ R), carousel radius
+        (m, > 0).
+    phidot_0 : array_like, shape (...), optional
+        φ̇(0), rad/s (default 0, as in the book).
+
+    Returns
+    -------
+    phiddot : ndarray, shape (...)
+        Angular acceleration φ̈(t) about e_z, rad/s², broadcast over the inputs.
+
+    Raises
+    ------
+    OutOfDomainError
+        If t < 0 or |r| > R (the bullets miss).
+    NonPositiveParameterError
+        If J_0 or R is ≤ 0.
+    NegativeMassError
+        If q is negative.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -950,8 +1316,35 @@ def carousel_limit_angular_velocity(
 ) -> npt.NDArray[np.float64]:
     """φ̇_lim = −r v/R² (7.40): the bullets then arrive with the rim's angular velocity.
 
-    Domain: R > 0, |r| ≤ R (else OutOfDomainError), finite v; a result beyond float64 raises
-    ResultOverflowError.
+    Domain: R > 0 (else NonPositiveParameterError), |r| ≤ R (else OutOfDomainError), finite v; a
+    result beyond float64 raises ResultOverflowError.
+
+    Parameters
+    ----------
+    v : array_like, shape (...)
+        Speed of the bullets, m/s.
+    r : array_like, shape (...)
+        Signed perpendicular distance of the bullet line from the axis, m (|r| ≤ R).
+    R : array_like, shape (...)
+        Carousel radius, m (> 0).
+
+    Returns
+    -------
+    phidot : ndarray, shape (...)
+        The limit angular velocity as t → ∞, rad/s, broadcast over the inputs.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        If R is ≤ 0.
+    OutOfDomainError
+        If |r| > R (the bullets miss).
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -975,12 +1368,43 @@ def rim_rocket_angular_velocity(
 ) -> npt.NDArray[np.float64]:
     """Spin-up of a wheel by rockets on its rim that eject mass tangentially.
 
-    Domain: t ≥ 0, J_0, q, u, r > 0 with q r² t < J_0 (else OutOfDomainError); a result beyond
-    float64 raises ResultOverflowError.
+    Domain: t ≥ 0 with q r² t < J_0 (else OutOfDomainError), J_0, q, u, r > 0 (else
+    NonPositiveParameterError); a result beyond float64 raises ResultOverflowError.
 
     The expelled mass (total flow q, exhaust speed u relative to the rocket) sits at
     radius r, so J(t) = J_0 − q r² t, and (7.35) gives J dω/dt = q r u (Problem
     7.3), ω(0) = 0:  ω(t) = −(u/r) log1p(−q r² t/J_0), for q r² t < J_0.
+
+    Parameters
+    ----------
+    t : array_like, shape (...)
+        Time since ignition, s (≥ 0, with q r² t < J_0).
+    J_0 : array_like, shape (...)
+        Moment of inertia of the wheel with its rockets at t = 0, kg m² (> 0).
+    q : array_like, shape (...)
+        Total mass flow of the rockets, kg/s (> 0).
+    u : array_like, shape (...)
+        Exhaust speed relative to the rockets, m/s (> 0).
+    r : array_like, shape (...)
+        Radius of the rim, m (> 0).
+
+    Returns
+    -------
+    omega : ndarray, shape (...)
+        Angular velocity ω(t), rad/s, broadcast over the inputs.
+
+    Raises
+    ------
+    OutOfDomainError
+        If t < 0, or q r² t ≥ J_0 (the wheel cannot expel all its inertia).
+    NonPositiveParameterError
+        If J_0, q, u or r is ≤ 0.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
@@ -1011,9 +1435,41 @@ def rim_rocket_spin_up_time(
 ) -> npt.NDArray[np.float64]:
     """Time for the rim rockets of :func:`rim_rocket_angular_velocity` to reach ω.
 
-    Domain: ω ≥ 0, J_0, q, u, r > 0; a result beyond float64 raises ResultOverflowError.
+    Domain: ω ≥ 0 (else OutOfDomainError), J_0, q, u, r > 0 (else NonPositiveParameterError); a
+    result beyond float64 raises ResultOverflowError.
 
     t = −J_0 expm1(−r ω/u)/(q r²) (the inverse; expm1 keeps small r ω/u accurate).
+
+    Parameters
+    ----------
+    omega : array_like, shape (...)
+        Target angular velocity ω, rad/s (≥ 0).
+    J_0 : array_like, shape (...)
+        Moment of inertia of the wheel with its rockets at t = 0, kg m² (> 0).
+    q : array_like, shape (...)
+        Total mass flow of the rockets, kg/s (> 0).
+    u : array_like, shape (...)
+        Exhaust speed relative to the rockets, m/s (> 0).
+    r : array_like, shape (...)
+        Radius of the rim, m (> 0).
+
+    Returns
+    -------
+    t : ndarray, shape (...)
+        Time at which ω is reached, s, broadcast over the inputs.
+
+    Raises
+    ------
+    OutOfDomainError
+        If omega < 0.
+    NonPositiveParameterError
+        If J_0, q, u or r is ≤ 0.
+    ShapeError
+        If an input is not a real numeric array, or the inputs do not broadcast.
+    NonFiniteError
+        If an input holds NaN or an infinity.
+    ResultOverflowError
+        If the result exceeds float64's range.
 
     Examples
     --------
