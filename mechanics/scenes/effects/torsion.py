@@ -57,7 +57,7 @@ class Torsion(Effect, HasPotential, Compiles):
     >>> F, M_A = eng.loads(0.0, s)
     >>> M_A[0].tolist(), -2.0 * 0.5  # −τ0 φ along the body's y, the axis
     ([0.0, -1.0, 0.0], -1.0)
-    >>> float(eng.effects[1].potential(s)[0]), 0.5 * 2.0 * 0.5**2
+    >>> float(eng.effects[1].potential(s)), 0.5 * 2.0 * 0.5**2
     (0.25, 0.25)
     """
 
