@@ -250,7 +250,9 @@ def unit(v: npt.ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        Where ``v`` is not numeric (numpy's conversion to floats).
+        Where ``v`` is a string that is not a number, or ragged (numpy's conversion).
+    TypeError
+        Where ``v`` is of a type that has no float value (numpy's conversion).
 
     Warns
     -----
@@ -281,7 +283,7 @@ class Context:
     """What an effect may know of its scene: its bodies, their index, kinds, pins and guides.
 
     The scene (its bodies, and its errors), the bodies' index by name, the layout's
-    kinds (point, rigid, fixed), and the pinned and guided bodies (built by the engine's
+    kinds (point, rigid, fixed, ...), and the pinned and guided bodies (built by the engine's
     model, :class:`mechanics.scenes.model.Model`).
 
     Parameters
@@ -291,7 +293,8 @@ class Context:
     index : dict[str, int]
         Body name -> its index in ``scene.bodies``.
     kinds : tuple[str, ...]
-        Each body's kind in the layout (``"point"``, ``"rigid"``, ``"fixed"``, ...).
+        Each body's kind in the layout: ``"point"``, ``"rigid"``, ``"pinned"``,
+        ``"guided"``, ``"tank"`` or ``"fixed"``.
     pins : dict[int, Pin], optional
         Pinned bodies: index -> (C, g_A, J_C, J_C⁻¹). Default none.
     guides : dict[int, Guide], optional
