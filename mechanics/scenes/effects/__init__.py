@@ -80,8 +80,38 @@ __all__ = [
 
 
 def build_effects(scene: SceneLike, ctx: Context) -> list[Effect]:
-    """One effect object per listed effect, in file order (a group of impacts: one per
-    pair it names, :meth:`.impact.Impact.expand`); nothing else."""
+    """One effect object per listed effect, in file order; nothing else.
+
+    A group of impacts gives one object per pair it names
+    (:meth:`.impact.Impact.expand`).
+
+    Parameters
+    ----------
+    scene : SceneLike
+        The validated scene (its ``effects``, each of a registered ``type``).
+    ctx : Context
+        The scene's context, given to every effect.
+
+    Returns
+    -------
+    list of Effect
+        The effect objects, in the order of ``scene.effects``.
+
+    Raises
+    ------
+    KeyError
+        For an effect type that is not registered (the parser refuses it first), or an
+        effect field a constructor reads that the parser would have required.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}],
+    ...                   "effects": [{"type": "gravity", "g": 9.81}]})
+    >>> build_effects(sc, Context(sc, {"ball": 0}, ("point",)))
+    [Gravity({'g': 9.81})]
+    """
     return [
         EFFECT_CLASSES[spec.type](one, ctx)
         for spec in scene.effects

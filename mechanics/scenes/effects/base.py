@@ -85,7 +85,34 @@ _E = TypeVar("_E", bound="type[Effect]")
 # layer that effects do not import, even for the type checker: tests/scenes/test_layers.py):
 # the parts of its Body, EffectSpec and Scene that the effects use, as protocols.
 class BodyLike(Protocol):
-    """A body of the scene (:class:`mechanics.scenes.spec.Body`)."""
+    """A body of the scene (:class:`mechanics.scenes.spec.Body`), as the effects read it.
+
+    Its read-only members: ``name``, ``shape``, ``mass`` (kg), ``dims`` (m), ``initial``
+    (the body's initial table, SI) and ``fixed``.
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    The parser's Body has every member the effects read:
+
+    >>> from mechanics.scenes.spec import Body
+    >>> b = Body("ball", "point", 2.0, {}, {})
+    >>> [k for k in ("name", "shape", "mass", "dims", "initial", "fixed") if not hasattr(b, k)]
+    []
+    >>> BodyLike()
+    Traceback (most recent call last):
+    ...
+    TypeError: Protocols cannot be instantiated
+    """
 
     @property
     def name(self) -> str: ...
@@ -102,7 +129,29 @@ class BodyLike(Protocol):
 
 
 class SpecLike(Protocol):
-    """One listed effect (:class:`mechanics.scenes.spec.EffectSpec`)."""
+    """One listed effect (:class:`mechanics.scenes.spec.EffectSpec`), as the effects read it.
+
+    Its read-only members: ``type`` (the effect's registered name), ``index`` (its
+    position in the scene file's effects), ``fields`` (its table, SI) and ``where`` (the
+    field path its errors name, ``effects[index]``).
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> spec = EffectSpec("gravity", 2, {"g": 9.81})
+    >>> spec.where, f"effects[{spec.index}]"
+    ('effects[2]', 'effects[2]')
+    """
 
     @property
     def type(self) -> str: ...
@@ -115,7 +164,30 @@ class SpecLike(Protocol):
 
 
 class SceneLike(Protocol):
-    """A validated scene (:class:`mechanics.scenes.spec.Scene`)."""
+    """A validated scene (:class:`mechanics.scenes.spec.Scene`), as the effects read it.
+
+    Its members: ``bodies``, ``effects``, ``body(name)``, ``effects_of(kind)`` (the
+    listed effects of one type) and ``error(field, reason)`` (the exception to raise,
+    naming the scene file, the field and the reason).
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}]})
+    >>> sc.body("ball") is sc.bodies[0], sc.effects_of("gravity")
+    (True, [])
+    """
 
     @property
     def bodies(self) -> Sequence[BodyLike]: ...
@@ -127,7 +199,31 @@ class SceneLike(Protocol):
 
 
 def register(cls: _E) -> _E:
-    """Class decorator: make an effect type known by its ``type`` name."""
+    """Class decorator: make an effect type known by its ``type`` name.
+
+    The decorated class ``cls`` (an :class:`Effect`) carries its ``type``, the name a
+    scene file lists.
+
+    Returns
+    -------
+    type[Effect]
+        ``cls`` itself, now in :data:`REGISTRY` under ``cls.type``.
+
+    Raises
+    ------
+    RuntimeError
+        If an effect of that ``type`` is registered already (a programming error).
+
+    Examples
+    --------
+    >>> from mechanics.scenes.effects.gravity import Gravity
+    >>> REGISTRY["gravity"] is Gravity, Gravity.type
+    (True, 'gravity')
+    >>> register(Gravity)
+    Traceback (most recent call last):
+    ...
+    RuntimeError: effect type 'gravity' registered twice
+    """
     if cls.type in REGISTRY:  # pragma: no cover - a programming error
         raise RuntimeError(f"effect type {cls.type!r} registered twice")
     REGISTRY[cls.type] = cls
@@ -135,9 +231,43 @@ def register(cls: _E) -> _E:
 
 
 def unit(v: npt.ArrayLike) -> FloatArray:
-    """v / |v| for a nonzero vector of any finite size: scaled by its largest component
-    first, so that a subnormal or a huge direction (the parser takes any nonzero one)
-    neither underflows nor overflows in the norm."""
+    """The unit vector v / |v| of a nonzero vector of any finite size.
+
+    Outside 1e-150 < |v| < 1e150 the vector is scaled by its largest component first, so
+    that a subnormal or a huge direction (the parser takes any nonzero one) neither
+    underflows nor overflows in the norm.
+
+    Parameters
+    ----------
+    v : array_like, shape (k,)
+        A nonzero, finite vector (a direction; any unit, k ≥ 1).
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        v / |v|, of norm 1 to rounding.
+
+    Raises
+    ------
+    ValueError
+        Where ``v`` is a string that is not a number, or ragged (numpy's conversion).
+    TypeError
+        Where ``v`` is of a type that has no float value (numpy's conversion).
+
+    Warns
+    -----
+    RuntimeWarning
+        For a zero vector (invalid division: the result is nan), and for |v| ≳ 1e154,
+        where numpy's norm overflows (to inf) before the rescaling, whose result is
+        still right.
+
+    Examples
+    --------
+    A 3-4-5 direction, tiny or not, gives the same unit vector:
+
+    >>> unit([3.0, 0.0, 4.0]).tolist(), unit([3e-300, 0.0, 4e-300]).tolist()
+    ([0.6, 0.0, 0.8], [0.6, 0.0, 0.8])
+    """
     a = np.asarray(v, dtype=float)
     n = np.linalg.norm(a)
     if 1e-150 < n < 1e150:  # the squares are normal floats: the plain quotient
@@ -150,8 +280,44 @@ def unit(v: npt.ArrayLike) -> FloatArray:
 
 @dataclass(frozen=True)
 class Context:
-    """What an effect may know of its scene: the bodies, their index by name, the
-    layout's kinds (point, rigid, fixed) and the scene (for its errors)."""
+    """What an effect may know of its scene: its bodies, their index, kinds, pins and guides.
+
+    The scene (its bodies, and its errors), the bodies' index by name, the layout's
+    kinds (point, rigid, fixed, ...), and the pinned and guided bodies (built by the engine's
+    model, :class:`mechanics.scenes.model.Model`).
+
+    Parameters
+    ----------
+    scene : SceneLike
+        The validated scene.
+    index : dict[str, int]
+        Body name -> its index in ``scene.bodies``.
+    kinds : tuple[str, ...]
+        Each body's kind in the layout: ``"point"``, ``"rigid"``, ``"pinned"``,
+        ``"guided"``, ``"tank"`` or ``"fixed"``.
+    pins : dict[int, Pin], optional
+        Pinned bodies: index -> (C, g_A, J_C, J_C⁻¹). Default none.
+    guides : dict[int, Guide], optional
+        Guided bodies (a fixed axis, rolling, sliding): index -> their guide. Default none.
+    carried : ndarray, shape (n,), optional
+        Per body, the speeds (m/s) the run's impulses have changed its points by
+        (Σ |Δv_G| + |Δω| |arm|). Default an empty array.
+
+    Raises
+    ------
+    TypeError
+        If ``scene``, ``index`` or ``kinds`` is missing (the dataclass's constructor
+        checks nothing else).
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}]})
+    >>> ctx = Context(sc, {"ball": 0}, ("point",))
+    >>> ctx.body("ball") is sc.bodies[0], ctx.fixed
+    (True, frozenset())
+    """
 
     scene: SceneLike
     index: dict[str, int]
@@ -176,9 +342,50 @@ class Context:
 
 
 class Snapshot:
-    """The bodies at one time, or at many (leading axes): r, v (O), L_A, ω_A (body
-    components), R_A_O, masses m and principal moments J.  Shapes (..., n, 3),
-    (..., n, 3, 3), (..., n).  Loads that switch on or off read ``phase``, not t."""
+    """The n bodies at one time, or at many (leading axes): their positions, velocities, spins.
+
+    r, v (O), L_A, ω_A (body components), R_A_O, masses m and principal moments J.
+    Shapes (..., n, 3), (..., n, 3, 3), (..., n).  Loads that switch on or off read
+    ``phase``, not t.  The arrays are stored as given (not copied, not checked).
+
+    Parameters
+    ----------
+    t : float or ndarray, shape (...)
+        The time(s), s.
+    r : ndarray, shape (..., n, 3)
+        Positions of the centres of mass G (space components, m).
+    v : ndarray, shape (..., n, 3)
+        Velocities of G (space components, m/s).
+    L_A : ndarray, shape (..., n, 3)
+        Angular momenta about G (body components, kg m²/s).
+    R : ndarray, shape (..., n, 3, 3)
+        Attitudes R_A_O (passive: body components R x of a space vector x).
+    omega : ndarray, shape (..., n, 3)
+        Angular velocities ω (body components, rad/s).
+    m : ndarray, shape (..., n)
+        Masses, kg.
+    J : ndarray, shape (..., n, 3)
+        Principal moments of inertia about G, kg m².
+    phase : float or ndarray, shape (...), optional
+        The time that decides which loads are switched on (default t).
+    angle : ndarray, shape (..., n), optional
+        A guided body's first coordinate (a hinged body's angle φ, rad); default 0.
+
+    Raises
+    ------
+    TypeError
+        If an argument is missing (the constructor checks nothing else).
+
+    Examples
+    --------
+    The velocity of a body point is v_G + ω × (R_A_Oᵀ at) (2.66):
+
+    >>> z = np.zeros((1, 3))
+    >>> w = np.array([[0.0, 0.0, 2.0]])
+    >>> s = Snapshot(0.0, z, z, z, np.eye(3)[None], w, np.ones(1), z + 1.0)
+    >>> s.point_velocity(0, [1.0, 0.0, 0.0]).tolist(), np.cross(w[0], [1.0, 0.0, 0.0]).tolist()
+    ([0.0, 2.0, 0.0], [0.0, 2.0, 0.0])
+    """
 
     __slots__ = (
         "J",
@@ -255,8 +462,35 @@ class Snapshot:
 
 
 class Loads:
-    """Forces at G in O (n, 3) and moments about G in body components (n, 3), summed
-    over the listed effects for one time."""
+    """The forces at G and moments about G on n bodies, summed over the effects at one time.
+
+    ``F`` (n, 3): forces at G, space components (N); ``M_A`` (n, 3): moments about G,
+    body components (N m); ``rates``: a tank's state rates.  Both start at zero.
+
+    Parameters
+    ----------
+    n : int
+        The number of bodies, ≥ 0.
+    snap : Snapshot
+        The bodies at that time (its attitudes turn the moments into body components).
+
+    Raises
+    ------
+    ValueError
+        If ``n`` < 0 (numpy's zeros).
+    TypeError
+        If ``n`` is not an integer.
+
+    Examples
+    --------
+    A force F at the body point ``at`` has the moment at × F about G (identity attitude):
+
+    >>> z = np.zeros((1, 3))
+    >>> out = Loads(1, Snapshot(0.0, z, z, z, np.eye(3)[None], z, np.ones(1), z + 1.0))
+    >>> out.force(0, [0.0, 3.0, 0.0], at_A=[2.0, 0.0, 0.0])
+    >>> out.M_A[0].tolist(), np.cross([2.0, 0.0, 0.0], [0.0, 3.0, 0.0]).tolist()
+    ([0.0, 0.0, 6.0], [0.0, 0.0, 6.0])
+    """
 
     __slots__ = ("F", "M_A", "rates", "snap")
 
@@ -286,7 +520,30 @@ class Loads:
 
 
 class Effect:
-    """Base class: holds the listed effect's spec; contributes nothing by itself."""
+    """Base class of the effects: holds the listed effect's spec; contributes nothing itself.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect (its ``type``, ``index`` and ``fields``, checked by the parser).
+    ctx : Context or None, optional
+        The scene's context (None: an effect built for its geometry alone, as the
+        joints' checks do).
+
+    Raises
+    ------
+    AttributeError
+        If ``spec`` has no ``fields``.
+
+    Examples
+    --------
+    The base class adds no load, keeps nothing and never switches:
+
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> e = Effect(EffectSpec("none", 3, {}))
+    >>> e.where, e.keeps("E"), e.switch_times(), e.acts_until()
+    ('effects[3]', False, [], inf)
+    """
 
     type: ClassVar[str] = ""
     schema: ClassVar[Schema] = {}
@@ -372,10 +629,44 @@ def check_joint_body(
     what: str,
     keys: tuple[str, ...] | None,
 ) -> None:
-    """The checks every joint makes of its body: a rigid, moving body; no thrust (its
-    mass cannot change); and, when ``keys`` is given, only those initial keys (the joint
-    decides the rest).  (A joint listed twice is refused with the other constraints, in
-    :func:`mechanics.scenes.engine.validate`.)"""
+    """The checks every joint makes of its body: rigid, moving, no thrust, only its keys.
+
+    A rigid, moving body; no thrust (its mass cannot change); and, when ``keys`` is
+    given, only those initial keys (the joint decides the rest).  (A joint listed twice
+    is refused with the other constraints, in :func:`mechanics.scenes.engine.validate`.)
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The joint's listed effect (its field ``body`` names the body).
+    scene : SceneLike
+        The scene.
+    index : dict[str, int]
+        Body name -> index (for the field path of an initial key).
+    what : str
+        What the joint cannot do with a point, a tank or a fixed body (the error's words).
+    keys : tuple of str or None
+        The initial keys a body on this joint takes (None: any).
+
+    Raises
+    ------
+    SceneError
+        The exception ``scene.error`` makes (a :class:`SceneError` for a parsed scene):
+        for a point, a tank or a fixed body; a thrust on the body; an initial key not in
+        ``keys``.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import EffectSpec, parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}]})
+    >>> spec = EffectSpec("fixed_point", 0, {"body": "ball"})
+    >>> check_joint_body(spec, sc, {"ball": 0}, what="it cannot be pinned", keys=None)
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: effects[0].body: body 'ball' is a point: it \
+cannot be pinned
+    """
     b = scene.body(spec.fields["body"])
     if b.shape in ("point", "tank") or b.fixed:
         kind = "fixed" if b.fixed else f"a {b.shape}"
@@ -395,8 +686,38 @@ def check_joint_body(
 
 
 def gravity_vector(scene: SceneLike) -> FloatArray:
-    """The sum g·d of the scene's listed gravity effects, from their fields (before any
-    effect object exists: the joints' guides and checks read it)."""
+    """The sum g·d of the scene's listed gravity effects, read from their fields.
+
+    Read before any effect object exists: the joints' guides and checks use it.
+
+    Parameters
+    ----------
+    scene : SceneLike
+        The scene; its ``gravity`` effects have ``g`` (m/s², > 0) and an optional
+        nonzero ``direction`` (default (0, 0, −1)).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        Σ g d/|d| over the listed gravities, m/s² (zero if none is listed).
+
+    Raises
+    ------
+    KeyError
+        If a gravity effect has no ``g`` (the parser requires it).
+
+    Examples
+    --------
+    Two gravities add (the weights of a body add):
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}],
+    ...                   "effects": [{"type": "gravity", "g": 9.75},
+    ...                               {"type": "gravity", "g": 0.25, "direction": [0, 0, -2]}]})
+    >>> gravity_vector(sc).tolist()
+    [0.0, 0.0, -10.0]
+    """
     g = np.zeros(3)
     for e in scene.effects_of("gravity"):
         d = np.asarray(e.fields.get("direction", [0.0, 0.0, -1.0]), dtype=float)
@@ -405,8 +726,36 @@ def gravity_vector(scene: SceneLike) -> FloatArray:
 
 
 def check_on_fixed_axis(spec: SpecLike, scene: SceneLike, *, what: str) -> None:
-    """An effect that acts on a body turning on a fixed axis (a torsion spring, mass
-    flowing in) needs a ``fixed_axis`` for that body; ``what`` says what it does."""
+    """Refuse an effect that acts on a body turning on a fixed axis where none is listed.
+
+    A torsion spring or mass flowing in needs a ``fixed_axis`` for that body.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The effect (its field ``body`` names the body).
+    scene : SceneLike
+        The scene.
+    what : str
+        What the effect does (the error's words).
+
+    Raises
+    ------
+    SceneError
+        The exception ``scene.error`` makes (a :class:`SceneError` for a parsed scene),
+        where no ``fixed_axis`` holds the body.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import EffectSpec, parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}]})
+    >>> check_on_fixed_axis(EffectSpec("torsion", 0, {"body": "ball"}), sc, what="it twists")
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: effects[0].type: it twists: list a fixed_axis \
+for 'ball'
+    """
     name = spec.fields["body"]
     if not any(e.fields["body"] == name for e in scene.effects_of("fixed_axis")):
         raise scene.error(f"{spec.where}.type", f"{what}: list a fixed_axis for {name!r}")
@@ -417,9 +766,37 @@ def _axis_index(q: str) -> int:
 
 
 def keeps_for_force_along(direction: npt.ArrayLike, quantity: str) -> bool:
-    """What forces along one fixed ``direction`` keep, wherever they act: the momentum
-    components across it, and the angular momentum about the origin along it (a moment
-    r × F d is ⟂ d).  Energy: not by this rule."""
+    """Do forces along one fixed ``direction``, wherever they act, keep ``quantity``?
+
+    They keep the momentum components across it, and the angular momentum about the
+    origin along it (a moment r × F d is ⟂ d).  Energy: not by this rule.
+
+    Parameters
+    ----------
+    direction : array_like, shape (3,)
+        The forces' direction, nonzero (any length).
+    quantity : str
+        One of :data:`CONSERVED`: ``p_x``, ``p_y``, ``p_z``, ``L_x``, ``L_y``, ``L_z``,
+        ``E``.
+
+    Returns
+    -------
+    bool
+        True where the quantity is kept (never for ``E``, or a name that is not a
+        component).
+
+    Raises
+    ------
+    ValueError
+        For a name ``p_…`` or ``L_…`` that does not end in x, y or z.
+
+    Examples
+    --------
+    A vertical force keeps p_x, p_y and L_z, and not p_z, L_x:
+
+    >>> [q for q in CONSERVED if keeps_for_force_along([0.0, 0.0, -1.0], q)]
+    ['p_x', 'p_y', 'L_z']
+    """
     d = unit(direction)
     if quantity.startswith("p_"):
         return bool(abs(d[_axis_index(quantity)]) == 0.0)

@@ -44,7 +44,38 @@ __all__ = ["Buoyancy"]
 
 @register
 class Buoyancy(Effect, HasPotential):
-    """The lift ρ g V_displaced on a sphere in a liquid below the level z = level."""
+    """The lift ρ g V_displaced on a sphere in a liquid below the level z = level.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (a ``solid_sphere`` or
+        ``hollow_sphere``, not fixed), ``density`` ρ (kg/m³, > 0) and ``level`` (m;
+        default 0).
+    ctx : Context or None, optional
+        The scene's context (the body's index and radius, and g from the listed
+        gravities; None: an effect built for its fields alone).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx`` or has no ``radius``.
+
+    Examples
+    --------
+    Immersed to its centre (d = a) a ball displaces half its volume 4πa³/3:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> ball = {"name": "ball", "shape": "solid_sphere", "mass": 2.0, "radius": 0.5}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [ball],
+    ...     "effects": [{"type": "gravity", "g": 9.81},
+    ...                 {"type": "buoyancy", "body": "ball", "density": 1000.0}]}))
+    >>> V = eng.effects[1].volume
+    >>> bool(2.0 * V(0.5) == V(1.0) == V(3.0)), bool(np.isclose(V(1.0), 4 * np.pi * 0.5**3 / 3))
+    (True, True)
+    """
 
     type = "buoyancy"
     schema: ClassVar[Schema] = {

@@ -31,17 +31,59 @@ __all__ = [
 
 @runtime_checkable
 class HasPotential(Protocol):
-    """A conservative effect: its potential energy at the snapshots s (shape of s's
-    samples), added to the kinetic energy in E."""
+    """A conservative effect: it has a potential energy, added to the kinetic energy in E.
+
+    ``potential(s)``: the potential energy (J) at the snapshots s, of the shape of s's
+    samples.
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    A class declares the protocol among its bases; the runtime check agrees:
+
+    >>> from mechanics.scenes.effects.gravity import Gravity
+    >>> from mechanics.scenes.effects.drag import Drag
+    >>> HasPotential in Gravity.__mro__, issubclass(Gravity, HasPotential)
+    (True, True)
+    >>> HasPotential in Drag.__mro__, issubclass(Drag, HasPotential)
+    (False, False)
+    """
 
     def potential(self, s: Snapshot) -> FloatArray: ...
 
 
 @runtime_checkable
 class HasModes(Protocol):
-    """An effect with modes (stick and slip, a tank that empties).  ``loads`` holds the
-    loads of the effects summed before it; its next switch is where the switch function
-    g falls through zero (located by :mod:`mechanics.scenes.modes`)."""
+    """An effect with modes (stick and slip, a tank that empties), switched at events.
+
+    ``loads`` holds the loads of the effects summed before it; its next switch is where
+    the switch function g falls through zero (located by :mod:`mechanics.scenes.modes`).
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.effects.tank_outflow import TankOutflow
+    >>> HasModes in TankOutflow.__mro__, issubclass(TankOutflow, HasModes)
+    (True, True)
+    """
 
     def begin(self, t: float, s: Snapshot, loads: Loads) -> None:
         """Choose the mode from the initial state."""
@@ -55,7 +97,26 @@ class HasModes(Protocol):
 
 @runtime_checkable
 class ChangesMass(Protocol):
-    """An effect that takes mass from a body (thrust)."""
+    """An effect that takes mass from a body (thrust).
+
+    ``mass_loss(t)``: the mass (kg) each body has lost by the time(s) t, shape (..., n).
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.effects.thrust import Thrust
+    >>> ChangesMass in Thrust.__mro__, issubclass(Thrust, ChangesMass)
+    (True, True)
+    """
 
     def mass_loss(self, t: Times) -> FloatArray:
         """The mass lost by each body by time(s) t, shape (..., n)."""
@@ -63,7 +124,26 @@ class ChangesMass(Protocol):
 
 @runtime_checkable
 class AddsInertia(Protocol):
-    """An effect that adds inertia to a guided body (mass flowing onto it)."""
+    """An effect that adds inertia to a guided body (mass flowing onto it).
+
+    ``inertia_added(t, i)``: the inertia (kg m²) added to body i's coordinates by time t.
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.effects.mass_flow import MassFlow
+    >>> AddsInertia in MassFlow.__mro__, issubclass(MassFlow, AddsInertia)
+    (True, True)
+    """
 
     def inertia_added(self, t: Times, i: int) -> FloatArray | float:
         """The inertia added to body i's coordinates by time t."""
@@ -71,8 +151,27 @@ class AddsInertia(Protocol):
 
 @runtime_checkable
 class GuidesBody(Protocol):
-    """A joint that leaves its body a few coordinates q: the body's state is the
-    :class:`~mechanics.scenes.state.Guide`'s (q, q̇) (a fixed axis, rolling, sliding)."""
+    """A joint that leaves its body a few coordinates q (a fixed axis, rolling, sliding).
+
+    The body's state is the :class:`~mechanics.scenes.state.Guide`'s (q, q̇), made by
+    the class method ``make_guide(spec, scene, g_vector)``.
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.effects.fixed_axis import FixedAxis
+    >>> GuidesBody in FixedAxis.__mro__, issubclass(FixedAxis, GuidesBody)
+    (True, True)
+    """
 
     @classmethod
     def make_guide(cls, spec: SpecLike, scene: SceneLike, g_vector: FloatArray) -> Guide:
@@ -81,8 +180,28 @@ class GuidesBody(Protocol):
 
 @runtime_checkable
 class Compiles(Protocol):
-    """An effect whose loads have a compiled kernel (:mod:`mechanics.scenes._kernels`,
-    chosen by the effect's type; :mod:`mechanics.scenes.compiled`)."""
+    """An effect whose loads have a compiled kernel, chosen by the effect's type.
+
+    The kernels are in :mod:`mechanics.scenes._kernels` (run by
+    :mod:`mechanics.scenes.compiled`); ``kernel_args()`` gives the numbers they read.
+
+    Parameters
+    ----------
+    *args, **kwargs : Any
+        None taken: a protocol is a type to check against, never instantiated.
+
+    Raises
+    ------
+    TypeError
+        On any call: protocols cannot be instantiated.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.effects.spring import Spring
+    >>> from mechanics.scenes.effects.thrust import Thrust
+    >>> issubclass(Spring, Compiles), issubclass(Thrust, Compiles)
+    (True, False)
+    """
 
     def kernel_args(self) -> tuple[int, int, list[float], list[tuple[int, int]]]:
         """Its bodies i and j (−1: none), its numbers in the order its kernel reads

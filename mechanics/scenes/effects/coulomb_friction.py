@@ -65,7 +65,49 @@ __all__ = ["CoulombFriction", "Slide"]
 
 @dataclass(frozen=True, eq=False)
 class Slide(Guide):
-    """A round body of radius r on the incline (n, t̂, a) with friction μ: q = (s, θ)."""
+    """A round body of radius r on the incline (n, t̂, a) with friction μ: q = (s, θ).
+
+    G is at r n + s t̂; the body has turned by θ about a; the slip is ṡ − r θ̇.  Made by
+    :meth:`CoulombFriction.make_guide`.
+
+    Parameters
+    ----------
+    n : ndarray, shape (3,)
+        The incline's outward unit normal (:func:`~.rolling.slope_frame`).
+    t : ndarray, shape (3,)
+        The unit down-slope direction t̂.
+    a : ndarray, shape (3,)
+        The horizontal a = n × t̂, the axis the body turns about.
+    r : float
+        The body's radius, m (> 0).
+    m : float
+        Its mass, kg.
+    k : int
+        The body axis (0, 1, 2: x, y, z) along a.
+    M : ndarray, shape (2,)
+        The inertias of s and θ: (m in kg, J about the body axis in kg m²).
+    mu : float
+        The friction coefficient μ (> 0).
+
+    Raises
+    ------
+    TypeError
+        If a field is missing (the dataclass's constructor checks nothing else).
+
+    Examples
+    --------
+    The stick force F keeps the slip zero: s̈ = (Q_s + F)/m equals r θ̈ = −r² F/J:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> cyl = {"name": "cyl", "shape": "cylinder", "mass": 2.0, "radius": 0.5, "height": 0.2}
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [cyl],
+    ...     "effects": [{"type": "gravity", "g": 9.75},
+    ...                 {"type": "coulomb_friction", "body": "cyl", "mu": 0.25}]})
+    >>> slide = CoulombFriction.make_guide(sc.effects[1], sc, np.array([0.0, 0.0, -9.75]))
+    >>> F = float(slide.stick_force(6.0, 0.0))
+    >>> slide.M.tolist(), F, (6.0 + F) / 2.0, -(0.5**2) * F / 0.25
+    ([2.0, 0.25], -2.0, 2.0, 2.0)
+    """
 
     n: FloatArray
     t: FloatArray
@@ -170,9 +212,43 @@ def _event(t: float, mode: float, speed: float) -> Event:
 
 @register
 class CoulombFriction(Effect, HasModes, GuidesBody):
-    """Coulomb friction μN at the contact of a round body with a plane of slope α: while
-    the contact point slips, the friction opposes the slip; when the slip velocity
-    reaches zero (an event) the body rolls if static friction suffices."""
+    """Coulomb friction μN at the contact of a round body with a plane of slope α.
+
+    While the contact point slips, the friction opposes the slip; when the slip
+    velocity reaches zero (an event) the body rolls if static friction suffices.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (round), ``mu`` μ (> 0), ``angle`` (the
+        slope α, rad, in [0, π/2); default 0) and ``body_axis`` (``"x"``, ``"y"`` or
+        ``"z"``, the axis it turns about; default ``"z"``).
+    ctx : Context or None, optional
+        The scene's context (the body's index, its slide and the scene's other effects;
+        None: an effect built for its fields alone).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+
+    Examples
+    --------
+    A cylinder sent sliding without spin on a level floor rolls from the speed at which
+    m r v + J ω about the contact line (kept) is m r v0: v0/(1 + J/(m r²)):
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> cyl = {"name": "cyl", "shape": "cylinder", "mass": 2.0, "radius": 0.5, "height": 0.2,
+    ...        "initial": {"speed": 3.0}}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 2.0}, "bodies": [cyl],
+    ...     "effects": [{"type": "gravity", "g": 9.75},
+    ...                 {"type": "coulomb_friction", "body": "cyl", "mu": 0.25}]}))
+    >>> first = eng.run().events[0]
+    >>> first.kind, first.detail["speed"], 3.0 / (1 + 0.25 / (2.0 * 0.5**2))
+    ('rolling', 2.0, 2.0)
+    """
 
     type = "coulomb_friction"
     dissipative = True

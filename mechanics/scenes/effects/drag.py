@@ -17,7 +17,39 @@ from .capabilities import Compiles
 
 @register
 class Drag(Effect, Compiles):
-    """Linear (N·s/m) and quadratic (N·s²/m²) drag, and their rotational counterparts."""
+    """Linear (N·s/m) and quadratic (N·s²/m²) drag, and their rotational counterparts.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body``, and ≥ 0 coefficients ``linear`` b₁
+        (N s/m), ``quadratic`` b₂ (N s²/m²), ``angular_linear`` c₁ (N m s),
+        ``angular_quadratic`` c₂ (N m s²), each default 0, one of them > 0.
+    ctx : Context
+        The scene's context (the body's index).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    F = −(b₁ + b₂ |v|) v: at |v| = 5 m/s its size is (b₁ + 5 b₂) 5.
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> ball = {"name": "ball", "shape": "point", "mass": 2.0,
+    ...         "initial": {"velocity": [3.0, 0.0, 4.0]}}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [ball],
+    ...     "effects": [{"type": "drag", "body": "ball", "linear": 0.5, "quadratic": 0.25}]}))
+    >>> F, M_A = eng.loads(0.0, eng.snapshot(0.0, eng.y0))
+    >>> float(np.linalg.norm(F[0])), (0.5 + 0.25 * 5.0) * 5.0
+    (8.75, 8.75)
+    """
 
     type = "drag"
     dissipative = True

@@ -39,7 +39,38 @@ if TYPE_CHECKING:
 
 @register
 class FixedAxis(Effect, GuidesBody, Compiles):
-    """A fixed axis (a hinge) through the body: one degree of freedom φ (4.3)."""
+    """A fixed axis (a hinge) through the body: one degree of freedom φ (4.3).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (rigid, moving), ``axis`` (the space
+        direction a, nonzero; default (0, 0, 1)), ``distance`` h (m, ≥ 0: G's distance
+        from the axis; default 0), ``body_axis`` (``"x"``, ``"y"`` or ``"z"``, the
+        principal axis along a; default ``"z"``) and ``point`` (a point of the axis, m;
+        default the origin).
+    ctx : Context or None, optional
+        The scene's context (the body's index; None: an effect built for its fields alone).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+    ValueError
+        If ``body_axis`` is not one of x, y, z (the parser refuses it first).
+
+    Examples
+    --------
+    The moment of inertia about the axis, J_a = J_G + m h² (parallel axes, 4.54):
+
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> hinge = FixedAxis(EffectSpec("fixed_axis", 0, {"body": "rod", "distance": 0.5}))
+    >>> hinge.moment_of_inertia(3.0, np.diag([1.0, 1.0, 2.0])), 2.0 + 3.0 * 0.5**2
+    (2.75, 2.75)
+    >>> hinge.reference([0.0, 0.0, -9.81]).tolist()  # φ = 0 across a vertical axis: e_x
+    [1.0, 0.0, 0.0]
+    """
 
     type = "fixed_axis"
     dissipative = True

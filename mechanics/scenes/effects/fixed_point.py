@@ -30,7 +30,32 @@ from .capabilities import Compiles
 
 @register
 class FixedPoint(Effect, Compiles):
-    """A fixed point C on the body's symmetry (z) axis at distance ℓ from G (5.2)."""
+    """A fixed point C on the body's symmetry (z) axis at distance ℓ from G (5.2).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (rigid, moving), ``distance`` ℓ (m, ≥ 0:
+        G at ℓ e3 from C) and ``point`` (the pivot C in space, m; default the origin).
+    ctx : Context or None, optional
+        The scene's context (the body's index; None: an effect built for its fields alone).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+
+    Examples
+    --------
+    The pin (C, g_A); with C off the origin the joint keeps only the energy:
+
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> fp = FixedPoint(EffectSpec("fixed_point", 0,
+    ...                            {"body": "top", "distance": 0.25, "point": [0.0, 0.0, 1.0]}))
+    >>> [x.tolist() for x in fp.pin()], [q for q in ("p_z", "L_z", "E") if fp.keeps(q)]
+    ([[0.0, 0.0, 1.0], [0.0, 0.0, 0.25]], ['E'])
+    """
 
     type = "fixed_point"
     dissipative = True

@@ -90,7 +90,40 @@ class _Applied(Effect, Compiles):
 
 @register
 class Force(_Applied):
-    """A force (N) at a body point ``at`` (body components about G; default G)."""
+    """A force (N) at a body point ``at`` (body components about G; default G).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body``, ``force`` (N), ``at`` (m, body
+        components about G; default G), ``frame`` (``"space"``, the default, or
+        ``"body"``: the force turns with the body), ``start`` (s, ≥ 0; default 0) and
+        ``end`` (s, > start; default never): it acts for start ≤ t < end.
+    ctx : Context
+        The scene's context (the body's index).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    Off G, the force F at ``at`` exerts the moment at × F about G (identity attitude):
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> box = {"name": "box", "shape": "box", "mass": 2.0, "a": 1.0, "b": 1.0, "c": 1.0}
+    >>> push = {"type": "force", "body": "box", "force": [0.0, 3.0, 0.0], "at": [2.0, 0.0, 0.0]}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [box],
+    ...                           "effects": [push]}))
+    >>> F, M_A = eng.loads(0.0, eng.snapshot(0.0, eng.y0))
+    >>> M_A[0].tolist(), np.cross([2.0, 0.0, 0.0], F[0]).tolist()
+    ([0.0, 0.0, 6.0], [0.0, 0.0, 6.0])
+    """
 
     type = "force"
     schema: ClassVar[Schema] = {
@@ -137,7 +170,41 @@ class Force(_Applied):
 
 @register
 class Torque(_Applied):
-    """A couple (N·m) on a body, in space or body components."""
+    """A couple (N·m) on a body, in space or body components.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (not a point), ``torque`` (N m),
+        ``frame`` (``"space"``, the default, or ``"body"``), ``start`` (s, ≥ 0; default 0)
+        and ``end`` (s, > start; default never): it acts for start ≤ t < end.
+    ctx : Context
+        The scene's context (the body's index).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    A couple adds no force: it keeps the momentum, and only that:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> box = {"name": "box", "shape": "box", "mass": 2.0, "a": 1.0, "b": 1.0, "c": 1.0}
+    >>> turn = {"type": "torque", "body": "box", "torque": [0.0, 0.0, 1.5], "end": 0.5}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [box],
+    ...                           "effects": [turn]}))
+    >>> F, M_A = eng.loads(0.0, eng.snapshot(0.0, eng.y0))
+    >>> F[0].tolist(), M_A[0].tolist(), eng.effects[0].switch_times()
+    ([0.0, 0.0, 0.0], [0.0, 0.0, 1.5], [0.5])
+    >>> [q for q in ("p_x", "p_y", "p_z", "L_z", "E") if eng.effects[0].keeps(q)]
+    ['p_x', 'p_y', 'p_z']
+    """
 
     type = "torque"
     schema: ClassVar[Schema] = {**_Applied.schema, "torque": ("vector", True)}

@@ -28,7 +28,32 @@ from .capabilities import Compiles, HasPotential
 
 @register
 class Gravity(Effect, HasPotential, Compiles):
-    """Uniform gravity g·d acting on every body."""
+    """Uniform gravity g·d acting on every body: the force m g d at each G.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``g`` (m/s², > 0) and ``direction`` (nonzero,
+        any length; default (0, 0, −1)).
+    ctx : Context or None, optional
+        The scene's context (unused: gravity acts on every body).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it).
+
+    Examples
+    --------
+    The potential −m g d·r_G rises by m g h over a height h (the work of the weight):
+
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> grav = Gravity(EffectSpec("gravity", 0, {"g": 9.75}))
+    >>> r = np.array([[[0.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]]])  # one body at two heights
+    >>> U = grav.potential(Snapshot(0.0, r, None, None, None, None, np.full((2, 1), 2.0), None))
+    >>> float(U[1] - U[0]), 2.0 * 9.75 * 1.0
+    (19.5, 19.5)
+    """
 
     type = "gravity"
     schema: ClassVar[Schema] = {"g": ("positive", True), "direction": ("vector", False)}

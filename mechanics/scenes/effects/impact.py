@@ -115,14 +115,53 @@ class Feature:
 
 @register
 class Impact(Effect):
-    """Impacts of ``body`` with a plane or with ``other``, restitution e; the pair's
-    contacts touching at one instant are one problem, Newton's law at each at once
-    (``model = "auto"``), or are resolved one at a time (``"sequential"``).  Or of a
-    ``group`` of bodies: every pair of them, and each with every plane of ``planes``,
+    """Impacts of ``body`` with a plane or with ``other``, with the restitution e (Chapter 6).
+
+    The pair's contacts touching at one instant are one problem, Newton's law at each at
+    once (``model = "auto"``), or are resolved one at a time (``"sequential"``).  Or of
+    a ``group`` of bodies: every pair of them, and each with every plane of ``planes``,
     by the same law (a pair of two fixed bodies, a fixed body and a plane, or two points,
     never meets and is left out; two points listed as a pair are refused).  A pair is
     listed once: two effects (or a group and an effect) naming the same two bodies, or
-    one body and the same plane, are refused."""
+    one body and the same plane, are refused.  An effect object is one pair: a group is
+    expanded first (:meth:`expand`).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        One pair; its fields: ``body``, and ``other`` (a body) or the plane
+        ``plane_point`` (m; default the origin) and ``plane_normal`` (nonzero, toward
+        ``body``; default (0, 0, 1)); ``restitution`` e (in [0, 1]), ``friction`` μ
+        (≥ 0; default 0: smooth) and ``model`` (``"auto"`` or ``"sequential"``).
+    ctx : Context
+        The scene's context (the bodies' indices and shapes, the fixed, pinned and guided bodies).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        a body is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    A ball hits the floor at 4 m/s with e = 0.75: it leaves at e·4 = 3 m/s, and loses
+    ½ m (1 − e)(1 + e) v_n² (6.41), the drop of its kinetic energy:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> ball = {"name": "ball", "shape": "solid_sphere", "mass": 2.0, "radius": 0.5,
+    ...         "initial": {"position": [0.0, 0.0, 0.5], "velocity": [1.0, 0.0, -4.0]}}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [ball],
+    ...     "effects": [{"type": "impact", "body": "ball", "restitution": 0.75}]}))
+    >>> hit, s = eng.effects[0], eng.snapshot(0.0, eng.y0)
+    >>> out = hit.apply(s, hit.features[0])  # the new velocities written into s
+    >>> s.v[0].tolist(), out["energy_loss"], 0.5 * 2.0 * (1 - 0.75) * (1 + 0.75) * 4.0**2
+    ([1.0, 0.0, 3.0], 7.0, 7.0)
+    >>> out["kinetic_energy_before"] - out["kinetic_energy_after"]
+    7.0
+    """
 
     type = "impact"
     schema: ClassVar[Schema] = {

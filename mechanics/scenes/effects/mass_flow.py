@@ -37,8 +37,43 @@ if TYPE_CHECKING:
 
 @register
 class MassFlow(Effect, AddsInertia):
-    """Mass flow q ≥ 0 *into* a body on a fixed axis (bullets of speed v along a line at
-    signed distance r from the axis, stuck at radius R): Example 7.3, (7.36)–(7.39)."""
+    """Mass flow q ≥ 0 *into* a body on a fixed axis: Example 7.3, (7.36)–(7.39).
+
+    Bullets of speed v along a line at the signed distance r from the axis stick at the
+    radius R.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (turning on a ``fixed_axis``), ``rate``
+        q (kg/s, ≥ 0), ``speed`` v (m/s), ``offset`` r (m, |r| ≤ R) and ``radius`` R
+        (m, > 0).
+    ctx : Context
+        The scene's context (the body's index, its hinge and the scene's other effects).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    The moment of inertia grows by q R² t (7.37), for this body only:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> disc = {"name": "disc", "shape": "disc", "mass": 500.0, "radius": 2.0}
+    >>> fire = {"type": "mass_flow", "body": "disc", "rate": 0.25, "speed": 400.0,
+    ...         "offset": 1.5, "radius": 2.0}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [disc],
+    ...     "effects": [{"type": "fixed_axis", "body": "disc"}, fire]}))
+    >>> mf = eng.effects[1]
+    >>> mf.inertia_added(10.0, 0).tolist(), 0.25 * 2.0**2 * 10.0, mf.inertia_added(10.0, 1)
+    ([10.0], 10.0, 0.0)
+    """
 
     type = "mass_flow"
     schema: ClassVar[Schema] = {

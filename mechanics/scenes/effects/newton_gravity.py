@@ -31,7 +31,40 @@ G_NEWTON = 6.67430e-11
 
 @register
 class NewtonGravity(Effect, HasPotential, Compiles):
-    """Mutual attraction of the listed bodies (default: every body)."""
+    """Mutual attraction of the listed bodies (default: every body).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``G`` (m³/(kg s²), > 0; default
+        :data:`G_NEWTON`) and ``bodies`` (at least two distinct names; default every
+        body).
+    ctx : Context
+        The scene's context (the bodies' indices, and the scene for the default list).
+
+    Raises
+    ------
+    KeyError
+        If a listed body is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None.
+
+    Examples
+    --------
+    Two masses 2 m apart: F = G m₁ m₂/d², equal and opposite; U = −G m₁ m₂/d:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> a = {"name": "a", "shape": "point", "mass": 2.0}
+    >>> b = {"name": "b", "shape": "point", "mass": 3.0, "initial": {"position": [2.0, 0, 0]}}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [a, b],
+    ...                           "effects": [{"type": "newton_gravity", "G": 1.0}]}))
+    >>> s = eng.snapshot(0.0, eng.y0)
+    >>> eng.loads(0.0, s)[0].tolist(), 2.0 * 3.0 / 2.0**2
+    ([[1.5, 0.0, 0.0], [-1.5, 0.0, 0.0]], 1.5)
+    >>> float(eng.effects[0].potential(s)), -2.0 * 3.0 / 2.0
+    (-3.0, -3.0)
+    """
 
     type = "newton_gravity"
     schema: ClassVar[Schema] = {"G": ("positive", False), "bodies": ("bodies", False)}

@@ -60,15 +60,72 @@ E_Y = np.array([0.0, 1.0, 0.0])
 
 
 def slope_frame(alpha: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """(n, t̂, a) of the incline of slope α: outward normal, down-slope direction and the
-    horizontal a = n × t̂ = e_y."""
+    """The frame (n, t̂, a) of the incline of slope α: normal, down-slope, horizontal.
+
+    The outward normal n = (sin α, 0, cos α), the down-slope direction
+    t̂ = (cos α, 0, −sin α) and the horizontal a = n × t̂ = e_y.
+
+    Parameters
+    ----------
+    alpha : float
+        The slope α, rad (the scenes take [0, π/2)).
+
+    Returns
+    -------
+    n : ndarray, shape (3,)
+        The outward unit normal.
+    t : ndarray, shape (3,)
+        The unit down-slope direction.
+    a : ndarray, shape (3,)
+        e_y, a new array each call.
+
+    Raises
+    ------
+    TypeError
+        If ``alpha`` is not a real number (:func:`math.sin`).
+
+    Examples
+    --------
+    >>> n, t, a = slope_frame(0.5)
+    >>> bool(np.allclose(np.cross(n, t), a)), a.tolist()
+    (True, [0.0, 1.0, 0.0])
+    """
     n = np.array([math.sin(alpha), 0.0, math.cos(alpha)])
     t = np.array([math.cos(alpha), 0.0, -math.sin(alpha)])
     return n, t, E_Y.copy()
 
 
 def check_round_on_slope(spec: SpecLike, scene: SceneLike, *, slope: bool = True) -> None:
-    """A rolling or sliding body must be round; an incline's ``angle`` lies in [0, π/2)."""
+    """Refuse a rolling or sliding body that is not round, or an incline not in [0, π/2).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The joint (its fields ``body`` and, on an incline, ``angle`` in rad, default 0).
+    scene : SceneLike
+        The scene.
+    slope : bool, optional
+        Check the ``angle`` too (default True; False for a track).
+
+    Raises
+    ------
+    SceneError
+        The exception ``scene.error`` makes (a :class:`SceneError` for a parsed scene):
+        for a body not of :data:`~mechanics.scenes.state.ROUND_SHAPES`, or an ``angle``
+        outside [0, π/2).
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import EffectSpec, parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "cyl", "shape": "cylinder", "mass": 2.0, "radius": 0.5,
+    ...                 "height": 0.2}]})
+    >>> check_round_on_slope(EffectSpec("rolling", 0, {"body": "cyl", "angle": 0.5}), sc)
+    >>> check_round_on_slope(EffectSpec("rolling", 0, {"body": "cyl", "angle": 2.0}), sc)
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: effects[0].angle: must lie in [0, π/2); got 2.0
+    """
     b = scene.body(spec.fields["body"])
     if b.shape not in ROUND_SHAPES:
         raise scene.error(
@@ -94,7 +151,49 @@ def _gravity_only(effects: Sequence[Effect]) -> bool:
 
 @dataclass(frozen=True, eq=False)
 class Incline(Guide):
-    """A round body of radius r rolling on the incline (n, t̂, a); q = (s,)."""
+    """A round body of radius r rolling on the incline (n, t̂, a); q = (s,).
+
+    G is at r n + s t̂; the body turns by s/r about a (3.77).  Made by
+    :meth:`Rolling.make_guide`.
+
+    Parameters
+    ----------
+    n : ndarray, shape (3,)
+        The incline's outward unit normal (:func:`slope_frame`).
+    t : ndarray, shape (3,)
+        The unit down-slope direction t̂.
+    a : ndarray, shape (3,)
+        The horizontal a = n × t̂, the axis the body turns about.
+    r : float
+        The body's radius, m (> 0).
+    m : float
+        Its mass, kg.
+    k : int
+        The body axis (0, 1, 2: x, y, z) along a.
+    M : ndarray, shape (1,)
+        The inertia of the coordinate s, m + J/r² (kg, 3.79).
+    alpha : float
+        The slope α, rad.
+
+    Raises
+    ------
+    TypeError
+        If a field is missing (the dataclass's constructor checks nothing else).
+
+    Examples
+    --------
+    The drop s sin α (a series) is the fall of G:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> cyl = {"name": "cyl", "shape": "cylinder", "mass": 2.0, "radius": 0.5, "height": 0.2}
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [cyl],
+    ...     "effects": [{"type": "gravity", "g": 9.75},
+    ...                 {"type": "rolling", "body": "cyl", "surface": "incline", "angle": 0.5}]})
+    >>> slope = Rolling.make_guide(sc.effects[1], sc, np.array([0.0, 0.0, -9.75]))
+    >>> fall = slope.place(np.array([0.0]))[0][2] - slope.place(np.array([2.0]))[0][2]
+    >>> slope.M.tolist(), bool(np.isclose(fall, slope.series(np.array([2.0]), np.ones(1))["drop"]))
+    ([3.0], True)
+    """
 
     n: FloatArray
     t: FloatArray
@@ -144,8 +243,51 @@ class Incline(Guide):
 
 @dataclass(frozen=True, eq=False)
 class Track(Guide):
-    """A round body of radius r rolling inside a track of radius R about the axis a
-    through the origin, ψ from u0 (u1 = a × u0); q = (ψ,)."""
+    """A round body of radius r rolling inside a track of radius R about a; q = (ψ,).
+
+    The axis a passes through the origin; ψ is measured from u0 (u1 = a × u0), G is at
+    (R − r) (cos ψ u0 + sin ψ u1) (4.60).  Made by :meth:`Rolling.make_guide`.
+
+    Parameters
+    ----------
+    a : ndarray, shape (3,)
+        The track's unit axis (−e_y).
+    u0 : ndarray, shape (3,)
+        The unit direction across a where ψ = 0 (gravity's, the lowest line).
+    u1 : ndarray, shape (3,)
+        a × u0.
+    r : float
+        The body's radius, m (0 < r < R).
+    R : float
+        The track's radius, m.
+    m : float
+        The body's mass, kg.
+    k : int
+        The body axis (0, 1, 2: x, y, z) along a.
+    M : ndarray, shape (1,)
+        The inertia of the coordinate ψ, M_eff (R − r)² (kg m²).
+    M_eff : float
+        m + J/r², kg (3.79).
+
+    Raises
+    ------
+    TypeError
+        If a field is missing (the dataclass's constructor checks nothing else).
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> cyl = {"name": "cyl", "shape": "cylinder", "mass": 2.0, "radius": 0.5, "height": 0.2}
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [cyl],
+    ...     "effects": [{"type": "gravity", "g": 9.75},
+    ...                 {"type": "rolling", "body": "cyl", "surface": "track",
+    ...                  "track_radius": 2.5}]})
+    >>> track = Rolling.make_guide(sc.effects[1], sc, np.array([0.0, 0.0, -9.75]))
+    >>> track.M_eff * (2.5 - 0.5) ** 2, track.M.tolist()
+    (12.0, [12.0])
+    >>> track.place(np.array([0.0]))[0].tolist()  # at ψ = 0, G is R − r below the axis
+    [0.0, 0.0, -2.0]
+    """
 
     a: FloatArray
     u0: FloatArray
@@ -217,8 +359,35 @@ class Track(Guide):
 
 @register
 class Rolling(Effect, GuidesBody):
-    """Rolling without slipping of a round body on an incline or inside a cylindrical
-    track (3.77, 4.60): one degree of freedom; the contact force does no work."""
+    """Rolling without slipping of a round body on an incline or in a track (3.77, 4.60).
+
+    One degree of freedom (:class:`Incline`, :class:`Track`); the contact force does no
+    work.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (round), ``surface`` (``"incline"`` or
+        ``"track"``), ``angle`` (the incline's slope α, rad, in [0, π/2); default 0),
+        ``track_radius`` R (m, > the body's radius; a track's) and ``body_axis`` (``"x"``,
+        ``"y"`` or ``"z"``, the axis it turns about; default ``"z"``).
+    ctx : Context or None, optional
+        The scene's context (the body's index; None: an effect built for its fields alone).
+
+    Raises
+    ------
+    ValueError
+        If ``body_axis`` is not one of x, y, z (the parser refuses it first).
+
+    Examples
+    --------
+    The inertia of rolling, m + J/r² (3.79): 3/2 m for a solid cylinder (J = m r²/2):
+
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> roll = Rolling(EffectSpec("rolling", 0, {"body": "cyl", "surface": "incline"}))
+    >>> roll.effective_mass(2.0, np.diag([0.5, 0.5, 0.25]), 0.5), 1.5 * 2.0
+    (3.0, 3.0)
+    """
 
     type = "rolling"
     dissipative = True

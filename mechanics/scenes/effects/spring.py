@@ -109,7 +109,44 @@ class _TwoPoint(Effect, Compiles):
 
 @register
 class Spring(_TwoPoint, HasPotential):
-    """A linear spring (optionally with a dashpot of coefficient ``damping``)."""
+    """A linear spring (optionally with a dashpot of coefficient ``damping``).
+
+    It pulls P toward Q with k (|PQ| − ℓ0) along PQ, with the potential ½ k (|PQ| − ℓ0)².
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` and ``at`` (P, m, body components about
+        G; default G); the other end, either ``other`` (a body) with ``other_at`` (Q, m,
+        about its G; default G), or ``anchor`` (Q, a fixed point of space, m; default
+        the origin); ``stiffness`` k (N/m, > 0), ``rest_length`` ℓ0 (m, ≥ 0;
+        default 0) and ``damping`` c (N s/m, ≥ 0; default 0).
+    ctx : Context
+        The scene's context (the bodies' indices).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        a body is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    Stretched by 2 m beyond its rest length, the force k·2 and the potential ½ k 2²:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> ball = {"name": "ball", "shape": "point", "mass": 2.0}
+    >>> spring = {"type": "spring", "body": "ball", "anchor": [0.0, 0.0, 3.0],
+    ...           "stiffness": 4.0, "rest_length": 1.0}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [ball],
+    ...                           "effects": [spring]}))
+    >>> s = eng.snapshot(0.0, eng.y0)
+    >>> eng.loads(0.0, s)[0][0].tolist(), float(eng.effects[0].potential(s)), 0.5 * 4.0 * 2.0**2
+    ([0.0, 0.0, 8.0], 8.0, 8.0)
+    """
 
     type = "spring"
     schema: ClassVar[Schema] = {
@@ -167,7 +204,40 @@ class Spring(_TwoPoint, HasPotential):
 
 @register
 class Damper(_TwoPoint):
-    """A linear dashpot: −c (relative velocity along the line) on P, the opposite on Q."""
+    """A linear dashpot: −c (relative velocity along the line) on P, the opposite on Q.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` and ``at`` (P, m, body components about
+        G; default G); the other end, either ``other`` (a body) with ``other_at`` (Q, m,
+        about its G; default G), or ``anchor`` (Q, a fixed point of space, m; default
+        the origin); ``damping`` c (N s/m, > 0).
+    ctx : Context
+        The scene's context (the bodies' indices).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        a body is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    Only the velocity along the line PQ is damped: −c v_z along a vertical line:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> ball = {"name": "ball", "shape": "point", "mass": 2.0,
+    ...         "initial": {"velocity": [1.0, 0.0, -2.0]}}
+    >>> damper = {"type": "damper", "body": "ball", "anchor": [0.0, 0.0, 3.0], "damping": 0.5}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [ball],
+    ...                           "effects": [damper]}))
+    >>> eng.loads(0.0, eng.snapshot(0.0, eng.y0))[0][0].tolist(), -0.5 * -2.0
+    ([0.0, 0.0, 1.0], 1.0)
+    """
 
     type = "damper"
     schema: ClassVar[Schema] = {**_TwoPoint.schema, "damping": ("positive", True)}

@@ -45,8 +45,35 @@ __all__ = ["TankOutflow"]
 
 @register
 class TankOutflow(Effect, HasModes):
-    """Outflow through a small hole of area a in the bottom of a prismatic tank of area A:
-    Torricelli's u = √(2gh/(1 − (a/A)²)) (8.37, quasi-steady) and A ḣ = −a u."""
+    """Outflow through a hole of area a in the bottom of a prismatic tank of area A (8.37).
+
+    Torricelli's u = √(2gh/(1 − (a/A)²)) (8.37, quasi-steady) and A ḣ = −a u.
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (a ``tank``, with an initial ``level``)
+        and ``hole_area`` a (m², > 0, less than the tank's ``area``).
+    ctx : Context or None, optional
+        The scene's context (the tank's index, area and initial level, and g from the
+        gravities; None: an effect built for its fields alone).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx`` or lacks its ``area`` or initial ``level``.
+
+    Examples
+    --------
+    Bernoulli from the surface to the jet: ½ u² (1 − (a/A)²) = g h:
+
+    >>> from mechanics.scenes.spec import EffectSpec
+    >>> hole = TankOutflow(EffectSpec("tank_outflow", 0, {"body": "tank", "hole_area": 0.5}))
+    >>> u = float(hole.outflow_speed(2.0, 3.0, 1.0))  # h = 2 m, g = 3 m/s², A = 1 m²
+    >>> u, 0.5 * u**2 * (1.0 - 0.5**2), 3.0 * 2.0
+    (4.0, 6.0, 6.0)
+    """
 
     type = "tank_outflow"
     schema: ClassVar[Schema] = {"body": ("body", True), "hole_area": ("positive", True)}

@@ -34,7 +34,43 @@ if TYPE_CHECKING:
 
 @register
 class Thrust(Effect, ChangesMass):
-    """Thrust q u along ``direction`` while the fuel lasts."""
+    """Thrust q u along ``direction`` while the fuel lasts (Example 7.2).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (not held by a joint), ``mass_flow`` q
+        (kg/s, > 0), ``exhaust_speed`` u (m/s, > 0), ``fuel_mass`` m_f (kg, ≥ 0, less
+        than the body's mass), ``direction`` (nonzero; default (0, 0, 1)) and ``frame``
+        (``"space"``, the default, or ``"body"``).
+    ctx : Context
+        The scene's context (the body's index and the number of bodies).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+    AttributeError
+        If ``ctx`` is None (the body's index is read from it).
+
+    Examples
+    --------
+    The fuel burns out at T = m_f/q; the mass lost is q min(t, T), so m_f from then on:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> rocket = {"name": "rocket", "shape": "point", "mass": 2.0}
+    >>> motor = {"type": "thrust", "body": "rocket", "mass_flow": 0.25, "exhaust_speed": 8.0,
+    ...          "fuel_mass": 1.0}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 10.0},
+    ...                           "bodies": [rocket], "effects": [motor]}))
+    >>> th = eng.effects[0]
+    >>> th.burn_out, th.mass_loss(np.array([2.0, 4.0, 10.0]))[:, 0].tolist()
+    (4.0, [0.5, 1.0, 1.0])
+    >>> eng.loads(0.0, eng.snapshot(0.0, eng.y0))[0][0].tolist(), 0.25 * 8.0  # q u
+    ([0.0, 0.0, 2.0], 2.0)
+    """
 
     type = "thrust"
     schema: ClassVar[Schema] = {

@@ -25,7 +25,41 @@ if TYPE_CHECKING:
 
 @register
 class Torsion(Effect, HasPotential, Compiles):
-    """A torsion spring on a fixed axis: moment −τ0 φ (3.1, the torsion pendulum)."""
+    """A torsion spring on a fixed axis: moment −τ0 φ (3.1, the torsion pendulum).
+
+    Parameters
+    ----------
+    spec : SpecLike
+        The listed effect; its fields: ``body`` (turning on a ``fixed_axis``) and
+        ``stiffness`` τ0 (N m/rad, > 0).
+    ctx : Context or None, optional
+        The scene's context (the body's index and its hinge; None: an effect built for
+        its fields alone).
+
+    Raises
+    ------
+    KeyError
+        If a required field is missing from ``spec.fields`` (the parser requires it), or if
+        ``body`` is not a body of ``ctx``.
+
+    Examples
+    --------
+    A rod turned by φ = 0.5 rad: the couple τ0 φ and the potential ½ τ0 φ²:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> rod = {"name": "rod", "shape": "rod", "mass": 3.0, "length": 2.0,
+    ...        "initial": {"angle": 0.5}}
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0}, "bodies": [rod],
+    ...     "effects": [{"type": "fixed_axis", "body": "rod", "body_axis": "y"},
+    ...                 {"type": "torsion", "body": "rod", "stiffness": 2.0}]}))
+    >>> s = eng.snapshot(0.0, eng.y0)
+    >>> F, M_A = eng.loads(0.0, s)
+    >>> M_A[0].tolist(), -2.0 * 0.5  # −τ0 φ along the body's y, the axis
+    ([0.0, -1.0, 0.0], -1.0)
+    >>> float(eng.effects[1].potential(s)), 0.5 * 2.0 * 0.5**2
+    (0.25, 0.25)
+    """
 
     type = "torsion"
     schema: ClassVar[Schema] = {"body": ("body", True), "stiffness": ("positive", True)}
