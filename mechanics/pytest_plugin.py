@@ -54,7 +54,21 @@ _LOADED = pytest.StashKey[str]()
 
 
 def register_profiles() -> None:
-    """Register the ``bodycheck-*`` hypothesis profiles (idempotent; loads none)."""
+    """Register the ``bodycheck-*`` hypothesis profiles (idempotent; loads none).
+
+    Each derives from hypothesis' ``default`` profile, without a deadline or the
+    ``too_slow`` health check: ``bodycheck-ci`` derandomised, 100 examples, the
+    ``@reproduce_failure`` blob printed; ``bodycheck-dev`` random, 100 examples;
+    ``bodycheck-explore`` random, 1000 examples.  Imports hypothesis.
+
+    Examples
+    --------
+    >>> register_profiles()
+    >>> from hypothesis import settings
+    >>> ci = settings.get_profile("bodycheck-ci")
+    >>> ci.derandomize, ci.deadline, settings.get_profile("bodycheck-explore").max_examples
+    (True, None, 1000)
+    """
     from hypothesis import HealthCheck, settings
 
     base = settings(
@@ -164,6 +178,18 @@ class EpsClose:
     same keyword as :func:`~mechanics.testing.assert_allclose_eps`); left out, each
     assertion's documented default applies (4 eps for all three).  The first also takes
     ``rtol``, the error as a fraction (``rtol=1e-2``: 1 %, reported as a fraction).
+
+    Examples
+    --------
+    The ``eps_close`` fixture is one of these; outside pytest, build it:
+
+    >>> eps_close = EpsClose()
+    >>> eps_close(0.1 + 0.2, 0.3)
+    >>> eps_close.quaternions([1.0, 0.0, 0.0, 0.0], [-1.0, 0.0, 0.0, 0.0])  # q ≡ −q
+    >>> eps_close(1.0 + 2.0**-40, 1.0, eps=8)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    AssertionError: not close: relative error 4.1e+03 eps at index () exceeds 8 eps ...
     """
 
     def __call__(

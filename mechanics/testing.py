@@ -128,8 +128,30 @@ def assert_rotations_close(
     Euler angles at gimbal lock and of ±π rotation vectors.  The message names
     the worst entry and its error in eps.
 
+    Parameters
+    ----------
+    R1, R2 : array_like, shape (..., 3, 3)
+        The matrices (any 3 × 3 arrays), leading axes broadcasting against each other.
+    atol : float
+        The largest allowed |R1 − R2| of an entry, a finite number ≥ 0 (default
+        :data:`ROTATIONS_CLOSE_ATOL`, 4 eps).
+    err_msg : str
+        Prepended to the failure message.
+
+    Raises
+    ------
+    AssertionError
+        An entry differs by more than ``atol`` (naming the worst entry, its error in eps
+        and the two values), or an argument is not real, not finite (naming where), not
+        of shape (..., 3, 3), or the two do not broadcast.
+    ValueError
+        ``atol`` not a finite real number ≥ 0 (a string or a bool is refused).
+
     Examples
     --------
+    At gimbal lock θ = 0 only ψ + φ is defined: (0.3, 0, 0.5) and (0.8, 0, 0) are one
+    rotation.
+
     >>> from mechanics.rotation import matrix_from_euler
     >>> assert_rotations_close(matrix_from_euler(0.3, 0.0, 0.5),
     ...                        matrix_from_euler(0.8, 0.0, 0.0))
@@ -160,6 +182,25 @@ def assert_quaternions_close(
     For each quaternion the distance is min(max |q1 − q2|, max |q1 + q2|): q and
     −q are the same rotation.  The message names the worst quaternion, its
     distance in eps and the sign that was closer.
+
+    Parameters
+    ----------
+    q1, q2 : array_like, shape (..., 4)
+        The quaternions (w, x, y, z), leading axes broadcasting against each other.
+    atol : float
+        The largest allowed distance, a finite number ≥ 0 (default
+        :data:`QUATERNIONS_CLOSE_ATOL`, 4 eps).
+    err_msg : str
+        Prepended to the failure message.
+
+    Raises
+    ------
+    AssertionError
+        A distance exceeds ``atol`` (naming the worst quaternion, its distance in eps and
+        the closer sign), or an argument is not real, not finite (naming where), not of
+        shape (..., 4), or the two do not broadcast.
+    ValueError
+        ``atol`` not a finite real number ≥ 0 (a string or a bool is refused).
 
     Examples
     --------
@@ -207,26 +248,45 @@ def assert_allclose_eps(
 
     Parameters
     ----------
-    actual, desired : array_like
-        Broadcast against each other.
+    actual, desired : array_like, any shapes that broadcast
+        The values compared, real and finite.
     eps : float, optional
         The allowed error in units of float64's eps (default
         :data:`ALLCLOSE_EPS_MULTIPLE`).  ``eps_multiple`` is the same, its older name.
     rtol : float, optional
         The allowed error as a plain fraction instead (``rtol=1e-2``: 1 %); the message
         then states the error as a fraction too.  Give ``eps`` or ``rtol``, not both.
-    scale : array_like, optional
-        The size the error is measured against.  Default: ``|desired|``
+    scale : array_like, optional, shape broadcasting to the shape of actual and desired
+        The size the error is measured against, ≥ 0.  Default: ``|desired|``
         entrywise, a relative test (a zero ``desired`` then needs an exact
         zero).  Pass ``scale=1`` for an absolute test in units of eps.
     err_msg : str
         Prepended to the failure message.
+    eps_multiple : float, optional
+        The older name of ``eps`` (give one of ``eps``, ``rtol``, ``eps_multiple``).
 
     Raises
     ------
     AssertionError
         Naming the worst entry, its error in eps (relative or scaled), and the
-        two values.
+        two values; or an argument that is not real, not finite (naming where), or
+        shapes that do not broadcast.
+    TypeError
+        More than one of ``eps``, ``rtol`` and ``eps_multiple`` given.
+    ValueError
+        A tolerance that is not a finite real number ≥ 0, or a negative ``scale``.
+
+    Examples
+    --------
+    0.1 + 0.2 is 0.3 within one rounding (0.83 eps relative), and 355/113 is π within
+    8.5e-8:
+
+    >>> assert_allclose_eps(0.1 + 0.2, 0.3)
+    >>> assert_allclose_eps(355 / 113, np.pi, rtol=1e-7)
+
+    An absolute test in units of eps: ``scale=1``.
+
+    >>> assert_allclose_eps(1e-20, 0.0, scale=1)
     """
     __tracebackhide__ = True  # under pytest, a failure points at the caller
     named = {"eps": eps is not None, "rtol": rtol is not None}

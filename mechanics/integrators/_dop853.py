@@ -430,14 +430,49 @@ class DenseStep:
     x = 0 it is y_old exactly; at x = 1 it is y_old + (y − y_old), within one
     rounding of y.  Evaluation outside [t_old, t] extrapolates (not accurate).
 
+    :meth:`DOP853Stepper.dense_output` builds it; calling it at a scalar time gives shape
+    (n,), at a 1-D array of k times shape (n, k) (scipy's convention), and a time array of
+    more dimensions raises ShapeError.
+
+    Parameters
+    ----------
+    t_old, t : float
+        The step's ends (s), t ≠ t_old.
+    y_old : array_like, shape (n,)
+        The state at ``t_old`` (copied, and read-only as an attribute).
+    F : array_like, shape (7, n)
+        The interpolant's coefficients (copied, and read-only as an attribute).
+
     Attributes
     ----------
     t_old, t : float
         The step's ends.
+    h : float
+        t − t_old.
     y_old : ndarray, shape (n,)
         The state at ``t_old`` (read-only).
     F : ndarray, shape (7, n)
         The interpolant's coefficients (read-only).
+
+    Raises
+    ------
+    TypeError
+        ``t_old`` or ``t`` not a number, or ``y_old`` or ``F`` an object numpy cannot
+        convert (from ``float`` and ``np.array``: nothing is validated, the stepper builds
+        it).
+    ValueError
+        A string that is not a number, or a ragged ``y_old`` or ``F`` (the same).
+
+    Examples
+    --------
+    At the step's start the interpolant is y_old exactly, at its end the step's state:
+
+    >>> from mechanics.integrators import DOP853Stepper
+    >>> s = DOP853Stepper(lambda t, y: -y, 0.0, [1.0, 2.0], 1.0, rtol=1e-8, atol=1e-8)
+    >>> s.step()
+    >>> d = s.dense_output()
+    >>> bool((d(d.t_old) == d.y_old).all()), bool(np.allclose(d(d.t), s.y, rtol=4e-16, atol=0))
+    (True, True)
     """
 
     __slots__ = ("F", "_rev", "h", "t", "t_old", "y_old")

@@ -80,6 +80,31 @@ def time_grid(t0: float, h: float, n: int) -> FloatArray:
     Domain: finite scalars t0 and h > 0, an integer n ≥ 1 (else NonPositiveParameterError); the grid
     has n + 1 entries in memory.
 
+    Parameters
+    ----------
+    t0 : float
+        The first time (s), finite.
+    h : float
+        The step (s), finite and > 0.
+    n : int
+        The number of steps, ≥ 1 (an ``int``, not a float or a bool).
+
+    Returns
+    -------
+    ndarray, shape (n + 1,)
+        t0 + k h for k = 0 … n (s), each entry one multiplication and one addition.
+
+    Raises
+    ------
+    NonPositiveParameterError
+        ``h`` ≤ 0, or ``n`` not an integer ≥ 1.
+    ShapeError
+        ``t0`` or ``h`` not a real scalar.
+    NonFiniteError
+        ``t0`` or ``h`` NaN or infinite.
+    ResultOverflowError
+        The last time t0 + n h is beyond float64's range.
+
     Examples
     --------
     Ten million steps of 0.1 end where they should; a running sum does not:

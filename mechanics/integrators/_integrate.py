@@ -52,8 +52,8 @@ def integrate(
         numba-compiled function (``@numba.njit``, see the module Conventions, *A
         compiled right-hand side*) with a state of shape (n,) runs the whole stepper
         compiled.
-    y0 : array_like
-        Initial state, any shape; leading axes may be a batch.
+    y0 : float or array_like, any shape
+        Initial state; its ``batch_ndim`` leading axes may be a batch.
     t : array_like, shape (n,), n ≥ 2
         Strictly increasing output times; ``(t0, t1)`` is a span.
     method : {"rk4", "dop853"}
@@ -70,7 +70,9 @@ def integrate(
         Leading axes of ``y0`` that index independent members of a batch
         (``"dop853"``: the error norm is the max over members).
     max_steps : int
-        ``"dop853"`` raises :class:`~mechanics.errors.StepSizeError` beyond it.
+        At most this many steps, ≥ 1: ``"rk4"`` raises
+        :class:`~mechanics.errors.StepSizeError` before any work if it would take more,
+        ``"dop853"`` when it reaches it.
     compiled : bool
         Run :func:`free_rigid_body_rhs`'s problem, or a numba-compiled ``rhs``, on the
         compiled path (the default; see the module Conventions); False forces the
@@ -95,15 +97,24 @@ def integrate(
     Raises
     ------
     UnknownOptionError
-        An unknown ``method`` (naming the choices) or an option the method lacks.
+        An unknown ``method`` (naming the choices) or an option the method lacks; ``rhs``
+        or ``event`` not callable; an ``event`` with a batch.
     NonPositiveParameterError
-        ``h``, ``rtol`` or ``atol`` ≤ 0, or a required one missing.
+        ``h``, ``rtol`` or ``atol`` ≤ 0, or a required one missing; ``max_steps`` not an
+        integer ≥ 1.
     OutOfDomainError
-        ``beta`` outside [0, 0.08] (``DOP853_MAX_BETA``), ``event_direction`` not −1, 0 or 1.
-    NonFiniteError, ShapeError
-        Bad ``y0``/``t``, or ``rhs`` returning NaN/inf or the wrong shape (naming t).
-    ResultOverflowError, StepSizeError
-        The state overflowed; the adaptive step cannot meet the tolerance.
+        ``t`` not strictly increasing; ``beta`` outside [0, 0.08] (``DOP853_MAX_BETA``);
+        ``event_direction`` not −1, 0 or 1.
+    NonFiniteError
+        NaN or an infinity in ``y0`` or ``t``, or ``rhs`` returning one (naming t).
+    ShapeError
+        ``t`` not 1-D with at least two entries; ``batch_ndim`` not an integer in
+        [0, y0.ndim]; ``rhs`` returning the wrong shape (naming t).
+    ResultOverflowError
+        The state overflowed.
+    StepSizeError
+        ``"rk4"``: more than ``max_steps`` steps; ``"dop853"``: the step fell below the
+        rounding of t (the tolerance cannot be met there) or ``max_steps`` was reached.
 
     Examples
     --------

@@ -51,8 +51,32 @@ def _check_moments(J: npt.ArrayLike) -> FloatArray:
 def rigid_body_state(L_A: npt.ArrayLike, R_A_O: npt.ArrayLike) -> FloatArray:
     """The 12-vector (L_A, rows of ^A R^O) of a free rigid body, shape (..., 12).
 
-    Domain: finite L_A (..., 3) and R_A_O (..., 3, 3) that broadcast (R_A_O is not checked for
-    orthogonality: a drifted state is a state too).
+    Domain: finite L_A (..., 3) and R_A_O (..., 3, 3) that broadcast (else ShapeError or
+    NonFiniteError); R_A_O a rotation within :func:`~mechanics.rotation.check_rotation`'s
+    default atol, 256 eps (else NotARotationError: a drifted attitude is refused here, project
+    it with :func:`~mechanics.rotation.nearest_rotation` first; :func:`rigid_body_parts` takes
+    any state).
+
+    Parameters
+    ----------
+    L_A : array_like, shape (..., 3)
+        Angular momentum about G, body components (kg m²/s).
+    R_A_O : array_like, shape (..., 3, 3)
+        The attitude, the book's passive matrix ^A R^O (a rotation).
+
+    Returns
+    -------
+    ndarray, shape (..., 12)
+        L_A, then the rows of R_A_O, on the broadcast leading axes.
+
+    Raises
+    ------
+    NotARotationError
+        ``R_A_O`` is not a rotation within 256 eps.
+    ShapeError
+        A trailing shape other than (3,) or (3, 3), or leading axes that do not broadcast.
+    NonFiniteError
+        NaN or an infinity in ``L_A`` or ``R_A_O``.
 
     Examples
     --------
@@ -72,10 +96,39 @@ rigid_body_state = broadcast_checked(rigid_body_state)
 
 
 def rigid_body_parts(y: npt.ArrayLike) -> tuple[FloatArray, FloatArray]:
-    """(L_A, R_A_O) of rigid-body states ``y`` of shape (..., 12) (views, not checked
-    for orthogonality: an integrator's R may have drifted, which is the point).
+    """(L_A, R_A_O) of rigid-body states ``y`` of shape (..., 12), as views.
+
+    Not checked for orthogonality: an integrator's R may have drifted, which is the point.
 
     Domain: any finite y of shape (..., 12) (else ShapeError or NonFiniteError).
+
+    Parameters
+    ----------
+    y : array_like, shape (..., 12)
+        States of :func:`rigid_body_state`: L_A, then the rows of ^A R^O.
+
+    Returns
+    -------
+    L_A : ndarray, shape (..., 3)
+        Angular momentum about G, body components (kg m²/s).
+    R_A_O : ndarray, shape (..., 3, 3)
+        The attitude ^A R^O (views of ``y`` when it is a float64 array).
+
+    Raises
+    ------
+    ShapeError
+        ``y`` not of shape (..., 12), or not an array of real numbers.
+    NonFiniteError
+        NaN or an infinity in ``y``.
+
+    Examples
+    --------
+    The inverse of :func:`rigid_body_state`, exactly:
+
+    >>> from mechanics.rotation import R3
+    >>> L, R = rigid_body_parts(rigid_body_state([1.0, -2.0, 0.5], R3(0.5)))
+    >>> L.tolist(), bool((R == R3(0.5)).all())
+    ([1.0, -2.0, 0.5], True)
     """
     a = as_float_array(y, "y", (12,))
     return a[..., :3], a[..., 3:].reshape(*a.shape[:-1], 3, 3)
@@ -99,6 +152,28 @@ def free_rigid_body_rhs(J: npt.ArrayLike) -> _FreeBodyRhs:
     dR_A_O/dt = Ω R_A_O with the book's Ω of ω_A (2.52); ``y`` is the state of
     :func:`rigid_body_state`, shape (..., 12), and ``J`` broadcasts against its
     leading axes.
+
+    Parameters
+    ----------
+    J : array_like, shape (..., 3)
+        Principal moments (J1, J2, J3) about G (kg m²), > 0, each at most the sum of the
+        other two.
+
+    Returns
+    -------
+    callable
+        ``rhs(t, y)`` → dy/dt, an ndarray of ``y``'s shape (..., 12); a ``y`` of another
+        trailing shape raises ShapeError.  It carries ``J`` as its ``free_body_moments``
+        attribute, by which :func:`integrate` recognises it for the compiled path.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        A moment ≤ 0, or one larger than the sum of the other two.
+    ShapeError
+        ``J`` not of shape (..., 3), or not an array of real numbers.
+    NonFiniteError
+        NaN or an infinity in ``J``.
 
     Examples
     --------
@@ -128,8 +203,9 @@ def free_rigid_body_rhs(J: npt.ArrayLike) -> _FreeBodyRhs:
 def so3_exp_step(R_A_O: npt.ArrayLike, w_A: npt.ArrayLike, h: float) -> FloatArray:
     """^A R^O after a time h of constant body angular velocity ω_A: exp(h Ω) ^A R^O.
 
-    Domain: finite R_A_O (..., 3, 3), w_A (..., 3) and h that broadcast; any rotation angle h|ω|
-    (reduced modulo 2π by :func:`~mechanics.rotation.matrix_from_rotvec`).
+    Domain: finite R_A_O (..., 3, 3), a rotation (else NotARotationError), and w_A (..., 3) that
+    broadcast (else ShapeError); a finite scalar h > 0 (else NonPositiveParameterError); any
+    rotation angle h|ω| (reduced modulo 2π by :func:`~mechanics.rotation.matrix_from_rotvec`).
 
     dR/dt = Ω R with the book's Ω (2.46), (2.52) integrates for constant ω_A to
     exp(h Ω) R, and exp(h Ω) is the passive matrix ^A R^O(h ω_A) of the rotation
@@ -140,9 +216,28 @@ def so3_exp_step(R_A_O: npt.ArrayLike, w_A: npt.ArrayLike, h: float) -> FloatArr
     Parameters
     ----------
     R_A_O : array_like, shape (..., 3, 3)
+        The attitude ^A R^O at the start of the step, a rotation.
     w_A : array_like, shape (..., 3)
-        Body components of ω.
+        Body components of ω (rad/s).
     h : float, > 0
+        The time step (s), a scalar.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ^A R^O(h ω_A) ^A R^O, the attitude after the step.
+
+    Raises
+    ------
+    NotARotationError
+        ``R_A_O`` is not a rotation within 256 eps.
+    NonPositiveParameterError
+        ``h`` ≤ 0.
+    ShapeError
+        Trailing shapes other than (3, 3) and (3,), leading axes that do not broadcast, or
+        an ``h`` that is not a scalar.
+    NonFiniteError
+        NaN or an infinity in an input, or an h ω_A beyond float64's range.
 
     Examples
     --------

@@ -29,7 +29,11 @@ EventHit: TypeAlias = tuple[float, FloatArray] | None
 class Solution:
     """States at the output times and the work it took.
 
-    Attributes
+    A frozen record the integrators build (:func:`integrate`,
+    :func:`free_rigid_body_splitting`), with read-only arrays; each parameter is the
+    attribute of the same name.
+
+    Parameters
     ----------
     t : ndarray, shape (n,)
         Output times: the grid that was asked for, unchanged; with an ``event`` that
@@ -50,6 +54,22 @@ class Solution:
         event was given or it was not met by ``t[-1]``.
     y_event : ndarray, shape y0.shape, or None
         The state at ``t_event``.
+
+    Raises
+    ------
+    TypeError
+        A field missing, or an argument too many (the dataclass's constructor).
+    AttributeError
+        On assigning to a field (``dataclasses.FrozenInstanceError``, an AttributeError).
+
+    Examples
+    --------
+    ``y`` has a row per output time, and RK4 takes 4 evaluations per step:
+
+    >>> from mechanics.integrators import integrate, time_grid
+    >>> sol = integrate(lambda t, y: -y, [1.0, 2.0], time_grid(0.0, 0.25, 4), method="rk4", h=0.25)
+    >>> sol.y.shape, sol.steps, sol.rhs_evals == 4 * sol.steps, sol.rejected_steps
+    ((5, 2), 4, True, 0)
     """
 
     t: FloatArray

@@ -314,6 +314,28 @@ def free_rigid_body_splitting(
         ``y`` of shape (n, *batch, 12): the state of :func:`rigid_body_state`
         (split it with :func:`rigid_body_parts`); ``rhs_evals`` counts sub-flows.
 
+    Raises
+    ------
+    UnknownOptionError
+        ``order`` not in ``SPLITTING_ORDERS``, or ``compensated`` not a bool.
+    NonPhysicalInertiaError
+        A moment ≤ 0, or one larger than the sum of the other two.
+    NotARotationError
+        ``R0`` is not a rotation within 256 eps.
+    OutOfDomainError
+        ``t`` not strictly increasing.
+    NonPositiveParameterError
+        ``h`` ≤ 0.
+    StepSizeError
+        The run would take more than ``MAX_STEPS`` steps (raised before any work).
+    ShapeError
+        Wrong trailing shapes, leading axes that do not broadcast, ``t`` not 1-D with at
+        least two entries, or an ``h`` that is not a scalar.
+    NonFiniteError
+        NaN or an infinity in an input.
+    ResultOverflowError
+        The state overflowed (|L| h/J beyond float64's range).
+
     Examples
     --------
     |L| and the energy after 1000 steps:

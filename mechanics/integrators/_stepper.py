@@ -57,8 +57,9 @@ class DOP853Stepper:
     """Dormand–Prince 8(5,3) one accepted step at a time, with dense output.
 
     Domain: finite t0 < t_bound, y0 1-D finite with n ≥ 1 entries, rtol > 0 and atol > 0,
-    first_step > 0 and max_step > 0 (inf allowed) (else a MechanicsValueError naming
-    them); rhs must return finite arrays of y0's shape.
+    first_step > 0 and max_step > 0 (inf allowed) (else a ShapeError, NonFiniteError,
+    OutOfDomainError or NonPositiveParameterError naming them); rhs must return finite arrays
+    of y0's shape.
 
     The stepping interface of scipy's ``scipy.integrate.DOP853`` (``step``,
     ``dense_output``, ``t``, ``y``, ``t_old``, ``status``) on this module's tableau
@@ -88,9 +89,11 @@ class DOP853Stepper:
 
     Attributes
     ----------
-    t, y : float, ndarray (n,)
-        The current time and state (``y`` a new array after every step; the
-        stepper never writes into it).
+    t : float
+        The current time.
+    y : ndarray, shape (n,)
+        The current state (a new array after every step; the stepper never writes
+        into it).
     t_old : float or None
         The start of the last step (None before the first).
     t_bound : float
@@ -107,13 +110,16 @@ class DOP853Stepper:
     ------
     UnknownOptionError
         ``rhs`` not callable.
-    ShapeError, NonFiniteError
-        ``y0`` not 1-D or not finite, ``t0``/``t_bound`` not finite scalars, or
-        ``rhs`` returning the wrong shape or NaN/inf at ``t0``.
+    ShapeError
+        ``y0`` not 1-D with n ≥ 1 entries, ``t0``/``t_bound``/``max_step`` not scalars, or
+        ``rhs`` returning the wrong shape at ``t0``.
+    NonFiniteError
+        NaN or an infinity in ``y0``, ``t0`` or ``t_bound``, or ``rhs`` returning one at
+        ``t0``.
     OutOfDomainError
         ``t_bound ≤ t0``.
     NonPositiveParameterError
-        ``rtol``, ``atol``, ``first_step`` or ``max_step`` ≤ 0.
+        ``rtol``, ``atol``, ``first_step`` or ``max_step`` ≤ 0 (``max_step`` NaN too).
 
     Examples
     --------

@@ -40,6 +40,37 @@ def batches(
     ``elements`` draws floats or arrays of one fixed shape ``e``; the result has
     shape ``(1, *e)``, ``(k, *e)`` with 2 ≤ k ≤ ``max_rows``, or ``(k1, k2, *e)``
     with k1 k2 ≤ ``max_rows`` (:data:`BATCH_REGIMES`).
+
+    Parameters
+    ----------
+    elements : SearchStrategy
+        Draws floats, or arrays of one fixed shape ``e``.
+    max_rows : int
+        The largest number of draws in a batch, ≥ 4.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (1, *e), (k, *e) or (k1, k2, *e)
+        float64 stacks of independent draws.
+
+    Raises
+    ------
+    InvalidArgument
+        ``elements`` not a hypothesis strategy, or ``max_rows`` not an integer ≥ 4; when
+        drawing, ``elements`` drawing arrays of different shapes.
+
+    Examples
+    --------
+    Each row is one draw of ``elements``: the norms of a batch of unit vectors are 1.
+
+    >>> from hypothesis import given, settings
+    >>> from mechanics.strategies import unit_vectors
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(batches(unit_vectors()))
+    ... def test_rows(u):
+    ...     assert u.shape[-1] == 3 and u.size // 3 <= 6
+    ...     assert np.allclose(np.linalg.norm(u, axis=-1), 1.0, rtol=0, atol=1e-15)
+    >>> test_rows()
     """
     if not isinstance(elements, st.SearchStrategy):
         raise InvalidArgument(f"elements={elements!r} must be a hypothesis strategy")

@@ -125,11 +125,40 @@ _moments = st.composite(_draw_moments)
 
 
 def body_states(*, max_spin: float = 4.0, max_speed: float = 10.0) -> st.SearchStrategy[Body]:
-    """A rigid body's state an engine can step (a :class:`~mechanics.conformance.Body`):
-    principal moments 0.1 … 10 kg m² (J₁/J₂ ≥ 0.2, the triangle inequality kept), mass
+    """A rigid body's state an engine can step (a :class:`~mechanics.conformance.Body`).
+
+    Principal moments 0.1 … 10 kg m² (J₁/J₂ ≥ 0.2, the triangle inequality kept), mass
     0.1 … 10 kg, any attitude (Euler angles with θ away from 0 and π by 0.05), ω in body
     components up to ``max_spin`` rad/s, G within 1 m of the origin moving at up to
-    ``max_speed`` m/s.  Shrinks toward slow bodies at the origin."""
+    ``max_speed`` m/s.  Shrinks toward slow bodies at the origin.
+
+    Parameters
+    ----------
+    max_spin : float
+        The bound on |ω| (rad/s), finite and > 0.
+    max_speed : float
+        The bound on |v_G| (m/s), finite and > 0.
+
+    Returns
+    -------
+    SearchStrategy of Body
+        :class:`~mechanics.conformance.Body` records named ``"body"``.
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        ``max_spin`` or ``max_speed`` not a finite real number > 0.
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(body_states(max_spin=1.0))
+    ... def test_body(b):
+    ...     J1, J2, J3 = b.inertia
+    ...     assert J1 <= J2 <= J3 <= J1 + J2 and math.hypot(*b.omega) <= 1.0 + 1e-15
+    >>> test_body()
+    """
     spin = check_positive(max_spin, "max_spin")
     speed = check_positive(max_speed, "max_speed")
 
@@ -345,10 +374,39 @@ _DRAW = {
 
 
 def scenarios(kinds: Iterable[str] | None = None) -> st.SearchStrategy[Scenario]:
-    """Random variants of the battery's scenarios, each inside its valid range (see the
-    module's docstring); ``kinds`` restricts them to some of :data:`SCENARIO_KINDS`.
+    """Random variants of the battery's scenarios, each inside its valid range.
+
+    See the module's docstring; ``kinds`` restricts them to some of :data:`SCENARIO_KINDS`.
     The exact reference of a drawn scenario is
-    :func:`mechanics.conformance.reference` of it, as for the built-in ones."""
+    :func:`mechanics.conformance.reference` of it, as for the built-in ones.
+
+    Parameters
+    ----------
+    kinds : iterable of str, optional
+        Some of :data:`SCENARIO_KINDS` (default all).
+
+    Returns
+    -------
+    SearchStrategy of Scenario
+        :class:`~mechanics.conformance.Scenario` records, each named after the built-in
+        scenario it varies, that pass :func:`~mechanics.conformance.scenarios.check_scenario`.
+
+    Raises
+    ------
+    hypothesis.errors.InvalidArgument
+        ``kinds`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    A drawn parabola keeps the built-in one's name, and its description says it is drawn:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=5, derandomize=True)
+    ... @given(scenarios(kinds=["parabola"]))
+    ... def test_parabola(s):
+    ...     assert s.name == "parabola" and s.description.startswith("drawn: ")
+    >>> test_parabola()
+    """
     names = check_regimes(kinds, SCENARIO_KINDS, "scenarios")
 
     @st.composite

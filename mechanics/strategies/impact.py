@@ -3,7 +3,7 @@
 Conventions
 -----------
 - The objects are those of :mod:`mechanics.impact`: masses (floats > 0),
-  coefficients of restitution e ∈ [0, 1], unit contact_normals ``(3,)``, velocity pairs
+  coefficients of restitution e ∈ [0, 1], unit contact normals ``(3,)``, velocity pairs
   (ẋ_1, ẋ_2) that approach (ẋ_1 ≥ ẋ_2: body 1 is behind body 2 on the X axis),
   inertia tensors ``(3, 3)``, :class:`~mechanics.impact.RigidBody` records and
   whole contacts (:class:`Contact`) whose contact points approach.
@@ -140,8 +140,35 @@ _SIGNS = st.sampled_from((1.0, -1.0))
 
 
 class Contact(NamedTuple):
-    """A drawn contact: the two bodies (``body_2`` ``None`` = fixed), the
-    contact point ``r_S``, the unit normal ``n`` into body 1 and ``e``."""
+    """A drawn contact: two bodies, the contact point, the normal into body 1 and e.
+
+    A named tuple, as :func:`contacts` draws it; its constructor checks nothing.
+
+    Parameters
+    ----------
+    body_1 : RigidBody
+        The body the normal points into (:class:`mechanics.impact.RigidBody`).
+    body_2 : RigidBody or None
+        The other body; ``None``: fixed (infinite mass).
+    r_S : ndarray, shape (3,)
+        The contact point S (m).
+    n : ndarray, shape (3,)
+        The unit normal at S, into body 1.
+    e : float
+        The coefficient of restitution, in [0, 1].
+
+    Raises
+    ------
+    TypeError
+        A field missing, or an argument too many (the named tuple's constructor).
+    AttributeError
+        On assigning to a field (a tuple is immutable).
+
+    Examples
+    --------
+    >>> Contact._fields
+    ('body_1', 'body_2', 'r_S', 'n', 'e')
+    """
 
     body_1: RigidBody
     body_2: RigidBody | None
@@ -151,9 +178,45 @@ class Contact(NamedTuple):
 
 
 class HingedBody(NamedTuple):
-    """A drawn hinged body: mass, inertia tensor about the axis point, position
-    of G, the axis point and unit axis, as :func:`mechanics.impact.hinged_impact`
-    takes them; ``J_G`` is the tensor about G it was built from."""
+    """A drawn hinged body: mass, J_A, r_G, the axis point and unit axis, and J_G.
+
+    Mass, inertia tensor about the axis point, position of G, the axis point and unit
+    axis, as :func:`mechanics.impact.hinged_impact` takes them; ``J_G`` is the tensor
+    about G it was built from.  A named tuple, as :func:`hinged_bodies` draws it; its
+    constructor checks nothing.
+
+    Parameters
+    ----------
+    m : float
+        The mass (kg), > 0.
+    J_A : ndarray, shape (3, 3)
+        The inertia tensor about the axis point A (kg m²).
+    r_G : ndarray, shape (3,)
+        The position of G (m).
+    axis_point : ndarray, shape (3,)
+        A point A of the fixed axis (m).
+    axis : ndarray, shape (3,)
+        The unit vector along the axis.
+    J_G : ndarray, shape (3, 3)
+        The inertia tensor about G (kg m²).
+
+    Raises
+    ------
+    TypeError
+        A field missing, or an argument too many (the named tuple's constructor).
+    AttributeError
+        On assigning to a field (a tuple is immutable).
+
+    Examples
+    --------
+    The first five fields are :func:`~mechanics.impact.hinged_impact`'s first five
+    parameters:
+
+    >>> import inspect
+    >>> from mechanics.impact import hinged_impact
+    >>> list(HingedBody._fields[:5]) == list(inspect.signature(hinged_impact).parameters)[:5]
+    True
+    """
 
     m: float
     J_A: npt.NDArray[np.float64]
@@ -173,6 +236,35 @@ def impact_masses(
 
     Regimes (:data:`IMPACT_MASS_REGIMES`), each used when it meets the bounds.
     Shrinks toward 1 (or the nearest bound).
+
+    Parameters
+    ----------
+    min_value, max_value : float
+        The bounds (kg), finite, 0 < ``min_value`` ≤ ``max_value``.
+    regimes : iterable of str, optional
+        Some of :data:`IMPACT_MASS_REGIMES` (default all); those that cannot meet the
+        bounds are left out.
+
+    Returns
+    -------
+    SearchStrategy of float
+        Masses (kg) in [``min_value``, ``max_value``].
+
+    Raises
+    ------
+    InvalidArgument
+        A bound not a finite real number, ``min_value`` ≤ 0 or ``min_value`` >
+        ``max_value``; ``regimes`` a string, empty, with an unknown name, or with none
+        reachable in the bounds.
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(impact_masses(regimes=["tiny"]))
+    ... def test_tiny(m):
+    ...     assert 1e-15 <= m <= 1e-6
+    >>> test_tiny()
     """
     lo = check_real(min_value, "min_value")
     hi = check_real(max_value, "max_value")
@@ -214,6 +306,34 @@ def mass_pairs(
 
     Regimes (:data:`MASS_PAIR_REGIMES`); ``max_ratio`` ≥ 1e6 keeps the extreme
     regimes reachable.  Shrinks toward (1, 1).
+
+    Parameters
+    ----------
+    max_ratio : float
+        The largest m_1/m_2 and m_2/m_1, finite and ≥ 1e6.
+    regimes : iterable of str, optional
+        Some of :data:`MASS_PAIR_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of tuple of float
+        (m_1, m_2) (kg).
+
+    Raises
+    ------
+    InvalidArgument
+        ``max_ratio`` not a finite real number ≥ 1e6; ``regimes`` a string, empty or with
+        an unknown name.
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(mass_pairs(regimes=["light-1"]))
+    ... def test_light(pair):
+    ...     m1, m2 = pair
+    ...     assert 0 < m1 <= 1e-6 * m2 * (1 + 1e-15)
+    >>> test_light()
     """
     r = check_real(max_ratio, "max_ratio")
     if r < 1e6:
@@ -247,6 +367,32 @@ def restitution_coefficients(*, regimes: Iterable[str] | None = None) -> st.Sear
     """Coefficients of restitution e ∈ [0, 1] (:data:`RESTITUTION_REGIMES`).
 
     Shrinks toward 0.
+
+    Parameters
+    ----------
+    regimes : iterable of str, optional
+        Some of :data:`RESTITUTION_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of float
+        e in [0, 1].
+
+    Raises
+    ------
+    InvalidArgument
+        ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    Near 1: e < 1, and 1 − e (exact in float64, Sterbenz's lemma) is at most about 1e-6:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(restitution_coefficients(regimes=["near-one"]))
+    ... def test_near_one(e):
+    ...     assert 0.0 < 1.0 - e <= 1.0001e-6
+    >>> test_near_one()
     """
     names = check_regimes(regimes, RESTITUTION_REGIMES, "restitution_coefficients")
     below_one = 1.0 - math.nextafter(1.0, 0.0)  # 1.1e-16, the spacing below 1
@@ -273,8 +419,22 @@ restitution_coefficients = memoised(
 
 
 def contact_normals() -> st.SearchStrategy[npt.NDArray[np.float64]]:
-    """Unit contact contact_normals ``(3,)``: :func:`mechanics.strategies.unit_vectors`
-    (regimes axis, general, near-axis)."""
+    """Unit contact normals ``(3,)``: :func:`mechanics.strategies.unit_vectors`.
+
+    Its regimes: axis, general, near-axis.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3,)
+        float64 unit vectors.
+
+    Examples
+    --------
+    The same strategy object:
+
+    >>> contact_normals() is unit_vectors()
+    True
+    """
     return unit_vectors()
 
 
@@ -289,6 +449,33 @@ def direct_velocities(
     Regimes (:data:`DIRECT_VELOCITY_REGIMES`).  Body 1 is behind body 2 on the
     X axis, so the relative velocity Δẋ = ẋ_2 − ẋ_1 ≤ 0 (computed in float64,
     ẋ_1 = fl(ẋ_2 + s) ≥ ẋ_2 for s ≥ 0).  Shrinks toward a head-on (1, −1).
+
+    Parameters
+    ----------
+    max_speed : float
+        The bound on |ẋ| (m/s), finite and ≥ 1.
+    regimes : iterable of str, optional
+        Some of :data:`DIRECT_VELOCITY_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of tuple of float
+        (ẋ_1, ẋ_2) (m/s), ẋ_1 ≥ ẋ_2.
+
+    Raises
+    ------
+    InvalidArgument
+        ``max_speed`` not a finite real number ≥ 1; ``regimes`` a string, empty or with an
+        unknown name.
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=50, derandomize=True)
+    ... @given(direct_velocities())
+    ... def test_approach(v):
+    ...     assert v[0] >= v[1] and max(abs(v[0]), abs(v[1])) <= 1e6
+    >>> test_approach()
     """
     top = check_real(max_speed, "max_speed")
     if top < 1.0:
@@ -389,6 +576,36 @@ def impact_inertia_tensors(
     the rows of a drawn ^A R^O (``rotations``, default
     :func:`mechanics.strategies.rotation_matrices`): J_O = Rᵀ diag(J) R.
     Shrinks toward an unturned sphere tensor (a multiple of the identity).
+
+    Parameters
+    ----------
+    regimes : iterable of str, optional
+        Some of :data:`IMPACT_INERTIA_REGIMES` (default all).
+    rotations : SearchStrategy, optional
+        Rotation matrices of shape (3, 3) (default
+        :func:`mechanics.strategies.rotation_matrices`).
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3, 3)
+        float64 tensors (kg m²), exactly symmetric.
+
+    Raises
+    ------
+    InvalidArgument
+        ``regimes`` a string, empty or with an unknown name; ``rotations`` not a
+        hypothesis strategy.
+
+    Examples
+    --------
+    A sphere's tensor is the same in every basis:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(impact_inertia_tensors(regimes=["sphere"]))
+    ... def test_sphere(J):
+    ...     assert np.allclose(J, J[0, 0] * np.eye(3), rtol=0, atol=1e-14 * J[0, 0])
+    >>> test_sphere()
     """
     names = check_regimes(regimes, IMPACT_INERTIA_REGIMES, "impact_inertia_tensors")
     rotations = rotation_matrices() if rotations is None else rotations
@@ -422,6 +639,38 @@ def impact_bodies(
     tensor from ``tensors`` (default :func:`impact_inertia_tensors`) scaled by the mass
     (so J_G/m is a squared length of 1e-3 … 1e3), position of G with components
     within ``max_position``, v_G and ω with components within ``max_speed``.
+
+    Parameters
+    ----------
+    masses_ : SearchStrategy, optional
+        Masses (kg) (default :func:`impact_masses` in 1e-6 … 1e6).
+    tensors : SearchStrategy, optional
+        Tensors of shape (3, 3) per unit mass (m²) (default :func:`impact_inertia_tensors`).
+    max_position : float
+        The bound on each component of r_G (m), finite.
+    max_speed : float
+        The bound on each component of v_G (m/s) and ω (rad/s), finite.
+
+    Returns
+    -------
+    SearchStrategy of RigidBody
+        :class:`mechanics.impact.RigidBody` records (m, J_G, r_G, v_G, omega).
+
+    Raises
+    ------
+    InvalidArgument
+        ``max_position`` or ``max_speed`` not a finite real number (at the call); a
+        negative one, or ``masses_`` or ``tensors`` not a hypothesis strategy, only when
+        drawing, with hypothesis' own message (which does not name the argument).
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(impact_bodies(max_position=1.0))
+    ... def test_bounds(b):
+    ...     assert 1e-6 <= b.m <= 1e6 and np.abs(b.r_G).max() <= 1.0
+    >>> test_bounds()
     """
     masses_ = impact_masses(min_value=1e-6, max_value=1e6) if masses_ is None else masses_
     tensors = impact_inertia_tensors() if tensors is None else tensors
@@ -461,6 +710,36 @@ def contacts(
     magnitude, so rounding leaves it at least 1e-2 below 0): every drawn
     contact is an impact.  ``restitution`` defaults to
     :func:`restitution_coefficients`.
+
+    Parameters
+    ----------
+    regimes : iterable of str, optional
+        Some of :data:`CONTACT_REGIMES` (default all).
+    restitution : SearchStrategy, optional
+        Coefficients e in [0, 1] (default :func:`restitution_coefficients`).
+
+    Returns
+    -------
+    SearchStrategy of Contact
+        :class:`Contact` records whose contact points approach.
+
+    Raises
+    ------
+    InvalidArgument
+        ``regimes`` a string, empty or with an unknown name; ``restitution`` not a
+        hypothesis strategy.
+
+    Examples
+    --------
+    The normal relative velocity of S is negative (against a fixed body 2: body 1's alone):
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(contacts(regimes=["fixed-body-2"]))
+    ... def test_approach(c):
+    ...     b = c.body_1
+    ...     assert c.body_2 is None and c.n @ (b.v_G + np.cross(b.omega, c.r_S - b.r_G)) < 0
+    >>> test_approach()
     """
     names = check_regimes(regimes, CONTACT_REGIMES, "contacts")
     es = restitution_coefficients() if restitution is None else restitution
@@ -527,6 +806,34 @@ def hinged_bodies(*, regimes: Iterable[str] | None = None) -> st.SearchStrategy[
     J_A is built from J_G (:func:`impact_inertia_tensors` scaled by the mass) by the
     parallel-axis theorem, J_A = J_G + m (|d|² 1 − d dᵀ), d = r_G − A, so it is
     valid by construction.  G is 0.1 … 5 from the axis.
+
+    Parameters
+    ----------
+    regimes : iterable of str, optional
+        Some of :data:`HINGED_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of HingedBody
+        :class:`HingedBody` records.
+
+    Raises
+    ------
+    InvalidArgument
+        ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    The parallel-axis theorem (4.38) read back: J_A − J_G = m (|d|² 1 − d dᵀ), d = r_G − A.
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(hinged_bodies(regimes=["planar"]))
+    ... def test_shift(h):
+    ...     d = h.r_G - h.axis_point
+    ...     shift = h.m * (float(d @ d) * np.eye(3) - np.outer(d, d))
+    ...     assert np.allclose(h.J_A - h.J_G, shift, rtol=0, atol=1e-12 * np.abs(h.J_A).max())
+    >>> test_shift()
     """
     names = check_regimes(regimes, HINGED_REGIMES, "hinged_bodies")
     body_masses = impact_masses(min_value=1e-3, max_value=1e3)

@@ -105,7 +105,35 @@ CENTRE_REGIMES = ("origin", "general", "far")
 
 
 class RigidBody(NamedTuple):
-    """A rigid body as drawn by :func:`rigid_bodies`: J_G about G, G at r_G."""
+    """A rigid body as drawn by :func:`rigid_bodies`: J_G about G, G at r_G.
+
+    A named tuple: it unpacks as ``m, J_G, r_G``; its constructor checks nothing.
+
+    Parameters
+    ----------
+    m : float
+        The mass (kg), > 0.
+    J_G : ndarray, shape (3, 3)
+        The inertia tensor about G (kg m²), physical.
+    r_G : ndarray, shape (3,)
+        The position of G (m).
+
+    Raises
+    ------
+    TypeError
+        A field missing, or an argument too many (the named tuple's constructor).
+    AttributeError
+        On assigning to a field (a tuple is immutable).
+
+    Examples
+    --------
+    Fields by name or by position:
+
+    >>> b = RigidBody(2.0, np.eye(3), np.zeros(3))
+    >>> m, J_G, r_G = b
+    >>> m == b.m == b[0], J_G is b.J_G
+    (True, True)
+    """
 
     m: float
     J_G: npt.NDArray[np.float64]
@@ -136,6 +164,35 @@ def principal_moments(
     factor 2 above); the regimes (:data:`PRINCIPAL_MOMENT_REGIMES`) other than
     ``wide-scales`` draw it near 1 (1e-2 … 1e2 within the bounds).
     ``regimes`` restricts the draw.  Shrinks toward (1, 1, 1).
+
+    Parameters
+    ----------
+    min_scale, max_scale : float
+        Bounds of the largest moment J3 (kg m²), finite, 0 < ``min_scale`` ≤ ``max_scale``.
+    regimes : iterable of str, optional
+        Some of :data:`PRINCIPAL_MOMENT_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3,)
+        float64 moments J1 ≤ J2 ≤ J3 ≤ J1 + J2 (kg m²), > 0.
+
+    Raises
+    ------
+    InvalidArgument
+        A bound not a finite real number > 0, or ``min_scale`` > ``max_scale``;
+        ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    Ascending, and the triangle inequality holds exactly in float64, flat plates included:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=50, derandomize=True)
+    ... @given(principal_moments())
+    ... def test_triangle(J):
+    ...     assert 0 < J[0] <= J[1] <= J[2] <= J[0] + J[1]
+    >>> test_triangle()
     """
     lo = check_positive(min_scale, "min_scale")
     hi = check_positive(max_scale, "max_scale")
@@ -203,6 +260,35 @@ def inertia_tensors(
     :func:`mechanics.strategies.rotation_matrices`, so every regime of both is
     reached (near-degenerate moments in a general basis, flat bodies turned by
     near-π rotations, ...).  Shrinks toward the unit tensor.
+
+    Parameters
+    ----------
+    moments : SearchStrategy, optional
+        Principal moments of shape (3,) (default :func:`principal_moments`).
+    rotations : SearchStrategy, optional
+        Rotation matrices of shape (3, 3) (default
+        :func:`mechanics.strategies.rotation_matrices`).
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3, 3)
+        float64 inertia tensors (kg m²) that pass :func:`mechanics.inertia.check_inertia`.
+
+    Raises
+    ------
+    InvalidArgument
+        ``moments`` or ``rotations`` not a hypothesis strategy.
+
+    Examples
+    --------
+    The trace is the sum of the moments in any basis, and the tensor is exactly symmetric:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(inertia_tensors(moments=st.just(np.array([1.0, 2.0, 2.5]))))
+    ... def test_trace(J):
+    ...     assert (J == J.T).all() and abs(np.trace(J) - 5.5) <= 1e-14
+    >>> test_trace()
     """
     moments = principal_moments() if moments is None else moments
     rotations = rotation_matrices() if rotations is None else rotations
@@ -229,6 +315,35 @@ def rigid_bodies(
     of m: any tensor is realised by some mass distribution of any mass,
     Example 4.1), and r_G follows the regimes :data:`CENTRE_REGIMES`, measured
     in the body's size √(J3/m).
+
+    Parameters
+    ----------
+    min_mass, max_mass : float
+        Bounds of the mass (kg), finite, 0 < ``min_mass`` ≤ ``max_mass``.
+    tensors : SearchStrategy, optional
+        Inertia tensors J_G of shape (3, 3) (default :func:`inertia_tensors`).
+    regimes : iterable of str, optional
+        Some of :data:`CENTRE_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of RigidBody
+        :class:`RigidBody` records (m, J_G, r_G).
+
+    Raises
+    ------
+    InvalidArgument
+        A bound not a finite real number > 0, or ``min_mass`` > ``max_mass``; ``tensors``
+        not a hypothesis strategy; ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(rigid_bodies(min_mass=1.0, max_mass=2.0, regimes=["origin"]))
+    ... def test_body(b):
+    ...     assert 1.0 <= b.m <= 2.0 and b.r_G.tolist() == [0.0, 0.0, 0.0]
+    >>> test_body()
     """
     lo = check_positive(min_mass, "min_mass")
     hi = check_positive(max_mass, "max_mass")

@@ -82,7 +82,34 @@ PAIR_FORCE_REGIMES = ("none", "central", "non-central")
 
 
 class ParticleSystem(NamedTuple):
-    """Masses ``(N,)``, positions ``(N, 3)`` and velocities ``(N, 3)``."""
+    """Masses ``(N,)``, positions ``(N, 3)`` and velocities ``(N, 3)``.
+
+    A named tuple, as :func:`particle_systems` draws it: it unpacks as ``m, r, v``; its
+    constructor checks nothing.
+
+    Parameters
+    ----------
+    m : ndarray, shape (N,)
+        Masses (kg), > 0.
+    r : ndarray, shape (N, 3)
+        Positions (m).
+    v : ndarray, shape (N, 3)
+        Velocities (m/s).
+
+    Raises
+    ------
+    TypeError
+        A field missing, or an argument too many (the named tuple's constructor).
+    AttributeError
+        On assigning to a field (a tuple is immutable).
+
+    Examples
+    --------
+    >>> s = ParticleSystem(np.ones(2), np.zeros((2, 3)), np.zeros((2, 3)))
+    >>> m, r, v = s
+    >>> m is s.m is s[0], r.shape
+    (True, (2, 3))
+    """
 
     m: npt.NDArray[np.float64]
     r: npt.NDArray[np.float64]
@@ -185,6 +212,37 @@ def masses(
     Regimes (:data:`MASS_REGIMES`): ``unit`` (all 1.0, when 1 is in the
     bounds), ``equal``, ``log-uniform``, ``extreme-ratio`` (masses at the two
     bounds: 1e-6 and 1e6 by default).  Shrinks toward one unit mass.
+
+    Parameters
+    ----------
+    min_particles, max_particles : int
+        Bounds of N, 1 ≤ ``min_particles`` ≤ ``max_particles``.
+    min_value, max_value : float
+        Bounds of each mass (kg), finite, 0 < ``min_value`` ≤ ``max_value``.
+    regimes : iterable of str, optional
+        Some of :data:`MASS_REGIMES` (default all; ``unit`` only where 1 is in the bounds).
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (N,)
+        float64 masses (kg).
+
+    Raises
+    ------
+    InvalidArgument
+        A count not an integer ≥ 1, or ``min_particles`` > ``max_particles``; a mass bound
+        not a finite real number, ``min_value`` ≤ 0 or ``min_value`` > ``max_value``;
+        ``regimes`` a string, empty, with an unknown name, or ``unit`` alone without 1 in
+        the bounds.
+
+    Examples
+    --------
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(masses(max_particles=4, min_value=1.0, max_value=2.0))
+    ... def test_bounds(m):
+    ...     assert 1 <= m.shape[0] <= 4 and ((1.0 <= m) & (m <= 2.0)).all()
+    >>> test_bounds()
     """
     nlo = check_int(min_particles, "min_particles", 1)
     nhi = check_int(max_particles, "max_particles", 1)
@@ -232,6 +290,40 @@ def particle_systems(
     have magnitude :data:`FAR_OFFSET`, signs drawn) and ``fast-translation``
     (common velocity of magnitude ~1e6).  ``regimes`` restricts the draw.
     Shrinks toward one unit mass at rest at the origin.
+
+    Parameters
+    ----------
+    min_particles, max_particles : int
+        Bounds of N, 1 ≤ ``min_particles`` ≤ ``max_particles`` (default 1 … 50).
+    min_mass, max_mass : float
+        Bounds of each mass (kg), finite, 0 < ``min_mass`` ≤ ``max_mass``.
+    regimes : iterable of str, optional
+        Some of :data:`SYSTEM_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of ParticleSystem
+        :class:`ParticleSystem` records (m, r, v).
+
+    Raises
+    ------
+    InvalidArgument
+        A count not an integer ≥ 1, or ``min_particles`` > ``max_particles``; a mass bound
+        not a finite real number, ``min_mass`` ≤ 0 or ``min_mass`` > ``max_mass``;
+        ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    p = M v_G (1.7), the two sides computed apart:
+
+    >>> from hypothesis import given, settings
+    >>> from mechanics.particles import centre_of_mass_velocity, momentum, total_mass
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(particle_systems(max_particles=5, regimes=["simple", "generic"]))
+    ... def test_momentum(s):
+    ...     p = momentum(s.m, s.v)
+    ...     assert np.allclose(total_mass(s.m) * centre_of_mass_velocity(s.m, s.v), p)
+    >>> test_momentum()
     """
     nlo = check_int(min_particles, "min_particles", 1)
     nhi = check_int(max_particles, "max_particles", 1)
@@ -289,6 +381,38 @@ def pair_forces(
     (zero for coincident particles); ``non-central``: a central part plus a
     part perpendicular to r_kj of magnitude in [5e-4, 0.25] × ``max_magnitude``
     (along any direction for coincident particles).  Shrinks toward no force.
+
+    Parameters
+    ----------
+    r : array_like, shape (N, 3)
+        Positions of the particles (m), finite, N ≥ 1.
+    max_magnitude : float
+        The bound on |f_kj| (N), finite and > 0.
+    regimes : iterable of str, optional
+        Some of :data:`PAIR_FORCE_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (N, N, 3)
+        float64 forces, ``f[k, j]`` on k from j (N).
+
+    Raises
+    ------
+    InvalidArgument
+        ``r`` not of shape (N, 3) with N ≥ 1 or not finite; ``max_magnitude`` not a finite
+        real number > 0; ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    Newton's third law (1.19), exactly:
+
+    >>> from hypothesis import given, settings
+    >>> r = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 2.0, 0.0]]
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(pair_forces(r))
+    ... def test_third_law(f):
+    ...     assert (f == -np.swapaxes(f, 0, 1)).all()
+    >>> test_third_law()
     """
     rr = np.asarray(r, dtype=np.float64)
     if rr.ndim != 2 or rr.shape[1] != 3 or rr.shape[0] < 1:

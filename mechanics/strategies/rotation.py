@@ -167,6 +167,22 @@ def unit_vectors() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     e1), ``general`` (height z uniform in [−1, 1], azimuth uniform in [−π, π]:
     uniform on the sphere), ``near-axis`` (a coordinate axis tilted by 1e-12 …
     1e-3, so that two components are tiny).  The norm is 1 within one ulp.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3,)
+        float64 unit vectors; shrinks toward e1.
+
+    Examples
+    --------
+    The norm is 1 within one ulp:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=50, derandomize=True)
+    ... @given(unit_vectors())
+    ... def test_unit(u):
+    ...     assert abs(math.hypot(*u) - 1.0) <= math.ulp(1.0)
+    >>> test_unit()
     """
 
     tilts = log_uniform(1e-12, 1e-3, shrink_to="hi")
@@ -212,6 +228,37 @@ def rotation_angles(
     (π − δ, δ log-uniform from one ulp of π to :data:`NEAR_PI_WIDTH`) and ``pi``
     (exactly ``math.pi``).  ``regimes`` restricts the draw to some of them.
     Shrinks toward 0 (the identity), or the lower bound.
+
+    Parameters
+    ----------
+    min_value, max_value : float
+        The bounds (rad), finite, 0 ≤ ``min_value`` ≤ ``max_value`` ≤ π.
+    regimes : iterable of str, optional
+        Some of :data:`ANGLE_REGIMES` (default all); those that cannot meet the bounds
+        are left out.
+
+    Returns
+    -------
+    SearchStrategy of float
+        Angles φ (rad) in [``min_value``, ``max_value``].
+
+    Raises
+    ------
+    InvalidArgument
+        A bound not a finite real number, ``min_value`` < 0, ``max_value`` > π or
+        ``min_value`` > ``max_value``; ``regimes`` a string, empty, with an unknown name,
+        or with none reachable in the bounds.
+
+    Examples
+    --------
+    The tiny regime alone, inside its range:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(rotation_angles(regimes=["tiny"]))
+    ... def test_tiny(phi):
+    ...     assert TINY_ANGLE_RANGE[0] <= phi <= TINY_ANGLE_RANGE[1]
+    >>> test_tiny()
     """
     lo = check_real(min_value, "min_value")
     hi = check_real(max_value, "max_value")
@@ -276,6 +323,38 @@ def rotvecs(
     independent magnitudes over 1e-300 … 1e300).  ``regimes`` restricts the draw;
     when ``axes`` or ``angles`` is given and ``regimes`` is not, only
     ``axis-angle`` is drawn (the one regime they shape).  Shrinks toward zero.
+
+    Parameters
+    ----------
+    axes : SearchStrategy, optional
+        Unit vectors of shape (3,) for ``axis-angle`` (default :func:`unit_vectors`).
+    angles : SearchStrategy, optional
+        Angles (rad) for ``axis-angle`` (default :func:`rotation_angles`).
+    regimes : iterable of str, optional
+        Some of :data:`ROTVEC_REGIMES` (default all, or ``axis-angle`` alone when
+        ``axes`` or ``angles`` is given).
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3,)
+        float64 rotation vectors φ e_a (rad).
+
+    Raises
+    ------
+    InvalidArgument
+        ``axes`` or ``angles`` not a hypothesis strategy; ``regimes`` a string, empty or
+        with an unknown name.
+
+    Examples
+    --------
+    The norm is the drawn angle within an ulp or two:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(rotvecs(angles=st.just(math.pi)))
+    ... def test_half_turns(v):
+    ...     assert abs(math.hypot(*v) - math.pi) <= 2 * math.ulp(math.pi)
+    >>> test_half_turns()
     """
     for name, s in (("axes", axes), ("angles", angles)):
         if s is not None and not isinstance(s, st.SearchStrategy):
@@ -328,6 +407,35 @@ def euler_angles(
     (magnitude in [1e-3, π], either sign): at gimbal lock only ψ + φ (θ = 0) or
     ψ − φ (θ = π) is defined, and zero outer angles would hide a wrong split.
     ``regimes`` restricts the draw to some of them.  Shrinks toward (0, 0, 0).
+
+    Parameters
+    ----------
+    regimes : iterable of str, optional
+        Some of :data:`EULER_REGIMES` (default all).
+
+    Returns
+    -------
+    SearchStrategy of tuple of float
+        (ψ, θ, φ) (rad).
+
+    Raises
+    ------
+    InvalidArgument
+        ``regimes`` a string, empty or with an unknown name.
+
+    Examples
+    --------
+    At θ = 0 only ψ + φ is defined: the matrix of (ψ, 0, φ) is that of (ψ + φ, 0, 0).
+
+    >>> from hypothesis import given, settings
+    >>> from mechanics.testing import assert_rotations_close
+    >>> @settings(max_examples=30, derandomize=True)
+    ... @given(euler_angles(regimes=["theta-zero"]))
+    ... def test_gimbal_lock(a):
+    ...     psi, theta, phi = a
+    ...     assert_rotations_close(_rot.matrix_from_euler(psi, theta, phi),
+    ...                            _rot.matrix_from_euler(psi + phi, 0.0, 0.0))
+    >>> test_gimbal_lock()
     """
     names = check_regimes(regimes, EULER_REGIMES, "euler_angles")
     outer = st.tuples(st.floats(_OUTER_MIN, math.pi), st.sampled_from((1.0, -1.0))).map(
@@ -373,6 +481,22 @@ def quaternions() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     :func:`rotvecs` (tiny angles, w near 0).  Each is negated half of the time,
     since q and −q are the same rotation.  The norm is 1 within a few ulps.
     Shrinks toward the identity.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (4,)
+        float64 unit quaternions (w, x, y, z).
+
+    Examples
+    --------
+    q and −q give the same matrix, to the bit:
+
+    >>> from hypothesis import given, settings
+    >>> @settings(max_examples=50, derandomize=True)
+    ... @given(quaternions())
+    ... def test_sign(q):
+    ...     assert (_rot.matrix_from_quat(q) == _rot.matrix_from_quat(-q)).all()
+    >>> test_sign()
     """
     signs = st.sampled_from((1.0, -1.0))
     # built once, not per draw (a strategy built inside a draw costs more than the draw)
@@ -409,6 +533,23 @@ def rotation_matrices() -> st.SearchStrategy[npt.NDArray[np.float64]]:
     :func:`~mechanics.rotation.matrix_from_euler` or
     :func:`~mechanics.rotation.matrix_from_quat`, so every hard regime of those
     strategies reaches the matrices.  Shrinks toward the identity.
+
+    Returns
+    -------
+    SearchStrategy of ndarray, shape (3, 3)
+        float64 rotation matrices ^A R^O.
+
+    Examples
+    --------
+    A matrix and the matrix of its quaternion agree within the round-trip accuracy:
+
+    >>> from hypothesis import given, settings
+    >>> from mechanics.testing import assert_rotations_close
+    >>> @settings(max_examples=50, derandomize=True)
+    ... @given(rotation_matrices())
+    ... def test_round_trip(R):
+    ...     assert_rotations_close(_rot.matrix_from_quat(_rot.quat_from_matrix(R)), R)
+    >>> test_round_trip()
     """
     perms = st.permutations([0, 1, 2])
     signs = st.tuples(*(st.sampled_from((1.0, -1.0)),) * 2)
