@@ -259,7 +259,8 @@ def interpolate(t, y, tau: float, deg: int = 5) -> float:
     ValueError
         Where ``deg`` < 0 or a sample is not a number.
     IndexError
-        Where ``t`` is empty.
+        Where ``t`` is empty (with one sample numpy's fit fails instead: a RuntimeWarning
+        of a division by zero, then ``numpy.linalg.LinAlgError``).
 
     Examples
     --------
