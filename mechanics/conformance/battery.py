@@ -112,8 +112,36 @@ STATUSES = ("pass", "fail", "unsupported", "error")
 
 @dataclass
 class Figure:
-    """One figure of a scenario: ``kind`` ``"error"`` (relative unless ``attitude``),
-    ``"drift"`` or ``"order"``; ``passed`` is None when the figure is not checked."""
+    """One figure of a scenario: its value, its threshold and whether it passed.
+
+    Parameters
+    ----------
+    name : str
+        The figure's name (``"velocity"``, ``"E_drift"``, ``"apex_height"``, ``"order"``).
+    kind : {"error", "drift", "order"}
+        ``"error"`` (relative unless ``attitude``), ``"drift"`` (relative to the
+        quantity's scale) or ``"order"`` (of convergence; its threshold a lower bound).
+    value : float or None
+        The measured value (inf: could not be read, see ``note``; None: no value).
+    threshold : float or None
+        Its bound (None: reported, not checked).
+    passed : bool or None
+        Whether the value is within the bound; None when the figure is not checked.
+    note : str, optional
+        Why a value could not be read, or how it was (default "").
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value).
+
+    Examples
+    --------
+    >>> f = Figure("velocity", "error", 2**-11, 2**-10, True)
+    >>> f.passed == (f.value <= f.threshold), f.describe()
+    (True, 'velocity 0.000488 within threshold <= 0.000977')
+    """
 
     name: str
     kind: str
@@ -137,8 +165,33 @@ class Figure:
 
 @dataclass
 class Run:
-    """One run of the adapter: the step (None: the engine's own), the wall time and the
-    largest relative state error."""
+    """One run of the adapter: the step, the wall time and the largest relative error.
+
+    Parameters
+    ----------
+    step : float or None
+        The fixed step, s (None: the engine chose its own).
+    wall_time : float
+        The run's wall time, s (``perf_counter``).
+    error : float
+        The largest relative state error of the run (for a scenario with impacts, the
+        largest error of its event figures).
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value).
+
+    Examples
+    --------
+    The exact column runs once, at its own step, with no error:
+
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> (run,) = run_battery(ExactAdapter(), scenarios=["parabola"]).results[0].runs
+    >>> run.step, run.error, run.wall_time >= 0
+    (None, 0.0, True)
+    """
 
     step: float | None
     wall_time: float
@@ -147,8 +200,44 @@ class Run:
 
 @dataclass
 class ScenarioResult:
-    """A scenario's verdict: ``status`` in :data:`STATUSES`, ``message`` the reason
-    (failed figures, the adapter's exception, its unsupported reason)."""
+    """A scenario's verdict: its status, the reason, its figures and runs.
+
+    Parameters
+    ----------
+    scenario : str
+        The scenario's name.
+    description : str
+        Its one-line description.
+    book : str
+        What its reference comes from.
+    status : {"pass", "fail", "unsupported", "error"}
+        The verdict (:data:`STATUSES`).
+    message : str, optional
+        The reason: the failed figures, the adapter's exception, its unsupported reason
+        (default "").
+    figures : list of Figure, optional
+        Every figure judged (default none).
+    runs : list of Run, optional
+        The runs, coarse to fine (default none).
+    diagnosis : list of str, optional
+        What the failing figures imply (:mod:`~mechanics.conformance.diagnosis`).
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value).
+
+    Examples
+    --------
+    The worst figure is the one nearest its bound:
+
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> r = run_battery(ExactAdapter(), scenarios=["parabola"]).results[0]
+    >>> ratio = {f.name: f.value / f.threshold for f in r.figures if f.kind != "order"}
+    >>> r.status, r.worst.name == max(ratio, key=ratio.get)
+    ('pass', True)
+    """
 
     scenario: str
     description: str
@@ -203,7 +292,39 @@ class ScenarioResult:
 
 @dataclass
 class Report:
-    """The battery's results for one adapter, in scenario order."""
+    """The battery's results for one adapter, in scenario order.
+
+    Parameters
+    ----------
+    adapter : str
+        The adapter's name.
+    results : list of ScenarioResult
+        One per scenario, in the order run.
+    thresholds : dict
+        The thresholds set over the profile's (the adapter's, the file's, the caller's).
+    profile : str, optional
+        The profile's name (default ``"default"``).
+    config : str, optional
+        The file (and table) the settings came from; "" (default) when none was read.
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value).
+
+    Examples
+    --------
+    Its counts add up to its scenarios, and its JSON says the same:
+
+    >>> import json
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> report = run_battery(ExactAdapter(), scenarios=["parabola", "rocket"])
+    >>> sum(report.counts().values()) == len(report.results), report["rocket"].status
+    (True, 'pass')
+    >>> json.loads(report.to_json())["counts"] == report.counts()
+    True
+    """
 
     adapter: str
     results: list[ScenarioResult]
@@ -295,7 +416,40 @@ def state_errors(s: Scenario, ref: Trajectory, tr: Trajectory) -> dict[str, floa
     velocity: |Δv| / V, V the larger of the largest |v| and L·max|ω|;
     omega: |Δω| / max|ω| (V/L for bodies that do not turn);
     attitude: max |ΔR_ij| (absolute: the entries of a rotation are at most 1);
-    mass: |Δm| / m₀, where the scenario has thrust (inf when no masses are returned)."""
+    mass: |Δm| / m₀, where the scenario has thrust (inf when no masses are returned).
+
+    Parameters
+    ----------
+    s : Scenario
+        The scenario.
+    ref : Trajectory
+        Its exact trajectory (:func:`~.scenarios.reference`): the scales come from it.
+    tr : Trajectory
+        The engine's trajectory, validated (:func:`~.protocol.check_trajectory`).
+
+    Returns
+    -------
+    dict of str to float
+        ``position``, ``velocity``, ``attitude``, ``omega`` and, with thrust, ``mass``.
+
+    Raises
+    ------
+    ValueError
+        Where the two trajectories' arrays do not broadcast (nothing is validated here:
+        the battery validates ``tr`` first).
+    ZeroDivisionError
+        Where a body's mass is 0 (:func:`~.scenarios.body_sizes`).
+
+    Examples
+    --------
+    The exact trajectory against itself:
+
+    >>> from mechanics.conformance import get_scenario, reference
+    >>> s = get_scenario("free_top_axis3")
+    >>> ref = reference(s).trajectory
+    >>> state_errors(s, ref, ref)
+    {'position': 0.0, 'velocity': 0.0, 'attitude': 0.0, 'omega': 0.0}
+    """
     L = max(float(np.max(np.linalg.norm(ref.position, axis=-1))), float(body_sizes(s).max()))
     W = float(np.max(np.linalg.norm(ref.omega, axis=-1)))
     V = max(float(np.max(np.linalg.norm(ref.velocity, axis=-1))), L * W)
@@ -491,6 +645,22 @@ def run_battery(
     -------
     Report
         One :class:`ScenarioResult` per scenario.
+
+    Raises
+    ------
+    ConformanceError
+        Where the adapter lacks ``name``, ``takes_step``, ``supports`` or ``run``, or
+        ``repeats`` is not an int ≥ 1.  (An adapter that raises, or returns what the
+        protocol refuses, makes its scenario an ``"error"``: the battery goes on.)
+    UnknownScenarioError
+        Where a scenario is neither a name nor a :class:`~.protocol.Scenario`, or is an
+        unknown name or kind.
+    ScenarioRangeError
+        Where a user's scenario is outside its valid range
+        (:func:`~.scenarios.check_scenario`).
+    ThresholdError
+        Where a threshold (the caller's or the adapter's) is unknown or not a number ≥ 0,
+        or a profile does not exist.
 
     Examples
     --------

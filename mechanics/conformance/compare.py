@@ -34,8 +34,27 @@ ENGINE_MODULES = (
 
 
 def engine_adapters() -> list[tuple[str, object]]:
-    """(family, adapter) for the references and each engine variant; for an engine that
-    is not installed, (family, the reason as a string) once."""
+    """(family, adapter) for the references and each engine variant, or why an engine is missing.
+
+    For an engine that is not installed the list holds (family, the reason as a string)
+    once, in place of its variants.
+
+    Returns
+    -------
+    list of (str, Adapter or str)
+        The family (``"reference"`` or the engine's name, :data:`ENGINE_MODULES`) and an
+        adapter, or the reason the engine cannot run.
+
+    Examples
+    --------
+    The two references first, then every engine, installed or not:
+
+    >>> adapters = engine_adapters()
+    >>> [a.name for _, a in adapters[:2]]
+    ['exact (closed forms)', 'bodycheck scene engine (integrate)']
+    >>> {family for family, _ in adapters} == {"reference", *(e for _, e, _ in ENGINE_MODULES)}
+    True
+    """
     import importlib
 
     from .adapters import ExactAdapter, MissingExtraError, SceneEngineAdapter
@@ -71,7 +90,31 @@ def _worst(r: ScenarioResult, kind: str) -> Figure | None:
 
 @dataclass
 class Comparison:
-    """Reports per adapter (in the order run) and the engines that could not run."""
+    """Reports per adapter (in the order run) and the engines that could not run.
+
+    Parameters
+    ----------
+    reports : list of (str, Report)
+        (family, the battery's report) per adapter, each over the same scenarios in the
+        same order.
+    missing : list of (str, str), optional
+        (family, reason) for each engine that could not run (default none).
+
+    Raises
+    ------
+    TypeError
+        Where ``reports`` is missing (the dataclass's constructor; it checks no value).
+
+    Examples
+    --------
+    One row per scenario and adapter:
+
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> report = run_battery(ExactAdapter(), scenarios=["parabola", "rocket"])
+    >>> c = Comparison([("reference", report)])
+    >>> [(row["scenario"], row["status"]) for row in c.rows()]
+    [('parabola', 'pass'), ('rocket', 'pass')]
+    """
 
     reports: list[tuple[str, Report]]
     missing: list[tuple[str, str]] = field(default_factory=list)
@@ -147,9 +190,48 @@ class Comparison:
 def compare(
     adapters=None, *, scenarios=None, thresholds=None, profile=None, config=None, repeats=1
 ) -> Comparison:
-    """Run the battery on each of ``adapters`` ((family, adapter or reason) pairs;
-    default :func:`engine_adapters`), each with the same ``scenarios``, ``thresholds``,
-    ``profile``, ``config`` and ``repeats`` (:func:`~.battery.run_battery`)."""
+    """Run the battery on each of ``adapters``, each with the same settings.
+
+    Parameters
+    ----------
+    adapters : iterable of (str, Adapter or str), optional
+        (family, adapter) pairs, or (family, reason) for an engine that cannot run
+        (listed in :attr:`Comparison.missing`); default :func:`engine_adapters`.
+    scenarios : iterable of str or Scenario, optional
+        As for :func:`~.battery.run_battery` (default all).
+    thresholds : dict, optional
+        As for :func:`~.battery.run_battery`.
+    profile : str, optional
+        As for :func:`~.battery.run_battery`.
+    config : Config, optional
+        As for :func:`~.battery.run_battery`.
+    repeats : int, optional
+        How many times each finest run is timed (default 1).
+
+    Returns
+    -------
+    Comparison
+        The reports in the order given and the engines that could not run.
+
+    Raises
+    ------
+    ConformanceError
+        Where an adapter lacks a member of the protocol, or ``repeats`` is not an int ≥ 1.
+    UnknownScenarioError
+        Where a scenario is unknown (by name or kind) or neither a name nor a scenario.
+    ScenarioRangeError
+        Where a user's scenario is outside its valid range.
+    ThresholdError
+        Where a threshold or the profile is refused.
+
+    Examples
+    --------
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> pairs = [("reference", ExactAdapter()), ("Nope", "not installed")]
+    >>> c = compare(pairs, scenarios=["parabola"])
+    >>> [row["status"] for row in c.rows()], c.missing
+    (['pass'], [('Nope', 'not installed')])
+    """
     adapters = engine_adapters() if adapters is None else adapters
     reports, missing = [], []
     for family, adapter in adapters:

@@ -186,9 +186,50 @@ def _restitution(s: Scenario, figures: Mapping, tr: Trajectory, measured: Mappin
 def diagnose(
     s: Scenario, ref: Trajectory, tr: Trajectory, figures: Mapping, measured: Mapping
 ) -> list[str]:
-    """The sentences the rules of this module say about a run's ``figures`` (name →
-    :class:`~.battery.Figure`) of scenario ``s``: ``tr`` the finest run, ``ref`` the
-    exact trajectory, ``measured`` the derived figures read off ``tr``."""
+    """The sentences the rules of this module say about a run's figures.
+
+    Parameters
+    ----------
+    s : Scenario
+        The scenario run.
+    ref : Trajectory
+        Its exact trajectory.
+    tr : Trajectory
+        The finest run, validated (:func:`~.protocol.check_trajectory`).
+    figures : Mapping
+        The run's figures by name (name → :class:`~.battery.Figure`).
+    measured : Mapping
+        The derived figures read off ``tr`` (:func:`~.scenarios.measure`).
+
+    Returns
+    -------
+    list of str
+        One sentence per rule that fires (the order, the attitude, the rotational
+        dynamics, the restitution), in that order; empty when none does.
+
+    Raises
+    ------
+    ValueError
+        Where ``tr`` and ``ref`` do not broadcast (nothing is validated here).
+    MechanicsValueError
+        Where a bounce's apexes must be read and the scenario has no ground or the ball
+        no shape (:func:`~.scenarios.bounce_apexes`).
+
+    Examples
+    --------
+    An engine that returns its active matrix, the passive ^A R^O transposed:
+
+    >>> import dataclasses
+    >>> from mechanics.conformance import Figure, get_scenario, reference
+    >>> s = get_scenario("free_top_axis3")
+    >>> ref = reference(s).trajectory
+    >>> tr = dataclasses.replace(ref, R_A_O=np.swapaxes(ref.R_A_O, -1, -2))
+    >>> off = float(np.max(np.abs(tr.R_A_O - ref.R_A_O)))
+    >>> figures = {"attitude": Figure("attitude", "error", off, 2**-10, False)}
+    >>> out = diagnose(s, ref, tr, figures, {})
+    >>> len(out), "its active (body-to-world) matrix" in out[0]
+    (1, True)
+    """
     attitude, transposed = _attitude(figures, ref, tr)
     out = _order(figures) + attitude
     if not transposed:

@@ -39,16 +39,50 @@ LAW_EQUATIONS = {
 
 
 def law_violations(s: Scenario, trajectory: Trajectory, *, rtol: float) -> list[str]:
-    """One sentence per law the trajectory breaks by more than ``rtol`` (relative to the
-    law's scale); an empty list when it keeps them all.  The trajectory is validated
-    first (:func:`~.protocol.check_trajectory`: shapes, finite values, rotations).
+    """One sentence per law the trajectory breaks by more than ``rtol``; empty when none.
+
+    ``rtol`` is relative to the law's scale.  The trajectory is validated first
+    (:func:`~.protocol.check_trajectory`: shapes, finite values, rotations).
+
+    Parameters
+    ----------
+    s : Scenario
+        A scenario of a known kind, built in or drawn.
+    trajectory : Trajectory
+        Any engine's trajectory of ``s``.
+    rtol : float
+        The tolerance, relative to each law's scale, finite, ≥ 0.
+
+    Returns
+    -------
+    list of str
+        One sentence per broken law, naming it and the book's equation
+        (:data:`LAW_EQUATIONS`).
+
+    Raises
+    ------
+    ValueError
+        Where ``rtol`` is not a finite number ≥ 0.
+    ConformanceError
+        Where the trajectory breaks the protocol (:func:`~.protocol.check_trajectory`).
+    UnknownScenarioError
+        Where the scenario's kind is unknown.
 
     Examples
     --------
+    The exact parabola keeps its laws; half its horizontal speed lost, it breaks two:
+
+    >>> import dataclasses
     >>> from mechanics.conformance import get_scenario, reference
     >>> s = get_scenario("parabola")
-    >>> law_violations(s, reference(s).trajectory, rtol=2**-40)
+    >>> tr = reference(s).trajectory
+    >>> law_violations(s, tr, rtol=2**-40)
     []
+    >>> v = tr.velocity.copy()
+    >>> v[1:, :, 0] *= 0.5
+    >>> slowed = dataclasses.replace(tr, velocity=v)
+    >>> [law.split()[0] for law in law_violations(s, slowed, rtol=2**-10)]
+    ['E', 'p_horizontal']
     """
     if not (isinstance(rtol, int | float) and np.isfinite(rtol) and rtol >= 0):
         raise ValueError(f"rtol must be a finite number >= 0; got {rtol!r}")

@@ -59,6 +59,27 @@ def conformance_tests(adapter, *, thresholds=None, scenarios=None, profile=None,
     function
         ``test(scenario_name)`` decorated with ``pytest.mark.parametrize``; assign it
         to a module-level name starting with ``test``.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where a scenario is unknown (by name or kind).
+    ScenarioRangeError
+        Where a user's scenario is outside its valid range.
+    ThresholdError
+        Where a threshold or the profile is refused, or the thresholds file is (missing,
+        not TOML, an unknown key or value).
+    ImportError
+        Where pytest is not installed.
+
+    Examples
+    --------
+    One parametrised test; run by hand it passes (returns None):
+
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> test_exact = conformance_tests(ExactAdapter(), scenarios=["parabola"], config=False)
+    >>> [m.name for m in test_exact.pytestmark], test_exact("parabola")
+    (['parametrize'], None)
     """
     import pytest
 

@@ -83,8 +83,33 @@ class ConformanceError(MechanicsValueError):
 
 @dataclass(frozen=True)
 class Shape:
-    """A body's collision shape: ``kind`` is ``"sphere"`` (dims (r,)), ``"box"`` (half
-    extents (a, b, c)) or ``"cylinder"`` (dims (r, h), h the half length along axis 3)."""
+    """A body's collision shape, centred on G with its axes along the body axes.
+
+    ``kind`` is ``"sphere"`` (dims (r,)), ``"box"`` (half extents (a, b, c)) or
+    ``"cylinder"`` (dims (r, h), h the half length along axis 3).
+
+    Parameters
+    ----------
+    kind : {"sphere", "box", "cylinder"}
+        The shape's kind.
+    dims : tuple of float
+        Its dimensions, m, > 0: (r,) for a sphere; the half extents (a, b, c) along body
+        axes 1, 2, 3 for a box; (r, h) for a cylinder, h the half length along axis 3.
+
+    Raises
+    ------
+    TypeError
+        Where a field is missing (the dataclass's constructor; it checks no value:
+        :func:`~.scenarios.check_scenario` and the adapters judge them).
+
+    Examples
+    --------
+    The battery's box, whose half extents give J = (2, 3, 4) at 1 kg, J₁ = m (b² + c²)/3:
+
+    >>> a, b, c = Shape("box", (7.5**0.5, 4.5**0.5, 1.5**0.5)).dims
+    >>> [round((y * y + z * z) / 3, 12) for y, z in ((b, c), (a, c), (a, b))]
+    [2.0, 3.0, 4.0]
+    """
 
     kind: str
     dims: tuple[float, ...]
@@ -92,7 +117,43 @@ class Shape:
 
 @dataclass(frozen=True)
 class Body:
-    """A rigid body: mass m, principal moments about G, optional shape, initial state."""
+    """A rigid body: mass m, principal moments about G, optional shape, initial state.
+
+    Parameters
+    ----------
+    name : str
+        How reports and engines' models name the body.
+    mass : float
+        Its mass m, kg, > 0.
+    inertia : tuple of float
+        The principal moments (J₁, J₂, J₃) about G, kg m², ≥ 0, in the body axes A.
+    shape : Shape or None, optional
+        Its collision shape (default None: the body collides with nothing).
+    position : tuple of float, optional
+        The initial position of G, m, in space components (default the origin).
+    velocity : tuple of float, optional
+        The initial velocity of G, m/s, in space components (default 0).
+    R_A_O : tuple of tuple of float, optional
+        The initial passive attitude ^A R^O, a 3×3 tuple of rows (default the identity).
+    omega : tuple of float, optional
+        The initial angular velocity, rad/s, in body components (default 0).
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value: :func:`~.scenarios.check_scenario` and the adapters judge them).
+
+    Examples
+    --------
+    A solid sphere's moments are 2/5 m r²; the attitude starts at the identity:
+
+    >>> b = Body("ball", 2.0, (0.8, 0.8, 0.8), Shape("sphere", (1.0,)))
+    >>> b.inertia[0] == 0.4 * b.mass * b.shape.dims[0] ** 2
+    True
+    >>> np.array(b.R_A_O).tolist() == np.eye(3).tolist()
+    True
+    """
 
     name: str
     mass: float
@@ -112,8 +173,41 @@ class Body:
 
 @dataclass(frozen=True)
 class Ground:
-    """The plane normal · x = height; contacts with it restitute with ``restitution``
-    and have Coulomb friction ``friction`` (μ ≥ 0; 0: smooth)."""
+    """The plane normal · x = height, with restitution e and Coulomb friction μ.
+
+    Contacts with it restitute with ``restitution`` (Newton's law, 6.6) and have Coulomb
+    friction ``friction`` (μ ≥ 0; 0: smooth).
+
+    Parameters
+    ----------
+    restitution : float
+        The coefficient of restitution e of a contact with the plane, in [0, 1] (not
+        checked here).
+    normal : tuple of float, optional
+        The plane's unit normal n, space components, pointing to the bodies' side
+        (default (0, 0, 1)).
+    height : float, optional
+        The plane's height along n, m: its points x have n · x = height (default 0).
+    friction : float, optional
+        Coulomb's coefficient μ, finite, ≥ 0 (default 0: smooth).
+
+    Raises
+    ------
+    MechanicsValueError
+        Where ``friction`` is not a finite number ≥ 0, or ``normal`` is not a unit
+        3-vector (its length 1 within :data:`UNIT_NORMAL_RTOL`).
+
+    Examples
+    --------
+    (0.6, 0.8, 0) is a unit normal; a normal of length 2 would make ``height`` ambiguous:
+
+    >>> Ground(0.5, normal=(0.6, 0.8, 0.0), height=1.0).height
+    1.0
+    >>> Ground(0.5, normal=(0.0, 0.0, 2.0))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.MechanicsValueError: Ground.normal must be a unit vector ...
+    """
 
     restitution: float
     normal: tuple[float, float, float] = (0.0, 0.0, 1.0)
@@ -140,8 +234,34 @@ class Ground:
 
 @dataclass(frozen=True)
 class Pivot:
-    """Body ``body`` (an index) has its point ``point`` (body components, relative to G)
-    held at ``anchor`` in space: a frictionless ball joint to the world."""
+    """A frictionless ball joint to the world: a point of one body held fixed in space.
+
+    Body ``body`` (an index) has its point ``point`` (body components, relative to G)
+    held at ``anchor`` in space.
+
+    Parameters
+    ----------
+    body : int
+        The index of the pivoted body in :attr:`Scenario.bodies`.
+    point : tuple of float
+        The pivot point relative to G, m, in body components.
+    anchor : tuple of float, optional
+        Where the point is held, m, in space components (default the origin).
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value: :func:`~.scenarios.check_scenario` and the adapters judge them).
+
+    Examples
+    --------
+    The heavy top's pivot 0.5 m below G on axis 3 (|point| = 0.5, on axis 3):
+
+    >>> p = Pivot(0, (0.0, 0.0, -0.5))
+    >>> float(np.linalg.norm(p.point)) == -p.point[2], p.anchor
+    (True, (0.0, 0.0, 0.0))
+    """
 
     body: int
     point: tuple[float, float, float]
@@ -150,9 +270,39 @@ class Pivot:
 
 @dataclass(frozen=True)
 class Thrust:
-    """A rocket motor on body ``body``: mass rate q > 0 (kg/s lost), exhaust speed u
-    relative to the body, thrust q·u along the body axis ``axis`` (a unit 3-vector in
-    body components) from t = 0 until ``burn_time``."""
+    """A rocket motor on one body: thrust q·u along a body axis until the burn ends (7.30).
+
+    Body ``body`` loses mass at rate q > 0 (kg/s), ejected at exhaust speed u relative to
+    the body, which is pushed by q·u along the body axis ``axis`` (a unit 3-vector in body
+    components) from t = 0 until ``burn_time``.
+
+    Parameters
+    ----------
+    body : int
+        The index of the rocket in :attr:`Scenario.bodies`.
+    mass_rate : float
+        q, the mass lost per second, kg/s, > 0.
+    exhaust_speed : float
+        u, the exhaust's speed relative to the body, m/s, > 0.
+    burn_time : float
+        When the motor stops, s, > 0 (q · burn_time kg of fuel burn).
+    axis : tuple of float, optional
+        The thrust's direction, a unit vector in body components (default (0, 0, 1)).
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value: :func:`~.scenarios.check_scenario` and the adapters judge them).
+
+    Examples
+    --------
+    The thrust q u (7.30) and the fuel burnt, q · burn_time:
+
+    >>> th = Thrust(0, mass_rate=0.5, exhaust_speed=100.0, burn_time=2.0)
+    >>> th.mass_rate * th.exhaust_speed, th.mass_rate * th.burn_time
+    (50.0, 1.0)
+    """
 
     body: int
     mass_rate: float
@@ -171,7 +321,53 @@ class Scenario:
     their contact; absent pairs do not collide.  ``steps`` are the fixed step sizes the
     battery asks of an adapter that takes one (coarse to fine, each a divisor of every
     sample time), for the order of convergence.  ``book`` names what the reference comes
-    from, e.g. ``"(5.85), Essén 5.3"``."""
+    from, e.g. ``"(5.85), Essén 5.3"``.
+
+    Parameters
+    ----------
+    name : str
+        The scenario's name (the report's row, a threshold key's prefix).
+    description : str
+        One line on what it tests.
+    book : str
+        What the reference comes from, e.g. ``"(5.85), Essén 5.3"``.
+    bodies : tuple of Body
+        The bodies in their initial states.
+    duration : float
+        The simulated time, s, > 0.
+    sample_times : tuple of float
+        The times, s, of the returned states: increasing, from 0 to ``duration``.
+    gravity : tuple of float, optional
+        The gravitational acceleration g, m/s², space components (default 0).
+    ground : Ground or None, optional
+        The ground plane (default None: none).
+    pair_restitution : tuple of (int, int, float), optional
+        (i, j, e) for each pair of body indices i < j that collide, with their e.
+    pivot : Pivot or None, optional
+        A ball joint to the world (default None).
+    thrust : Thrust or None, optional
+        A rocket motor (default None).
+    steps : tuple of float, optional
+        The fixed steps, s, asked of an adapter that takes one, coarse to fine.
+    extra : dict, optional
+        Free-form facts a reference or a report may need; ``extra["kind"]`` names the
+        scenario's kind (its reference and figures).
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value: :func:`~.scenarios.check_scenario` judges a scenario's range).
+
+    Examples
+    --------
+    The samples start at 0 and end at the duration; each step divides every sample time:
+
+    >>> s = Scenario("still", "a body at rest", "(1.1)", (Body("b", 1.0, (1.0, 1.0, 1.0)),),
+    ...              duration=1.0, sample_times=(0.0, 0.5, 1.0), steps=(0.25, 0.125))
+    >>> s.sample_times[-1] == s.duration, [t / h for t in s.sample_times for h in s.steps]
+    (True, [0.0, 0.0, 2.0, 4.0, 4.0, 8.0])
+    """
 
     name: str
     description: str
@@ -191,8 +387,28 @@ class Scenario:
 
 @dataclass(frozen=True)
 class Event:
-    """A contact event an adapter may report: its time, ``kind`` (``"impact"`` or
-    ``"separation"``) and the bodies (``-1`` is the ground)."""
+    """A contact event an adapter may report: its time, kind and the bodies.
+
+    Parameters
+    ----------
+    time : float
+        When it happened, s.
+    kind : {"impact", "separation"}
+        What happened.
+    bodies : tuple of (int, int)
+        The indices of the two bodies; ``-1`` is the ground.
+
+    Raises
+    ------
+    TypeError
+        Where a field is missing (the dataclass's constructor; it checks no value).
+
+    Examples
+    --------
+    >>> e = Event(0.5, "impact", (0, -1))
+    >>> e.kind, -1 in e.bodies
+    ('impact', True)
+    """
 
     time: float
     kind: str
@@ -201,10 +417,40 @@ class Event:
 
 @dataclass(frozen=True)
 class Trajectory:
-    """An engine's samples: ``t`` shape (m,), ``position`` and ``velocity`` (m, n, 3) of
-    each body's G in space components, ``R_A_O`` (m, n, 3, 3) passive attitudes,
-    ``omega`` (m, n, 3) in body components; ``masses`` (m, n) only where they change
-    (a rocket), else ``None``; ``events`` optional."""
+    """An engine's samples: the states of n bodies at m times.
+
+    Parameters
+    ----------
+    t : ndarray, shape (m,)
+        The sample times, s (the scenario's).
+    position : ndarray, shape (m, n, 3)
+        Each body's G, m, in space components.
+    velocity : ndarray, shape (m, n, 3)
+        Each body's v_G, m/s, in space components.
+    R_A_O : ndarray, shape (m, n, 3, 3)
+        Each body's passive attitude ^A R^O.
+    omega : ndarray, shape (m, n, 3)
+        Each body's angular velocity, rad/s, in body components.
+    masses : ndarray, shape (m, n), optional
+        The masses, kg, only where they change (a rocket); else None.
+    events : tuple of Event, optional
+        Contact events, if the engine reports them.
+
+    Raises
+    ------
+    TypeError
+        Where a required field is missing (the dataclass's constructor; it checks no
+        value: :func:`check_trajectory` validates an adapter's answer).
+
+    Examples
+    --------
+    One body at rest at two samples:
+
+    >>> z = np.zeros((2, 1, 3))
+    >>> tr = Trajectory(np.array([0.0, 1.0]), z, z, np.broadcast_to(np.eye(3), (2, 1, 3, 3)), z)
+    >>> tr.position.shape[:2] == (tr.t.size, 1), tr.masses is None
+    (True, True)
+    """
 
     t: np.ndarray
     position: np.ndarray
@@ -224,7 +470,27 @@ class Adapter(Protocol):
     of convergence), ``False`` when the engine chooses its own (``step`` is ``None``).
     ``supports(scenario)``: ``None`` when the engine can run it, else one sentence why
     not (the report shows it; a scenario is never passed by omission).
-    ``run(scenario, step)``: the trajectory at ``scenario.sample_times``."""
+    ``run(scenario, step)``: the trajectory at ``scenario.sample_times``.
+
+    A protocol is not instantiated: a user's class is an ``Adapter`` when it has these
+    four members (``isinstance`` checks them, :func:`~.battery.run_battery` too).
+
+    Parameters
+    ----------
+    *args, **kwargs
+        Refused: a protocol cannot be instantiated.
+
+    Raises
+    ------
+    TypeError
+        When the protocol itself is called.
+
+    Examples
+    --------
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> isinstance(ExactAdapter(), Adapter), isinstance(object(), Adapter)
+    (True, False)
+    """
 
     name: str
     takes_step: bool
@@ -252,10 +518,26 @@ def _field(scenario: Scenario, name: str, value, shape: tuple[int, ...]) -> np.n
 def check_trajectory(scenario: Scenario, trajectory) -> Trajectory:
     """Validate an adapter's answer against the protocol; return it as float64 arrays.
 
-    Raises :class:`ConformanceError` naming the scenario, the field and what was
-    expected: a non-``Trajectory``, a wrong shape, NaN or infinity, times that are not
-    the scenario's sample times (or out of order), attitudes that are not rotations
-    within :data:`ORTHOGONALITY_ATOL`, masses that are not positive.
+    Parameters
+    ----------
+    scenario : Scenario
+        The scenario the adapter ran.
+    trajectory : Trajectory
+        The adapter's answer (anything: what is not a :class:`Trajectory` is refused).
+
+    Returns
+    -------
+    Trajectory
+        The same samples as float64 arrays, the events as a tuple.
+
+    Raises
+    ------
+    ConformanceError
+        Naming the scenario, the field and what was expected: a non-``Trajectory``, a
+        wrong shape, NaN or infinity, times that are not the scenario's sample times
+        (within :data:`SAMPLE_TIME_RTOL`, or out of order), attitudes that are not
+        rotations within :data:`ORTHOGONALITY_ATOL`, masses that are not positive, events
+        that are not :class:`Event`.
 
     Examples
     --------

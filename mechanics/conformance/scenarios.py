@@ -135,8 +135,30 @@ class UnknownScenarioError(MechanicsValueError):
 
 @dataclass(frozen=True)
 class Reference:
-    """The exact answer to a scenario: the states at its sample times and the derived
-    figures (each a float or, for a sequence such as the apex heights, an array)."""
+    """The exact answer to a scenario: the states at its sample times and derived figures.
+
+    Parameters
+    ----------
+    trajectory : Trajectory
+        The exact states at the scenario's sample times.
+    figures : dict
+        The derived figures by name (:func:`figure_names`), each a float or, for a
+        sequence such as the apex heights, an array.
+
+    Raises
+    ------
+    TypeError
+        Where a field is missing (the dataclass's constructor; it checks no value).
+
+    Examples
+    --------
+    The parabola's apex time is v_z/g, thrown at 8 m/s under g = 9.81 m/s²:
+
+    >>> s = get_scenario("parabola")
+    >>> ref = reference(s)
+    >>> bool(ref.figures["apex_time"] == s.bodies[0].velocity[2] / -s.gravity[2])
+    True
+    """
 
     trajectory: Trajectory
     figures: dict
@@ -210,7 +232,44 @@ def _local_poly(t, y, k, deg):
 
 
 def interpolate(t, y, tau: float, deg: int = 5) -> float:
-    """y at time tau by the polynomial of degree ``deg`` through the nearest samples."""
+    """y at time tau by the polynomial of degree ``deg`` through the nearest samples.
+
+    Parameters
+    ----------
+    t : array_like, shape (m,)
+        Sample times, increasing, m ≥ 2.
+    y : array_like, shape (m,)
+        The samples.
+    tau : float
+        The time to interpolate at (outside [t₀, t_m−1]: the end polynomial extrapolates).
+    deg : int, optional
+        The polynomial's degree, ≥ 0, through the ``deg + 1`` nearest samples (fewer when
+        there are fewer); default 5.
+
+    Returns
+    -------
+    float
+        The polynomial's value at ``tau``.
+
+    Raises
+    ------
+    TypeError
+        Where ``t`` and ``y`` differ in length, or ``y`` is not one-dimensional (numpy's
+        polynomial fit; the function validates nothing itself).
+    ValueError
+        Where ``deg`` < 0 or a sample is not a number.
+    IndexError
+        Where ``t`` is empty (with one sample numpy's fit fails instead: a RuntimeWarning
+        of a division by zero, then ``numpy.linalg.LinAlgError``).
+
+    Examples
+    --------
+    A cubic through its samples, read back at 0.3:
+
+    >>> t = np.linspace(0.0, 1.0, 9)
+    >>> round(interpolate(t, t**3, 0.3), 12) == round(0.3**3, 12)
+    True
+    """
     t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
     k = int(np.clip(np.searchsorted(t, tau) - 1, 0, t.size - 2))
     coef, h = _local_poly(t, y, k, deg)
@@ -287,9 +346,11 @@ def _root_of_any_multiplicity(coef, s0: float, y_scale: float) -> float:
 
 
 def crossings(t, y, *, deg: int = 5, direction: int = 0) -> np.ndarray:
-    """Times where the sampled y changes sign (``direction`` +1: rising only, −1: falling
-    only), each the root of the interpolating polynomial of degree ``deg`` through the
-    nearest ``deg + 1`` samples (error O(Δt^{deg+1}) for a smooth y).
+    """Times where the sampled y changes sign, each a root of a local interpolating polynomial.
+
+    ``direction`` +1: rising only, −1: falling only.  Each time is the root of the
+    interpolating polynomial of degree ``deg`` through the nearest ``deg + 1`` samples
+    (error O(Δt^{deg+1}) for a smooth y).
 
     A sample that is exactly zero is the crossing's time (it counts on the side it ends, so
     a tangency that touches zero at a sample counts once).  A root of any multiplicity is
@@ -297,6 +358,40 @@ def crossings(t, y, *, deg: int = 5, direction: int = 0) -> np.ndarray:
     degree ≤ ``deg`` with a root of multiplicity m ≤ 3 (and its other roots at least Δt
     away), the time is within 2^3 eps·max(|t|, Δt) of the root, at a sample or between
     two (measured ≤ 1.7; ``tests/conformance/test_crossings.py``).
+
+    Parameters
+    ----------
+    t : array_like, shape (m,)
+        Sample times, increasing.
+    y : array_like, shape (m,)
+        The samples.
+    deg : int, optional
+        The degree of the local polynomials, ≥ 0 (default 5).
+    direction : {0, 1, -1}, optional
+        0 (default): every sign change; > 0: rising only; < 0: falling only.
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        The crossing times, in order.
+
+    Raises
+    ------
+    TypeError
+        Where ``t`` and ``y`` differ in length (numpy's polynomial fit; the function
+        validates nothing itself).
+    ValueError
+        Where ``deg`` < 0 or a sample is not a number.
+
+    Examples
+    --------
+    The roots of (t − 0.3)(t − 0.7), sampled at steps of 1/8; falling through 0 at 0.3:
+
+    >>> t = np.linspace(0.0, 1.0, 9)
+    >>> [round(float(x), 12) for x in crossings(t, (t - 0.3) * (t - 0.7))]
+    [0.3, 0.7]
+    >>> crossings(t, (t - 0.3) * (t - 0.7), direction=-1).round(12).tolist()
+    [0.3]
     """
     t, y = np.asarray(t, dtype=float), np.asarray(y, dtype=float)
     rises = (y[:-1] < 0) & (y[1:] >= 0)  # a zero at a sample counts on the side it ends
@@ -335,8 +430,35 @@ def _energy(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, float]:
 
 
 def body_sizes(s: Scenario) -> np.ndarray:
-    """Each body's size, shape (n,): the larger of its radius of gyration √(max J / m)
-    and the norm of its shape's dimensions."""
+    """Each body's size: the larger of √(max J / m) and the norm of its shape's dimensions.
+
+    The first is the body's largest radius of gyration.
+
+    Parameters
+    ----------
+    s : Scenario
+        The scenario whose bodies to measure.
+
+    Returns
+    -------
+    ndarray, shape (n,)
+        The sizes, m, one per body.
+
+    Raises
+    ------
+    ZeroDivisionError
+        Where a body's mass is 0 (the scenario is not validated here).
+    ValueError
+        Where a body's max J / m is negative (``math.sqrt``'s domain).
+
+    Examples
+    --------
+    The bouncing ball (r = 0.1 m, J = 2/5 m r² < m r²) measures its radius:
+
+    >>> s = get_scenario("bouncing_ball")
+    >>> body_sizes(s).tolist() == [s.bodies[0].shape.dims[0]]
+    True
+    """
     out = []
     for b in s.bodies:
         size = math.sqrt(max(b.inertia) / b.mass)
@@ -713,9 +835,44 @@ def _ref_bounce(s: Scenario) -> Reference:
 
 
 def bounce_apexes(s: Scenario, tr: Trajectory) -> tuple[np.ndarray, np.ndarray]:
-    """The apexes of a bouncing ball's trajectory, every one in the samples: their times
-    (where v·n falls through 0) and heights (of the ball's lowest point above the
-    ground)."""
+    """The apexes of a bouncing ball's trajectory, every one in the samples.
+
+    Their times are where v·n falls through 0 (:func:`crossings`), their heights those of
+    the ball's lowest point above the ground (:func:`interpolate`), both read by
+    quadratics through the samples.
+
+    Parameters
+    ----------
+    s : Scenario
+        A scenario with a ground, whose first body bounces on it.
+    tr : Trajectory
+        A (validated) trajectory of ``s``.
+
+    Returns
+    -------
+    times : ndarray, shape (k,)
+        The apex times, s.
+    heights : ndarray, shape (k,)
+        The heights of the ball's lowest point above the ground at them, m.
+
+    Raises
+    ------
+    MechanicsValueError
+        Where the scenario has no ground or the ball no shape, or the ball cannot bounce
+        (on rough ground a sliding or spinning ball; a box or cylinder not lying flat).
+
+    Examples
+    --------
+    Read off the exact samples, the heights are the reference's, falling by e² = 0.64:
+
+    >>> s = get_scenario("bouncing_ball")
+    >>> ref = reference(s)
+    >>> times, heights = bounce_apexes(s, ref.trajectory)
+    >>> bool(np.allclose(heights, ref.figures["apex_heights"], rtol=2**-40, atol=0))
+    True
+    >>> round(float(heights[1] / heights[0]), 12), s.ground.restitution**2
+    (0.64, 0.6400000000000001)
+    """
     gr = _required(s, "a ground", s.ground)
     nrm = np.asarray(gr.normal, dtype=float)
     r = _lowest(s, s.bodies[0], nrm)
@@ -1346,34 +1503,167 @@ def _kind(scenario: Scenario):
 
 
 def figure_names(scenario: Scenario) -> tuple[str, ...]:
-    """The derived figures of the scenario's kind."""
+    """The derived figures of the scenario's kind.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A scenario of a known kind (``extra["kind"]``).
+
+    Returns
+    -------
+    tuple of str
+        The figures' names, the keys of :func:`reference`'s ``figures``.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where the scenario's kind is unknown.
+
+    Examples
+    --------
+    >>> s = get_scenario("parabola")
+    >>> figure_names(s), tuple(sorted(reference(s).figures)) == figure_names(s)
+    (('apex_height', 'apex_time'), True)
+    """
     _kind(scenario)
     return FIGURES[scenario.extra["kind"]]
 
 
 def invariant_names(scenario: Scenario) -> tuple[str, ...]:
-    """The quantities conserved in the scenario (the keys of :func:`invariants`)."""
+    """The quantities conserved in the scenario (the keys of :func:`invariants`).
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A scenario of a known kind (``extra["kind"]``).
+
+    Returns
+    -------
+    tuple of str
+        The names, e.g. ``"E"``, ``"p"``, ``"L"``, ``"p_horizontal"``.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where the scenario's kind is unknown.
+
+    Examples
+    --------
+    >>> s = get_scenario("parabola")
+    >>> invariant_names(s), tuple(invariants(s, reference(s).trajectory)) == invariant_names(s)
+    (('E', 'p_horizontal'), True)
+    """
     _kind(scenario)
     return INVARIANTS[scenario.extra["kind"]]
 
 
 def reference(scenario: Scenario) -> Reference:
-    """The exact states at the scenario's sample times and its derived figures."""
+    """The exact states at the scenario's sample times and its derived figures.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A scenario of a known kind (``extra["kind"]``), built in or a variant.
+
+    Returns
+    -------
+    Reference
+        The exact trajectory and the figures of :func:`figure_names`.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where the scenario's kind is unknown.
+    MechanicsValueError
+        Where the scenario lacks what its kind needs (a ground, a pivot, a thrust, a
+        body's shape), or its bodies cannot do what the kind's closed form assumes.
+
+    Examples
+    --------
+    The parabola at its last sample: x = x₀ + v_x t (no horizontal force):
+
+    >>> s = get_scenario("parabola")
+    >>> tr = reference(s).trajectory
+    >>> float(tr.position[-1, 0, 0]) == s.bodies[0].position[0] + 3.0 * s.duration
+    True
+    """
     return _kind(scenario)[0](scenario)
 
 
 def measure(scenario: Scenario, trajectory: Trajectory) -> dict:
-    """The derived figures read off a (validated) trajectory's samples, keyed as in
-    :func:`reference`; a figure that cannot be read (too few crossings, no masses) is a
-    string saying why."""
+    """The derived figures read off a (validated) trajectory's samples.
+
+    They are keyed as in :func:`reference`; a figure that cannot be read (too few
+    crossings, no masses) is a string saying why.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A scenario of a known kind.
+    trajectory : Trajectory
+        A trajectory of it, validated (:func:`~.protocol.check_trajectory`).
+
+    Returns
+    -------
+    dict
+        Figure name → its value (a float or an array), or a string saying why it cannot
+        be read.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where the scenario's kind is unknown.
+    MechanicsValueError
+        Where the scenario lacks what its kind needs (a ground, a body's shape).
+
+    Examples
+    --------
+    Read off the exact samples, the apex time is the exact one to within 2⁻²⁸:
+
+    >>> s = get_scenario("parabola")
+    >>> ref = reference(s)
+    >>> bool(abs(measure(s, ref.trajectory)["apex_time"] / ref.figures["apex_time"] - 1) < 2**-28)
+    True
+    """
     return _kind(scenario)[1](scenario, trajectory)
 
 
 def invariants(scenario: Scenario, trajectory: Trajectory) -> dict:
-    """The quantities conserved in the scenario, sampled along a trajectory: name →
-    (samples, shape (m,) or (m, k); scale for the relative drift).  The battery takes
-    the scales from the exact trajectory, so that a run-away engine cannot inflate
-    them."""
+    """The quantities conserved in the scenario, sampled along a trajectory.
+
+    The battery takes the scales from the exact trajectory, so that a run-away engine
+    cannot inflate them.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        A scenario of a known kind.
+    trajectory : Trajectory
+        A trajectory of it, validated (:func:`~.protocol.check_trajectory`).
+
+    Returns
+    -------
+    dict
+        Name (:func:`invariant_names`) → (samples, an ndarray of shape (m,) or (m, k);
+        the scale of its relative drift, a float).
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where the scenario's kind is unknown.
+    MechanicsValueError
+        Where the scenario lacks what its kind needs (a pivot, a ground).
+
+    Examples
+    --------
+    The parabola's energy (5.85 with no rotation) along the exact motion keeps to rounding:
+
+    >>> s = get_scenario("parabola")
+    >>> E, scale = invariants(s, reference(s).trajectory)["E"]
+    >>> E.shape, float(np.max(np.abs(E - E[0]))) / scale < 2**-40
+    ((49,), True)
+    """
     return _kind(scenario)[2](scenario, trajectory)
 
 
@@ -1435,7 +1725,32 @@ def check_scenario(s: Scenario) -> None:
       ends between the rebound's apex and the second impact;
     - every impact is :data:`IMPACT_MARGIN_STEPS` finest steps from every sample.
 
-    Raises :class:`ScenarioRangeError`; returns None for a valid scenario.
+    Parameters
+    ----------
+    s : Scenario
+        The scenario, a variant of a built-in kind.
+
+    Raises
+    ------
+    ScenarioRangeError
+        Where the scenario is outside its valid range (the message says which rule).
+    UnknownScenarioError
+        Where its kind (``extra["kind"]``) is unknown.
+    MechanicsValueError
+        Where it lacks what its kind needs (a ground, a pivot, a body's shape).
+
+    Examples
+    --------
+    A built-in scenario is valid; run twice as long, its last sample is not its end:
+
+    >>> import dataclasses
+    >>> s = get_scenario("parabola")
+    >>> check_scenario(s) is None
+    True
+    >>> check_scenario(dataclasses.replace(s, duration=2 * s.duration))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.conformance.scenarios.ScenarioRangeError: scenario 'parabola' is outside ...
     """
 
     def refuse(why: str) -> ScenarioRangeError:
@@ -1826,7 +2141,32 @@ SCENARIOS: dict[str, Scenario] = _build()
 
 
 def get_scenario(name: str) -> Scenario:
-    """The battery's scenario ``name``; :class:`UnknownScenarioError` naming the known ones."""
+    """The battery's scenario ``name``; :class:`UnknownScenarioError` naming the known ones.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SCENARIOS`.
+
+    Returns
+    -------
+    Scenario
+        The built-in scenario.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where ``name`` is not a scenario of the battery (the message lists them).
+
+    Examples
+    --------
+    >>> get_scenario("heavy_top") is SCENARIOS["heavy_top"]
+    True
+    >>> get_scenario("heavy_tops")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.conformance.scenarios.UnknownScenarioError: unknown scenario 'heavy_tops'; ...
+    """
     if name not in SCENARIOS:
         raise UnknownScenarioError(
             f"unknown scenario {name!r}; the battery has {', '.join(SCENARIOS)}"

@@ -138,9 +138,35 @@ _SEPARATRIX_FACTOR = 2.0**3
 
 @dataclass(frozen=True)
 class Profile:
-    """A class of engine: ``order`` the order of convergence it claims (None: none is
-    read), ``rtol`` the bound on every figure at the finest step, ``thresholds`` every
-    figure's bound (plain and per-scenario keys) and ``description`` one line."""
+    """A class of engine: the order it claims and the bound on every figure.
+
+    Parameters
+    ----------
+    name : str
+        The profile's name, a key of :data:`PROFILES`.
+    order : float or None
+        The order of convergence the class claims (None: none is read).
+    rtol : float
+        The bound on every figure at the finest step (relative), > 0.
+    description : str
+        One line on the class.
+    thresholds : Mapping of str to float or None
+        Every figure's bound (plain and ``scenario.figure`` keys; None: reported, not
+        checked); ``order`` is a lower bound.
+
+    Raises
+    ------
+    TypeError
+        Where a field is missing (the dataclass's constructor; it checks no value).
+
+    Examples
+    --------
+    A second-order engine is judged at 2⁻⁸ and an order of at least 1.5:
+
+    >>> p = get_profile("second-order")
+    >>> p.order, p.rtol == 2.0**-8 == p.thresholds["velocity"], p.thresholds["order"]
+    (2.0, True, 1.5)
+    """
 
     name: str
     order: float | None
@@ -189,7 +215,32 @@ DEFAULT_PROFILE = "default"
 
 
 def get_profile(name: str) -> Profile:
-    """The profile called ``name``; :class:`ThresholdError` naming it and the known ones."""
+    """The profile called ``name``; :class:`ThresholdError` naming it and the known ones.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`PROFILES`.
+
+    Returns
+    -------
+    Profile
+        The profile.
+
+    Raises
+    ------
+    ThresholdError
+        Where ``name`` is not a profile's name (the message lists the known ones).
+
+    Examples
+    --------
+    >>> get_profile("exact").rtol == PROFILES["exact"].rtol == 2.0**-28
+    True
+    >>> get_profile("fourth-order")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.conformance.thresholds.ThresholdError: unknown conformance profile ...
+    """
     p = PROFILES.get(name) if isinstance(name, str) else None
     if p is None:
         raise ThresholdError(f"unknown conformance profile {name!r}; known: {', '.join(PROFILES)}")
@@ -203,7 +254,30 @@ def _figures_of(s: Scenario) -> tuple[str, ...]:
 
 
 def known_threshold_keys(scenarios: Iterable[Scenario] = ()) -> set[str]:
-    """Every key a threshold dict may use: figure names and ``scenario.figure``."""
+    """Every key a threshold dict may use: figure names and ``scenario.figure``.
+
+    Parameters
+    ----------
+    scenarios : iterable of Scenario, optional
+        Scenarios beyond the battery's own whose ``scenario.figure`` keys to add.
+
+    Returns
+    -------
+    set of str
+        The plain figure names and every ``scenario.figure`` of the battery's scenarios
+        and of ``scenarios``.
+
+    Raises
+    ------
+    UnknownScenarioError
+        Where a scenario of ``scenarios`` is of an unknown kind (``extra["kind"]``).
+
+    Examples
+    --------
+    >>> keys = known_threshold_keys()
+    >>> {"velocity", "parabola.apex_height", "parabola.order"} <= keys, "apex" in keys
+    (True, False)
+    """
     keys = set(DEFAULT_THRESHOLDS)
     for s in [*SCENARIOS.values(), *scenarios]:
         keys.update(f"{s.name}.{f}" for f in _figures_of(s))
@@ -213,8 +287,26 @@ def known_threshold_keys(scenarios: Iterable[Scenario] = ()) -> set[str]:
 def resolve_thresholds(thresholds: Mapping | None, scenarios: Iterable[Scenario] = ()) -> dict:
     """Validate a user's thresholds; return them as a plain dict of floats (or None).
 
-    Raises :class:`ThresholdError` naming every unknown key (and the known figure names)
-    or the first value that is not a finite number ≥ 0 or None.
+    Parameters
+    ----------
+    thresholds : Mapping or None
+        ``{"figure": bound}`` or ``{"scenario.figure": bound}``, each bound a finite number
+        ≥ 0 or None (reported, not checked); None: no thresholds.
+    scenarios : iterable of Scenario, optional
+        Scenarios beyond the battery's own whose ``scenario.figure`` keys are allowed.
+
+    Returns
+    -------
+    dict
+        The same keys, each bound as a float or None (``{}`` for None).
+
+    Raises
+    ------
+    ThresholdError
+        Where ``thresholds`` is not a mapping, naming every unknown key (and the known
+        figure names), or the first value that is not a finite number ≥ 0 or None.
+    UnknownScenarioError
+        Where a scenario of ``scenarios`` is of an unknown kind.
 
     Examples
     --------
@@ -276,9 +368,31 @@ _TABLE_NAME = "[" + ".".join(PYPROJECT_TABLE) + "]"
 
 @dataclass(frozen=True)
 class Config:
-    """The battery's settings read from a file: a ``profile`` name (or None), the
-    ``thresholds`` it sets and ``source``, the file and table they came from ("" when
-    no file was read)."""
+    """The battery's settings read from a file: a profile, thresholds and their source.
+
+    Parameters
+    ----------
+    profile : str or None, optional
+        A profile's name (:data:`PROFILES`), or None (default) when the file names none.
+    thresholds : Mapping of str to float or None, optional
+        The thresholds it sets (default none).
+    source : str, optional
+        The file and table they came from ("" when no file was read, the default).
+
+    Raises
+    ------
+    TypeError
+        Where an argument is not a field (the dataclass's constructor; it checks no
+        value: :func:`load_config` does).
+
+    Examples
+    --------
+    The settings of no file change nothing:
+
+    >>> cfg = Config()
+    >>> cfg.profile, dict(cfg.thresholds), cfg.source
+    (None, {}, '')
+    """
 
     profile: str | None = None
     thresholds: Mapping[str, float | None] = field(default_factory=dict)
@@ -286,8 +400,34 @@ class Config:
 
 
 def find_config(start: str | os.PathLike[str] | None = None) -> Path | None:
-    """The nearest ``pyproject.toml`` from ``start`` (default: the working directory)
-    upwards, or None."""
+    """The nearest ``pyproject.toml`` from ``start`` (default: the working directory) upwards.
+
+    Parameters
+    ----------
+    start : str or path-like, optional
+        The folder to start from (default: the working directory).
+
+    Returns
+    -------
+    Path or None
+        The first ``pyproject.toml`` in ``start`` or one of its parents, or None.
+
+    Raises
+    ------
+    TypeError
+        Where ``start`` is not a str or path-like (:class:`pathlib.Path`'s).
+
+    Examples
+    --------
+    From a folder and from a file of the folder: the same file.
+
+    >>> import pathlib, tempfile
+    >>> top = pathlib.Path(tempfile.mkdtemp()).resolve()
+    >>> _ = (top / "pyproject.toml").write_text("")
+    >>> (top / "src").mkdir()
+    >>> find_config(top / "src") == find_config(top) == top / "pyproject.toml"
+    True
+    """
     here = Path.cwd() if start is None else Path(start)
     for folder in (here, *here.resolve().parents):
         candidate = folder / "pyproject.toml"
@@ -307,7 +447,7 @@ def _file_value(where: str, key: str, value: object) -> float | None:
 
 
 def load_config(path: str | os.PathLike[str], scenarios: Iterable[Scenario] = ()) -> Config:
-    """Read the battery's settings from ``path``.
+    r"""Read the battery's settings from ``path``.
 
     A ``pyproject.toml`` holds them in its table ``[tool.bodycheck.conformance]`` (none
     there: an empty :class:`Config`); any other TOML file at its top level.  Either way
@@ -315,6 +455,37 @@ def load_config(path: str | os.PathLike[str], scenarios: Iterable[Scenario] = ()
     of figure or ``"scenario.figure"`` keys to numbers, or ``"none"`` to report a
     figure without checking it).  Anything else is a :class:`ThresholdError` naming
     the file, the key and what is expected.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A TOML file: a ``pyproject.toml`` or a thresholds file.
+    scenarios : iterable of Scenario, optional
+        Scenarios beyond the battery's own whose ``scenario.figure`` keys are allowed.
+
+    Returns
+    -------
+    Config
+        The profile, the thresholds (validated by :func:`resolve_thresholds`) and the
+        file (and table) they came from.
+
+    Raises
+    ------
+    ThresholdError
+        Where the file does not exist or is not valid TOML, has an unknown key, an
+        unknown profile, a ``thresholds`` that is not a table, or a threshold that is
+        not a number ≥ 0 or ``"none"`` (naming the file, the key and what is expected).
+
+    Examples
+    --------
+    A file's thresholds, read back; ``"none"`` reports a figure without checking it:
+
+    >>> import pathlib, tempfile
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "bounds.toml"
+    >>> _ = path.write_text('profile = "exact"\n[thresholds]\nvelocity = 0.25\norder = "none"\n')
+    >>> cfg = load_config(path)
+    >>> cfg.profile, dict(cfg.thresholds)
+    ('exact', {'velocity': 0.25, 'order': None})
     """
     p = Path(path)
     if not p.is_file():
@@ -371,11 +542,10 @@ def _rounded_up(x: float) -> str:
 
 
 def baseline(report: Any, margin: float = 2.0) -> str:
-    """A thresholds file (TOML) that pins ``report``'s accuracy with ``margin``
-    (``report`` a :class:`~.battery.Report`, read by its fields: this module sits below
-    the battery).
+    """A thresholds file (TOML) that pins ``report``'s accuracy with ``margin``.
 
-    Every checked error and drift figure of each scenario that ran is bounded at
+    ``report`` is a :class:`~.battery.Report`, read by its fields (this module sits below
+    the battery).  Every checked error and drift figure of each scenario that ran is bounded at
     ``margin`` times its measured value (at least 2¹⁰ eps, rounding), under its
     ``scenario.figure`` key; the order's lower bound is the measured order less
     log(margin) / log(h_coarse / h_fine), the order the runs would read had the finest
@@ -383,6 +553,38 @@ def baseline(report: Any, margin: float = 2.0) -> str:
     that could not be measured (an unmatched event) is written ``"none"`` with the
     reason.  The profile is the report's.  Load it with :func:`load_config` (or the
     command's ``--config``).
+
+    Parameters
+    ----------
+    report : Report
+        The battery's report to pin.
+    margin : float, optional
+        How many times its measured value each figure may reach, finite, ≥ 1 (default 2).
+
+    Returns
+    -------
+    str
+        The TOML text: ``profile`` and a table ``[thresholds]`` of ``scenario.figure``
+        keys; scenarios that did not run are listed as comments.
+
+    Raises
+    ------
+    ThresholdError
+        Where ``margin`` is not a finite number ≥ 1.
+
+    Examples
+    --------
+    The baseline, read back, holds the report that made it:
+
+    >>> import pathlib, tempfile
+    >>> from mechanics.conformance import run_battery
+    >>> from mechanics.conformance.adapters import ExactAdapter
+    >>> report = run_battery(ExactAdapter(), scenarios=["parabola"], profile="exact")
+    >>> path = pathlib.Path(tempfile.mkdtemp()) / "baseline.toml"
+    >>> _ = path.write_text(baseline(report))
+    >>> th = load_config(path).thresholds
+    >>> all(f.value <= th[f"parabola.{f.name}"] for f in report["parabola"].figures)
+    True
     """
     if not (isinstance(margin, int | float) and math.isfinite(margin) and margin >= 1):
         raise ThresholdError(f"the baseline's margin must be a number >= 1; got {margin!r}")

@@ -46,6 +46,20 @@ def require(module: str, extra: str, *, engine: str | None = None, package: str 
         The distribution that provides ``module``, as the message names it (default:
         ``module``'s top level; Drake's ``pydrake`` comes with the ``drake`` package).
 
+    Returns
+    -------
+    module
+        The imported module.
+
+    Raises
+    ------
+    MissingExtraError
+        Where ``module`` (its top-level package) is not installed; the message names the
+        extra and the ``pip install`` that installs it.
+    ImportError
+        Where the package is there but broken (it fails to import another module): its
+        own error, shown as it is.
+
     Examples
     --------
     >>> require("math", "none").sqrt(4.0)

@@ -102,16 +102,60 @@ INERTIA_RTOL = 4 * EPS
 
 
 def variants() -> list[DartAdapter]:
-    """The variants the battery runs side by side: DART's Dantzig and PGS boxed LCP."""
+    """The variants the battery runs side by side: DART's Dantzig and PGS boxed LCP.
+
+    Returns
+    -------
+    list of Adapter
+        One adapter per variant, in the order of the table.
+
+    Raises
+    ------
+    MissingExtraError
+        When the engine is not installed (naming what installs it).
+
+    Examples
+    --------
+    The variants are the product of the options (checked where the engine is installed):
+
+    >>> try:
+    ...     got = [repr(a) for a in variants()]
+    ... except MissingExtraError:  # not installed: nothing to compare
+    ...     got = None
+    >>> got in (None, [f"DartAdapter({s!r})" for s in SOLVERS])
+    True
+    """
     return [DartAdapter(s) for s in SOLVERS]
 
 
 def contact_coefficients(
     scenario: Scenario,
 ) -> tuple[list[float], list[float], str | None]:
-    """Per-body restitution and friction coefficients (bodies in order) whose products
-    (restitution) and minimum (friction) with the ground's 1 and μ give the scenario's
-    contacts, and ``None``; or empty lists and the reason no assignment does.
+    """Per-body restitution and friction coefficients that give the scenario's contacts.
+
+    Bodies in order: their products (restitution) and minimum (friction) with the
+    ground's 1 and μ give the scenario's contacts, and ``None``; or empty lists and the
+    reason no assignment does.
+
+    Parameters
+    ----------
+    scenario : Scenario
+        The scenario to express in DART.
+
+    Returns
+    -------
+    restitution : list of float
+        Each body's restitution coefficient (empty where none works).
+    friction : list of float
+        Each body's friction coefficient (empty where none works).
+    why : str or None
+        None, or why no per-body assignment gives the scenario's contacts.
+
+    Raises
+    ------
+    IndexError
+        Where a pair of ``pair_restitution`` names a body the scenario does not have (the
+        scenario is not validated here).
 
     Examples
     --------
@@ -162,11 +206,21 @@ class DartAdapter:
     Parameters
     ----------
     solver : {"dantzig", "pgs"}
+        The boxed LCP solver (default ``"dantzig"``; module docstring).
 
     Raises
     ------
+    UnknownOptionError
+        Where ``solver`` is not one of the above.
     MissingExtraError
         When the ``dartpy`` package is not installed.
+
+    Examples
+    --------
+    >>> DartAdapter("lemke")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.UnknownOptionError: DART solver must be one of (...); got 'lemke'
     """
 
     takes_step = True

@@ -133,14 +133,40 @@ INERTIA_RTOL = 4 * EPS
 
 
 def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
-    """The Hunt–Crossley dissipation d (s/m) with which a linear-spring contact
-    f = k x (1 + d ẋ) hit at ``v_ref`` lets go at e·v_ref: d = c/v_ref with
+    """The Hunt–Crossley dissipation d (s/m) with which a contact hit at v_ref lets go at e·v_ref.
+
+    The contact is a linear spring f = k x (1 + d ẋ); d = c/v_ref with
     ln((1 + c)/(1 − c e)) = c (1 + e), c in (0, 1/e) (module docstring), solved by
     bisection to the last bit.  e = 0 would need d = ∞: it is given the d of
     e = :data:`E_FLOOR`.
 
     Domain: e in [0, 1], v_ref > 0 and finite (each refused by name otherwise); a
     v_ref so small that d overflows is a ResultOverflowError.
+
+    Parameters
+    ----------
+    e : float
+        The coefficient of restitution, in [0, 1].
+    v_ref : float
+        The approach speed the contact is tuned for, m/s, > 0, finite.
+
+    Returns
+    -------
+    float
+        d, s/m, ≥ 0 (0 at e = 1).
+
+    Raises
+    ------
+    RestitutionRangeError
+        Where e is outside [0, 1].
+    NonPositiveParameterError
+        Where v_ref ≤ 0.
+    NonFiniteError
+        Where e or v_ref is a NaN or an infinity.
+    ShapeError
+        Where e or v_ref is not a scalar.
+    ResultOverflowError
+        Where v_ref is so small that d = c/v_ref overflows.
 
     Examples
     --------
@@ -175,7 +201,29 @@ def hunt_crossley_dissipation(e: float, v_ref: float) -> float:
 
 
 def variants() -> list[DrakeAdapter]:
-    """The variants the battery runs side by side: both modes, both contact models."""
+    """The variants the battery runs side by side: both modes, both contact models.
+
+    Returns
+    -------
+    list of Adapter
+        One adapter per variant, in the order of the table.
+
+    Raises
+    ------
+    MissingExtraError
+        When the engine is not installed (naming what installs it).
+
+    Examples
+    --------
+    The variants are the product of the options (checked where the engine is installed):
+
+    >>> try:
+    ...     got = [repr(a) for a in variants()]
+    ... except MissingExtraError:  # not installed: nothing to compare
+    ...     got = None
+    >>> got in (None, [f"DrakeAdapter({m!r}, {c!r})" for m in MODES for c in CONTACTS])
+    True
+    """
     return [DrakeAdapter(m, c) for m in MODES for c in CONTACTS]
 
 
@@ -236,12 +284,24 @@ class DrakeAdapter:
     Parameters
     ----------
     mode : {"discrete", "continuous"}
+        Drake's plant: discrete at the battery's step, or continuous (module docstring);
+        default ``"discrete"``.
     contact : {"point", "hydroelastic"}
+        The contact model (default ``"point"``).
 
     Raises
     ------
+    UnknownOptionError
+        Where ``mode`` or ``contact`` is not one of the above.
     MissingExtraError
         When the ``drake`` package is not installed.
+
+    Examples
+    --------
+    >>> DrakeAdapter("implicit")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.UnknownOptionError: Drake mode must be one of (...); got 'implicit'
     """
 
     def __init__(self, mode: str = "discrete", contact: str = "point"):

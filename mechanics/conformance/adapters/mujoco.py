@@ -137,12 +137,32 @@ E_MIN_WITHOUT_TENSION = math.exp(-2.0)
 
 
 def restitution_without_tension(zeta: float) -> float:
-    """Speed ratio at which a spring-damper of damping ratio ζ ∈ [0, 1] that cannot
-    pull lets go: exp(−ζ (π − 2 arcsin ζ)/√(1 − ζ²)); e⁻² at ζ = 1 (its limit, and the
+    """Speed ratio at which a spring-damper of damping ratio ζ ∈ [0, 1] that cannot pull lets go.
+
+    e(ζ) = exp(−ζ (π − 2 arcsin ζ)/√(1 − ζ²)); e⁻² at ζ = 1 (its limit, and the
     critically damped contact's own value: it lets go at ωt = 2 with speed v e⁻²).
 
     Domain: ζ in [0, 1] (a NaN, an infinity or a value outside is refused naming
     ``zeta``); the result is in [0, 1].
+
+    Parameters
+    ----------
+    zeta : float
+        The damping ratio ζ, in [0, 1].
+
+    Returns
+    -------
+    float
+        The coefficient of restitution e(ζ), in [e⁻², 1].
+
+    Raises
+    ------
+    OutOfDomainError
+        Where ζ is outside [0, 1].
+    NonFiniteError
+        Where ζ is a NaN or an infinity.
+    ShapeError
+        Where ζ is not a scalar.
 
     Examples
     --------
@@ -161,12 +181,34 @@ def restitution_without_tension(zeta: float) -> float:
 
 
 def zeta_without_tension(e: float) -> float:
-    """The damping ratio ζ whose no-tension restitution is ``e`` (bisection to the last
-    bit: e(ζ) decreases from 1 at ζ = 0 to e⁻² at ζ = 1).
+    """The damping ratio ζ whose no-tension restitution is ``e``, by bisection to the last bit.
+
+    e(ζ) (:func:`restitution_without_tension`) decreases from 1 at ζ = 0 to e⁻² at ζ = 1.
 
     Domain: e in [e⁻², 1] (:data:`E_MIN_WITHOUT_TENSION`: below it no ζ ≤ 1 rebounds so
     little, an OutOfDomainError says so; outside [0, 1] a RestitutionRangeError names
     ``e``); the result is in [0, 1].
+
+    Parameters
+    ----------
+    e : float
+        The coefficient of restitution, in [e⁻², 1].
+
+    Returns
+    -------
+    float
+        ζ in [0, 1] (0 at e = 1, 1 at e = e⁻²).
+
+    Raises
+    ------
+    OutOfDomainError
+        Where e is in [0, e⁻²): no ζ ≤ 1 rebounds so little.
+    RestitutionRangeError
+        Where e is outside [0, 1].
+    NonFiniteError
+        Where e is a NaN or an infinity.
+    ShapeError
+        Where e is not a scalar.
 
     Examples
     --------
@@ -196,10 +238,39 @@ def zeta_without_tension(e: float) -> float:
 
 
 def zeta_textbook(e: float) -> float:
-    """ζ = −ln e/√(π² + ln² e), the damping ratio of a spring-damper that may pull and
-    rebounds at e (the issue's mapping, used by the default contact).
+    """ζ = −ln e/√(π² + ln² e), the damping ratio of a spring-damper that may pull.
+
+    A linear spring-damper of this ζ rebounds at e (the issue's mapping, used by the
+    default contact).
 
     Domain: e in [0, 1] (refused naming ``e`` outside); ζ in [0, 1], 1 at e = 0.
+
+    Parameters
+    ----------
+    e : float
+        The coefficient of restitution, in [0, 1].
+
+    Returns
+    -------
+    float
+        ζ in [0, 1]: 0 at e = 1, 1 at e = 0.
+
+    Raises
+    ------
+    RestitutionRangeError
+        Where e is outside [0, 1].
+    NonFiniteError
+        Where e is a NaN or an infinity.
+    ShapeError
+        Where e is not a scalar.
+
+    Examples
+    --------
+    The oscillator's rebound exp(−ζπ/√(1 − ζ²)) gives e back:
+
+    >>> z = zeta_textbook(0.5)
+    >>> round(math.exp(-z * math.pi / math.sqrt(1 - z * z)), 12)
+    0.5
     """
     e = unit_interval(e, "e", "a coefficient of restitution", error=RestitutionRangeError)
     if e <= 0.0:
@@ -209,8 +280,29 @@ def zeta_textbook(e: float) -> float:
 
 
 def variants() -> list[MuJoCoAdapter]:
-    """The variants the battery runs side by side: each integrator with the default and
-    the tuned contact."""
+    """The variants the battery runs side by side: each integrator with each contact.
+
+    Returns
+    -------
+    list of Adapter
+        One adapter per variant, in the order of the table.
+
+    Raises
+    ------
+    MissingExtraError
+        When the engine is not installed (naming the extra that installs it).
+
+    Examples
+    --------
+    The variants are the product of the options (checked where the engine is installed):
+
+    >>> try:
+    ...     got = [repr(a) for a in variants()]
+    ... except MissingExtraError:  # not installed: nothing to compare
+    ...     got = None
+    >>> got in (None, [f"MuJoCoAdapter({i!r}, {c!r})" for i in INTEGRATORS for c in CONTACTS])
+    True
+    """
     return [MuJoCoAdapter(i, c) for i in INTEGRATORS for c in CONTACTS]
 
 
@@ -224,12 +316,23 @@ class MuJoCoAdapter:
     Parameters
     ----------
     integrator : {"RK4", "Euler", "implicitfast"}
+        MuJoCo's integrator (default ``"RK4"``).
     contact : {"default", "tuned"}
+        The contact setting (default ``"tuned"``; module docstring).
 
     Raises
     ------
+    UnknownOptionError
+        Where ``integrator`` or ``contact`` is not one of the above.
     MissingExtraError
         When the ``mujoco`` package is not installed.
+
+    Examples
+    --------
+    >>> MuJoCoAdapter("RK5")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.UnknownOptionError: MuJoCo integrator must be one of (...); got 'RK5'
     """
 
     takes_step = True

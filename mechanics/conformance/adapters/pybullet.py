@@ -125,8 +125,29 @@ INERTIA_RTOL = 4 * EPS
 
 
 def variants() -> list[PyBulletAdapter]:
-    """The variants the battery runs side by side: default and fine, each with the
-    default and the tuned contact."""
+    """The variants the battery runs side by side: default and fine, each with each contact.
+
+    Returns
+    -------
+    list of Adapter
+        One adapter per variant, in the order of the table.
+
+    Raises
+    ------
+    MissingExtraError
+        When the engine is not installed (naming what installs it).
+
+    Examples
+    --------
+    The variants are the product of the options (checked where the engine is installed):
+
+    >>> try:
+    ...     got = [repr(a) for a in variants()]
+    ... except MissingExtraError:  # not installed: nothing to compare
+    ...     got = None
+    >>> got in (None, [f"PyBulletAdapter({v!r}, {c!r})" for v in VARIANTS for c in CONTACTS])
+    True
+    """
     return [PyBulletAdapter(v, c) for v in VARIANTS for c in CONTACTS]
 
 
@@ -161,12 +182,24 @@ class PyBulletAdapter:
     Parameters
     ----------
     variant : {"default", "fine"}
+        One step of 50 solver iterations, or substeps and more iterations (module
+        docstring); default ``"default"``.
     contact : {"default", "tuned"}
+        The contact setting (default ``"tuned"``).
 
     Raises
     ------
+    UnknownOptionError
+        Where ``variant`` or ``contact`` is not one of the above.
     MissingExtraError
         When the ``pybullet`` package is not installed.
+
+    Examples
+    --------
+    >>> PyBulletAdapter("coarse")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.UnknownOptionError: PyBullet variant must be one of (...); got 'coarse'
     """
 
     takes_step = True

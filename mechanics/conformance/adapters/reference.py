@@ -29,7 +29,20 @@ class ExactAdapter:
     """The exact column: returns each scenario's closed-form reference.
 
     Its state errors are zero; its derived figures show the floor of reading them off
-    samples (crossing times by local polynomials, ~1e-12 to 1e-10)."""
+    samples (crossing times by local polynomials, ~1e-12 to 1e-10).
+
+    Examples
+    --------
+    Its run is the reference, at no step of its own:
+
+    >>> from mechanics.conformance import get_scenario
+    >>> s = get_scenario("heavy_top")
+    >>> a = ExactAdapter()
+    >>> a.supports(s), a.takes_step
+    (None, False)
+    >>> bool(np.array_equal(a.run(s, None).R_A_O, reference(s).trajectory.R_A_O))
+    True
+    """
 
     name = "exact (closed forms)"
     takes_step = False
@@ -76,8 +89,45 @@ def _uniform(body) -> dict | None:
 
 
 def scene_from_scenario(s: Scenario, *, method: str = "integrate", rtol=None, atol=None):
-    """The scene (a dict for :func:`mechanics.scenes.parse_scene`) that runs ``s`` on the
-    project's engine, or a string saying why it cannot."""
+    """The scene that runs ``s`` on the project's engine, or a string saying why it cannot.
+
+    The scene is a dict for :func:`mechanics.scenes.parse_scene`.
+
+    Parameters
+    ----------
+    s : Scenario
+        The scenario.
+    method : str, optional
+        The scene's ``method`` (default ``"integrate"``; the scene parser checks it).
+    rtol, atol : float, optional
+        The scene's tolerances (default: the scene's own).
+
+    Returns
+    -------
+    dict or str
+        The scene (``scene``, ``bodies``, ``effects``), or the reason the engine cannot
+        run ``s`` (its samples not uniform from 0, a spinning rocket, a colliding body
+        that is not a solid sphere, box or cylinder of uniform density, a pivot off body
+        axis 3 below G).
+
+    Raises
+    ------
+    NotARotationError
+        Where a body's ``R_A_O`` is not a rotation (read as Euler angles).
+
+    Examples
+    --------
+    Each body's name carries its index; samples off the uniform grid are refused:
+
+    >>> import dataclasses
+    >>> from mechanics.conformance import get_scenario
+    >>> s = get_scenario("two_body_impact")
+    >>> [b["name"] for b in scene_from_scenario(s)["bodies"]] == [
+    ...     f"b{i}_{b.name}" for i, b in enumerate(s.bodies)]
+    True
+    >>> scene_from_scenario(dataclasses.replace(s, sample_times=(0.0, 0.1, s.duration)))
+    'the scene engine samples uniformly from 0 to the duration'
+    """
     from ...rotation import euler_from_matrix
 
     T = np.asarray(s.sample_times, dtype=float)
@@ -167,11 +217,32 @@ def scene_from_scenario(s: Scenario, *, method: str = "integrate", rtol=None, at
 
 
 class SceneEngineAdapter:
-    """The integrated column: the scenario as a scene on :mod:`mechanics.scenes`, run by
-    its adaptive DOP853 (``method="integrate"``; ``"auto"`` takes the engine's exact
-    flows where it has them) at the scene's default tolerances or the given ones.
+    """The integrated column: the scenario as a scene on :mod:`mechanics.scenes`.
 
-    The engine chooses its own steps (``takes_step`` is False)."""
+    The scene is run by the engine's adaptive DOP853 (``method="integrate"``; ``"auto"``
+    takes the engine's exact flows where it has them) at the scene's default tolerances
+    or the given ones.  The engine chooses its own steps (``takes_step`` is False).
+
+    Parameters
+    ----------
+    method : {"integrate", "auto", "exact", "splitting"}, optional
+        The scene's ``method`` (default ``"integrate"``).  Not checked here: a method
+        the scene parser refuses makes :meth:`run` raise its error.
+    rtol, atol : float, optional
+        The integrator's tolerances (default: the scene's own).
+
+    Raises
+    ------
+    TypeError
+        Where an argument is not one of these (the constructor validates no value).
+
+    Examples
+    --------
+    >>> from mechanics.conformance import run_battery
+    >>> a = SceneEngineAdapter()
+    >>> a.name, run_battery(a, scenarios=["parabola"])["parabola"].status
+    ('bodycheck scene engine (integrate)', 'pass')
+    """
 
     takes_step = False
 

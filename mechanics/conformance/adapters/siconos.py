@@ -69,7 +69,29 @@ THETAS = (0.5, 1.0)
 
 
 def variants() -> list[SiconosAdapter]:
-    """The variants the battery runs side by side: Moreau–Jean at each θ of THETAS."""
+    """The variants the battery runs side by side: Moreau–Jean at each θ of THETAS.
+
+    Returns
+    -------
+    list of Adapter
+        One adapter per variant, in the order of the table.
+
+    Raises
+    ------
+    MissingExtraError
+        When the engine is not installed (naming what installs it).
+
+    Examples
+    --------
+    The variants are the product of the options (checked where the engine is installed):
+
+    >>> try:
+    ...     got = [repr(a) for a in variants()]
+    ... except MissingExtraError:  # not installed: nothing to compare
+    ...     got = None
+    >>> got in (None, [f"SiconosAdapter({t!r})" for t in THETAS])
+    True
+    """
     return [SiconosAdapter(theta) for theta in THETAS]
 
 
@@ -83,13 +105,26 @@ class SiconosAdapter:
     Parameters
     ----------
     theta : float
-        Moreau–Jean's θ, in [1/2, 1] (below 1/2 the scheme is unstable).
+        Moreau–Jean's θ, in [1/2, 1] (below 1/2 the scheme is unstable); default 1/2.
 
     Raises
     ------
+    OutOfDomainError
+        Where θ is outside [1/2, 1].
+    NonFiniteError
+        Where θ is a NaN or an infinity.
+    ShapeError
+        Where θ is not a scalar.
     MissingExtraError
         When the interpreter (``BODYCHECK_SICONOS_PYTHON`` or ``/usr/bin/python3``)
         cannot import Siconos.
+
+    Examples
+    --------
+    >>> SiconosAdapter(0.25)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.OutOfDomainError: theta (Moreau-Jean's) must lie in [0.5, 1] ...
     """
 
     takes_step = True
