@@ -19,7 +19,9 @@ all        the three above        ``make run`` and ``make test`` install it (the
 The engines under test have their own extras (``mujoco``, ``pybullet``, ``drake``;
 :func:`mechanics.conformance.adapters.require`).  So does executing the lecture
 notebooks (``notebooks``: nbclient, nbformat, ipykernel; ``bodycheck notebooks --write``
-and ``tests/test_notebooks.py`` name it when it is missing); it is not part of ``all``.
+and ``tests/test_notebooks.py`` name it when it is missing); so does building the API
+reference (``docs``: Sphinx, numpydoc, myst-parser; ``bodycheck site --api``, ``make
+docs``).  Neither is part of ``all``.
 """
 
 from __future__ import annotations
@@ -30,7 +32,13 @@ from types import ModuleType
 __all__ = ["EXTRA_OF", "MissingExtraError", "missing_extra", "require_extra"]
 
 #: the extra that installs each optional top-level package
-EXTRA_OF = {"sympy": "proofs", "mpmath": "proofs", "matplotlib": "plots", "numba": "fast"}
+EXTRA_OF = {
+    "sympy": "proofs",
+    "mpmath": "proofs",
+    "matplotlib": "plots",
+    "numba": "fast",
+    "sphinx": "docs",
+}
 
 
 class MissingExtraError(ImportError):

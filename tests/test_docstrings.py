@@ -61,6 +61,57 @@ EXEMPT: dict[tuple[str, str], str] = {
             "tops.StabilityResult",
         )
     },
+    **{
+        (f"mechanics.{record}", "BC01"): "a record or a container (a dataclass, a NamedTuple, "
+        "a class that keeps its options): its constructor stores what it is given, checks "
+        "nothing and raises nothing of its own"
+        for record in (
+            "conformance.adapters.reference.SceneEngineAdapter",
+            "conformance.battery.Figure",
+            "conformance.battery.Report",
+            "conformance.battery.Run",
+            "conformance.battery.ScenarioResult",
+            "conformance.compare.Comparison",
+            "conformance.protocol.Body",
+            "conformance.protocol.Event",
+            "conformance.protocol.Pivot",
+            "conformance.protocol.Scenario",
+            "conformance.protocol.Shape",
+            "conformance.protocol.Thrust",
+            "conformance.protocol.Trajectory",
+            "conformance.scenarios.Reference",
+            "conformance.thresholds.Config",
+            "conformance.thresholds.Profile",
+            "integrators.Solution",
+            "scenes.effects.base.Context",
+            "scenes.effects.base.Effect",
+            "scenes.effects.base.Snapshot",
+            "scenes.effects.coulomb_friction.Slide",
+            "scenes.effects.rolling.Incline",
+            "scenes.effects.rolling.Track",
+            "strategies.impact.Contact",
+            "strategies.impact.HingedBody",
+            "strategies.inertia.RigidBody",
+            "strategies.particles.ParticleSystem",
+        )
+    },
+    **{
+        (f"mechanics.{protocol}", code): "a typing.Protocol: a type to check against, never "
+        "called (numpydoc reads its signature as (*args, **kwargs))"
+        for protocol in (
+            "conformance.protocol.Adapter",
+            "scenes.effects.base.BodyLike",
+            "scenes.effects.base.SceneLike",
+            "scenes.effects.base.SpecLike",
+            "scenes.effects.capabilities.AddsInertia",
+            "scenes.effects.capabilities.ChangesMass",
+            "scenes.effects.capabilities.Compiles",
+            "scenes.effects.capabilities.GuidesBody",
+            "scenes.effects.capabilities.HasModes",
+            "scenes.effects.capabilities.HasPotential",
+        )
+        for code in ("PR01", "BC01")
+    },
 }
 
 #: modules (or packages) whose docstrings are still being filled (issue 34, item 2): their

@@ -130,12 +130,6 @@ class Figure:
     note : str, optional
         Why a value could not be read, or how it was (default "").
 
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value).
-
     Examples
     --------
     >>> f = Figure("velocity", "error", 2**-11, 2**-10, True)
@@ -177,12 +171,6 @@ class Run:
         The largest relative state error of the run (for a scenario with impacts, the
         largest error of its event figures).
 
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value).
-
     Examples
     --------
     The exact column runs once, at its own step, with no error:
@@ -221,12 +209,6 @@ class ScenarioResult:
         The runs, coarse to fine (default none).
     diagnosis : list of str, optional
         What the failing figures imply (:mod:`~mechanics.conformance.diagnosis`).
-
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value).
 
     Examples
     --------
@@ -306,12 +288,6 @@ class Report:
         The profile's name (default ``"default"``).
     config : str, optional
         The file (and table) the settings came from; "" (default) when none was read.
-
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value).
 
     Examples
     --------

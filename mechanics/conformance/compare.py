@@ -100,11 +100,6 @@ class Comparison:
     missing : list of (str, str), optional
         (family, reason) for each engine that could not run (default none).
 
-    Raises
-    ------
-    TypeError
-        Where ``reports`` is missing (the dataclass's constructor; it checks no value).
-
     Examples
     --------
     One row per scenario and adapter:

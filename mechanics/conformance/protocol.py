@@ -96,12 +96,6 @@ class Shape:
         Its dimensions, m, > 0: (r,) for a sphere; the half extents (a, b, c) along body
         axes 1, 2, 3 for a box; (r, h) for a cylinder, h the half length along axis 3.
 
-    Raises
-    ------
-    TypeError
-        Where a field is missing (the dataclass's constructor; it checks no value:
-        :func:`~.scenarios.check_scenario` and the adapters judge them).
-
     Examples
     --------
     The battery's box, whose half extents give J = (2, 3, 4) at 1 kg, J₁ = m (b² + c²)/3:
@@ -137,12 +131,6 @@ class Body:
         The initial passive attitude ^A R^O, a 3×3 tuple of rows (default the identity).
     omega : tuple of float, optional
         The initial angular velocity, rad/s, in body components (default 0).
-
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value: :func:`~.scenarios.check_scenario` and the adapters judge them).
 
     Examples
     --------
@@ -248,12 +236,6 @@ class Pivot:
     anchor : tuple of float, optional
         Where the point is held, m, in space components (default the origin).
 
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value: :func:`~.scenarios.check_scenario` and the adapters judge them).
-
     Examples
     --------
     The heavy top's pivot 0.5 m below G on axis 3 (|point| = 0.5, on axis 3):
@@ -288,12 +270,6 @@ class Thrust:
         When the motor stops, s, > 0 (q · burn_time kg of fuel burn).
     axis : tuple of float, optional
         The thrust's direction, a unit vector in body components (default (0, 0, 1)).
-
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value: :func:`~.scenarios.check_scenario` and the adapters judge them).
 
     Examples
     --------
@@ -353,12 +329,6 @@ class Scenario:
         Free-form facts a reference or a report may need; ``extra["kind"]`` names the
         scenario's kind (its reference and figures).
 
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value: :func:`~.scenarios.check_scenario` judges a scenario's range).
-
     Examples
     --------
     The samples start at 0 and end at the duration; each step divides every sample time:
@@ -398,11 +368,6 @@ class Event:
     bodies : tuple of (int, int)
         The indices of the two bodies; ``-1`` is the ground.
 
-    Raises
-    ------
-    TypeError
-        Where a field is missing (the dataclass's constructor; it checks no value).
-
     Examples
     --------
     >>> e = Event(0.5, "impact", (0, -1))
@@ -436,12 +401,6 @@ class Trajectory:
     events : tuple of Event, optional
         Contact events, if the engine reports them.
 
-    Raises
-    ------
-    TypeError
-        Where a required field is missing (the dataclass's constructor; it checks no
-        value: :func:`check_trajectory` validates an adapter's answer).
-
     Examples
     --------
     One body at rest at two samples:
@@ -474,16 +433,6 @@ class Adapter(Protocol):
 
     A protocol is not instantiated: a user's class is an ``Adapter`` when it has these
     four members (``isinstance`` checks them, :func:`~.battery.run_battery` too).
-
-    Parameters
-    ----------
-    *args, **kwargs
-        Refused: a protocol cannot be instantiated.
-
-    Raises
-    ------
-    TypeError
-        When the protocol itself is called.
 
     Examples
     --------

@@ -145,11 +145,6 @@ class Reference:
         The derived figures by name (:func:`figure_names`), each a float or, for a
         sequence such as the apex heights, an array.
 
-    Raises
-    ------
-    TypeError
-        Where a field is missing (the dataclass's constructor; it checks no value).
-
     Examples
     --------
     The parabola's apex time is v_z/g, thrown at 8 m/s under g = 9.81 m/s²:

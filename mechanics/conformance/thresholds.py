@@ -154,11 +154,6 @@ class Profile:
         Every figure's bound (plain and ``scenario.figure`` keys; None: reported, not
         checked); ``order`` is a lower bound.
 
-    Raises
-    ------
-    TypeError
-        Where a field is missing (the dataclass's constructor; it checks no value).
-
     Examples
     --------
     A second-order engine is judged at 2⁻⁸ and an order of at least 1.5:
@@ -378,12 +373,6 @@ class Config:
         The thresholds it sets (default none).
     source : str, optional
         The file and table they came from ("" when no file was read, the default).
-
-    Raises
-    ------
-    TypeError
-        Where an argument is not a field (the dataclass's constructor; it checks no
-        value: :func:`load_config` does).
 
     Examples
     --------

@@ -55,13 +55,6 @@ class Solution:
     y_event : ndarray, shape y0.shape, or None
         The state at ``t_event``.
 
-    Raises
-    ------
-    TypeError
-        A field missing, or an argument too many (the dataclass's constructor).
-    AttributeError
-        On assigning to a field (``dataclasses.FrozenInstanceError``, an AttributeError).
-
     Examples
     --------
     ``y`` has a row per output time, and RK4 takes 4 evaluations per step:

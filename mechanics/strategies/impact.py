@@ -157,13 +157,6 @@ class Contact(NamedTuple):
     e : float
         The coefficient of restitution, in [0, 1].
 
-    Raises
-    ------
-    TypeError
-        A field missing, or an argument too many (the named tuple's constructor).
-    AttributeError
-        On assigning to a field (a tuple is immutable).
-
     Examples
     --------
     >>> Contact._fields
@@ -199,13 +192,6 @@ class HingedBody(NamedTuple):
         The unit vector along the axis.
     J_G : ndarray, shape (3, 3)
         The inertia tensor about G (kg m²).
-
-    Raises
-    ------
-    TypeError
-        A field missing, or an argument too many (the named tuple's constructor).
-    AttributeError
-        On assigning to a field (a tuple is immutable).
 
     Examples
     --------

@@ -118,13 +118,6 @@ class RigidBody(NamedTuple):
     r_G : ndarray, shape (3,)
         The position of G (m).
 
-    Raises
-    ------
-    TypeError
-        A field missing, or an argument too many (the named tuple's constructor).
-    AttributeError
-        On assigning to a field (a tuple is immutable).
-
     Examples
     --------
     Fields by name or by position:

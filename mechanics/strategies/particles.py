@@ -96,13 +96,6 @@ class ParticleSystem(NamedTuple):
     v : ndarray, shape (N, 3)
         Velocities (m/s).
 
-    Raises
-    ------
-    TypeError
-        A field missing, or an argument too many (the named tuple's constructor).
-    AttributeError
-        On assigning to a field (a tuple is immutable).
-
     Examples
     --------
     >>> s = ParticleSystem(np.ones(2), np.zeros((2, 3)), np.zeros((2, 3)))

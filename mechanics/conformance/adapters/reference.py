@@ -231,11 +231,6 @@ class SceneEngineAdapter:
     rtol, atol : float, optional
         The integrator's tolerances (default: the scene's own).
 
-    Raises
-    ------
-    TypeError
-        Where an argument is not one of these (the constructor validates no value).
-
     Examples
     --------
     >>> from mechanics.conformance import run_battery

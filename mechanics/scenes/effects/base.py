@@ -90,16 +90,6 @@ class BodyLike(Protocol):
     Its read-only members: ``name``, ``shape``, ``mass`` (kg), ``dims`` (m), ``initial``
     (the body's initial table, SI) and ``fixed``.
 
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
-
     Examples
     --------
     The parser's Body has every member the effects read:
@@ -135,16 +125,6 @@ class SpecLike(Protocol):
     position in the scene file's effects), ``fields`` (its table, SI) and ``where`` (the
     field path its errors name, ``effects[index]``).
 
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
-
     Examples
     --------
     >>> from mechanics.scenes.spec import EffectSpec
@@ -169,16 +149,6 @@ class SceneLike(Protocol):
     Its members: ``bodies``, ``effects``, ``body(name)``, ``effects_of(kind)`` (the
     listed effects of one type) and ``error(field, reason)`` (the exception to raise,
     naming the scene file, the field and the reason).
-
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
 
     Examples
     --------
@@ -303,12 +273,6 @@ class Context:
         Per body, the speeds (m/s) the run's impulses have changed its points by
         (Σ |Δv_G| + |Δω| |arm|). Default an empty array.
 
-    Raises
-    ------
-    TypeError
-        If ``scene``, ``index`` or ``kinds`` is missing (the dataclass's constructor
-        checks nothing else).
-
     Examples
     --------
     >>> from mechanics.scenes.spec import parse_scene
@@ -370,11 +334,6 @@ class Snapshot:
         The time that decides which loads are switched on (default t).
     angle : ndarray, shape (..., n), optional
         A guided body's first coordinate (a hinged body's angle φ, rad); default 0.
-
-    Raises
-    ------
-    TypeError
-        If an argument is missing (the constructor checks nothing else).
 
     Examples
     --------
@@ -529,11 +488,6 @@ class Effect:
     ctx : Context or None, optional
         The scene's context (None: an effect built for its geometry alone, as the
         joints' checks do).
-
-    Raises
-    ------
-    AttributeError
-        If ``spec`` has no ``fields``.
 
     Examples
     --------

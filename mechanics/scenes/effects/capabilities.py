@@ -36,16 +36,6 @@ class HasPotential(Protocol):
     ``potential(s)``: the potential energy (J) at the snapshots s, of the shape of s's
     samples.
 
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
-
     Examples
     --------
     A class declares the protocol among its bases; the runtime check agrees:
@@ -67,16 +57,6 @@ class HasModes(Protocol):
 
     ``loads`` holds the loads of the effects summed before it; its next switch is where
     the switch function g falls through zero (located by :mod:`mechanics.scenes.modes`).
-
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
 
     Examples
     --------
@@ -101,16 +81,6 @@ class ChangesMass(Protocol):
 
     ``mass_loss(t)``: the mass (kg) each body has lost by the time(s) t, shape (..., n).
 
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
-
     Examples
     --------
     >>> from mechanics.scenes.effects.thrust import Thrust
@@ -127,16 +97,6 @@ class AddsInertia(Protocol):
     """An effect that adds inertia to a guided body (mass flowing onto it).
 
     ``inertia_added(t, i)``: the inertia (kg m²) added to body i's coordinates by time t.
-
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
 
     Examples
     --------
@@ -156,16 +116,6 @@ class GuidesBody(Protocol):
     The body's state is the :class:`~mechanics.scenes.state.Guide`'s (q, q̇), made by
     the class method ``make_guide(spec, scene, g_vector)``.
 
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
-
     Examples
     --------
     >>> from mechanics.scenes.effects.fixed_axis import FixedAxis
@@ -184,16 +134,6 @@ class Compiles(Protocol):
 
     The kernels are in :mod:`mechanics.scenes._kernels` (run by
     :mod:`mechanics.scenes.compiled`); ``kernel_args()`` gives the numbers they read.
-
-    Parameters
-    ----------
-    *args, **kwargs : Any
-        None taken: a protocol is a type to check against, never instantiated.
-
-    Raises
-    ------
-    TypeError
-        On any call: protocols cannot be instantiated.
 
     Examples
     --------

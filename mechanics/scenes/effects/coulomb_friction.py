@@ -89,11 +89,6 @@ class Slide(Guide):
     mu : float
         The friction coefficient μ (> 0).
 
-    Raises
-    ------
-    TypeError
-        If a field is missing (the dataclass's constructor checks nothing else).
-
     Examples
     --------
     The stick force F keeps the slip zero: s̈ = (Q_s + F)/m equals r θ̈ = −r² F/J:

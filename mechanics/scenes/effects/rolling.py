@@ -175,11 +175,6 @@ class Incline(Guide):
     alpha : float
         The slope α, rad.
 
-    Raises
-    ------
-    TypeError
-        If a field is missing (the dataclass's constructor checks nothing else).
-
     Examples
     --------
     The drop s sin α (a series) is the fall of G:
@@ -268,11 +263,6 @@ class Track(Guide):
         The inertia of the coordinate ψ, M_eff (R − r)² (kg m²).
     M_eff : float
         m + J/r², kg (3.79).
-
-    Raises
-    ------
-    TypeError
-        If a field is missing (the dataclass's constructor checks nothing else).
 
     Examples
     --------
