@@ -69,7 +69,7 @@ The scenarios (:data:`SCENARIOS`)
     A ball dropped from 0.41 m onto smooth ground, e = 0.5 (kind ``rest``): its impacts
     accumulate at t_f (1 + e)/(1 − e) = 0.867 s, then it rests.  Figures: the first two
     apexes (the later flights are shorter than the samples) and the rest time, the first
-    sample from which the speed stays at or below :data:`REST_FRACTION` of the first
+    sample from which the speed stays at or below ``REST_FRACTION`` of the first
     impact speed.  Conserved: the tangential momentum.
 ``oblique_impact_sticks``, ``oblique_impact_slips``
     A solid ball falling 0.45 m, moving sideways at 1 or 3 m/s, onto rough ground
@@ -1715,7 +1715,7 @@ def check_scenario(s: Scenario) -> None:
       be shorter than any step), each flight lasts :data:`FLIGHT_STEPS` coarsest steps;
     - the battery's own reading of its exact samples gives every figure (the apex, the
       periods, the impact: otherwise no engine can be judged on them), each within
-      :data:`READ_RTOL` of the exact figure;
+      ``READ_RTOL`` of the exact figure;
     - a ball bouncing to rest comes to rest within the duration; an oblique impact's run
       ends between the rebound's apex and the second impact;
     - every impact is :data:`IMPACT_MARGIN_STEPS` finest steps from every sample.

@@ -421,7 +421,7 @@ class DenseStep:
     """The 7th-order continuous extension of one DOP853 step over [t_old, t].
 
     Hairer's ``contd8`` as scipy's ``Dop853DenseOutput``: with x = (τ − t_old)/h,
-    h = t − t_old, and the rows F_0 … F_6 of :attr:`F`,
+    h = t − t_old, and the rows F_0 … F_6 of ``F``,
 
     y(τ) = y_old + x (F_0 + (1 − x) (F_1 + x (F_2 + (1 − x) (F_3 + x (F_4 + (1 − x)
     (F_5 + x F_6)))))),

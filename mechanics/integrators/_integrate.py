@@ -84,7 +84,7 @@ def integrate(
         ``"dop853"`` only, without a batch: ``event(t, y)`` → float.  The run stops at
         the first zero crossing of ``event`` (checked at the end of each step, so two
         crossings within one step are not seen), located on the step's continuous
-        extension to 4 ulps of its time; :attr:`Solution.t_event` and ``y_event`` hold
+        extension to 4 ulps of its time; ``Solution.t_event`` and ``y_event`` hold
         it, and ``t``, ``y`` the outputs before it.  Numba-compiled, with a
         compiled ``rhs``, it runs in the kernel.
     event_direction : {-1, 0, 1}

@@ -38,7 +38,7 @@ class Solution:
     t : ndarray, shape (n,)
         Output times: the grid that was asked for, unchanged; with an ``event`` that
         was met, its times before ``t_event``.
-    y : ndarray, shape (n, *y0.shape)
+    y : ndarray, shape (n,) + y0.shape
         The state at each output time; ``y[0]`` is the initial state.
     method : str
         ``"rk4"``, ``"dop853"`` or ``"splitting-<order>"``.

@@ -311,7 +311,7 @@ def free_rigid_body_splitting(
     Returns
     -------
     Solution
-        ``y`` of shape (n, *batch, 12): the state of :func:`rigid_body_state`
+        ``y`` of shape ``(n, *batch, 12)``: the state of :func:`rigid_body_state`
         (split it with :func:`rigid_body_parts`); ``rhs_evals`` counts sub-flows.
 
     Raises

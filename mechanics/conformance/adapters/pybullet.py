@@ -75,6 +75,7 @@ Variants (:func:`variants`)
   ``numSubSteps = 0``), its default 50 solver iterations.
 - ``"fine"``: the same battery step cut into :data:`FINE_SUBSTEPS` internal steps, with
   :data:`FINE_ITERATIONS` solver iterations each.
+
 Both take the battery's fixed step (``takes_step = True``).  Bullet's multibody
 integrator is semi-implicit Euler: first order.
 

@@ -4,14 +4,14 @@ Conventions
 -----------
 - **Registered by name.**  An effect is a class with a ``type`` (the name a scene file
   lists) and a ``schema`` ``{field: (kind, required)}`` that the scene file's parser
-  checks (kinds: see :func:`mechanics.scenes.spec.check_field`).  :func:`register`
+  checks (kinds: see ``mechanics.scenes.spec.check_field``).  :func:`register`
   adds it to :data:`REGISTRY`.  An object is built only for an effect the scene
   lists; no code of an unlisted effect runs.
 - **What an effect may contribute** (each optional, the base class contributes
   nothing): :meth:`Effect.loads` adds forces (in the space basis O, at a point given in
   body components about G, or at G) and moments to a :class:`Loads`; a potential
   energy, mass lost, inertia added, modes or a guide, each declared by a protocol of
-  :mod:`.capabilities` among the class's bases; :meth:`keeps` says which of the total
+  :mod:`.capabilities` among the class's bases; ``keeps`` says which of the total
   momentum p_x, p_y,
   p_z, the total angular momentum about the origin L_x, L_y, L_z and the total energy
   E it leaves unchanged (the engine reports as conserved exactly the quantities every

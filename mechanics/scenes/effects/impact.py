@@ -41,7 +41,7 @@ Conventions
   is the impulse's work −(P·u + ½ P·K P).  Newton's kinematic e with friction can
   *gain* energy where the contact's normal and tangential motions are coupled (Kane's
   paradox; a tilted box on a very rough floor meets it): such an impulse is refused
-  with :class:`EnergyGainError` (the engine stops with one line) rather than applied.
+  with ``EnergyGainError`` (the engine stops with one line) rather than applied.
   An energetically consistent law (Stronge's energetic coefficient with the slip
   integrated through the impact) is not modelled yet.
 - A contact found while *separating* is the exit side of an interpenetration: a bug,
@@ -80,7 +80,7 @@ RIMS = ("disc", "ring", "cylinder", "cylindrical_shell")
 #: an impulse may lose this fraction of the kinetic energy's rounding below zero (the
 #: loss is the work of the impulse, a sum of a dozen products)
 GAIN_RTOL = 64 * EPS
-#: :func:`totals`: the kinetic energy, momentum, Σ m|v|, the angular momentum about the
+#: ``totals``: the kinetic energy, momentum, Σ m|v|, the angular momentum about the
 #: contact point, the size of its terms, and each body's record
 Totals: TypeAlias = tuple[float, list[float], float, list[float], float, list[dict[str, Any]]]
 
@@ -549,7 +549,7 @@ class Impact(Effect):
         return {"bodies": [self.fields["body"], self.fields["other"]]}
 
     def outcome(self, s: Snapshot, before: Totals, after: Totals, loss: float) -> dict[str, Any]:
-        """The event's record of an impact's effect on the bodies (:func:`totals` before
+        """The event's record of an impact's effect on the bodies (``totals`` before
         and after, read off the velocities) beside the law's energy ``loss``: what the
         run's self-checks compare."""
         idx = self.bodies()

@@ -37,7 +37,7 @@ class NewtonGravity(Effect, HasPotential, Compiles):
     ----------
     spec : SpecLike
         The listed effect; its fields: ``G`` (m³/(kg s²), > 0; default
-        :data:`G_NEWTON`) and ``bodies`` (at least two distinct names; default every
+        ``G_NEWTON``) and ``bodies`` (at least two distinct names; default every
         body).
     ctx : Context
         The scene's context (the bodies' indices, and the scene for the default list).
