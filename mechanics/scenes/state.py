@@ -265,7 +265,7 @@ class Hinge(Guide):
     u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G from the
     axis and the moment of inertia J_a about it.  The constructor stores what it is
     given and checks nothing (the joint's effect builds it:
-    :class:`mechanics.scenes.effects.fixed_axis.FixedAxis`).
+    :meth:`mechanics.scenes.effects.fixed_axis.FixedAxis.make_guide`).
 
     Parameters
     ----------
