@@ -63,10 +63,10 @@ __all__ = [
 
 #: exact flows: each sample is a closed form, rounding grows with the terms (≤ ~100 ops)
 CONSERVED_RTOL = 1024 * EPS
-#: a gap below zero by more than this × (max |position| + the radii) is an
 #: more impact pairs than this (a group's) share one interpenetration check, naming
 #: the deepest
 MANY_PAIRS = 16
+#: a gap below zero by more than this × (max |position| + the radii) is an
 #: interpenetration: contacts are located to 4 eps of the time and the positions are
 #: sums of a few dozen rounded terms, so a resolved contact leaves a few eps at most
 PENETRATION_RTOL = 256 * EPS
