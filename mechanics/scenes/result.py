@@ -63,10 +63,10 @@ __all__ = [
 
 #: exact flows: each sample is a closed form, rounding grows with the terms (≤ ~100 ops)
 CONSERVED_RTOL = 1024 * EPS
-#: a gap below zero by more than this × (max |position| + the radii) is an
 #: more impact pairs than this (a group's) share one interpenetration check, naming
 #: the deepest
 MANY_PAIRS = 16
+#: a gap below zero by more than this × (max |position| + the radii) is an
 #: interpenetration: contacts are located to 4 eps of the time and the positions are
 #: sums of a few dozen rounded terms, so a resolved contact leaves a few eps at most
 PENETRATION_RTOL = 256 * EPS
@@ -93,7 +93,38 @@ Compare: TypeAlias = "Callable[[Scene, Trajectory], Iterable[Comparison]]"
 
 @dataclass(frozen=True)
 class Comparison:
-    """A simulated quantity against the book's closed form."""
+    """A simulated quantity against the book's closed form.
+
+    It holds (``ok``) where the relative difference |simulated − closed_form| /
+    |closed_form| (the absolute one where the closed form is 0) is within
+    ``tolerance``; a non-finite side never holds.  The constructor stores what it is
+    given and checks nothing.
+
+    Parameters
+    ----------
+    name : str
+        What is compared, e.g. ``"speed at t = 2 s"``.
+    book : str
+        The book's reference for the closed form, e.g. ``"(3.80)"``.
+    simulated : float
+        The value the run gives (SI units).
+    closed_form : float
+        The book's value, in the same units.
+    tolerance : float
+        The relative difference allowed, ≥ 0.
+    reason : str
+        Where the tolerance comes from.
+
+    Examples
+    --------
+    1.5 against 1.0: a difference of 0.5, relative 0.5, within a tolerance of 0.6:
+
+    >>> c = Comparison("v(2 s)", "(3.80)", 1.5, 1.0, 0.6, "a test")
+    >>> c.difference, c.relative_difference, c.ok
+    (0.5, 0.5, True)
+    >>> Comparison("v", "(3.80)", float("nan"), 1.0, 1.0, "a test").ok
+    False
+    """
 
     name: str
     book: str
@@ -136,7 +167,38 @@ class Comparison:
 
 @dataclass(frozen=True)
 class ConservedReport:
-    """The drift of a quantity the effects conserve."""
+    """The drift of a quantity the effects conserve.
+
+    It holds (``ok``) where the value and the drift are finite and the drift is within
+    ``tolerance`` (see the module's Conventions).  The constructor stores what it is
+    given and checks nothing.
+
+    Parameters
+    ----------
+    name : str
+        The quantity, e.g. ``"E"`` or ``"p_x"``.
+    value : float
+        Its value at the end of the run (SI units).
+    drift : float
+        Its largest change within a segment between events, relative to its scale.
+    tolerance : float
+        The relative drift allowed, ≥ 0.
+    since : float, optional
+        The time (s) from which it is conserved (energy once rolling). Default 0.
+
+    Examples
+    --------
+    The energy of a point falling from 4 m: m g z0 = 2 × 8 × 4 = 64 J, kept to the bit:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> E = {c.name: c for c in run_scene(sc).conserved}["E"]
+    >>> E.value, E.drift, E.ok, ConservedReport("E", 64.0, float("nan"), 1.0).ok
+    (64.0, 0.0, True, False)
+    """
 
     name: str
     value: float
@@ -163,8 +225,38 @@ class ConservedReport:
 
 @dataclass(frozen=True)
 class SelfCheck:
-    """A property the run verifies on its own output (no interpenetration, the impact
-    laws), with its worst relative violation and the tolerance."""
+    """A property the run verifies on its own output, its worst violation and tolerance.
+
+    The properties (no interpenetration, the impact laws, ...) are the module's
+    Conventions; it holds (``ok``) where the violation is within the tolerance (a NaN
+    never is).  The constructor stores what it is given and checks nothing.
+
+    Parameters
+    ----------
+    name : str
+        The property, e.g. ``"no interpenetration of body 'ball' and the plane"``.
+    violation : float
+        Its worst relative violation over the run.
+    tolerance : float
+        The violation allowed, ≥ 0.
+    reason : str
+        What is measured.
+
+    Examples
+    --------
+    Every run checks that the numbers it reports are finite:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> first = run_scene(sc).self_checks[0]
+    >>> first.name, first.violation, first.ok
+    ('every reported number finite', 0.0, True)
+    >>> SelfCheck("gap ≥ 0", 2.0, 1.0, "a test").ok
+    False
+    """
 
     name: str
     violation: float
@@ -188,7 +280,40 @@ class SelfCheck:
 
 @dataclass
 class SceneResult:
-    """A scene run: the trajectory, the conserved quantities and the book comparisons."""
+    """A scene run: the trajectory, the conserved quantities and the book comparisons.
+
+    It passes (``passed``) where every conserved quantity, comparison and self-check
+    holds; ``as_dict``, ``to_json`` and ``summary`` write its record.  Built by
+    :func:`run_scene`; the constructor stores what it is given and checks nothing.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene that was run.
+    trajectory : Trajectory
+        Its run (:func:`mechanics.scenes.simulate.simulate`).
+    conserved : list[ConservedReport]
+        The drifts of the quantities its effects conserve.
+    comparisons : list[Comparison], optional
+        The comparisons with the book. Default none.
+    self_checks : list[SelfCheck], optional
+        What the run verified on its own output. Default none.
+
+    Examples
+    --------
+    A run passes where each of its checks holds:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> res = run_scene(sc)
+    >>> res.passed, all(c.ok for c in [*res.conserved, *res.self_checks])
+    (True, True)
+    >>> res.method == res.trajectory.method, res.summary().splitlines()[-1]
+    (True, 'PASSED')
+    """
 
     scene: Scene
     trajectory: Trajectory
@@ -373,9 +498,49 @@ def _drift(
 
 
 def run_scene(scene: Scene, compare: Compare | None = None) -> SceneResult:
-    """Simulate the scene and report its conserved quantities and self-checks; with
-    ``compare`` (a function ``(scene, trajectory) -> list[Comparison]``), also the
-    comparisons it makes (the book's: :func:`identities.book.scenes.compare.run_book_scene`)."""
+    """Simulate the scene and report its conserved quantities, self-checks and comparisons.
+
+    With ``compare`` (a function ``(scene, trajectory) -> list[Comparison]``), also the
+    comparisons it makes (the book's: :func:`identities.book.scenes.compare.run_book_scene`).
+    A number the run reports that is not finite fails it by name (the module's
+    Conventions), never with a warning.
+
+    Parameters
+    ----------
+    scene : Scene
+        A validated scene (:func:`~.spec.parse_scene`, :func:`~.spec.load_scene`).
+    compare : Compare or None, optional
+        The comparisons to make of the run: ``(scene, trajectory) -> Iterable[Comparison]``.
+        Default None: none.
+
+    Returns
+    -------
+    SceneResult
+        The trajectory, the conserved quantities' drifts, the comparisons and the
+        self-checks.
+
+    Raises
+    ------
+    SceneError
+        Where the run is refused or stopped (:func:`mechanics.scenes.simulate.simulate`:
+        its budget, float64's range, a library function's domain).
+
+    Examples
+    --------
+    A fall from 4 m under g = 8 m/s², compared with z(1 s) = 4 − ½ g t² = 0:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> def compare(scene, tr):
+    ...     return [Comparison("z(1 s)", "free fall", tr.series["z"][-1], 4.0 - 0.5 * 8.0,
+    ...                        0.0, "exact arithmetic")]
+    >>> res = run_scene(sc, compare)
+    >>> res.passed, res.comparisons[0].difference
+    (True, 0.0)
+    """
     tr = simulate(scene)
     with np.errstate(all="ignore"):  # a non-finite number fails the run by name
         return _report(scene, tr, compare)

@@ -185,7 +185,39 @@ _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_\-]*$")
 
 @dataclass(frozen=True)
 class Body:
-    """A body of the scene: its shape, mass, dimensions and initial state (SI)."""
+    """A body of the scene: its shape, mass, dimensions and initial state (SI).
+
+    Built by :func:`parse_scene`, which checks each field; the constructor stores what
+    it is given and checks nothing.
+
+    Parameters
+    ----------
+    name : str
+        The body's name (an identifier, unique in the scene).
+    shape : str
+        One of :data:`SHAPES`.
+    mass : float
+        The mass, kg, > 0 (0 for a tank, which has none).
+    dims : dict[str, Any]
+        The dimensions the shape needs (:data:`SHAPES`), in SI units
+        (:data:`DIMENSION_UNITS`: m; a custom body's principal moments, kg m²).
+    initial : dict[str, Any]
+        The initial state, keys in :data:`INITIAL_KEYS` (units: :data:`INITIAL_DOC`).
+    fixed : bool, optional
+        The body stays where it is, an immovable partner of contacts and springs.
+        Default False.
+
+    Examples
+    --------
+    The body a scene's table describes, and the same built directly:
+
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> sc.bodies[0] == Body("ball", "point", 2.0, {}, {"position": [0.0, 0.0, 4.0]})
+    True
+    """
 
     name: str
     shape: str
@@ -197,7 +229,35 @@ class Body:
 
 @dataclass(frozen=True)
 class EffectSpec:
-    """One listed effect: its type, its position in the file and its fields."""
+    """One listed effect: its type, its position in the file and its fields.
+
+    Built by :func:`parse_scene`, which checks each field against the effect's schema
+    (:data:`EFFECT_FIELDS`); the constructor stores what it is given and checks nothing.
+
+    Parameters
+    ----------
+    type : str
+        The effect's type, a key of :data:`EFFECT_FIELDS` (``"gravity"``, ``"impact"``,
+        ...).
+    index : int
+        Its position in the file's ``[[effects]]`` array, ≥ 0 (errors name
+        ``effects[index]``).
+    fields : dict[str, Any]
+        Its fields, checked and in SI units (the effect's ``units``).
+
+    Examples
+    --------
+    The effect a scene lists, and the same built directly; errors name it by its
+    place:
+
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> spec = EffectSpec("gravity", 0, {"g": 8.0})
+    >>> sc.effects[0] == spec, spec.where
+    (True, 'effects[0]')
+    """
 
     type: str
     index: int
@@ -211,7 +271,67 @@ class EffectSpec:
 
 @dataclass(frozen=True)
 class Scene:
-    """A validated scene."""
+    """A validated scene: its bodies, its effects and how it is run.
+
+    Built by :func:`parse_scene` (or :func:`load_scene`), which checks each field and
+    their combination; the constructor stores what it is given and checks nothing.  The
+    fields are those of the ``[scene]`` table (:data:`SCENE_FIELDS`).
+
+    Parameters
+    ----------
+    name : str
+        The scene's name.
+    source : str
+        Where it was read from (a file's path, or ``"<scene>"``): errors name it.
+    duration : float
+        The simulated time, s, > 0.
+    samples : int
+        Samples over [0, duration], ≥ 2.
+    method : str
+        One of :data:`METHODS`: ``"auto"``, ``"exact"``, ``"integrate"`` or
+        ``"splitting"``.
+    rtol : float
+        The integrator's relative tolerance, in [100 eps, 1e-3].
+    atol : float
+        Its absolute tolerance (state units), in (0, 1e-3].
+    bodies : tuple[Body, ...]
+        The bodies, in file order, at least one.
+    effects : tuple[EffectSpec, ...]
+        The listed effects, in file order (the only ones that act).
+    title : str, optional
+        A title for plots and reports. Default empty.
+    book : str, optional
+        The book reference it illustrates. Default empty.
+    compare : str, optional
+        The name of a book comparison (:mod:`identities.book.scenes.compare`). Default
+        empty.
+    raw : dict[str, Any], optional
+        The parsed TOML it was validated from (not compared). Default empty.
+    step : float or None, optional
+        The splitting's step, s, > 0; None (default): the sample interval.
+    order : int, optional
+        The splitting's order, 2, 4 or 6. Default 4.
+    max_samples : int or None, optional
+        The samples a run may hold, ≥ 2; None (default): what the memory budget holds
+        (:mod:`.budget`).
+    max_steps : int, optional
+        The steps an integrated run may take, ≥ 1. Default ``DEFAULT_MAX_STEPS``.
+    max_seconds : float, optional
+        The wall time a run may take, s, > 0. Default ``DEFAULT_MAX_SECONDS``.
+
+    Examples
+    --------
+    The scene parsed from its tables, and the same built directly:
+
+    >>> sc = parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                               "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...                   "effects": [{"type": "gravity", "g": 8.0}]})
+    >>> Scene("fall", "<scene>", 1.0, 3, "auto", 1e-12, 1e-12, sc.bodies, sc.effects) == sc
+    True
+    >>> sc.body("ball") is sc.bodies[0], str(sc.error("scene.duration", "too long"))
+    (True, '<scene>: scene.duration: too long')
+    """
 
     name: str
     source: str
@@ -470,6 +590,31 @@ def _parse_effect(src: str, i: int, e: Any, bodies: set[str]) -> EffectSpec:
 def parse_scene(data: dict[str, Any], *, source: str = "<scene>") -> Scene:
     """Validate a scene given as a dict (the parsed TOML); raise :class:`SceneError`.
 
+    Each field is checked against the schema (the module's docstring: SI numbers, no
+    units, nothing evaluated), then the combination of bodies and effects
+    (:func:`mechanics.scenes.simulate.validate`).
+
+    Parameters
+    ----------
+    data : dict[str, Any]
+        The scene's tables: ``scene`` (required), ``bodies`` (at least one), ``effects``
+        and ``units`` (optional).
+    source : str, optional
+        Where the data came from, named by every error. Default ``"<scene>"``.
+
+    Returns
+    -------
+    Scene
+        The validated scene, its numbers as floats in SI units.
+
+    Raises
+    ------
+    SceneError
+        Where a table or field is missing, unknown or invalid (not a number in SI units,
+        not finite, out of its range or beyond magnitude 2⁸⁰, an unknown shape, effect or
+        body), or the combination of bodies and effects is refused: the message names
+        ``source``, the field and the reason.
+
     Examples
     --------
     >>> s = parse_scene({"scene": {"name": "drop", "duration": 1.0},
@@ -601,7 +746,39 @@ got a string '2 s' (units are not parsed: write the value as a plain number in S
 
 
 def load_scene(path: str | PathLike[str]) -> Scene:
-    """Read and validate a scene file (TOML); errors name the file, field and reason."""
+    """Read and validate a scene file (TOML); errors name the file, field and reason.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The scene file: UTF-8 TOML (the module's docstring gives the schema).
+
+    Returns
+    -------
+    Scene
+        The validated scene (:func:`parse_scene` of its tables), its ``source`` the
+        path.
+
+    Raises
+    ------
+    SceneError
+        Where the file cannot be read (field ``(file)``), is not UTF-8, is not valid
+        TOML (field ``(syntax)``), or its scene is invalid (:func:`parse_scene`).
+
+    Examples
+    --------
+    A built-in scene read from its file, and parsed from its tables:
+
+    >>> from mechanics.scenes import builtin_path
+    >>> path = builtin_path("rolling_incline")
+    >>> sc = load_scene(path)
+    >>> sc == parse_scene(tomllib.loads(path.read_text("utf-8")), source=str(path))
+    True
+    >>> load_scene(path.with_name("no_such_scene.toml"))  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: ...no_such_scene.toml: (file): cannot read: ...
+    """
     p = Path(path)
     try:
         text = p.read_bytes()

@@ -68,7 +68,46 @@ def _schedule(order: int) -> list[tuple[str, float]]:
 
 
 def check(engine: Engine) -> None:
-    """Refuse, naming scene.method, what a fixed-step splitting cannot run."""
+    """Refuse, naming scene.method, what a fixed-step splitting cannot run.
+
+    It runs points and free rigid bodies only (no joint, tank or fixed body), without
+    impacts or switching effects, under effects that all keep the energy and have a
+    potential, and no rigid body with a zero principal moment (the module's
+    Conventions, When).
+
+    Parameters
+    ----------
+    engine : Engine
+        The scene assembled (:class:`mechanics.scenes.engine.Engine`): its scene,
+        layout, impacts and forces.
+
+    Raises
+    ------
+    SceneError
+        Where the scene is not one a splitting runs: the field ``scene.method`` and the
+        reason.
+
+    Examples
+    --------
+    A fall runs by a splitting; the same fall onto a floor is refused (a fixed step
+    cannot locate the impact):
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> data = {"scene": {"name": "fall", "duration": 1.0, "method": "splitting"},
+    ...         "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                     "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...         "effects": [{"type": "gravity", "g": 8.0}]}
+    >>> check(Engine(parse_scene(data))) is None
+    True
+    >>> floor = {"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...          "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}
+    >>> check(Engine(parse_scene({**data, "effects": [*data["effects"], floor]})))
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: scene.method: 'splitting': a fixed step \
+cannot locate impacts or switches: use 'auto' or 'integrate'
+    """
     scene, lay = engine.scene, engine.layout
     why = None
     if any(k not in ("point", "rigid") for k in lay.kinds):
@@ -89,8 +128,51 @@ def check(engine: Engine) -> None:
 
 
 def run(engine: Engine, order: int, step: float | None) -> tuple[list[Segment], float]:
-    """(segments, step used): the states at the samples, each sample interval a segment
-    whose dense function takes partial steps from its start."""
+    """(segments, step used): the states at the samples, each interval a dense segment.
+
+    Each sample interval is a segment whose dense function takes partial steps from its
+    start; the step is ``step`` rounded down to divide the sample interval (the module's
+    Conventions, The method).
+
+    Parameters
+    ----------
+    engine : Engine
+        The scene assembled (:class:`mechanics.scenes.engine.Engine`), one that
+        :func:`check` passes.
+    order : int
+        The composition's order: 2 (Strang), 4 or 6 (Yoshida's triple jump).
+    step : float or None
+        The largest step, s, > 0; None: the sample interval.
+
+    Returns
+    -------
+    segments : list[Segment]
+        ``(t_a, t_b, dense)`` for each sample interval, in time order; ``dense`` is
+        vectorised (:func:`~.trajectory.vectorized`) and gives the flat state(s).
+    h : float
+        The step used, s: the sample interval divided by ⌈interval / step⌉.
+
+    Raises
+    ------
+    SceneError
+        Where a rigid body turns within float64's reach of the separatrix, where the
+        torque-free flow is not resolved (field ``scene.method``).
+
+    Examples
+    --------
+    Under uniform gravity Strang's kick–drift–kick is exact: the fall z = 4 − 4 t²,
+    v = −8 t, at the samples and between them (the state is r, v):
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "fall", "duration": 1.0, "samples": 3},
+    ...     "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                 "initial": {"position": [0.0, 0.0, 4.0]}}],
+    ...     "effects": [{"type": "gravity", "g": 8.0}]}))
+    >>> segs, h = run(eng, 2, None)
+    >>> h, segs[1][2](1.0).tolist(), segs[0][2](0.25).tolist()
+    (0.5, [0.0, 0.0, 0.0, 0.0, 0.0, -8.0], [0.0, 0.0, 3.75, 0.0, 0.0, -2.0])
+    """
     scene, lay = engine.scene, engine.layout
     t = np.linspace(0.0, scene.duration, scene.samples)
     gap = float(t[1] - t[0])

@@ -92,15 +92,89 @@ SPHERICAL_SHAPES = ("point", "solid_sphere", "hollow_sphere")
 def point_acceleration(
     base: FloatArray, alpha: FloatArray, w: FloatArray, r: FloatArray
 ) -> FloatArray:
-    """base + α × r + ω × (ω × r): the acceleration of a body point at r from the
-    origin whose acceleration is ``base`` (3-vectors)."""
+    """base + α × r + ω × (ω × r): the acceleration of a body point at r from an origin.
+
+    The rigid body's acceleration field: the origin (a point of the body) has
+    acceleration ``base``; the inputs are 3-vectors in one basis and are not checked.
+
+    Parameters
+    ----------
+    base : ndarray, shape (3,)
+        The acceleration of the origin, m/s².
+    alpha : ndarray, shape (3,)
+        The angular acceleration α = ω̇, rad/s².
+    w : ndarray, shape (3,)
+        The angular velocity ω, rad/s.
+    r : ndarray, shape (3,)
+        The point, from the origin, m.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        The point's acceleration, m/s².
+
+    Raises
+    ------
+    IndexError
+        Where a vector has fewer than 3 components (:func:`~.vectors.cross3`).
+
+    Examples
+    --------
+    Uniform rotation about e3: the centripetal ω × (ω × r) = −ω² r for r ⟂ ω, and
+    α × r adds the tangential part:
+
+    >>> w, r = np.array([0.0, 0.0, 2.0]), np.array([3.0, 0.0, 0.0])
+    >>> a = point_acceleration(np.zeros(3), np.zeros(3), w, r)
+    >>> a.tolist(), bool(np.array_equal(a, -(2.0**2) * r))
+    ([-12.0, 0.0, 0.0], True)
+    >>> point_acceleration(np.zeros(3), np.array([0.0, 0.0, 1.0]), w, r).tolist()
+    [-12.0, 3.0, 0.0]
+    """
     return base + cross3(alpha, r) + cross3(w, cross3(w, r))
 
 
 def turned(a: FloatArray, u0: FloatArray, k: int, theta: Times) -> FloatArray:
-    """The rows of R_A_O of a body turned by θ about the space axis a (any shape of θ):
-    body axis k along a, axis j = (k + 1) % 3 along u0 at θ = 0 and axis l = (k + 2) % 3
-    along u1 = a × u0; at θ, e_j = cos θ u0 + sin θ u1, e_l = cos θ u1 − sin θ u0."""
+    """The rows of R_A_O of a body turned by θ about the space axis a (any shape of θ).
+
+    Body axis k along a, axis j = (k + 1) % 3 along u0 at θ = 0 and axis l = (k + 2) % 3
+    along u1 = a × u0; at θ, e_j = cos θ u0 + sin θ u1, e_l = cos θ u1 − sin θ u0.
+    Nothing is checked: a and u0 are taken as orthonormal.
+
+    Parameters
+    ----------
+    a : ndarray, shape (3,)
+        The unit axis in space components.
+    u0 : ndarray, shape (3,)
+        A unit vector ⟂ a: body axis j at θ = 0.
+    k : int
+        The body axis along a: 0, 1 or 2.
+    theta : float or ndarray, shape (...)
+        The angle(s) of the turn, rad.
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        R_A_O at each θ: its rows the body's basis vectors in space components.
+
+    Raises
+    ------
+    ValueError
+        Where ``a`` or ``u0`` does not end in 3 (:func:`~.vectors.cross`).
+    IndexError
+        Where ``k`` is not 0, 1 or 2.
+
+    Examples
+    --------
+    About e3 with u0 = e1: the identity at θ = 0, and at θ the body's e1 at
+    (cos θ, sin θ, 0); each attitude orthogonal:
+
+    >>> e = np.eye(3)
+    >>> R = turned(e[2], e[0], 2, np.array([0.0, 0.5]))
+    >>> R[0].tolist() == e.tolist(), bool(np.allclose(R[1, 0], [np.cos(0.5), np.sin(0.5), 0]))
+    (True, True)
+    >>> bool(np.allclose(R @ np.swapaxes(R, -1, -2), e))
+    True
+    """
     u1 = cross(a, u0)
     c, s = np.cos(theta)[..., None], np.sin(theta)[..., None]
     R = np.empty((*np.shape(theta), 3, 3))
@@ -111,15 +185,29 @@ def turned(a: FloatArray, u0: FloatArray, k: int, theta: Times) -> FloatArray:
 
 
 class Guide:
-    """What a joint makes of a body it guides: ``nq`` coordinates q (the state holds q,
-    then q̇), the centre G(q) and attitude R_A_O(q), the derivatives E_k = ∂G/∂q_k, the
-    angular velocity W_k (space) per unit q̇_k (constant), and the constant inertias
-    M_k of the kinetic energy T = ½ Σ M_k q̇_k² (m E_j·E_k + W_jᵀ J W_k = 0 for j ≠ k and
-    |E_k| constant along the path, so Lagrange's equations read M_k q̈_k = Q_k, with the
-    generalised force Q_k = F·E_k + M·W_k of a force F at G and a moment M about G).
+    """What a joint makes of a body it guides: coordinates q, the centre G(q), R_A_O(q).
+
+    ``nq`` coordinates q (the state holds q, then q̇), the centre G(q) and attitude
+    R_A_O(q), the derivatives E_k = ∂G/∂q_k, the angular velocity W_k (space) per unit
+    q̇_k (constant), and the constant inertias M_k of the kinetic energy
+    T = ½ Σ M_k q̇_k² (m E_j·E_k + W_jᵀ J W_k = 0 for j ≠ k and |E_k| constant along the
+    path, so Lagrange's equations read M_k q̈_k = Q_k, with the generalised force
+    Q_k = F·E_k + M·W_k of a force F at G and a moment M about G).
 
     Subclasses set ``nq``, ``W`` (nq, 3), ``M`` (nq,), ``k`` (the body axis the turn is
-    about, for the series) and give :meth:`place` and :meth:`bend`."""
+    about, for the series) and give :meth:`place` and :meth:`bend`.
+
+    Examples
+    --------
+    A fixed axis (:class:`Hinge`) is a guide: its q̈ = (E·F + W·M) / M of a force F at
+    G and a moment M about it:
+
+    >>> e = np.eye(3)
+    >>> hinge = Hinge(np.zeros(3), e[2], -e[1], e[0], k=2, j=0, l=1, h=0.5, J_a=2.0)
+    >>> q, F, M = np.array([0.0]), np.array([4.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
+    >>> hinge.rate(q, F, M).tolist(), ((hinge.place(q)[1] @ F + hinge.W @ M) / hinge.M).tolist()
+    ([1.5], [1.5])
+    """
 
     nq = 1
     W: FloatArray
@@ -171,9 +259,50 @@ class Guide:
 
 @dataclass(frozen=True, eq=False)
 class Hinge(Guide):
-    """A fixed axis (4.3): the point C and unit axis a in space, the reference u0 (where
-    φ = 0) and u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G
-    from the axis and the moment of inertia J_a about it; q = (φ,)."""
+    """A fixed axis (4.3): the body turns about the unit axis a through C; q = (φ,).
+
+    The point C and unit axis a in space, the reference u0 (where φ = 0) and
+    u1 = a × u0, the body axes (k along a, j toward G, l), the distance h of G from the
+    axis and the moment of inertia J_a about it.  The constructor stores what it is
+    given and checks nothing (the joint's effect builds it:
+    :meth:`mechanics.scenes.effects.fixed_axis.FixedAxis.make_guide`).
+
+    Parameters
+    ----------
+    C : ndarray, shape (3,)
+        A point of the axis, m, in space components.
+    a : ndarray, shape (3,)
+        The axis, a unit vector in space components.
+    u0 : ndarray, shape (3,)
+        The unit vector ⟂ a toward G at φ = 0 (gravity's direction for a pendulum).
+    u1 : ndarray, shape (3,)
+        a × u0.
+    k : int
+        The body axis along a (0, 1 or 2).
+    j : int
+        The body axis toward G, (k + 1) % 3.
+    l : int
+        The third body axis, (k + 2) % 3.
+    h : float
+        The distance of G from the axis, m, ≥ 0.
+    J_a : float
+        The moment of inertia about the axis, kg m², > 0.
+
+    Examples
+    --------
+    A pendulum about e3 hanging along −e2 at φ = 0: G = h (sin φ, −cos φ, 0), the
+    book's picture that its series report:
+
+    >>> e = np.eye(3)
+    >>> hinge = Hinge(np.zeros(3), e[2], -e[1], e[0], k=2, j=0, l=1, h=0.5, J_a=2.0)
+    >>> G, E, R = hinge.place(np.array([0.0]))
+    >>> G.tolist(), E.tolist()
+    ([0.0, -0.5, 0.0], [[0.5, 0.0, 0.0]])
+    >>> q = np.array([[0.3]])
+    >>> s = hinge.series(q, q)
+    >>> bool(np.allclose(hinge.place(q)[0][0, :2], [s["x_G"][0], s["y_G"][0]]))
+    True
+    """
 
     C: FloatArray
     a: FloatArray
@@ -308,7 +437,44 @@ def _carousel(flow: MassFlow, J0: float, phi0: float, w0: float) -> ExactCoords:
 
 
 def body_inertia(body: BodyShape) -> FloatArray:
-    """Principal moments about G, shape (3,), from the inertia catalogue."""
+    """Principal moments about G, shape (3,), from the inertia catalogue.
+
+    The catalogue is :mod:`mechanics.inertia` (its principal axes are the body's axes
+    e1, e2, e3); a custom body's moments are its ``inertia``; a point or a tank has 0.
+
+    Parameters
+    ----------
+    body : BodyShape
+        A body's ``shape``, ``mass`` (kg) and ``dims`` (m; a custom body's
+        ``inertia``, kg m²), as :class:`mechanics.scenes.spec.Body` has them.
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        The principal moments J1, J2, J3 about G, kg m².
+
+    Raises
+    ------
+    KeyError
+        Where the shape is not in the catalogue, or ``dims`` lacks a dimension it needs.
+    NegativeMassError
+        Where the mass is negative.
+    NonPositiveParameterError
+        Where a dimension is not > 0.
+    NonFiniteError
+        Where the mass or a dimension is NaN or infinite.
+
+    Examples
+    --------
+    A solid sphere: J = 2/5 m R² about every axis; a box's J1 = m (b² + c²)/12:
+
+    >>> from mechanics.scenes.spec import Body
+    >>> body_inertia(Body("ball", "solid_sphere", 5.0, {"radius": 1.0}, {})).tolist()
+    [2.0, 2.0, 2.0]
+    >>> box = Body("box", "box", 12.0, {"a": 1.0, "b": 2.0, "c": 4.0}, {})
+    >>> float(body_inertia(box)[0]) == 12.0 * (2.0**2 + 4.0**2) / 12
+    True
+    """
     from mechanics import inertia as I
 
     m, d, s = body.mass, body.dims, body.shape
@@ -332,7 +498,33 @@ def body_inertia(body: BodyShape) -> FloatArray:
 
 
 def body_radius(body: BodyShape) -> float | None:
-    """Radius of a spherical body (0 for a point), None for any other shape."""
+    """Radius of a spherical body (0 for a point), None for any other shape.
+
+    Parameters
+    ----------
+    body : BodyShape
+        A body's ``shape`` and ``dims`` (m), as :class:`mechanics.scenes.spec.Body` has
+        them.
+
+    Returns
+    -------
+    float or None
+        The radius, m: 0 for a point, ``dims["radius"]`` for a solid or hollow sphere;
+        None for a shape that is not spherical.
+
+    Raises
+    ------
+    KeyError
+        Where a sphere's ``dims`` has no ``"radius"``.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import Body
+    >>> [body_radius(Body("b", s, 1.0, {"radius": 0.25}, {})) for s in SPHERICAL_SHAPES]
+    [0.0, 0.25, 0.25]
+    >>> body_radius(Body("b", "disc", 1.0, {"radius": 0.25}, {})) is None
+    True
+    """
     if body.shape == "point":
         return 0.0
     if body.shape in SPHERICAL_SHAPES:
@@ -341,9 +533,39 @@ def body_radius(body: BodyShape) -> float | None:
 
 
 def body_vertices(body: BodyShape) -> FloatArray | None:
-    """The corners of a polyhedral body in body components about G, shape (k, 3): the 8
-    corners of a box (edges a, b, c along e1, e2, e3), the 4 of a rectangular plate
-    (a, b in the e1e2-plane), the 2 ends of a rod (along e3); None for other shapes."""
+    """The corners of a polyhedral body in body components about G, shape (k, 3).
+
+    The 8 corners of a box (edges a, b, c along e1, e2, e3), the 4 of a rectangular
+    plate (a, b in the e1e2-plane), the 2 ends of a rod (along e3); None for other
+    shapes.
+
+    Parameters
+    ----------
+    body : BodyShape
+        A body's ``shape`` and ``dims`` (m), as :class:`mechanics.scenes.spec.Body` has
+        them.
+
+    Returns
+    -------
+    ndarray, shape (k, 3), or None
+        The corners, m, from G in body components: k = 8 (box), 4 (plate) or 2 (rod);
+        None for any other shape.
+
+    Raises
+    ------
+    KeyError
+        Where ``dims`` lacks a dimension the shape needs.
+
+    Examples
+    --------
+    A box's corners are (±a, ±b, ±c)/2: their centre is G, and the diagonal from the
+    first to the last is √(a² + b² + c²):
+
+    >>> from mechanics.scenes.spec import Body
+    >>> X = body_vertices(Body("box", "box", 1.0, {"a": 2.0, "b": 4.0, "c": 4.0}, {}))
+    >>> X.shape, X.mean(axis=0).tolist(), float(np.linalg.norm(X[-1] - X[0]))
+    ((8, 3), [0.0, 0.0, 0.0], 6.0)
+    """
     d = body.dims
     if body.shape == "box":
         h = 0.5 * np.array([d["a"], d["b"], d["c"]])
@@ -367,7 +589,41 @@ class Layout:
     ``"guided"``, ``"tank"`` or ``"fixed"``; ``J`` the principal moments about G (n, 3)
     at the initial masses; ``r_fixed`` the positions of the fixed bodies; ``pins[i]`` =
     (C, g_A, J_C, J_C⁻¹) of a pinned body; ``guides[i]`` the :class:`Guide` of a guided
-    one.
+    one.  Built by :meth:`Layout.of`; the constructor stores what it is given and checks
+    nothing.
+
+    Parameters
+    ----------
+    kinds : tuple[str, ...]
+        Each body's kind, in file order.
+    J : ndarray, shape (n, 3)
+        The principal moments about G, kg m², at the initial masses (0 for points).
+    r_fixed : ndarray, shape (n, 3)
+        The positions of the fixed bodies, m (0 in the other rows).
+    size : int
+        The length of the flat state.
+    offsets : tuple[int, ...]
+        Where each body's slice of the state begins.
+    pins : dict[int, Pin], optional
+        Pinned bodies: index -> (C, g_A, J_C, J_C⁻¹). Default none.
+    guides : dict[int, Guide], optional
+        Guided bodies: index -> its :class:`Guide`. Default none.
+    bodies : tuple[Body, ...], optional
+        Each body's object of :mod:`.bodies`. Default none.
+
+    Examples
+    --------
+    A point takes (r, v), 6 numbers; a free rigid body 18: packing what is gathered
+    gives the state back:
+
+    >>> from mechanics.scenes.spec import Body
+    >>> lay = Layout.of([Body("p", "point", 1.0, {}, {}),
+    ...                  Body("s", "solid_sphere", 5.0, {"radius": 1.0}, {})])
+    >>> lay.kinds, lay.size, lay.offsets, lay.J[1].tolist()
+    (('point', 'rigid'), 24, (0, 6), [2.0, 2.0, 2.0])
+    >>> y = np.arange(24.0)
+    >>> bool(np.array_equal(lay.pack(*lay.gather(y)), y))
+    True
     """
 
     kinds: tuple[str, ...]

@@ -110,10 +110,47 @@ ONSET_ANGLES = 64
 
 @dataclass(frozen=True)
 class Rest:
-    """A body resting on the plane of the impact ``imp``: the features (indices into
-    ``imp.features``) that carry it, the friction mode ("smooth", "stick" or "slip") and,
-    slipping, each contact's slip direction when the slip began (``ref``: what its switch
-    watches; the friction follows the slip's current direction)."""
+    """A body resting on the plane of the impact ``imp``: its contacts and friction mode.
+
+    The features (indices into ``imp.features``) that carry it, the friction mode
+    ("smooth", "stick" or "slip") and, slipping, each contact's slip direction when the
+    slip began (``ref``: what its switch watches; the friction follows the slip's
+    current direction).  :class:`Support` builds it; the constructor stores what it is
+    given and checks nothing.
+
+    Parameters
+    ----------
+    imp : Impact
+        The impact effect whose plane carries the body
+        (:class:`mechanics.scenes.effects.impact.Impact`).
+    active : tuple[int, ...]
+        The carrying features, indices into ``imp.features``.
+    friction : str
+        The mode: ``"smooth"``, ``"stick"`` or ``"slip"``.
+    ref : tuple[ndarray, ...], each of shape (3,), optional
+        Slipping: each active contact's unit slip direction when the slip began (not
+        compared). Default none.
+    speed : float, optional
+        Slipping: the size of the contacts' speeds when the slip began, m/s (what a slip
+        that has come to its end is zero relative to; not compared). Default 0.
+
+    Examples
+    --------
+    A ball placed on a smooth floor rests on its one contact from t = 0:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "rest", "duration": 1.0, "samples": 3},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 2.0, "radius": 0.5,
+    ...                 "initial": {"position": [0.0, 0.0, 0.5]}}],
+    ...     "effects": [{"type": "gravity", "g": 8.0}, {"type": "impact", "body": "ball",
+    ...         "plane_point": [0.0, 0.0, 0.0], "plane_normal": [0.0, 0.0, 1.0],
+    ...         "restitution": 0.5}]}))
+    >>> tr = eng.run()
+    >>> (imp, rest), = eng.support.at(0.5).items()
+    >>> rest == Rest(imp, (0,), "smooth"), eng.support.active(imp, imp.features[0])
+    (True, True)
+    """
 
     imp: Impact
     active: tuple[int, ...]
@@ -140,8 +177,39 @@ _Contact: TypeAlias = tuple[
 
 
 class Support:
-    """The resting contacts of a :class:`~mechanics.scenes.model.Model` (see the module's
-    docstring)."""
+    """The resting contacts of a :class:`~mechanics.scenes.model.Model`.
+
+    When a body rests, the support forces that hold it and when it lets go: see the
+    module's docstring.  The engine builds it (:class:`mechanics.scenes.engine.Engine`);
+    the constructor stores its model and forward dynamics and checks nothing (the
+    methods raise a :class:`~mechanics.scenes.errors.SceneError` for a rest they cannot
+    resolve).
+
+    Parameters
+    ----------
+    model : Model
+        The scene compiled (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`), the loads
+        and accelerations the support forces are solved from.
+
+    Examples
+    --------
+    A ball of 2 kg resting on the floor under g = 8 m/s² is held by m g = 16 N at
+    every sample:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "rest", "duration": 1.0, "samples": 3},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 2.0, "radius": 0.5,
+    ...                 "initial": {"position": [0.0, 0.0, 0.5]}}],
+    ...     "effects": [{"type": "gravity", "g": 8.0}, {"type": "impact", "body": "ball",
+    ...         "plane_point": [0.0, 0.0, 0.0], "plane_normal": [0.0, 0.0, 1.0],
+    ...         "restitution": 0.5}]}))
+    >>> tr = eng.run()
+    >>> tr.series["support_z"].tolist(), 2.0 * 8.0, eng.support.model is eng.model
+    ([16.0, 16.0, 16.0], 16.0, True)
+    """
 
     def __init__(self, model: Model, forward: Forward) -> None:
         self.model = model
