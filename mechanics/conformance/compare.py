@@ -191,7 +191,7 @@ def compare(
     ----------
     adapters : iterable of (str, Adapter or str), optional
         (family, adapter) pairs, or (family, reason) for an engine that cannot run
-        (listed in :attr:`Comparison.missing`); default :func:`engine_adapters`.
+        (listed in ``Comparison.missing``); default :func:`engine_adapters`.
     scenarios : iterable of str or Scenario, optional
         As for :func:`~.battery.run_battery` (default all).
     thresholds : dict, optional

@@ -183,7 +183,7 @@ class Ground:
     ------
     MechanicsValueError
         Where ``friction`` is not a finite number ≥ 0, or ``normal`` is not a unit
-        3-vector (its length 1 within :data:`UNIT_NORMAL_RTOL`).
+        3-vector (its length 1 within ``UNIT_NORMAL_RTOL``).
 
     Examples
     --------
@@ -230,7 +230,7 @@ class Pivot:
     Parameters
     ----------
     body : int
-        The index of the pivoted body in :attr:`Scenario.bodies`.
+        The index of the pivoted body in ``Scenario.bodies``.
     point : tuple of float
         The pivot point relative to G, m, in body components.
     anchor : tuple of float, optional
@@ -261,7 +261,7 @@ class Thrust:
     Parameters
     ----------
     body : int
-        The index of the rocket in :attr:`Scenario.bodies`.
+        The index of the rocket in ``Scenario.bodies``.
     mass_rate : float
         q, the mass lost per second, kg/s, > 0.
     exhaust_speed : float

@@ -50,7 +50,7 @@ def batches(
 
     Returns
     -------
-    SearchStrategy of ndarray, shape (1, *e), (k, *e) or (k1, k2, *e)
+    SearchStrategy of ndarray, shape ``(1, *e)``, ``(k, *e)`` or ``(k1, k2, *e)``
         float64 stacks of independent draws.
 
     Raises
