@@ -357,6 +357,12 @@ class Clock:
     steps : int, optional
         The steps counted so far (default 0).
 
+    Raises
+    ------
+    BudgetError
+        From :meth:`step`, beyond ``scene.max_steps`` steps or ``scene.max_seconds`` of
+        wall time (naming the time the run reached).  The constructor checks nothing.
+
     Examples
     --------
     >>> from mechanics.scenes.spec import parse_scene
@@ -367,6 +373,11 @@ class Clock:
     ...     clock.step(0.1 * k)
     >>> clock.steps
     3
+    >>> clock.steps = sc.max_steps
+    >>> clock.step(0.5)
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.budget.BudgetError: <scene>: (run): stopped at t = 0.5 s of 2 s after ...
     """
 
     scene: Scene  # (spec imports this module: a layer above it)
