@@ -247,6 +247,13 @@ class Collision:
         Its impact resolver (:class:`mechanics.scenes.impacts.Resolver`): touches, and
         the resting contacts of its support.
 
+    Raises
+    ------
+    SceneError
+        From :meth:`first_contact`: where a feature's gap starts a step below zero
+        beyond the rounding allowed (a contact missed before the step), or a pair
+        touches and then falls in where it cannot rest.  The constructor checks nothing.
+
     Examples
     --------
     The engine's contact search for a ball of radius 0.1 m and the floor: the ball's
