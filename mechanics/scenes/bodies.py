@@ -37,7 +37,34 @@ ZERO = np.zeros(3)
 
 
 class Body:
-    """A body of the layout: its index ``i`` and where its slice starts (``o``)."""
+    """A body of the layout: its index ``i`` and where its slice starts (``o``).
+
+    The base of the kinds: each kind overrides what it has (its :meth:`size`, its
+    :meth:`rate`, its :meth:`kinematics`, the paths of its points along a step).
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its slice in the flat state (≥ 0).
+
+    Raises
+    ------
+    NotImplementedError
+        From :meth:`size`, :meth:`kinematics`, :meth:`point_coef` and :meth:`frame_coef`
+        where a kind does not override them (the constructor checks nothing).
+
+    Examples
+    --------
+    >>> b = Body(1, 6)
+    >>> b.i, b.o, b.moves, b.turns
+    (1, 6, True, False)
+    >>> b.size()
+    Traceback (most recent call last):
+    ...
+    NotImplementedError
+    """
 
     kind: ClassVar[str] = ""
     #: does it move (not fixed, not a tank whose water level is all)?
@@ -85,6 +112,34 @@ class Body:
 
 
 class Fixed(Body):
+    """A fixed body: nothing in the state; its centre stays at ``r``.
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its (empty) slice in the flat state (≥ 0).
+    r : ndarray, shape (3,)
+        Its centre, m (space components).
+
+    Raises
+    ------
+    NotImplementedError
+        From :meth:`kinematics` and :meth:`frame_coef`: a fixed body is asked for
+        neither (the constructor checks nothing).
+
+    Examples
+    --------
+    The path of a point 0.5 m above its centre along a step is a constant, r + at:
+
+    >>> from mechanics.scenes.collision import StepFit
+    >>> fit = StepFit(lambda t: np.stack([np.asarray(t)]), 0.0, 1.0)
+    >>> c = Fixed(0, 0, np.array([1.0, 2.0, 3.0])).point_coef(None, fit, np.array([0, 0, 0.5]))
+    >>> c[0].tolist(), bool(np.all(c[1:] == 0.0))
+    ([1.0, 2.0, 3.5], True)
+    """
+
     kind = "fixed"
     moves = False
 
@@ -107,6 +162,34 @@ class Fixed(Body):
 
 
 class Tank(Body):
+    """A tank: its state is (√h, the volume run out), moved at the rates its outflow gives.
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its slice in the flat state (≥ 0).
+
+    Raises
+    ------
+    AssertionError
+        From :meth:`rate` without ``rates`` (a tank's state changes at the rates its
+        loads give).
+    NotImplementedError
+        From :meth:`kinematics`, :meth:`point_coef` and :meth:`frame_coef`: a tank does not
+        move (the constructor checks nothing).
+
+    Examples
+    --------
+    Its slice of dy/dt is the rates its outflow gives it:
+
+    >>> tank, out = Tank(0, 0), np.zeros(2)
+    >>> tank.rate(None, None, None, {0: np.array([-0.5, 0.25])}, out)
+    >>> out.tolist(), tank.size() == Tank.SIZE == 2
+    ([-0.5, 0.25], True)
+    """
+
     kind = "tank"
     moves = False
     #: √h (its water level's square root) and the volume run out
@@ -128,6 +211,33 @@ class Tank(Body):
 
 
 class Point(Body):
+    """A point mass: its state is (r, v) of G, and v̇ = F/m.
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its slice in the flat state (≥ 0).
+
+    Raises
+    ------
+    NotImplementedError
+        From :meth:`frame_coef`: a point has no attitude (the constructor checks
+        nothing).
+
+    Examples
+    --------
+    Its rate is (v, F/m): 19.62 N down on 2 kg gives 9.81 m/s² down:
+
+    >>> from types import SimpleNamespace
+    >>> s = SimpleNamespace(v=np.array([[1.0, 0.0, 0.0]]), m=np.array([2.0]))
+    >>> out = np.zeros(Point.SIZE)
+    >>> Point(0, 0).rate(s, np.array([[0.0, 0.0, -19.62]]), np.zeros((1, 3)), None, out)
+    >>> out.tolist()
+    [1.0, 0.0, 0.0, 0.0, 0.0, -9.81]
+    """
+
     kind = "point"
     SIZE = 6
 
@@ -160,6 +270,35 @@ class Point(Body):
 
 
 class Rigid(Point):
+    """A free rigid body: its state is (r, v, L_A, R_A_O), Euler's equations and Ṙ = −[ω]× R.
+
+    L_A and ω are body components about G; L̇_A = L_A × ω + M_A.
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its slice in the flat state (≥ 0).
+
+    Examples
+    --------
+    Spinning at 2 rad/s about a principal axis with no moment, L stays put and R turns
+    at Ṙ = −[ω]× R:
+
+    >>> from types import SimpleNamespace
+    >>> w = np.array([0.0, 0.0, 2.0])
+    >>> s = SimpleNamespace(v=np.zeros((1, 3)), m=np.ones(1), omega=w[None],
+    ...                     L_A=(3.0 * w)[None], R=np.eye(3)[None])
+    >>> out = np.zeros(Rigid.SIZE)
+    >>> Rigid(0, 0).rate(s, np.zeros((1, 3)), np.zeros((1, 3)), None, out)
+    >>> out[6:9].tolist()
+    [0.0, 0.0, 0.0]
+    >>> wx = np.array([[0.0, -2.0, 0.0], [2.0, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    >>> bool(np.array_equal(out[9:].reshape(3, 3), -wx @ np.eye(3)))
+    True
+    """
+
     kind = "rigid"
     turns = True
     SIZE = 18
@@ -212,8 +351,38 @@ class Rigid(Point):
 
 
 class Pinned(Body):
-    """Pinned at the space point C, G at g_A from it (body components); J_C its inertia
-    about C (body components) and J_C⁻¹."""
+    """A body pinned at a fixed point C: its state is (L_C, R_A_O) about the pivot.
+
+    G lies at g_A from C (body components); J_C is its inertia about C (body components),
+    J_C⁻¹ worked out once.
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its slice in the flat state (≥ 0).
+    C : ndarray, shape (3,)
+        The pivot, m (space components).
+    g : ndarray, shape (3,)
+        g_A: G from the pivot, m (body components).
+    JC : ndarray, shape (3, 3)
+        J_C: the inertia about the pivot, kg m² (body components; invertible).
+
+    Raises
+    ------
+    ValueError
+        numpy's ``LinAlgError`` (a ValueError) if ``JC`` is singular.
+
+    Examples
+    --------
+    A pivot 0.1 m from G along the symmetry axis of a top with J_C = diag(2, 2, 1):
+
+    >>> top = Pinned(0, 0, np.zeros(3), np.array([0.0, 0.0, 0.1]), np.diag([2.0, 2.0, 1.0]))
+    >>> C, g, JC, JCinv = top.pin()
+    >>> (JCinv @ JC).tolist() == np.eye(3).tolist(), top.size()
+    (True, 12)
+    """
 
     kind = "pinned"
     turns = True
@@ -275,7 +444,27 @@ class Pinned(Body):
 
 
 class Guided(Body):
-    """Its joint's :class:`~mechanics.scenes.state.Guide` ``gd``: the state is (q, q̇)."""
+    """A body on a joint (a fixed axis, rolling, sliding): its state is the joint's (q, q̇).
+
+    Parameters
+    ----------
+    i : int
+        The body's index in the scene (≥ 0).
+    o : int
+        The offset of its slice in the flat state (≥ 0).
+    gd : Guide
+        Its joint's :class:`~mechanics.scenes.state.Guide` (``nq`` coordinates q).
+
+    Examples
+    --------
+    The rod pendulum of Examples 4.3-4.4 turns on a hinge: one angle and its rate:
+
+    >>> from mechanics.scenes import builtin_path, load_scene
+    >>> from mechanics.scenes.engine import Engine
+    >>> rod = Engine(load_scene(builtin_path("physical_pendulum"))).layout.bodies[0]
+    >>> type(rod).__name__, type(rod.gd).__name__, rod.size() == 2 * rod.gd.nq == 2
+    ('Guided', 'Hinge', True)
+    """
 
     kind = "guided"
     turns = True

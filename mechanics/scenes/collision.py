@@ -62,8 +62,36 @@ __all__ = ["Collision", "Hit", "StepFit", "check_initial_overlap"]
 
 @dataclass
 class StepFit:
-    """One integration step [t_a, t_b] and its dense output ``dense`` (scipy's
-    convention: (size,) at a time, (size, k) at k times)."""
+    """One integration step [t_a, t_b] and its dense output ``dense``.
+
+    :attr:`coef` holds the Chebyshev coefficients of the whole state along the step,
+    fitted once (at :data:`~.contacts.STEP_NODES` nodes) when first read; the step's
+    variable x ∈ [−1, 1] maps to the time :meth:`time`.
+
+    Parameters
+    ----------
+    dense : Dense
+        The step's continuous extension, scipy's convention: ``dense(t)`` of shape
+        (size,) at a time, (size, k) at k times.
+    t_a : float
+        The step's start, s.
+    t_b : float
+        The step's end, s (≥ t_a).
+
+    Examples
+    --------
+    The state t² on [0, 2] is 1.5 T₀ + 2 T₁ + 0.5 T₂ in x = t − 1; its series at x
+    equals the dense output at the time of x:
+
+    >>> from numpy.polynomial import chebyshev as C
+    >>> fit = StepFit(lambda t: np.stack([np.asarray(t) ** 2]), 0.0, 2.0)
+    >>> bool(np.allclose(fit.coef[:3, 0], [1.5, 2.0, 0.5], rtol=0, atol=1e-14))
+    True
+    >>> fit.time(0.5), fit.state(fit.time(0.5)).tolist()
+    (1.5, [2.25])
+    >>> bool(np.isclose(C.chebval(0.5, fit.coef[:, 0]), 2.25, rtol=1e-14))
+    True
+    """
 
     dense: Dense
     t_a: float
@@ -86,8 +114,33 @@ class StepFit:
 
 @dataclass(frozen=True)
 class Hit:
-    """An event found on a step: at time ``t``, the ``effect``'s contact ``feature``, or
-    (``feature`` None) a switch of the effect's mode."""
+    """An event found on a step: at time ``t``, the ``effect``'s contact ``feature``.
+
+    With ``feature`` None, a switch of the effect's mode.  A record: its constructor
+    checks nothing.
+
+    Parameters
+    ----------
+    t : float
+        The event's time, s.
+    effect : Impact or effect with modes
+        An impact (:class:`~mechanics.scenes.effects.impact.Impact`), or an effect with
+        modes (:class:`~mechanics.scenes.effects.capabilities.HasModes`).
+    feature : Feature or None, optional
+        The impact's contact feature; None (the default) for a switch of mode.
+    rest : bool, optional
+        The feature touches with no approach speed and then falls in: it comes to rest
+        (default False).
+
+    Examples
+    --------
+    The earliest of the hits found on a step is the one the run stops at:
+
+    >>> hits = [Hit(0.5, "impact"), Hit(0.25, "switch"), Hit(0.75, "impact", rest=True)]
+    >>> first = min(hits, key=lambda h: h.t)
+    >>> (first.t, first.effect, first.feature, first.rest) == (0.25, "switch", None, False)
+    True
+    """
 
     t: float
     effect: Any  # an impact, or an effect with modes (.effects.capabilities.HasModes)
@@ -97,8 +150,50 @@ class Hit:
 
 
 def check_initial_overlap(model: Model, forward: Forward) -> None:
-    """No two features overlap at t = 0 beyond the rounding of their positions (the
-    centres of spheres and points all at once: :func:`.effects.impact.centre_gaps`)."""
+    """No two features overlap at t = 0 beyond the rounding of their positions.
+
+    The centres of spheres and points are checked all at once
+    (:func:`.effects.impact.centre_gaps`), the other features one by one; the rounding
+    allowed is :data:`~.impacts.GAP_ROUNDING` × the size of the positions and the
+    features.  :func:`mechanics.scenes.spec.parse_scene` runs it on every scene with
+    impacts.
+
+    Parameters
+    ----------
+    model : Model
+        The scene's model (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`): the bodies at
+        t = 0.
+
+    Raises
+    ------
+    SceneError
+        If two features overlap at t = 0 beyond the rounding (naming the impact's field,
+        the features and the gap, m).
+
+    Examples
+    --------
+    A ball of radius 0.1 m resting on the floor passes; one whose centre is 0.05 m up
+    overlaps it by z − r = −0.05 m (the parser runs the same check):
+
+    >>> from mechanics.scenes.forward import Forward
+    >>> from mechanics.scenes.model import Model
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> def ball(z):
+    ...     return parse_scene({
+    ...         "scene": {"name": "x", "duration": 1.0},
+    ...         "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 0.5,
+    ...                     "radius": 0.1, "initial": {"position": [0.0, 0.0, z]}}],
+    ...         "effects": [{"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...                      "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}]})
+    >>> md = Model(ball(0.1))
+    >>> check_initial_overlap(md, Forward(md))
+    >>> ball(0.05)
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: effects[0]: ... overlap ... (gap -0.05 m < 0)
+    """
     scene = model.scene
     s = forward.snapshot(0.0, model.y0)
     imps = model.impacts
@@ -134,7 +229,48 @@ BROAD_RTOL = 2**10 * EPS
 
 
 class Collision:
-    """The contact search of a :class:`~mechanics.scenes.model.Model` on each step."""
+    """The contact search of a :class:`~mechanics.scenes.model.Model` on each step.
+
+    :meth:`first_contact` returns the earliest contact on a step (a :class:`Hit`), after
+    the broad phase (:meth:`near`) has left out the impacts that cannot touch on it.
+    The constructor gathers each body's reach about G (:attr:`ext`: the radius of a
+    ball about its centre holding all its contact features) and the impacts by plane
+    and by pair of bodies.
+
+    Parameters
+    ----------
+    model : Model
+        The scene's model (:class:`mechanics.scenes.model.Model`): its impacts.
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`).
+    resolver : Resolver
+        Its impact resolver (:class:`mechanics.scenes.impacts.Resolver`): touches, and
+        the resting contacts of its support.
+
+    Raises
+    ------
+    SceneError
+        From :meth:`first_contact`: where a feature's gap starts a step below zero
+        beyond the rounding allowed (a contact missed before the step), or a pair
+        touches and then falls in where it cannot rest.  The constructor checks nothing.
+
+    Examples
+    --------
+    The engine's contact search for a ball of radius 0.1 m and the floor: the ball's
+    reach about G is its radius, and its one impact is with a plane:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({
+    ...     "scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 0.5, "radius": 0.1,
+    ...                 "initial": {"position": [0.0, 0.0, 1.0]}}],
+    ...     "effects": [{"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...                  "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}]})
+    >>> col = Engine(sc).collision
+    >>> col.ext.tolist() == [sc.bodies[0].dims["radius"]], col.plane.tolist(), col.pairs
+    (True, [0], {})
+    """
 
     def __init__(self, model: Model, forward: Forward, resolver: Resolver) -> None:
         self.model = model

@@ -77,9 +77,30 @@ _reference_block = contextlib.contextmanager(_reference_only)
 
 
 def reference_path() -> contextlib.AbstractContextManager[None]:
-    """``with reference_path(): ...``: the scene engines built inside the block run the
-    Python right-hand side (the reference), compiled or not, for comparing the two paths
-    on whole runs."""
+    """``with reference_path(): ...``: the scene engines built inside the block run in Python.
+
+    They run the Python right-hand side (the reference), compiled or not, for comparing
+    the two paths on whole runs: inside the block :func:`program` and :func:`build` give
+    the reason instead of the kernel's arrays.  Blocks nest; the path before the block
+    is restored when it ends.
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        The context manager (it yields None).
+
+    Examples
+    --------
+    >>> from mechanics.scenes.model import Model
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> md = Model(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                         "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}],
+    ...                         "effects": [{"type": "gravity", "g": 9.81}]}))
+    >>> with reference_path():
+    ...     why = build(md)
+    >>> why == "the reference path was asked for (compiled.reference_path)"
+    True
+    """
     return _reference_block()
 
 
@@ -114,8 +135,46 @@ def _failed(exc: BaseException) -> None:
 
 
 def program(model: Model) -> Program | str:
-    """The kernel's arrays (bi, bf, ops, fp, pairs) for ``model`` (see
-    :mod:`mechanics.scenes._kernels`), or why it has none."""
+    """The kernel's arrays (bi, bf, ops, fp, pairs) for ``model``, or why it has none.
+
+    The arrays are those :mod:`mechanics.scenes._kernels` reads: per body its kind and
+    offset (bi) and its numbers (bf: mass, inertia, pivot, hinge), per load its opcode and
+    the indices into its numbers (ops, fp) and body pairs (pairs).  None are written
+    inside :func:`reference_path`, without numba, or for a model that does not compile
+    (see the module's docstring).
+
+    Parameters
+    ----------
+    model : Model
+        The scene's model (:class:`mechanics.scenes.model.Model`).
+
+    Returns
+    -------
+    Program or str
+        The five arrays (bi, bf, ops, fp, pairs): int64 of shape (n, 2), float of shape
+        (n, BF_SIZE), int64 of shape (loads, 4), float of shape (numbers,), int64 of shape
+        (pairs, 2) for n bodies; or the reason the model has no compiled right-hand side.
+
+    Raises
+    ------
+    ModuleNotFoundError
+        If importing the kernels fails for a missing module other than numba (a broken
+        install); numba missing gives the reason instead.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.model import Model
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> md = Model(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                         "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}],
+    ...                         "effects": [{"type": "gravity", "g": 9.81}]}))
+    >>> arrays = program(md)
+    >>> isinstance(arrays, str) or [a.shape for a in arrays][::2] == [(1, 2), (1, 4), (0, 2)]
+    True
+    >>> with reference_path():
+    ...     program(md)
+    'the reference path was asked for (compiled.reference_path)'
+    """
     if _REFERENCE_ONLY:
         return "the reference path was asked for (compiled.reference_path)"
     k = _kernels()
@@ -189,7 +248,32 @@ def _why_not(model: Model, k: ModuleType) -> str | None:
 
 
 class CompiledRhs:
-    """The compiled right-hand side of one model: ``rhs(t, phase, y)``."""
+    """The compiled right-hand side of one model: ``rhs(t, phase, y)``.
+
+    Called, it gives dy/dt, or None after one
+    :class:`~mechanics.integrators.CompiledPathWarning` if numba fails to compile the
+    kernel (:attr:`broken` is then set and the caller runs the Python path);
+    :meth:`accelerations` gives the bodies' accelerations and forces at samples.
+    :func:`build` makes one for a model.
+
+    Parameters
+    ----------
+    kernels : module
+        The kernels (:mod:`mechanics.scenes._kernels`): its ``scene_rhs``,
+        ``scene_accelerations`` and ``scene_step``.
+    arrays : Program
+        The model's program (:func:`program`): the five arrays (bi, bf, ops, fp, pairs).
+
+    Examples
+    --------
+    With a stand-in for the kernels (the real ones need numba) whose rate is y' = −y:
+
+    >>> from types import SimpleNamespace
+    >>> decay = SimpleNamespace(scene_rhs=lambda t, phase, y, *arrays: -y)
+    >>> rhs = CompiledRhs(decay, ())
+    >>> rhs(0.0, 0.0, [1.0, 2.0]).tolist(), rhs.broken
+    ([-1.0, -2.0], False)
+    """
 
     def __init__(self, kernels: ModuleType, arrays: Program) -> None:
         self.kernel, self.arrays = kernels.scene_rhs, arrays
@@ -229,7 +313,9 @@ class CompiledRhs:
 
 
 class CompiledStepper:
-    """The interface of :class:`mechanics.integrators.DOP853Stepper` that
+    """A DOP853 stepper whose steps the compiled kernel ``scene_step`` takes.
+
+    The interface of :class:`mechanics.integrators.DOP853Stepper` that
     :func:`mechanics.scenes.integrate.integrate` uses (``step``, ``dense_output``,
     ``t``, ``t_old``, ``y``, ``status``), each step taken by the kernel
     ``scene_step``: the reference's step control and interpolant, the same
@@ -238,7 +324,53 @@ class CompiledStepper:
     again by the reference stepper from the same state and step, which raises the error
     naming the time (or, should it succeed, gives the step).
 
-    ``reference`` builds that stepper: ``reference(t, y, first_step)``."""
+    ``reference`` builds that stepper: ``reference(t, y, first_step)``.
+
+    Parameters
+    ----------
+    fast : CompiledRhs
+        The model's compiled right-hand side.
+    phase : float
+        The phase the loads read (fixed for the stepper's life), s.
+    t0 : float
+        The start time, s.
+    y0 : array_like, shape (size,)
+        The state at ``t0``.
+    f0 : ndarray, shape (size,)
+        The rates at (t0, y0), finite (:func:`stepper` checks them).
+    t_bound : float
+        The time not to step past, s (> t0).
+    rtol, atol : float
+        The relative and absolute tolerances (> 0).
+    reference : callable
+        ``reference(t, y, first_step)``: the reference stepper from (t, y).
+
+    Raises
+    ------
+    OutOfDomainError
+        From :meth:`dense_output` before the first step.  (The constructor raises
+        nothing of its own; :meth:`step` raises what the reference stepper raises on a
+        step the kernel cannot finish, naming the time.)
+
+    Examples
+    --------
+    With a stand-in for the kernels whose step always gives up (status 1): every step is
+    the reference's, and the state at t = 1 is e⁻¹:
+
+    >>> from types import SimpleNamespace
+    >>> from mechanics.integrators import DOP853Stepper
+    >>> def reference(t0, y0, first_step):  # y' = −y on [0, 1]
+    ...     return DOP853Stepper(lambda t, y: -y, t0, y0, 1.0, rtol=1e-9, atol=1e-12,
+    ...                          first_step=first_step)
+    >>> giving_up = SimpleNamespace(scene_rhs=lambda t, phase, y, *arrays: -y,
+    ...                             scene_step=lambda *args: (1, 0.0, 0.0, 0, 0))
+    >>> st = CompiledStepper(CompiledRhs(giving_up, ()), 0.0, 0.0, np.ones(1), -np.ones(1),
+    ...                      1.0, 1e-9, 1e-12, reference)
+    >>> while st.status == "running":
+    ...     st.step()
+    >>> st.t, bool(np.isclose(st.y[0], np.exp(-1.0), rtol=1e-8))
+    (1.0, True)
+    """
 
     def __init__(
         self,
@@ -331,9 +463,59 @@ def stepper(
     atol: float,
     reference: Reference,
 ) -> CompiledStepper | DOP853Stepper:
-    """A :class:`CompiledStepper` from (t0, y0), or the reference stepper
-    ``reference(t0, y0, None)`` where the compiled rates there are not finite (its
-    start raises the error naming the time) or numba failed."""
+    """A :class:`CompiledStepper` from (t0, y0), or the reference stepper where it cannot run.
+
+    The reference stepper ``reference(t0, y0, None)`` is returned where the compiled
+    rates at (t0, y0) are not finite (its start raises the error naming the time) or
+    numba failed.
+
+    Parameters
+    ----------
+    fast : CompiledRhs
+        The model's compiled right-hand side.
+    phase : float
+        The phase the loads read (fixed for the stepper's life), s.
+    t0 : float
+        The start time, s.
+    y0 : ndarray, shape (size,)
+        The state at ``t0``.
+    t_bound : float
+        The time not to step past, s (> t0).
+    rtol, atol : float
+        The relative and absolute tolerances (> 0).
+    reference : callable
+        ``reference(t, y, first_step)``: the reference stepper from (t, y) (the
+        engine's: a :class:`mechanics.integrators.DOP853Stepper` on the Python
+        right-hand side).
+
+    Returns
+    -------
+    CompiledStepper or DOP853Stepper
+        The stepper of the segment (whatever ``reference`` returns, in the second case).
+
+    Raises
+    ------
+    NonFiniteError
+        Where the compiled rates at (t0, y0) are not finite, from the engine's reference
+        stepper, whose rates there are not finite either (naming the time); in general
+        whatever ``reference`` raises.
+
+    Examples
+    --------
+    With stand-ins for the kernels: finite rates give the compiled stepper, NaN rates the
+    reference one:
+
+    >>> from types import SimpleNamespace
+    >>> from mechanics.integrators import DOP853Stepper
+    >>> def reference(t0, y0, first_step):  # y' = −y on [0, 1]
+    ...     return DOP853Stepper(lambda t, y: -y, t0, y0, 1.0, rtol=1e-9, atol=1e-12,
+    ...                          first_step=first_step)
+    >>> decay = SimpleNamespace(scene_rhs=lambda t, phase, y, *arrays: -y)
+    >>> nan = SimpleNamespace(scene_rhs=lambda t, phase, y, *arrays: np.full(y.shape, np.nan))
+    >>> [type(stepper(CompiledRhs(k, ()), 0.0, 0.0, np.ones(1), 1.0, 1e-9, 1e-12,
+    ...                reference)).__name__ for k in (decay, nan)]
+    ['CompiledStepper', 'DOP853Stepper']
+    """
     f0 = fast(t0, phase, y0)
     if f0 is None or not np.all(np.isfinite(f0)):
         return reference(t0, y0, None)
@@ -341,7 +523,42 @@ def stepper(
 
 
 def build(model: Model) -> CompiledRhs | str:
-    """The compiled right-hand side of ``model``, or why it has none."""
+    """The compiled right-hand side of ``model``, or why it has none.
+
+    Parameters
+    ----------
+    model : Model
+        The scene's model (:class:`mechanics.scenes.model.Model`).
+
+    Returns
+    -------
+    CompiledRhs or str
+        The right-hand side on the model's :func:`program`, or the reason it has none
+        (:func:`program`'s, or a failure to load the kernels since).
+
+    Raises
+    ------
+    ModuleNotFoundError
+        If importing the kernels fails for a missing module other than numba (a broken
+        install), as in :func:`program`.
+
+    Examples
+    --------
+    A falling point compiles where numba is installed; the reason is the same either way
+    inside :func:`reference_path`:
+
+    >>> from mechanics.scenes.model import Model
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> md = Model(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                         "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}],
+    ...                         "effects": [{"type": "gravity", "g": 9.81}]}))
+    >>> fast = build(md)
+    >>> isinstance(fast, str) or isinstance(fast, CompiledRhs)
+    True
+    >>> with reference_path():
+    ...     build(md) == program(md)
+    True
+    """
     arrays = program(model)
     if isinstance(arrays, str):
         return arrays
@@ -352,9 +569,24 @@ def build(model: Model) -> CompiledRhs | str:
 
 
 def warm() -> bool:
-    """Load (or compile, the first time on a machine) the scene kernels now, on a free
-    point falling for a step: the start-up cost paid before a timed run.  False: no
-    compiled path."""
+    """Load (or compile, the first time on a machine) the scene kernels now.
+
+    On a free point falling for a step: the start-up cost paid before a timed run.
+
+    Returns
+    -------
+    bool
+        True where the compiled path runs; False where it does not (numba missing, or it
+        failed: one :class:`~mechanics.integrators.CompiledPathWarning`).
+
+    Examples
+    --------
+    The compiled path runs exactly where numba is installed (the ``fast`` extra):
+
+    >>> import importlib.util
+    >>> warm() == (importlib.util.find_spec("numba") is not None)
+    True
+    """
     k = _kernels()
     if k is None:
         return False

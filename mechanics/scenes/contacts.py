@@ -70,8 +70,28 @@ class ContactError(ValueError):
 def quadratic_roots(a: float, b: float, c: float) -> list[float]:
     """Real roots of a x² + b x + c, sorted, formed without cancellation.
 
+    q = −½ (b + sign(b) √(b² − 4ac)) gives the roots q/a and c/q, neither the difference
+    of nearly equal numbers; a = 0 gives the line's root −c/b (none where b = 0 too).
+
+    Parameters
+    ----------
+    a, b, c : float
+        The coefficients (a double root is returned once).
+
+    Returns
+    -------
+    list of float
+        The real roots in increasing order: none, one or two (NaN where an input is).
+
+    Examples
+    --------
+    The roots of (x − 1)(x − 2) = x² − 3x + 2, and their product c/a:
+
     >>> quadratic_roots(1.0, -3.0, 2.0)
     [1.0, 2.0]
+    >>> x1, x2 = quadratic_roots(2.0, -6.0, 4.0)
+    >>> x1 * x2 == 4.0 / 2.0
+    True
     >>> quadratic_roots(1.0, 0.0, 1.0)
     []
     """
@@ -87,25 +107,80 @@ def quadratic_roots(a: float, b: float, c: float) -> list[float]:
 def plane_contact_time(gap: float, v_n: float, a_n: float) -> float:
     """First τ ≥ 0 at which ``gap + v_n τ + ½ a_n τ²`` reaches zero while closing.
 
-    ``v_n`` and ``a_n`` are the normal velocity and acceleration (positive away from the
-    plane).  Returns ``inf`` when the gap never closes (:func:`plane_contact_times`, for
-    one).
+    :func:`plane_contact_times` for one pair.
 
-    >>> plane_contact_time(1.0, -2.0, 0.0)
-    0.5
-    >>> plane_contact_time(1.0, 2.0, 0.0)
-    inf
+    Parameters
+    ----------
+    gap : float
+        The signed gap at τ = 0, m (positive apart).
+    v_n : float
+        The normal velocity, m/s (positive away from the plane).
+    a_n : float
+        The normal acceleration, m/s² (positive away from the plane).
+
+    Returns
+    -------
+    float
+        The contact time τ, s, from the start of the flight; ``inf`` when the gap never
+        closes.
+
+    Raises
+    ------
+    TypeError
+        If an input is an array of more than one element (use
+        :func:`plane_contact_times`).
+    ValueError
+        If an input is not numeric.
+
+    Examples
+    --------
+    A ball 1 m above the floor falling from rest at g = 9.8125 m/s² lands when
+    ½ g τ² = 1:
+
+    >>> tau = plane_contact_time(1.0, 0.0, -9.8125)
+    >>> bool(np.isclose(tau, (2.0 / 9.8125) ** 0.5, rtol=4e-16))
+    True
+    >>> plane_contact_time(1.0, -2.0, 0.0), plane_contact_time(1.0, 2.0, 0.0)
+    (0.5, inf)
     """
     return float(plane_contact_times(np.array([gap]), np.array([v_n]), np.array([a_n]))[0])
 
 
 def plane_contact_times(gap: npt.ArrayLike, v_n: npt.ArrayLike, a_n: npt.ArrayLike) -> FloatArray:
-    """:func:`plane_contact_time` for arrays of pairs at once (the same arithmetic, per
-    element): the roots of ½ a_n τ² + v_n τ + gap formed as in :func:`quadratic_roots`,
-    the first τ ≥ 0 where the normal velocity v_n + a_n τ closes.
+    """:func:`plane_contact_time` for arrays of pairs at once (the same arithmetic, per element).
+
+    The roots of ½ a_n τ² + v_n τ + gap formed as in :func:`quadratic_roots`; the first
+    τ ≥ 0 where the normal velocity v_n + a_n τ closes (< 0).
+
+    Parameters
+    ----------
+    gap : array_like, shape (k,)
+        The signed gaps at τ = 0, m (positive apart).
+    v_n : array_like, shape (k,)
+        The normal velocities, m/s (positive away from the plane).
+    a_n : array_like, shape (k,)
+        The normal accelerations, m/s² (positive away from the plane).
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        The contact times τ, s; ``inf`` where the gap never closes.  (Any shapes that
+        broadcast together are taken: the result has the shape of ``gap``.)
+
+    Raises
+    ------
+    ValueError
+        If the shapes do not broadcast together, or an input is not numeric.
+
+    Examples
+    --------
+    Each element as :func:`plane_contact_time` gives it:
 
     >>> plane_contact_times(np.array([1.0, 1.0]), np.array([-2.0, 2.0]), np.zeros(2))
     array([0.5, inf])
+    >>> taus = plane_contact_times([1.0, 2.0], [0.0, -1.0], [-2.0, -2.0])
+    >>> taus.tolist() == [plane_contact_time(1.0, 0.0, -2.0), plane_contact_time(2.0, -1.0, -2.0)]
+    True
     """
     gap, v_n, a_n = (np.asarray(x, dtype=float) for x in (gap, v_n, a_n))
     a = 0.5 * a_n
@@ -127,10 +202,31 @@ def plane_contact_times(gap: npt.ArrayLike, v_n: npt.ArrayLike, a_n: npt.ArrayLi
 def sphere_contact_time(d: npt.ArrayLike, w: npt.ArrayLike, size: float) -> float:
     """First τ ≥ 0 at which two spheres in uniform relative motion touch while closing.
 
-    ``d`` is the line of centres r_i − r_j, ``w`` the relative velocity v_i − v_j (the
-    relative acceleration is zero: free flight, or the same uniform gravity on both),
-    ``size`` the sum of the radii.  Returns ``inf`` when the spheres never touch (they
-    separate, they miss, or they only graze: zero normal speed at the touch).
+    The relative acceleration is zero (free flight, or the same uniform gravity on both).
+
+    Parameters
+    ----------
+    d : array_like, shape (3,)
+        The line of centres r_i − r_j, m.
+    w : array_like, shape (3,)
+        The relative velocity v_i − v_j, m/s.
+    size : float
+        The sum of the radii, m (≥ 0).
+
+    Returns
+    -------
+    float
+        The contact time τ, s; ``inf`` when the spheres never touch (they separate, they
+        miss, or they only graze: zero normal speed at the touch); 0 for a pair that
+        already touches or overlaps while closing.
+
+    Raises
+    ------
+    IndexError
+        If ``d`` or ``w`` has fewer than 3 components (components beyond the third are
+        not read).
+    ValueError
+        If ``d``, ``w`` or ``size`` is not numeric.
 
     Notes
     -----
@@ -153,8 +249,33 @@ def sphere_contact_time(d: npt.ArrayLike, w: npt.ArrayLike, size: float) -> floa
 
 
 def sphere_contact_times(d: npt.ArrayLike, w: npt.ArrayLike, size: npt.ArrayLike) -> FloatArray:
-    """:func:`sphere_contact_time` for arrays of pairs at once: ``d`` and ``w`` of shape
-    (k, 3), ``size`` (k,); the same arithmetic per pair.
+    """:func:`sphere_contact_time` for arrays of pairs at once (the same arithmetic per pair).
+
+    Parameters
+    ----------
+    d : array_like, shape (k, 3)
+        The lines of centres r_i − r_j, m.
+    w : array_like, shape (k, 3)
+        The relative velocities v_i − v_j, m/s.
+    size : array_like, shape (k,)
+        The sums of the radii, m (≥ 0).
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        The contact times τ, s; ``inf`` where a pair never touches.
+
+    Raises
+    ------
+    IndexError
+        If ``d`` or ``w`` is not 2-D with at least 3 columns.
+    ValueError
+        If the pairs' counts do not broadcast together, or an input is not numeric.
+
+    Examples
+    --------
+    Head on, closing at 1 m/s from 0.5 m apart with radii summing to 0.2 m: 0.3 s; the
+    same pair 0.3 m off the line of approach misses:
 
     >>> sphere_contact_times(np.array([[-0.5, 0, 0], [-0.5, 0.3, 0]]),
     ...                      np.array([[1.0, 0, 0], [1.0, 0, 0]]), np.array([0.2, 0.2]))
@@ -186,14 +307,45 @@ def chebyshev_fit(
     *,
     ends: bool = False,
 ) -> FloatArray:
-    """Chebyshev coefficients on [t_a, t_b] (variable x ∈ [−1, 1]) interpolating
-    ``fn(t)`` (``t`` of shape ``(n,)`` → shape ``(n, m)``); exact for degree < n.
+    """Chebyshev coefficients on [t_a, t_b] interpolating ``fn(t)``, exact for degree < n.
 
-    At the Chebyshev points of the first kind (interior); with ``ends``, at the
-    Chebyshev–Lobatto points cos(πk/(n − 1)), which include both ends: a fit of a
-    function that is not a polynomial along the step (a point of a turning hinge, a
-    support point, a switch function) then equals it at the step's ends, where one step
-    hands over to the next (a crossing at the very end is not lost to the fit's error).
+    The variable is x ∈ [−1, 1], t = ½ (t_a + t_b) + ½ (t_b − t_a) x. At the Chebyshev
+    points of the first kind (interior); with ``ends``, at the Chebyshev–Lobatto points
+    cos(πk/(n − 1)), which include both ends: a fit of a function that is not a polynomial
+    along the step (a point of a turning hinge, a support point, a switch function) then
+    equals it at the step's ends, where one step hands over to the next (a crossing at the
+    very end is not lost to the fit's error).
+
+    Parameters
+    ----------
+    fn : callable
+        ``fn(t)`` with ``t`` of shape ``(n,)``, s, returning an array of shape ``(n, m)``:
+        the m functions sampled at the n times.
+    t_a, t_b : float
+        The step's ends, s.
+    n : int, optional
+        The number of nodes (≥ 2), default ``STEP_NODES`` = 9: coefficients up to
+        degree n − 1.
+    ends : bool, optional
+        Chebyshev–Lobatto points (both ends included) instead of the interior points of
+        the first kind (default False).
+
+    Returns
+    -------
+    ndarray, shape (n, m)
+        The coefficients, row k those of T_k(x).
+
+    Raises
+    ------
+    TypeError
+        If ``fn`` returns other than n rows.
+    ValueError
+        If ``n`` < 1.
+
+    Examples
+    --------
+    t² on [0, 2] at its middle t = 1 (x = 0), and sin at the end t = 2 (x = 1) of a fit
+    with ``ends``:
 
     >>> c = chebyshev_fit(lambda t: np.stack([t * t], axis=-1), 0.0, 2.0)
     >>> bool(np.allclose(C.chebval(0.0, c[:, 0]), 1.0, rtol=0, atol=8 * EPS))
@@ -217,23 +369,43 @@ def first_downward_crossing(
 ) -> float | None:
     """First x in [−1, 1] where the Chebyshev series ``coef`` goes below zero.
 
-    ``coef`` (shape ``(k,)``) is a polynomial with the sign of a gap along one step.
-    The polynomial's extrema (real roots of its derivative) cut [−1, 1] into pieces on
-    which it is monotone; the first piece that starts ≥ 0 and ends < 0 holds the
-    crossing, refined by Brent's method to ``ROOT_RTOL``: on ``refine(x)`` (the gap
-    itself, free of the polynomial's cancellation) when given and when its signs at the
-    ends of the piece bracket a root, else on the polynomial.  A value within
-    ±``start_tol`` counts as touching (the rounding of a contact just resolved): the
-    contact is *now* (the piece's start) if the polynomial falls from there, nothing if
-    it rises; an interior minimum below zero by no more than ``start_tol`` is a graze
-    (a tangential touch whose rounding dips below zero), not a contact.  Returns None
-    when the polynomial stays ≥ 0; a cheap bound c₀ − Σ|c_k| > 0 skips most steps
-    without finding roots.
+    ``coef`` is a polynomial with the sign of a gap along one step. The polynomial's extrema
+    (real roots of its derivative) cut [−1, 1] into pieces on which it is monotone; the
+    first piece that starts ≥ 0 and ends < 0 holds the crossing, refined by Brent's method
+    to ``ROOT_RTOL``: on ``refine(x)`` (the gap itself, free of the polynomial's
+    cancellation) when given and when its signs at the ends of the piece bracket a root,
+    else on the polynomial. A value within ±``start_tol`` counts as touching (the rounding
+    of a contact just resolved): the contact is *now* (the piece's start) if the polynomial
+    falls from there, nothing if it rises; an interior minimum below zero by no more than
+    ``start_tol`` is a graze (a tangential touch whose rounding dips below zero), not a
+    contact. Returns None when the polynomial stays ≥ 0; a cheap bound c₀ − Σ|c_k| > 0 skips
+    most steps without finding roots.
 
     With ``after`` (a point of the step where the gap is within rounding of zero but
     the pair does not approach: a touch, at the top of a tiny hop), only x > ``after``
     is searched, and only a fall below ``−start_tol`` counts: its zero crossing (or
     ``after`` itself if the gap is already below zero there) is the contact.
+
+    Parameters
+    ----------
+    coef : array_like, shape (k,)
+        The Chebyshev coefficients of the gap (or of a polynomial with its sign) in the
+        step's variable x ∈ [−1, 1].
+    start_tol : float
+        The rounding of a gap at zero (≥ 0), in the polynomial's units: values within
+        ±``start_tol`` count as touching.
+    refine : callable, optional
+        ``refine(x)``: the exact gap at x, to refine the crossing on (default None: the
+        polynomial).
+    after : float, optional
+        A point of a touch in [−1, 1]: search only beyond it (default None: the whole
+        step).
+
+    Returns
+    -------
+    float or None
+        The x of the contact in [−1, 1], or None where the gap stays ≥ 0 (or dips
+        below zero within ``start_tol`` only).
 
     Raises
     ------

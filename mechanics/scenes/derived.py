@@ -64,7 +64,53 @@ def _spacing(times: Sequence[float] | FloatArray) -> float | None:
 def derived_quantities(
     engine: Engine, traj: Trajectory
 ) -> list[tuple[str, float | None, float | None]]:
-    """(name, exact, measured) rows for the scene the engine ran."""
+    """(name, exact, measured) rows for the scene the engine ran.
+
+    The rows the module's Conventions list, for each body or effect that defines them: a
+    torque-free rigid body's regime and period of ω, a heavy symmetric top's nutation
+    range, nutation period and mean precession rate, the kinetic energy lost in impacts
+    (6.41), and a rocket's speed gained by burn-out (7.30).
+
+    Parameters
+    ----------
+    engine : Engine
+        The engine that ran the scene (:class:`mechanics.scenes.engine.Engine`).
+    traj : Trajectory
+        Its run (:meth:`~mechanics.scenes.engine.Engine.run`): the samples, series and
+        events the measured values are taken from.
+
+    Returns
+    -------
+    list of tuple of (str, float or None, float or None)
+        Rows (name, exact, measured) in SI units (the name says the unit where it is not
+        the quantity's SI one); None where a value has no closed form or too few
+        features were sampled to measure it.  Empty for a scene that defines none.
+
+    Raises
+    ------
+    ResultOverflowError
+        Where a heavy top's closed form leaves float64's range (e.g. g = 1e-30 m/s²
+        against a spin of 100 rad/s: ψ(t) overflows);
+        :func:`~mechanics.scenes.simulate.simulate` reports it as a SceneError.
+    MechanicsValueError
+        Any other refusal of :class:`mechanics.tops.HeavySymmetricTop` (its Raises
+        section) for a heavy top outside its closed form's domain.  (A free top's
+        refusal is caught: it only leaves out its rows.)
+
+    Examples
+    --------
+    The rocket of Example 7.2: its speed at burn-out by (7.30), u ln(m0/m_f) − g t_b,
+    against the run's:
+
+    >>> from mechanics.scenes import builtin_path, load_scene
+    >>> from mechanics.scenes.engine import Engine
+    >>> eng = Engine(load_scene(builtin_path("rocket")))
+    >>> ((name, exact, measured),) = derived_quantities(eng, eng.run())
+    >>> name, bool(np.isclose(exact, 2000.0 * np.log(1000.0 / 200.0) - 9.81 * 80.0))
+    ('speed gained by burn-out (7.30)', True)
+    >>> bool(np.isclose(measured, exact, rtol=1e-12, atol=0.0))
+    True
+    """
     from mechanics.tops import FreeAsymmetricTop, HeavySymmetricTop
 
     rows: list[tuple[str, float | None, float | None]] = []

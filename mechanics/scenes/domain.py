@@ -47,8 +47,34 @@ RTOL_MIN = 100 * EPS
 
 
 def domain_of(unit: str, kind: str = "number") -> str:
-    """The domain of a number with this SI unit and field kind, in words (for the
-    reference; ``abs(x)``, not bars, so that it sits in a Markdown table)."""
+    """The domain of a number with this SI unit and field kind, in words.
+
+    For the reference of the scene format; ``abs(x)``, not bars, so that it sits in a
+    Markdown table.  An angle (unit ``"rad"``) has abs(x) ≤ 2¹⁰ whatever its kind; any
+    other number has magnitude at most 2⁸⁰ (see the Conventions).
+
+    Parameters
+    ----------
+    unit : str
+        The field's SI unit (``"m"``, ``"kg"``, ``"rad"``, ...; ``""`` for a pure number).
+    kind : str, optional
+        The field's kind in the schema: ``"positive"``, ``"nonnegative"`` or any other
+        (default ``"number"``: a signed number).
+
+    Returns
+    -------
+    str
+        The domain in words, e.g. ``"0 < x ≤ 2⁸⁰"``.
+
+    Examples
+    --------
+    The words match the bounds the checks apply:
+
+    >>> domain_of("kg", "positive"), MAGNITUDE_MAX == 2.0**80
+    ('0 < x ≤ 2⁸⁰', True)
+    >>> domain_of("rad", "positive"), ANGLE_MAX == 2.0**10
+    ('abs(x) ≤ 2¹⁰', True)
+    """
     if unit == "rad":
         return "abs(x) ≤ 2¹⁰"
     if kind == "positive":
@@ -59,7 +85,41 @@ def domain_of(unit: str, kind: str = "number") -> str:
 
 
 def check_magnitude(src: str, where: str, x: float) -> float:
-    """``x`` if its magnitude is at most 2⁸⁰; else a SceneError."""
+    """``x`` if its magnitude is at most 2⁸⁰; else a SceneError.
+
+    Domain: abs(x) ≤ 2⁸⁰ (:data:`MAGNITUDE_MAX`; else SceneError): the bound under which the
+    engine's float64 arithmetic stays finite (see the Conventions).
+
+    Parameters
+    ----------
+    src : str
+        The scene's source (its file name), named by the error.
+    where : str
+        The field, e.g. ``"bodies[0].mass"``, named by the error.
+    x : float
+        The number, in SI units (a finite float: the parser has checked it).
+
+    Returns
+    -------
+    float
+        ``x`` itself.
+
+    Raises
+    ------
+    SceneError
+        If abs(x) > 2⁸⁰, or ``x`` is NaN (naming ``src``, ``where`` and the value).
+
+    Examples
+    --------
+    The largest magnitude passes, the next float above it does not:
+
+    >>> check_magnitude("s.toml", "bodies[0].mass", -MAGNITUDE_MAX) == -(2.0**80)
+    True
+    >>> check_magnitude("s.toml", "bodies[0].mass", math.nextafter(MAGNITUDE_MAX, math.inf))
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: s.toml: bodies[0].mass: 1.2089258196146294e+24 is too ...
+    """
     if not abs(x) <= MAGNITUDE_MAX:
         raise SceneError(
             src,
@@ -72,7 +132,39 @@ def check_magnitude(src: str, where: str, x: float) -> float:
 
 
 def check_angle(src: str, where: str, x: float) -> float:
-    """``x`` if |x| ≤ 2¹⁰ rad; else a SceneError."""
+    """``x`` if |x| ≤ 2¹⁰ rad; else a SceneError.
+
+    Domain: |x| ≤ 2¹⁰ rad (:data:`ANGLE_MAX`; else SceneError): an angle's rounding
+    eps·|x| stays within the conserved quantities' 2¹⁰ eps (see the Conventions).
+
+    Parameters
+    ----------
+    src : str
+        The scene's source (its file name), named by the error.
+    where : str
+        The field, e.g. ``"bodies[0].initial.theta"``, named by the error.
+    x : float
+        The angle, rad (a finite float: the parser has checked it).
+
+    Returns
+    -------
+    float
+        ``x`` itself.
+
+    Raises
+    ------
+    SceneError
+        If |x| > 2¹⁰ rad, or ``x`` is NaN (naming ``src``, ``where`` and the value).
+
+    Examples
+    --------
+    >>> check_angle("s.toml", "theta", -1024.0) == -ANGLE_MAX
+    True
+    >>> check_angle("s.toml", "theta", 1025.0)
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: s.toml: theta: 1025.0 rad is beyond the angles' domain ...
+    """
     if not abs(x) <= ANGLE_MAX:
         raise SceneError(
             src,
