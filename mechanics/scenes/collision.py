@@ -153,7 +153,7 @@ def check_initial_overlap(model: Model, forward: Forward) -> None:
     """No two features overlap at t = 0 beyond the rounding of their positions.
 
     The centres of spheres and points are checked all at once
-    (:func:`.effects.impact.centre_gaps`), the other features one by one; the rounding
+    (``effects.impact.centre_gaps``), the other features one by one; the rounding
     allowed is :data:`~.impacts.GAP_ROUNDING` × the size of the positions and the
     features.  :func:`mechanics.scenes.spec.parse_scene` runs it on every scene with
     impacts.

@@ -200,9 +200,9 @@ class Body:
         The mass, kg, > 0 (0 for a tank, which has none).
     dims : dict[str, Any]
         The dimensions the shape needs (:data:`SHAPES`), in SI units
-        (:data:`DIMENSION_UNITS`: m; a custom body's principal moments, kg m²).
+        (``DIMENSION_UNITS``: m; a custom body's principal moments, kg m²).
     initial : dict[str, Any]
-        The initial state, keys in :data:`INITIAL_KEYS` (units: :data:`INITIAL_DOC`).
+        The initial state, keys in :data:`INITIAL_KEYS` (units: ``INITIAL_DOC``).
     fixed : bool, optional
         The body stays where it is, an immovable partner of contacts and springs.
         Default False.
@@ -275,7 +275,7 @@ class Scene:
 
     Built by :func:`parse_scene` (or :func:`load_scene`), which checks each field and
     their combination; the constructor stores what it is given and checks nothing.  The
-    fields are those of the ``[scene]`` table (:data:`SCENE_FIELDS`).
+    fields are those of the ``[scene]`` table (``SCENE_FIELDS``).
 
     Parameters
     ----------

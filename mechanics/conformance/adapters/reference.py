@@ -227,7 +227,7 @@ class SceneEngineAdapter:
     ----------
     method : {"integrate", "auto", "exact", "splitting"}, optional
         The scene's ``method`` (default ``"integrate"``).  Not checked here: a method
-        the scene parser refuses makes :meth:`SceneEngineAdapter.run` raise its error.
+        the scene parser refuses makes its ``run`` raise the error.
     rtol, atol : float, optional
         The integrator's tolerances (default: the scene's own).
 
