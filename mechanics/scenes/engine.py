@@ -127,7 +127,11 @@ class Engine:
     ------
     SceneError
         Where two impact effects list the same pair (the same two bodies, or one body and
-        the same plane): :class:`~.model.Model`.
+        the same plane), in building the :class:`~.model.Model`.
+    ZeroDivisionError
+        Where a rolling body's r² underflows to 0 (a radius of 1e-320 m, which the parser
+        accepts): its M_eff = m + J/r² (3.79); :func:`.simulate.simulate` reports it as a
+        SceneError.
 
     Examples
     --------

@@ -288,6 +288,10 @@ class Model:
     SceneError
         Where two impact effects list the same pair (the same two bodies, or one body and
         the same plane, a group's pairs included): which law would act is undefined.
+    ZeroDivisionError
+        Where a rolling body's r² underflows to 0 (a radius of 1e-320 m, which the parser
+        accepts): its M_eff = m + J/r² (3.79); :func:`.simulate.simulate` reports it as a
+        SceneError.
 
     Examples
     --------
