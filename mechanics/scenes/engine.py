@@ -70,8 +70,41 @@ __all__ = ["Engine", "validate"]
 
 
 def validate(scene: Scene) -> None:
-    """Check a scene as a whole (:func:`.model.check`) and, with impacts, that no two
-    features overlap at t = 0."""
+    """Check a scene as a whole (:func:`.model.check`) and, with impacts, its overlaps at t = 0.
+
+    With impacts, no two features of a listed pair may overlap at t = 0
+    (:func:`.collision.check_initial_overlap`).  :func:`.spec.parse_scene` calls it
+    (through :func:`.simulate.validate`) on every scene it returns.
+
+    Parameters
+    ----------
+    scene : Scene
+        The parsed scene (:class:`mechanics.scenes.spec.Scene`; each field already checked
+        by the parser).
+
+    Raises
+    ------
+    SceneError
+        Where the combination is refused (:func:`.model.check`: two joints on one body, an
+        initial key the body does not take, a spin about a zero principal moment, ...), a
+        pair is listed twice, or a pair overlaps at t = 0; the message names the field.
+
+    Examples
+    --------
+    A point has no attitude: the scene that gives one an initial spin is refused.
+
+    >>> from dataclasses import replace
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}]})
+    >>> validate(sc) is None
+    True
+    >>> validate(replace(sc, bodies=(replace(sc.bodies[0], initial={"omega": [1.0, 0.0, 0.0]}),)))
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: bodies[0].initial.omega: a point has no \
+attitude and no rotation
+    """
     model.check(scene)
     if scene.effects_of("impact"):  # (the model and its forward dynamics suffice)
         md = model.Model(scene)
@@ -79,7 +112,42 @@ def validate(scene: Scene) -> None:
 
 
 class Engine:
-    """A scene, assembled from its listed effects: the model and the rooms that run it."""
+    """A scene, assembled from its listed effects: the model and the rooms that run it.
+
+    :meth:`run` uses the exact flow where the listed effects have one (:mod:`.flows`,
+    ``method = "auto"`` or ``"exact"``), else integrates (:mod:`.integrate`) or splits
+    (``method = "splitting"``), and assembles the result (:mod:`.report`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The parsed and validated scene (:func:`mechanics.scenes.spec.parse_scene`).
+
+    Raises
+    ------
+    SceneError
+        Where two impact effects list the same pair (the same two bodies, or one body and
+        the same plane), in building the :class:`~.model.Model`.
+    ZeroDivisionError
+        Where a rolling body's r² underflows to 0 (a radius of 1e-320 m, which the parser
+        accepts): its M_eff = m + J/r² (3.79); :func:`.simulate.simulate` reports it as a
+        SceneError.
+
+    Examples
+    --------
+    A point dropped from rest under g = 2 m/s² falls g t²/2 = 1 m in 1 s:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "drop", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                 "initial": {"position": [0.0, 0.0, 5.0]}}],
+    ...     "effects": [{"type": "gravity", "g": 2.0}]}))
+    >>> eng.exact_flow()
+    'exact: free flight under uniform gravity'
+    >>> tr = eng.run()
+    >>> float(tr.series["z"][-1]), 5.0 - 2.0 * 1.0**2 / 2
+    (4.0, 4.0)
+    """
 
     def __init__(self, scene: Scene) -> None:
         md = self.model = model.Model(scene)

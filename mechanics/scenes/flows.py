@@ -76,15 +76,72 @@ __all__ = [
 
 @dataclass(frozen=True)
 class Flow:
-    """An exact flow: how it is computed, and a function returning its segments
-    ``[(t0, t1, state_at)]`` and events."""
+    """An exact flow: how it is computed, and a function returning its segments and events.
+
+    A record (a frozen dataclass): its constructor stores its fields and checks nothing.
+
+    Parameters
+    ----------
+    how : str
+        How the flow is computed (a run's ``how``, e.g. ``"exact: free flight under
+        uniform gravity"``).
+    run : Callable[[], tuple[list[Segment], list[Event]]]
+        Returns the segments ``[(t0, t1, state_at)]`` (``state_at`` the flat state(s) at
+        any time(s) in [t0, t1]) and the events, in time order.
+
+    Examples
+    --------
+    >>> flow = Flow("exact: at rest", lambda: ([], []))
+    >>> flow.how, flow.run()
+    ('exact: at rest', ([], []))
+    """
 
     how: str
     run: Callable[[], tuple[list[Segment], list[Event]]]
 
 
 def tank_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
-    """A lone tank with gravity and its outflow only."""
+    """The exact flow of a lone tank with gravity and its outflow only: Torricelli (8.37).
+
+    The level and the volume out in closed form
+    (:meth:`~mechanics.scenes.effects.tank_outflow.TankOutflow.exact`), with an ``empty``
+    event at the drain time if it falls within the duration.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`): not read here.
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`): not read here.
+
+    Returns
+    -------
+    Flow or None
+        The exact flow, or None where it does not apply.
+
+    Raises
+    ------
+    ResultOverflowError
+        Where the drain time exceeds float64's range (a hole of 1e-320 m² in a tank of
+        1 m²: :func:`mechanics.fluids.drain_time`).
+
+    Examples
+    --------
+    The tank empties at the drain time of :func:`mechanics.fluids.drain_time`:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 100.0},
+    ...     "bodies": [{"name": "tank", "shape": "tank", "area": 1.0, "initial": {"level": 2.0}}],
+    ...     "effects": [{"type": "gravity", "g": 9.81},
+    ...                 {"type": "tank_outflow", "body": "tank", "hole_area": 0.01}]}))
+    >>> segs, events = tank_flow(eng.model, eng.forward, eng.resolver).run()
+    >>> from mechanics.fluids import drain_time
+    >>> events[0].kind, events[0].t == float(drain_time(2.0, g=9.81, area_ratio=0.01))
+    ('empty', True)
+    """
     if not model.layout.tanks:
         return None
     if model.n != 1 or not model.kinds <= {"gravity", "tank_outflow"}:
@@ -96,7 +153,45 @@ def tank_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None
 
 
 def guided_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
-    """A lone guided body whose guide has an exact flow for the listed effects."""
+    """The exact flow of a lone guided body whose guide has one for the listed effects.
+
+    The guide's (:meth:`~mechanics.scenes.state.Guide.exact`): the pendulum from rest,
+    the torsion pendulum, the carousel, rolling, the sliding phases.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`): not read here.
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`): not read here.
+
+    Returns
+    -------
+    Flow or None
+        The exact flow, or None where it does not apply.
+
+    Examples
+    --------
+    A rod released from rest on a fixed axis: the pendulum's flow starts at the initial
+    state.
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "rod", "shape": "rod", "mass": 1.0, "length": 1.2,
+    ...                 "initial": {"angle": 1.0}}],
+    ...     "effects": [{"type": "gravity", "g": 9.81},
+    ...                 {"type": "fixed_axis", "body": "rod", "axis": [0.0, 1.0, 0.0],
+    ...                  "distance": 0.6, "body_axis": "x"}]}))
+    >>> flow = guided_flow(eng.model, eng.forward, eng.resolver)
+    >>> flow.how
+    'exact: pendulum released from rest, Jacobi elliptic functions (4.50)'
+    >>> segs, events = flow.run()
+    >>> bool(np.allclose(segs[0][2](0.0), eng.model.y0)), events
+    (True, [])
+    """
     lay = model.layout
     if not lay.guides or model.n != 1:
         return None
@@ -122,8 +217,53 @@ def guided_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | No
 
 
 def pinned_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
-    """A lone top on its fixed point: torque-free (the elliptic flow about C), or the
-    heavy symmetric top (J1 = J2 about C, gravity along −z, θ0 in (0, π))."""
+    """The exact flow of a lone top on its fixed point: torque-free, or the heavy symmetric top.
+
+    Torque-free: the elliptic flow about C (:class:`mechanics.tops.FreeAsymmetricTop`,
+    5.3); with gravity, the heavy symmetric top (J1 = J2 about C, gravity along −z, θ0
+    in (0, π): :class:`mechanics.tops.HeavySymmetricTop`, 5.2).
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`): not read here.
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`): not read here.
+
+    Returns
+    -------
+    Flow or None
+        The exact flow, or None where it does not apply.
+
+    Raises
+    ------
+    OutOfDomainError, ResultOverflowError
+        Where :class:`~mechanics.tops.HeavySymmetricTop` refuses the top's values (g =
+        1e-300 m/s² against θ̇0 = 1e24 rad/s: its turning points of θ overflow).
+    ValueError
+        Instead of ResultOverflowError where θ̇0² J'1/mgℓ exceeds float64
+        (:class:`~mechanics.tops.HeavySymmetricTop`'s known defect).
+
+    Examples
+    --------
+    L_3 = J3 ω3 about the symmetry axis is conserved (5.2): the third component of the
+    stored L_C (body components, the inertia about C diagonal) stays at its start.
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "top", "shape": "cylinder", "mass": 1.0, "radius": 0.05,
+    ...                 "height": 0.02, "initial": {"theta": 0.5, "phi_dot": 100.0}}],
+    ...     "effects": [{"type": "gravity", "g": 9.81},
+    ...                 {"type": "fixed_point", "body": "top", "distance": 0.1}]}))
+    >>> flow = pinned_flow(eng.model, eng.forward, eng.resolver)
+    >>> segs, events = flow.run()
+    >>> y = segs[0][2](np.array([0.0, 0.5, 1.0]))
+    >>> bool(np.allclose(y[0], eng.model.y0)), bool(np.allclose(y[:, 2], eng.model.y0[2]))
+    (True, True)
+    """
     from mechanics.rotation import matrix_from_euler
     from mechanics.tops import FreeAsymmetricTop, HeavySymmetricTop
 
@@ -228,8 +368,53 @@ def _with_rotation(model: Model, y_trans: npt.ArrayLike, t: Times, tops: Tops) -
 
 
 def free_flight(model: Model, t0: float, y0: FloatArray, g: FloatArray, tops: Tops) -> Dense:
-    """The flat states at any times of free flight under the uniform gravity g from
-    (t0, y0), each spinning body turned by its top."""
+    """The flat states at any times of free flight under uniform gravity from (t0, y0).
+
+    r = r0 + v0 τ + g τ²/2, v = v0 + g τ (τ = t − t0); each spinning body turned by its
+    torque-free top.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`): its layout.
+    t0 : float
+        The start time, s.
+    y0 : ndarray, shape (size,)
+        The flat state at t0 (the layout's ``size``).
+    g : ndarray, shape (3,) or (n, 3)
+        The uniform gravity, m/s², or each body's acceleration (a resting body's: along
+        its plane).
+    tops : dict
+        Per spinning rigid body (its index), the pair (J, top): its principal moments J
+        (kg m², an array of shape (3,)) and its torque-free top
+        (:class:`mechanics.tops.FreeAsymmetricTop`); {} for none.
+
+    Returns
+    -------
+    Dense
+        A vectorised function of the time(s) t (s, shape (k,) or scalar) returning the
+        flat states, shape (k, size) or (size,); it raises ValueError where ``g`` does
+        not broadcast against the bodies' positions (n, 3).
+
+    Raises
+    ------
+    IndexError
+        Where ``y0`` is shorter than the layout's size.
+
+    Examples
+    --------
+    Two hops of free flight make one: from (1 s, y(1 s)) to 2 s is y(2 s).
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 2.0},
+    ...     "bodies": [{"name": "ball", "shape": "point", "mass": 1.0,
+    ...                 "initial": {"position": [0.0, 0.0, 5.0]}}]}))
+    >>> g = np.array([0.0, 0.0, -2.0])
+    >>> at = free_flight(eng.model, 0.0, eng.model.y0, g, {})
+    >>> at(2.0).tolist(), free_flight(eng.model, 1.0, at(1.0), g, {})(2.0).tolist()
+    ([0.0, 0.0, 1.0, 0.0, 0.0, -4.0], [0.0, 0.0, 1.0, 0.0, 0.0, -4.0])
+    """
     lay = model.layout
     r0, v0, L0, R0 = lay.gather(y0)
 
@@ -245,8 +430,54 @@ def free_flight(model: Model, t0: float, y0: FloatArray, g: FloatArray, tops: To
 
 
 def free_flight_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
-    """Free bodies with only uniform gravity and smooth impacts of spheres and points
-    (through the centres): free flight between impacts at closed-form instants."""
+    """The exact flow of free bodies under uniform gravity with smooth impacts of spheres.
+
+    Spheres and points, impacts through their centres: free flight between impacts at
+    closed-form instants (:class:`Calendar`, :meth:`~.impacts.Resolver.contact_time`);
+    a body resting on a plane slides on it under the part of gravity along it.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`).
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`) and its ``support``
+        (the resting contacts).
+
+    Returns
+    -------
+    Flow or None
+        The exact flow, or None where it does not apply.  Its ``run`` raises
+        :class:`NotExact` where a body rests on two planes, or rests while its pair
+        flies (the engine then integrates), and a SceneError where an impact cannot be
+        resolved.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        Where :class:`~mechanics.tops.FreeAsymmetricTop` refuses a spinning body's
+        moments that the parser accepted (J = (1e-300, 2e-300, 3e-300) kg m²: J1 + J2
+        rounds below J3).
+
+    Examples
+    --------
+    A ball 5 m above the floor under g = 10 m/s² lands after √(2h/g) = 1 s at 10 m/s and
+    leaves it at e × 10 = 5 m/s:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 2.0},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 1.0, "radius": 0.5,
+    ...                 "initial": {"position": [0.0, 0.0, 5.5]}}],
+    ...     "effects": [{"type": "gravity", "g": 10.0},
+    ...                 {"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...                  "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}]}))
+    >>> segs, events = free_flight_flow(eng.model, eng.forward, eng.resolver).run()
+    >>> [(ev.t, ev.detail["normal_speed_after"]) for ev in events], (2 * 5.0 / 10.0) ** 0.5
+    ([(1.0, 5.0)], 1.0)
+    """
     kinds = model.kinds
     if not _free_bodies(model) or not kinds <= {"gravity", "impact"}:
         return None
@@ -309,12 +540,41 @@ def free_flight_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow
 
 
 class Calendar:
-    """The next contact time of every impact pair in free flight (spheres and points,
-    smooth), kept between events: an impact changes only its bodies' motion, so after
+    """The next contact time of every impact pair in free flight, kept between events.
+
+    Spheres and points, smooth.  An impact changes only its bodies' motion, so after
     one only the pairs of the bodies it moved are computed again (vectorised:
     :func:`.contacts.plane_contact_times`, :func:`.contacts.sphere_contact_times`), the
     others' times stand.  Per event that is O(n) pairs for n bodies, not O(n²); the
-    earliest is found by one argmin over all of them."""
+    earliest is found by one argmin over all of them.  The constructor arranges the
+    model's impacts into arrays (every time inf until :meth:`refresh`).
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`) whose ``impacts``
+        (spheres and points, one feature each) are followed.
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`): not read here.
+
+    Examples
+    --------
+    A ball 5 m above the floor under g = 10 m/s² touches it after √(2h/g) = 1 s:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 2.0},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 1.0, "radius": 0.5,
+    ...                 "initial": {"position": [0.0, 0.0, 5.5]}}],
+    ...     "effects": [{"type": "gravity", "g": 10.0},
+    ...                 {"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...                  "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}]}))
+    >>> cal = Calendar(eng.model, eng.resolver)
+    >>> s0 = eng.forward.snapshot(0.0, eng.model.y0)
+    >>> cal.refresh(0.0, s0, np.array([[0.0, 0.0, -10.0]]), None, set())
+    >>> cal.earliest(), (2 * 5.0 / 10.0) ** 0.5
+    ((0, 1.0), 1.0)
+    """
 
     def __init__(self, model: Model, resolver: Resolver) -> None:
         self.model = model
@@ -417,7 +677,50 @@ def _resting_gravity(model: Model, support: Support | None, g0: FloatArray) -> F
 
 
 def rocket_flow(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
-    """Free bodies with only gravity and space-fixed thrust: the rocket (7.30)."""
+    """The exact flow of free bodies with only gravity and space-fixed thrust: the rocket (7.30).
+
+    The thrust's height and speed (:func:`mechanics.open_systems.rocket_height`,
+    :func:`~mechanics.open_systems.rocket_velocity`, coasting after burn-out) added to
+    the free flight; a ``burn_out`` event at each burn-out within the duration.  Not for
+    a thrust in body axes.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`): not read here.
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`): not read here.
+
+    Returns
+    -------
+    Flow or None
+        The exact flow, or None where it does not apply.
+
+    Raises
+    ------
+    NonPhysicalInertiaError
+        Where :class:`~mechanics.tops.FreeAsymmetricTop` refuses a spinning body's
+        moments that the parser accepted (J = (1e-300, 2e-300, 3e-300) kg m²: J1 + J2
+        rounds below J3).
+
+    Examples
+    --------
+    800 kg of fuel burnt at 10 kg/s: the burn-out comes at m_f/q = 80 s.
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 100.0},
+    ...     "bodies": [{"name": "rocket", "shape": "point", "mass": 1000.0}],
+    ...     "effects": [{"type": "gravity", "g": 9.81},
+    ...                 {"type": "thrust", "body": "rocket", "mass_flow": 10.0,
+    ...                  "exhaust_speed": 2000.0, "fuel_mass": 800.0,
+    ...                  "direction": [0.0, 0.0, 1.0]}]}))
+    >>> segs, events = rocket_flow(eng.model, eng.forward, eng.resolver).run()
+    >>> [(ev.kind, ev.t) for ev in events], 800.0 / 10.0
+    ([('burn_out', 80.0)], 80.0)
+    """
     from mechanics.open_systems import rocket_height, rocket_velocity
 
     kinds = model.kinds
@@ -466,7 +769,50 @@ PROVIDERS = (tank_flow, guided_flow, pinned_flow, free_flight_flow, rocket_flow)
 
 
 def find(model: Model, forward: Forward, resolver: Resolver) -> Flow | None:
-    """The exact flow of the scene, or None where it has none here."""
+    """The exact flow of the scene, or None where it has none here.
+
+    The first of :data:`PROVIDERS` that applies (at most one does).
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`).
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`).
+
+    Returns
+    -------
+    Flow or None
+        The exact flow, or None where no provider applies.
+
+    Raises
+    ------
+    MechanicsValueError
+        Where a provider's closed form refuses the scene's values (:func:`tank_flow`,
+        :func:`pinned_flow`, :func:`free_flight_flow`, :func:`rocket_flow` say which);
+        :func:`mechanics.scenes.simulate.simulate` reports it as a SceneError.
+    ValueError
+        Instead of ResultOverflowError from :func:`pinned_flow` (the known defect there).
+
+    Examples
+    --------
+    A point under gravity has the free flight; with quadratic drag it has none:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> def engine(*effects):
+    ...     return Engine(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...         "bodies": [{"name": "ball", "shape": "point", "mass": 1.0}],
+    ...         "effects": [{"type": "gravity", "g": 9.81}, *effects]}))
+    >>> eng = engine()
+    >>> find(eng.model, eng.forward, eng.resolver).how
+    'exact: free flight under uniform gravity'
+    >>> eng = engine({"type": "drag", "body": "ball", "quadratic": 0.01})
+    >>> find(eng.model, eng.forward, eng.resolver) is None
+    True
+    """
     for provider in PROVIDERS:
         flow = provider(model, forward, resolver)
         if flow is not None:

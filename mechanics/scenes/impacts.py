@@ -106,8 +106,40 @@ RANK_RTOL = 2**6 * EPS
 
 
 class Resolver:
-    """The impact law at the contacts of a :class:`~mechanics.scenes.model.Model`,
-    through its :class:`~mechanics.scenes.forward.Forward` dynamics."""
+    """The impact law at the contacts of a :class:`~mechanics.scenes.model.Model`.
+
+    It acts through the model's :class:`~mechanics.scenes.forward.Forward` dynamics; its
+    constructor only stores what it is given.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`); its ``impacts`` are
+        the contacts resolved.
+    forward : Forward
+        The model's forward dynamics (:class:`mechanics.scenes.forward.Forward`).
+    support : Support or None, optional
+        The resting contacts (:class:`mechanics.scenes.support.Support`) a pair whose
+        impacts accumulate passes to; None (the default): such a pair stops the run
+        (:func:`zeno`).
+
+    Examples
+    --------
+    Newton's law at a lone contact: a ball reaching the floor at 4 m/s with e = 1/2 leaves
+    it at e × 4 = 2 m/s (Chapter 6):
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 1.0, "radius": 0.5,
+    ...                 "initial": {"position": [0.0, 0.0, 0.5], "velocity": [0.0, 0.0, -4.0]}}],
+    ...     "effects": [{"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...                  "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}]}))
+    >>> imp, events = eng.model.impacts[0], []
+    >>> y = eng.resolver.resolve(0.0, eng.model.y0, imp, imp.features[0], events)
+    >>> events[0].detail["impact_model"], eng.model.layout.gather(y)[1].tolist(), 0.5 * 4.0
+    ('single', [[0.0, 0.0, 2.0]], 2.0)
+    """
 
     def __init__(self, model: Model, forward: Forward, support: Support | None = None) -> None:
         self.model = model
@@ -410,14 +442,53 @@ class Resolver:
 
 
 def solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray | None:
-    """P ≥ 0 with w = W P + q ≥ 0 and P·w = 0, for a small symmetric positive
-    semi-definite W (m ≤ 8 contacts), exactly: by its complementary bases, the supports S
-    in order of size whose W_SS is invertible (condition below 1/(m RANK_RTOL)), P_S
-    solving W_SS P_S = −q_S; the first with P_S ≥ 0 and w ≥ 0 off S, within the
-    rounding of their terms (2^6 eps m × the size of W P and q).  A PSD LCP that is
-    feasible (here: a body against a plane or a body, whose normal impulses cannot
-    cancel) has such a basic solution; the w of every solution is the same, so the
-    velocity after is unique where the impulses are not.  None if there is none."""
+    """The linear complementarity problem P ≥ 0, w = W P + q ≥ 0, P·w = 0, solved exactly.
+
+    For a small symmetric positive semi-definite W (m ≤ 8 contacts): by its
+    complementary bases, the supports S in order of size whose W_SS is invertible
+    (condition below 1/(m RANK_RTOL)), P_S solving W_SS P_S = −q_S; the first with
+    P_S ≥ 0 and w ≥ 0 off S, within the rounding of their terms (2^6 eps m × the size of
+    W P and q).  A PSD LCP that is feasible (here: a body against a plane or a body,
+    whose normal impulses cannot cancel) has such a basic solution; the w of every
+    solution is the same, so the velocity after is unique where the impulses are not.
+
+    Parameters
+    ----------
+    W : ndarray, shape (m, m)
+        The Delassus matrix (W_kl = n_k·K(S_k, S_l) n_l, the change of contact k's normal
+        velocity per unit impulse at l), 1/kg, symmetric positive semi-definite, m ≥ 1;
+        an ndarray (it is indexed by lists of indices).
+    q : ndarray, shape (m,)
+        The normal velocities before less their targets (u⁻ − t), m/s; an ndarray.
+
+    Returns
+    -------
+    P : ndarray, shape (m,) or None
+        The normal impulses P ≥ 0, N s, or None where there is no basic solution (an
+        infeasible problem).
+
+    Raises
+    ------
+    ValueError
+        Where the shapes of ``W`` and ``q`` do not match (numpy's matmul).
+    ZeroDivisionError
+        Where m = 0 (no contacts).
+    TypeError
+        Where ``W`` or ``q`` is a list rather than an ndarray and a support S is tried
+        (q has a negative entry).
+
+    Examples
+    --------
+    Two dependent contacts (W singular): the impulses are one basic solution, the
+    velocities after, w = W P + q, are zero at both, as every solution's:
+
+    >>> W, q = np.ones((2, 2)), np.array([-2.0, -2.0])
+    >>> P = solve_lcp(W, q)
+    >>> P.tolist(), (W @ P + q).tolist()
+    ([2.0, 0.0], [0.0, 0.0])
+    >>> solve_lcp(np.array([[2.0, 1.0], [1.0, 2.0]]), np.array([-3.0, -3.0])).tolist()
+    [1.0, 1.0]
+    """
     from itertools import combinations
 
     m = len(q)
@@ -443,8 +514,41 @@ def solve_lcp(W: FloatArray, q: FloatArray) -> FloatArray | None:
 
 
 def falls_in(scene: Scene, imp: Impact, ft: Feature, t: float) -> SceneError:
-    """The error of a pair that touches and then falls in (a resting contact) where
-    the pair cannot rest (:meth:`.support.Support.can_rest`)."""
+    """The error of a pair that touches and then falls in where it cannot rest.
+
+    A pair cannot rest (:meth:`.support.Support.can_rest`) where it is two bodies on each
+    other, a rim, or a body held by a joint.  The error is returned, not raised.
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (:class:`mechanics.scenes.spec.Scene`) whose file the error names.
+    imp : Impact
+        The impact effect of the pair (its ``where`` is the field named).
+    ft : Feature
+        The contact feature that touches.
+    t : float
+        The time of the touch, s.
+
+    Returns
+    -------
+    SceneError
+        The error to raise, naming the impact effect, the feature and t.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 1.0, "radius": 0.5,
+    ...                 "initial": {"position": [0.0, 0.0, 0.5]}}],
+    ...     "effects": [{"type": "impact", "body": "ball", "plane_point": [0.0, 0.0, 0.0],
+    ...                  "plane_normal": [0.0, 0.0, 1.0], "restitution": 0.5}]})
+    >>> imp = Engine(sc).model.impacts[0]
+    >>> err = falls_in(sc, imp, imp.features[0], 0.25)
+    >>> type(err).__name__, err.field == imp.where == "effects[0]", "0.25 s" in err.reason
+    ('SceneError', True, True)
+    """
     return scene.error(
         imp.where,
         f"{ft.label} touch at t = {t:.17g} s and then fall in, with no separation that "
@@ -454,7 +558,35 @@ def falls_in(scene: Scene, imp: Impact, ft: Feature, t: float) -> SceneError:
 
 
 def zeno(scene: Scene, t: float, who: str = "the bodies") -> SceneError:
-    """The error of impacts that accumulate (or events beyond :data:`MAX_EVENTS`)."""
+    """The error of impacts that accumulate (or of events beyond :data:`MAX_EVENTS`).
+
+    The error is returned, not raised; it names ``scene.duration`` (the remedy: shorten
+    it).
+
+    Parameters
+    ----------
+    scene : Scene
+        The scene (:class:`mechanics.scenes.spec.Scene`) whose file and duration the
+        error names.
+    t : float
+        The time the impacts accumulate near, s.
+    who : str, optional
+        Who comes to rest (an impact pair's label, or an effect's place in the file).
+
+    Returns
+    -------
+    SceneError
+        The error to raise.
+
+    Examples
+    --------
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 4.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 1.0}]})
+    >>> err = zeno(sc, 2.5, "the ball")
+    >>> err.field, err.reason.startswith("the ball come to rest"), f"{MAX_EVENTS}" in err.reason
+    ('scene.duration', True, True)
+    """
     return scene.error(
         "scene.duration",
         f"{who} come to rest in contact (the impacts accumulate, or e = 0) near "

@@ -52,9 +52,64 @@ def integrate(
     t_end: float,
     events: Iterable[Event] = (),
 ) -> tuple[list[Segment], list[Event]]:
-    """Integrate the model from its initial state to ``t_end``: the segments
-    ``[(t0, t1, state_at)]`` and the events (after ``events``, those at the start:
-    the bodies resting there), in time order."""
+    """Integrate the model from its initial state to ``t_end``: the segments and the events.
+
+    DOP853 at the scene's ``rtol``/``atol`` over the event detectors (see the module's
+    docstring); the switch times of the loads are step boundaries.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`), from ``y0`` at t = 0.
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`; its ``support``
+        the resting contacts, or None); its ``phase`` is set per segment and reset to
+        None at the end.
+    collision : Collision
+        Its contact search (:class:`mechanics.scenes.collision.Collision`).
+    modes : Modes
+        Its switching effects (:class:`mechanics.scenes.modes.Modes`).
+    resolver : Resolver
+        Its impact law (:class:`mechanics.scenes.impacts.Resolver`).
+    t_end : float
+        The end time, s (the scene's duration).
+    events : Iterable[Event], optional
+        The events at the start (the bodies resting there: :meth:`.support.Support.begin`).
+
+    Returns
+    -------
+    segs : list[Segment]
+        The steps ``(t0, t1, state_at)``, ``state_at`` the step's dense output (flat
+        states, :func:`rows`), in time order.
+    events : list[Event]
+        ``events`` and those found (impacts, switches of modes and of resting contacts,
+        burn-outs), sorted by time.
+
+    Raises
+    ------
+    SceneError
+        Where the estimated steps exceed the scene's ``max_steps`` or the run its
+        ``max_seconds`` (a :class:`~mechanics.scenes.budget.BudgetError`), the step size
+        stalls (``scene.rtol``), the impacts accumulate beyond :data:`.impacts.MAX_EVENTS`,
+        a contact is found on the exit side, or a pair comes to a rest the model cannot
+        treat; the message names the field and the time.
+
+    Examples
+    --------
+    A point thrown at 1 m/s under g = 2 m/s²: after 1 s, x = 1 m, z = 5 − g/2 = 4 m,
+    v_z = −2 m/s, to the integration's tolerance:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0, "method": "integrate"},
+    ...     "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                 "initial": {"position": [0.0, 0.0, 5.0], "velocity": [1.0, 0.0, 0.0]}}],
+    ...     "effects": [{"type": "gravity", "g": 2.0}]}))
+    >>> segs, events = integrate(eng.model, eng.forward, eng.collision, eng.modes,
+    ...                          eng.resolver, 1.0)
+    >>> segs[-1][1], events, bool(np.allclose(segs[-1][2](1.0), [1.0, 0.0, 4.0, 1.0, 0.0, -2.0]))
+    (1.0, [], True)
+    """
     from mechanics.errors import StepSizeError
 
     s = model.scene
@@ -148,8 +203,28 @@ def _last_impact(events: list[Event], imp: Impact) -> dict[str, float]:
 
 
 def rows(dense: Dense) -> Dense:
-    """A step's dense output (scipy's convention: (size, k) for k times) as a vectorised
-    function returning (k, size), (size,) for one time."""
+    """A step's dense output in scipy's convention as a vectorised function of rows.
+
+    Scipy's convention is (size, k) for k times; the function returned gives (k, size),
+    and (size,) for one time, and is marked vectorised (:func:`.trajectory.vectorized`).
+
+    Parameters
+    ----------
+    dense : Dense
+        The step's dense output: time(s) t (s) to states of shape (size, k), or (size,)
+        for one time.
+
+    Returns
+    -------
+    Dense
+        The function of the time(s) returning states of shape (k, size), or (size,).
+
+    Examples
+    --------
+    >>> at = rows(lambda t: np.array([np.asarray(t), 2.0 * np.asarray(t)]))
+    >>> at(np.array([1.0, 2.0])).tolist(), at(3.0).tolist(), at.vectorized
+    ([[1.0, 2.0], [2.0, 4.0]], [3.0, 6.0], True)
+    """
 
     @vectorized
     def at(t: Times) -> FloatArray:

@@ -42,8 +42,42 @@ RATES = ("theta_dot", "psi_dot", "phi_dot")
 
 
 def initial_attitude(initial: Mapping[str, Any]) -> FloatArray:
-    """^A R^O = R3(φ) R1(θ) R3(ψ) of a body's initial Euler angles (default 0: the
-    identity)."""
+    """The initial attitude ^A R^O = R3(φ) R1(θ) R3(ψ) of a body's Euler angles.
+
+    The angles are z-x-z (:func:`mechanics.rotation.matrix_from_euler`); each defaults to
+    0, and all three 0 give the identity (the body axes along the space axes).
+
+    Parameters
+    ----------
+    initial : Mapping[str, Any]
+        A body's ``initial`` table; its keys ``psi``, ``theta`` and ``phi`` (rad, finite)
+        are read, the others ignored.
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        ^A R^O, the rotation from space to body components.
+
+    Raises
+    ------
+    TypeError
+        Where an angle is neither a number nor a string (``float()`` refuses it).
+    ValueError
+        Where an angle is a string that is not a number.
+    NonFiniteError
+        Where an angle is NaN or infinite (:func:`~mechanics.rotation.matrix_from_euler`).
+
+    Examples
+    --------
+    Row 3 of ^A R^O is (sin θ sin ψ, −sin θ cos ψ, cos θ):
+
+    >>> R = initial_attitude({"psi": 0.3, "theta": 0.5, "phi": 0.7})
+    >>> bool(np.allclose(R[2], [np.sin(0.5) * np.sin(0.3), -np.sin(0.5) * np.cos(0.3),
+    ...                         np.cos(0.5)]))
+    True
+    >>> initial_attitude({}).tolist()
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
+    """
     from mechanics.rotation import matrix_from_euler
 
     e = [float(initial.get(k, 0.0)) for k in ("psi", "theta", "phi")]
@@ -51,8 +85,44 @@ def initial_attitude(initial: Mapping[str, Any]) -> FloatArray:
 
 
 def initial_omega(initial: Mapping[str, Any]) -> FloatArray:
-    """Initial body ω: ``omega``, or from the z-x-z Euler rates by Euler's kinematic
-    equations (2.69) (:func:`mechanics.kinematics.angular_velocity_from_euler_rates`)."""
+    """A body's initial angular velocity ω in body components, given or from Euler rates.
+
+    ``omega`` as given, or from the z-x-z Euler rates ``psi_dot``, ``theta_dot``,
+    ``phi_dot`` (default 0) at ``theta``, ``phi`` by Euler's kinematic equations (2.69)
+    (:func:`mechanics.kinematics.angular_velocity_from_euler_rates`).
+
+    Parameters
+    ----------
+    initial : Mapping[str, Any]
+        A body's ``initial`` table: ``omega`` (rad/s, three numbers; not checked here: the
+        parser checks it), or the rates (rad/s) and the angles ``theta``, ``phi`` (rad).
+
+    Returns
+    -------
+    ndarray, shape (3,)
+        ω in body components, rad/s.
+
+    Raises
+    ------
+    TypeError
+        Where an angle or rate is neither a number nor a string (``float()`` refuses it).
+    ValueError
+        Where ``omega``, an angle or a rate is a string that is not a number.
+    NonFiniteError
+        Where an angle or rate is NaN or infinite (the kinematic equations refuse it).
+
+    Examples
+    --------
+    |ω|² = θ̇² + ψ̇² + φ̇² + 2 ψ̇ φ̇ cos θ, and ω3 = ψ̇ cos θ + φ̇ (2.69):
+
+    >>> w = initial_omega({"theta": 0.5, "psi_dot": 2.0, "phi_dot": 3.0})
+    >>> bool(np.isclose(w @ w, 4.0 + 9.0 + 12.0 * np.cos(0.5)))
+    True
+    >>> bool(np.isclose(w[2], 2.0 * np.cos(0.5) + 3.0))
+    True
+    >>> initial_omega({"omega": [1.0, 2.0, 3.0]}).tolist()
+    [1.0, 2.0, 3.0]
+    """
     if "omega" in initial:
         return np.asarray(initial["omega"], dtype=float)
     th, ph = float(initial.get("theta", 0.0)), float(initial.get("phi", 0.0))
@@ -82,9 +152,41 @@ def _guides(scene: Scene, index: Mapping[str, int]) -> dict[int, Guide]:
 
 
 def check(scene: Scene) -> None:
-    """Check a scene as a whole (each field is checked by the parser): one joint per
-    body, a tank acted on by its outflow only, each body's initial keys, no spin about a
-    zero principal moment, and each effect's own check of its combination."""
+    """Check a scene as a whole, before a model is built (each field is the parser's).
+
+    The checks: one joint per body, a tank acted on by its outflow only, each body's
+    initial keys (a free body's, and a pinned body's Euler rates; omega or the rates, not
+    both), a fixed body at rest, a point without attitude or spin, no spin about a zero
+    principal moment, and each effect's own check of its combination
+    (:meth:`~mechanics.scenes.effects.base.Effect.check`).
+
+    Parameters
+    ----------
+    scene : Scene
+        The parsed scene (:class:`mechanics.scenes.spec.Scene`).
+
+    Raises
+    ------
+    SceneError
+        At the first check that fails; the message names the scene file, the field and
+        the reason.
+
+    Examples
+    --------
+    A point has no attitude and no rotation: an initial spin is refused.
+
+    >>> from dataclasses import replace
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> sc = parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...                   "bodies": [{"name": "ball", "shape": "point", "mass": 2.0}]})
+    >>> check(sc) is None
+    True
+    >>> check(replace(sc, bodies=(replace(sc.bodies[0], initial={"omega": [0.0, 0.0, 1.0]}),)))
+    Traceback (most recent call last):
+    ...
+    mechanics.scenes.errors.SceneError: <scene>: bodies[0].initial.omega: a point has no \
+attitude and no rotation
+    """
     index = {b.name: i for i, b in enumerate(scene.bodies)}
     held: dict[str, Any] = {}  # body -> the joint (a spec.EffectSpec) that holds it
     for spec in scene.effects:
@@ -170,8 +272,42 @@ def _check_pairs_once(scene: Scene, impacts: Sequence[Impact]) -> None:
 
 
 class Model:
-    """A scene compiled: the layout, the effects by what they contribute, the initial
-    state.  Built once per run; nothing here changes during it."""
+    """A scene compiled: the layout, the effects by what they contribute, the initial state.
+
+    Built once per run; nothing here changes during it (but :attr:`carried`, the speeds
+    the impulses have changed, which a run resets at its start).
+
+    Parameters
+    ----------
+    scene : Scene
+        The parsed and validated scene (:func:`mechanics.scenes.spec.parse_scene`;
+        :func:`check` is not repeated here).
+
+    Raises
+    ------
+    SceneError
+        Where two impact effects list the same pair (the same two bodies, or one body and
+        the same plane, a group's pairs included): which law would act is undefined.
+    ZeroDivisionError
+        Where a rolling body's r² underflows to 0 (a radius of 1e-320 m, which the parser
+        accepts): its M_eff = m + J/r² (3.79); :func:`.simulate.simulate` reports it as a
+        SceneError.
+
+    Examples
+    --------
+    The initial state packs the initial position and velocity, which the layout reads
+    back:
+
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> md = Model(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                 "initial": {"position": [0.0, 0.0, 5.0], "velocity": [1.0, 0.0, 0.0]}}],
+    ...     "effects": [{"type": "gravity", "g": 9.81}]}))
+    >>> md.y0.tolist(), sorted(md.kinds)
+    ([0.0, 0.0, 5.0, 1.0, 0.0, 0.0], ['gravity'])
+    >>> [a.tolist() for a in md.layout.gather(md.y0)[:2]]
+    [[[0.0, 0.0, 5.0]], [[1.0, 0.0, 0.0]]]
+    """
 
     def __init__(self, scene: Scene) -> None:
         self.scene = scene

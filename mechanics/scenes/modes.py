@@ -36,7 +36,38 @@ SWITCH_ROUNDING = 64 * EPS
 
 
 class Modes:
-    """The switching effects of a :class:`~mechanics.scenes.model.Model`."""
+    """The switching effects of a :class:`~mechanics.scenes.model.Model`.
+
+    Its constructor only stores the model and its forward dynamics; :meth:`begin` lets
+    the effects choose their initial modes.
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`); its ``switching``
+        effects are the ones followed.
+    forward : Forward
+        The model's forward dynamics (:class:`mechanics.scenes.forward.Forward`), whose
+        loads the switch functions read.
+
+    Examples
+    --------
+    A ball launched at 3 m/s without spin slides forward (mode +1); the switch function
+    of Coulomb friction while it slides is the slip speed v − ω r:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "solid_sphere", "mass": 1.0, "radius": 0.5,
+    ...                 "initial": {"speed": 3.0, "spin": 0.0}}],
+    ...     "effects": [{"type": "gravity", "g": 10.0},
+    ...                 {"type": "coulomb_friction", "body": "ball", "mu": 0.5}]}))
+    >>> modes = Modes(eng.model, eng.forward)
+    >>> modes.begin()
+    >>> friction = eng.model.switching[0]
+    >>> friction.mode, modes.value(friction, 0.0, [0.0, 0.0, 3.0, 2.0])[0], 3.0 - 2.0 * 0.5
+    (1.0, 2.0, 2.0)
+    """
 
     def __init__(self, model: Model, forward: Forward) -> None:
         self.model = model

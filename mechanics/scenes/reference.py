@@ -73,7 +73,27 @@ def _toml(value: object) -> str:
 
 
 def scene_file_reference() -> str:
-    """The reference as Markdown."""
+    """The scene-file reference as Markdown, generated from the schema.
+
+    The ``[scene]`` fields, the shapes and their dimensions, the ``initial`` keys and
+    every registered effect with its fields (kind, required, unit, domain) and a minimal
+    example; the domain and budget Conventions of :mod:`.domain` and :mod:`.budget`.
+
+    Returns
+    -------
+    str
+        The Markdown text (``docs/scene-files.md``), ending in a newline.
+
+    Examples
+    --------
+    One section per registered effect, and one for the ``initial`` keys:
+
+    >>> from mechanics.scenes.effects import REGISTRY
+    >>> text = scene_file_reference()
+    >>> lines = text.splitlines()
+    >>> lines[0], sum(line.startswith("### `") for line in lines) == len(REGISTRY) + 1
+    ('# Scene files: the reference', True)
+    """
     out = [
         "# Scene files: the reference",
         "",

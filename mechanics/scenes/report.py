@@ -53,8 +53,58 @@ def finish(
     events: list[Event],
     how: str,
 ) -> Trajectory:
-    """The run's result from its segments and events: the series at the sample times t,
-    the conserved quantities with their scales, the derived state at any time."""
+    """The run's result from its segments and events, with its series and invariants.
+
+    The series at the sample times t, the conserved quantities with their scales, the
+    derived state at any time (see the module's docstring).
+
+    Parameters
+    ----------
+    model : Model
+        The compiled scene (:class:`mechanics.scenes.model.Model`).
+    forward : Forward
+        Its forward dynamics (:class:`mechanics.scenes.forward.Forward`), which reads the
+        states as bodies.
+    t : ndarray, shape (k,)
+        The sample times, s, k ≥ 1, increasing.
+    segs : list[Segment]
+        The run's pieces ``(t0, t1, state_at)`` in time order (at least one), each
+        ``state_at`` the flat states at its times.
+    events : list[Event]
+        The run's events in time order.
+    how : str
+        How the run was computed (the result's ``method``; one starting
+        ``"integrated: DOP853"`` widens the energy's scale by the tolerances).
+
+    Returns
+    -------
+    Trajectory
+        The result (:class:`mechanics.scenes.trajectory.Trajectory`).
+
+    Raises
+    ------
+    IndexError
+        Where ``segs`` is empty, or a segment's states are shorter than the layout's size.
+    ValueError
+        Where ``t`` holds no sample.
+
+    Examples
+    --------
+    A point of 2 kg dropped from 5 m under g = 2 m/s²: z = 5 − t², and E = ½ m v² + m g z
+    stays 20 J:
+
+    >>> from mechanics.scenes.engine import Engine
+    >>> from mechanics.scenes.spec import parse_scene
+    >>> eng = Engine(parse_scene({"scene": {"name": "x", "duration": 1.0},
+    ...     "bodies": [{"name": "ball", "shape": "point", "mass": 2.0,
+    ...                 "initial": {"position": [0.0, 0.0, 5.0]}}],
+    ...     "effects": [{"type": "gravity", "g": 2.0}]}))
+    >>> how = eng.exact_flow()
+    >>> segs, events = eng.flow.run()
+    >>> tr = finish(eng.model, eng.forward, np.array([0.0, 0.5, 1.0]), segs, events, how)
+    >>> tr.series["z"].tolist(), tr.series["E"].tolist()
+    ([5.0, 4.75, 4.0], [20.0, 20.0, 20.0])
+    """
     dense = dense_from_segments(segs)
     Y = cast("FloatArray", sample_segments(segs, t))  # (not None: a scene has 2 samples or more)
     s = forward.snapshot(t, Y)
@@ -335,9 +385,45 @@ def _support_law(
 
 
 def top_angles(R: FloatArray, w: FloatArray) -> dict[str, FloatArray]:
-    """The series of a top (samples of R_A_O and body ω): the Euler angles z-x-z (row 3
-    of ^A R^O is (sθ sψ, −sθ cψ, cθ), column 3 is (sφ sθ, cφ sθ, cθ)), the symmetry axis
-    e3 in space components, cos θ and its rate d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R."""
+    """The series of a top from samples of its attitude and body ω: Euler angles, axis, cos θ.
+
+    The Euler angles z-x-z (row 3 of ^A R^O is (sθ sψ, −sθ cψ, cθ), column 3 is
+    (sφ sθ, cφ sθ, cθ)), ψ and φ unwrapped along the samples; the symmetry axis e3 in
+    space components; cos θ and its rate d(cos θ)/dt = (Ṙ)₃₃ with Ṙ = −[ω]× R.
+
+    Parameters
+    ----------
+    R : ndarray, shape (k, 3, 3)
+        The attitudes ^A R^O at k samples.
+    w : ndarray, shape (k, 3)
+        The angular velocities ω in body components, rad/s.
+
+    Returns
+    -------
+    dict
+        Name to samples of shape (k,): ``theta``, ``psi``, ``phi`` (rad), ``axis_x``,
+        ``axis_y``, ``axis_z``, ``cos_theta`` and ``cos_theta_dot`` (1/s).
+
+    Raises
+    ------
+    IndexError
+        Where ``R`` has fewer than three axes or ``w`` fewer than two.
+
+    Examples
+    --------
+    The angles of R3(φ) R1(θ) R3(ψ) come back, and d(cos θ)/dt = −sin θ θ̇ with θ̇ from
+    Euler's kinematic equations (2.69):
+
+    >>> from mechanics.kinematics import euler_rates_from_angular_velocity
+    >>> from mechanics.rotation import matrix_from_euler
+    >>> R, w = matrix_from_euler(0.3, 0.5, 0.7)[None], np.array([[1.0, 2.0, 3.0]])
+    >>> a = top_angles(R, w)
+    >>> [round(float(a[k][0]), 12) for k in ("psi", "theta", "phi")]
+    [0.3, 0.5, 0.7]
+    >>> theta_dot = euler_rates_from_angular_velocity(0.5, 0.7, w[0])[1]
+    >>> bool(np.isclose(a["cos_theta_dot"][0], -np.sin(0.5) * theta_dot))
+    True
+    """
     return {
         "theta": np.arctan2(np.hypot(R[:, 2, 0], R[:, 2, 1]), R[:, 2, 2]),
         "psi": np.unwrap(np.arctan2(R[:, 2, 0], -R[:, 2, 1])),
