@@ -6,6 +6,7 @@ a minimal example, so that the documentation cannot drift from the code.
 
 from __future__ import annotations
 
+import inspect
 import re
 
 from . import budget, domain
@@ -70,6 +71,14 @@ def _toml(value: object) -> str:
     if isinstance(value, list):
         return "[" + ", ".join(_toml(v) for v in value) + "]"
     return repr(value)
+
+
+def _description(cls: type) -> str:
+    """An effect's description: its docstring's summary and the paragraphs after it, up
+    to its first numpydoc section (Parameters, Raises, ...), as one paragraph."""
+    doc = inspect.getdoc(cls) or ""
+    head = re.split(r"^\S[^\n]*\n-{3,}$", doc, maxsplit=1, flags=re.M)[0]
+    return re.sub(r":[a-z]+:`~?([^`]+)`", r"`\1`", " ".join(head.split()))  # roles: code
 
 
 def scene_file_reference() -> str:
@@ -146,7 +155,7 @@ def scene_file_reference() -> str:
     out += ["", "## `[[effects]]`", "", "Each has a `type` and the fields below."]
     for t in sorted(REGISTRY):
         cls = REGISTRY[t]
-        doc = " ".join((cls.__doc__ or "").split("\n\n")[0].split())
+        doc = _description(cls)
         out += ["", f"### `{t}`", "", doc, "", "| field | kind | required | unit | domain |"]
         out.append("|---|---|---|---|---|")
         for field, (kind, required) in cls.schema.items():
