@@ -14,7 +14,7 @@ unexport PYTHONDONTWRITEBYTECODE
 # to `make test-slow`, which .ci/run runs after `make test`.
 PYTEST_ARGS := -n auto -m 'not slow'
 
-.PHONY: run test test-slow checks bench bench-check lock lock-keep test-latest test-oldest test-matrix clean mutate mutate-plan
+.PHONY: run test test-slow checks docs bench bench-check lock lock-keep test-latest test-oldest test-matrix clean mutate mutate-plan
 
 # A venv with the lock's uv (hash-checked), installed by the venv's own pip.
 define BOOTSTRAP_UV
@@ -42,6 +42,11 @@ test: $(STAMP)
 	$(BIN)/ruff format --check .
 	$(BIN)/mypy
 	$(BIN)/python -m pytest $(PYTEST_ARGS)
+
+## make docs: the book's pages (bodycheck site) and, in their api/ folder, the API reference
+## (Sphinx with numpydoc, docs/conf.py; warnings and broken references are errors): build/docs
+docs: $(STAMP)
+	$(BIN)/bodycheck site build/docs --api
 
 ## make test-slow: the tests marked slow (a long stiff run; CI runs them after make test)
 test-slow: $(STAMP)

@@ -20,8 +20,8 @@ The engines under test have their own extras (``mujoco``, ``pybullet``, ``drake`
 :func:`mechanics.conformance.adapters.require`).  So does executing the lecture
 notebooks (``notebooks``: nbclient, nbformat, ipykernel; ``bodycheck notebooks --write``
 and ``tests/test_notebooks.py`` name it when it is missing); so does building the API
-reference (``docs``: Sphinx, numpydoc, myst-parser; ``bodycheck site --api``, ``make
-docs``).  Neither is part of ``all``.
+reference (``docs``: Sphinx, numpydoc, myst-parser; ``bodycheck site --api`` and ``make
+docs`` name it when it is missing).  Neither is part of ``all``.
 """
 
 from __future__ import annotations
@@ -32,13 +32,7 @@ from types import ModuleType
 __all__ = ["EXTRA_OF", "MissingExtraError", "missing_extra", "require_extra"]
 
 #: the extra that installs each optional top-level package
-EXTRA_OF = {
-    "sympy": "proofs",
-    "mpmath": "proofs",
-    "matplotlib": "plots",
-    "numba": "fast",
-    "sphinx": "docs",
-}
+EXTRA_OF = {"sympy": "proofs", "mpmath": "proofs", "matplotlib": "plots", "numba": "fast"}
 
 
 class MissingExtraError(ImportError):

@@ -28,13 +28,20 @@ import re
 import shutil
 import subprocess
 from pathlib import Path
-from urllib.parse import quote, unquote, urlsplit
+from urllib.parse import quote
 
 import numpy as np
 import pytest
 
 from identities.cli.main import main
-from identities.cli.site import MARKER, build_site, leaves_of_text, math_from_text
+from identities.cli.site import (
+    MARKER,
+    SiteError,
+    broken_links,
+    build_site,
+    leaves_of_text,
+    math_from_text,
+)
 
 CHROMIUM = Path("/usr/bin/chromium")
 NO_CHROMIUM = "headless Chromium not found at /usr/bin/chromium (apt-get install -y chromium)"
@@ -50,33 +57,6 @@ def site(tmp_path_factory) -> Path:
     out = tmp_path_factory.mktemp("site") / "out"
     build_site(out)
     return out
-
-
-def _links(page: Path) -> list[str]:
-    return re.findall(r"""(?:href|src)=['"]([^'"]+)['"]""", page.read_text("utf-8"))
-
-
-def _ids(page: Path) -> set[str]:
-    return set(re.findall(r"""\bid=['"]([^'"]+)['"]""", page.read_text("utf-8")))
-
-
-def broken_links(root: Path) -> list[str]:
-    """Every href/src of every page under ``root`` that does not resolve to a file
-    (and, with a #fragment, to an element id in it); absolute URLs count as broken:
-    the site works offline."""
-    broken = []
-    for page in sorted(root.rglob("*.html")):
-        for link in _links(page):
-            parts = urlsplit(link)
-            if parts.scheme or parts.netloc:
-                broken.append(f"{page.name}: {link} (not relative)")
-                continue
-            target = (page.parent / unquote(parts.path)) if parts.path else page
-            if not target.is_file():
-                broken.append(f"{page.name}: {link} (no file)")
-            elif parts.fragment and parts.fragment not in _ids(target):
-                broken.append(f"{page.name}: {link} (no id {parts.fragment!r})")
-    return broken
 
 
 def test_site_has_every_page_and_its_marker(site):
@@ -99,6 +79,41 @@ def test_every_book_item_has_a_row_with_its_verdict(site):
 
 def test_every_link_of_the_site_resolves(site):
     assert broken_links(site) == []
+
+
+def test_the_api_reference_is_built_into_api_and_linked_from_the_index(tmp_path, monkeypatch):
+    """``build_site(api=True)`` builds the reference into ``api/`` (Sphinx, run by ``make
+    docs`` and CI: stubbed here) and the index links it; a link of the reference that does
+    not resolve fails the build, naming it."""
+    import identities.cli.site as site_module
+
+    def stub(out: Path, page: str = "<a href='../ch1.html#eq1.5'>(1.5)</a>") -> None:
+        out.mkdir()
+        (out / "index.html").write_text(f"<!DOCTYPE html><h1>api</h1>{page}", "utf-8")
+
+    monkeypatch.setattr(site_module, "build_api", stub)
+    build_site(tmp_path / "out", scenes=False, api=True)
+    assert "href='api/index.html'" in (tmp_path / "out" / "index.html").read_text("utf-8")
+    monkeypatch.setattr(site_module, "build_api", lambda out: stub(out, "<a href='x.html'>"))
+    with pytest.raises(SiteError, match=r"1 links .* do not resolve:\napi/index.html: x.html"):
+        build_site(tmp_path / "out", scenes=False, api=True)
+    build_site(tmp_path / "plain", scenes=False)
+    assert "api/index.html" not in (tmp_path / "plain" / "index.html").read_text("utf-8")
+
+
+def test_the_api_reference_needs_its_sources_and_the_docs_extra(tmp_path, monkeypatch):
+    import importlib.util
+
+    from identities.cli.site import build_api
+
+    with pytest.raises(SiteError, match=r"built from a source checkout: no .*conf\.py"):
+        build_api(tmp_path / "api", docs=tmp_path / "nowhere")
+    real = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == "numpydoc" else real(name)
+    )
+    with pytest.raises(SiteError, match=r"needs numpydoc, not installed: .*bodycheck\[docs\]"):
+        build_api(tmp_path / "api")
 
 
 def test_the_link_checker_finds_a_broken_link(site, tmp_path):

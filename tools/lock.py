@@ -1,11 +1,11 @@
 """The dependency lock: write it (``make lock``), check it before every install.
 
 ``requirements/lock.txt`` pins every direct and transitive dependency of bodycheck's
-``test``, ``engines``, ``mutation``, ``notebooks`` and ``docs`` extras, the build backend and the installer
-(``requirements/tools.in``), each with its hashes, as ``uv pip compile`` writes them for
-Python 3.11.  Its first line records a digest of what it was compiled from (pyproject's
-requirements and tools.in), so that a lock older than its inputs is refused with a
-message saying how to refresh it, rather than installed.
+``test``, ``engines``, ``mutation``, ``notebooks`` and ``docs`` extras, the build backend
+and the installer (``requirements/tools.in``), each with its hashes, as ``uv pip compile``
+writes them for Python 3.11.  Its first line records a digest of what it was compiled from
+(pyproject's requirements and tools.in), so that a lock older than its inputs is refused
+with a message saying how to refresh it, rather than installed.
 
 Usage (standard library only; run with the machine's Python before any venv exists)::
 

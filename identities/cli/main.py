@@ -190,6 +190,11 @@ def _parser() -> argparse.ArgumentParser:
     )
     si = sub.add_parser("site", help="write the book as a static site (pages, MathML, plots)")
     si.add_argument("out", metavar="OUT", help="output folder (new, empty or a previous site)")
+    si.add_argument(
+        "--api",
+        action="store_true",
+        help="also build the API reference (Sphinx, docs/) into OUT/api and link it (make docs)",
+    )
     nb = sub.add_parser(
         "notebooks", help="write the lecture demos as Jupyter notebooks, executed (make checks)"
     )
@@ -686,12 +691,13 @@ def _cmd_site(args) -> int:
     t0 = time.perf_counter()
     listed: list[str] = []
     try:
-        pages = build_site(args.out, listed=listed, jobs=min(2, os.cpu_count() or 1))
+        pages = build_site(args.out, listed=listed, jobs=min(2, os.cpu_count() or 1), api=args.api)
     except SiteError as exc:
         raise UsageError(str(exc)) from None
     print(
-        f"wrote {len(pages)} pages to {args.out} in {time.perf_counter() - t0:.1f} s; "
-        f"open {Path(args.out) / 'index.html'}"
+        f"wrote {len(pages)} pages to {args.out}"
+        + (f" and the API reference to {Path(args.out) / 'api'}" if args.api else "")
+        + f" in {time.perf_counter() - t0:.1f} s; open {Path(args.out) / 'index.html'}"
     )
     if listed:
         print(f"{len(listed)} pieces of algebra shown as text ({Path(args.out) / 'as-text.html'}):")

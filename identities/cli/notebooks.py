@@ -433,13 +433,16 @@ def check_report(outcome, derivation) -> str:
     return "\n".join(lines)
 
 
-def demos_page(out: Path, folder: str | os.PathLike[str] = NOTEBOOKS, *, check_href=None) -> str:
+def demos_page(
+    out: Path, folder: str | os.PathLike[str] = NOTEBOOKS, *, check_href=None, scenes=True
+) -> str:
     """The body of the site's ``demos.html``: each lecture demo with its paragraph, a link
     to its notebook (copied to ``out/notebooks/``), to its scene's player and to its
     check, and the notebook's stored outputs (its plot, written as
     ``out/demo-NAME.png``, and its check's report).  Nothing is executed.
 
-    ``check_href(check_id)`` gives the site's link to a check's section (None: no link).
+    ``check_href(check_id)`` gives the site's link to a check's section (None: no link);
+    ``scenes``: the site has its scenes' players to link (False: the demo names its scene).
     """
     folder, out = Path(folder), Path(out)
     stale = stale_notebooks(folder)
@@ -465,7 +468,11 @@ def demos_page(out: Path, folder: str | os.PathLike[str] = NOTEBOOKS, *, check_h
         nb = _read(src) if src.is_file() else None
         parts = [f"<section id='{name}'><h2>{html.escape(d.topic)} ({name})</h2>"]
         parts.append(f"<p>{html.escape(d.paragraph)}</p>")
-        links = [f"<a href='scenes.html#{name}'>the scene played</a>"]
+        links = [
+            f"<a href='scenes.html#{name}'>the scene played</a>"
+            if scenes
+            else f"the scene {name} (not played: a site built without its scenes)"
+        ]
         href = check_href(d.check) if check_href else None
         links.append(
             f"<a href='{html.escape(href)}'>the check {html.escape(d.check)}</a>"

@@ -32,16 +32,22 @@ import json
 import multiprocessing
 import re
 import shutil
+import subprocess
+import sys
+import tempfile
 import tokenize
 from collections import defaultdict
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
+from urllib.parse import unquote, urlsplit
 
 __all__ = [
     "MARKER",
     "SCENES",
     "SiteError",
     "as_text",
+    "broken_links",
+    "build_api",
     "build_site",
     "leaves_of_mathml",
     "leaves_of_text",
@@ -623,12 +629,13 @@ def _as_text_page(listed: list[str]) -> str:
 
 
 def build_site(
-    out, *, scenes: bool = True, listed: list[str] | None = None, jobs: int = 1
+    out, *, scenes: bool = True, listed: list[str] | None = None, jobs: int = 1, api: bool = False
 ) -> list[Path]:
     """Write the site into the folder ``out``; return the pages written. When ``listed``
     is a list, what is shown as text instead of MathML (:func:`as_text`) is appended.
     With ``jobs`` > 1 the built-in scenes run in that many worker processes while the
-    other pages are written (``bodycheck site`` uses the machine's cores).
+    other pages are written (``bodycheck site`` uses the machine's cores).  With ``api``,
+    the API reference is built into ``out/api`` (:func:`build_api`) and the index links it.
 
     Raises :class:`SiteError` when ``out`` exists, is not empty and holds no
     :data:`MARKER` (it is not a previous site).
@@ -647,10 +654,10 @@ def build_site(
             running = {
                 n: pool.submit(_scene_section, n, str(p), str(out)) for n, p in known.items()
             }
-            pages = _pages(out, listed)
+            pages = _pages(out, listed, api, scenes)
             sections = {n: job.result() for n, job in running.items()}
     else:
-        pages = _pages(out, listed)
+        pages = _pages(out, listed, api, scenes)
         sections = {n: _scene_section(n, str(p), str(out)) for n, p in known.items()}
     if scenes:
         pages["scenes.html"] = ("Scenes", _scenes_page(sections))
@@ -664,11 +671,85 @@ def build_site(
 
     (out / "style.css").write_text(_CSS.lstrip() + PLAYER_CSS, encoding="utf-8")
     (out / MARKER).write_text("written by bodycheck site\n", encoding="utf-8")
+    if api:
+        build_api(out / "api")
+        bad = broken_links(out)
+        if bad:
+            raise SiteError(
+                f"{len(bad)} links of the site and its API reference do not resolve:\n"
+                + "\n".join(bad[:20])
+            )
     return written
 
 
-def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
-    """Every page but scenes.html (title, body), and the search box's files."""
+def _links(page: Path) -> list[str]:
+    return re.findall(r"""(?:href|src)=['"]([^'"]+)['"]""", page.read_text("utf-8"))
+
+
+def _ids(page: Path) -> set[str]:
+    return set(re.findall(r"""\bid=['"]([^'"]+)['"]""", page.read_text("utf-8")))
+
+
+def broken_links(root: Path) -> list[str]:
+    """Every href/src of every page under ``root`` that does not resolve to a file
+    (and, with a #fragment, to an element id in it); absolute URLs count as broken:
+    the site works offline."""
+    broken = []
+    for page in sorted(root.rglob("*.html")):
+        for link in _links(page):
+            parts = urlsplit(link)
+            if parts.scheme or parts.netloc:
+                broken.append(f"{page.relative_to(root)}: {link} (not relative)")
+                continue
+            target = (page.parent / unquote(parts.path)) if parts.path else page
+            if not target.is_file():
+                broken.append(f"{page.relative_to(root)}: {link} (no file)")
+            elif parts.fragment and parts.fragment not in _ids(target):
+                broken.append(f"{page.relative_to(root)}: {link} (no id {parts.fragment!r})")
+    return broken
+
+
+#: the API reference's Sphinx sources (docs/conf.py): in a source checkout only
+DOCS = Path(__file__).resolve().parents[2] / "docs"
+
+
+def build_api(out: Path, docs: Path = DOCS) -> None:
+    """Build the API reference (Sphinx, ``docs/conf.py``) into ``out``, warnings as errors
+    and every cross-reference to bodycheck's own names resolved.
+
+    Raises :class:`SiteError` when ``docs`` holds no ``conf.py`` (an installed package has
+    no sources to build from), when the ``docs`` extra is not installed (naming it), or
+    when Sphinx fails, with its warnings (page and target).
+    """
+    import importlib.util
+
+    if not (docs / "conf.py").is_file():
+        raise SiteError(f"the API reference is built from a source checkout: no {docs / 'conf.py'}")
+    missing = [m for m in ("sphinx", "numpydoc", "myst_parser") if not importlib.util.find_spec(m)]
+    if missing:
+        raise SiteError(
+            f"the API reference needs {', '.join(missing)}, not installed: "
+            "pip install 'bodycheck[docs]'"
+        )
+    with tempfile.TemporaryDirectory() as doctrees:  # Sphinx's cache: not part of the site
+        run = subprocess.run(
+            [sys.executable, "-m", "sphinx", "-q", "-n", "-W", "--keep-going", "-b", "html",
+             "-d", doctrees, str(docs), str(out)],
+            capture_output=True, text=True, check=False,
+        )  # fmt: skip
+    if run.returncode != 0:
+        raise SiteError(
+            "the API reference did not build (Sphinx, warnings as errors):\n"
+            + (run.stderr.strip() or run.stdout.strip())
+        )
+
+
+def _pages(
+    out: Path, listed: list[str] | None, api: bool = False, scenes: bool = True
+) -> dict[str, tuple[str, str]]:
+    """Every page but scenes.html (title, body), and the search box's files; with ``api``
+    the index links the API reference (``api/index.html``); ``scenes``: the scenes' players
+    are built (the demos link them)."""
     from identities.verify.catalogue import checks, item_rows
 
     rows, regs = item_rows(), checks()
@@ -694,7 +775,10 @@ def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
     pages["scenes.html"] = ("Scenes", "<p>not built (scenes=False)</p>")
     from identities.cli.notebooks import demos_page  # the notebooks' stored outputs: no run
 
-    pages["demos.html"] = ("Lecture demos", demos_page(out, check_href=_check_page_name))
+    pages["demos.html"] = (
+        "Lecture demos",
+        demos_page(out, check_href=_check_page_name, scenes=scenes),
+    )
     png = _BENCH / "workprecision.png"
     if png.is_file():
         shutil.copyfile(png, out / "workprecision.png")
@@ -724,7 +808,13 @@ def _pages(out: Path, listed: list[str] | None) -> dict[str, tuple[str, str]]:
         "<li><a href='scenes.html'>Scenes</a></li>",
         "<li><a href='demos.html'>Lecture demos</a>: the notebooks</li>",
         f"<li><a href='as-text.html'>Shown as text</a>: {len(text)} pieces of algebra</li>",
-        "<li><a href='workprecision.html'>Work-precision</a></li></ul>",
+        "<li><a href='workprecision.html'>Work-precision</a></li>",
+        *(
+            ["<li><a href='api/index.html'>API reference</a>: the library, module by module</li>"]
+            if api
+            else []
+        ),
+        "</ul>",
     ]
     pages["index.html"] = ("bodycheck: the book, checked", "\n".join(index))
     found = search_index(regs)

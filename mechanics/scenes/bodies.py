@@ -52,7 +52,7 @@ class Body:
     Raises
     ------
     NotImplementedError
-        From :meth:`size`, :meth:`kinematics`, :meth:`point_coef` and :meth:`frame_coef`
+        From ``size``, ``kinematics``, ``point_coef`` and ``frame_coef``
         where a kind does not override them (the constructor checks nothing).
 
     Examples
@@ -126,7 +126,7 @@ class Fixed(Body):
     Raises
     ------
     NotImplementedError
-        From :meth:`kinematics` and :meth:`frame_coef`: a fixed body is asked for
+        From ``kinematics`` and ``frame_coef``: a fixed body is asked for
         neither (the constructor checks nothing).
 
     Examples
@@ -177,7 +177,7 @@ class Tank(Body):
         From :meth:`rate` without ``rates`` (a tank's state changes at the rates its
         loads give).
     NotImplementedError
-        From :meth:`kinematics`, :meth:`point_coef` and :meth:`frame_coef`: a tank does not
+        From ``kinematics``, ``point_coef`` and ``frame_coef``: a tank does not
         move (the constructor checks nothing).
 
     Examples
@@ -223,7 +223,7 @@ class Point(Body):
     Raises
     ------
     NotImplementedError
-        From :meth:`frame_coef`: a point has no attitude (the constructor checks
+        From ``frame_coef``: a point has no attitude (the constructor checks
         nothing).
 
     Examples

@@ -65,7 +65,7 @@ class StepFit:
     """One integration step [t_a, t_b] and its dense output ``dense``.
 
     :attr:`coef` holds the Chebyshev coefficients of the whole state along the step,
-    fitted once (at :data:`~.contacts.STEP_NODES` nodes) when first read; the step's
+    fitted once (at ``contacts.STEP_NODES`` nodes) when first read; the step's
     variable x ∈ [−1, 1] maps to the time :meth:`time`.
 
     Parameters

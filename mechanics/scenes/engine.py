@@ -190,6 +190,7 @@ class Engine:
         return None if self.flow is None else self.flow.how
 
     def run(self) -> Trajectory:
+        """Run the scene over its duration: its trajectory (samples, events, gaps)."""
         s = self.scene
         self.model.carried[:] = 0.0  # no impulse yet (see Context.carried)
         t = np.linspace(0.0, s.duration, s.samples)
