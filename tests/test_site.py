@@ -116,6 +116,25 @@ def test_the_api_reference_needs_its_sources_and_the_docs_extra(tmp_path, monkey
         build_api(tmp_path / "api")
 
 
+def test_a_broken_cross_reference_fails_the_api_build_naming_page_and_target(tmp_path):
+    """The reference's build is Sphinx with -n -W (``make docs``, CI): a reference to a name
+    that is documented nowhere fails it, and the error names the page and the target
+    (a one-page project stands in for docs/, whose full build takes a minute)."""
+    from identities.cli.site import build_api
+
+    docs = tmp_path / "docs"
+    docs.mkdir()
+    (docs / "conf.py").write_text("project = 'x'\nextensions = []\n", "utf-8")
+    (docs / "index.rst").write_text(
+        "Title\n=====\n\nSee :py:func:`mechanics.no_such_function`.\n", "utf-8"
+    )
+    with pytest.raises(SiteError, match=r"index\.rst.*mechanics\.no_such_function"):
+        build_api(tmp_path / "api", docs=docs)
+    (docs / "index.rst").write_text("Title\n=====\n\nSee nothing.\n", "utf-8")
+    build_api(tmp_path / "api", docs=docs)
+    assert (tmp_path / "api" / "index.html").is_file()
+
+
 def test_the_link_checker_finds_a_broken_link(site, tmp_path):
     copy = tmp_path / "copy"
     shutil.copytree(site, copy)
