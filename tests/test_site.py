@@ -43,6 +43,10 @@ from identities.cli.site import (
     math_from_text,
 )
 
+#: under `make test`'s --dist loadgroup one worker runs this module's tests (the site is built once per module, ~13 s;
+#: spread over the workers, each would pay it)
+pytestmark = pytest.mark.xdist_group("test_site")
+
 CHROMIUM = Path("/usr/bin/chromium")
 NO_CHROMIUM = "headless Chromium not found at /usr/bin/chromium (apt-get install -y chromium)"
 #: a screenshot counts as not blank when this share of its pixels is not white: the

@@ -24,6 +24,10 @@ from mechanics.integrators import free_rigid_body_rhs, integrate
 from mechanics.rotation import EPS
 from mechanics.tops import HeavySymmetricTop
 
+#: under `make test`'s --dist loadgroup one worker runs this module's tests (the quick study runs once per module, ~18 s;
+#: spread over the workers, each would pay it)
+pytestmark = pytest.mark.xdist_group("test_workprecision")
+
 #: the study's right-hand side and the exact rates are two float evaluations of the same
 #: O(1) rates (square roots and quotients of the conserved quantities): 2^12 eps
 RATE_ATOL = 2**12 * EPS
