@@ -97,12 +97,29 @@ def omega_matrix_from_vector(w_A: npt.ArrayLike) -> npt.NDArray[np.float64]:
 omega_matrix_from_vector = finite_result(omega_matrix_from_vector)
 
 
+#: (i, j) of Ω_ij − Ω_ji for ω1, ω2, ω3 (2.52)
+_UPPER, _LOWER = ([1, 2, 0], [2, 0, 1]), ([2, 0, 1], [1, 2, 0])
+
+
+def _half_differences(M: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """(Ω_ij − Ω_ji)/2 of a finite (..., 3, 3) array, finite and correctly rounded.
+
+    The difference is exact-then-halved (a subnormal half keeps its last bit); where the
+    difference overflows, each entry is halved first, which is exact at that size.
+    """
+    a, b = M[..., _UPPER[0], _UPPER[1]], M[..., _LOWER[0], _LOWER[1]]
+    with np.errstate(over="ignore"):  # replaced below where it overflows
+        d = a - b
+    half: npt.NDArray[np.float64] = np.where(np.isfinite(d), 0.5 * d, 0.5 * a - 0.5 * b)
+    return half
+
+
 def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Body components of ω from the angular-velocity matrix (2.52).
 
-    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.  A difference
-    Ω_ij − Ω_ji beyond float64 (entries near 1e308 of opposite signs) raises ResultOverflowError,
-    even where its half would fit.
+    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.  The result
+    is always finite: where a difference Ω_ij − Ω_ji is beyond float64 (entries near 1e308 of
+    opposite signs), each entry is halved before it is taken (exact at that size).
 
     Reads the antisymmetric part, (Ω − Ωᵀ)/2, so that a rounding-level symmetric
     part is ignored rather than folded into ω.
@@ -123,8 +140,6 @@ def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
         Where ``Omega`` holds NaN or an infinity.
     ShapeError
         If ``Omega`` is not of shape (..., 3, 3), or is complex or not numeric.
-    ResultOverflowError
-        Where a difference Ω_ij − Ω_ji is beyond float64.
 
     Examples
     --------
@@ -134,11 +149,7 @@ def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
     >>> vector_from_omega_matrix(Omega).tolist()
     [1.0, -2.0, 3.0]
     """
-    M = as_float_array(Omega, "Omega", (3, 3))
-    return 0.5 * np.stack(
-        [M[..., 1, 2] - M[..., 2, 1], M[..., 2, 0] - M[..., 0, 2], M[..., 0, 1] - M[..., 1, 0]],
-        axis=-1,
-    )
+    return _half_differences(as_float_array(Omega, "Omega", (3, 3)))
 
 
 vector_from_omega_matrix = finite_result(vector_from_omega_matrix)

@@ -226,6 +226,34 @@ def test_vector_from_omega_matrix_ignores_a_symmetric_part():
     )
 
 
+def test_vector_from_omega_matrix_halves_first_where_the_difference_overflows():
+    # Ω_01 − Ω_10 = 3e308 is beyond float64, its half ω3 = 1.5e308 is not: halving each
+    # entry first is exact at this size (no bit below 2**−1022 is lost), so ω3 is exact.
+    big = 1.5e308
+    Omega = np.array([[0.0, big, 0.0], [-big, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    assert_array_equal(kin.vector_from_omega_matrix(Omega), [0.0, 0.0, big])
+    # the largest float on both sides: ω3 = max, exactly
+    top = np.finfo(np.float64).max
+    assert_array_equal(
+        kin.vector_from_omega_matrix([[0.0, top, 0.0], [-top, 0.0, 0.0], [0.0, 0.0, 0.0]]),
+        [0.0, 0.0, top],
+    )
+
+
+def test_vector_from_omega_matrix_keeps_the_last_bit_of_a_subnormal_result():
+    # Ω_01 − Ω_10 = 3·2**−1074 is exact and its half 1.5·2**−1074 rounds (to even) to
+    # 2·2**−1074; halving each entry first would give 2**−1074 − 0 (−2**−1075 rounds to 0),
+    # a bit short.  Rows whose difference does not overflow take it first, then halve.
+    tiny = 2.0**-1074
+    Omega = np.array([[0.0, 2 * tiny, 0.0], [-tiny, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    assert_array_equal(kin.vector_from_omega_matrix(Omega), [0.0, 0.0, 1.5 * tiny])
+    # one overflowing row next to a subnormal one: each row takes its own path
+    rows = np.stack([Omega, np.array([[0.0, 1e308, 0], [-1e308, 0, 0], [0, 0, 0]])])
+    assert_array_equal(
+        kin.vector_from_omega_matrix(rows), [[0.0, 0.0, 1.5 * tiny], [0.0, 0.0, 1e308]]
+    )
+
+
 def test_omega_matrix_is_minus_the_usual_hat_matrix():
     # Ω r = −ω × r = r × ω, because the book's matrices act on bases.
     w, r = np.array([0.3, -1.0, 2.0]), np.array([1.0, 2.0, -0.5])
