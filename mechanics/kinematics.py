@@ -155,6 +155,25 @@ def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
 vector_from_omega_matrix = finite_result(vector_from_omega_matrix)
 
 
+#: The power of two by which angular_velocity_from_matrix_rate scales a rate matrix whose
+#: ω overflows on the way: with max|Rdot| <= 2**1021, |Ω_ij| and |ω_k| are at most
+#: √3·2**1021 and every partial sum of Rᵀ ω at most |ω| <= 3·2**1021, all below 2**1024.
+_RATE_SHIFT = 3
+
+
+def _omega_from_rate(
+    R: npt.NDArray[np.float64], Rdot: npt.NDArray[np.float64], basis: str, shift: int
+) -> npt.NDArray[np.float64]:
+    """ω in ``basis`` from (2**-shift Rdot) Rᵀ, scaled back by 2**shift; not finite where
+    it overflows."""
+    with np.errstate(over="ignore", invalid="ignore"):  # the caller checks the result
+        w = _half_differences(np.ldexp(Rdot, -shift) @ np.swapaxes(R, -1, -2))
+        if basis == "O":
+            w = np.einsum("...ji,...j->...i", R, w)
+        out: npt.NDArray[np.float64] = np.ldexp(w, shift)
+    return out
+
+
 def angular_velocity_from_matrix_rate(
     R_A_O: npt.ArrayLike, Rdot_A_O: npt.ArrayLike, *, basis: str = "A"
 ) -> npt.NDArray[np.float64]:
@@ -162,8 +181,9 @@ def angular_velocity_from_matrix_rate(
 
     Domain: R_A_O a rotation (``check_rotation``'s tolerance, else NotARotationError), any finite
     Rdot_A_O (only the part Rdot R^T antisymmetric is read); basis "A" or "O" (else
-    UnknownOptionError); a product beyond float64 raises ResultOverflowError, but an entry of
-    Rdot R^T itself beyond float64 raises NonFiniteError naming ``Omega``.
+    UnknownOptionError).  An entry of Rdot R^T beyond float64 does not fail: the rate is
+    scaled by a power of two there; only a component of ω itself beyond float64 raises
+    ResultOverflowError, naming R_A_O and Rdot_A_O of its row.
 
     Parameters
     ----------
@@ -187,14 +207,13 @@ def angular_velocity_from_matrix_rate(
     UnknownOptionError
         If ``basis`` is neither "A" nor "O".
     NonFiniteError
-        Where ``R_A_O`` or ``Rdot_A_O`` holds NaN or an infinity; also, naming ``Omega``,
-        where an entry of Rdot R^T is beyond float64.
+        Where ``R_A_O`` or ``Rdot_A_O`` holds NaN or an infinity.
     ShapeError
         If an input is not of shape (..., 3, 3), is complex or not numeric, or the leading axes do
         not broadcast.
     ResultOverflowError
-        Where a difference of entries of Rdot R^T (see :func:`vector_from_omega_matrix`), or
-        a component of ω, is beyond float64.
+        Where a component of ω in the basis ``basis`` is beyond float64; the message names
+        ``R_A_O`` and ``Rdot_A_O`` of the first such row.
 
     Examples
     --------
@@ -211,11 +230,24 @@ def angular_velocity_from_matrix_rate(
         raise UnknownOptionError(f"basis must be 'A' or 'O'; got {basis!r}")
     R = check_rotation(R_A_O)
     Rdot = as_float_array(Rdot_A_O, "Rdot_A_O", (3, 3))
-    w_A = vector_from_omega_matrix(Rdot @ np.swapaxes(R, -1, -2))
-    if basis == "O":
-        w_O: npt.NDArray[np.float64] = np.einsum("...ji,...j->...i", R, w_A)
-        return w_O
-    return w_A
+    w = _omega_from_rate(R, Rdot, basis, 0)
+    # |Ω_ij| <= |row i of Rdot| <= √3 max|Rdot| (rows of R are unit vectors), so Ω, ω or a
+    # partial sum of Rᵀ ω overflows only where max|Rdot| is near 2**1023.  Those rows are
+    # redone with Rdot scaled by 2**-_RATE_SHIFT (exact at that size) and ω scaled back;
+    # other rows are not scaled, so their subnormal entries stay exact.
+    big = ~np.isfinite(w).all(axis=-1, keepdims=True)
+    if big.any():
+        w = np.where(big, _omega_from_rate(R, Rdot, basis, _RATE_SHIFT), w)
+    bad = ~np.isfinite(w).all(axis=-1)
+    if bad.any():
+        idx = _first_index(bad)
+        Rb, Rdotb = np.broadcast_arrays(R, Rdot)
+        raise ResultOverflowError(
+            f"the angular velocity of R_A_O = {Rb[idx].tolist()}, "
+            f"Rdot_A_O = {Rdotb[idx].tolist()} (index {idx}) is beyond float64: "
+            f"a component of omega in basis {basis!r} exceeds 1.8e308"
+        )
+    return w
 
 
 angular_velocity_from_matrix_rate = finite_result(angular_velocity_from_matrix_rate)

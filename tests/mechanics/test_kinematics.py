@@ -188,6 +188,36 @@ def test_basis_O_gives_the_omega_whose_cross_product_moves_the_body_basis_2_53()
     assert (np.abs(rot.components_A_from_O(R, w_O) - w_A) <= RATE_ATOL * scale[..., 0]).all()
 
 
+def test_a_matrix_rate_whose_product_overflows_still_gives_an_omega_that_fits():
+    # Ṙ = c 1 1ᵀ with R = R3(π/4): Ṙ Rᵀ = c 1 (R 1)ᵀ has rows c (√2, 0, 1), and √2 c is
+    # beyond float64 for c = 1.7e308, but ω = (c/2, (√2 − 1) c/2, −√2 c/2) (2.52) fits.
+    # Entries of Ṙ Rᵀ are sums of three products each rounded once: RATE_ATOL × c.
+    c = 1.7e308
+    R = rot.R3(np.pi / 4)
+    expected = np.array([0.5, (np.sqrt(2) - 1) / 2, -np.sqrt(2) / 2]) * c
+    w_A = kin.angular_velocity_from_matrix_rate(R, np.full((3, 3), c))
+    assert_allclose(w_A, expected, atol=RATE_ATOL * c, rtol=0)
+    # ω in O, Rᵀ ω_A: the same vector, |ω_O| = |ω_A|
+    w_O = kin.angular_velocity_from_matrix_rate(R, np.full((3, 3), c), basis="O")
+    assert_allclose(w_O, R.T @ (expected / c) * c, atol=RATE_ATOL * c, rtol=0)
+
+
+def test_an_omega_beyond_float64_names_the_arguments_of_its_own_row():
+    # Row 1: R = R3(π/4) (rows (s, s, 0), (−s, s, 0), e3 with s = √½) and Ṙ rows c (−1, 1, 0),
+    # c (−1, −1, 0): Ω_01 = √2 c, Ω_10 = −√2 c, so ω3 = √2 c = 2.4e308 is beyond float64.
+    c = 1.7e308
+    R = rot.R3(np.pi / 4)
+    Rdot = np.array([np.zeros((3, 3)), [[-c, c, 0.0], [-c, -c, 0.0], [0.0, 0.0, 0.0]]])
+    with pytest.raises(ResultOverflowError) as info:
+        kin.angular_velocity_from_matrix_rate(R, Rdot)
+    msg = str(info.value)
+    assert msg.startswith(
+        f"the angular velocity of R_A_O = {R.tolist()}, Rdot_A_O = {Rdot[1].tolist()} "
+        "(index (1,)) is beyond float64: a component of omega in basis 'A' exceeds 1.8e308"
+    ), msg
+    assert "vector_from_omega_matrix" not in msg
+
+
 def test_an_unknown_basis_raises_a_mechanics_error_naming_it():
     # The package promises a specific MechanicsValueError subclass for every bad
     # input (errors.py, ARCHITECTURE.md).  A bare ValueError escapes
