@@ -57,7 +57,6 @@ Accuracy (``tests/stability/test_inertia_stability.py``, mpmath at 50 digits)
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 
 import numpy as np
@@ -67,7 +66,7 @@ from ._floats import dd_add as _dd_add
 from ._floats import dd_times as _dd_times
 from ._floats import two_prod as _two_prod
 from ._floats import two_sum as _two_sum
-from ._validate import as_float_array, broadcast_checked, finite_result
+from ._validate import as_float_array, as_float_scalar, broadcast_checked, finite_result
 from .errors import (
     NegativeMassError,
     NonPhysicalInertiaError,
@@ -851,7 +850,8 @@ def principal_subspaces(
     """Moments and the orthogonal projectors onto their eigen-subspaces.
 
     Domain: ``J`` as :func:`principal_axes` (physical, singular allowed), ``rtol`` a finite number ≥
-    0 (else NonPositiveParameterError).
+    0 (NaN, inf, a non-number: NonFiniteError or ShapeError; a negative one
+    NonPositiveParameterError, each naming ``rtol``).
 
     Moments J_i, J_{i+1} whose gap is at most ``rtol`` times the largest moment
     belong to one subspace (chained: three moments within two small gaps form
@@ -879,18 +879,16 @@ def principal_subspaces(
     Raises
     ------
     NonPositiveParameterError
-        ``rtol`` negative or NaN or infinite.
+        ``rtol`` negative.
     NonPhysicalInertiaError
         ``J`` refused as by :func:`principal_axes`.
     NonFiniteError
-        A NaN or infinite entry of ``J``.
+        A NaN or infinite entry of ``J``, or ``rtol`` NaN or infinite.
     ShapeError
-        ``J`` not ending in (3, 3), or not an array of real numbers.
+        ``J`` not ending in (3, 3), or not an array of real numbers; ``rtol`` not a scalar,
+        or complex or not numeric.
     ResultOverflowError
         A moment beyond float64 (as :func:`principal_axes`).
-    TypeError
-        ``rtol`` not a real number (a list or array of several entries: ``float(rtol)``
-        fails).
 
     Examples
     --------
@@ -901,9 +899,9 @@ def principal_subspaces(
     >>> np.diag(P[0]).tolist(), np.diag(P[2]).tolist()
     ([1.0, 1.0, 0.0], [0.0, 0.0, 1.0])
     """
-    rt = float(rtol)
-    if not (math.isfinite(rt) and rt >= 0):
-        raise NonPositiveParameterError(f"rtol must be a finite number >= 0; got {rtol!r}")
+    rt = as_float_scalar(rtol, "rtol")
+    if not rt >= 0:
+        raise NonPositiveParameterError(f"rtol must be a finite number >= 0; got {rt!r}")
     moments, R = principal_axes(J)
     scale = _scale(moments)
     g01 = moments[..., 1] - moments[..., 0] <= rt * scale

@@ -97,12 +97,29 @@ def omega_matrix_from_vector(w_A: npt.ArrayLike) -> npt.NDArray[np.float64]:
 omega_matrix_from_vector = finite_result(omega_matrix_from_vector)
 
 
+#: (i, j) of Ω_ij − Ω_ji for ω1, ω2, ω3 (2.52)
+_UPPER, _LOWER = ([1, 2, 0], [2, 0, 1]), ([2, 0, 1], [1, 2, 0])
+
+
+def _half_differences(M: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+    """(Ω_ij − Ω_ji)/2 of a finite (..., 3, 3) array, finite and correctly rounded.
+
+    The difference is exact-then-halved (a subnormal half keeps its last bit); where the
+    difference overflows, each entry is halved first, which is exact at that size.
+    """
+    a, b = M[..., _UPPER[0], _UPPER[1]], M[..., _LOWER[0], _LOWER[1]]
+    with np.errstate(over="ignore"):  # replaced below where it overflows
+        d = a - b
+    half: npt.NDArray[np.float64] = np.where(np.isfinite(d), 0.5 * d, 0.5 * a - 0.5 * b)
+    return half
+
+
 def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """Body components of ω from the angular-velocity matrix (2.52).
 
-    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.  A difference
-    Ω_ij − Ω_ji beyond float64 (entries near 1e308 of opposite signs) raises ResultOverflowError,
-    even where its half would fit.
+    Domain: any finite (..., 3, 3) matrix; only its antisymmetric part is read.  The result
+    is always finite: where a difference Ω_ij − Ω_ji is beyond float64 (entries near 1e308 of
+    opposite signs), each entry is halved before it is taken (exact at that size).
 
     Reads the antisymmetric part, (Ω − Ωᵀ)/2, so that a rounding-level symmetric
     part is ignored rather than folded into ω.
@@ -123,8 +140,6 @@ def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
         Where ``Omega`` holds NaN or an infinity.
     ShapeError
         If ``Omega`` is not of shape (..., 3, 3), or is complex or not numeric.
-    ResultOverflowError
-        Where a difference Ω_ij − Ω_ji is beyond float64.
 
     Examples
     --------
@@ -134,14 +149,29 @@ def vector_from_omega_matrix(Omega: npt.ArrayLike) -> npt.NDArray[np.float64]:
     >>> vector_from_omega_matrix(Omega).tolist()
     [1.0, -2.0, 3.0]
     """
-    M = as_float_array(Omega, "Omega", (3, 3))
-    return 0.5 * np.stack(
-        [M[..., 1, 2] - M[..., 2, 1], M[..., 2, 0] - M[..., 0, 2], M[..., 0, 1] - M[..., 1, 0]],
-        axis=-1,
-    )
+    return _half_differences(as_float_array(Omega, "Omega", (3, 3)))
 
 
 vector_from_omega_matrix = finite_result(vector_from_omega_matrix)
+
+
+#: The power of two by which angular_velocity_from_matrix_rate scales a rate matrix whose
+#: ω overflows on the way: with max|Rdot| <= 2**1021, |Ω_ij| and |ω_k| are at most
+#: √3·2**1021 and every partial sum of Rᵀ ω at most |ω| <= 3·2**1021, all below 2**1024.
+_RATE_SHIFT = 3
+
+
+def _omega_from_rate(
+    R: npt.NDArray[np.float64], Rdot: npt.NDArray[np.float64], basis: str, shift: int
+) -> npt.NDArray[np.float64]:
+    """ω in ``basis`` from (2**-shift Rdot) Rᵀ, scaled back by 2**shift; not finite where
+    it overflows."""
+    with np.errstate(over="ignore", invalid="ignore"):  # the caller checks the result
+        w = _half_differences(np.ldexp(Rdot, -shift) @ np.swapaxes(R, -1, -2))
+        if basis == "O":
+            w = np.einsum("...ji,...j->...i", R, w)
+        out: npt.NDArray[np.float64] = np.ldexp(w, shift)
+    return out
 
 
 def angular_velocity_from_matrix_rate(
@@ -151,8 +181,9 @@ def angular_velocity_from_matrix_rate(
 
     Domain: R_A_O a rotation (``check_rotation``'s tolerance, else NotARotationError), any finite
     Rdot_A_O (only the part Rdot R^T antisymmetric is read); basis "A" or "O" (else
-    UnknownOptionError); a product beyond float64 raises ResultOverflowError, but an entry of
-    Rdot R^T itself beyond float64 raises NonFiniteError naming ``Omega``.
+    UnknownOptionError).  An entry of Rdot R^T beyond float64 does not fail: the rate is
+    scaled by a power of two there; only a component of ω itself beyond float64 raises
+    ResultOverflowError, naming R_A_O and Rdot_A_O of its row.
 
     Parameters
     ----------
@@ -176,14 +207,13 @@ def angular_velocity_from_matrix_rate(
     UnknownOptionError
         If ``basis`` is neither "A" nor "O".
     NonFiniteError
-        Where ``R_A_O`` or ``Rdot_A_O`` holds NaN or an infinity; also, naming ``Omega``,
-        where an entry of Rdot R^T is beyond float64.
+        Where ``R_A_O`` or ``Rdot_A_O`` holds NaN or an infinity.
     ShapeError
         If an input is not of shape (..., 3, 3), is complex or not numeric, or the leading axes do
         not broadcast.
     ResultOverflowError
-        Where a difference of entries of Rdot R^T (see :func:`vector_from_omega_matrix`), or
-        a component of ω, is beyond float64.
+        Where a component of ω in the basis ``basis`` is beyond float64; the message names
+        ``R_A_O`` and ``Rdot_A_O`` of the first such row.
 
     Examples
     --------
@@ -200,11 +230,24 @@ def angular_velocity_from_matrix_rate(
         raise UnknownOptionError(f"basis must be 'A' or 'O'; got {basis!r}")
     R = check_rotation(R_A_O)
     Rdot = as_float_array(Rdot_A_O, "Rdot_A_O", (3, 3))
-    w_A = vector_from_omega_matrix(Rdot @ np.swapaxes(R, -1, -2))
-    if basis == "O":
-        w_O: npt.NDArray[np.float64] = np.einsum("...ji,...j->...i", R, w_A)
-        return w_O
-    return w_A
+    w = _omega_from_rate(R, Rdot, basis, 0)
+    # |Ω_ij| <= |row i of Rdot| <= √3 max|Rdot| (rows of R are unit vectors), so Ω, ω or a
+    # partial sum of Rᵀ ω overflows only where max|Rdot| is near 2**1023.  Those rows are
+    # redone with Rdot scaled by 2**-_RATE_SHIFT (exact at that size) and ω scaled back;
+    # other rows are not scaled, so their subnormal entries stay exact.
+    big = ~np.isfinite(w).all(axis=-1, keepdims=True)
+    if big.any():
+        w = np.where(big, _omega_from_rate(R, Rdot, basis, _RATE_SHIFT), w)
+    bad = ~np.isfinite(w).all(axis=-1)
+    if bad.any():
+        idx = _first_index(bad)
+        Rb, Rdotb = np.broadcast_arrays(R, Rdot)
+        raise ResultOverflowError(
+            f"the angular velocity of R_A_O = {Rb[idx].tolist()}, "
+            f"Rdot_A_O = {Rdotb[idx].tolist()} (index {idx}) is beyond float64: "
+            f"a component of omega in basis {basis!r} exceeds 1.8e308"
+        )
+    return w
 
 
 angular_velocity_from_matrix_rate = finite_result(angular_velocity_from_matrix_rate)

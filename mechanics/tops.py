@@ -1283,7 +1283,8 @@ class FreeSymmetricTop:
 
     Domain: J1, J3 > 0 with J3 ≤ 2 J1 (the triangle inequality), from 1e-300 to 1e300 (computed from
     the moments scaled by a power of two: s·J moves exactly as J); any finite ω_0 while |L| and E
-    fit float64 (else ResultOverflowError).
+    fit float64 (else ResultOverflowError); one attitude R_A_O_0 of shape (3, 3), a rotation
+    (else ShapeError or NotARotationError).
 
     Parameters
     ----------
@@ -1307,7 +1308,8 @@ class FreeSymmetricTop:
     NonFiniteError
         If an input is NaN or infinite.
     ShapeError
-        If J1 or J3 is not a scalar, or ``omega_0`` not of shape (3,).
+        If J1 or J3 is not a scalar, ``omega_0`` not of shape (3,), or ``R_A_O_0`` not of
+        shape (3, 3).
 
     Notes
     -----
@@ -1355,6 +1357,8 @@ class FreeSymmetricTop:
         self.omega_0 = np.array(wl)
         rotated = R_A_O_0 is not None
         R0 = np.eye(3) if R_A_O_0 is None else check_rotation(R_A_O_0, name="R_A_O_0")
+        if R0.shape != (3, 3):
+            raise ShapeError(f"R_A_O_0 must have shape (3, 3); got {R0.shape}")
         self.R_A_O_0 = R0.copy() if rotated else R0
         # the motion depends on J1, J3 and ω only through J3/J1 and ω: compute with the
         # moments scaled by 2^-k (exact) and scale |L|, L and E back (issue 16, part 4)

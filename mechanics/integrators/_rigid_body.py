@@ -12,7 +12,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .._validate import as_float_array, broadcast_checked
-from ..errors import NonPhysicalInertiaError, ShapeError
+from ..errors import NonPhysicalInertiaError, ResultOverflowError, ShapeError
 from ..rotation import check_rotation, matrix_from_rotvec
 from ._grid import _positive_scalar
 from ._solution import FloatArray
@@ -205,7 +205,8 @@ def so3_exp_step(R_A_O: npt.ArrayLike, w_A: npt.ArrayLike, h: float) -> FloatArr
 
     Domain: finite R_A_O (..., 3, 3), a rotation (else NotARotationError), and w_A (..., 3) that
     broadcast (else ShapeError); a finite scalar h > 0 (else NonPositiveParameterError); any
-    rotation angle h|ω| (reduced modulo 2π by :func:`~mechanics.rotation.matrix_from_rotvec`).
+    rotation angle h|ω| (reduced modulo 2π by :func:`~mechanics.rotation.matrix_from_rotvec`)
+    whose rotation vector h ω_A fits float64 (else ResultOverflowError naming h and w_A).
 
     dR/dt = Ω R with the book's Ω (2.46), (2.52) integrates for constant ω_A to
     exp(h Ω) R, and exp(h Ω) is the passive matrix ^A R^O(h ω_A) of the rotation
@@ -237,7 +238,10 @@ def so3_exp_step(R_A_O: npt.ArrayLike, w_A: npt.ArrayLike, h: float) -> FloatArr
         Trailing shapes other than (3, 3) and (3,), leading axes that do not broadcast, or
         an ``h`` that is not a scalar.
     NonFiniteError
-        NaN or an infinity in an input, or an h ω_A beyond float64's range.
+        NaN or an infinity in an input.
+    ResultOverflowError
+        A component of h ω_A beyond float64's range; the message names ``h`` and the
+        ``w_A`` of the first such row.
 
     Examples
     --------
@@ -251,7 +255,16 @@ def so3_exp_step(R_A_O: npt.ArrayLike, w_A: npt.ArrayLike, h: float) -> FloatArr
     R = check_rotation(R_A_O)
     w = as_float_array(w_A, "w_A", (3,))
     hf = _positive_scalar(h, "h")
-    R_new: FloatArray = matrix_from_rotvec(hf * w) @ R  # (the product is typed Any)
+    with np.errstate(over="ignore"):  # checked below
+        rotvec = hf * w
+    bad = ~np.isfinite(rotvec).all(axis=-1)
+    if bad.any():
+        idx = tuple(int(i) for i in np.argwhere(bad)[0])
+        raise ResultOverflowError(
+            f"the rotation vector h w_A of h = {hf!r}, w_A = {w[idx].tolist()} (index {idx}) "
+            "is beyond float64: |h w_A_i| exceeds 1.8e308"
+        )
+    R_new: FloatArray = matrix_from_rotvec(rotvec) @ R  # (the product is typed Any)
     return R_new
 
 

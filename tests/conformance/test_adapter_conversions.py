@@ -45,6 +45,7 @@ from mechanics.errors import (
     RestitutionRangeError,
     UnknownOptionError,
 )
+from mechanics.scenes.spec import METHODS
 
 #: a rotation through an engine's quaternion and back: a few roundings each way
 ROUNDTRIP_ATOL = 2**4 * EPS
@@ -467,6 +468,19 @@ def test_the_scene_engine_says_what_it_cannot_run():
         assert scene_from_scenario(dataclasses.replace(h, pivot=Pivot(0, point))) == (
             "the scene engine's fixed point lies on body axis 3 below G"
         )
+
+
+def test_the_scene_engine_adapter_refuses_an_unknown_method_when_it_is_made():
+    # not at run time, where the battery would mark every scenario "error": the choices
+    # are the scene parser's METHODS
+    with pytest.raises(
+        UnknownOptionError,
+        match=r"^scene engine method must be one of \('auto', 'exact', 'integrate', "
+        r"'splitting'\); got 'bogus'$",
+    ):
+        SceneEngineAdapter("bogus")
+    for method in METHODS:
+        assert SceneEngineAdapter(method).method == method
 
 
 def test_the_scene_engine_adapter_runs_the_exact_flows_to_rounding():

@@ -450,6 +450,27 @@ def test_principal_subspaces_rtol_decides_what_coincides():
         I.principal_subspaces(J, rtol=-1.0)
 
 
+@pytest.mark.parametrize(
+    ("rtol", "error", "condition"),
+    [
+        pytest.param([1, 2], ShapeError, r"^rtol must be a scalar; got shape \(2,\)$", id="list"),
+        pytest.param("a", ShapeError, r"^rtol has dtype <U1; a real numeric array", id="string"),
+        pytest.param(np.nan, NonFiniteError, r"^rtol must be finite; found nan", id="nan"),
+        pytest.param(np.inf, NonFiniteError, r"^rtol must be finite; found inf", id="inf"),
+        pytest.param(
+            -1.0,
+            NonPositiveParameterError,
+            r"^rtol must be a finite number >= 0; got -1\.0$",
+            id="negative",
+        ),
+    ],
+)
+def test_principal_subspaces_refuses_a_bad_rtol_by_name(rtol, error, condition):
+    # as check_rotation's atol: a scalar (else ShapeError), finite (else NonFiniteError), >= 0
+    with pytest.raises(error, match=condition):
+        I.principal_subspaces(np.eye(3), rtol=rtol)
+
+
 # ------------------------------------------------------------- Example 4.1
 
 

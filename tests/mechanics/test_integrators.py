@@ -526,6 +526,18 @@ def test_so3_exp_step_broadcasts_over_a_batch():
         assert np.array_equal(out[i], so3_exp_step(R[i], w[i], 0.2))
 
 
+def test_so3_exp_step_names_h_and_w_A_where_the_rotation_vector_is_beyond_float64():
+    # row 1: h ω3 = 1e10 · 1e300 = 1e310 is beyond float64 (row 0, 1e10 · 1 rad, is fine):
+    # a ResultOverflowError naming the arguments of that row, and no RuntimeWarning
+    # (pytest turns warnings into errors)
+    with pytest.raises(ResultOverflowError) as info:
+        so3_exp_step(np.eye(3), [[0.0, 0.0, 1.0], [0.0, 0.0, 1e300]], 1e10)
+    assert str(info.value) == (
+        "the rotation vector h w_A of h = 10000000000.0, w_A = [0.0, 0.0, 1e+300] "
+        "(index (1,)) is beyond float64: |h w_A_i| exceeds 1.8e308"
+    )
+
+
 # ------------------------------------------------ dense output (issue 15, part 2)
 
 DENSE_GRID = np.linspace(0.0, 20.0, 2001)  # the issue's grid: 2001 outputs over 20 s

@@ -188,6 +188,36 @@ def test_basis_O_gives_the_omega_whose_cross_product_moves_the_body_basis_2_53()
     assert (np.abs(rot.components_A_from_O(R, w_O) - w_A) <= RATE_ATOL * scale[..., 0]).all()
 
 
+def test_a_matrix_rate_whose_product_overflows_still_gives_an_omega_that_fits():
+    # Ṙ = c 1 1ᵀ with R = R3(π/4): Ṙ Rᵀ = c 1 (R 1)ᵀ has rows c (√2, 0, 1), and √2 c is
+    # beyond float64 for c = 1.7e308, but ω = (c/2, (√2 − 1) c/2, −√2 c/2) (2.52) fits.
+    # Entries of Ṙ Rᵀ are sums of three products each rounded once: RATE_ATOL × c.
+    c = 1.7e308
+    R = rot.R3(np.pi / 4)
+    expected = np.array([0.5, (np.sqrt(2) - 1) / 2, -np.sqrt(2) / 2]) * c
+    w_A = kin.angular_velocity_from_matrix_rate(R, np.full((3, 3), c))
+    assert_allclose(w_A, expected, atol=RATE_ATOL * c, rtol=0)
+    # ω in O, Rᵀ ω_A: the same vector, |ω_O| = |ω_A|
+    w_O = kin.angular_velocity_from_matrix_rate(R, np.full((3, 3), c), basis="O")
+    assert_allclose(w_O, R.T @ (expected / c) * c, atol=RATE_ATOL * c, rtol=0)
+
+
+def test_an_omega_beyond_float64_names_the_arguments_of_its_own_row():
+    # Row 1: R = R3(π/4) (rows (s, s, 0), (−s, s, 0), e3 with s = √½) and Ṙ rows c (−1, 1, 0),
+    # c (−1, −1, 0): Ω_01 = √2 c, Ω_10 = −√2 c, so ω3 = √2 c = 2.4e308 is beyond float64.
+    c = 1.7e308
+    R = rot.R3(np.pi / 4)
+    Rdot = np.array([np.zeros((3, 3)), [[-c, c, 0.0], [-c, -c, 0.0], [0.0, 0.0, 0.0]]])
+    with pytest.raises(ResultOverflowError) as info:
+        kin.angular_velocity_from_matrix_rate(R, Rdot)
+    msg = str(info.value)
+    assert msg.startswith(
+        f"the angular velocity of R_A_O = {R.tolist()}, Rdot_A_O = {Rdot[1].tolist()} "
+        "(index (1,)) is beyond float64: a component of omega in basis 'A' exceeds 1.8e308"
+    ), msg
+    assert "vector_from_omega_matrix" not in msg
+
+
 def test_an_unknown_basis_raises_a_mechanics_error_naming_it():
     # The package promises a specific MechanicsValueError subclass for every bad
     # input (errors.py, ARCHITECTURE.md).  A bare ValueError escapes
@@ -223,6 +253,34 @@ def test_vector_from_omega_matrix_ignores_a_symmetric_part():
     w = np.array([0.5, -1.0, 2.0])
     assert_allclose(
         kin.vector_from_omega_matrix(_book_omega_matrix(w) + S), w, atol=4 * EPS, rtol=0
+    )
+
+
+def test_vector_from_omega_matrix_halves_first_where_the_difference_overflows():
+    # Ω_01 − Ω_10 = 3e308 is beyond float64, its half ω3 = 1.5e308 is not: halving each
+    # entry first is exact at this size (no bit below 2**−1022 is lost), so ω3 is exact.
+    big = 1.5e308
+    Omega = np.array([[0.0, big, 0.0], [-big, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    assert_array_equal(kin.vector_from_omega_matrix(Omega), [0.0, 0.0, big])
+    # the largest float on both sides: ω3 = max, exactly
+    top = np.finfo(np.float64).max
+    assert_array_equal(
+        kin.vector_from_omega_matrix([[0.0, top, 0.0], [-top, 0.0, 0.0], [0.0, 0.0, 0.0]]),
+        [0.0, 0.0, top],
+    )
+
+
+def test_vector_from_omega_matrix_keeps_the_last_bit_of_a_subnormal_result():
+    # Ω_01 − Ω_10 = 3·2**−1074 is exact and its half 1.5·2**−1074 rounds (to even) to
+    # 2·2**−1074; halving each entry first would give 2**−1074 − 0 (−2**−1075 rounds to 0),
+    # a bit short.  Rows whose difference does not overflow take it first, then halve.
+    tiny = 2.0**-1074
+    Omega = np.array([[0.0, 2 * tiny, 0.0], [-tiny, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    assert_array_equal(kin.vector_from_omega_matrix(Omega), [0.0, 0.0, 1.5 * tiny])
+    # one overflowing row next to a subnormal one: each row takes its own path
+    rows = np.stack([Omega, np.array([[0.0, 1e308, 0], [-1e308, 0, 0], [0, 0, 0]])])
+    assert_array_equal(
+        kin.vector_from_omega_matrix(rows), [[0.0, 0.0, 1.5 * tiny], [0.0, 0.0, 1e308]]
     )
 
 

@@ -1270,6 +1270,18 @@ def test_free_top_refuses_a_stack_of_initial_attitudes_by_its_shape():
     assert str(e.value) == "R_A_O_0 must have shape (3, 3); got (2, 3, 3)"
 
 
+@pytest.mark.parametrize(
+    "omega_0",
+    [pytest.param([1.0, 1.0, 1.0], id="precessing"), pytest.param([0.0, 0.0, 1.0], id="steady")],
+)
+def test_free_symmetric_top_refuses_a_stack_of_initial_attitudes_by_its_shape(omega_0):
+    # as FreeAsymmetricTop: one attitude, not numpy's matmul error (precessing) or a
+    # stack of attitudes carried into attitude(t) (steady)
+    with pytest.raises(ShapeError) as e:
+        tops.FreeSymmetricTop(1.0, 1.0, omega_0, np.eye(3)[None])
+    assert str(e.value) == "R_A_O_0 must have shape (3, 3); got (1, 3, 3)"
+
+
 def test_free_top_refuses_m1_between_2_to_the_minus_1023_and_1022():
     # J = (1, 2, 3), ω = (0, 1, 2^-512): D = J3(J3 − J2)ω3² = 3·2^-1024 and
     # B = J2(J2 − J1) + J3(J3 − J1)ω3² = 2 + 6·2^-1024, so m1 = (J3 − J1) D/((J3 − J2) B)

@@ -237,6 +237,16 @@ def test_unit_divides_by_the_length() -> None:
     assert base.unit([3, 0, 4]).dtype == np.float64
 
 
+@pytest.mark.parametrize("scale", [1e154, 3e200 / 3, 1e307])
+def test_unit_of_a_huge_direction_is_exact_and_warns_nothing(scale) -> None:
+    # |v| = 5 scale overflows the squares of numpy's norm beyond ~1e154: the vector is scaled
+    # by its largest component first, (3/4, 0, 1) of norm 5/4, each quotient rounded once.
+    # A RuntimeWarning would fail here (pytest: filterwarnings = error).
+    np.testing.assert_array_equal(base.unit([3 * scale, 0.0, 4 * scale]), [0.6, 0.0, 0.8])
+    top = np.finfo(np.float64).max
+    np.testing.assert_array_equal(base.unit([top, 0.0, -top]), np.array([1, 0, -1]) / np.sqrt(2))
+
+
 DIRECTIONS = [
     (0.0, 0.0, -1.0),
     (0.0, 2.0, 0.0),

@@ -17,6 +17,7 @@ import numpy as np
 from ..._floats import EPS
 from ..protocol import SAMPLE_TIME_RTOL, Scenario, Trajectory
 from ..scenarios import reference
+from ._engines import check_option
 
 __all__ = ["ExactAdapter", "SceneEngineAdapter", "scene_from_scenario"]
 
@@ -226,10 +227,16 @@ class SceneEngineAdapter:
     Parameters
     ----------
     method : {"integrate", "auto", "exact", "splitting"}, optional
-        The scene's ``method`` (default ``"integrate"``).  Not checked here: a method
-        the scene parser refuses makes its ``run`` raise the error.
+        The scene's ``method`` (default ``"integrate"``), one of the scene parser's
+        :data:`~mechanics.scenes.spec.METHODS`.
     rtol, atol : float, optional
         The integrator's tolerances (default: the scene's own).
+
+    Raises
+    ------
+    UnknownOptionError
+        Where ``method`` is not one of :data:`~mechanics.scenes.spec.METHODS` (checked when
+        the adapter is made, not when a scenario is run).
 
     Examples
     --------
@@ -237,12 +244,19 @@ class SceneEngineAdapter:
     >>> a = SceneEngineAdapter()
     >>> a.name, run_battery(a, scenarios=["parabola"])["parabola"].status
     ('bodycheck scene engine (integrate)', 'pass')
+    >>> SceneEngineAdapter("bogus")  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    mechanics.errors.UnknownOptionError: scene engine method must be one of (...); got 'bogus'
     """
 
     takes_step = False
 
     def __init__(self, method: str = "integrate", *, rtol=None, atol=None) -> None:
-        self.method, self.rtol, self.atol = method, rtol, atol
+        from ...scenes.spec import METHODS
+
+        self.method = check_option(method, METHODS, "scene engine method")
+        self.rtol, self.atol = rtol, atol
         self.name = f"bodycheck scene engine ({method})"
 
     def supports(self, scenario: Scenario) -> str | None:

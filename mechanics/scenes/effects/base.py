@@ -203,9 +203,10 @@ def register(cls: _E) -> _E:
 def unit(v: npt.ArrayLike) -> FloatArray:
     """The unit vector v / |v| of a nonzero vector of any finite size.
 
-    Outside 1e-150 < |v| < 1e150 the vector is scaled by its largest component first, so
-    that a subnormal or a huge direction (the parser takes any nonzero one) neither
-    underflows nor overflows in the norm.
+    Where the largest component is outside 1e-150 < |v_i| < 1e150, the vector is scaled by
+    it before the norm is taken, so that a subnormal or a huge direction (the parser takes
+    any nonzero one, up to float64's largest) neither underflows nor overflows in the norm
+    (for k < 1e8 components: k·1e300 fits float64).
 
     Parameters
     ----------
@@ -227,9 +228,7 @@ def unit(v: npt.ArrayLike) -> FloatArray:
     Warns
     -----
     RuntimeWarning
-        For a zero vector (invalid division: the result is nan), and for |v| ≳ 1e154,
-        where numpy's norm overflows (to inf) before the rescaling, whose result is
-        still right.
+        For a zero vector (invalid division: the result is nan); never for a nonzero one.
 
     Examples
     --------
@@ -237,13 +236,15 @@ def unit(v: npt.ArrayLike) -> FloatArray:
 
     >>> unit([3.0, 0.0, 4.0]).tolist(), unit([3e-300, 0.0, 4e-300]).tolist()
     ([0.6, 0.0, 0.8], [0.6, 0.0, 0.8])
+    >>> unit([3e300, 0.0, 4e300]).tolist()
+    [0.6, 0.0, 0.8]
     """
     a = np.asarray(v, dtype=float)
-    n = np.linalg.norm(a)
-    if 1e-150 < n < 1e150:  # the squares are normal floats: the plain quotient
-        out: FloatArray = a / n
+    m = np.max(np.abs(a))
+    if 1e-150 < m < 1e150:  # the largest square is a normal float, no sum overflows
+        out: FloatArray = a / np.linalg.norm(a)
         return out
-    a = a / np.max(np.abs(a))
+    a = a / m  # the largest component is ±1: the norm is between 1 and √k
     out = a / np.linalg.norm(a)
     return out
 
