@@ -6,7 +6,8 @@ an extra says which extra when it is missing.
 The absent extras are simulated: each child process starts with an import hook that
 refuses sympy, mpmath, matplotlib and numba (as a venv without them would), so the
 test needs no second venv and no network.  The install sizes and times of both
-installs are measured by hand and stated in the README (they need the registry).
+installs are measured by hand and stated in docs/guide/use-in-your-project.md (they need
+the registry).
 """
 
 from __future__ import annotations

@@ -149,7 +149,7 @@ BULK_SCIPY_SAMPLE = {True: 20, False: 3}
 BULK_REPEATS = {True: 5, False: 1}
 BULK_BUILDS = {True: 2000, False: 20}
 # floors of the ratios, asserted when timed (measured on the shared 2-core machine of
-# issue 30, see README): building a free asymmetric top costs under 1/30 of one DOP853
+# issue 30, see docs/guide/accuracy.md): building a free asymmetric top costs under 1/30 of one DOP853
 # rotation (1/74 to 1/130 measured; the Fraction construction before issue 30 was ~1/6);
 # 10^6 instants cost less than DOP853 over the same 1000 rotations (measured 10–16×); the
 # batch call beats the one-by-one calls by 5× (measured 39–52×) and DOP853 top by top by

@@ -29,7 +29,7 @@ def public_callables() -> dict[str, object]:
     out: dict[str, object] = {}
     for info in pkgutil.walk_packages(mechanics.__path__, "mechanics."):
         if any(part.startswith("_") for part in info.name.split(".")):
-            continue  # private modules (README, "What is public"): their callers validate
+            continue  # private modules (docs/guide/use-in-your-project.md, "What is public"): their callers validate
         mod = importlib.import_module(info.name)
         for name in getattr(mod, "__all__", ()):
             obj = getattr(mod, name)

@@ -27,7 +27,7 @@ from mechanics._floats import EPS
 
 pytest_plugins = ["pytester"]
 
-# What the plugin's docstring and the README promise (not read from the code):
+# What the plugin's docstring and docs/guide/use-in-your-project.md promise (not read from the code):
 # "bodycheck-ci (derandomised, 100 examples), bodycheck-dev (random, 100) or
 # bodycheck-explore (random, 1000); none has a deadline" or the too_slow health check;
 # ci prints a @reproduce_failure blob; all derive from hypothesis' default profile.
