@@ -11,9 +11,8 @@ LOCK   := requirements/lock.txt
 unexport PYTHONDONTWRITEBYTECODE
 # the suite's one command line; test-latest and test-oldest run it in their own venvs.
 # Tests marked slow (each says why in its docstring: a stiff run, seconds of it) are left
-# to `make test-slow`, which .ci/run runs after `make test`.  --dist loadgroup: a module marked
-# xdist_group (a costly module fixture) runs on one worker; every other test is spread as usual.
-PYTEST_ARGS := -n auto --dist loadgroup -m 'not slow'
+# to `make test-slow`, which .ci/run runs after `make test`.
+PYTEST_ARGS := -n auto -m 'not slow'
 
 .PHONY: run test test-slow checks docs bench bench-check lock lock-keep test-latest test-oldest test-matrix clean mutate mutate-plan
 

@@ -3,7 +3,7 @@ answer (derived here, in closed form), and the figure the scene engine, Siconos 
 MuJoCo give for it, through the conformance battery's adapters.
 
     python -m bench.contacts            # the table (about a minute)
-    python -m bench.contacts --markdown # the same as a Markdown table (the README's)
+    python -m bench.contacts --markdown # the same as a Markdown table (docs/guide/engines.md's)
 
 Engines: the scene engine (:class:`~mechanics.conformance.adapters.SceneEngineAdapter`,
 its default method); Siconos 4.5, Moreau–Jean θ = 1/2 at h = 2⁻¹³ s (Debian's

@@ -24,6 +24,7 @@ from .errors import (
     NonPositiveParameterError,
     ResultOverflowError,
     ShapeError,
+    UnknownOptionError,
 )
 
 
@@ -51,6 +52,14 @@ def as_float_array(x: object, name: str, tail: tuple[int, ...] = ()) -> npt.NDAr
     if not np.isfinite(a).all():
         raise NonFiniteError(f"{name} must be finite; found {_first_bad(a)}")
     return a
+
+
+def check_option(value: object, allowed: tuple[str, ...], what: str) -> str:
+    """``value`` if it is one of ``allowed``, else :class:`UnknownOptionError` naming it
+    and the choices."""
+    if value not in allowed:
+        raise UnknownOptionError(f"{what} must be one of {allowed}; got {value!r}")
+    return allowed[allowed.index(value)]  # the allowed string itself
 
 
 def as_float_scalar(x: object, name: str) -> float:

@@ -44,6 +44,33 @@ def _fresh_explain_cache(tmp_path_factory):
         os.environ["BODYCHECK_CACHE_DIR"] = old
 
 
+def shared_once(tmp_path_factory, name: str, build) -> Path:
+    """A folder ``name`` that ``build(folder)`` fills once per run of the suite, shared by
+    every pytest-xdist worker: the first worker to ask builds it while the others wait on
+    a lock (``fcntl.flock``), then all read it.  For a costly fixture that tests only read
+    (the site, the quick study); a test that changes what it reads copies it first.  A
+    build that fails leaves no folder behind, so the next worker to ask builds again and
+    fails the same way."""
+    import fcntl
+    import shutil
+
+    base = tmp_path_factory.getbasetemp()
+    root = base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base
+    folder, done = root / f"shared-{name}", root / f"shared-{name}.done"
+    with open(root / f"shared-{name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if not done.exists():
+            shutil.rmtree(folder, ignore_errors=True)
+            folder.mkdir()
+            try:
+                build(folder)
+            except BaseException:
+                shutil.rmtree(folder, ignore_errors=True)
+                raise
+            done.touch()
+    return folder
+
+
 _LOCK = Path(__file__).resolve().parent.parent / "requirements" / "lock.txt"
 _PIN = re.compile(r"^([A-Za-z0-9][A-Za-z0-9._-]*)(?:\[[^\]]+\])?==([^ \\]+)", re.MULTILINE)
 

@@ -361,12 +361,6 @@ def test_a_registered_samples_verdicts_stand_and_an_ad_hoc_sample_reruns_its_sur
     )
 
 
-def test_the_readme_shows_the_same_table_as_docs_mutation():
-    run = _run_module()
-    docs, readme = (run.scores_block(p.read_text(encoding="utf-8")) for p in run.TABLES)
-    assert docs == readme, "write both with make mutate-plan MUTATE_ARGS=--report"
-
-
 def test_the_table_is_written_between_its_markers_and_nothing_else_changes(tmp_path, monkeypatch):
     run = _run_module()
     monkeypatch.setattr(run, "ROOT", tmp_path)

@@ -43,10 +43,6 @@ from identities.cli.site import (
     math_from_text,
 )
 
-#: under `make test`'s --dist loadgroup one worker runs this module's tests (the site is built once per module, ~13 s;
-#: spread over the workers, each would pay it)
-pytestmark = pytest.mark.xdist_group("test_site")
-
 CHROMIUM = Path("/usr/bin/chromium")
 NO_CHROMIUM = "headless Chromium not found at /usr/bin/chromium (apt-get install -y chromium)"
 #: a screenshot counts as not blank when this share of its pixels is not white: the
@@ -58,9 +54,11 @@ BROWSER_TIMEOUT_S = 60
 
 @pytest.fixture(scope="module")
 def site(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("site") / "out"
-    build_site(out)
-    return out
+    """The site with its scenes, built once per run for every worker (~13 s; the tests
+    read it, and copy it to change it)."""
+    from tests.conftest import shared_once
+
+    return shared_once(tmp_path_factory, "site", lambda d: build_site(d / "out")) / "out"
 
 
 def test_site_has_every_page_and_its_marker(site):

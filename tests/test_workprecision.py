@@ -24,10 +24,6 @@ from mechanics.integrators import free_rigid_body_rhs, integrate
 from mechanics.rotation import EPS
 from mechanics.tops import HeavySymmetricTop
 
-#: under `make test`'s --dist loadgroup one worker runs this module's tests (the quick study runs once per module, ~18 s;
-#: spread over the workers, each would pay it)
-pytestmark = pytest.mark.xdist_group("test_workprecision")
-
 #: the study's right-hand side and the exact rates are two float evaluations of the same
 #: O(1) rates (square roots and quotients of the conserved quantities): 2^12 eps
 RATE_ATOL = 2**12 * EPS
@@ -75,9 +71,9 @@ TIGHTEST_ERROR_MAX = 1e-2
 BROKEN_ERROR_MIN = 1e-2
 
 
-@pytest.fixture(scope="module")
-def quick_run(tmp_path_factory):
-    out = tmp_path_factory.mktemp("bench")
+def _run_quick(folder) -> None:
+    """The quick study into ``folder/out``, its exit code and what it printed beside it."""
+    out = folder / "out"
     with pytest.MonkeyPatch.context() as mp:
         # the quick sweep stops a method after a run longer than 0.6 s of wall time: on a
         # loaded machine (the suite in parallel, two cores) a method could stop after one
@@ -86,9 +82,20 @@ def quick_run(tmp_path_factory):
         printed = io.StringIO()
         with contextlib.redirect_stdout(printed):
             rc = wp.main_bench(["--quick", "--out", str(out), "--repeats", "1"])
+    (folder / "run.json").write_text(json.dumps({"rc": rc, "printed": printed.getvalue()}))
+
+
+@pytest.fixture(scope="module")
+def quick_run(tmp_path_factory):
+    """The quick study, run once per run of the suite for every worker (~18 s)."""
+    from tests.conftest import shared_once
+
+    folder = shared_once(tmp_path_factory, "quick-study", _run_quick)
+    run = json.loads((folder / "run.json").read_text(encoding="utf-8"))
+    out = folder / "out"
     data = json.loads((out / "workprecision.json").read_text(encoding="utf-8"))
-    data["printed"] = printed.getvalue()
-    return rc, out, data
+    data["printed"] = run["printed"]
+    return run["rc"], out, data
 
 
 def _png_size(path) -> tuple[int, int]:

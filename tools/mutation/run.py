@@ -59,7 +59,7 @@ MODULES = ROOT / "tools" / "mutation" / "modules.toml"
 EQUIVALENT = ROOT / "tools" / "mutation" / "equivalent.toml"
 ACCEPTED = ROOT / "tools" / "mutation" / "accepted.toml"
 PLAN = ROOT / "tools" / "mutation" / "plan.toml"
-TABLES = (ROOT / "docs" / "mutation.md", ROOT / "README.md")
+TABLES = (ROOT / "docs" / "mutation.md",)
 WORK = ROOT / "build" / "mutation"
 
 #: what the copy of the project holds (mutmut copies these into its mutants/ in turn)
@@ -668,7 +668,7 @@ TABLE_HEAD = (
 
 def write_table(rows: list[str], paths: tuple[Path, ...] = TABLES) -> None:
     """Replace the table between ``<!-- SCORES -->`` and ``<!-- /SCORES -->`` in each of
-    ``paths`` (docs/mutation.md and the README show the same table)."""
+    ``paths`` (docs/mutation.md)."""
     body = TABLE_HEAD + "\n" + "\n".join(rows) + "\n"
     for path in paths:
         doc = path.read_text(encoding="utf-8")

@@ -16,12 +16,11 @@ from collections.abc import Iterator
 import numpy as np
 
 from ..._floats import EPS
-from ..._validate import as_float_scalar
+from ..._validate import as_float_scalar, check_option
 from ...errors import (
     MechanicsValueError,
     NonPositiveParameterError,
     OutOfDomainError,
-    UnknownOptionError,
 )
 from ..protocol import SAMPLE_TIME_RTOL, Scenario
 from . import MissingExtraError
@@ -92,13 +91,6 @@ def _flush_c_stdio() -> None:
         ctypes.CDLL(None).fflush(None)
     except (OSError, AttributeError):  # no C library to call (not a POSIX build)
         pass
-
-
-def check_option(value, allowed: tuple[str, ...], what: str) -> str:
-    """``value`` if it is one of ``allowed``, else :class:`UnknownOptionError` naming it."""
-    if value not in allowed:
-        raise UnknownOptionError(f"{what} must be one of {allowed}; got {value!r}")
-    return value
 
 
 def step_counts(scenario: Scenario, step) -> tuple[float, np.ndarray]:

@@ -15,9 +15,9 @@ import math
 import numpy as np
 
 from ..._floats import EPS
+from ..._validate import check_option
 from ..protocol import SAMPLE_TIME_RTOL, Scenario, Trajectory
 from ..scenarios import reference
-from ._engines import check_option
 
 __all__ = ["ExactAdapter", "SceneEngineAdapter", "scene_from_scenario"]
 
