@@ -105,7 +105,7 @@ def canonical_paths() -> dict[str, dict[str, str]]:
     is documented: the shortest one that lists the same object (what a user imports:
     ``mechanics.scenes.run_scene``, ``mechanics.strategies.rotvecs``), on a tie the
     module that defines it, else the first in order."""
-    listed: dict[int, list[str]] = {}
+    listed: dict[tuple[str, int], list[str]] = {}
     pages: dict[str, dict[str, object]] = {}
     for name in PUBLIC:
         mod = importlib.import_module(name)
