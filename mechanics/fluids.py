@@ -586,7 +586,7 @@ def continuity_residual(
     >>> import numpy as np
     >>> res = continuity_residual(lambda r, t: np.exp(-t) + 0 * r[..., 0],
     ...                           lambda r, t: r * [1.0, 0.0, 0.0], [0.5, 1.0, -2.0], 0.3)
-    >>> bool(abs(res) < 1e-11)
+    >>> bool(abs(res) < 1e-11)  # the finite differences' truncation, not a rounding
     True
     """
     r = _points(r)

@@ -402,7 +402,7 @@ def components_A_from_O(R_A_O: npt.ArrayLike, r_O: npt.ArrayLike) -> npt.NDArray
     A vector turned with the basis (:func:`rotate_vector`) has in A the components it had in O:
 
     >>> R, r = matrix_from_euler(0.3, 1.1, -2.0), [1.0, 2.0, 3.0]
-    >>> bool(np.allclose(components_A_from_O(R, rotate_vector(R, r)), r, atol=1e-14, rtol=0))
+    >>> bool(np.allclose(components_A_from_O(R, rotate_vector(R, r)), r, atol=32 * EPS, rtol=0))
     True
     """
     R = check_rotation(R_A_O)

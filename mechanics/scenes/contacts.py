@@ -138,7 +138,7 @@ def plane_contact_time(gap: float, v_n: float, a_n: float) -> float:
     ½ g τ² = 1:
 
     >>> tau = plane_contact_time(1.0, 0.0, -9.8125)
-    >>> bool(np.isclose(tau, (2.0 / 9.8125) ** 0.5, rtol=4e-16))
+    >>> bool(np.isclose(tau, (2.0 / 9.8125) ** 0.5, rtol=EPS))
     True
     >>> plane_contact_time(1.0, -2.0, 0.0), plane_contact_time(1.0, 2.0, 0.0)
     (0.5, inf)
