@@ -713,6 +713,18 @@ def broken_links(root: Path) -> list[str]:
 DOCS = Path(__file__).resolve().parents[2] / "docs"
 
 
+#: the modules the ``docs`` extra installs, all needed by the API reference's build
+DOCS_EXTRA = ("sphinx", "numpydoc", "myst_parser")
+
+
+def docs_extra_missing() -> list[str]:
+    """The modules of the ``docs`` extra that are not installed (Sphinx alone can come in
+    with another package, numpydoc's, so each is looked for)."""
+    import importlib.util
+
+    return [m for m in DOCS_EXTRA if not importlib.util.find_spec(m)]
+
+
 def build_api(out: Path, docs: Path = DOCS) -> None:
     """Build the API reference (Sphinx, ``docs/conf.py``) into ``out``, warnings as errors
     and every cross-reference to bodycheck's own names resolved.
@@ -721,11 +733,9 @@ def build_api(out: Path, docs: Path = DOCS) -> None:
     no sources to build from), when the ``docs`` extra is not installed (naming it), or
     when Sphinx fails, with its warnings (page and target).
     """
-    import importlib.util
-
     if not (docs / "conf.py").is_file():
         raise SiteError(f"the API reference is built from a source checkout: no {docs / 'conf.py'}")
-    missing = [m for m in ("sphinx", "numpydoc", "myst_parser") if not importlib.util.find_spec(m)]
+    missing = docs_extra_missing()
     if missing:
         raise SiteError(
             f"the API reference needs {', '.join(missing)}, not installed: "
