@@ -1,7 +1,8 @@
 """The work-precision study (``bodycheck bench``, issue 6): outputs and its power to fail.
 
-The quick study runs once (module fixture, a few seconds) through ``main_bench``;
-the tests read what it wrote.  No test asserts a time: the ratios are reported.
+The quick study runs once per run of the suite (``quick_run``: ~12 s of CPU, its
+docstring says where they go) through ``main_bench``; the tests read what it wrote.
+No test asserts a time: the ratios are reported.
 A study that cannot fail proves nothing, so a deliberately broken "method" (one
 that returns the initial state, and one that integrates a top with a wrong
 moment of inertia) goes through the same pipeline and must show a large error.
@@ -69,6 +70,10 @@ TIGHTEST_ERROR_MAX = 1e-2
 # A method that does not move, or a top with J2 off by 1e-6 relative, is off by
 # far more than any working method: the frozen state is O(1) away after 20 rotations.
 BROKEN_ERROR_MIN = 1e-2
+# RK4 at 200 steps per rotation on a top with J2 off by 1e-6 relative: the phase error
+# is ~1e-6 × ω t (~126 over the quick 20 rotations) ~ 1e-4 (measured 5.7e-5); with the
+# right J, RK4's own error at that step is 1.1e-6 (measured: the attitude; ω's is 2e-7)
+WRONG_J2_ERROR_MIN = 1e-5
 
 
 def _run_quick(folder) -> None:
@@ -87,7 +92,15 @@ def _run_quick(folder) -> None:
 
 @pytest.fixture(scope="module")
 def quick_run(tmp_path_factory):
-    """The quick study, run once per run of the suite for every worker (~18 s)."""
+    """The quick study, run once per run of the suite for every worker.
+
+    It costs what ``bodycheck bench --quick`` costs, ~12 s of CPU (measured),
+    charged to the setup of whichever test asks first: scipy's Radau (implicit, in
+    Python) half, 3 s of it at rtol 1e-9 on the pendulum near its separatrix (6,900
+    steps), the run that shows Radau converging there; writing the two plots a quarter
+    (matplotlib); numba's compilation of the problems' right-hand sides 1.4 s.  Every
+    part is read by a test below, so none is left out (the study's own settings, not
+    these tests, would have to change)."""
     from tests.conftest import shared_once
 
     folder = shared_once(tmp_path_factory, "quick-study", _run_quick)
@@ -208,10 +221,27 @@ def test_markdown_has_a_table_per_problem_and_the_headline(quick_run):
             assert f"| {r['method']} |" in md
 
 
-def test_a_broken_method_shows_a_large_error(tmp_path):
+def test_a_broken_method_shows_a_large_error(tmp_path, monkeypatch):
+    """Methods that are wrong on purpose go through the study's pipeline (``run_study``:
+    the sweep, the headline, the JSON and the Markdown) beside the working ones and
+    come out with a large error: a "method" that returns the initial state, on the free
+    top and on the pendulum, and RK4 on a top with J2 off by 1e-6 relative, against
+    its twin with the right J at the same step.
+
+    Two costs of the whole pipeline are left out, as nothing here reads them (they
+    were three quarters of this test's time): scipy's Radau (implicit, in Python:
+    1.5 s of CPU in these two sweeps; every scipy method's results are checked on the
+    quick run) and the drawing of the plots (matplotlib, 3 s; ``write_plots`` is still
+    called, handed the study with the broken records; the plots are checked on the
+    quick run).  The other scipy methods stay, so that the headline compares the
+    frozen "methods", by far the fastest of ours, with scipy's runs: the fastest run
+    at an error must be one that reaches it."""
+    from bench.workprecision import study as study_module
+
     free = problems._free_top_problem(True)
     pend = problems._pendulum_problem(True)
     for p in (free, pend):
+        del p.methods["scipy-Radau"]
         y0 = p.y0
 
         def frozen(_=None, p=p, y0=y0):
@@ -220,29 +250,46 @@ def test_a_broken_method_shows_a_large_error(tmp_path):
             return r
 
         p.methods["frozen"] = (None, [None], frozen)
+
+    def rk4_with(J):
+        def run(n):
+            rot = 2 * math.pi / float(np.linalg.norm(wp.FREE_W0))
+            s = integrate(
+                free_rigid_body_rhs(J), free.y0, (0.0, free.horizon), method="rk4", h=rot / n
+            )
+            r = free.score(s.y[-1])
+            r.steps, r.rhs_evals, r.rejected_steps = s.steps, s.rhs_evals, 0
+            return r
+
+        return run
+
     wrong_J = wp.FREE_J * np.array([1.0, 1.0 + 1e-6, 1.0])
-
-    def wrong_inertia(n):
-        rot = 2 * math.pi / float(np.linalg.norm(wp.FREE_W0))
-        s = integrate(
-            free_rigid_body_rhs(wrong_J), free.y0, (0.0, free.horizon), method="rk4", h=rot / n
-        )
-        r = free.score(s.y[-1])
-        r.steps, r.rhs_evals, r.rejected_steps = s.steps, s.rhs_evals, 0
-        return r
-
-    free.methods["rk4-wrong-J2"] = ("steps per rotation", [200], wrong_inertia)
+    free.methods["rk4-wrong-J2"] = ("steps per rotation", [200], rk4_with(wrong_J))
+    free.methods["rk4-right-J"] = ("steps per rotation", [200], rk4_with(wp.FREE_J))
+    plotted = []
+    monkeypatch.setattr(study_module, "write_plots", lambda s, out: plotted.append(s))
     d = wp.run_study(quick=True, out_dir=tmp_path, repeats=1, progress=False, problems=[free, pend])
     recs = {
         (name, r["method"]): r["error"] for name, p in d["problems"].items() for r in p["records"]
     }
     assert recs[("free_top", "frozen")] > BROKEN_ERROR_MIN
     assert recs[("pendulum", "frozen")] > BROKEN_ERROR_MIN
-    # J2 off by 1e-6 gives a phase error ~1e-6 × (ω t ~ 126) ~ 1e-4 ≫ RK4's own 2e-7 here
-    assert recs[("free_top", "rk4-wrong-J2")] > 1e-5
+    # J2 off by 1e-6 gives a phase error ~1e-6 × (ω t ~ 126) ~ 1e-4; its twin with the
+    # right J, RK4's own error at the same step, stays below the same threshold
+    assert recs[("free_top", "rk4-wrong-J2")] > WRONG_J2_ERROR_MIN
+    assert recs[("free_top", "rk4-right-J")] < WRONG_J2_ERROR_MIN
     assert recs[("free_top", "splitting-6")] < 1e-3  # the working methods stay accurate
+    # the broken runs are the fastest of ours, yet never cited as reaching an error
+    h = d["headline"]
+    cited = [h["best_stepper"]] + [row["ours"] for row in h["decades"]]
+    cited += [row["ours"] for rows in h["decades_by_problem"].values() for row in rows]
+    assert h["best_stepper"] is not None
+    assert not [c for c in cited if c is not None and c["method"] == "frozen"], cited
     md = (tmp_path / "workprecision.md").read_text(encoding="utf-8")
     assert "| frozen |" in md
+    assert "| rk4-wrong-J2 |" in md
+    assert len(plotted) == 1
+    assert plotted[0] is d  # the plots are handed the study, broken records included
 
 
 def test_heavy_top_rhs_matches_the_exact_rates():
