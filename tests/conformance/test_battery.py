@@ -223,12 +223,23 @@ def test_active_attitudes_fail_every_tilted_scenario_on_the_attitude():
             assert "violates threshold" in r[name].message
 
 
+#: the scenarios the gravity test reads: two without gravity, two with it
+GRAVITY_FREE, WITH_GRAVITY = ["free_top_axis1", "free_top_axis3"], ["parabola", "bouncing_ball"]
+
+
 def test_gravity_sign_error_fails_the_scenarios_with_gravity_only(toy):
-    right = run_battery(toy, thresholds=TOY_THRESHOLDS)
-    wrong = run_battery(gravity_sign_error(), thresholds=TOY_THRESHOLDS)
-    for name in ("free_top_axis1", "free_top_axis3"):
+    """Gravity flipped leaves the gravity-free free tops passing, as the right toy does,
+    and fails the parabola and the bounce on the position; the right toy passes the
+    parabola.  Each battery runs only the scenarios read here (the right toy's bounce,
+    the near-separatrix top and the bounce to rest, which the toy fails at these loose
+    bounds whatever gravity's sign, were run and never read: three fifths of its time)."""
+    right = run_battery(toy, scenarios=[*GRAVITY_FREE, "parabola"], thresholds=TOY_THRESHOLDS)
+    wrong = run_battery(
+        gravity_sign_error(), scenarios=GRAVITY_FREE + WITH_GRAVITY, thresholds=TOY_THRESHOLDS
+    )
+    for name in GRAVITY_FREE:
         assert right[name].status == wrong[name].status == "pass"
-    for name in ("parabola", "bouncing_ball"):
+    for name in WITH_GRAVITY:
         assert wrong[name].status == "fail"
         pos = wrong[name].figure("position")
         assert pos.value > 1.0

@@ -13,7 +13,7 @@ from mechanics.conformance.adapters import ExactAdapter
 from mechanics.conformance.battery import Figure, Report, Run, ScenarioResult
 from mechanics.conformance.compare import Comparison, compare, engine_adapters
 
-from .toys import gravity_sign_error
+from .toys import Crashes, gravity_sign_error
 
 
 def test_one_row_per_scenario_and_adapter_with_the_worst_figures() -> None:
@@ -47,7 +47,29 @@ def test_every_engine_variant_or_its_missing_extra_is_listed() -> None:
         assert engine in families  # each variant, or once with the extra to install
 
 
-def test_conform_all_writes_the_table_the_plot_and_the_json(capsys, tmp_path) -> None:
+def test_conform_all_writes_the_table_the_plot_and_the_json(capsys, tmp_path, monkeypatch) -> None:
+    """``conform all`` prints the table and writes it, the grid plot and the JSON, with
+    exit code 0 while the references pass, whatever the engines do.
+
+    The adapters are one of each kind of row the writers handle: a reference that passes
+    (the closed forms), an engine that fails, one that raises (its reason under "Not
+    run:"), one not installed.  The installed engines (20 variants: their imports,
+    Siconos's interpreter per run, three timings of each finest run) and the integrated
+    engine (its compiled kernels' first load) take 6 to 24 s, and no assertion reads
+    their rows (an engine that raises is a row like "Mine"'s): the engines' adapters are
+    checked against exact motions in their own tests (test_engines.py, test_siconos.py,
+    test_dart.py), the integrated engine's battery at the exact profile in
+    test_thresholds.py, and the list ``conform all`` takes by
+    test_every_engine_variant_or_its_missing_extra_is_listed."""
+    import mechanics.conformance.compare as cmp
+
+    adapters = [
+        ("reference", ExactAdapter()),
+        ("Toy", gravity_sign_error()),
+        ("Mine", Crashes(["parabola"])),
+        ("DART", "pip install 'bodycheck[dart]'"),
+    ]
+    monkeypatch.setattr(cmp, "engine_adapters", lambda: adapters, raising=True)
     md, svg, js = tmp_path / "t.md", tmp_path / "t.svg", tmp_path / "t.json"
     files = ["--markdown", str(md), "--plot", str(svg), "--json", str(js)]
     code = main(["conform", "all", "--scenario", "parabola", *files])
@@ -56,10 +78,17 @@ def test_conform_all_writes_the_table_the_plot_and_the_json(capsys, tmp_path) ->
     assert md.read_text(encoding="utf-8").endswith(out)
     assert md.read_text(encoding="utf-8").startswith("# The conformance battery")
     assert "exact (closed forms)" in out
+    assert "- DART: pip install 'bodycheck[dart]'" in out
+    assert "- crashes raised an error in parabola: run raised RuntimeError: boom in parabola" in out
     assert svg.read_text(encoding="utf-8").lstrip().startswith(("<?xml", "<svg"))
-    assert {r["scenario"] for r in json.loads(js.read_text(encoding="utf-8"))["rows"]} == {
-        "parabola"
-    }
+    data = json.loads(js.read_text(encoding="utf-8"))
+    assert {r["scenario"] for r in data["rows"]} == {"parabola"}
+    assert [(r["family"], r["status"]) for r in data["rows"]] == [
+        ("reference", "pass"),
+        ("Toy", "fail"),
+        ("Mine", "error"),
+    ]
+    assert data["missing"] == [["DART", "pip install 'bodycheck[dart]'"]]
 
 
 def test_conform_all_fails_when_a_reference_fails(capsys, monkeypatch) -> None:

@@ -77,10 +77,31 @@ def planted_toy(bug: str | None = None):
     return ns["SemiImplicitEuler"]()
 
 
+#: [a]× row by row is a @ SKEW: the coefficients of a₀, a₁, a₂ in
+#: (0, −a₂, a₁, a₂, 0, −a₀, −a₁, a₀, 0)
+SKEW = np.array(
+    [
+        [0.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0],
+        [0.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0, 0.0, 0.0],
+        [0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    ]
+)
+
+
+def _skew(a):
+    """[a]× of each row of ``a`` (shape (n, 3)): shape (n, 3, 3), [a]× b = a × b."""
+    return (a @ SKEW).reshape(-1, 3, 3)
+
+
 class RK4:
     """Classical Runge-Kutta on free bodies (no contacts, joints or thrust): x, v, the
     nine entries of R (Ṙ = −[ω]× R, passive) and ω (Euler's equations 4.47); R is
-    projected on SO(3) only where sampled.  Order 4."""
+    projected on SO(3) only where sampled.  Order 4.
+
+    The state is one array per step, shape (n, 18): x, v, R row by row, ω; the cross
+    products are products with [·]× (:data:`SKEW`), so a stage is a few array
+    operations (``np.cross``'s set-up costs ten times its arithmetic on one body, and the
+    battery takes ~6,000 steps per free top); R is projected once per run."""
 
     name = "toy RK4"
     takes_step = True
@@ -93,33 +114,40 @@ class RK4:
     def run(self, scenario, step):
         b = scenario.bodies
         J = np.array([x.inertia for x in b])
-        g = np.array(scenario.gravity)
-        y = [
-            np.array([x.position for x in b]),
-            np.array([x.velocity for x in b]),
-            np.array([x.R_A_O for x in b]),
-            np.array([x.omega for x in b]),
-        ]
+        g = np.array(scenario.gravity, dtype=float)
+        y = np.concatenate(
+            [
+                np.array([x.position for x in b], dtype=float),
+                np.array([x.velocity for x in b], dtype=float),
+                np.array([x.R_A_O for x in b], dtype=float).reshape(len(b), 9),
+                np.array([x.omega for x in b], dtype=float),
+            ],
+            axis=1,
+        )
 
         def f(s):
-            _x, v, R, w = s
-            W = np.zeros((len(b), 3, 3))
-            W[:, 0, 1], W[:, 0, 2], W[:, 1, 2] = -w[:, 2], w[:, 1], -w[:, 0]
-            W = W - np.swapaxes(W, 1, 2)
-            return [v, np.broadcast_to(g, v.shape), -W @ R, np.cross(J * w, w) / J]
+            R, w = s[:, 6:15].reshape(-1, 3, 3), s[:, 15:18]
+            d = np.empty_like(s)
+            d[:, 0:3] = s[:, 3:6]
+            d[:, 3:6] = g
+            d[:, 6:15] = (-_skew(w) @ R).reshape(-1, 9)
+            d[:, 15:18] = (_skew(J * w) @ w[:, :, None])[:, :, 0] / J  # (J ω) × ω / J
+            return d
 
         def add(s, k, c):
-            return [a + c * d for a, d in zip(s, k, strict=True)]
+            return s + c * k
 
         out, n = [], 0
         for t in scenario.sample_times:
             while n < round(t / step):
                 y = self._step(f, add, y, step)
                 n += 1
-            out.append([a.copy() for a in y])
-        x, v, R, w = (np.array([o[i] for o in out]) for i in range(4))
-        R = np.array([[nearest_rotation(M) for M in row] for row in R])
-        return Trajectory(np.array(scenario.sample_times), x, v, R, w)
+            out.append(y)
+        Y = np.array(out)  # (m, n, 18)
+        R = nearest_rotation(Y[..., 6:15].reshape(*Y.shape[:2], 3, 3))
+        return Trajectory(
+            np.array(scenario.sample_times), Y[..., 0:3], Y[..., 3:6], R, Y[..., 15:18]
+        )
 
     @staticmethod
     def _step(f, add, y, h):
@@ -127,10 +155,7 @@ class RK4:
         k2 = f(add(y, k1, h / 2))
         k3 = f(add(y, k2, h / 2))
         k4 = f(add(y, k3, h))
-        return [
-            a + h / 6 * (p + 2 * q + 2 * r + s)
-            for a, p, q, r, s in zip(y, k1, k2, k3, k4, strict=True)
-        ]
+        return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
 
 
 class Midpoint(RK4):
