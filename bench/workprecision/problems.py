@@ -7,6 +7,7 @@ Part of :mod:`bench.workprecision` (its docstring states the conventions).
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -63,11 +64,16 @@ class Problem:
     score: Callable[..., Run] | None = None
 
 
+@functools.cache
 def compiled(f):
     """``f`` compiled by numba (the ``[fast]`` extra), so that :func:`integrate` runs it on
     its compiled path, or ``f`` itself without numba (integrate's pure-numpy reference path
     then runs it, as any Python function: the study's "ours" are then that path's).  scipy
-    gets the Python ``f``: it calls its right-hand side from Python either way."""
+    gets the Python ``f``: it calls its right-hand side from Python either way.
+
+    One numba function per ``f``, kept: the pendulum's right-hand side serves two
+    problems (the pendulum and the impact), and numba compiles each new function object
+    afresh at its first call (~1.1 s measured), however often the problems are built."""
     try:
         from numba import njit
     except ImportError:
