@@ -10,7 +10,7 @@ MODULE is a dotted module (importable from the current directory too) or a path 
 arguments), a factory (called without arguments) or an adapter instance.  Resolved with
 importlib and getattr, never eval.  ``exact`` and ``engine`` name the reference adapters
 (the closed forms; the project's integrated scene engine).  ``all`` runs the references
-and every variant of MuJoCo, PyBullet and Drake that is installed
+and every variant of MuJoCo, PyBullet, Drake, Siconos and DART that is installed
 (:mod:`mechanics.conformance.compare`) into one table, scenario by scenario; its exit
 code is 1 only when a reference fails (an engine failing a scenario is what the table
 reports).

@@ -540,7 +540,12 @@ def _run_one(adapter, s: Scenario, th: list[Mapping], repeats: int = 1) -> Scena
     last = res.runs[-1]
     for _ in range(repeats - 1):  # the finest run again, for its time only
         t0 = time.perf_counter()
-        adapter.run(s, last.step)
+        try:
+            adapter.run(s, last.step)
+        except Exception as exc:  # as the first run's: the scenario fails, not the battery
+            at = "" if last.step is None else f" at step {last.step:g} s"
+            res.message = f"run{at}, repeated for its time, raised {_describe_exc(exc)}"
+            return res
         res.runs[-1] = Run(
             last.step, min(res.runs[-1].wall_time, time.perf_counter() - t0), last.error
         )

@@ -348,6 +348,32 @@ def test_repeats_time_the_finest_run_again_and_keep_the_least_time(toy, monkeypa
     assert r["parabola"].wall_time == 3.0
 
 
+def test_a_run_that_raises_only_when_repeated_fails_its_scenario_not_the_battery(toy):
+    """The finest run is run again for its time (``repeats``): an adapter that raises
+    there (a resource freed after the first run, say) fails that scenario with the
+    reason, as a first run that raises does, and the other scenarios still run and are
+    judged (it escaped ``run_battery`` and ended ``conform all``)."""
+    finest = get_scenario("parabola").steps[-1]
+
+    class SecondTimeFails(type(toy)):
+        seen = 0
+
+        def run(self, scenario, step):
+            if scenario.name == "parabola" and step == finest:
+                self.seen += 1
+                if self.seen == 2:
+                    raise RuntimeError("closed")
+            return super().run(scenario, step)
+
+    r = run_battery(SecondTimeFails(), scenarios=["parabola", "free_top_axis1"], repeats=3)
+    assert r["parabola"].status == "error"
+    assert r["parabola"].message == (
+        f"run at step {finest:g} s, repeated for its time, raised RuntimeError: closed"
+    )
+    assert r["free_top_axis1"].runs
+    assert r["free_top_axis1"].status != "error"
+
+
 @pytest.mark.parametrize("bad", [0, -1, 1.5, True, "3", None])
 def test_repeats_that_are_not_a_count_are_refused_naming_them(toy, bad):
     with pytest.raises(ConformanceError, match=f"repeats must be an int >= 1 .*; got {bad!r}"):
