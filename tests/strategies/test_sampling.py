@@ -8,7 +8,7 @@ import pytest
 from hypothesis import strategies as st
 
 from tests.strategies import sampling
-from tests.strategies.sampling import found, never, sample, shared
+from tests.strategies.sampling import drawn_from, found, never, sample, shared
 
 
 def test_never_names_a_draw_that_satisfies_the_predicate() -> None:
@@ -67,3 +67,15 @@ def test_a_sample_is_the_same_however_it_was_grown(monkeypatch) -> None:
     sample(a, 150)  # grown in steps: 150, then 270 more
     grown = sample(a, 420)
     assert sample(b, 420) == grown  # grown at once
+
+
+def test_drawn_from_picks_among_the_first_draws_of_the_shared_sample() -> None:
+    """A part given as ``drawn_from(s)`` takes only s's own first draws, read from its
+    sample (not drawn again), and reaches many of them."""
+    s = st.integers(-(2**62), 2**62).map(int)
+    first = sample(s, 100)
+    picked = sample(drawn_from(s), 300)
+    assert set(picked) <= set(first)
+    assert len(set(picked)) >= 50
+    assert sample(s, 100) == first
+    assert set(sample(drawn_from(s, 20), 200)) <= set(first[:20])

@@ -25,7 +25,7 @@ from hypothesis.errors import InvalidArgument, NoSuchExample
 from mechanics import strategies as ms
 from mechanics._floats import EPS
 from mechanics.strategies import _common, batching, impact, inertia, particles
-from tests.strategies.sampling import found, never, shared
+from tests.strategies.sampling import drawn_from, found, never, shared
 
 #: Draws for a search that must find (or must not find) a value: regimes are branches
 #: among at most eight, so every branch is drawn dozens of times in 1000 draws.
@@ -61,6 +61,23 @@ def _never(strategy, predicate) -> None:
 
 def _found(strategy, predicate, budget=FIND_SETTINGS):
     return found(strategy, predicate, budget.max_examples)
+
+
+def _tensors():
+    """Inertia tensors for a rigid body whose mass or position is what a test asks
+    about: picked among the first draws of the default :func:`ms.inertia_tensors`
+    (``drawn_from``; the shared sample the regime tests of ``inertia_tensors`` read).
+    ``rigid_bodies`` draws its mass first and from its own strategy, and J_G is the
+    drawn tensor itself, so the masses drawn are those of the default tensors; a tensor
+    costs 2 of the ~4 ms a body takes to draw (hypothesis' rotation and moments), one
+    choice when picked."""
+    return drawn_from(ms.inertia_tensors())
+
+
+def _impact_tensors():
+    """:func:`_tensors` for ``impact_bodies``: picked among the default
+    :func:`ms.impact_inertia_tensors`' first draws (J_G = m J, the mass drawn apart)."""
+    return drawn_from(ms.impact_inertia_tensors())
 
 
 # --------------------------------------------------------- numeric arguments
@@ -327,7 +344,12 @@ def test_each_strategy_records_exactly_its_documented_regimes_as_events(
             lambda J: J[2],
             id="moments",
         ),
-        pytest.param("rigid_bodies", {"min_mass": 5.0, "max_mass": 5.0}, lambda b: b.m, id="rb"),
+        pytest.param(
+            "rigid_bodies",
+            {"min_mass": 5.0, "max_mass": 5.0, "tensors": _tensors},
+            lambda b: b.m,
+            id="rb",
+        ),
         pytest.param("masses", {"min_value": 5.0, "max_value": 5.0}, lambda m: m.max(), id="m"),
         pytest.param(
             "particle_systems", {"min_mass": 5.0, "max_mass": 5.0}, lambda s: s.m.max(), id="ps"
@@ -335,6 +357,11 @@ def test_each_strategy_records_exactly_its_documented_regimes_as_events(
     ],
 )
 def test_equal_lower_and_upper_bounds_are_accepted_and_drawn(name, kwargs, value_of):
+    """Every draw is at the one bound.  A rigid body's tensor, which its mass never
+    depends on, is picked among drawn ones (:func:`_tensors`, given as a function so that
+    it is drawn when the test runs): the masses are drawn as with the default tensors,
+    at under half the cost."""
+    kwargs = {k: v() if callable(v) else v for k, v in kwargs.items()}
     strategy = _factory(name)(**kwargs)
     _never(strategy, lambda x: value_of(x) != 5.0)
 
@@ -410,7 +437,11 @@ def test_direct_velocities_default_to_speeds_up_to_1e6():
 
 
 def test_impact_bodies_default_to_masses_1e_minus_6_through_1e6_within_ten():
-    strategy = shared(ms.impact_bodies)
+    """The masses, positions and speeds of the defaults: their bounds are reached and
+    never passed.  The tensor, not asked about (J_G is the mass times it, the mass
+    drawn apart), is picked among drawn ones (:func:`_impact_tensors`); every argument
+    this test is about keeps its default."""
+    strategy = ms.impact_bodies(tensors=_impact_tensors())
     _found(strategy, lambda b: b.m <= 1e-5)
     _found(strategy, lambda b: b.m >= 1e5)
     _found(strategy, lambda b: np.abs(b.r_G).max() >= 9.0)
@@ -426,7 +457,16 @@ def test_impact_bodies_default_to_masses_1e_minus_6_through_1e6_within_ten():
 
 
 def test_impact_bodies_keep_positions_and_speeds_within_their_bounds():
-    strategy = ms.impact_bodies(max_position=0.5, max_speed=0.25)
+    """r_G, v_G and ω stay within the bounds given, and reach them.  They are drawn
+    apart from the mass and the tensor (``impact_bodies`` is ``st.builds`` of the five),
+    which are picked among draws of their default strategies (:func:`_impact_tensors`):
+    the same positions and speeds, at half the cost of drawing a whole body."""
+    strategy = ms.impact_bodies(
+        masses_=drawn_from(ms.impact_masses(min_value=1e-6, max_value=1e6)),
+        tensors=_impact_tensors(),
+        max_position=0.5,
+        max_speed=0.25,
+    )
     _found(strategy, lambda b: np.abs(b.r_G).max() >= 0.45)
     _found(strategy, lambda b: np.abs(b.v_G).max() >= 0.2)
     _never(
@@ -445,7 +485,9 @@ def test_impact_bodies_take_the_mass_and_tensor_strategies_given():
 
 
 def test_rigid_bodies_default_to_masses_1e_minus_3_through_1e3():
-    strategy = shared(ms.rigid_bodies)
+    """The default mass bounds are reached and never passed; the tensor, which the mass
+    never depends on, is picked among drawn ones (:func:`_tensors`)."""
+    strategy = ms.rigid_bodies(tensors=_tensors())
     _found(strategy, lambda b: b.m <= 2e-3)
     _found(strategy, lambda b: b.m >= 5e2)
     _never(strategy, lambda b: not 1e-3 <= b.m <= 1e3)
