@@ -149,10 +149,10 @@ def _splitting_outputs(order: int) -> tuple[np.ndarray, int]:
     otherwise than the reference drifts beyond the bounds (measured by planting two
     such kernels: one projecting only at the outputs, 415 and 974 eps projected; one
     resetting its compensations at each output, 27.5 eps compensated at order 4), and
-    the paths agree within 6 eps (0 compensated).
+    the paths agree within 5.1 eps (0 compensated).
 
-    Orders 6 and 8 take 9 and 27 times the sub-flows of order 4 per step (the batch
-    reference runs each in Python: 1.8 s and 4 to 5 s compensated over 1002 steps of
+    Orders 6 and 8 take 36 and 108 sub-flows a step, 3 and 9 times order 4's (the batch
+    reference runs each in Python: 1.8 s, and 4 to 5 s compensated, over 1002 steps of
     order 8), so they check their own schedules over two outputs of 103 steps (5.12 s,
     rounded up), each a full run of 64 and a short one of 39: every branch of the
     kernel's loop (the opening, merged and closing H1 half-flows of a full and of a
