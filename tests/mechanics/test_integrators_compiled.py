@@ -141,14 +141,43 @@ def test_compiled_dop853_takes_the_reference_steps(t, bodies, batch_ndim, h):
     assert _rel_diff_eps(fast.y, ref.y) <= DOP853_EPS
 
 
+def _splitting_outputs(order: int) -> tuple[np.ndarray, int]:
+    """The output times of the splitting's comparisons at h = 0.05, and their steps.
+
+    Orders 2 and 4: six outputs of 167 steps (three runs each, of 64, 64 and 39 steps
+    between projections), 1002 steps.  Over that many steps a kernel that rounds
+    otherwise than the reference drifts beyond the bounds (measured by planting two
+    such kernels: one projecting only at the outputs, 415 and 974 eps projected; one
+    resetting its compensations at each output, 27.5 eps compensated at order 4), and
+    the paths agree within 5.1 eps (0 compensated).
+
+    Orders 6 and 8 take 36 and 108 sub-flows a step, 3 and 9 times order 4's (the batch
+    reference runs each in Python: 1.8 s, and 4 to 5 s compensated, over 1002 steps of
+    order 8), so they check their own schedules over two outputs of 103 steps (5.12 s,
+    rounded up), each a full run of 64 and a short one of 39: every branch of the
+    kernel's loop (the opening, merged and closing H1 half-flows of a full and of a
+    short run, the projection after each, the compensations carried across runs and
+    outputs, an output starting from the one before).  A wrong flow moves the state by
+    the method's error, not by roundings (a planted wrong closing flow of the short
+    run: 4e13 eps and more here, at every order); the two planted rounding kernels
+    above drift by 64 and 5 eps over these 206 steps, under the bounds: the long runs
+    of orders 2 and 4 are their test (at orders 6 and 8 they were caught as well)."""
+    if order <= 4:
+        return np.linspace(0.0, 50.0, 7), 6 * 167
+    return np.linspace(0.0, 10.24, 3), 2 * 103
+
+
 @pytest.mark.parametrize("order", integrators.SPLITTING_ORDERS)
 @pytest.mark.parametrize("bodies", [0, 7])
 def test_compiled_splitting_is_the_reference_within_eps(order, bodies):
+    """The kernel's steps, sub-flow count and states are the reference's (projected
+    runs), for one body and a batch of 7, over :func:`_splitting_outputs`."""
     L0 = J_TOP * W_TOP if bodies == 0 else _random_bodies(bodies)
-    t = np.linspace(0.0, 50.0, 7)
+    t, steps = _splitting_outputs(order)
     fast = free_rigid_body_splitting(J_TOP, L0, np.eye(3), t, 0.05, order=order)
     ref = free_rigid_body_splitting(J_TOP, L0, np.eye(3), t, 0.05, order=order, compiled=False)
     assert (fast.steps, fast.rhs_evals, fast.method) == (ref.steps, ref.rhs_evals, ref.method)
+    assert fast.steps == steps
     assert _rel_diff_eps(fast.y, ref.y) <= SPLITTING_EPS
 
 
@@ -160,12 +189,14 @@ COMPENSATED_EPS = 16
 @pytest.mark.parametrize("order", integrators.SPLITTING_ORDERS)
 @pytest.mark.parametrize("bodies", [0, 7])
 def test_compiled_compensated_splitting_is_the_reference_within_eps(order, bodies):
+    """As the projected runs above, compensated, over :func:`_splitting_outputs`."""
     L0 = J_TOP * W_TOP if bodies == 0 else _random_bodies(bodies)
-    t = np.linspace(0.0, 50.0, 7)
+    t, steps = _splitting_outputs(order)
     kw = {"order": order, "compensated": True}
     fast = free_rigid_body_splitting(J_TOP, L0, np.eye(3), t, 0.05, **kw)
     ref = free_rigid_body_splitting(J_TOP, L0, np.eye(3), t, 0.05, **kw, compiled=False)
     assert (fast.steps, fast.rhs_evals, fast.method) == (ref.steps, ref.rhs_evals, ref.method)
+    assert fast.steps == steps
     assert _rel_diff_eps(fast.y, ref.y) <= COMPENSATED_EPS
 
 
