@@ -107,6 +107,21 @@ def _usage(message: str) -> UsageError:
     return UsageError(message)
 
 
+def _check_output(flag: str, value: str | None) -> None:
+    """An output file's path must name a file in a folder that exists (the battery runs
+    for seconds to minutes before the file is written, so a path that cannot be written
+    is refused first, naming the flag and the path); ``-`` (stdout) passes."""
+    if not value or value == "-":
+        return
+    path = Path(value)
+    if path.is_dir():
+        raise _usage(f"--{flag} {value!r}: is a folder; give a file's path")
+    parent = path.parent
+    if not parent.is_dir():
+        what = "is not a folder" if parent.exists() else "does not exist"
+        raise _usage(f"--{flag} {value!r}: its folder {str(parent)!r} {what}")
+
+
 def parse_thresholds(items: list[str]) -> dict:
     """NAME=VALUE strings to a dict (VALUE a float or ``none``); UsageError otherwise."""
     out: dict = {}
@@ -284,6 +299,8 @@ def cmd_conform(args) -> int:
         resolve_thresholds,
     )
 
+    for flag in ("json", "markdown", "plot"):  # said before the battery runs, not after
+        _check_output(flag, getattr(args, flag, None))
     if args.plot and Path(args.plot).suffix.lower() not in PLOT_SUFFIXES:
         raise _usage(f"--plot {args.plot!r}: the file must end in .svg or .png")
     if args.plot:  # said before the battery runs, not after
