@@ -407,6 +407,22 @@ def test_a_report_without_a_runs_copy_keeps_the_row_the_table_had(tmp_path):
     }
 
 
+def test_a_run_not_made_yet_keeps_its_own_registration_beside_another_of_the_module():
+    """A module in two runs not made yet (a folder's sample, then its own full run) had
+    both rows under one key: the later run's registration was written into the
+    earlier run's row.  Each run's row now names its own."""
+    run = _run_module()
+    waiting = "| `w.py` | not run yet | | | | | | `late` |"
+    done = "| `m.py` | 100 of 784 (seed 3501) | 89 | 0 | 11 (0 accepted) | 89.0 % | x | `abc` |"
+    previous = {("w.py", "any"): waiting, ("m.py", 3501): done}
+    assert run.kept_row(previous, "w.py", 3505, "`early`") == (
+        "| `w.py` | not run yet | | | | | | `early` |"
+    )
+    assert run.kept_row(previous, "w.py", None, "`late`") == waiting
+    assert run.kept_row(previous, "m.py", 3501, "`other`") == done
+    assert run.kept_row(previous, "n.py", None, "`x`") == "| `n.py` | not run yet | | | | | | `x` |"
+
+
 def test_a_copy_is_left_alone_by_a_report_and_forgets_only_what_a_change_invalidates(
     tmp_path, monkeypatch
 ):

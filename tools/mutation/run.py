@@ -617,9 +617,9 @@ def run_plan(args) -> int:
             # no copy of this run here (a fresh checkout): the row the table had stays
             reg = f"`{commit[:9]}`" if commit else "uncommitted"
             for m in chosen:
-                kept = previous.get((m, run.seed)) or previous.get((m, "any"))
-                table.append(kept or f"| `{m}` | not run yet | | | | | | {reg} |")
-                print(f"{m}: {'no copy here, its row kept' if kept else 'not run yet'}")
+                row = kept_row(previous, m, run.seed, reg)
+                table.append(row)
+                print(f"{m}: {'not run yet' if NOT_RUN in row else 'no copy here, its row kept'}")
             continue
         args.sample, args.seed, args.names = run.sample, run.seed, None
         status, work, rc = run_modules(
@@ -675,6 +675,23 @@ def write_table(rows: list[str], paths: tuple[Path, ...] = TABLES) -> None:
         a, b = doc.index("<!-- SCORES -->\n"), doc.index("<!-- /SCORES -->")
         path.write_text(doc[: a + len("<!-- SCORES -->\n")] + body + doc[b:], encoding="utf-8")
         print(f"wrote the table of {path.relative_to(ROOT)} ({len(rows)} modules)")
+
+
+#: the cell of a row whose run is registered but not made yet
+NOT_RUN = "| not run yet |"
+
+
+def kept_row(
+    previous: dict[tuple[str, int | str | None], str], module: str, seed: int | None, reg: str
+) -> str:
+    """The row of ``module`` in a run (of ``seed``, registered by ``reg``) whose copy is not
+    here: the row the table had, or, for a run not made yet, a new such row with this
+    run's registration (a module in two runs not made yet, a folder's sample and its own
+    full run, has two such rows, which :func:`previous_rows` cannot tell apart)."""
+    kept = previous.get((module, seed)) or previous.get((module, "any"))
+    if kept is None or NOT_RUN in kept:
+        return f"| `{module}` {NOT_RUN} | | | | | {reg} |"
+    return kept
 
 
 def previous_rows(path: Path = TABLES[0]) -> dict[tuple[str, int | str | None], str]:
