@@ -7,11 +7,14 @@ Part of :mod:`mechanics.integrators` (its docstring states the conventions).
 
 from __future__ import annotations
 
+import importlib.util
 import math
+import sys
+from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import numpy.typing as npt
-from scipy.integrate._ivp import dop853_coefficients as _d853
 
 from .._validate import as_float_array
 from ..errors import NonFiniteError, ResultOverflowError, ShapeError, StepSizeError
@@ -42,6 +45,34 @@ _DOP853_EXPONENT = -1.0 / 8.0  # −1/(q + 1), q = 7 the order of the error esti
 DOP853_MAX_BETA = 0.08
 _ERR_OLD_FLOOR = 1e-4  # Hairer's DOP853: facold = max(err, 1e-4)
 
+#: scipy's module of the DOP853 tableau (Hairer's coefficients), which needs only numpy
+_SCIPY_TABLEAU = "scipy.integrate._ivp.dop853_coefficients"
+
+
+def _scipy_dop853_tableau() -> ModuleType:
+    """scipy's DOP853 tableau (:data:`_SCIPY_TABLEAU`), loaded from its file without
+    importing ``scipy.integrate``, whose package import took 0.75 s of the 0.9 s of
+    ``import mechanics.integrators`` (``python -X importtime``), paid by every process
+    that integrates, although the tableau is a few arrays.  Already imported, or in a
+    layout of scipy without that file: imported as usual."""
+    if _SCIPY_TABLEAU in sys.modules:
+        return sys.modules[_SCIPY_TABLEAU]
+    scipy_spec = importlib.util.find_spec("scipy")
+    if scipy_spec is not None and scipy_spec.origin is not None:
+        path = Path(scipy_spec.origin).parent / "integrate" / "_ivp" / "dop853_coefficients.py"
+        spec = importlib.util.spec_from_file_location("_bodycheck_scipy_dop853", path)
+        if path.is_file() and spec is not None and spec.loader is not None:
+            module = importlib.util.module_from_spec(spec)
+            try:
+                spec.loader.exec_module(module)
+            except Exception:  # a file that needs its package (another scipy): import it
+                pass
+            else:
+                return module
+    return importlib.import_module(_SCIPY_TABLEAU)
+
+
+_d853 = _scipy_dop853_tableau()
 # (scipy ships no types: the tableau's names are annotated here)
 _N_STAGES: int = _d853.N_STAGES  # 12
 _A: FloatArray = _d853.A[:_N_STAGES, :_N_STAGES]

@@ -737,3 +737,46 @@ def test_a_splitting_turn_beyond_float64_is_the_librarys_overflow_error(compiled
             free_rigid_body_splitting(
                 J, L0, np.eye(3), (0.0, 1.0), 0.1, compiled=compiled, compensated=compensated
             )
+
+
+def test_the_dop853_tableau_is_scipys_read_without_importing_scipy_integrate():
+    """``mechanics.integrators`` reads scipy's DOP853 tableau from its module's file, so
+    that importing it does not import ``scipy.integrate`` (0.75 s of its 0.9 s import):
+    a fresh interpreter has imported neither, and every array of the tableau is
+    scipy's, bit for bit."""
+    import subprocess
+    import sys
+
+    from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
+
+    from mechanics.integrators import _dop853
+
+    code = (
+        "import sys, mechanics.integrators; "
+        "print(sorted(m for m in sys.modules if m.startswith('scipy.integrate')))"
+    )
+    run = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert run.stdout.strip() == "[]"
+    for name in ("A", "B", "C", "E3", "E5", "D"):
+        assert np.array_equal(getattr(_dop853._d853, name), getattr(scipy_tableau, name)), name
+    for name in ("N_STAGES", "N_STAGES_EXTENDED", "INTERPOLATOR_POWER"):
+        assert getattr(_dop853._d853, name) == getattr(scipy_tableau, name), name
+
+
+def test_the_dop853_tableau_is_imported_as_usual_where_its_file_is_not_found(monkeypatch):
+    """Another layout of scipy (no file where it is looked for), or the module already
+    imported: the tableau comes from ``import scipy.integrate._ivp``'s module."""
+    import importlib.util
+    import sys
+
+    from scipy.integrate._ivp import dop853_coefficients as scipy_tableau
+
+    from mechanics.integrators import _dop853
+
+    assert _dop853._scipy_dop853_tableau() is scipy_tableau  # imported by now
+    monkeypatch.delitem(sys.modules, _dop853._SCIPY_TABLEAU)
+    monkeypatch.setattr(importlib.util, "find_spec", lambda name, *a: None)
+    imported = _dop853._scipy_dop853_tableau()  # imported again, as the package's own
+    assert imported.__name__ == _dop853._SCIPY_TABLEAU
+    assert sys.modules[_dop853._SCIPY_TABLEAU] is imported
+    assert np.array_equal(imported.A, scipy_tableau.A)
