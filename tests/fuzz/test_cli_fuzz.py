@@ -153,27 +153,7 @@ def _cases():
             yield pytest.param(argv, id=" ".join(argv) or cmd)
 
 
-@pytest.fixture
-def closed_forms_only(monkeypatch) -> None:
-    """``conform all`` runs the battery on the closed forms alone (and names one engine
-    as not installed), not on every installed engine.
-
-    ``conform all`` writes its --markdown file after the battery has run, so its case of
-    an unwritable file ran every engine first: 20 variants, their imports (Drake 1.5 s),
-    Siconos's interpreter per run (3.6 s), the integrated engine's kernels (2.5 s), three
-    timings of each finest run, 5 to 31 s in all, and none of it reaches the error.  The
-    error path is the same with one adapter (the table is written, or not, whatever its
-    rows); the engines' runs are their own tests' (tests/conformance/test_compare.py
-    patches the same list for the same reason)."""
-    import mechanics.conformance.compare as cmp
-    from mechanics.conformance.adapters import ExactAdapter
-
-    adapters = [("reference", ExactAdapter()), ("DART", "pip install 'bodycheck[dart]'")]
-    monkeypatch.setattr(cmp, "engine_adapters", lambda: adapters, raising=True)
-
-
 @pytest.mark.parametrize("argv", list(_cases()))
-@pytest.mark.usefixtures("closed_forms_only")
 def test_bad_command_line_is_one_line_and_exit_code_2(argv, paths, capsys):
     argv = [a.format(**paths) for a in argv]
     code = main(argv)
