@@ -72,6 +72,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
 
@@ -1469,15 +1470,31 @@ def sleeping_top_is_stable(J_1: float, L_3: float, m_g_ell: float) -> bool:
 sleeping_top_is_stable = finite_result(sleeping_top_is_stable)
 
 
-#: the smallest normal float64: a scaled moment below it has lost its precision
-_TINY = float(np.finfo(float).tiny)
-
-
 def _scaled(*xs: float) -> tuple[float, ...]:
     """xs / 2^k with the largest |x| in [1/2, 1): exact, for homogeneous formulas (the
     rates of a top depend on J'1, L3, m g ℓ only through their ratios)."""
     k = math.frexp(max(abs(x) for x in xs))[1]
     return tuple(math.ldexp(x, -k) for x in xs)
+
+
+#: the documented floor of a top's parameter against the largest (J'1, J3, m g ℓ; for
+#: the steady precession J'1, |L3|, m g ℓ): below it the ratio leaves float64's normal
+#: range, and the top would be computed on digits lost to underflow
+RATIO_FLOOR = 1e-308
+
+
+def _scale_exponent(largest: float, smallest: float) -> int:
+    """k for homogeneous formulas evaluated on xs / 2^k (exact: the rates of a top depend
+    on J'1, J3, L3, m g ℓ only through their ratios): the largest in [1/2, 1), unless the
+    smallest positive one would then fall below float64's normal range; then the
+    smallest at 2^-1022 and the largest below 8 (their ratio ≥ RATIO_FLOOR > 2^-1024)."""
+    return min(math.frexp(largest)[1], math.frexp(smallest)[1] + 1021)
+
+
+def _ratio_below_floor(x: float, largest: float) -> bool:
+    """x (> 0) below RATIO_FLOOR of ``largest``: the quotient, not a product that
+    underflows for a small ``largest``."""
+    return x / largest < RATIO_FLOOR
 
 
 _positive = as_positive_scalar
@@ -1542,19 +1559,27 @@ def steady_precession_rates(
         "m_g_ell": _positive(m_g_ell, "m_g_ell"),
         "L_3": as_float_scalar(L_3, "L_3"),
     }
-    J_1, mgl, L3 = _scaled(*given.values())
-    for name, x in (("J_1", J_1), ("m_g_ell", mgl)):
-        if x < _TINY:  # its ratio to the largest is below float64's normal range
-            largest = max(abs(v) for v in given.values())
+    largest = max(abs(v) for v in given.values())
+    for name in ("J_1", "m_g_ell"):
+        if _ratio_below_floor(given[name], largest):
             raise OutOfDomainError(
                 f"{name} = {given[name]!r} is below 1e-308 of the largest of J_1, |L_3|, "
                 f"m_g_ell ({largest!r}): the ratio underflows float64 (rescale, or treat the "
                 "top as free)"
             )
+    k = _scale_exponent(largest, min(given["J_1"], given["m_g_ell"]))
+    J_1, mgl, L3 = (math.ldexp(x, -k) for x in given.values())
     c = math.cos(as_float_scalar(theta, "theta"))
     disc = L3 * L3 - 4.0 * J_1 * mgl * c
     if disc < 0:
-        raise OutOfDomainError(f"no steady precession: L3² − 4 J'1 m g ℓ cos θ = {disc:.6g} < 0")
+        # the discriminant of the values given: 2^2k times the scaled one (exact), or,
+        # where that leaves float64, the scaled one with its power of two
+        try:
+            given_disc = math.ldexp(disc, 2 * k)
+        except OverflowError:
+            given_disc = 0.0
+        shown = f"{given_disc:.6g}" if given_disc != 0 else f"{disc:.6g} × 2^{2 * k}"
+        raise OutOfDomainError(f"no steady precession: L3² − 4 J'1 m g ℓ cos θ = {shown} < 0")
     if L3 == 0:
         r = math.sqrt(mgl / (-J_1 * c))
         return (-r, r)
@@ -1569,6 +1594,39 @@ def steady_precession_rates(
     return (slow, fast) if abs(slow) <= abs(fast) else (fast, slow)
 
 
+#: x3 = u3 − u0 above which the heavy top's quadratic factor takes p from the product of
+#: Vieta's formulas: the sum c2/β + x3 has an error ~ eps x3, the product ~ eps (|p| +
+#: |q|/x3) with |p|, |q| ≤ 4 (|x1|, |x2| ≤ 2), so beyond 8 the product is the better
+_DEFLATE_BY_PRODUCT = 8.0
+
+
+def _root_from_above(rising: Callable[[float], tuple[float, float]], lo: float, hi: float) -> float:
+    """The root in [lo, hi] of a function that rises through it (``rising(y)`` gives its
+    value and slope; ≤ 0 at lo, > 0 at hi), to its rounding: Newton's method from hi
+    (monotone there for the heavy top's convex cubic), bisecting the bracket where a
+    step leaves it; ends where the steps stop moving or the bracket is two floats, at
+    the point of least |value| seen."""
+    y, (v, d) = hi, rising(hi)
+    best, best_v = y, abs(v)
+    while True:
+        nxt = y - v / d if d > 0 else math.nan  # (NaN fails the test below: bisect)
+        if not lo < nxt < hi:
+            nxt = lo + 0.5 * (hi - lo)
+            if not lo < nxt < hi:
+                return best
+        if nxt == y:
+            return best
+        y, (v, d) = nxt, rising(nxt)
+        if abs(v) < best_v:
+            best, best_v = y, abs(v)
+        if v == 0:
+            return y
+        if v > 0:
+            hi = y
+        else:
+            lo = y
+
+
 class HeavySymmetricTop:
     """The heavy symmetric top about a fixed point (5.2.2–5.2.5), exact motion.
 
@@ -1576,7 +1634,8 @@ class HeavySymmetricTop:
     their ratios: computed from them scaled by a power of two, so s·(J'1, J3, mgℓ) moves exactly as
     (J'1, J3, mgℓ)), each at least 1e-308 of the largest (else OutOfDomainError: for mgℓ,
     gravity is negligible, a free top); θ in [0, π] (0 or π only with θ̇ = 0, the sleeping
-    top); finite rates whose squares times J'1/mgℓ fit float64 (else ResultOverflowError).
+    top); finite rates whose squares times J'1/mgℓ fit float64 (else ResultOverflowError,
+    or OutOfDomainError where the cubic's values overflow on the way to its root).
 
     Parameters
     ----------
@@ -1606,15 +1665,13 @@ class HeavySymmetricTop:
         If J_3 > 2 J_1.
     OutOfDomainError
         If one of J_1, J_3, m_g_ell is below 1e-308 of the largest, θ lies outside
-        [0, π], or the turning points of θ are not found in float64 (rates whose
-        squares overflow, or gravity negligible against the spin).
+        [0, π], or the search for the turning points of θ overflows float64 (the
+        factored cubic is inf − inf at the bracket's end: rates near 1e77 and beyond).
     GimbalLockError
         If θ = 0 or π with θ̇ ≠ 0 (the Euler angles are singular).
     ResultOverflowError
-        If a conserved quantity or an intermediate exceeds float64's range.
-    ValueError
-        Instead of ResultOverflowError where θ̇0² J'1/mgℓ exceeds float64 (scipy's
-        root bracket meets NaN; a known defect, xfailed in ``tests/mechanics/test_tops.py``).
+        If a conserved quantity or an intermediate exceeds float64's range, or the
+        largest turning point u3 does (θ̇0² J'1/mgℓ beyond float64).
     NonFiniteError
         If an input is NaN or infinite.
     ShapeError
@@ -1625,9 +1682,12 @@ class HeavySymmetricTop:
     u̇² = f(u) = (e − βu)(1 − u²) − (a − bu)², β = 2mgℓ/J'1, a = L_z/J'1,
     b = L3/J'1, e = (2E − L3²/J3)/J'1.  The cubic is written about the initial u0,
     f = β x³ + c2 x² + c1 x + θ̇0² sin²θ0 (x = u − u0), its large root u3 found
-    by bracketing, the pair u1 ≤ u0 ≤ u2 by deflation to a quadratic with
+    by Newton's method from above a bracket (monotone there, bisecting where a step
+    leaves the bracket; beyond u = 2 on f/(u − 1)², which does not overflow
+    where u3 ~ 1/mgℓ), the pair u1 ≤ u0 ≤ u2 by deflation to a quadratic with
     roots of opposite signs (no cancellation near the double root of steady
-    precession), each polished by a Newton step.  Then
+    precession; its linear coefficient by Vieta's product where u3 is large), each
+    polished by a Newton step.  Then
     u(t) = u1 + (u2 − u1) sn²(κt + w0 | m), κ = √(β(u3 − u1))/2,
     m = (u2 − u1)/(u3 − u1); ψ and φ by the third-kind integral in Jacobi's form.
 
@@ -1669,18 +1729,19 @@ class HeavySymmetricTop:
         # computation runs on them scaled by 2^-k (exact; the largest in [1/2, 1)), and
         # L3, Lz, E and the energies are scaled back by 2^k (issue 16, part 4: moments
         # from 1e-300 to 1e300 give the same θ(t), ψ(t), φ(t)).
-        self._k = math.frexp(max(self.J_1, self.J_3, self.m_g_ell))[1]
-        self._J1n, self._J3n, self._mgln = (
-            math.ldexp(x, -self._k) for x in (self.J_1, self.J_3, self.m_g_ell)
-        )
-        for name, x in (("J_1", self._J1n), ("J_3", self._J3n), ("m_g_ell", self._mgln)):
-            if x < _TINY:  # its ratio to the largest is below float64's normal range
+        largest = max(self.J_1, self.J_3, self.m_g_ell)
+        for name in ("J_1", "J_3", "m_g_ell"):
+            if _ratio_below_floor(getattr(self, name), largest):
                 raise OutOfDomainError(
                     f"{name} = {getattr(self, name)!r} is below 1e-308 of the largest of J_1, "
                     f"J_3, m_g_ell ({max(self.J_1, self.J_3, self.m_g_ell)!r}): the ratio "
                     "underflows float64 (for m_g_ell: gravity is negligible, use "
                     "FreeSymmetricTop)"
                 )
+        self._k = _scale_exponent(largest, min(self.J_1, self.J_3, self.m_g_ell))
+        self._J1n, self._J3n, self._mgln = (
+            math.ldexp(x, -self._k) for x in (self.J_1, self.J_3, self.m_g_ell)
+        )
         vals = {}
         for k, v in dict(
             theta=theta, psi=psi, phi=phi, theta_dot=theta_dot, psi_dot=psi_dot, phi_dot=phi_dot
@@ -1762,35 +1823,47 @@ class HeavySymmetricTop:
             # a = b: u = 1 is a root of f, and u3 one of h = f/(1 − u); else u3 is F's root.
             # Below u3, h > 0 and F < 0; above, the reverse
             g, sign = (h, -1.0) if vertical else (F, 1.0)
+
+            def rising(y: float) -> tuple[float, float]:
+                """±g and its slope (− below u3); beyond y = 1, F/y² (the same sign and
+                root; F ~ βy³ overflows where u3 ~ 1/β, gravity weak against the spin)."""
+                dh = ebeta - beta * y - beta * (2.0 + y) + b * b
+                if vertical:
+                    return -h(y), -dh
+                if y > 1.0:
+                    hy, ay = h(y), amb / y
+                    return -hy / y - ay * ay, -(dh - hy / y) / y + 2.0 * ay * ay / y
+                return F(y), -h(y) - y * dh
+
             hi = max(lo, 1.0)
             while sign * g(hi) <= 0:
                 hi *= 2.0
+            rates = (
+                f"theta_dot = {self.theta_dot0!r}, psi_dot = {self.psi_dot0!r}, "
+                f"phi_dot = {self.phi_dot0!r}, m_g_ell = {self.m_g_ell!r}"
+            )
+            if hi == math.inf:  # g ≤ 0 up to float64's largest: so is u3 − 1
+                raise ResultOverflowError(
+                    f"the largest turning point of cos θ exceeds float64's range ({rates}): "
+                    "a rate's square times J_1/m_g_ell is beyond ~1.8e308; rescale (choose "
+                    "units)"
+                )
             if math.isnan(g(hi)):  # the bracket's end overflows to inf − inf: no search
                 raise OutOfDomainError(
                     f"the turning points of θ are beyond float64: the search for the "
-                    f"largest root overflows at 1 − u = {hi!r} (psi_dot = {self.psi_dot0!r}, "
-                    f"phi_dot = {self.phi_dot0!r}, m_g_ell = {self.m_g_ell!r}); rescale "
-                    "(choose units) so that the rates' squares stay within float64"
+                    f"largest root overflows at 1 − u = {hi!r} ({rates}); rescale (choose "
+                    "units) so that the rates' squares stay within float64"
                 )
-            from scipy.optimize import brentq  # here: keeps `import mechanics.tops` cheap
-
-            try:
-                y3 = brentq(g, 0.0, hi, xtol=1e-300, rtol=4 * EPS, maxiter=500)
-            except RuntimeError:  # no convergence: gravity negligible against the spin
-                raise OutOfDomainError(
-                    f"the turning points of θ are not found (m_g_ell = {self.m_g_ell!r} against "
-                    f"J_1 = {self.J_1!r} and the rates): gravity is negligible here; use "
-                    "FreeSymmetricTop"
-                ) from None
-            # brentq stops within a few ulps: a Newton step on g takes y3 to its rounding
-            dh = ebeta - beta * y3 - beta * (2.0 + y3) + b * b
-            dg = dh if vertical else -h(y3) - y3 * dh
-            if dg != 0:
-                y = y3 - g(y3) / dg
-                if y >= 0 and abs(g(y)) < abs(g(y3)):
-                    y3 = y
+            y3 = _root_from_above(rising, 0.0, hi)
         x3 = s2h + y3
-        p = self._coef[1] / beta + x3
+        # the quadratic factor x² + p x + q of f/(β(x − x3)), by Vieta: p = c2/β + x3 sums
+        # terms ≈ ∓x3 to the pair's −(x1 + x2) (|x1|, |x2| ≤ 2), cancelling where x3 is
+        # large (gravity weak against the spin: u3 ~ 1e100 for mgℓ ~ 1e-100 J'1 ψ̇² lost
+        # the nutation band); there p = −(c1 + c0/x3)/(β x3) from c1 = β(q − p x3)
+        if x3 > _DEFLATE_BY_PRODUCT:
+            p = -(self._coef[2] + self._coef[3] / x3) / (beta * x3)
+        else:
+            p = self._coef[1] / beta + x3
         q = -self._coef[3] / (beta * x3)
         disc = math.sqrt(p * p - 4 * q)
         r = -0.5 * (p + math.copysign(disc, p))

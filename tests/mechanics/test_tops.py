@@ -10,6 +10,8 @@ precession and sleeping-top conditions (5.60), (5.72) against the cubic f(u).
 from __future__ import annotations
 
 import math
+import re
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -959,36 +961,53 @@ def test_a_hanging_top_without_spin_is_a_conical_pendulum_of_rate_root_mgl_over_
     assert tops.steady_precession_rates(1.0, 0.0, 4.0, math.pi) == (-2.0, 2.0)
 
 
-@pytest.mark.parametrize(("L3", "shown"), [(1.0, "-0.75"), (-1.0, "-0.75")])
-def test_no_steady_precession_is_refused_with_the_condition(L3, shown):
-    """J'1 = m g ℓ = 1, θ = 0, |L3| = 1: L3² − 4 J'1 m g ℓ cos θ = −3 < 0.  The message
-    prints the discriminant of the quadratic scaled by a power of two (here 2^-2: −0.75),
-    the same sign as the book's."""
+@pytest.mark.parametrize(
+    ("J1", "L3", "mgl", "shown"),
+    [
+        (1.0, 1.0, 1.0, "-3"),  # 1 − 4
+        (1.0, -1.0, 1.0, "-3"),
+        (2.0, 3.0, 1.5, "-3"),  # 9 − 12
+    ],
+)
+def test_no_steady_precession_is_refused_with_the_condition(J1, L3, mgl, shown):
+    """θ = 0: L3² − 4 J'1 m g ℓ cos θ < 0.  The message prints the discriminant of the
+    values given (the quadratic is solved on them scaled by a power of two, whose
+    discriminant −0.75 for the first case the message once showed: a value the user never
+    gave); where it leaves float64, the scaled one times its power of two."""
     with pytest.raises(OutOfDomainError) as info:
-        tops.steady_precession_rates(1.0, L3, 1.0, 0.0)
+        tops.steady_precession_rates(J1, L3, mgl, 0.0)
     assert str(info.value) == f"no steady precession: L3² − 4 J'1 m g ℓ cos θ = {shown} < 0"
 
 
-@pytest.mark.xfail(strict=True, reason="library bug: the message shows the scaled discriminant")
-def test_no_steady_precession_message_shows_the_discriminant_of_the_values_given():
-    """The message says 'L3² − 4 J'1 m g ℓ cos θ = …' of the arguments: for J'1 = m g ℓ =
-    L3 = 1, θ = 0 that is 1 − 4 = −3, but steady_precession_rates prints the quadratic's
-    discriminant after dividing J'1, L3, m g ℓ by 2 (−0.75): a value the user never gave."""
-    with pytest.raises(OutOfDomainError, match=r"cos θ = -3 < 0$"):
-        tops.steady_precession_rates(1.0, 1.0, 1.0, 0.0)
+def test_no_steady_precession_beyond_float64_shows_the_discriminant_by_its_power_of_two():
+    """J'1 = |L3| = m g ℓ = 1e200, θ = 0: the discriminant −3e400 is beyond float64; the
+    message gives it as a mantissa times a power of two, which (read exactly) is −3e400 to
+    the 6 digits shown."""
+    with pytest.raises(OutOfDomainError) as info:
+        tops.steady_precession_rates(1e200, 1e200, 1e200, 0.0)
+    m = re.fullmatch(
+        r"no steady precession: L3² − 4 J'1 m g ℓ cos θ = (\S+) × 2\^(\d+) < 0", str(info.value)
+    )
+    assert m is not None, str(info.value)
+    value = Fraction(m.group(1)) * 2 ** int(m.group(2))
+    assert abs(value / (-3 * Fraction(10) ** 400) - 1) < Fraction(1, 10**5)
 
 
-def test_steady_precession_takes_a_ratio_exactly_at_float64s_normal_minimum():
-    """J'1/(2|L3|) = 2^-1022 is the smallest normal ratio after scaling by a power of two
-    (L3 = 1 scales to ½): taken, and equal to the same top scaled by 2^1021 (homogeneous);
-    half of it is refused."""
-    a = tops.steady_precession_rates(2.0**-1021, 1.0, 2.0**-1021, 0.5)
-    b = tops.steady_precession_rates(1.0, 2.0**1021, 1.0, 0.5)
-    # the same quadratic scaled by a power of two; the scaled inputs differ only by the
-    # exact scaling, the roots by a few roundings
+@pytest.mark.parametrize("J1", [2.0**-1021, 2.0**-1022, 1.5e-308, 1e-308])
+def test_steady_precession_takes_every_ratio_down_to_the_documented_floor(J1):
+    """J'1 down to 1e-308 of |L3| (the documented floor; float64's normal minimum
+    2^-1022 ≈ 2.2e-308 of it and below were once refused, by a check on the values scaled
+    to [1/2, 1)): taken, and equal to the same top scaled by 2^1022, whose values are
+    ordinary (the rates depend on J'1, L3, m g ℓ only through their ratios)."""
+    a = tops.steady_precession_rates(J1, 1.0, 2 * J1, 0.5)
+    b = tops.steady_precession_rates(J1 * 2.0**1022, 2.0**1022, 2 * J1 * 2.0**1022, 0.5)
+    # the same quadratic scaled by a power of two: the roots by a few roundings
     assert a == pytest.approx(b, rel=4 * EPS)
-    with pytest.raises(OutOfDomainError, match=r"^J_1 = 2\.2250738585072014e-308 is below"):
-        tops.steady_precession_rates(2.0**-1022, 1.0, 2.0**-1021, 0.5)
+
+
+def test_steady_precession_refuses_a_ratio_below_the_documented_floor():
+    with pytest.raises(OutOfDomainError, match=r"^J_1 = 5e-309 is below 1e-308 of the largest"):
+        tops.steady_precession_rates(5e-309, 1.0, 1e-308, 0.5)
 
 
 def test_free_top_omega_space_is_omega_turned_to_space_by_the_integrated_attitude():
@@ -1229,25 +1248,35 @@ def test_heavy_top_accepts_gravity_whose_scaled_ratio_is_the_smallest_normal():
     assert math.cos(0.5) in top.roots
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug: m g ℓ = 3e-308 with J'1 = J3 = 1 is 3e-308 of the largest, above the "
-    "documented 1e-308, but refused with a message saying it is below 1e-308 of it (the "
-    "check is 2^-1022 on the value scaled to [1/2, 1): 2.2e-308 to 4.5e-308 of the largest)",
-)
-def test_heavy_top_accepts_gravity_above_1e308_of_the_largest():
-    tops.HeavySymmetricTop(1.0, 1.0, 3e-308, theta=0.5, phi_dot=1.0)
+@pytest.mark.parametrize("mgl", [3e-308, 1e-308])
+def test_heavy_top_accepts_gravity_down_to_1e308_of_the_largest(mgl):
+    """m g ℓ = 3e-308 and 1e-308 of J'1 = J3 = 1: at or above the documented floor (once
+    refused with a message saying it was below it: the check was float64's normal minimum
+    on the values scaled to [1/2, 1), 2.2e-308 to 4.5e-308 of the largest).  Built, and
+    moving as the same top scaled by 2^600, whose values are ordinary (the motion depends
+    on J'1, J3, m g ℓ only through their ratios)."""
+    # slow rates: u3 − 1 ~ (θ̇² + b²)/β stays within float64 at β = 2e-308
+    kw = dict(theta=0.5, theta_dot=0.01, psi_dot=0.02, phi_dot=0.05)
+    top = tops.HeavySymmetricTop(1.0, 1.0, mgl, **kw)
+    big = tops.HeavySymmetricTop(2.0**600, 2.0**600, mgl * 2.0**600, **kw)
+    ts = np.linspace(0.0, 5.0, 6)
+    for name in ("theta", "psi", "phi"):
+        # the same computation on values scaled by powers of two (2^-1022 against 2^-423
+        # at the smallest): equal to their roundings, a few eps of the angles' size (~5)
+        np.testing.assert_allclose(
+            getattr(top, name)(ts), getattr(big, name)(ts), rtol=0, atol=64 * EPS * 5
+        )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug: θ̇0² J'1/mgℓ beyond float64 (θ̇0 = 1e150, mgℓ = 2^-1021) raises scipy's "
-    "ValueError ('The function value at x=inf is NaN') from the root bracket, not the "
-    "documented ResultOverflowError",
-)
 def test_heavy_top_rates_overflowing_against_gravity_are_a_result_overflow():
-    with pytest.raises(ResultOverflowError):
+    """θ̇0² J'1/mgℓ beyond float64 (θ̇0 = 1e150, mgℓ = 2^-1021; the documented domain's
+    edge): u3 − 1 ≈ θ̇0² J'1/(2 mgℓ) is beyond float64, a ResultOverflowError naming the
+    rate (once scipy's ValueError from the root bracket, then an OutOfDomainError naming
+    only ψ̇ and φ̇).  θ̇0 = 1e150 against mgℓ = 1 is ordinary, and built."""
+    with pytest.raises(ResultOverflowError, match=r"theta_dot = 1e\+150"):
         tops.HeavySymmetricTop(1.0, 1.0, 2.0**-1021, theta=1.0, theta_dot=1e150)
+    top = tops.HeavySymmetricTop(1.0, 1.0, 1.0, theta=1.0, theta_dot=1e150)
+    assert math.isfinite(top.roots[2])
 
 
 @pytest.mark.parametrize(
