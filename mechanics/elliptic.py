@@ -541,9 +541,51 @@ ellipf = broadcast_checked(ellipf)
 
 
 #: below this, both of R_J's first two arguments lose scipy's R_J its accuracy (measured
-#: with scipy 1.17 against mpmath: 3e7 eps at x = y/2 = 1e-160, 7e12 eps at 1e-170; right
-#: to 2 eps down to 1e-150, and whenever one of the two is 0 or above 1e-150)
+#: with scipy 1.17 against mpmath, z = 1: 3e7 eps at x = y/2 = 1e-160, 7e12 eps at 1e-170;
+#: right to 2 eps down to 1e-150, and whenever one of the two is above 1e-150), and a 0
+#: beside a subnormal makes it inf (elliprj(0, 1e-310, 1, 0.5); mpmath: 2142.2)
 _RJ_TINY = 2.0**-400
+
+
+#: √:data:`_RJ_TINY`: where dn < this, dn² and cn² (≤ dn²/m) are below it, and near u = K at
+#: m1 ≲ 1e-308 they lose their digits as subnormals (or underflow to 0)
+_RJ_TINY_ROOT = 2.0**-200
+
+
+def _duplication_step(
+    sx: float | npt.NDArray[np.float64],
+    sy: float | npt.NDArray[np.float64],
+    sz: float | npt.NDArray[np.float64],
+    p: float | npt.NDArray[np.float64],
+) -> tuple[float | npt.NDArray[np.float64], ...]:
+    """One step of Carlson's duplication theorem (Carlson 1995, eq. 2.22; DLMF 19.26.20),
+    from the square roots sx = √x, sy = √y, sz = √z:
+    R_J(x, y, z, p) = 2 R_J(x + λ, y + λ, z + λ, p + λ) + 3 R_C(α², β²) with
+    λ = √x√y + √y√z + √z√x, α = p(√x + √y + √z) + √x√y√z, β = √p (p + λ); it holds for
+    x = 0 or y = 0 too.  Returns (x + λ, y + λ, z + λ, p + λ, 3 R_C(α², β²)); x = sx² only
+    enters beside λ ≥ sx·sz, so its underflow for a tiny sx costs nothing where z ~ 1."""
+    lam = sx * sy + sy * sz + sz * sx
+    alpha = p * (sx + sy + sz) + sx * sy * sz
+    beta = np.sqrt(p) * (p + lam)
+    rc = 3.0 * sc.elliprc(alpha * alpha, beta * beta)
+    return sx * sx + lam, sy * sy + lam, sz * sz + lam, p + lam, rc
+
+
+def _rj_of_roots(
+    sx: float | npt.NDArray[np.float64],
+    sy: float | npt.NDArray[np.float64],
+    sz: float | npt.NDArray[np.float64],
+    p: float | npt.NDArray[np.float64],
+) -> float | npt.NDArray[np.float64]:
+    """R_J(sx², sy², sz², p) by two steps of :func:`_duplication_step`, then scipy's R_J:
+    R_J = 4 R_J(x₂, y₂, z₂, p₂) + 2·3 R_C(α₁², β₁²) + 3 R_C(α₀², β₀²).
+    For x, y ≪ z a step lifts them to about √(max(x, y) z): with z = 1, from 5e-324 to
+    2e-162 and then to 1e-81, where scipy's R_J is accurate (one step is not enough where
+    both are subnormal: it lands them in 1e-162–1e-157, where scipy is off by up to 1e13
+    eps; measured 1e10 eps at x, y = 1.4e-322, 9.6e-322)."""
+    x1, y1, z1, p1, rc0 = _duplication_step(sx, sy, sz, p)
+    x2, y2, z2, p2, rc1 = _duplication_step(np.sqrt(x1), np.sqrt(y1), np.sqrt(z1), p1)
+    return 4.0 * sc.elliprj(x2, y2, z2, p2) + 2.0 * rc1 + rc0  # type: ignore[no-any-return]  # scipy: no types
 
 
 def _rj_duplicated(
@@ -552,17 +594,8 @@ def _rj_duplicated(
     z: float | npt.NDArray[np.float64],
     p: float | npt.NDArray[np.float64],
 ) -> float | npt.NDArray[np.float64]:
-    """R_J by one step of Carlson's duplication theorem (Carlson 1995, eq. 2.22):
-    R_J(x, y, z, p) = 2 R_J(x + λ, y + λ, z + λ, p + λ) + 3 R_C(α², β²) with
-    λ = √x√y + √y√z + √z√x, α = p(√x + √y + √z) + √x√y√z, β = √p (p + λ).
-    For x, y ≪ z it lifts them to about √x√z, where scipy's R_J is accurate."""
-    sx, sy, sz = np.sqrt(x), np.sqrt(y), np.sqrt(z)
-    lam = sx * sy + sy * sz + sz * sx
-    alpha = p * (sx + sy + sz) + sx * sy * sz
-    beta = np.sqrt(p) * (p + lam)
-    return 2.0 * sc.elliprj(x + lam, y + lam, z + lam, p + lam) + 3.0 * sc.elliprc(  # type: ignore[no-any-return]  # scipy: no types
-        alpha * alpha, beta * beta
-    )
+    """R_J by :func:`_rj_of_roots` (two duplication steps), for x, y ≪ z."""
+    return _rj_of_roots(np.sqrt(x), np.sqrt(y), np.sqrt(z), p)
 
 
 def _rj(
@@ -571,11 +604,13 @@ def _rj(
     z: npt.NDArray[np.float64],
     p: npt.NDArray[np.float64],
 ) -> float | npt.NDArray[np.float64]:
-    """scipy's R_J, but by :func:`_rj_duplicated` where x and y are both positive and
-    below :data:`_RJ_TINY` (cn² and dn² near u = K with m1 below ~1e-160)."""
+    """scipy's R_J, but by :func:`_rj_duplicated` where x and y are both below
+    :data:`_RJ_TINY`, not negative and not both 0 (cn² and dn² near u = K with m1 below
+    ~1e-160; R_J(0, m1, 1, 1 − n) at a subnormal m1)."""
     x, y, z, p = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (x, y, z, p)))
     out: float | npt.NDArray[np.float64] = sc.elliprj(x, y, z, p)
-    tiny = (x > 0) & (y > 0) & (x < _RJ_TINY) & (y < _RJ_TINY)
+    hi = np.maximum(x, y)
+    tiny = (np.minimum(x, y) >= 0) & (hi > 0) & (hi < _RJ_TINY)
     if tiny.any():
         out = np.array(out, dtype=float)  # a 0-d result too
         out[tiny] = _rj_duplicated(x[tiny], y[tiny], z[tiny], p[tiny])
@@ -584,7 +619,7 @@ def _rj(
 
 def _rj_scalar(x: float, y: float, z: float, p: float) -> float:
     """:func:`_rj` of Python floats (the one-instant path)."""
-    if 0.0 < x < _RJ_TINY and 0.0 < y < _RJ_TINY:
+    if min(x, y) >= 0.0 and 0.0 < max(x, y) < _RJ_TINY:
         return float(_rj_duplicated(x, y, z, p))
     return float(sc.elliprj(x, y, z, p))
 
@@ -607,12 +642,33 @@ def _third_kind_tail(
     return np.where((s == 0) | (n == 0), 0.0, t)
 
 
+def _third_kind_tail_of_roots(
+    s: npt.NDArray[np.float64],
+    c: npt.NDArray[np.float64],
+    d: npt.NDArray[np.float64],
+    n: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
+    """:func:`_third_kind_tail` for 0 ≤ m ≤ 1 from c = |cn| and d = dn < :data:`_RJ_TINY_ROOT`
+    (near u = K at m1 ≲ 1e-308), whose squares are subnormal or 0: (n/3) s³ R_J(c², d², 1, p)
+    by :func:`_rj_of_roots`, which needs c and d only."""
+    s2 = s * s
+    t = (n / 3.0) * s2 * s * _rj_of_roots(c, d, 1.0, 1.0 - n * s2)
+    return np.where((s == 0) | (n == 0), 0.0, t)
+
+
 def _complete_tail(
     n: float | npt.NDArray[np.float64], m1: float | npt.NDArray[np.float64]
 ) -> npt.NDArray[np.float64]:
-    """(n/3) R_J(0, m1, 1, 1 − n): Π(n|m) − K(m)."""
-    with np.errstate(divide="ignore", invalid="ignore"):
-        t = (n / 3.0) * sc.elliprj(0.0, m1, 1.0, 1.0 - n)
+    """(n/3) R_J(0, m1, 1, 1 − n): Π(n|m) − K(m).
+
+    R_J is homogeneous of degree −3/2: for m ≪ −1 (m1 up to 1.8e308) its arguments are
+    scaled by λ = 1/√m1, to (0, √m1, 1/√m1, (1 − n)/√m1), as :func:`_third_kind_tail` does
+    (unscaled, scipy's R_J is NaN for m1 ≳ 1e200); λ = 1 for m1 ≤ 1, where :func:`_rj`
+    handles a subnormal m1 (scipy's R_J(0, m1, 1, p) is inf there)."""
+    lam = 1.0 / np.sqrt(np.maximum(m1, 1.0))
+    with np.errstate(divide="ignore", invalid="ignore", under="ignore"):
+        rj = _rj(np.zeros_like(lam), m1 * lam, lam, (1.0 - n) * lam) * lam * np.sqrt(lam)
+        t = (n / 3.0) * rj
     return np.where(n == 0, 0.0, t)
 
 
@@ -664,9 +720,7 @@ def ellippi(
         domain, or ``m1`` disagrees with ``1 − m``.
     ResultOverflowError
         If m < 1 and the integral exceeds float64 (|φ| near 1.8e308; the message
-        names ``ellipf``); also, wrongly, for m ≪ −1 (m1 ≳ 1e200) beyond |φ| = π/2,
-        where scipy's R_J of the complete tail is NaN (a known defect, xfailed in
-        ``tests/mechanics/test_elliptic.py``).
+        names ``ellipf``).
     NonFiniteError
         If an input is NaN or infinite.
     ShapeError
@@ -789,6 +843,11 @@ def _third_kind_excess(
         uu, nn, mm, qq = u[rest], n[rest], m[rest], m1[rest]
         j, s, snx, cnx, dnx, _ = _reduced(uu, mm, qq)
         tail = _third_kind_tail(s * snx, cnx, dnx * dnx, nn)
+        near_k = dnx < _RJ_TINY_ROOT  # cn², dn² subnormal: R_J from cn, dn themselves
+        if near_k.any():
+            tail[near_k] = _third_kind_tail_of_roots(
+                (s * snx)[near_k], cnx[near_k], dnx[near_k], nn[near_k]
+            )
         full = np.where(j != 0, _complete_tail(nn, qq), 0.0)
         with np.errstate(over="ignore"):  # |u| near 1e308: the caller raises
             out[rest] = tail + 2.0 * j * full
@@ -903,5 +962,9 @@ def _third_kind_excess_scalar(
         tail = 0.0
     else:
         s2 = S * S
-        tail = (n / 3.0) * s2 * S * _rj_scalar(cnx * cnx, dnx * dnx, 1.0, 1.0 - n * s2)
+        if dnx < _RJ_TINY_ROOT:  # cn², dn² subnormal: see _third_kind_tail_of_roots
+            rj = float(_rj_of_roots(cnx, dnx, 1.0, 1.0 - n * s2))
+        else:
+            rj = _rj_scalar(cnx * cnx, dnx * dnx, 1.0, 1.0 - n * s2)
+        tail = (n / 3.0) * s2 * S * rj
     return tail + 2.0 * j * (full if j != 0 else 0.0)

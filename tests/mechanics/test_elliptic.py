@@ -688,15 +688,22 @@ def test_third_kind_at_n_zero_is_the_first_kind_where_scipys_rj_fails():
     assert el.ellippi_jacobi(-373.0, 0.0, 1.0, m1=1e-320) == -373.0
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="library bug: for m ≪ −1 beyond |φ| = π/2 the complete tail Π(n|m) − K calls scipy's "
-    "elliprj(0, m1, 1, 1 − n) unscaled, which is NaN for m1 ~ 1e200 and beyond, so a finite "
-    "Π(n; φ|m) is refused as an overflow (the incomplete tail scales R_J's arguments; this one "
-    "does not)",
-)
 def test_ellippi_of_a_hugely_negative_parameter_beyond_a_quarter_turn_is_finite():
     with mpmath.workdps(40):
         want = mpmath.ellippi(0.5, 4.0, -1e300)  # 1.0413e-147
     got = el.ellippi(0.5, 4.0, -1e300)
+    assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * abs(want)
+
+
+@pytest.mark.parametrize("m", [-1e200, -1e250, -1.7e308])
+@pytest.mark.parametrize("n", [-3.0, 0.9])
+@pytest.mark.parametrize("phi", [2.0, -7.0])
+def test_ellippi_beyond_a_quarter_turn_across_the_hugely_negative_parameters(m, n, phi):
+    # the complete tail scales R_J's arguments by 1/√m1 (homogeneity, degree −3/2); unscaled,
+    # scipy's elliprj(0, m1, 1, 1 − n) is NaN from m1 ~ 1e200 and the value was refused as
+    # an overflow (measured after: 1.4 eps at worst over m ∈ {−1e200, −1e250, −1e300,
+    # −1.7e308}, n ∈ {−3, 0.5, 0.9}, φ ∈ {2, 4, −7})
+    with mpmath.workdps(40):
+        want = mpmath.ellippi(n, phi, m)
+    got = el.ellippi(n, phi, m)
     assert abs(mpmath.mpf(float(got)) - want) <= INTEGRAL_EPS * EPS * abs(want)

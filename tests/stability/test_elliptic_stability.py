@@ -524,7 +524,13 @@ RJ_EPS = 4
         (5e-324, 1e-200),  # the smallest subnormal beside a tiny normal
         (2.0**-401, 2.0**-401),  # just below the switch to the duplication
         (2.0**-400, 2.0**-400),  # at it: scipy's own R_J
-        (0.0, 1e-200),  # a zero argument: scipy is right there, no duplication
+        (0.0, 1e-200),  # a zero argument: duplicated too (scipy is right here as well)
+        (0.0, 5e-324),  # a zero beside the smallest subnormal: scipy's R_J is inf
+        # both subnormal: one duplication step lands them near 1e-160, where scipy's R_J is
+        # off (measured 3.3e9 eps at p = 0.5, 6.9e9 eps at p = 4 with one step; 0.8 eps with
+        # two)
+        (1.43e-322, 9.63e-322),
+        (8.4e-323, 5.43e-322),
         (1e-170, 0.5),  # one tiny argument only: scipy's own R_J
         (0.3, 0.7),
     ],
@@ -541,13 +547,6 @@ def test_rj_is_accurate_where_both_first_arguments_are_tiny(x, y, p):
         assert abs(mpmath.mpf(g) - ref) <= RJ_EPS * EPS * abs(ref), (g, ref)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="library bug: scipy's elliprj(x, y, 1, p) is inf when one of x, y is 0 and the other "
-    "below ~2e-308 (mpmath: ~2.1e3), and _rj/_rj_scalar send it there (the duplication step is "
-    "taken only where both are positive); cn² underflowing to 0 beside a subnormal dn² reaches "
-    "it (test_third_kind_in_jacobis_form_just_below_k_at_the_smallest_m1)",
-)
 @pytest.mark.parametrize("kernel", ["array", "scalar"])
 @pytest.mark.parametrize(("x", "y"), [(0.0, 1e-310), (1e-310, 0.0)])
 def test_rj_with_a_zero_beside_a_subnormal_first_argument(x, y, kernel):
@@ -644,13 +643,6 @@ def test_ellippi_jacobi_takes_m1_as_authoritative_near_the_separatrix():
         assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (u, n, got, ref)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="library bug: just below K at m1 = 5e-324, cn² underflows to 0 and dn² is subnormal; "
-    "_rj sends R_J(0, dn², 1, p) to scipy (its duplication step needs both x, y > 0), whose "
-    "elliprj(0, 5e-324, 1, 0.5) is inf (mpmath: 2234.2), so a finite integral is refused as "
-    "an overflow (and the one-float kernel returns inf)",
-)
 def test_third_kind_in_jacobis_form_just_below_k_at_the_smallest_m1():
     # the one-float kernel of the free top takes the same route (_rj_scalar): inf there
     p1 = 5e-324
@@ -662,3 +654,39 @@ def test_third_kind_in_jacobis_form_just_below_k_at_the_smallest_m1():
     assert abs(mpmath.mpf(got_scalar) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got_scalar,)
     got = float(el.ellippi_jacobi(u, n, 1.0, m1=p1)) - u
     assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
+
+
+@pytest.mark.parametrize("n", [0.5, -3.0])
+def test_third_kind_in_jacobis_form_where_cn_and_dn_squared_are_subnormal(n):
+    # m1 = 1e-320, u = K − 0.3: cn ~ 1e-161 and dn ~ 1e-160 are normal floats but their
+    # squares are subnormal (a few bits left); R_J is taken from cn and dn themselves
+    # (_third_kind_tail_of_roots). From the squares, G was off by 1.8e-5 at n = 0.5 (an error
+    # of 5e10 eps of the scale below: 737.7531215 for 737.7531393)
+    p1 = 1e-320
+    K, trig = _scalar_kernel_args(1.0, p1)
+    u = K - 0.3
+    ref, full = _third_kind_reference(u, n, p1)
+    scale = abs(ref) + abs(u * n / (1 - n))
+    got_scalar = el._third_kind_excess_scalar(u, n, 1.0, p1, K, trig, float(full))
+    got_array = float(el.ellippi_jacobi(u, n, 1.0, m1=p1)) - u
+    for got in (got_scalar, got_array):
+        assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
+
+
+@pytest.mark.parametrize("n", [0.5, -3.0])
+def test_third_kind_beyond_a_quarter_period_at_the_smallest_m1_is_finite(n):
+    # Π(n|m) − K = (n/3) R_J(0, m1, 1, 1 − n) at m1 = 5e-324: scipy's R_J is inf there (a 0
+    # beside a subnormal), which refused both integrals as overflows; _complete_tail takes
+    # it through _rj's duplication
+    p1 = 5e-324
+    K, _ = _scalar_kernel_args(1.0, p1)
+    u = 2.3 * K
+    ref, full = _third_kind_reference(u, n, p1)
+    assert abs(mpmath.mpf(float(el._complete_tail(n, p1))) - full) <= RJ_EPS * EPS * abs(full)
+    scale = abs(ref) + abs(u * n / (1 - n))
+    got = float(el.ellippi_jacobi(u, n, 1.0, m1=p1)) - u
+    assert abs(mpmath.mpf(got) - ref) <= THIRD_KIND_SCALAR_EPS * EPS * scale, (got, ref)
+    with mpmath.workdps(_dps(p1)):
+        want = mpmath.ellippi(n, 2.0, 1 - mpmath.mpf(p1))
+    got = float(el.ellippi(n, 2.0, 1.0, m1=p1))
+    assert abs(mpmath.mpf(got) - want) <= INCOMPLETE_EPS * EPS * abs(want), (got, want)
