@@ -262,12 +262,14 @@ def _scale(moments: np.ndarray) -> np.ndarray:
     return out
 
 
-def _sqrt_quotient(x: np.ndarray, y: np.ndarray) -> np.ndarray:
-    """√(x/y) for x ≥ 0, y > 0: the quotient of the mantissas (the plain quotient's rounding)
-    and the exponent halved exactly, so that x/y cannot overflow or underflow on the way."""
+def _sqrt_quotient(x: np.ndarray, y: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """√(x·2**k / y) for x ≥ 0, y > 0, integer k: the quotient of the mantissas (the plain
+    quotient's rounding) and the exponent halved exactly, so that neither x·2**k nor the
+    quotient can overflow or underflow on the way (x given in units of 2**k, as by
+    :func:`_unit_scaled`)."""
     (fx, ex), (fy, ey) = np.frexp(x), np.frexp(y)
-    k, odd = np.divmod(ex - ey, 2)
-    out: np.ndarray = np.ldexp(np.sqrt(np.ldexp(fx / fy, odd)), k)
+    h, odd = np.divmod(ex - ey + k, 2)
+    out: np.ndarray = np.ldexp(np.sqrt(np.ldexp(fx / fy, odd)), h)
     return out
 
 
@@ -927,9 +929,13 @@ def four_particle_realisation(m: npt.ArrayLike, J: npt.ArrayLike) -> tuple[np.nd
 
     Domain: ``m`` > 0 (else NegativeMassError or NonPositiveParameterError), ``J`` (..., 3, 3) as
     :func:`check_inertia` with a singular tensor allowed (else NonPhysicalInertiaError).  Any
-    magnitudes: the squared distances J/m are formed with their powers of two apart, so J near
-    1e300 over m near 1e-300 gives distances near 1e300, not an overflow; batches that do not
-    broadcast raise ShapeError listing each argument's shape.
+    magnitudes, subnormal to float64's limit (moments beyond 1.8e308 included): the principal
+    axes are computed on ``J`` scaled by a power of two (exactly, as in :func:`principal_axes`),
+    and the squared distances J/m are formed with their powers of two apart, so J near 1e300 over
+    m near 1e-300 gives distances near 1e300, not an overflow (a distance beyond float64 raises
+    ResultOverflowError).  Scaling ``m`` and ``J`` by one power of two (exactly) leaves the
+    positions unchanged, bit for bit.  Batches that do not broadcast raise ShapeError listing
+    each argument's shape.
 
     In the principal basis, with J_x ≤ J_y ≤ J_z the principal moments, the
     particles are at (±a, 0, c) and (0, ±b, −c) (4.15)–(4.18) with
@@ -979,16 +985,18 @@ def four_particle_realisation(m: npt.ArrayLike, J: npt.ArrayLike) -> tuple[np.nd
     True
     """
     mm = _mass(m, "m", positive=True)
-    Jc = check_inertia(J, allow_singular=True)
-    moments, R = _principal(Jc)
-    Jx, Jy, Jz = (moments[..., k] for k in range(3))
+    # Jacobi on J/2**k, its largest entry in [1/2, 1) (exact), as in principal_axes: on J itself
+    # a subnormal tensor loses digits and moments beyond float64 overflow
+    s, k = _unit_scaled(check_inertia(J, allow_singular=True))
+    moments, R = _principal(s)
+    Jx, Jy, Jz = (moments[..., i] for i in range(3))
     shape = np.broadcast_shapes(mm.shape, Jx.shape)
-    mm = np.broadcast_to(mm, shape)
-    # √(x/m) with the powers of two apart: x/m may overflow (J 1e300, m 1e-300) where √ does
-    # not; c² = (x/2)/m, not x/(2 m): 2 m overflows for m near 1e308
-    a = _sqrt_quotient(np.maximum((Jz - Jx) + Jy, 0.0), mm)
-    b = _sqrt_quotient(np.maximum((Jz - Jy) + Jx, 0.0), mm)
-    c = _sqrt_quotient(0.5 * np.maximum((Jx + Jy) - Jz, 0.0), mm)
+    mm, k = np.broadcast_to(mm, shape), np.broadcast_to(k, shape)
+    # √(x 2**k / m) with the powers of two apart: J/m may overflow (J 1e300, m 1e-300) where √
+    # does not; c² = x 2**(k-1)/m, not x/(2 m): 2 m overflows for m near 1e308
+    a = _sqrt_quotient(np.maximum((Jz - Jx) + Jy, 0.0), mm, k)
+    b = _sqrt_quotient(np.maximum((Jz - Jy) + Jx, 0.0), mm, k)
+    c = _sqrt_quotient(np.maximum((Jx + Jy) - Jz, 0.0), mm, k - 1)
     z = np.zeros(shape)
     r_A = np.stack(
         [

@@ -13,6 +13,7 @@ import math
 import re
 import warnings
 
+import mpmath
 import numpy as np
 import pytest
 
@@ -1228,9 +1229,9 @@ def test_four_particles_broadcast_one_tensor_over_masses_and_one_mass_over_tenso
 
 
 def test_four_particles_of_a_product_of_inertia_of_exactly_one():
-    """The unscaled tensor [[2, 1, 0], [1, 2, 0], [0, 0, 3]] (moments 1, 3, 3: the block
-    [[2, 1], [1, 2]] has eigenvalues 2 ∓ 1) reaches Jacobi with a_01 = 1 exactly; the
-    rotation must still be made."""
+    """[[2, 1, 0], [1, 2, 0], [0, 0, 3]] (moments 1, 3, 3: the block [[2, 1], [1, 2]] has
+    eigenvalues 2 ∓ 1) reaches Jacobi scaled by 2**-2, with a_00 = a_11 = 1/2 and a_01 = 1/4:
+    the rotation by π/4 must be made."""
     J = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 3.0]])
     masses, r = I.four_particle_realisation(4.0, J)
     np.testing.assert_allclose(
@@ -1238,12 +1239,37 @@ def test_four_particles_of_a_product_of_inertia_of_exactly_one():
     )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="bug: four_particle_realisation runs Jacobi on the unscaled tensor (principal_axes "
-    "scales it first): subnormal tensors lose digits (2.7e-6 relative) and a tensor whose "
-    "largest moment is beyond float64 overflows, although the distances are ordinary",
-)
+#: The particles' own tensor Σ (m/4)(|r|² 1 − r rᵀ), summed by mpmath at 50 digits on the
+#: returned floats (exact there: no rounding, overflow or underflow), against J, in eps of J3:
+#: Jacobi's moments are within 8 eps of J3 (the module's bound), a², b², c² add three of them,
+#: and the square roots, the turn back into the basis of J and the quotients by m add a few
+#: roundings each.  Measured 1.15 and 0.45 eps for the two tensors below.
+REALISATION_EPS = 16.0
+
+
+def _realisation_error_eps(masses: np.ndarray, r: np.ndarray, J: np.ndarray) -> float:
+    """max |Σ m_i (|r_i|² 1 − r_i r_iᵀ) − J| over the entries, in eps of J3, with the sum and
+    J3 (mpmath's symmetric eigen-solver) at 50 digits on the floats as exact binary numbers."""
+    with mpmath.workdps(50):
+        Jm = mpmath.matrix([[mpmath.mpf(float(x)) for x in row] for row in J])
+        E, _ = mpmath.eigsy(Jm)
+        J3 = max(E[i] for i in range(3))
+        q = [[mpmath.mpf(float(x)) for x in ri] for ri in r]
+        n2 = [sum(x * x for x in qi) for qi in q]
+        worst = max(
+            abs(
+                sum(
+                    mpmath.mpf(float(mi)) * ((n if i == j else 0) - qi[i] * qi[j])
+                    for mi, qi, n in zip(masses, q, n2, strict=True)
+                )
+                - Jm[i, j]
+            )
+            for i in range(3)
+            for j in range(3)
+        )
+        return float(worst / J3 / EPS)
+
+
 @pytest.mark.parametrize(
     ("J", "power"),
     [
@@ -1251,7 +1277,7 @@ def test_four_particles_of_a_product_of_inertia_of_exactly_one():
         pytest.param(
             [[2.0, 0.125, 0.0], [0.125, 3.0, 0.0], [0.0, 0.0, 4.0]], -1060, id="subnormal"
         ),
-        # entries up to 0.8 * 2**1024 (finite), moments 0.4, 0.9, 1.2 times 2**1024: the
+        # entries up to 0.9 * 2**1024 (finite), moments 0.4, 0.9, 1.2 times 2**1024: the
         # largest is beyond float64, the distances √(J/m) are of order 1
         pytest.param(
             [[1.6, 0.8, 0.0], [0.8, 1.6, 0.0], [0.0, 0.0, 1.8]], 1023, id="moment-beyond-float64"
@@ -1260,12 +1286,18 @@ def test_four_particles_of_a_product_of_inertia_of_exactly_one():
 )
 def test_four_particles_at_any_scale_are_the_scaled_ones(J, power):
     """Scaling m and J by one power of two leaves the distances √(J/m) unchanged: the
-    realisation at 2**power is that of the tensor at scale 1, masses scaled exactly."""
+    realisation at 2**power is that of the tensor at scale 1, bit for bit, the masses scaled
+    exactly; and the particles have the tensor J·2**power (mpmath, :data:`REALISATION_EPS`)."""
+    # Jacobi on the unscaled tensor (before the fix): the subnormal tensor lost digits (its
+    # particles' tensor 8.0e9 eps of J3 = 1.8e-6 off, the distances 2.1e-6 relative), and
+    # the tensor whose largest moment is beyond float64 raised ResultOverflowError
     J = np.array(J)
+    Jp = np.ldexp(J, power)
     masses_1, r_1 = I.four_particle_realisation(0.25, J)
-    masses, r = I.four_particle_realisation(np.ldexp(0.25, power), np.ldexp(J, power))
+    masses, r = I.four_particle_realisation(np.ldexp(0.25, power), Jp)
     np.testing.assert_array_equal(masses, np.ldexp(masses_1, power))
-    np.testing.assert_allclose(r, r_1, rtol=0, atol=ENTRY_ATOL * np.abs(r_1).max())
+    np.testing.assert_array_equal(r, r_1)
+    assert _realisation_error_eps(masses, r, Jp) <= REALISATION_EPS
 
 
 def test_principal_axes_of_a_subnormal_tensor_are_exact():
