@@ -977,9 +977,24 @@ _TINY_ASYM[0, 1] += 1e-20
 _HUGE_OFFDIAG = np.array([[1.7e308, 1.7e308, 0], [1.7e308, 1.7e308, 0], [0, 0, 1.0]])
 
 
-def test_principal_axes_annihilate_an_off_diagonal_entry_of_exactly_one():
+def test_principal_axes_of_a_block_with_equal_diagonal_entries():
+    """[[2, 1], [1, 2]] beside 3: the rotation by π/4 (equal diagonal entries, θ = 0),
+    moments 2 ∓ 1 and 3 (principal_axes scales the tensor by 2^-2 first, so Jacobi sees
+    an off-diagonal entry of 1/4; the entry of exactly 1 is Jacobi's own test below)."""
     moments, _ = I.principal_axes(np.array([[2.0, 1.0, 0], [1.0, 2.0, 0], [0, 0, 3.0]]))
     np.testing.assert_allclose(moments, [1.0, 3.0, 3.0], rtol=0, atol=ENTRY_ATOL * 3)
+
+
+def test_jacobi_annihilates_an_off_diagonal_entry_of_exactly_one():
+    """The Jacobi kernel on its own, unscaled (its callers scale tensors below 1 first,
+    but it is stated for any symmetric matrix, and an entry can reach 1 within a sweep):
+    [[2, 1, 0], [1, 2, 0], [0, 0, 3]] has eigenvalues 1, 3, 3, and its eigenvectors
+    rebuild it (V diag(w) Vᵀ = A, V orthogonal)."""
+    A = np.array([[2.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 0.0, 3.0]])
+    w, V = I._jacobi(A)
+    np.testing.assert_allclose(np.sort(w), [1.0, 3.0, 3.0], rtol=0, atol=ENTRY_ATOL * 3)
+    np.testing.assert_allclose(V @ np.diag(w) @ V.T, A, rtol=0, atol=ENTRY_ATOL * 3)
+    np.testing.assert_allclose(V.T @ V, np.eye(3), rtol=0, atol=ENTRY_ATOL)
 
 
 def test_parallel_axis_near_the_overflow_threshold_uses_the_plain_formula_correctly():
