@@ -370,6 +370,25 @@ def _pole_frame_list(nx: float, ny: float, nz: float) -> list[list[float]]:
 # --------------------------------------------------------------------------- free asymmetric top
 
 
+def _tail(
+    S: npt.NDArray[np.float64],
+    cn: npt.NDArray[np.float64],
+    dn: npt.NDArray[np.float64],
+    n: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
+    """The third-kind tail (n/3) S³ R_J(cn², dn², 1, 1 − n S²) of a free top's G, as
+    :func:`mechanics.elliptic._third_kind_excess` takes it: from cn and dn themselves
+    where dn is below ``elliptic._RJ_TINY_ROOT`` (near u = K within ~1e-150 of the
+    separatrix, where cn² and dn² are subnormal or 0)."""
+    tail = elliptic._third_kind_tail(S, cn, dn * dn, n)
+    near_k = dn < elliptic._RJ_TINY_ROOT
+    if near_k.any():
+        tail[near_k] = elliptic._third_kind_tail_of_roots(
+            S[near_k], cn[near_k], dn[near_k], n[near_k]
+        )
+    return tail
+
+
 class FreeAsymmetricTop:
     """The exact torque-free motion of a rigid body (Euler's equations 4.47 with M = 0).
 
@@ -615,7 +634,7 @@ class FreeAsymmetricTop:
         if reduced is None:
             reduced = self._reduce(u)
         j, s, snx, cnx, dnx, _ = reduced
-        tail = elliptic._third_kind_tail(s * snx, cnx, dnx * dnx, np.full_like(u, self._n))
+        tail = _tail(s * snx, cnx, dnx, np.full_like(u, self._n))
         return tail + 2.0 * j * np.where(j != 0, self._full, 0.0)
 
     def _reduce(self, flat: npt.NDArray[np.float64]) -> elliptic._Reduction:
@@ -672,9 +691,15 @@ class FreeAsymmetricTop:
         j, s, snx, cnx, dnx = elliptic._reduced_scalar(self._u0, m, m1, self._K, self._trig_agm)
         S = s * snx
         x, y, p = cnx * cnx, dnx * dnx, 1.0 - n * (S * S)
-        if 0.0 < x < elliptic._RJ_TINY and 0.0 < y < elliptic._RJ_TINY:
-            rj_full = float(sc.elliprj(0.0, m1, 1.0, 1.0 - n))
-            rj = float(elliptic._rj_duplicated(x, y, 1.0, p))
+        if m1 < elliptic._RJ_TINY or max(x, y) < elliptic._RJ_TINY:
+            # near the separatrix: elliptic's R_J for tiny arguments (scipy's is inf at
+            # R_J(0, m1, 1, p) for m1 ≲ 7e-308), and near u = K by cn and dn themselves
+            # (their squares subnormal): as elliptic._third_kind_excess_scalar
+            rj_full = elliptic._rj_scalar(0.0, m1, 1.0, 1.0 - n)
+            if dnx < elliptic._RJ_TINY_ROOT:
+                rj = float(elliptic._rj_of_roots(cnx, dnx, 1.0, p))
+            else:
+                rj = elliptic._rj_scalar(x, y, 1.0, p)
         else:
             args = np.array([[0.0, x], [m1, y], [1.0 - n, p]])  # one array, not three
             rj_full, rj = sc.elliprj(args[0], args[1], 1.0, args[2]).tolist()
@@ -1153,9 +1178,7 @@ class FreeTopBatch:
         rest = circ & ~sep
         if rest.any():
             jr = j[rest]
-            tail = elliptic._third_kind_tail(
-                (sr * snx)[rest], cnx[rest], (dnx * dnx)[rest], self._n[rest]
-            )
+            tail = _tail((sr * snx)[rest], cnx[rest], dnx[rest], self._n[rest])
             G[rest] = tail + 2.0 * jr * np.where(jr != 0, self._full[rest], 0.0)
         J1, J3 = self._Js[:, 0], self._Js[:, 2]
         k = (self._C / self._lam) * (G - self._G0)

@@ -1355,3 +1355,31 @@ def test_a_heavy_top_whose_turning_point_search_overflows_is_refused_by_name(rat
         tops.HeavySymmetricTop(2.0, 1.0, 3.0, **{**kw, rate: 1e100})
     top = tops.HeavySymmetricTop(2.0, 1.0, 3.0, **{**kw, rate: 1e70})
     assert np.isfinite(top.theta(np.array([0.0, 1e-70]))).all()
+
+
+def _turn_about_e2(t: float) -> np.ndarray:
+    """exp(−[e2]× t): ^A R^O of a body turning at ω = e2 from R = 1 (Ṙ = −[ω]× R), by
+    Rodrigues' formula."""
+    K = np.array([[0.0, 0.0, 1.0], [0.0, 0.0, 0.0], [-1.0, 0.0, 0.0]])  # [e2]×
+    return np.eye(3) - math.sin(t) * K + (1.0 - math.cos(t)) * (K @ K)
+
+
+@pytest.mark.parametrize("e", [2.0**-500, 2.0**-508, 2.0**-510, 2.0**-511, 2.0**-511.5])
+def test_a_spin_within_1e_150_of_the_middle_axis_turns_as_the_steady_rotation(e):
+    """ω0 = (0, 1, e) for J = (1, 2, 3): m1 ≈ 1e-301 … 5e-308, the separatrix's
+    neighbourhood that float64 still holds.  Over t ≤ 40 the transverse components grow
+    as e·exp(t/√3) ≤ 1e-140, so ω and the attitude are the steady rotation about e2 to
+    float64's resolution.  Once, for e ≤ 2^-511, scipy's R_J(0, m1, 1, 1 − n) was inf at
+    m1 ≲ 7e-308 (and cn², dn² lost their digits as subnormals near u = K): the top was
+    refused as an overflow."""
+    top = tops.FreeAsymmetricTop([1.0, 2.0, 3.0], [0.0, 1.0, e])
+    ts = np.array([0.0, 0.5, 3.0, 17.0, 40.0])
+    w, R = top.state(ts)
+    np.testing.assert_allclose(w, np.tile([0.0, 1.0, 0.0], (len(ts), 1)), rtol=0, atol=4 * EPS)
+    # the angle t: rounded once (ψ ~ 40 carries ~40 eps), the rotation's entries to that
+    want = np.array([_turn_about_e2(float(t)) for t in ts])
+    np.testing.assert_allclose(R, want, rtol=0, atol=64 * EPS * 40)
+    batch = tops.FreeTopBatch([[1.0, 2.0, 3.0]] * len(ts), [[0.0, 1.0, e]] * len(ts))
+    wb, Rb = batch.state(ts)
+    np.testing.assert_allclose(wb, w, rtol=0, atol=4 * EPS)
+    np.testing.assert_allclose(Rb, want, rtol=0, atol=64 * EPS * 40)
