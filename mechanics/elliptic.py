@@ -656,6 +656,22 @@ def _third_kind_tail_of_roots(
     return np.where((s == 0) | (n == 0), 0.0, t)
 
 
+def _third_kind_tail_reduced(
+    S: npt.NDArray[np.float64],
+    cn: npt.NDArray[np.float64],
+    dn: npt.NDArray[np.float64],
+    n: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
+    """:func:`_third_kind_tail` of S = ±sn and cn, dn ≥ 0 at a reduced argument: from cn² and
+    dn², or, where dn < :data:`_RJ_TINY_ROOT` (cn², dn² subnormal), by
+    :func:`_third_kind_tail_of_roots` from cn and dn themselves."""
+    tail = _third_kind_tail(S, cn, dn * dn, n)
+    near_k = dn < _RJ_TINY_ROOT
+    if near_k.any():
+        tail[near_k] = _third_kind_tail_of_roots(S[near_k], cn[near_k], dn[near_k], n[near_k])
+    return tail
+
+
 def _complete_tail(
     n: float | npt.NDArray[np.float64], m1: float | npt.NDArray[np.float64]
 ) -> npt.NDArray[np.float64]:
@@ -842,12 +858,7 @@ def _third_kind_excess(
     if rest.any():
         uu, nn, mm, qq = u[rest], n[rest], m[rest], m1[rest]
         j, s, snx, cnx, dnx, _ = _reduced(uu, mm, qq)
-        tail = _third_kind_tail(s * snx, cnx, dnx * dnx, nn)
-        near_k = dnx < _RJ_TINY_ROOT  # cn², dn² subnormal: R_J from cn, dn themselves
-        if near_k.any():
-            tail[near_k] = _third_kind_tail_of_roots(
-                (s * snx)[near_k], cnx[near_k], dnx[near_k], nn[near_k]
-            )
+        tail = _third_kind_tail_reduced(s * snx, cnx, dnx, nn)
         full = np.where(j != 0, _complete_tail(nn, qq), 0.0)
         with np.errstate(over="ignore"):  # |u| near 1e308: the caller raises
             out[rest] = tail + 2.0 * j * full

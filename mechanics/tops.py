@@ -370,25 +370,6 @@ def _pole_frame_list(nx: float, ny: float, nz: float) -> list[list[float]]:
 # --------------------------------------------------------------------------- free asymmetric top
 
 
-def _tail(
-    S: npt.NDArray[np.float64],
-    cn: npt.NDArray[np.float64],
-    dn: npt.NDArray[np.float64],
-    n: npt.NDArray[np.float64],
-) -> npt.NDArray[np.float64]:
-    """The third-kind tail (n/3) S³ R_J(cn², dn², 1, 1 − n S²) of a free top's G, as
-    :func:`mechanics.elliptic._third_kind_excess` takes it: from cn and dn themselves
-    where dn is below ``elliptic._RJ_TINY_ROOT`` (near u = K within ~1e-150 of the
-    separatrix, where cn² and dn² are subnormal or 0)."""
-    tail = elliptic._third_kind_tail(S, cn, dn * dn, n)
-    near_k = dn < elliptic._RJ_TINY_ROOT
-    if near_k.any():
-        tail[near_k] = elliptic._third_kind_tail_of_roots(
-            S[near_k], cn[near_k], dn[near_k], n[near_k]
-        )
-    return tail
-
-
 class FreeAsymmetricTop:
     """The exact torque-free motion of a rigid body (Euler's equations 4.47 with M = 0).
 
@@ -634,7 +615,7 @@ class FreeAsymmetricTop:
         if reduced is None:
             reduced = self._reduce(u)
         j, s, snx, cnx, dnx, _ = reduced
-        tail = _tail(s * snx, cnx, dnx, np.full_like(u, self._n))
+        tail = elliptic._third_kind_tail_reduced(s * snx, cnx, dnx, np.full_like(u, self._n))
         return tail + 2.0 * j * np.where(j != 0, self._full, 0.0)
 
     def _reduce(self, flat: npt.NDArray[np.float64]) -> elliptic._Reduction:
@@ -1178,7 +1159,9 @@ class FreeTopBatch:
         rest = circ & ~sep
         if rest.any():
             jr = j[rest]
-            tail = _tail((sr * snx)[rest], cnx[rest], dnx[rest], self._n[rest])
+            tail = elliptic._third_kind_tail_reduced(
+                (sr * snx)[rest], cnx[rest], dnx[rest], self._n[rest]
+            )
             G[rest] = tail + 2.0 * jr * np.where(jr != 0, self._full[rest], 0.0)
         J1, J3 = self._Js[:, 0], self._Js[:, 2]
         k = (self._C / self._lam) * (G - self._G0)
