@@ -1383,3 +1383,30 @@ def test_a_spin_within_1e_150_of_the_middle_axis_turns_as_the_steady_rotation(e)
     wb, Rb = batch.state(ts)
     np.testing.assert_allclose(wb, w, rtol=0, atol=4 * EPS)
     np.testing.assert_allclose(Rb, want, rtol=0, atol=64 * EPS * 40)
+
+
+def test_the_heavy_tops_root_search_is_newtons_from_above_in_a_few_steps():
+    """The search for u3 (``_root_from_above``) is Newton's method, quadratic near the
+    root: on 0.25 x + x³ (x = y − 0.3, slope 0.25 at its root) from the bracket [0, 4] it
+    evaluates the function at most 12 times and ends within an ulp of 0.3; a bisection of
+    the same bracket needs ~55 (2^-53 of its width)."""
+    calls = []
+
+    def rising(y):
+        calls.append(y)
+        x = y - 0.3
+        return 0.25 * x + x**3, 0.25 + 3.0 * x * x
+
+    root = tops._root_from_above(rising, 0.0, 4.0)
+    assert abs(root - 0.3) <= math.ulp(0.3)
+    assert len(calls) <= 12, len(calls)
+
+
+def test_the_heavy_tops_root_search_bisects_where_the_slope_is_flat():
+    """A slope of 0 (or one that does not rise) gives no Newton step: the bracket is
+    halved instead (never a division by the slope)."""
+
+    def rising(y):
+        return y - 0.3, 0.0 if y == 4.0 else 1.0  # flat at the bracket's top only
+
+    assert tops._root_from_above(rising, 0.0, 4.0) == pytest.approx(0.3, abs=4 * EPS)
