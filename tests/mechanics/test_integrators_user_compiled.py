@@ -22,6 +22,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from numba import njit
 
+from mechanics import _kernels_rhs as kernels_rhs
 from mechanics._floats import EPS
 from mechanics.errors import (
     NonFiniteError,
@@ -30,10 +31,10 @@ from mechanics.errors import (
     StepSizeError,
     UnknownOptionError,
 )
-from mechanics.integrators import CompiledPathWarning, integrate
+from mechanics.integrators import CompiledPathWarning, DOP853Stepper, integrate
 from mechanics.integrators import _compiled as compiled_path
 from mechanics.integrators._compiled import is_numba_function
-from mechanics.integrators._dop853 import _dop853_user
+from mechanics.integrators._dop853 import _KERNEL_TABLEAU, _dop853_user
 from mechanics.integrators._events import EVENT_XTOL, bracket_step, crosses
 from mechanics.integrators._rk4 import _rk4_user
 
@@ -433,3 +434,274 @@ def test_an_event_numba_cannot_type_is_named_in_the_warning():
     said = [str(w.message) for w in caught if issubclass(w.category, CompiledPathWarning)]
     assert len(said) == 1, said
     assert "(or its event as event(t, y) -> float64)" in said[0], said[0]
+
+
+# --- The DOP853 kernel run directly, on problems whose every step is known beforehand ----
+#
+# At rest (y' = 0) every stage is 0 and the error estimate exactly 0; on a drift (y' = c,
+# c = (1/2, -2)) the stages are c, exact, and the estimate is the rounding of Σ e_j c
+# (~1e-16 / (rtol |y|)), far below 0.09^8: either way every accepted step is the previous
+# one times Hairer's largest factor, 10.  From a first step of 1 at t = 0 the steps end at
+# 1, 11, 111, ... (cut at t[-1]).  Under mutation (NUMBA_DISABLE_JIT=1) the kernel runs
+# as Python; compiled, the same tests run the compiled kernel.
+
+#: Hairer's DOP853 step control as published (Hairer, Nørsett & Wanner, Solving ODEs I,
+#: II.10, and scipy's DOP853): safety 0.9, factors 0.2 to 10, exponent −1/8 (order 7 + 1)
+HAIRER_CONTROL = (0.9, 0.2, 10.0, -1.0 / 8.0)
+#: each DOP853 step calls f 12 times (f at its start is the last step's f_new), a dense
+#: output 3 more, the start once
+EVALS_PER_STEP, EVALS_PER_DENSE = 12, 3
+DRIFT = np.array([0.5, -2.0])
+#: the drift's states, exact but for rounding: Σ b_j in the kernel's order is 1 + 2 eps
+#: (b_j c exact, c a power of 2), and y + h Σ b_j c rounds once: 3 eps of |y| per step,
+#: 4 with the interpolant's Horner sum, at most 3 steps here (measured: 4.5 eps at most)
+DRIFT_EPS = 16
+
+
+# (states of 2 entries; array literals, which numba compiles in a third of np.zeros' time)
+def _rest(t, y):
+    return np.array([0.0, 0.0])
+
+
+def _drift(t, y):
+    return np.array([0.5, -2.0])
+
+
+def _faulty(t, y):
+    """Right until t = 1.66, then of the wrong length, from t = 5 on NaN."""
+    if t < 1.66:
+        return np.array([0.0, 0.0])
+    if t < 5.0:
+        return np.array([0.0])
+    return np.array([math.nan, math.nan])
+
+
+rest, drift, faulty = njit(_rest), njit(_drift), njit(_faulty)
+
+
+def _nan_event(t, y):
+    return math.nan
+
+
+def _past_1(t, y):
+    return t - 1.0
+
+
+def _past_1_5(t, y):
+    return t - 1.5
+
+
+def _before_1_5(t, y):
+    return 1.5 - t
+
+
+def _past_minus_1_5(t, y):
+    return t + 1.5
+
+
+def _cube_down(t, y):
+    return 7.0 - t * t * t
+
+
+def _saturating_06(t, y):
+    return t / (1.0 + t) - 0.6
+
+
+def _saturating_08(t, y):
+    return t / (1.0 + t) - 0.8
+
+
+nan_event, past_1, past_1_5, before_1_5, past_minus_1_5 = (
+    njit(f) for f in (_nan_event, _past_1, _past_1_5, _before_1_5, _past_minus_1_5)
+)
+cube_down, saturating_06, saturating_08 = (
+    njit(f) for f in (_cube_down, _saturating_06, _saturating_08)
+)
+
+
+def _kernel(rhs, y0, t, h0, *, rtol=1e-3, beta=0.0, max_steps=10**6, event=None, direction=0.0):
+    """kernels_rhs.dop853_rhs itself: ((status, steps, evals, rejected, outputs filled),
+    the outputs (NaN where none was written), ev = (t_event, y_event...))."""
+    y0 = np.asarray(y0, dtype=np.float64)
+    t = np.asarray(t, dtype=np.float64)
+    ys = np.full((t.size, y0.size), math.nan)
+    ev = np.full(y0.size + 1, math.nan)
+    done = kernels_rhs.dop853_rhs(
+        rhs,
+        y0,
+        t,
+        h0,
+        rtol,
+        rtol,
+        1,
+        max_steps,
+        *_KERNEL_TABLEAU,
+        np.array([*HAIRER_CONTROL, beta]),
+        ys,
+        kernels_rhs.no_event if event is None else event,
+        event is not None,
+        direction,
+        EVENT_XTOL,
+        ev,
+    )
+    return tuple(int(v) for v in done), ys, ev
+
+
+def test_a_kernel_that_stops_reports_the_work_done_up_to_there():
+    """Status 4 (rhs of another length) or 1 (a non-finite rate or event value), with
+    the steps, evaluations (the failing one counted), rejections and outputs (the start)
+    done before it."""
+    y0 = np.array([1.0, 2.0])
+    shape, nonfinite = kernels_rhs.STATUS_SHAPE, kernels_rhs.STATUS_NONFINITE
+    # wrong from the start: the one evaluation at t0
+    assert _kernel(faulty, y0, np.array([2.0, 3.0]), 0.5)[0] == (shape, 0, 1, 0, 1)
+    # wrong from the first stage on (1.65 + c_1 h, c_1 = 0.053, h = 1.35): two evaluations
+    assert _kernel(faulty, y0, np.array([1.65, 3.0]), 10.0)[0] == (shape, 0, 2, 0, 1)
+    # wrong only at t = 1.66, the step's end: 0.36 + (1.66 − 0.36) rounds to 1 ulp below,
+    # so the 12th stage (c = 1) is still right and f_new is the 13th evaluation that fails
+    assert 0.36 + (1.66 - 0.36) < 1.66
+    done, ys, _ = _kernel(faulty, y0, np.array([0.36, 1.66]), 10.0)
+    assert done == (shape, 0, 1 + EVALS_PER_STEP, 0, 1)
+    np.testing.assert_array_equal(ys[0], y0)
+    # a non-finite rate at the start, a non-finite event value at the start
+    assert _kernel(faulty, y0, np.array([5.0, 6.0]), 0.5)[0] == (nonfinite, 0, 1, 0, 1)
+    done = _kernel(rest, y0, np.array([0.0, 1.0]), 0.5, event=nan_event)[0]
+    assert done == (nonfinite, 0, 1, 0, 1)
+
+
+def test_the_first_step_is_raised_to_ten_ulps_of_t_and_grows_tenfold_as_scipys():
+    """At rest from t0 = 1 with a first step of 1e-300: raised to 10 ulp(1) (scipy's
+    floor), then ×10 per step, the error estimate being 0: steps of 10, 100 and (cut)
+    5 ulp to 1 + 115 ulp, as the stepper that takes scipy's steps takes them (scipy's
+    solve_ivp: the same ends, 37 evaluations)."""
+    ulp = 2.0**-52
+    t_end = 1.0 + 115 * ulp
+    y0 = np.array([1.0, -1.0])
+    stepper = DOP853Stepper(_rest, 1.0, y0, t_end, rtol=1e-9, atol=1e-9, first_step=1e-300)
+    ends = []
+    while stepper.status == "running":
+        stepper.step()
+        ends.append(stepper.t)
+    assert ends == [1.0 + 10 * ulp, 1.0 + 110 * ulp, t_end]
+    done, ys, _ = _kernel(rest, y0, np.array([1.0, t_end]), 1e-300, rtol=1e-9)
+    assert done == (0, len(ends), 1 + EVALS_PER_STEP * len(ends), 0, 2)
+    np.testing.assert_array_equal(ys, [y0, y0])
+
+
+def test_a_drift_is_followed_at_step_ends_inside_steps_and_at_the_end():
+    """y' = c from y0 (steps ending at 1, 11 and 20): an output on a step's end (t = 1),
+    one inside a step (5, from its interpolant: 3 more evaluations), the end; y0 + c t."""
+    t = np.array([0.0, 1.0, 5.0, 20.0])
+    y0 = np.array([1.0, 2.0])
+    done, ys, _ = _kernel(drift, y0, t, 1.0)
+    assert done == (0, 3, 1 + 3 * EVALS_PER_STEP + EVALS_PER_DENSE, 0, t.size)
+    exact = y0 + t[:, None] * DRIFT
+    assert _eps_diff(ys, exact) <= DRIFT_EPS
+
+
+def test_max_steps_counts_the_steps_taken_and_a_run_may_end_on_its_last():
+    """At rest over [0, 11] from a first step of 1: two steps (to 1, to 11).  Two allowed:
+    done; one: status 3 after it, at the output t = 11 not reached (the reference's
+    StepSizeError, '1 steps reached t=1.0')."""
+    y0 = np.array([1.0, 2.0])
+    t = np.array([0.0, 11.0])
+    assert _kernel(rest, y0, t, 1.0, max_steps=2)[0] == (0, 2, 1 + 2 * EVALS_PER_STEP, 0, 2)
+    done = _kernel(rest, y0, t, 1.0, max_steps=1)[0]
+    assert done == (kernels_rhs.STATUS_MAX_STEPS, 1, 1 + EVALS_PER_STEP, 0, 1)
+    with pytest.raises(StepSizeError, match=r"1 steps reached t=1\.0"):
+        _reference(_rest, y0, t, method="dop853", rtol=1e-3, h=1.0, max_steps=1)
+
+
+@pytest.mark.parametrize(
+    ("event", "direction", "t0"),
+    [(past_1_5, 1.0, 0.0), (before_1_5, -1.0, 0.0), (past_minus_1_5, 1.0, -3.0)],
+)
+def test_a_clock_event_is_met_exactly_where_it_is_zero(event, direction, t0):
+    """g = ±(t − t_e) on the drift, t_e = t0 + 1.5, steps t0 → t0 + 1 → t0 + 2.5: the
+    secant through the step's ends lands on t_e exactly (t0 = 0: (1·g(2.5) − 2.5·g(1)) /
+    (g(2.5) − g(1)) = 2.25/1.5; t0 = −3, times below 0: (−2·1 − 0.25)/1.5), where g = 0,
+    which is the crossing (a zero counts as crossed, as in ``crosses``): the event is t_e
+    to the bit, the output at t_e is dropped (outputs from the event on are), the state
+    is y0 + 1.5 c."""
+    t = t0 + np.array([0.0, 0.5, 1.5, 2.5])
+    y0 = np.array([1.0, 2.0])
+    done, ys, ev = _kernel(drift, y0, t, 1.0, event=event, direction=direction)
+    # both steps hold an output (t0 + 0.5, then t_e and the event): two dense outputs
+    assert done == (0, 2, 1 + 2 * (EVALS_PER_STEP + EVALS_PER_DENSE), 0, 2)
+    assert ev[0] == t0 + 1.5
+    assert _eps_diff(ev[1:], y0 + 1.5 * DRIFT) <= DRIFT_EPS
+    assert _eps_diff(ys[:2], y0 + (t[:2, None] - t0) * DRIFT) <= DRIFT_EPS
+    assert np.isnan(ys[2:]).all()
+
+
+def test_an_event_on_the_first_steps_end_is_met_there_with_that_steps_state():
+    """g = t − 1 rising, the first step 0 → 1 ends on its zero: the event is t = 1 and its
+    state the step's own, y0 + c (no search: g is already 0 at the bracket's end)."""
+    y0 = np.array([1.0, 2.0])
+    done, ys, ev = _kernel(drift, y0, np.array([0.0, 0.5, 3.0]), 1.0, event=past_1, direction=1.0)
+    assert done == (0, 1, 1 + EVALS_PER_STEP + EVALS_PER_DENSE, 0, 2)
+    assert ev[0] == 1.0
+    assert _eps_diff(ev[1:], y0 + DRIFT) <= DRIFT_EPS
+    assert _eps_diff(ys[:2], y0 + np.array([[0.0], [0.5]]) * DRIFT) <= DRIFT_EPS
+
+
+@pytest.mark.parametrize(
+    ("event", "direction", "root"),
+    [(saturating_06, 1.0, 1.5), (saturating_08, 1.0, 4.0), (cube_down, -1.0, 7.0 ** (1 / 3))],
+)
+def test_the_kernel_brackets_an_event_as_the_reference_does_to_the_bit(event, direction, root):
+    """At rest from Hairer's start (1e-6, then ×10 per step) each crossing lies in the step
+    1.111111 → 11.111111, a lopsided bracket that the Illinois rule and the bisection
+    every fourth iteration shrink to EVENT_XTOL · 11.1 in 10 to 20 iterations:
+    t/(1 + t) − c, concave, puts the first secant point past the root, 7 − t³ (|g| 5.6
+    against 1365, falling) before it, and each of the three takes the two ends' halvings
+    and the bisections in another order.  The event depends on t alone and both paths take the same steps
+    (every stage 0), so the kernel and the reference's search, documented as the kernel's
+    loop step for step, evaluate the same g at the same points: the same event time to
+    the bit, on or past the root and within the bracket's width of it."""
+    y0 = np.array([1.0, 2.0])
+    t = np.array([0.0, 20.0])
+    ref = _reference(
+        _rest, y0, t, method="dop853", rtol=1e-9, event=event, event_direction=direction
+    )
+    (_, steps, _, _), hit = _dop853_user(
+        rest, y0, t, None, 1e-9, 1e-9, 1, 10**6, 0.0, event, direction
+    )
+    assert hit is not None
+    assert ref.t_event is not None
+    assert steps == ref.steps == 8  # 1e-6 · (1 + 10 + ... + 10^7) = 11.111111 passes the root
+    assert hit[0] == ref.t_event
+    assert direction * event(hit[0], y0) >= 0.0
+    assert abs(hit[0] - root) <= EVENT_XTOL * 11.111111
+
+
+def test_the_kernels_compile_settings_give_back_what_computes_as_the_function():
+    """The kernels are compiled as their module is imported, before mutmut activates a
+    mutant: the two settings are applied again here, to the module's own functions.  What
+    comes back is called as the function (with the JIT off, numba hands the function
+    back): the interpolant at x = 1/2 of F = (0, 1, ..., 13), exact in binary, against
+    its nested form y + x (F0 + (1 − x) (F1 + x (F2 + ...))) (Hairer's contd8).
+    Compiled, both carry the documented options: numpy's error model, the disk cache, and
+    for ``_compile`` the signature compiled eagerly (here loaded from that cache)."""
+
+    def py(f):
+        return getattr(f, "py_func", f)
+
+    y = np.array([1.0, 2.0])
+    event = kernels_rhs._compile(kernels_rhs.EVENT_SIGNATURE)(py(kernels_rhs.no_event))
+    assert event(0.5, y) == py(kernels_rhs.no_event)(0.5, y)
+    interpolate = kernels_rhs._helper(py(kernels_rhs._interpolate))
+    F = np.arange(14.0).reshape(7, 2)
+    x = 0.5
+    want = F[6].copy()
+    for r in range(5, -1, -1):  # from the innermost bracket out: F5 + x F6, then (1 − x) ...
+        want = F[r] + (x if r % 2 == 1 else 1.0 - x) * want
+    want = y + x * want
+    out = np.empty(2)
+    interpolate(F, y, x, out)
+    np.testing.assert_array_equal(out, want)
+    if JIT:
+        assert event.signatures == [kernels_rhs.EVENT_SIGNATURE.args]
+        for dispatcher in (event, interpolate):
+            assert dispatcher.targetoptions["error_model"] == "numpy"
+            assert type(dispatcher._cache).__name__ == "FunctionCache"  # not NullCache
