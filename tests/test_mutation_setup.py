@@ -307,7 +307,7 @@ def test_a_survivor_accepted_in_writing_still_counts_against_the_score():
     assert open_ == ["mechanics.x.x_f__mutmut_2"]
 
 
-def test_the_table_row_of_a_sample_gives_its_wilson_interval_and_registration():
+def test_the_table_row_of_a_sample_gives_its_wilson_interval_and_registration(tmp_path):
     run = _run_module()
     status = {f"mechanics.x.x_f__mutmut_{i}": "killed" for i in range(95)}
     status |= {f"mechanics.x.x_g__mutmut_{i}": "survived" for i in range(5)}
@@ -326,6 +326,26 @@ def test_the_table_row_of_a_sample_gives_its_wilson_interval_and_registration():
     # a full run stopped before its end gives no score
     row = run.table_row(t, run.PlanRun(["mechanics/x.py"], None, None, (1, 2)), None)
     assert "| 100 of 400 (unfinished) | 95 | 1 | 4 (0 accepted) | | | uncommitted |" in row
+    # so does a sample stopped before its end (it once showed a score of what had run, and
+    # 100.0 % over 0.0–100.0 % for a module none of whose drawn mutants had run)
+    for checked in (0, 37):
+        part = run.tally(
+            "mechanics/x.py",
+            {f"mechanics.x.x_f__mutmut_{i}": "killed" for i in range(checked)}
+            | {f"mechanics.x.x_h__mutmut_{i}": "not checked" for i in range(400 - checked)},
+            {},
+            {},
+        )
+        row = run.table_row(part, plan_run, "0123456789abcdef")
+        assert row == (
+            f"| `mechanics/x.py` | {checked} of 100 drawn of 400 (seed 41) (unfinished) | "
+            f"{checked} | 0 | 0 (0 accepted) | | | `012345678` |"
+        )
+        # and the table, read back, keeps it under its seed
+        doc = tmp_path / "mutation.md"
+        doc.write_text(f"<!-- SCORES -->\n{run.TABLE_HEAD}\n{row}\n<!-- /SCORES -->\n")
+        previous = run.previous_rows(doc)
+        assert run.kept_row(previous, "mechanics/x.py", 41, "`x`") == row
 
 
 def test_a_copys_verdicts_survive_a_change_of_pyproject_outside_mutmut_and_pytest():

@@ -647,6 +647,13 @@ def table_row(t: Tally, run: PlanRun, commit: str | None) -> str:
             f"| `{t.module}` | {t.mutants} of {total} (unfinished) | {t.killed} | "
             f"{len(t.equivalent)} | {survived} ({len(t.accepted)} accepted) | | | {reg} |"
         )
+    drawn = min(run.sample or total, total)  # the sample's size in this module
+    if t.unchecked and t.mutants < drawn:  # a sample still going (or stopped): no score
+        return (
+            f"| `{t.module}` | {t.mutants} of {drawn} drawn of {total} (seed {run.seed}) "
+            f"(unfinished) | {t.killed} | {len(t.equivalent)} | {survived} "
+            f"({len(t.accepted)} accepted) | | | {reg} |"
+        )
     if t.unchecked:
         lo, hi = wilson(t.killed, t.denominator)
         run_ = f"{t.mutants} of {total} (seed {run.seed})"
