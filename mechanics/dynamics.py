@@ -244,6 +244,37 @@ def rotational_kinetic_energy(
 rotational_kinetic_energy = broadcast_checked(rotational_kinetic_energy)
 
 
+def _euler_component(
+    M: npt.NDArray[np.float64],
+    d: npt.NDArray[np.float64],
+    a: npt.NDArray[np.float64],
+    b: npt.NDArray[np.float64],
+    J: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
+    """(M − d a b)/J with the powers of two carried apart: inf only where the exact value
+    is beyond float64.
+
+    d (a b) = p 2**e with p = f_d (f_a f_b) of the mantissas (the plain product's roundings);
+    M and p 2**e are brought to one exponent E that leaves both below 1/2 (exact, save for
+    parts below 2**-1074 of the larger), their difference divided by J's mantissa and
+    scaled once.  The same bits as the plain (M − (J_k − J_j)(ω_j ω_k))/J_i wherever that
+    neither under- nor overflows; unlike it, subnormal moments keep their digits (J =
+    (3, 5, 7) 2**-1074, ω = 0.3 (1, 1, 1) gave 0, not −0.06) and d a b beyond float64 is
+    no overflow where J brings it back (or where d = 0: 0 · inf was NaN).
+    """
+    fd, ed = np.frexp(d)
+    fa, ea = np.frexp(a)
+    fb, eb = np.frexp(b)
+    fM, eM = np.frexp(M)
+    fJ, eJ = np.frexp(J)
+    p, e = fd * (fa * fb), ed + ea + eb
+    # a zero term has no exponent (frexp gives 0): it takes the other's
+    E = np.maximum(np.where(M == 0, e, eM), np.where(p == 0, eM, e)) + 1
+    diff = np.ldexp(fM, eM - E) - np.ldexp(p, e - E)
+    out: npt.NDArray[np.float64] = np.ldexp(diff / fJ, E - eJ)
+    return out
+
+
 def euler_equations_rhs(
     J_principal: npt.ArrayLike, omega: npt.ArrayLike, M: npt.ArrayLike
 ) -> npt.NDArray[np.float64]:
@@ -251,8 +282,10 @@ def euler_equations_rhs(
 
     Domain: ``J_principal`` (..., 3) each > 0 (else NonPositiveParameterError naming it) and
     obeying the triangle inequality to 64 eps of the largest (else NonPhysicalInertiaError); any
-    finite ``omega``, ``M`` (..., 3); a result beyond float64 raises ResultOverflowError.  Batches
-    that do not broadcast raise ShapeError listing each argument's shape.
+    finite ``omega``, ``M`` (..., 3); a result beyond float64 raises ResultOverflowError (moments
+    and rates of any magnitude, subnormal to near 1e308: (J_k − J_j) ω_j ω_k is formed with its
+    powers of two apart, so it neither underflows nor overflows on the way).  Batches that do
+    not broadcast raise ShapeError listing each argument's shape.
 
     J1 ω̇1 + (J3 − J2) ω2 ω3 = M1, and cyclically.
 
@@ -300,16 +333,13 @@ def euler_equations_rhs(
     J1, J2, J3 = (J[..., k] for k in range(3))
     w1, w2, w3 = (w[..., k] for k in range(3))
     with np.errstate(over="ignore", invalid="ignore"):
-        out = (
-            np.stack(
-                [
-                    Mm[..., 0] - (J3 - J2) * (w2 * w3),
-                    Mm[..., 1] - (J1 - J3) * (w3 * w1),
-                    Mm[..., 2] - (J2 - J1) * (w1 * w2),
-                ],
-                axis=-1,
-            )
-            / J
+        out = np.stack(
+            [
+                _euler_component(Mm[..., 0], J3 - J2, w2, w3, J1),
+                _euler_component(Mm[..., 1], J1 - J3, w3, w1, J2),
+                _euler_component(Mm[..., 2], J2 - J1, w1, w2, J3),
+            ],
+            axis=-1,
         )
     return _finite(out, "d omega/dt")
 

@@ -18,6 +18,7 @@ from scipy.integrate import solve_ivp
 
 from mechanics import dynamics as D
 from mechanics import inertia as I
+from mechanics._floats import ulps
 from mechanics.errors import (
     NegativeMassError,
     NonFiniteError,
@@ -938,3 +939,55 @@ def test_euler_equations_take_moments_up_to_float64s_limit_and_refuse_a_broken_t
     np.testing.assert_array_equal(wdot, np.array([0.1, 0.2, 0.3]) / big)
     with pytest.raises(NonPhysicalInertiaError, match=r"J_principal .* = -8\.98847e\+307 < 0"):
         D.euler_equations_rhs([8.98846567431158e307, 2.0, 2.5], [0.3, -1.0, 0.7], [0.0] * 3)
+
+
+# ------------------------------------- Euler's equations at any scale (the hunt, 29 Nov 2026)
+
+#: Euler's equations with M = 0 round four times (J_k − J_j, ω_j ω_k, their product, the
+#: quotient by J_i): within 4 ulps of the exact rational value, a bound with room to spare
+EULER_ULPS = 4
+
+
+def _euler_exact(J, w, M):
+    """(M_i − (J_k − J_j) ω_j ω_k)/J_i in exact rationals, the cyclic (i, j, k) of (4.47)."""
+    from fractions import Fraction
+
+    J, w, M = ([Fraction(float(x)) for x in v] for v in (J, w, M))
+    return [
+        (M[i] - (J[k] - J[j]) * w[j] * w[k]) / J[i] for i, j, k in ((0, 1, 2), (1, 2, 0), (2, 0, 1))
+    ]
+
+
+@pytest.mark.parametrize(
+    ("J", "w"),
+    [
+        # subnormal moments: (J3 − J2) ω2 ω3 = 0.18 · 2**-1074 rounded to 0 before the quotient,
+        # so the old route gave ω̇ = (0, 0, 0) for the exact (−0.06, 0.072, −0.0257)
+        pytest.param(np.array([3.0, 5.0, 7.0]) * 2.0**-1074, [0.3, 0.3, 0.3], id="subnormal"),
+        # (J3 − J2) ω2 ω3 = 2**-52 · 2**1040: ω2 ω3 overflowed (ResultOverflowError) where ω̇1
+        # = −2**988 is a float
+        pytest.param([1.0, 1.0, 1.0 + EPS], [0.0, 2.0**520, 2.0**520], id="product-overflow"),
+        # J2 = J3: 0 · inf was NaN (ResultOverflowError) for the exact ω̇ = 0
+        pytest.param([1.0, 2.0, 2.0], [0.0, 1e200, 1e200], id="zero-times-inf"),
+        # moments near float64's limit: (J3 − J2) ω2 ω3 = 2e317 overflowed, ω̇1 = −2e9
+        pytest.param([1e308, 1.5e308, 1.7e308], [1.0, 1e5, 1e5], id="huge-moments"),
+    ],
+)
+def test_euler_equations_are_exact_for_subnormal_and_huge_products(J, w):
+    wdot = D.euler_equations_rhs(J, w, [0.0, 0.0, 0.0])
+    for got, want in zip(wdot.tolist(), _euler_exact(J, w, [0.0, 0.0, 0.0]), strict=True):
+        assert ulps(got, want) <= EULER_ULPS, (got, float(want))
+
+
+@pytest.mark.parametrize("power", [-1000, -600, 600, 1000])
+def test_euler_equations_scaled_by_a_power_of_two_give_the_same_bits(power):
+    """J and M scaled together by 2**power leave ω̇ unchanged (exact scaling: M = (3, −1, 2)
+    2**-35 stays exact even as a subnormal).  Before the powers of two were carried apart,
+    2**-1000 made (J3 − J2) ω2 ω3 ≈ 1e-311 subnormal: ω̇ came out 371 to 464 ulps off (0.34
+    to 1.01 unscaled and now at every scale)."""
+    J, w, M = np.array([1.0, 2.0, 2.5]), [1e-5, -2e-5, 3e-5], np.array([3.0, -1.0, 2.0]) * 2.0**-35
+    want = D.euler_equations_rhs(J, w, M)
+    got = D.euler_equations_rhs(np.ldexp(J, power), w, np.ldexp(M, power))
+    np.testing.assert_array_equal(got, want)
+    exact = _euler_exact(J, w, M)
+    assert max(ulps(g, e) for g, e in zip(want.tolist(), exact, strict=True)) <= EULER_ULPS

@@ -10,7 +10,7 @@ import pytest
 
 from mechanics import energy as me
 from mechanics import particles as mp
-from mechanics._floats import EPS
+from mechanics._floats import EPS, ulps
 from mechanics.errors import (
     NegativeMassError,
     NonFiniteError,
@@ -441,3 +441,56 @@ def test_gravity_potential_of_a_batch_of_systems():
     np.testing.assert_array_equal(
         me.gravity_potential([1.0, 3.0], rs, g=[0.0, 0.0, -10.0]), [200.0, 30.0, 5.0]
     )
+
+
+# ----------------------------------------- springs at any scale (the hunt, 29 Nov 2026)
+
+#: the scaled norm (√ of a sum of 3 squares: ~2 ulps), ext, ext/|d| and the products
+SPRING_ULPS = 4
+
+
+@pytest.mark.parametrize(
+    ("r_1", "ell_0"),
+    [
+        # |d| = 1e160: its square overflowed in the plain norm (ResultOverflowError for a force
+        # of 1e160, a float)
+        pytest.param([1e160, 0.0, 0.0], 0.0, id="1e160"),
+        # |d| = 5e-170 and subnormal ends: the squares underflowed to 0 and distinct ends were
+        # refused as coincident (NonPositiveParameterError)
+        pytest.param([3e-170, 4e-170, 0.0], 1e-170, id="1e-170"),
+        pytest.param([3e-310, 4e-310, 0.0], 0.0, id="subnormal"),
+        pytest.param([5e-324, 0.0, 0.0], 0.0, id="smallest-subnormal"),
+    ],
+)
+def test_spring_force_and_energy_hold_at_any_length(r_1, ell_0):
+    """Against mpmath at 60 digits: |d|, the
+    force k (|d| − ℓ_0) d/|d| and the energy ½ k (|d| − ℓ_0)².  A few roundings (the scaled
+    norm, ext, the quotient, the product): within 4 ulps."""
+    import mpmath
+
+    k = 3.0
+    with mpmath.workdps(60):
+        d = [mpmath.mpf(x) for x in r_1]
+        dist = mpmath.sqrt(sum(x * x for x in d))
+        ext = dist - mpmath.mpf(ell_0)
+        F = [-mpmath.mpf(k) * ext * x / dist for x in d]
+        Phi = mpmath.mpf(k) * ext * ext / 2
+        got_F = me.spring_force(k, ell_0, r_1, [0.0, 0.0, 0.0]).tolist()
+        assert max(ulps(g, w) for g, w in zip(got_F, F, strict=True)) <= SPRING_ULPS, got_F
+        if Phi > mpmath.mpf(np.finfo(float).max):  # 1.5e320: refused, as documented
+            with pytest.raises(ResultOverflowError, match=r"^the spring energy is beyond"):
+                me.spring_potential(k, ell_0, r_1, [0.0, 0.0, 0.0])
+        elif Phi > mpmath.mpf(2.0**-1022):  # a normal energy (not 3.75e-647, rounded to 0)
+            got_Phi = float(me.spring_potential(k, ell_0, r_1, [0.0, 0.0, 0.0]))
+            assert ulps(got_Phi, Phi) <= SPRING_ULPS, got_Phi
+
+
+@pytest.mark.parametrize(
+    "f", [me.spring_potential, me.torsion_potential], ids=["spring", "torsion"]
+)
+def test_half_k_x_squared_does_not_round_a_subnormal_half_k_first(f):
+    """½ k x² = 3 · 2**-995 exactly for k = 3 · 2**-1074 (subnormal) and x = 2**40: the plain
+    (½ k) x x rounded ½ k = 1.5 · 2**-1074 to 2 · 2**-1074 and gave 4 · 2**-995 (33 % off)."""
+    k, x = 3.0 * 2.0**-1074, 2.0**40
+    got = f(k, 0.0, [x, 0.0, 0.0], [0.0, 0.0, 0.0]) if f is me.spring_potential else f(k, x)
+    assert float(got) == 3.0 * 2.0**-995
