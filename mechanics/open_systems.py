@@ -50,6 +50,7 @@ problem (a relative change of eps in g moves the result by eps g t).
 
 from __future__ import annotations
 
+import math
 from typing import cast
 
 import numpy as np
@@ -492,6 +493,40 @@ angular_momentum_rate = finite_result(angular_momentum_rate)
 # ------------------------------------------------------------------- the rocket
 
 
+def _rate_ratio(
+    q: npt.NDArray[np.float64], t: npt.NDArray[np.float64], m: npt.NDArray[np.float64]
+) -> npt.NDArray[np.float64]:
+    """q t/m of the mantissas, (f_q f_t)/f_m, scaled once by 2**(e_q + e_t − e_m): the same
+    bits as the plain (q t)/m wherever q t neither under- nor overflows.  The plain product
+    lost the ratio of a mass scale: m = 2**-1000 · 1000, q = 2**-1000 · 4, t = 1e-30 made
+    q t subnormal (a rocket's v = 0 for the exact 1.2e-29), and so did a jet's k = q t/m."""
+    fq, eq = np.frexp(q)
+    ft, et = np.frexp(t)
+    fm, em = np.frexp(m)
+    out: npt.NDArray[np.float64] = np.ldexp(fq * ft / fm, eq + et - em)
+    return out
+
+
+def _less_product(
+    a: npt.NDArray[np.float64],
+    b: npt.NDArray[np.float64],
+    c: npt.NDArray[np.float64],
+    d: npt.NDArray[np.float64],
+) -> npt.NDArray[np.bool_]:
+    """a b < c d for a, b, c, d ≥ 0, of the mantissas' products brought to one exponent: the
+    plain a b < c d wherever neither product under- nor overflows, and right where they do
+    (q u = 1e309 against m_0 g = 1.1e309 read as inf < inf and let a grounded rocket fly)."""
+    fa, ea = np.frexp(a)
+    fb, eb = np.frexp(b)
+    fc, ec = np.frexp(c)
+    fd, ed = np.frexp(d)
+    p, e = fa * fb, ea + eb
+    r, k = fc * fd, ec + ed
+    top = np.maximum(e, k)
+    out: npt.NDArray[np.bool_] = np.ldexp(p, e - top) < np.ldexp(r, k - top)
+    return out
+
+
 def _phi(x: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
     """φ(x) = (1/x) ∫₀ˣ −log(1 − y) dy = 1 + (1 − x) log(1 − x)/x, 0 ≤ x < 1, φ(0) = 0.
 
@@ -562,6 +597,15 @@ def burn_out_time(*, m_f: npt.ArrayLike, q: npt.ArrayLike) -> npt.NDArray[np.flo
 burn_out_time = finite_result(burn_out_time)
 
 
+def _shown_product(a: npt.ArrayLike, b: npt.ArrayLike, mask: npt.ArrayLike) -> str:
+    """a b at the first entry where ``mask`` holds, for a message: the product where it is a
+    float, else the factors as given (not the inf of an overflowed product)."""
+    x, y = _first(a, mask), _first(b, mask)
+    with np.errstate(over="ignore"):
+        p = float(np.float64(x) * np.float64(y))
+    return repr(p) if math.isfinite(p) and (p != 0 or x == 0 or y == 0) else f"{x!r} * {y!r}"
+
+
 def _first(values: npt.ArrayLike, mask: npt.ArrayLike) -> float:
     """The first entry of ``values`` where ``mask`` holds (both broadcast)."""
     v, m = np.broadcast_arrays(values, mask)
@@ -612,13 +656,12 @@ def _rocket_inputs(
             f"got {_first(ga, ga < 0)!r}"
         )
     if ua is not None and ga is not None:
-        lift, weight = qa * ua, m0 * ga
-        grounded = lift < weight
+        grounded = _less_product(qa, ua, m0, ga)
         if grounded.any():
             raise OutOfDomainError(
-                f"no lift-off: the thrust q u = {_first(lift, grounded)!r} is less than the "
-                f"weight m_0 g = {_first(weight, grounded)!r} (the rocket stands on the pad; "
-                "(7.30) would give v < 0)"
+                f"no lift-off: the thrust q u = {_shown_product(qa, ua, grounded)} is less than "
+                f"the weight m_0 g = {_shown_product(m0, ga, grounded)} (the rocket stands on "
+                "the pad; (7.30) would give v < 0)"
             )
     T = mf / qa
     beyond = ta > T
@@ -701,7 +744,7 @@ def _burn_velocity(
     g: npt.NDArray[np.float64],
 ) -> npt.NDArray[np.float64]:
     """u L(x) − g t, L = −log1p(−x), x = q t/m_0: (7.30)."""
-    v: npt.NDArray[np.float64] = u * -np.log1p(-(q * t / m0)) - g * t
+    v: npt.NDArray[np.float64] = u * -np.log1p(-_rate_ratio(q, t, m0)) - g * t
     return v
 
 
@@ -713,7 +756,7 @@ def _burn_height(
     g: npt.NDArray[np.float64],
 ) -> npt.NDArray[np.float64]:
     """u t φ(x) − g t²/2: the integral of (7.30) from 0 to t."""
-    z: npt.NDArray[np.float64] = u * t * _phi(q * t / m0) - 0.5 * g * t * t
+    z: npt.NDArray[np.float64] = u * t * _phi(_rate_ratio(q, t, m0)) - 0.5 * g * t * t
     return z
 
 
@@ -956,7 +999,7 @@ def jet_velocity(
     ta = as_float_array(t, "t")
     if (ta < 0).any():
         raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
-    k = _positive(q, "q") * ta / _positive(m, "m")
+    k = _rate_ratio(_positive(q, "q"), ta, _positive(m, "m"))
     v0 = as_float_array(v_0, "v_0")
     v: npt.NDArray[np.float64] = v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
     return v

@@ -7,6 +7,7 @@ Reference values come from the book (Examples 7.1–7.3), from hand computation
 from __future__ import annotations
 
 import math
+import re
 from fractions import Fraction
 
 import numpy as np
@@ -722,3 +723,28 @@ def test_each_domain_message_names_the_parameter_the_condition_and_the_offending
 def test_a_result_beyond_float64_is_an_overflow_error_naming_the_function(fname, kwargs):
     with pytest.raises(ResultOverflowError, match=rf"^{fname}: .*float64"):
         getattr(osys, fname)(**kwargs)
+
+
+@pytest.mark.parametrize(
+    ("q", "u", "m_0", "g", "grounded"),
+    [
+        # q u = 1e309 < m_0 g = 1.1e309: both overflowed to inf, inf < inf was False and the
+        # grounded rocket flew (v = -4.6e6 returned)
+        (1e300, 1e9, 1e300, 1.1e9, True),
+        (1e300, 1.1e9, 1e300, 1e9, False),
+        # q u = 1e-400 < m_0 g = 1.1e-400: both underflowed to 0
+        (1e-200, 1e-200, 1e-300, 1.1e-100, True),
+        (1e-200, 1.1e-200, 1e-300, 1e-100, False),
+    ],
+)
+def test_lift_off_is_decided_beyond_float64s_range(q, u, m_0, g, grounded):
+    """q u ≥ m_0 g decided on the products as they are, not as they round: the message
+    shows the factors where a product is no float (the hunt, 29 Nov 2026)."""
+    kw = {"m_0": m_0, "q": q, "u": u, "m_f": 0.5 * m_0, "g": g}
+    t = 0.25 * m_0 / q  # a quarter of the fuel burnt
+    if grounded:
+        want = re.escape(f"the thrust q u = {q!r} * {u!r} is less than the weight m_0 g = ")
+        with pytest.raises(OutOfDomainError, match=f"^no lift-off: {want}"):
+            osys.rocket_velocity(t, **kw)
+    else:  # lifts off: v = u L(1/4) − g t > 0 (its accuracy: tests/stability)
+        assert float(osys.rocket_velocity(t, **kw)) > 0

@@ -138,3 +138,34 @@ def test_report_worst_errors():
             + ", ".join(f"{k} {v:.2f}" for k, v in sorted(WORST.items()))
         )
     assert all(v <= BOUND for v in WORST.values())
+
+
+@pytest.mark.parametrize("power", [-1060, -1000, -600, 0, 600, 1000])
+@pytest.mark.parametrize("g_frac", [0.0, 0.5])
+def test_rocket_of_any_mass_scale_is_within_its_promise(power, g_frac):
+    """m_0, q (and m_f) scaled together by 2**power leave x = q t/m_0 alone: the error stays
+    within ROCKET_RTOL.  The plain q t underflowed at 2**-1000 and 2**-1060 for a burnt
+    fraction x = 1e-30 (q t ≈ 1e-329: v = z = 0, errors of 1/eps; the hunt, 29 Nov 2026)."""
+    m_0, q, u = np.ldexp(1000.0, power), np.ldexp(4.0, power), 3000.0
+    t, g = 1e-30 * 250.0, g_frac * 0.004 * u  # x m_0/q and g_frac q u/m_0 (ratios exact)
+    kw = dict(m_0=m_0, q=q, u=u, m_f=0.999 * m_0, g=g)
+    v, z = osys.rocket_velocity(t, **kw), osys.rocket_height(t, **kw)
+    ve, ze, sv, sz = _exact(t, m_0, q, u, g)
+    with mpmath.workdps(MP_DPS):
+        ev = float(abs(mpmath.mpf(float(v)) - ve) / sv) / EPS
+        ez = float(abs(mpmath.mpf(float(z)) - ze) / sz) / EPS
+    assert ev <= BOUND, ev
+    assert ez <= BOUND, ez
+
+
+@pytest.mark.parametrize("power", [-1000, 0, 1000])
+def test_jet_velocity_of_any_mass_scale_matches_mpmath(power):
+    """v = w + (v_0 − w) e^{−q t/m} from rest, k = q t/m = 2**-100 for masses scaled by
+    2**power: the plain q t underflowed to 0 at 2**-1000 (v = 0 for the exact w 2**-100).
+    Rounded in k (exact here), exp, expm1 and two products: within 4 eps."""
+    m, q, w, t = np.ldexp(3.0, power), np.ldexp(3.0, power), 1.5, 2.0**-100
+    with mpmath.workdps(MP_DPS):
+        k = mpmath.mpf(q) * t / mpmath.mpf(m)
+        exact = w - w * mpmath.exp(-k)
+        got = osys.jet_velocity(t, m=m, q=q, w=w, v_0=0.0)
+        assert float(abs(mpmath.mpf(float(got)) - exact) / exact) <= 4 * EPS
