@@ -330,17 +330,10 @@ def euler_equations_rhs(
     J = _principal_moments(J_principal)
     w = as_float_array(omega, "omega", (3,))
     Mm = as_float_array(M, "M", (3,))
-    J1, J2, J3 = (J[..., k] for k in range(3))
-    w1, w2, w3 = (w[..., k] for k in range(3))
+    # the three components at once: (M_i − (J_k − J_j) ω_j ω_k)/J_i, (i, j, k) cyclic
+    j, k = [1, 2, 0], [2, 0, 1]
     with np.errstate(over="ignore", invalid="ignore"):
-        out = np.stack(
-            [
-                _euler_component(Mm[..., 0], J3 - J2, w2, w3, J1),
-                _euler_component(Mm[..., 1], J1 - J3, w3, w1, J2),
-                _euler_component(Mm[..., 2], J2 - J1, w1, w2, J3),
-            ],
-            axis=-1,
-        )
+        out = _euler_component(Mm, J[..., k] - J[..., j], w[..., j], w[..., k], J)
     return _finite(out, "d omega/dt")
 
 
