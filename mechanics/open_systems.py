@@ -1406,6 +1406,25 @@ def carousel_limit_angular_velocity(
 carousel_limit_angular_velocity = finite_result(carousel_limit_angular_velocity)
 
 
+def _rim_ratio(
+    q: npt.NDArray[np.float64],
+    r: npt.NDArray[np.float64],
+    t: npt.NDArray[np.float64],
+    J_0: npt.NDArray[np.float64],
+) -> npt.NDArray[np.float64]:
+    """x = q r² t/J_0 of the mantissas, (f_q f_r f_r f_t)/f_J, scaled once by
+    2**(e_q + 2 e_r + e_t − e_J), as :func:`_rate_ratio`: the same bits as the plain
+    product wherever q r² t neither under- nor overflows.  The plain q r² overflowed for
+    a valid wheel (q r² = 2**1040, t = 2**-60, J_0 = 20 · 2**980: x = 0.05 refused as ≥ 1)
+    and lost digits where q r² t is subnormal (J_0 ~ 2**-1030)."""
+    fq, eq = np.frexp(q)
+    fr, er = np.frexp(r)
+    ft, et = np.frexp(t)
+    fJ, eJ = np.frexp(J_0)
+    out: npt.NDArray[np.float64] = np.ldexp(fq * fr * fr * ft / fJ, eq + 2 * er + et - eJ)
+    return out
+
+
 def rim_rocket_angular_velocity(
     t: npt.ArrayLike, *, J_0: npt.ArrayLike, q: npt.ArrayLike, u: npt.ArrayLike, r: npt.ArrayLike
 ) -> npt.NDArray[np.float64]:
@@ -1458,7 +1477,7 @@ def rim_rocket_angular_velocity(
     ta = as_float_array(t, "t")
     if (ta < 0).any():
         raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
-    x = _positive(q, "q") * _positive(r, "r") ** 2 * ta / _positive(J_0, "J_0")
+    x = _rim_ratio(_positive(q, "q"), _positive(r, "r"), ta, _positive(J_0, "J_0"))
     if (x >= 1).any():
         raise OutOfDomainError("q r² t must be < J_0 (the wheel cannot expel all its inertia)")
     w: npt.NDArray[np.float64] = -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)

@@ -169,3 +169,26 @@ def test_jet_velocity_of_any_mass_scale_matches_mpmath(power):
         exact = w - w * mpmath.exp(-k)
         got = osys.jet_velocity(t, m=m, q=q, w=w, v_0=0.0)
         assert float(abs(mpmath.mpf(float(got)) - exact) / exact) <= 4 * EPS
+
+
+@pytest.mark.parametrize(
+    ("q", "r", "t", "J_0"),
+    [
+        # q r² = 2**1040 beyond float64, q r² t = 2**980 and x = 0.05: a valid wheel
+        (2.0**900, 2.0**70, 2.0**-60, 20.0 * 2.0**980),
+        # q r² t ~ 0.05 · 2**-1030, subnormal: x = 0.05 to the last bit
+        (2.0**-1070, 1.0, 0.05 * 2.0**40, 2.0**-1030),
+        (2.0, 50.0, 10.0, 1e6),  # the docstring's wheel
+    ],
+)
+def test_rim_rocket_of_any_scale_matches_mpmath(q, r, t, J_0):
+    """ω = −(u/r) log(1 − q r² t/J_0) (7.46) with x = q r² t/J_0 formed on the mantissas:
+    the plain q r² overflowed for the first wheel (x = 0.05 refused as ≥ 1) and q r² t
+    lost ~10 bits as a subnormal for the second (500 eps).  Rounded in x (one quotient of
+    four products), log1p and a product: within 4 eps (the hunt, 29 Nov 2026)."""
+    u = 3000.0
+    got = osys.rim_rocket_angular_velocity(t, J_0=J_0, q=q, u=u, r=r)
+    with mpmath.workdps(MP_DPS):
+        x = mpmath.mpf(q) * mpmath.mpf(r) ** 2 * mpmath.mpf(t) / mpmath.mpf(J_0)
+        exact = -(mpmath.mpf(u) / mpmath.mpf(r)) * mpmath.log(1 - x)
+        assert float(abs(mpmath.mpf(float(got)) - exact) / exact) <= 4 * EPS
