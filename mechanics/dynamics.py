@@ -768,9 +768,11 @@ def pendulum_angular_velocity_at(
     way; a |φ̇| beyond float64 raises ResultOverflowError.  Batches that do not broadcast (2
     against 3) raise ShapeError listing each argument's shape.
 
-    φ̇² = (2 m g h/J_z)(cos φ − cos θ0) = (4 m g h/J_z)(s0 − s)(s0 + s), with
-    s = sin(|φ|/2), s0 = sin(|θ0|/2): the difference of cosines without
-    cancellation.  The sign of φ̇ is not determined by the energy; the
+    φ̇² = (2 m g h/J_z)(cos φ − cos θ0) = (4 m g h/J_z)(s0² − s²), with
+    s = sin(|φ|/2), s0 = sin(|θ0|/2), and s0² − s² = sin((|θ0| − |φ|)/2) sin((|θ0| + |φ|)/2):
+    the difference of cosines without cancellation, also near the turning point φ → θ0
+    (where (s0 − s)(s0 + s) of the rounded sines lost its digits: 3e8 eps at
+    |θ0| − |φ| = 2⁻³⁰).  The sign of φ̇ is not determined by the energy; the
     magnitude is returned.
 
     Parameters
@@ -828,10 +830,12 @@ def pendulum_angular_velocity_at(
             f"theta = {float(np.broadcast_to(th, bad.shape)[i])!r} lies beyond the amplitude "
             f"|theta_0| = {float(np.abs(np.broadcast_to(t0, bad.shape)[i]))!r}"
         )
-    s = np.sin(0.5 * np.abs(th))
-    s0 = np.sin(0.5 * np.abs(t0))
+    a, a0 = np.abs(th), np.abs(t0)
+    # s0² − s² = sin((|θ0| − |φ|)/2) sin((|θ0| + |φ|)/2): |θ0| − |φ| is exact near the
+    # turning point (Sterbenz), where (s0 − s) of the rounded sines lost its digits
+    diff = np.sin(0.5 * (a0 - a)) * np.sin(0.5 * (a0 + a))
     q, e = _omega0_squared(J, mm, gg, hh)
-    r, k = _sqrt_parts((4.0 * q) * np.maximum((s0 - s) * (s0 + s), 0.0), e)
+    r, k = _sqrt_parts((4.0 * q) * np.maximum(diff, 0.0), e)
     return np.ldexp(r, k)
 
 
