@@ -1222,7 +1222,9 @@ def principal_axis_stability(J: npt.ArrayLike, axis: int, *, omega: float = 1.0)
     finite scalar omega with C_i C_k ω² within float64 (else ResultOverflowError).
 
     δω̈_i = C_i C_k ω0² δω_i with C_i = (J_j − J_k)/J_i cyclic (Euler's equations
-    5.91 written as ω̇_i = C_i ω_j ω_k).
+    5.91 written as ω̇_i = C_i ω_j ω_k).  ω0² is never formed (it over- or underflows for
+    |ω0| beyond 1e154 or below 1e-154): the kind is the sign of C_i C_k, the rate
+    |ω0| √|C_i C_k|, and C_i C_k ω0² is scaled from ω0's mantissa.
 
     Parameters
     ----------
@@ -1271,15 +1273,24 @@ def principal_axis_stability(J: npt.ArrayLike, axis: int, *, omega: float = 1.0)
     i, k = (j + 1) % 3, (j + 2) % 3
     Ci = (J[j] - J[k]) / J[i]  # ω̇_i = C_i ω_j ω_k with (i, j, k) cyclic: C_i = (J_j − J_k)/J_i
     Ck = (J[i] - J[j]) / J[k]
-    prod = Ci * Ck * float(w) ** 2
-    if prod > 0:
-        return StabilityResult("unstable", math.sqrt(prod), prod)
-    if prod < 0:
-        return StabilityResult("stable", math.sqrt(-prod), prod)
-    return StabilityResult("neutral", 0.0, 0.0)
+    return _stability_of(Ci * Ck, float(w))
 
 
 principal_axis_stability = finite_result(principal_axis_stability)
+
+
+def _stability_of(c: float, w: float) -> StabilityResult:
+    """The kind, rate |ω| √|c| and c ω² of δω̈ = c ω² δω, c = C_i C_k.
+
+    |C_i| ≤ 1 by the triangle inequality and ≥ 2⁻⁵⁴ unless 0, so c neither under- nor
+    overflows; ω² may (ω = 1e160, 1e-160), so the kind is c's sign, the rate is taken from √|c|
+    and c ω² is scaled from ω's mantissa once (an overflow raises OverflowError)."""
+    f, e = math.frexp(w)
+    prod = math.ldexp(c * f * f, 2 * e)
+    if w == 0.0 or c == 0.0:
+        return StabilityResult("neutral", 0.0, 0.0)
+    rate = math.sqrt(abs(c)) * abs(w)
+    return StabilityResult("unstable" if c > 0 else "stable", rate, prod)
 
 
 # --------------------------------------------------------------------------- free symmetric top
@@ -1396,7 +1407,10 @@ class FreeSymmetricTop:
         # |L|/J1 = |(ω1, ω2, (J3/J1) ω3)|, from the scaled vector
         self.space_precession_rate = math.ldexp(Lh / j1, kw)
         self.nutation_angle = math.atan2(j1 * math.hypot(wn[0], wn[1]), j3 * wn[2])
-        self.spin_rate = self.space_precession_rate * math.cos(self.nutation_angle) * (j1 - j3) / j3
+        # φ̇ = (|L|/J1) cos θ0 (J1 − J3)/J3 = ω3 (J1 − J3)/J1 = −β: cos θ0 = J3 ω3/|L| through
+        # cos(atan2(...)) kept only the rounding of π/2 near a flat nutation (1e-6 relative off
+        # at cos θ0 = 5e-11; 6e283 for 1e-10 at J3 = 1e-300 J1)
+        self.spin_rate = -self.body_precession_rate
         self._steady = wl[0] == 0 and wl[1] == 0
         if not self._steady:
             W0 = _pole_frame_list(Ln[0] / Lh, Ln[1] / Lh, Ln[2] / Lh)

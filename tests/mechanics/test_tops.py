@@ -18,7 +18,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from mechanics import tops
-from mechanics._floats import EPS
+from mechanics._floats import EPS, ulps
 from mechanics.errors import (
     GimbalLockError,
     NonFiniteError,
@@ -188,6 +188,42 @@ def test_free_symmetric_top_rates_are_the_books():
     assert top.spin_rate == pytest.approx(L / J1 * cos_t * (J1 - J3) / J3, rel=8 * EPS)  # 5.35
 
 
+#: φ̇ = ω3 (J1 − J3)/J1 = −β: a difference (exact, Sterbenz or a ≥ 2 ratio's few roundings), a
+#: product and a quotient of the scaled moments; measured 0 eps on the cases below
+SPIN_RTOL = 4 * EPS
+#: J ω(t) against ^A R^O(t) L_O: two rotations R3 of rounded angles, the products of three
+#: matrices and a vector; measured ≤ 0.4 eps of |L| on the cases below
+SPIN_L_RTOL = 8 * EPS
+
+
+@pytest.mark.parametrize(
+    ("J1", "J3", "w0"),
+    [
+        # cos θ0 = J3 ω3/|L| ≈ 5e-11: cos(atan2(...)) of θ0 ≈ π/2 kept only the rounding of
+        # π/2 (1.3e-6 relative off before the fix)
+        (1.0, 0.5, [1e10, 0.0, 1.0]),
+        (1.0, 0.5, [3.0, 4.0, 1e-9]),  # 7e-7 off before
+        # cos θ0 ≈ 1e-310 rounded to the float nearest π/2's cosine: 6.1e283 for 1e-10 before
+        (1.0, 1e-300, [1.0, 0.0, 1e-10]),
+        (2.0**600, 2.0**599, [2.0**-600, 0.0, 2.0**-610]),
+    ],
+)
+def test_free_symmetric_top_spin_rate_near_a_flat_nutation_against_mpmath(J1, J3, w0):
+    """φ̇ = (|L|/J1) cos θ0 (J1 − J3)/J3 (5.35) = ω3 (J1 − J3)/J1: the cosine of a nutation angle
+    near π/2 taken through atan2 lost its digits; the attitude, turning at φ̇, took L off."""
+    import mpmath
+
+    top = tops.FreeSymmetricTop(J1, J3, w0)
+    with mpmath.workdps(50):
+        exact = mpmath.mpf(w0[2]) * (mpmath.mpf(J1) - J3) / J1
+        assert float(abs(top.spin_rate / exact - 1)) <= SPIN_RTOL
+    # L_A(t) = ^A R^O(t) L_O = J ω(t): the space-fixed L seen in the body at t = 1/|ω|
+    t = 1.0 / max(abs(x) for x in w0)
+    L_A = top.attitude(t) @ top.angular_momentum_space
+    want = np.array([J1, J1, J3]) * top.omega(t)
+    assert np.abs(L_A - want).max() <= SPIN_L_RTOL * top.angular_momentum_norm
+
+
 @pytest.mark.parametrize(
     ("J", "match"),
     [
@@ -251,6 +287,40 @@ def test_principal_axis_stability_middle_axis_unstable_others_oscillate():
     assert tops.principal_axis_stability([1.0, 1.0, 2.0], 1).kind == "neutral"
     with pytest.raises(UnknownOptionError):
         tops.principal_axis_stability(J, 4)
+
+
+#: rate = |ω| √|C_i C_k|: C_i, C_k and their product (three roundings), a square root halving
+#: them, one product with |ω|; measured ≤ 0.52 eps below
+STABILITY_RTOL = 4 * EPS
+#: C_i C_k ω²: C_i, C_k, their product, ω's mantissa squared (two roundings), scaled once;
+#: measured ≤ 0.52 ulps below
+STABILITY_ULPS = 6
+
+
+@pytest.mark.parametrize(
+    ("J", "axis", "omega", "kind"),
+    [
+        # ω² = 1e320 overflowed although C_i C_k ω² ≈ -1.1e304 (refused as an overflow before)
+        ([1.0, 1.0 + 2.0**-52, 2.0], 1, 1e160, "stable"),
+        ([1.0, 2.0, 3.0], 2, 1e-160, "unstable"),  # C_i C_k ω² subnormal: the rate 2.4e-4 off
+        # C_i C_k ω² ≈ 1e-332 rounded to 0: called neutral before, for a rate of 2.7e-166
+        ([1.0, 1.0 + 2.0**-52, 1.0 + 2.0**-51], 2, 1e-150, "unstable"),
+        ([1.0, 2.0, 3.0], 1, -(2.0**-540), "stable"),  # ω² = 0: neutral, rate 0 before
+    ],
+)
+def test_principal_axis_stability_at_any_rate_against_exact_rationals(J, axis, omega, kind):
+    import mpmath
+
+    r = tops.principal_axis_stability(J, axis, omega=omega)
+    j = axis - 1
+    i, k = (j + 1) % 3, (j + 2) % 3
+    Jf = [Fraction(x) for x in J]
+    c = (Jf[j] - Jf[k]) / Jf[i] * ((Jf[i] - Jf[j]) / Jf[k]) * Fraction(omega) ** 2
+    assert r.kind == kind
+    assert ulps(r.CiCk, c) <= STABILITY_ULPS
+    with mpmath.workdps(50):
+        exact = mpmath.sqrt(abs(mpmath.mpf(c.numerator) / c.denominator))
+        assert float(abs(r.rate / exact - 1)) <= STABILITY_RTOL
 
 
 def test_middle_axis_growth_rate_matches_the_exact_free_top():
