@@ -375,11 +375,13 @@ class FreeAsymmetricTop:
 
     Domain: principal moments J > 0 that obey the triangle inequality, of any magnitude from 1e-300
     to 1e300 (the motion is computed from J scaled by a power of two, so s·J moves exactly as J; L
-    and E are scaled back); any finite ω_0 (0: at rest) while |L| and E fit float64 (else
-    ResultOverflowError); within ~1e-150 |ω| of the separatrix the complementary parameter
-    underflows (OutOfDomainError), and a circulating amplitude below float64's normal
-    range (2.2e-308) beside one within it would carry the attitude to fewer than 53 bits
-    (OutOfDomainError; all of them subnormal, the body barely turns and is followed).
+    is scaled back, E, |L| and L² − 2EJ2 are the exact values in the units given rounded once:
+    an E of 1e-64 or 1e303 beside an ω of 2^∓600 is an ordinary float); any finite ω_0 (0: at
+    rest) while |L| and E fit float64 (else ResultOverflowError); within ~1e-150 |ω| of the
+    separatrix the complementary parameter underflows (OutOfDomainError), and a circulating
+    amplitude below float64's normal range (2.2e-308) beside one within it would carry the
+    attitude to fewer than 53 bits (OutOfDomainError; all of them subnormal, the body barely
+    turns and is followed).
 
     Parameters
     ----------
@@ -486,9 +488,12 @@ class FreeAsymmetricTop:
         e2 = 2 * eJ + 2 * ew  # the exponent of A, B, D and L²
         E2 = J1 * q1 + J2 * q2 + J3 * q3
         L2 = J1 * J1 * q1 + J2 * J2 * q2 + J3 * J3 * q3
-        self.energy = math.ldexp(_float_of(E2, 1, eJ + 2 * ew - 1), k)
+        # E and |L| in the units given rounded once from the exact integers with the moments'
+        # 2^k folded in: the scaled E (~ω²) under- or overflowed for ω beyond 2^±511 although
+        # E fitted (J = 2^990 (1, 2, 3), ω = 2^-600 w gave E = 0 for 5.4e-64)
+        self.energy = _float_of(E2, 1, eJ + 2 * ew - 1 + k)
         self._Lm = _sqrt_of(L2, 1, e2)  # |L| of the scaled moments
-        self.angular_momentum_norm = math.ldexp(self._Lm, k)
+        self.angular_momentum_norm = _sqrt_of(L2, 1, e2 + 2 * k)
         Lv = [a * b for a, b in zip(Jn, wl, strict=True)]
         if rotated:
             Lv = (self.R_A_O_0.T @ Lv).tolist()
@@ -505,7 +510,7 @@ class FreeAsymmetricTop:
         A = J1 * (J3 - J1) * q1 + J2 * (J3 - J2) * q2  # 2EJ3 − L²
         B = J2 * (J2 - J1) * q2 + J3 * (J3 - J1) * q3  # L² − 2EJ1
         D = J3 * (J3 - J2) * q3 - J1 * (J2 - J1) * q1  # L² − 2EJ2
-        self._separatrix_scaled = _float_of(D, 1, e2)  # L² − 2EJ2 of the scaled moments
+        self._separatrix = (D, e2)  # L² − 2EJ2 of the scaled moments: D 2^e2, exact
 
         nz = [i for i in range(3) if ws[i] != 0]
         steady = all(Jsl[i] == Jsl[nz[0]] for i in nz) if nz else True
@@ -771,15 +776,18 @@ class FreeAsymmetricTop:
     # -- public API
     def _get_separatrix_distance(self) -> float:
         """L² − 2 E J_mid in the units given: its sign gives the regime, zero on the
-        separatrix; exact to rounding (computed for the moments scaled by a power of two,
-        then scaled back exactly).  A :class:`~mechanics.errors.ResultOverflowError` when
-        it is beyond float64 (moments and rates with L² beyond ~1e308)."""
+        separatrix; the exact value (an integer times a power of two, for the moments scaled
+        by 2^-k) rounded once with 4^k folded in.  A
+        :class:`~mechanics.errors.ResultOverflowError` when it is beyond float64 (moments
+        and rates with L² beyond ~1e308)."""
+        D, e = self._separatrix
         try:
-            return math.ldexp(self._separatrix_scaled, 2 * self._scale_exp)
+            return _float_of(D, 1, e + 2 * self._scale_exp)
         except OverflowError:
             raise ResultOverflowError(
                 "separatrix_distance: L² − 2 E J_mid overflows float64 for these moments "
-                f"(scaled value {self._separatrix_scaled!r} × 4^{self._scale_exp})"
+                f"(|L² − 2 E J_mid| ≥ 2^{abs(D).bit_length() - 1 + e + 2 * self._scale_exp}, "
+                f"|L| = {self.angular_momentum_norm!r})"
             ) from None
 
     # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
