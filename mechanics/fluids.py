@@ -702,7 +702,9 @@ def bernoulli_constant(
     It is constant along a streamline of a steady incompressible ideal flow.
 
     Domain: rho_0 > 0, g > 0 (else NonPositiveParameterError), finite v (..., 3), p and z; a result
-    beyond float64 raises ResultOverflowError.
+    (or one of its terms) beyond float64 raises ResultOverflowError.  The terms are formed from
+    the mantissas with their powers of two apart, so |v|² or ρ0 g beyond float64's range on the
+    way to an ordinary term (ρ0 = 1e-100, |v| = 1e160) does not matter.
 
     Parameters
     ----------
@@ -747,10 +749,31 @@ def bernoulli_constant(
     zz = as_float_array(z, "z")
     rho = _positive(rho_0, "rho_0")
     g_mag = _positive(g, "g")
-    B: npt.NDArray[np.float64] = (
-        0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
-    )
+    B: npt.NDArray[np.float64] = _kinetic_density(vel, rho) + _weight_density(zz, rho, g_mag) + pp
     return B
+
+
+def _kinetic_density(v: npt.NDArray[np.float64], rho: float) -> npt.NDArray[np.float64]:
+    """½ ρ |v|² with v scaled by a power of two (its largest component into [1/2, 1)) and ρ's
+    mantissa, the exponents added once: |v|² alone overflows beyond |v| ~ 1e154 and
+    underflows below ~1e-154 where ½ ρ |v|² may be an ordinary float."""
+    k = np.frexp(np.abs(v).max(axis=-1))[1]
+    vs = np.ldexp(v, -k[..., None])
+    f, e = math.frexp(rho)
+    out: npt.NDArray[np.float64] = np.ldexp(
+        (0.5 * f) * np.einsum("...i,...i->...", vs, vs), e + 2 * k
+    )
+    return out
+
+
+def _weight_density(z: npt.NDArray[np.float64], rho: float, g: float) -> npt.NDArray[np.float64]:
+    """ρ g z from the three mantissas, the exponents added once (ρ g may over- or underflow
+    where ρ g z does not)."""
+    fz, ez = np.frexp(z)
+    fr, er = math.frexp(rho)
+    fg, eg = math.frexp(g)
+    out: npt.NDArray[np.float64] = np.ldexp((fr * fg) * fz, er + eg + ez)
+    return out
 
 
 bernoulli_constant = finite_result(bernoulli_constant)

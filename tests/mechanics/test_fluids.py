@@ -785,3 +785,30 @@ def test_drain_time_and_tank_level_at_any_scale_against_mpmath(h, g, a):
     t = T / 4
     _, _, level = _tank_exact(h, g, a, t)
     assert _rel(float(fluids.tank_level(t, h_0=h, g=g, area_ratio=a)), level) <= TANK_RTOL
+
+
+#: ½ ρ0 |v|² + ρ0 g z + p from the mantissas: |v|² of the scaled v (three products and two
+#: sums), ρ0's and g's mantissas (a product each), the two additions; measured ≤ 0.5 eps below
+BERNOULLI_RTOL = 8 * EPS
+
+
+@pytest.mark.parametrize(
+    ("v", "p", "z", "rho_0", "g"),
+    [
+        # |v|² = 1e320 overflowed for B = 5e219: refused as an overflow before
+        ([1e160, 0.0, 0.0], 0.0, 0.0, 1e-100, 1.0),
+        ([3e-170, -4e-170, 0.0], 0.0, 0.0, 1e100, 1.0),  # |v|² underflowed: B = 0 for 1.25e-239
+        ([0.0, 0.0, 0.0], 1.0, 1e-200, 1e200, 1e200),  # ρ0 g = 1e400 for ρ0 g z = 1e200: refused
+        # |v|² = 10·2^-1200 = 0: B = 2^-900 for 6·2^-900 before
+        ([2.0**-600, 0.0, 3 * 2.0**-600], 2.0**-900, 0.0, 2.0**300, 9.81),
+        ([1.5, -2.0, 0.25], 1e5, -3.0, 1000.0, 9.81),
+    ],
+)
+def test_bernoulli_constant_at_any_scale_against_mpmath(v, p, z, rho_0, g):
+    import mpmath
+
+    got = float(fluids.bernoulli_constant(v, p, z, rho_0=rho_0, g=g))
+    with mpmath.workdps(50):
+        vv = sum(mpmath.mpf(x) ** 2 for x in v)
+        exact = mpmath.mpf(rho_0) * vv / 2 + mpmath.mpf(rho_0) * g * z + p
+    assert _rel(got, exact) <= BERNOULLI_RTOL
