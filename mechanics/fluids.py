@@ -31,6 +31,7 @@ densities and g) and checks that the fields return finite values of the right sh
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 
 import numpy as np
@@ -701,7 +702,9 @@ def bernoulli_constant(
     It is constant along a streamline of a steady incompressible ideal flow.
 
     Domain: rho_0 > 0, g > 0 (else NonPositiveParameterError), finite v (..., 3), p and z; a result
-    beyond float64 raises ResultOverflowError.
+    (or one of its terms) beyond float64 raises ResultOverflowError.  The terms are formed from
+    the mantissas with their powers of two apart, so |v|² or ρ0 g beyond float64's range on the
+    way to an ordinary term (ρ0 = 1e-100, |v| = 1e160) does not matter.
 
     Parameters
     ----------
@@ -746,10 +749,31 @@ def bernoulli_constant(
     zz = as_float_array(z, "z")
     rho = _positive(rho_0, "rho_0")
     g_mag = _positive(g, "g")
-    B: npt.NDArray[np.float64] = (
-        0.5 * rho * np.einsum("...i,...i->...", vel, vel) + rho * g_mag * zz + pp
-    )
+    B: npt.NDArray[np.float64] = _kinetic_density(vel, rho) + _weight_density(zz, rho, g_mag) + pp
     return B
+
+
+def _kinetic_density(v: npt.NDArray[np.float64], rho: float) -> npt.NDArray[np.float64]:
+    """½ ρ |v|² with v scaled by a power of two (its largest component into [1/2, 1)) and ρ's
+    mantissa, the exponents added once: |v|² alone overflows beyond |v| ~ 1e154 and
+    underflows below ~1e-154 where ½ ρ |v|² may be an ordinary float."""
+    k = np.frexp(np.abs(v).max(axis=-1))[1]
+    vs = np.ldexp(v, -k[..., None])
+    f, e = math.frexp(rho)
+    out: npt.NDArray[np.float64] = np.ldexp(
+        (0.5 * f) * np.einsum("...i,...i->...", vs, vs), e + 2 * k
+    )
+    return out
+
+
+def _weight_density(z: npt.NDArray[np.float64], rho: float, g: float) -> npt.NDArray[np.float64]:
+    """ρ g z from the three mantissas, the exponents added once (ρ g may over- or underflow
+    where ρ g z does not)."""
+    fz, ez = np.frexp(z)
+    fr, er = math.frexp(rho)
+    fg, eg = math.frexp(g)
+    out: npt.NDArray[np.float64] = np.ldexp((fr * fg) * fz, er + eg + ez)
+    return out
 
 
 bernoulli_constant = finite_result(bernoulli_constant)
@@ -882,6 +906,17 @@ def _area_ratio(area_ratio: float) -> float:
     return a
 
 
+def _root(x: npt.NDArray[np.float64], c: float, e: int) -> npt.NDArray[np.float64]:
+    """√(x c 2**e) for x ≥ 0, a float c > 0 and an integer e: x c formed on the mantissas and
+    the power of two halved exactly, so a product beyond float64 (2 g h = 2e600) or below its
+    normal range (1e-600) on the way to an ordinary root rounds as the root of one in range."""
+    fx, ex = np.frexp(x)
+    fc, ec = math.frexp(c)
+    k, odd = np.divmod(ex + (ec + e), 2)
+    root: npt.NDArray[np.float64] = np.ldexp(np.sqrt(np.ldexp(fx * fc, odd)), k)
+    return root
+
+
 def torricelli_speed(
     h: npt.ArrayLike, *, g: float, area_ratio: float = 0.0
 ) -> npt.NDArray[np.float64]:
@@ -892,7 +927,8 @@ def torricelli_speed(
 
     u = √(2 g h) with the book's assumption of a still surface (``area_ratio = 0``);
     u = √(2 g h / (1 − a²)) when the surface sinks with speed a u (continuity),
-    a = ``area_ratio``.
+    a = ``area_ratio``.  The product 2 g h is formed on the mantissas with its power of two
+    apart (any magnitudes: u(1e300, g=1e300) = 1.4e300, u(1e-300, g=1e-300) = 1.4e-300).
 
     Parameters
     ----------
@@ -932,7 +968,8 @@ def torricelli_speed(
         raise OutOfDomainError(f"the depth h must be ≥ 0; got {h!r}")
     g_mag = _positive(g, "g")
     a = _area_ratio(area_ratio)
-    return np.sqrt(2.0 * g_mag * hh / ((1.0 - a) * (1.0 + a)))
+    f_g, e_g = math.frexp(g_mag)
+    return _root(hh, f_g / ((1.0 - a) * (1.0 + a)), e_g + 1)
 
 
 torricelli_speed = finite_result(torricelli_speed)
@@ -941,7 +978,9 @@ torricelli_speed = finite_result(torricelli_speed)
 def drain_time(h_0: npt.ArrayLike, *, g: float, area_ratio: float) -> npt.NDArray[np.float64]:
     """Time for a prismatic tank to empty through a small hole in its bottom.
 
-    Quasi-steady Torricelli outflow: T = √(2 h0 (1 − a²)/g) / a.
+    Quasi-steady Torricelli outflow: T = √(2 h0 (1 − a²)/g) / a, taken as the root of
+    2 h0 (1 − a)(1 + a)/(g a²) formed on the mantissas with its power of two apart (any
+    magnitudes: T(1e300, g=1e-300, a=0.5) = 2.4e300, T(1e-300, g=1e300) = 1.2e-300).
 
     Domain: h_0 ≥ 0, a scalar area_ratio in (0, 1) (0: the tank never drains; else
     OutOfDomainError), g > 0 (else NonPositiveParameterError); a result beyond float64 raises
@@ -990,7 +1029,9 @@ def drain_time(h_0: npt.ArrayLike, *, g: float, area_ratio: float) -> npt.NDArra
     a = _area_ratio(area_ratio)
     if a == 0.0:
         raise OutOfDomainError("area_ratio = 0 (no hole): the tank never drains")
-    return np.sqrt(2.0 * hh * (1.0 - a) * (1.0 + a) / g_mag) / a
+    f_g, e_g = math.frexp(g_mag)
+    f_a, e_a = math.frexp(a)
+    return _root(hh, (1.0 - a) * (1.0 + a) / (f_g * (f_a * f_a)), 1 - e_g - 2 * e_a)
 
 
 drain_time = finite_result(drain_time)
@@ -1007,7 +1048,8 @@ def tank_level(
 
     With Torricelli's outflow u(h) (:func:`torricelli_speed`) and continuity
     A dh/dt = −a u, the level falls as h(t) = (√h0 − c t)², c = a √(g/(2(1 − a²))),
-    written as c² (T − t)² with the drain time T; the empty tank stays empty
+    written as h0 ((T − t)/T)² with the drain time T = √h0/c (no c² = a² g/(2(1 − a²)),
+    which underflows for a tiny hole: a = 1e-200 gave h(0) = 0); the empty tank stays empty
     (h = 0 for t ≥ T).  Times must be ≥ 0.
 
     Parameters
@@ -1053,10 +1095,9 @@ def tank_level(
     if np.any(tt < 0):
         raise OutOfDomainError(f"times must be ≥ 0 (t = 0 is the start); got {t!r}")
     T = drain_time(h_0, g=g, area_ratio=area_ratio)
-    a = _area_ratio(area_ratio)
-    c2 = a * a * float(g) / (2.0 * (1.0 - a) * (1.0 + a))
-    left = np.maximum(T - tt, 0.0)
-    level: npt.NDArray[np.float64] = c2 * left * left
+    # (T − t)/T in [0, 1]: T = 0 only for h0 = 0, where the level stays 0
+    left = np.maximum(T - tt, 0.0) / np.where(T > 0.0, T, 1.0)
+    level: npt.NDArray[np.float64] = as_float_array(h_0, "h_0") * left * left
     return level
 
 

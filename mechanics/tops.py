@@ -375,11 +375,13 @@ class FreeAsymmetricTop:
 
     Domain: principal moments J > 0 that obey the triangle inequality, of any magnitude from 1e-300
     to 1e300 (the motion is computed from J scaled by a power of two, so s·J moves exactly as J; L
-    and E are scaled back); any finite ω_0 (0: at rest) while |L| and E fit float64 (else
-    ResultOverflowError); within ~1e-150 |ω| of the separatrix the complementary parameter
-    underflows (OutOfDomainError), and a circulating amplitude below float64's normal
-    range (2.2e-308) beside one within it would carry the attitude to fewer than 53 bits
-    (OutOfDomainError; all of them subnormal, the body barely turns and is followed).
+    is scaled back, E, |L| and L² − 2EJ2 are the exact values in the units given rounded once:
+    an E of 1e-64 or 1e303 beside an ω of 2^∓600 is an ordinary float); any finite ω_0 (0: at
+    rest) while |L| and E fit float64 (else ResultOverflowError); within ~1e-150 |ω| of the
+    separatrix the complementary parameter underflows (OutOfDomainError), and a circulating
+    amplitude below float64's normal range (2.2e-308) beside one within it would carry the
+    attitude to fewer than 53 bits (OutOfDomainError; all of them subnormal, the body barely
+    turns and is followed).
 
     Parameters
     ----------
@@ -486,9 +488,12 @@ class FreeAsymmetricTop:
         e2 = 2 * eJ + 2 * ew  # the exponent of A, B, D and L²
         E2 = J1 * q1 + J2 * q2 + J3 * q3
         L2 = J1 * J1 * q1 + J2 * J2 * q2 + J3 * J3 * q3
-        self.energy = math.ldexp(_float_of(E2, 1, eJ + 2 * ew - 1), k)
+        # E and |L| in the units given rounded once from the exact integers with the moments'
+        # 2^k folded in: the scaled E (~ω²) under- or overflowed for ω beyond 2^±511 although
+        # E fitted (J = 2^990 (1, 2, 3), ω = 2^-600 w gave E = 0 for 5.4e-64)
+        self.energy = _float_of(E2, 1, eJ + 2 * ew - 1 + k)
         self._Lm = _sqrt_of(L2, 1, e2)  # |L| of the scaled moments
-        self.angular_momentum_norm = math.ldexp(self._Lm, k)
+        self.angular_momentum_norm = _sqrt_of(L2, 1, e2 + 2 * k)
         Lv = [a * b for a, b in zip(Jn, wl, strict=True)]
         if rotated:
             Lv = (self.R_A_O_0.T @ Lv).tolist()
@@ -505,7 +510,7 @@ class FreeAsymmetricTop:
         A = J1 * (J3 - J1) * q1 + J2 * (J3 - J2) * q2  # 2EJ3 − L²
         B = J2 * (J2 - J1) * q2 + J3 * (J3 - J1) * q3  # L² − 2EJ1
         D = J3 * (J3 - J2) * q3 - J1 * (J2 - J1) * q1  # L² − 2EJ2
-        self._separatrix_scaled = _float_of(D, 1, e2)  # L² − 2EJ2 of the scaled moments
+        self._separatrix = (D, e2)  # L² − 2EJ2 of the scaled moments: D 2^e2, exact
 
         nz = [i for i in range(3) if ws[i] != 0]
         steady = all(Jsl[i] == Jsl[nz[0]] for i in nz) if nz else True
@@ -771,15 +776,18 @@ class FreeAsymmetricTop:
     # -- public API
     def _get_separatrix_distance(self) -> float:
         """L² − 2 E J_mid in the units given: its sign gives the regime, zero on the
-        separatrix; exact to rounding (computed for the moments scaled by a power of two,
-        then scaled back exactly).  A :class:`~mechanics.errors.ResultOverflowError` when
-        it is beyond float64 (moments and rates with L² beyond ~1e308)."""
+        separatrix; the exact value (an integer times a power of two, for the moments scaled
+        by 2^-k) rounded once with 4^k folded in.  A
+        :class:`~mechanics.errors.ResultOverflowError` when it is beyond float64 (moments
+        and rates with L² beyond ~1e308)."""
+        D, e = self._separatrix
         try:
-            return math.ldexp(self._separatrix_scaled, 2 * self._scale_exp)
+            return _float_of(D, 1, e + 2 * self._scale_exp)
         except OverflowError:
             raise ResultOverflowError(
                 "separatrix_distance: L² − 2 E J_mid overflows float64 for these moments "
-                f"(scaled value {self._separatrix_scaled!r} × 4^{self._scale_exp})"
+                f"(|L² − 2 E J_mid| ≥ 2^{abs(D).bit_length() - 1 + e + 2 * self._scale_exp}, "
+                f"|L| = {self.angular_momentum_norm!r})"
             ) from None
 
     # applied after the definition, so that mutmut mutates the function (it skips decorated ones)
@@ -1222,7 +1230,9 @@ def principal_axis_stability(J: npt.ArrayLike, axis: int, *, omega: float = 1.0)
     finite scalar omega with C_i C_k ω² within float64 (else ResultOverflowError).
 
     δω̈_i = C_i C_k ω0² δω_i with C_i = (J_j − J_k)/J_i cyclic (Euler's equations
-    5.91 written as ω̇_i = C_i ω_j ω_k).
+    5.91 written as ω̇_i = C_i ω_j ω_k).  ω0² is never formed (it over- or underflows for
+    |ω0| beyond 1e154 or below 1e-154): the kind is the sign of C_i C_k, the rate
+    |ω0| √|C_i C_k|, and C_i C_k ω0² is scaled from ω0's mantissa.
 
     Parameters
     ----------
@@ -1271,15 +1281,24 @@ def principal_axis_stability(J: npt.ArrayLike, axis: int, *, omega: float = 1.0)
     i, k = (j + 1) % 3, (j + 2) % 3
     Ci = (J[j] - J[k]) / J[i]  # ω̇_i = C_i ω_j ω_k with (i, j, k) cyclic: C_i = (J_j − J_k)/J_i
     Ck = (J[i] - J[j]) / J[k]
-    prod = Ci * Ck * float(w) ** 2
-    if prod > 0:
-        return StabilityResult("unstable", math.sqrt(prod), prod)
-    if prod < 0:
-        return StabilityResult("stable", math.sqrt(-prod), prod)
-    return StabilityResult("neutral", 0.0, 0.0)
+    return _stability_of(Ci * Ck, float(w))
 
 
 principal_axis_stability = finite_result(principal_axis_stability)
+
+
+def _stability_of(c: float, w: float) -> StabilityResult:
+    """The kind, rate |ω| √|c| and c ω² of δω̈ = c ω² δω, c = C_i C_k.
+
+    |C_i| ≤ 1 by the triangle inequality and ≥ 2⁻⁵⁴ unless 0, so c neither under- nor
+    overflows; ω² may (ω = 1e160, 1e-160), so the kind is c's sign, the rate is taken from √|c|
+    and c ω² is scaled from ω's mantissa once (an overflow raises OverflowError)."""
+    f, e = math.frexp(w)
+    prod = math.ldexp(c * f * f, 2 * e)
+    if w == 0.0 or c == 0.0:
+        return StabilityResult("neutral", 0.0, 0.0)
+    rate = math.sqrt(abs(c)) * abs(w)
+    return StabilityResult("unstable" if c > 0 else "stable", rate, prod)
 
 
 # --------------------------------------------------------------------------- free symmetric top
@@ -1396,7 +1415,10 @@ class FreeSymmetricTop:
         # |L|/J1 = |(ω1, ω2, (J3/J1) ω3)|, from the scaled vector
         self.space_precession_rate = math.ldexp(Lh / j1, kw)
         self.nutation_angle = math.atan2(j1 * math.hypot(wn[0], wn[1]), j3 * wn[2])
-        self.spin_rate = self.space_precession_rate * math.cos(self.nutation_angle) * (j1 - j3) / j3
+        # φ̇ = (|L|/J1) cos θ0 (J1 − J3)/J3 = ω3 (J1 − J3)/J1 = −β: cos θ0 = J3 ω3/|L| through
+        # cos(atan2(...)) kept only the rounding of π/2 near a flat nutation (1e-6 relative off
+        # at cos θ0 = 5e-11; 6e283 for 1e-10 at J3 = 1e-300 J1)
+        self.spin_rate = -self.body_precession_rate
         self._steady = wl[0] == 0 and wl[1] == 0
         if not self._steady:
             W0 = _pole_frame_list(Ln[0] / Lh, Ln[1] / Lh, Ln[2] / Lh)

@@ -400,8 +400,13 @@ def test_a_streamline_that_needs_too_many_evaluations_reports_the_whole_interval
             "bernoulli_constant",
             lambda: fluids.bernoulli_constant([1e300, 0, 0], 1.0, 1.0, rho_0=1.0, g=1.0),
         ),
-        ("torricelli_speed", lambda: fluids.torricelli_speed(1e300, g=1e300)),
-        ("drain_time", lambda: fluids.drain_time(1e300, g=1e-300, area_ratio=0.5)),
+        # u = √(2 g h/(1 − a²)) ≈ 1.3e316 and T = √(2 h0 (1 − a²)/g)/a ≈ 1.2e310: beyond float64
+        # (the cases before, u(1e300, g=1e300) = 1.4e300 and T = 2.4e300, are ordinary floats)
+        (
+            "torricelli_speed",
+            lambda: fluids.torricelli_speed(1e308, g=1e308, area_ratio=1 - 2.0**-53),
+        ),
+        ("drain_time", lambda: fluids.drain_time(1e300, g=1e-300, area_ratio=1e-10)),
         (
             "material_derivative",
             lambda: fluids.material_derivative(
@@ -720,3 +725,90 @@ def test_an_empty_tank_and_a_surface_hole_are_allowed():
     c = 0.1 * np.sqrt(9.8 / (2 * 0.99))
     drain = fluids.drain_time(0.25, g=9.8, area_ratio=0.1)
     assert drain == pytest.approx(0.5 / c, rel=CLOSED_RTOL)
+
+
+# ------------------------------------------- Torricelli's tank at any scale (against mpmath)
+#: u, T and h from a few roundings each: the constant's (1 − a)(1 + a), a quotient, the mantissas'
+#: product, a square root (halving the error before it), a square; measured ≤ 0.5 eps below
+TANK_RTOL = 8 * EPS
+
+#: (h, g, a): products 2 g h, 2 h/g or a² beyond float64 although u, T and h(t) are ordinary
+#: floats.  Before the fix: u(1e300, 1e300) refused as an overflow, u(1e-300, 1e-300) = 0, T(1e300,
+#: 1e-300) refused, T(1e-300, 1e300) = 0, h(0) = 0 for a = 1e-200 and h(0) = 1.00003 h0 for a =
+#: 1e-160 (a² subnormal), h = 0 for h0 = 5e-324
+_TANKS = [
+    (1e300, 1e300, 0.0),
+    (1e-300, 1e-300, 0.5),
+    (5e-324, 1.0, 0.0),
+    (1e300, 1e-300, 0.5),
+    (1e-300, 1e300, 0.5),
+    (1.0, 9.8, 1e-200),
+    (1.0, 9.8, 1e-160),
+    (5e-324, 9.8, 0.5),
+    (2.0, 9.8, 0.3),
+]
+
+
+def _tank_exact(h, g, a, t):
+    import mpmath
+
+    with mpmath.workdps(50):
+        h, g, a, t = (mpmath.mpf(x) for x in (h, g, a, t))
+        u = mpmath.sqrt(2 * g * h / (1 - a * a))
+        T = mpmath.sqrt(2 * h * (1 - a * a) / g) / a if a else mpmath.inf
+        level = h * (1 - t / T) ** 2 if a else h
+        return u, T, level
+
+
+def _rel(got, exact):
+    """The relative error; a subnormal result's within half its spacing 2⁻¹⁰⁷⁴ counts as 0."""
+    import mpmath
+
+    if abs(mpmath.mpf(got) - exact) <= mpmath.ldexp(1, -1075):
+        return 0.0
+    return float(abs(mpmath.mpf(got) / exact - 1))
+
+
+@pytest.mark.parametrize(("h", "g", "a"), _TANKS)
+def test_torricelli_speed_at_any_scale_against_mpmath(h, g, a):
+    u, _, _ = _tank_exact(h, g, a, 0.0)
+    assert _rel(float(fluids.torricelli_speed(h, g=g, area_ratio=a)), u) <= TANK_RTOL
+
+
+@pytest.mark.parametrize(("h", "g", "a"), [c for c in _TANKS if c[2] > 0])
+def test_drain_time_and_tank_level_at_any_scale_against_mpmath(h, g, a):
+    T = float(fluids.drain_time(h, g=g, area_ratio=a))
+    _, T_exact, level_0 = _tank_exact(h, g, a, 0.0)
+    assert _rel(T, T_exact) <= TANK_RTOL
+    assert _rel(float(fluids.tank_level(0.0, h_0=h, g=g, area_ratio=a)), level_0) <= TANK_RTOL
+    # at a time T/4 exactly representable: h0 (1 − t/T)² with T exact, against the rounded T's
+    t = T / 4
+    _, _, level = _tank_exact(h, g, a, t)
+    assert _rel(float(fluids.tank_level(t, h_0=h, g=g, area_ratio=a)), level) <= TANK_RTOL
+
+
+#: ½ ρ0 |v|² + ρ0 g z + p from the mantissas: |v|² of the scaled v (three products and two
+#: sums), ρ0's and g's mantissas (a product each), the two additions; measured ≤ 0.5 eps below
+BERNOULLI_RTOL = 8 * EPS
+
+
+@pytest.mark.parametrize(
+    ("v", "p", "z", "rho_0", "g"),
+    [
+        # |v|² = 1e320 overflowed for B = 5e219: refused as an overflow before
+        ([1e160, 0.0, 0.0], 0.0, 0.0, 1e-100, 1.0),
+        ([3e-170, -4e-170, 0.0], 0.0, 0.0, 1e100, 1.0),  # |v|² underflowed: B = 0 for 1.25e-239
+        ([0.0, 0.0, 0.0], 1.0, 1e-200, 1e200, 1e200),  # ρ0 g = 1e400 for ρ0 g z = 1e200: refused
+        # |v|² = 10·2^-1200 = 0: B = 2^-900 for 6·2^-900 before
+        ([2.0**-600, 0.0, 3 * 2.0**-600], 2.0**-900, 0.0, 2.0**300, 9.81),
+        ([1.5, -2.0, 0.25], 1e5, -3.0, 1000.0, 9.81),
+    ],
+)
+def test_bernoulli_constant_at_any_scale_against_mpmath(v, p, z, rho_0, g):
+    import mpmath
+
+    got = float(fluids.bernoulli_constant(v, p, z, rho_0=rho_0, g=g))
+    with mpmath.workdps(50):
+        vv = sum(mpmath.mpf(x) ** 2 for x in v)
+        exact = mpmath.mpf(rho_0) * vv / 2 + mpmath.mpf(rho_0) * g * z + p
+    assert _rel(got, exact) <= BERNOULLI_RTOL

@@ -279,6 +279,35 @@ def test_matrix_from_axis_angle_divides_out_the_axis_length():
     )
 
 
+@pytest.mark.parametrize("power", [-1074 + 7, -1060, -1040, -1000, -600, 600, 1015])
+def test_matrix_from_axis_angle_of_an_axis_scaled_by_a_power_of_two_gives_the_same_bits(power):
+    """s·axis is the same direction for s = 2**power (exact for these integer axes, subnormal
+    ones included): the same matrix, bit for bit.  Before the fix a subnormal axis lost its
+    direction (hypot of a subnormal vector keeps its few bits: 5.8e12 eps off at 2**-1068)."""
+    rng = np.random.default_rng(RNG_SEED)
+    axes = rng.integers(-50, 51, (64, 3)).astype(float)
+    axes = axes[np.abs(axes).max(axis=-1) > 0]
+    angles = rng.uniform(-4.0, 4.0, len(axes))
+    scaled = np.ldexp(axes, power)
+    assert_array_equal(np.ldexp(scaled, -power), axes)  # the scaling is exact
+    got = rot.matrix_from_axis_angle(scaled, angles)
+    assert_array_equal(got, rot.matrix_from_axis_angle(axes, angles))
+    # and that matrix is (2.29): cos φ 1 + (1 − cos φ) e eᵀ − sin φ [e]×, by mpmath (40 digits)
+    import mpmath
+
+    with mpmath.workdps(40):
+        for a, phi, R in zip(axes[:8].tolist(), angles[:8].tolist(), got[:8], strict=True):
+            n = mpmath.sqrt(sum(mpmath.mpf(x) ** 2 for x in a))
+            e = [mpmath.mpf(x) / n for x in a]
+            c, s_ = mpmath.cos(phi), mpmath.sin(phi)
+            skew = [[0, -e[2], e[1]], [e[2], 0, -e[0]], [-e[1], e[0], 0]]
+            want = [
+                [(c if i == j else 0) + (1 - c) * e[i] * e[j] - s_ * skew[i][j] for j in range(3)]
+                for i in range(3)
+            ]
+            assert np.abs(R - np.array(want, dtype=float)).max() <= SCIPY_ATOL
+
+
 # ------------------------------------------------------------------- quaternions
 
 

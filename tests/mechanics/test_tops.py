@@ -18,7 +18,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from mechanics import tops
-from mechanics._floats import EPS
+from mechanics._floats import EPS, ulps
 from mechanics.errors import (
     GimbalLockError,
     NonFiniteError,
@@ -188,6 +188,42 @@ def test_free_symmetric_top_rates_are_the_books():
     assert top.spin_rate == pytest.approx(L / J1 * cos_t * (J1 - J3) / J3, rel=8 * EPS)  # 5.35
 
 
+#: φ̇ = ω3 (J1 − J3)/J1 = −β: a difference (exact, Sterbenz or a ≥ 2 ratio's few roundings), a
+#: product and a quotient of the scaled moments; measured 0 eps on the cases below
+SPIN_RTOL = 4 * EPS
+#: J ω(t) against ^A R^O(t) L_O: two rotations R3 of rounded angles, the products of three
+#: matrices and a vector; measured ≤ 0.4 eps of |L| on the cases below
+SPIN_L_RTOL = 8 * EPS
+
+
+@pytest.mark.parametrize(
+    ("J1", "J3", "w0"),
+    [
+        # cos θ0 = J3 ω3/|L| ≈ 5e-11: cos(atan2(...)) of θ0 ≈ π/2 kept only the rounding of
+        # π/2 (1.3e-6 relative off before the fix)
+        (1.0, 0.5, [1e10, 0.0, 1.0]),
+        (1.0, 0.5, [3.0, 4.0, 1e-9]),  # 7e-7 off before
+        # cos θ0 ≈ 1e-310 rounded to the float nearest π/2's cosine: 6.1e283 for 1e-10 before
+        (1.0, 1e-300, [1.0, 0.0, 1e-10]),
+        (2.0**600, 2.0**599, [2.0**-600, 0.0, 2.0**-610]),
+    ],
+)
+def test_free_symmetric_top_spin_rate_near_a_flat_nutation_against_mpmath(J1, J3, w0):
+    """φ̇ = (|L|/J1) cos θ0 (J1 − J3)/J3 (5.35) = ω3 (J1 − J3)/J1: the cosine of a nutation angle
+    near π/2 taken through atan2 lost its digits; the attitude, turning at φ̇, took L off."""
+    import mpmath
+
+    top = tops.FreeSymmetricTop(J1, J3, w0)
+    with mpmath.workdps(50):
+        exact = mpmath.mpf(w0[2]) * (mpmath.mpf(J1) - J3) / J1
+        assert float(abs(top.spin_rate / exact - 1)) <= SPIN_RTOL
+    # L_A(t) = ^A R^O(t) L_O = J ω(t): the space-fixed L seen in the body at t = 1/|ω|
+    t = 1.0 / max(abs(x) for x in w0)
+    L_A = top.attitude(t) @ top.angular_momentum_space
+    want = np.array([J1, J1, J3]) * top.omega(t)
+    assert np.abs(L_A - want).max() <= SPIN_L_RTOL * top.angular_momentum_norm
+
+
 @pytest.mark.parametrize(
     ("J", "match"),
     [
@@ -251,6 +287,40 @@ def test_principal_axis_stability_middle_axis_unstable_others_oscillate():
     assert tops.principal_axis_stability([1.0, 1.0, 2.0], 1).kind == "neutral"
     with pytest.raises(UnknownOptionError):
         tops.principal_axis_stability(J, 4)
+
+
+#: rate = |ω| √|C_i C_k|: C_i, C_k and their product (three roundings), a square root halving
+#: them, one product with |ω|; measured ≤ 0.52 eps below
+STABILITY_RTOL = 4 * EPS
+#: C_i C_k ω²: C_i, C_k, their product, ω's mantissa squared (two roundings), scaled once;
+#: measured ≤ 0.52 ulps below
+STABILITY_ULPS = 6
+
+
+@pytest.mark.parametrize(
+    ("J", "axis", "omega", "kind"),
+    [
+        # ω² = 1e320 overflowed although C_i C_k ω² ≈ -1.1e304 (refused as an overflow before)
+        ([1.0, 1.0 + 2.0**-52, 2.0], 1, 1e160, "stable"),
+        ([1.0, 2.0, 3.0], 2, 1e-160, "unstable"),  # C_i C_k ω² subnormal: the rate 2.4e-4 off
+        # C_i C_k ω² ≈ 1e-332 rounded to 0: called neutral before, for a rate of 2.7e-166
+        ([1.0, 1.0 + 2.0**-52, 1.0 + 2.0**-51], 2, 1e-150, "unstable"),
+        ([1.0, 2.0, 3.0], 1, -(2.0**-540), "stable"),  # ω² = 0: neutral, rate 0 before
+    ],
+)
+def test_principal_axis_stability_at_any_rate_against_exact_rationals(J, axis, omega, kind):
+    import mpmath
+
+    r = tops.principal_axis_stability(J, axis, omega=omega)
+    j = axis - 1
+    i, k = (j + 1) % 3, (j + 2) % 3
+    Jf = [Fraction(x) for x in J]
+    c = (Jf[j] - Jf[k]) / Jf[i] * ((Jf[i] - Jf[j]) / Jf[k]) * Fraction(omega) ** 2
+    assert r.kind == kind
+    assert ulps(r.CiCk, c) <= STABILITY_ULPS
+    with mpmath.workdps(50):
+        exact = mpmath.sqrt(abs(mpmath.mpf(c.numerator) / c.denominator))
+        assert float(abs(r.rate / exact - 1)) <= STABILITY_RTOL
 
 
 def test_middle_axis_growth_rate_matches_the_exact_free_top():
@@ -597,9 +667,40 @@ def test_separatrix_distance_is_in_the_units_given_and_refuses_overflow():
     with pytest.raises(
         ResultOverflowError,
         match=r"^separatrix_distance: L² − 2 E J_mid overflows float64 for these moments "
-        r"\(scaled value ",
+        r"\(\|L² − 2 E J_mid\| ≥ 2\^1330, \|L\| = 3\.05\d*e\+200\)$",
     ):
+        # L² − 2EJ2 = (9.32 − 6.48)e400 ≈ 2^1330.9, |L| = √9.32e200 (the message showed the
+        # scaled value and 4^k before)
         _ = tops.FreeAsymmetricTop(1e200 * J, w).separatrix_distance
+
+
+#: (log2 of the moments' scale, log2 of ω's): E = ½ J ω², |L| and L² − 2EJ2 fit float64 but the
+#: scaled moments' E (~ω²) did not: J = 2^990, ω = 2^-600 gave E = 0 and L² − 2EJ2 = 0 (the
+#: regime's sign lost) for 5.4e-64 and -1.6e234; J = 2^-990, ω = 2^600 (E = 1.5e63) and
+#: ω = 2^1000 (E = 9.7e303) were refused as overflows
+_SCALED_TOPS = [(990, -600), (990, -1000), (-990, 600), (-990, 1000), (-600, 600), (600, -520)]
+
+
+@pytest.mark.parametrize(("ej", "ew"), _SCALED_TOPS)
+def test_free_top_constants_at_any_scale_are_the_exact_values_rounded_once(ej, ew):
+    import mpmath
+
+    J, w = [1.0, 2.0, 3.0], [1.0, 0.1, 0.5]
+    Js, ws = [math.ldexp(x, ej) for x in J], [math.ldexp(x, ew) for x in w]
+    top = tops.FreeAsymmetricTop(Js, ws)
+    Jf, wf = [Fraction(x) for x in Js], [Fraction(x) for x in ws]
+    E = sum(a * b * b for a, b in zip(Jf, wf, strict=True)) / 2
+    L2 = sum((a * b) ** 2 for a, b in zip(Jf, wf, strict=True))
+    assert top.energy == float(E)  # Fraction → float rounds once
+    assert top.separatrix_distance == float(L2 - 2 * E * Jf[1])
+    with mpmath.workdps(50):
+        L = mpmath.sqrt(mpmath.mpf(L2.numerator) / L2.denominator)
+        assert ulps(top.angular_momentum_norm, L) <= 0.5  # the root of an exact value, rounded
+    # ω(t) and the attitude are those of the unscaled top at t·2^ew, bit for bit
+    base = tops.FreeAsymmetricTop(J, w)
+    ts = np.array([0.0, 0.7, 7.5])
+    assert np.array_equal(top.omega(np.ldexp(ts, -ew)), np.ldexp(base.omega(ts), ew))
+    assert np.array_equal(top.attitude(np.ldexp(ts, -ew)), base.attitude(ts))
 
 
 # ------------------------------------------- every parameter named, every overflow named
@@ -1410,3 +1511,29 @@ def test_the_heavy_tops_root_search_bisects_where_the_slope_is_flat():
         return y - 0.3, 0.0 if y == 4.0 else 1.0  # flat at the bracket's top only
 
     assert tops._root_from_above(rising, 0.0, 4.0) == pytest.approx(0.3, abs=4 * EPS)
+
+
+# ---------------------------- free tops whose moments differ by more than float64's exponent range
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug: the moments scaled by 2^-k (largest in [1/2, 1)) underflow the smallest for a "
+    "ratio beyond 2^1074 (J = (1e200, 1e200, 1e-200), each in the documented 1e-300..1e300): its "
+    "scaled moment is 0 and the elliptic parameter's denominator (J3 − J2) B or (J2 − J1) A is 0 "
+    "(bare ZeroDivisionError); a ratio beyond 2^1022 leaves it subnormal",
+)
+def test_a_free_top_with_moments_1e400_apart_is_followed():
+    top = tops.FreeAsymmetricTop([1e200, 1e200, 1e-200], [1e-10, 0.0, 1.0])
+    # E = ½ (1e200 · 1e-20 + 1e-200): the exact value rounded once
+    assert top.energy == float((Fraction(1e200) * Fraction(1e-10) ** 2 + Fraction(1e-200)) / 2)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="bug: FreeSymmetricTop scales J1 = 1e300, J3 = 1e-300 (the documented extremes) by "
+    "2^-997: j3 = 1e-600 underflows to 0, so E = 0 and |L| = 0 for the exact 5e-301 and 1e-300 "
+    "(ω = e3), and E = 0 for 1e-300 at ω = (1e-300, 0, 1)",
+)
+def test_a_free_symmetric_top_with_the_extreme_moments_keeps_its_energy():
+    top = tops.FreeSymmetricTop(1e300, 1e-300, [0.0, 0.0, 1.0])
+    assert top.energy == 1e-300 / 2  # ½ J3 ω3², exact
+    assert top.angular_momentum_norm == 1e-300

@@ -92,9 +92,9 @@ def _constants_in_fractions(J, w):
     B = J2 * (J2 - J1) * w2**2 + J3 * (J3 - J1) * w3**2
     D = J3 * (J3 - J2) * w3**2 - J1 * (J2 - J1) * w1**2
     out = {
-        "energy": math.ldexp(float(E2 / 2), k),
+        "energy": float(E2 / 2 * Fraction(2) ** k),
         "_Lm": _fsqrt(L2),
-        "_separatrix_scaled": float(D),
+        "separatrix_distance": float(D * Fraction(2) ** (2 * k)),
     }
     nz = [i for i in range(3) if ws[i] != 0]
     if not nz or all(Js[i] == Js[nz[0]] for i in nz):
