@@ -1474,3 +1474,34 @@ def test_effective_mass_and_impact_of_a_tensor_at_any_scale_against_exact_ration
     size = max(abs(c) for c in w)
     for got_c, want_c in zip(out.body_1.omega.tolist(), w, strict=True):
         assert abs(Fraction(got_c) - want_c) <= TINY_TENSOR_EPS * Fraction(EPS) * size
+
+
+def test_a_batch_of_contacts_at_very_different_scales_gives_each_its_own_mu():
+    """Each contact's tensor and arm are scaled by their own powers of two: a batch of a
+    tiny body with a tiny arm (m = 2^1000, J = 2^-1000 J0, r = 2^-600 r0: μ ≈ 2^200) beside
+    an ordinary one gives each the μ it has alone, bit for bit (one scale for the whole
+    batch would flush the first's arm or tensor to zero)."""
+    J0 = np.array([[2.0, 0.5, 0.0], [0.5, 3.0, 0.25], [0.0, 0.25, 4.0]])
+    r0 = np.array([1.0, 0.5, 0.25])
+    m = np.array([2.0**1000, 1.0])
+    J = np.stack([J0 * 2.0**-1000, J0 * 2.0**100])
+    r = np.stack([r0 * 2.0**-600, r0 * 2.0**500])
+    n = [0.0, 0.0, 1.0]
+    batch = im.effective_mass(m, J, r, n)
+    alone = [float(im.effective_mass(m[i], J[i], r[i], n)) for i in range(2)]
+    assert batch.tolist() == alone
+    assert 2.0**190 < alone[0] < 2.0**210  # the tiny arm's μ, far from m = 2^1000
+
+
+def test_rigid_impact_refuses_an_inverse_effective_mass_beyond_float64_by_name():
+    """An arm of 1e300 on a unit tensor: 1/μ ~ 1e600, so μ and the impulse underflow and the
+    change of ω they make is lost: refused, with the whole reason."""
+    body = im.RigidBody(1.0, np.eye(3), [0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 0.0, 0.0])
+    with pytest.raises(ResultOverflowError) as info:
+        im.rigid_impact(body, None, r_S=[1e300, 0.0, 0.0], n=[0.0, 0.0, 1.0], e=0.5)
+    assert str(info.value) == (
+        "rigid_impact: 1/μ = 1/m + (r × n)·J⁻¹(r × n) exceeds float64's range (~1.8e308: an "
+        "arm beyond ~1e154 radii of gyration, or 1e300 and 1e-300 mixed), so μ and the "
+        "impulse underflow and the change of ω they make (finite) is lost; rescale the "
+        "inputs (choose units)"
+    )
