@@ -1537,3 +1537,196 @@ def test_a_free_symmetric_top_with_the_extreme_moments_keeps_its_energy():
     top = tops.FreeSymmetricTop(1e300, 1e-300, [0.0, 0.0, 1.0])
     assert top.energy == 1e-300 / 2  # ½ J3 ω3², exact
     assert top.angular_momentum_norm == 1e-300
+
+
+def test_a_heavy_top_given_ints_and_numpy_scalars_is_the_top_given_floats():
+    """The angles and rates may be any real scalar (ints, numpy scalars, 0-d arrays):
+    converted to the same floats, the top is the same to the bit as the one given
+    Python floats (the floats take a fast path, the others numpy's conversion)."""
+    J1, J3, mgl = 1.0, 0.5, 1.0
+    given = dict(
+        theta=np.float64(1.0), psi=0, phi=np.array(0.25), theta_dot=np.float32(0.5),
+        psi_dot=1, phi_dot=np.int64(5),
+    )  # fmt: skip
+    top = tops.HeavySymmetricTop(J1, J3, mgl, **given)
+    ref = tops.HeavySymmetricTop(J1, J3, mgl, **{k: float(v) for k, v in given.items()})
+    ts = np.array([0.0, 0.7, 2.5])
+    assert top.roots == ref.roots
+    assert (top.theta0, top.psi0, top.phi0) == (1.0, 0.0, 0.25)
+    for name in ("theta", "psi", "phi"):
+        assert np.array_equal(getattr(top, name)(ts), getattr(ref, name)(ts)), name
+
+
+@pytest.mark.parametrize(("J3", "refused"), [(2.0, True), (1.0, False)])
+def test_the_heavy_tops_gravity_floor_is_against_the_largest_moment_j3_included(J3, refused):
+    """m g ℓ = 1.5e-308 against J'1 = 1: 1.5e-308 of J'1, above the documented floor,
+    but J3 = 2 (= 2 J'1, allowed) is the largest, and 0.75e-308 of it is below: refused,
+    naming m_g_ell and the largest, 2.0.  With J3 = 1 the largest is 1.0: built."""
+    if not refused:
+        top = tops.HeavySymmetricTop(1.0, J3, 1.5e-308, theta=0.5, phi_dot=1e-150)
+        assert top.m_g_ell == 1.5e-308
+        return
+    with pytest.raises(OutOfDomainError) as e:
+        tops.HeavySymmetricTop(1.0, J3, 1.5e-308, theta=0.5, phi_dot=1e-150)
+    assert str(e.value).startswith(
+        "m_g_ell = 1.5e-308 is below 1e-308 of the largest of J_1, J_3, m_g_ell (2.0)"
+    )
+
+
+def test_the_overflowing_turning_point_is_refused_with_its_whole_message():
+    # θ̇0 = 1e150 against m g ℓ = 2^-1021 (the test above): the bracket doubles to inf
+    with pytest.raises(ResultOverflowError) as e:
+        tops.HeavySymmetricTop(1.0, 1.0, 2.0**-1021, theta=1.0, theta_dot=1e150)
+    assert str(e.value) == (
+        "the largest turning point of cos θ exceeds float64's range (theta_dot = 1e+150, "
+        "psi_dot = 0.0, phi_dot = 0.0, m_g_ell = 4.450147717014403e-308): a rate's square "
+        "times J_1/m_g_ell is beyond ~1.8e308; rescale (choose units)"
+    )
+
+
+def test_the_overflowing_root_search_is_refused_with_its_whole_message():
+    # as test_a_heavy_top_whose_turning_point_search_overflows_is_refused_by_name
+    with pytest.raises(OutOfDomainError) as e:
+        tops.HeavySymmetricTop(
+            2.0, 1.0, 3.0, theta=0.5, psi=0.1, phi=0.2, theta_dot=0.1, psi_dot=1e100, phi_dot=8.0
+        )
+    assert re.fullmatch(
+        r"the turning points of θ are beyond float64: the search for the largest root "
+        r"overflows at 1 − u = \S+ \(theta_dot = 0\.1, psi_dot = 1e\+100, phi_dot = 8\.0, "
+        r"m_g_ell = 3\.0\); rescale \(choose units\) so that the rates' squares stay within "
+        r"float64",
+        str(e.value),
+    ), str(e.value)
+
+
+@pytest.mark.parametrize("theta", [1.0, 2.0])
+@pytest.mark.parametrize("over", [5e-5, 5e-4, 1e-2, 0.5])
+def test_a_pendulum_swinging_over_the_top_has_u2_exactly_one(theta, over):
+    """ψ̇ = φ̇ = 0: a = b = 0, so f(u) = (e − βu)(1 − u²) has the roots −1, 1 and e/β, and
+    with energy above the vertical's (e/β = 1 + over) the top passes the vertical: the
+    nutation band is [−1, 1], u2 = 1 exactly (1 − u2 = (a − b)²/(...) = 0, the class's
+    form without cancellation), however little u3 exceeds 1."""
+    # θ̇0² = β(1 + over − u0), β = 2 m g ℓ/J'1 = 2
+    thd = math.sqrt(2.0 * (1.0 + over - math.cos(theta)))
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=theta, theta_dot=thd)
+    assert top.roots[1] == 1.0, top.roots
+    assert top.roots[0] == -1.0, top.roots
+    assert abs(top.roots[2] - (1.0 + over)) <= 4 * EPS * (1.0 + over), top.roots
+
+
+#: the pendulum short of the top: u1 = −1 and u3 = 1 are exact roots, u3 = u0 + (1 − u0)
+#: rounded twice (cos θ0 and 2 sin²(θ0/2)): 2 eps
+PENDULUM_U3_EPS = 2.0
+
+
+@pytest.mark.parametrize("short", [5e-4, 5e-6])
+def test_a_pendulum_swinging_just_short_of_the_top_is_built_with_its_exact_roots(short):
+    """a = b = 0 with e/β = 1 − short: u = 1 is the largest root (h(0) ≤ 0 in the class's
+    factored form: the search is skipped, u3 − 1 = 0), u = −1 the smallest; u2 = e/β in
+    between (its accuracy: the strict xfail below).  The top starts at u0."""
+    th = math.pi / 2
+    thd = math.sqrt(2.0 * (1.0 - short - math.cos(th)))
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=th, theta_dot=thd)
+    u1, u2, u3 = top.roots
+    assert u1 == -1.0
+    assert abs(u3 - 1.0) <= PENDULUM_U3_EPS * EPS
+    assert math.cos(th) < u2 < 1.0
+    assert abs(float(top.u(0.0)) - math.cos(th)) <= 4 * EPS
+
+
+#: central differences of the search function at a step of 2^-20 (relative to max(1, y)):
+#: truncation ~ |g'''| 2^-40 and rounding ~ eps |g| 2^20 ≈ 2e-10 |g|, both far below 1e-6
+SLOPE_RTOL = 1e-6
+SLOPE_STEP = 2.0**-20
+
+#: tops whose search for u3 runs on each form of its function: F (u3 − 1 ≤ 1), F/y²
+#: (u3 − 1 > 1, a ≠ b) and h (a = b, the pendulum over the top)
+SEARCH_FORMS = {
+    "F": dict(theta=2.0, theta_dot=1.0, psi_dot=0.5, phi_dot=0.2),  # u3 = 1.022
+    "F/y²": dict(theta=1.0, theta_dot=0.3, psi_dot=0.3, phi_dot=8.0),
+    "F/y², fast": dict(theta=1.0, theta_dot=4.0, psi_dot=0.75, phi_dot=3.0),
+    "h": dict(theta=1.0, theta_dot=2.5),
+}
+
+
+@pytest.mark.parametrize("form", list(SEARCH_FORMS))
+def test_the_heavy_tops_root_search_is_given_the_slope_of_its_function(monkeypatch, form):
+    """Newton's method needs the slope of the function whose root it seeks: at every
+    point the search evaluates, the slope the top passes agrees with a central difference
+    of the values it passes (a wrong slope still ends at the root, by bisection, but in
+    many more steps), and the search ends in a few Newton steps."""
+    seen = []
+    search = tops._root_from_above
+
+    def recording(rising, lo, hi):
+        def probe(y):
+            seen.append((y, rising))
+            return rising(y)
+
+        return search(probe, lo, hi)
+
+    monkeypatch.setattr(tops, "_root_from_above", recording)
+    tops.HeavySymmetricTop(1.1875, 0.5, 2.140625, **SEARCH_FORMS[form])
+    monkeypatch.undo()
+    assert 2 <= len(seen) <= 12, len(seen)
+    checked = 0
+    for y, rising in seen:
+        step = SLOPE_STEP * max(1.0, y)
+        if y - step <= 0.0 or abs(y - 1.0) <= step:  # the forms switch at y = 1
+            continue
+        value, slope = rising(y)
+        fd = (rising(y + step)[0] - rising(y - step)[0]) / (2.0 * step)
+        assert abs(slope - fd) <= SLOPE_RTOL * max(abs(fd), abs(value), 1.0), (y, slope, fd)
+        checked += 1
+    assert checked >= 2, seen
+
+
+#: ψ̇ = (a − b u)/(1 − u²) at the fixed u = u0 and φ̇ = L3/J3 − ψ̇ u0, each a few roundings
+#: from the given rates (measured ≤ 2 eps of the rate), over t ≤ 10: 64 eps of |rate| t
+STEADY_ANGLE_EPS = 64.0
+
+
+@pytest.mark.parametrize(
+    ("theta", "phi_dot", "psi_dot"),
+    [(0.3, 5.0, 0.4363853630175805), (0.3, 20.0, 0.10048228681709957)],
+)
+def test_a_top_started_on_its_steady_precession_precesses_uniformly(theta, phi_dot, psi_dot):
+    """θ̇0 = 0 and ψ̇0 the slow steady rate (5.60) to the ulp at which the computed nutation
+    band closes (u2 − u1 = 0 exactly, a double root at u0): the top stays at θ0 and its ψ
+    and φ turn uniformly at the rates given (the book's steady precession)."""
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=theta, psi_dot=psi_dot, phi_dot=phi_dot)
+    assert top.roots[0] == top.roots[1] == math.cos(theta)  # the closed band
+    ts = np.array([0.0, 0.5, 3.0, 10.0])
+    assert np.array_equal(top.u(ts), np.full(4, math.cos(theta)))
+    np.testing.assert_allclose(top.theta(ts), theta, rtol=4 * EPS)
+    for name, rate in (("psi", psi_dot), ("phi", phi_dot)):
+        np.testing.assert_allclose(
+            getattr(top, name)(ts), rate * ts, rtol=0, atol=STEADY_ANGLE_EPS * EPS * abs(rate) * 10
+        )
+
+
+def test_the_heavy_tops_root_search_by_bisection_alone_ends_at_the_root():
+    """With no Newton step (a slope of 0 everywhere) the search is a bisection of the
+    bracket: it ends within its two floats about the root (0.3: the bracket's lower end
+    moves too), and at a point whose value is exactly 0 (1.0, after 2.0 where the value
+    is 1.0) it returns that point."""
+    root = tops._root_from_above(lambda y: (y - 0.3, 0.0), 0.0, 4.0)
+    assert abs(root - 0.3) <= math.ulp(0.3), root
+    assert tops._root_from_above(lambda y: (y - 1.0, 0.0), 0.0, 4.0) == 1.0
+
+
+@pytest.mark.parametrize(
+    ("largest", "smallest"),
+    [(1.0, 1e-308), (1.0, 1.5e-308), (2.0**600, 2.0**600 * 1e-308), (1.0, 0.5), (3.0, 3.0)],
+)
+def test_the_scale_keeps_the_smallest_parameter_a_normal_float(largest, smallest):
+    """_scale_exponent's k: the largest scaled into [1/2, 1) unless the smallest would
+    then be subnormal (its digits lost); then the smallest at [2^-1022, 2^-1021), float64's
+    smallest binade of normal numbers, and the largest below 8 (ratio ≥ 1e-308)."""
+    k = tops._scale_exponent(largest, smallest)
+    assert math.ldexp(smallest, -k) >= 2.0**-1022
+    assert math.ldexp(largest, -k) < 8.0
+    if smallest / largest > 2.0**-1020:
+        assert 0.5 <= math.ldexp(largest, -k) < 1.0
+    else:
+        assert math.ldexp(smallest, -k) < 2.0**-1021

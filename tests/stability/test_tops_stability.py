@@ -361,3 +361,36 @@ def test_heavy_top_roots_with_negligible_gravity_against_mpmath(mgl):
     errs = [float(abs(mpmath.mpf(a) - b) / EPS) for a, b in zip(top.roots[:2], ex[:2], strict=True)]
     errs.append(float(abs(mpmath.mpf(top.roots[2]) / ex[2] - 1) / EPS))
     assert max(errs) <= ROOT_EPS, errs
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="u2 of a pendulum just short of the vertical (a = b, u3 = 1 exactly) comes from "
+    "the deflated quadratic, 1 − u2 = 2 sin²(θ0/2) − x2 with cancellation: measured 498 eps "
+    "at 1 − u2 = 5e-4, 4.9e4 eps at 5e-6 (the 1 − u2 form of the class divides 0 by 0 there)",
+)
+@pytest.mark.parametrize("short", [5e-4, 5e-6])
+def test_a_pendulum_just_short_of_the_top_has_u2_to_rounding(short):
+    """ψ̇ = φ̇ = 0: f(u) = (e − βu)(1 − u²), u2 = e/β exactly (mpmath from the float inputs)."""
+    th = math.pi / 2
+    thd = math.sqrt(2.0 * (1.0 - short - math.cos(th)))
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=th, theta_dot=thd)
+    with mpmath.workdps(50):
+        e = mpmath.mpf(thd) ** 2 + 2 * mpmath.cos(mpmath.mpf(th))  # β = 2, e = θ̇² + βu0
+        err = float(abs(mpmath.mpf(top.roots[1]) - e / 2) / EPS)
+    assert err <= NUTATION_ROOT_EPS, err
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="1 − u2 of a top at rest in θ just off the vertical (θ̇0 = 0: u2 = u0, 1 − u2 = "
+    "2 sin²(θ0/2)) from (a − b)²/(β(1 − u1)(u3 − 1)): 4.99999935e-13 for 5e-13 at θ0 = 1e-6 "
+    "(1.3e-7 relative), 6.2e-21 for 5e-19 at θ0 = 1e-9; it enters ψ and φ through n+",
+)
+@pytest.mark.parametrize("theta", [1e-6, 1e-9])
+def test_one_minus_u2_of_a_top_at_rest_just_off_the_vertical_to_rounding(theta):
+    top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=theta, phi_dot=5.0)
+    with mpmath.workdps(50):
+        exact = 2 * mpmath.sin(mpmath.mpf(theta) / 2) ** 2
+        err = float(abs(mpmath.mpf(top._omu2) / exact - 1) / EPS)
+    assert err <= NUTATION_ROOT_EPS, err
