@@ -494,16 +494,21 @@ angular_momentum_rate = finite_result(angular_momentum_rate)
 
 
 def _rate_ratio(
-    q: npt.NDArray[np.float64], t: npt.NDArray[np.float64], m: npt.NDArray[np.float64]
+    *factors: npt.NDArray[np.float64], over: npt.NDArray[np.float64]
 ) -> npt.NDArray[np.float64]:
-    """q t/m of the mantissas, (f_q f_t)/f_m, scaled once by 2**(e_q + e_t − e_m): the same
-    bits as the plain (q t)/m wherever q t neither under- nor overflows.  The plain product
+    """The product of ``factors`` over ``over`` formed on their mantissas, (f_1 f_2 …)/f_over
+    left to right, scaled once by 2**(e_1 + e_2 + … − e_over): the same bits as the plain
+    (x_1 x_2 …)/over wherever the product neither under- nor overflows.  The plain product
     lost the ratio of a mass scale: m = 2**-1000 · 1000, q = 2**-1000 · 4, t = 1e-30 made
-    q t subnormal (a rocket's v = 0 for the exact 1.2e-29), and so did a jet's k = q t/m."""
-    fq, eq = np.frexp(q)
-    ft, et = np.frexp(t)
-    fm, em = np.frexp(m)
-    out: npt.NDArray[np.float64] = np.ldexp(fq * ft / fm, eq + et - em)
+    q t subnormal (a rocket's v = 0 for the exact 1.2e-29), and so did a jet's k = q t/m; a
+    rim rocket's q r² overflowed for a valid wheel (q r² = 2**1040, t = 2**-60, J_0 = 20 ·
+    2**980: x = 0.05 refused as ≥ 1) and q r² t lost digits as a subnormal."""
+    f, e = np.frexp(factors[0])
+    for x in factors[1:]:
+        fx, ex = np.frexp(x)
+        f, e = f * fx, e + ex
+    fo, eo = np.frexp(over)
+    out: npt.NDArray[np.float64] = np.ldexp(f / fo, e - eo)
     return out
 
 
@@ -744,7 +749,7 @@ def _burn_velocity(
     g: npt.NDArray[np.float64],
 ) -> npt.NDArray[np.float64]:
     """u L(x) − g t, L = −log1p(−x), x = q t/m_0: (7.30)."""
-    v: npt.NDArray[np.float64] = u * -np.log1p(-_rate_ratio(q, t, m0)) - g * t
+    v: npt.NDArray[np.float64] = u * -np.log1p(-_rate_ratio(q, t, over=m0)) - g * t
     return v
 
 
@@ -756,7 +761,7 @@ def _burn_height(
     g: npt.NDArray[np.float64],
 ) -> npt.NDArray[np.float64]:
     """u t φ(x) − g t²/2: the integral of (7.30) from 0 to t."""
-    z: npt.NDArray[np.float64] = u * t * _phi(_rate_ratio(q, t, m0)) - 0.5 * g * t * t
+    z: npt.NDArray[np.float64] = u * t * _phi(_rate_ratio(q, t, over=m0)) - 0.5 * g * t * t
     return z
 
 
@@ -999,7 +1004,7 @@ def jet_velocity(
     ta = as_float_array(t, "t")
     if (ta < 0).any():
         raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
-    k = _rate_ratio(_positive(q, "q"), ta, _positive(m, "m"))
+    k = _rate_ratio(_positive(q, "q"), ta, over=_positive(m, "m"))
     v0 = as_float_array(v_0, "v_0")
     v: npt.NDArray[np.float64] = v0 * np.exp(-k) - _positive(w, "w") * np.expm1(-k)
     return v
@@ -1406,25 +1411,6 @@ def carousel_limit_angular_velocity(
 carousel_limit_angular_velocity = finite_result(carousel_limit_angular_velocity)
 
 
-def _rim_ratio(
-    q: npt.NDArray[np.float64],
-    r: npt.NDArray[np.float64],
-    t: npt.NDArray[np.float64],
-    J_0: npt.NDArray[np.float64],
-) -> npt.NDArray[np.float64]:
-    """x = q r² t/J_0 of the mantissas, (f_q f_r f_r f_t)/f_J, scaled once by
-    2**(e_q + 2 e_r + e_t − e_J), as :func:`_rate_ratio`: the same bits as the plain
-    product wherever q r² t neither under- nor overflows.  The plain q r² overflowed for
-    a valid wheel (q r² = 2**1040, t = 2**-60, J_0 = 20 · 2**980: x = 0.05 refused as ≥ 1)
-    and lost digits where q r² t is subnormal (J_0 ~ 2**-1030)."""
-    fq, eq = np.frexp(q)
-    fr, er = np.frexp(r)
-    ft, et = np.frexp(t)
-    fJ, eJ = np.frexp(J_0)
-    out: npt.NDArray[np.float64] = np.ldexp(fq * fr * fr * ft / fJ, eq + 2 * er + et - eJ)
-    return out
-
-
 def rim_rocket_angular_velocity(
     t: npt.ArrayLike, *, J_0: npt.ArrayLike, q: npt.ArrayLike, u: npt.ArrayLike, r: npt.ArrayLike
 ) -> npt.NDArray[np.float64]:
@@ -1477,10 +1463,11 @@ def rim_rocket_angular_velocity(
     ta = as_float_array(t, "t")
     if (ta < 0).any():
         raise OutOfDomainError(f"t must be ≥ 0; got {float(ta[ta < 0].flat[0])!r}")
-    x = _rim_ratio(_positive(q, "q"), _positive(r, "r"), ta, _positive(J_0, "J_0"))
+    qq, rr = _positive(q, "q"), _positive(r, "r")
+    x = _rate_ratio(qq, rr, rr, ta, over=_positive(J_0, "J_0"))
     if (x >= 1).any():
         raise OutOfDomainError("q r² t must be < J_0 (the wheel cannot expel all its inertia)")
-    w: npt.NDArray[np.float64] = -(_positive(u, "u") / np.asarray(r, float)) * np.log1p(-x)
+    w: npt.NDArray[np.float64] = -(_positive(u, "u") / rr) * np.log1p(-x)
     return w
 
 

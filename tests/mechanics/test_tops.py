@@ -1694,6 +1694,14 @@ def test_a_top_started_on_its_steady_precession_precesses_uniformly(theta, phi_d
     """θ̇0 = 0 and ψ̇0 the slow steady rate (5.60) to the ulp at which the computed nutation
     band closes (u2 − u1 = 0 exactly, a double root at u0): the top stays at θ0 and its ψ
     and φ turn uniformly at the rates given (the book's steady precession)."""
+    import mpmath
+
+    # the input is the slow root of (5.60) with L3 = J3 (ψ̇ cos θ + φ̇), i.e. of
+    # (J'1 − J3) cos θ Ω² − J3 φ̇ Ω + m g ℓ = 0, to within 2 ulps (mpmath, not the library)
+    with mpmath.workdps(50):
+        a, b = (1 - mpmath.mpf(0.5)) * mpmath.cos(theta), -mpmath.mpf(0.5) * phi_dot
+        slow = 2 / (-b + mpmath.sqrt(b * b - 4 * a))  # the root of smaller magnitude
+        assert abs(mpmath.mpf(psi_dot) - slow) <= 2 * math.ulp(psi_dot)
     top = tops.HeavySymmetricTop(1.0, 0.5, 1.0, theta=theta, psi_dot=psi_dot, phi_dot=phi_dot)
     assert top.roots[0] == top.roots[1] == math.cos(theta)  # the closed band
     ts = np.array([0.0, 0.5, 3.0, 10.0])
